@@ -1,0 +1,33 @@
+"""filterwnn: reduced sigma points, particle filters, filter-trained wavelet networks
+and GPS/DR navigation, on top of filterpy.
+
+The public API is the names in ``__all__``; everything else is private or lives in its
+module (``filterwnn.sigma_points``, ``filterwnn.particle_filter``, ...).
+"""
+
+__version__ = "0.1.0"
+
+from ._validation import NumericalError
+from .models import LinearGaussianModel, StateSpaceModel
+
+# --- sigma points and the unscented filter (issue 3) ---
+from .sigma_points import MinimalSkewSigmaPoints, SphericalSimplexSigmaPoints
+
+# --- particle filters (issue 4) ---
+
+# --- wavelet networks (issue 5) ---
+
+# --- dead reckoning (issue 6) ---
+
+__all__ = [
+    "__version__",
+    "NumericalError",
+    "StateSpaceModel",
+    "LinearGaussianModel",
+    # --- issue 3 ---
+    "MinimalSkewSigmaPoints",
+    "SphericalSimplexSigmaPoints",
+    # --- issue 4 ---
+    # --- issue 5 ---
+    # --- issue 6 ---
+]

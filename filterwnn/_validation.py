@@ -1,0 +1,215 @@
+"""Boundary checks shared by every public entry point, and the package's error type.
+
+Every check raises a ``ValueError`` or ``TypeError`` whose message names the argument,
+the rule and the value given, so that a user sees *what* was wrong, not a traceback from
+deep inside LAPACK. Hot inner loops do not call these; public constructors, setters and
+``predict``/``update``/``fit`` do.
+
+>>> import numpy as np
+>>> check_covariance(np.eye(2), "P", dim=2).shape
+(2, 2)
+>>> check_covariance([[1.0, 2.0], [2.0, 1.0]], "P")
+Traceback (most recent call last):
+...
+ValueError: P must be positive definite (Cholesky failed); smallest eigenvalue -1
+"""
+
+from __future__ import annotations
+
+import numbers
+
+import numpy as np
+
+__all__ = [
+    "NumericalError",
+    "as_state",
+    "as_measurement",
+    "check_covariance",
+    "check_weights",
+    "check_rng",
+    "check_positive_int",
+    "check_positive",
+    "check_choice",
+    "cholesky_lower",
+]
+
+
+class NumericalError(np.linalg.LinAlgError):
+    """A filter met a numerical failure during a run.
+
+    Raised, for example, when a covariance stops being positive definite, when every
+    particle weight underflows, or when trained weights become non-finite. It is a
+    subclass of :class:`numpy.linalg.LinAlgError` (and so of ``ValueError``), so code
+    that already catches those keeps working.
+
+    Attributes
+    ----------
+    matrix : str or None
+        Name of the offending quantity (``"P"``, ``"S"``, ``"weights"``, ...).
+    step : int or None
+        The step at which the failure happened (the count of ``predict``/``update``
+        calls, or the training sample index, as the raiser documents).
+    """
+
+    def __init__(self, message, *, matrix=None, step=None):
+        super().__init__(message)
+        self.matrix = matrix
+        self.step = step
+
+
+def as_state(x, name="x", dim=None):
+    """Return ``x`` as a finite 1-D float array, optionally of length ``dim``.
+
+    Scalars become arrays of length 1; column vectors ``(n, 1)`` are flattened.
+    """
+    try:
+        arr = np.asarray(x, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise TypeError(f"{name} must be array-like of numbers, got {type(x).__name__}") from exc
+    if arr.ndim == 2 and 1 in arr.shape:
+        arr = arr.reshape(-1)
+    arr = np.atleast_1d(arr)
+    if arr.ndim != 1:
+        raise ValueError(f"{name} must be 1-D, got shape {arr.shape}")
+    if dim is not None and arr.shape[0] != dim:
+        raise ValueError(f"{name} must have length {dim}, got shape {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name} must be finite, got {arr}")
+    return arr
+
+
+def as_measurement(z, dim_z, name="z"):
+    """Return a measurement as a finite 1-D array of length ``dim_z``.
+
+    NaN or infinite entries raise ``ValueError``: a missing measurement is said with
+    ``z=None``, never with NaN.
+    """
+    try:
+        arr = np.asarray(z, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise TypeError(f"{name} must be array-like of numbers or None, got {type(z).__name__}") from exc
+    arr = np.atleast_1d(arr).reshape(-1) if arr.size == dim_z else arr
+    if arr.ndim != 1 or arr.shape[0] != dim_z:
+        raise ValueError(f"{name} must have {dim_z} entries, got shape {np.shape(z)}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(
+            f"{name} must be finite (use z=None for a missing measurement), got {arr}"
+        )
+    return arr
+
+
+def cholesky_lower(P):
+    """Lower Cholesky factor of ``P`` (stacked over leading axes), or ``None`` if it fails."""
+    try:
+        L = np.linalg.cholesky(P)
+    except np.linalg.LinAlgError:
+        return None
+    if not np.all(np.isfinite(L)):
+        return None
+    return L
+
+
+def check_covariance(P, name="P", dim=None, *, allow_scalar=True, require_pd=True, sym_tol=1e-8):
+    """Validate a covariance matrix and return it as a float ``(dim, dim)`` array.
+
+    Parameters
+    ----------
+    P : scalar or array-like of shape (dim, dim)
+        A scalar means ``P * eye(dim)`` (as in filterpy) when ``allow_scalar``.
+    name : str
+        Argument name used in messages.
+    dim : int, optional
+        Required size.
+    require_pd : bool
+        Require positive definiteness (checked by a Cholesky factorisation).
+    sym_tol : float
+        Relative tolerance for symmetry, ``|P - P.T| <= sym_tol * max|P|``.
+    """
+    try:
+        arr = np.asarray(P, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise TypeError(f"{name} must be a matrix of numbers, got {type(P).__name__}") from exc
+    if arr.ndim == 0:
+        if not allow_scalar or dim is None:
+            raise ValueError(f"{name} must be a square matrix, got scalar {arr}")
+        arr = float(arr) * np.eye(dim)
+    if arr.ndim == 1 and arr.size == 1 and dim == 1:
+        arr = arr.reshape(1, 1)
+    if arr.ndim != 2 or arr.shape[0] != arr.shape[1]:
+        raise ValueError(f"{name} must be a square matrix, got shape {arr.shape}")
+    if dim is not None and arr.shape[0] != dim:
+        raise ValueError(f"{name} must have shape ({dim}, {dim}), got shape {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name} must be finite, got non-finite entries")
+    scale = max(np.max(np.abs(arr)), np.finfo(float).tiny)
+    asym = np.max(np.abs(arr - arr.T))
+    if asym > sym_tol * scale:
+        raise ValueError(f"{name} must be symmetric; max |{name} - {name}.T| = {asym:.3g}")
+    if require_pd and cholesky_lower(arr) is None:
+        ev = np.linalg.eigvalsh(0.5 * (arr + arr.T)).min()
+        raise ValueError(f"{name} must be positive definite (Cholesky failed); smallest eigenvalue {ev:.3g}")
+    return arr
+
+
+def check_weights(w, name="weights", n=None):
+    """Validate normalised non-negative weights; returns a float 1-D array summing to 1."""
+    arr = np.asarray(w, dtype=float)
+    if arr.ndim != 1 or arr.size == 0:
+        raise ValueError(f"{name} must be a non-empty 1-D array, got shape {arr.shape}")
+    if n is not None and arr.size != n:
+        raise ValueError(f"{name} must have length {n}, got {arr.size}")
+    if not np.all(np.isfinite(arr)) or np.any(arr < 0):
+        raise ValueError(f"{name} must be finite and non-negative, got min {np.nanmin(arr)}")
+    total = arr.sum()
+    if not total > 0:
+        raise ValueError(f"{name} must have a positive sum, got {total}")
+    if abs(total - 1.0) > 1e-8:
+        raise ValueError(f"{name} must sum to 1, got {total:.12g}")
+    return arr
+
+
+def check_rng(rng):
+    """Normalise ``rng`` with :func:`numpy.random.default_rng` (SPEC 7).
+
+    Accepts ``None``, an int, a :class:`numpy.random.SeedSequence`, a ``BitGenerator``
+    or a ``Generator``; anything else raises ``TypeError``. The legacy
+    ``RandomState`` is refused: it would tie results to the global stream.
+    """
+    if rng is None or isinstance(
+        rng, (numbers.Integral, np.random.SeedSequence, np.random.BitGenerator, np.random.Generator)
+    ):
+        if isinstance(rng, numbers.Integral) and rng < 0:
+            raise ValueError(f"rng seed must be >= 0, got {rng}")
+        return np.random.default_rng(rng)
+    raise TypeError(
+        "rng must be None, an int seed, a SeedSequence, a BitGenerator or a "
+        f"numpy.random.Generator, got {type(rng).__name__}"
+    )
+
+
+def check_positive_int(value, name, minimum=1):
+    """Return ``value`` as an int, requiring ``value >= minimum``."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise TypeError(f"{name} must be an integer, got {type(value).__name__} {value!r}")
+    if value < minimum:
+        raise ValueError(f"{name} must be >= {minimum}, got {value}")
+    return int(value)
+
+
+def check_positive(value, name, *, strict=True):
+    """Return ``value`` as a float, requiring ``value > 0`` (or ``>= 0`` if not strict)."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise TypeError(f"{name} must be a real number, got {type(value).__name__} {value!r}")
+    value = float(value)
+    if not np.isfinite(value) or (value <= 0 if strict else value < 0):
+        rule = "> 0" if strict else ">= 0"
+        raise ValueError(f"{name} must be finite and {rule}, got {value}")
+    return value
+
+
+def check_choice(value, name, choices):
+    """Require ``value`` to be one of ``choices``; the message lists the valid names."""
+    if value not in choices:
+        valid = ", ".join(repr(c) for c in sorted(choices))
+        raise ValueError(f"unknown {name} {value!r}; valid: {valid}")
+    return value

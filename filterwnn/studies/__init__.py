@@ -1,0 +1,11 @@
+"""Runners that reproduce the two papers' studies.
+
+Each study module exposes ``add_arguments(parser)`` and ``run(args)`` for the
+``filterwnn study NAME`` command, plus plain functions that return arrays and tables
+(no plotting here: :mod:`filterwnn.plotting` draws from their results).
+"""
+
+STUDIES = {
+    "wnn": "filterwnn.studies.wnn",
+    "dr": "filterwnn.studies.dr",
+}
