@@ -16,6 +16,7 @@ from .sigma_points import MinimalSkewSigmaPoints, SphericalSimplexSigmaPoints
 # --- particle filters (issue 4) ---
 
 # --- wavelet networks (issue 5) ---
+from . import wnn
 
 # --- dead reckoning (issue 6) ---
 
@@ -29,5 +30,6 @@ __all__ = [
     "SphericalSimplexSigmaPoints",
     # --- issue 4 ---
     # --- issue 5 ---
+    "wnn",
     # --- issue 6 ---
 ]
