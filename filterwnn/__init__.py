@@ -12,6 +12,7 @@ from .models import LinearGaussianModel, StateSpaceModel
 
 # --- sigma points and the unscented filter (issue 3) ---
 from .sigma_points import MinimalSkewSigmaPoints, SphericalSimplexSigmaPoints
+from .unscented import UnscentedKalmanFilter
 
 # --- particle filters (issue 4) ---
 
@@ -28,6 +29,7 @@ __all__ = [
     # --- issue 3 ---
     "MinimalSkewSigmaPoints",
     "SphericalSimplexSigmaPoints",
+    "UnscentedKalmanFilter",
     # --- issue 4 ---
     # --- issue 5 ---
     "wnn",

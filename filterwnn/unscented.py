@@ -1,0 +1,439 @@
+r"""filterpy's unscented Kalman filter, vectorized, with loud numerical failures.
+
+:class:`UnscentedKalmanFilter` subclasses :class:`filterpy.kalman.UnscentedKalmanFilter`
+with the same constructor (filterpy's order: ``dim_x, dim_z, dt, hx, fx, points, ...``),
+attributes and methods, and adds three things its users lack:
+
+``vectorized=True``
+    ``fx(sigmas, dt, **fx_args)`` and ``hx(sigmas, **hx_args)`` receive *all* sigma
+    points as one ``(n_sigmas, dim)`` array and return ``(n_sigmas, dim_out)``: one
+    call per step instead of one per point, the unscented transform and the cross
+    covariance as matrix products, and the sigma points built from the set's
+    structure in O(n^2) (:func:`filterwnn.sigma_points.sigma_deviations`).
+    ``predict``, ``update``, ``batch_filter`` and ``rts_smoother`` all honour it.
+``fx=None``
+    a random walk, ``x_k = x_{k-1} + w_k`` (every parameter-estimation problem):
+    ``predict`` is ``x_prior = x, P_prior = P + Q`` with no sigma points and no
+    factorisation, so a step costs one Cholesky where filterpy's costs two.
+:class:`~filterwnn.NumericalError`
+    when ``P`` or ``S`` stops being positive definite, with the matrix name and the
+    step (the count of ``predict``/``update`` calls) in its message and attributes,
+    and the filter's state left as it was before the failing call. A ``z`` with NaN or
+    inf raises ``ValueError`` (``z=None`` skips the update, as in filterpy).
+
+With ``vectorized=False`` and a given ``fx`` the numbers are filterpy's own.
+
+The update with sigma points :math:`\chi_i = x^- + D_i` and weights ``Wm, Wc`` is
+
+.. math::
+    \hat z = \sum_i W^m_i h(\chi_i), \quad
+    S = \sum_i W^c_i (h_i - \hat z)(h_i - \hat z)^T + R, \quad
+    P_{xz} = \sum_i W^c_i D_i (h_i - \hat z)^T,
+
+    K = P_{xz} S^{-1}, \quad x = x^- + K (z - \hat z), \quad P = P^- - K S K^T,
+
+with ``K`` from a Cholesky solve, never an explicit inverse.
+
+>>> import numpy as np
+>>> from filterwnn import SphericalSimplexSigmaPoints
+>>> def hx(X):                      # all sigma points at once: (n_sigmas, 2) -> (n_sigmas, 1)
+...     return np.sin(X[:, :1]) + X[:, 1:]
+>>> ukf = UnscentedKalmanFilter(2, 1, 1.0, hx=hx, fx=None,
+...                             points=SphericalSimplexSigmaPoints(2), vectorized=True)
+>>> ukf.Q *= 1e-4; ukf.R *= 0.01
+>>> ukf.predict(); ukf.update(np.array([0.5]))
+>>> ukf.x.shape, ukf.P.shape
+((2,), (2, 2))
+>>> ukf.update(np.array([np.nan]))
+Traceback (most recent call last):
+...
+ValueError: z must be finite (use z=None for a missing measurement), got [nan]
+"""
+
+from __future__ import annotations
+
+import numbers
+from copy import deepcopy
+
+import numpy as np
+from filterpy.kalman import UnscentedKalmanFilter as _FilterpyUKF
+from filterpy.kalman import unscented_transform
+from scipy.linalg import cho_factor, cho_solve, cholesky
+
+from ._validation import NumericalError, check_positive, check_positive_int
+from .sigma_points import sigma_deviations
+
+__all__ = ["UnscentedKalmanFilter", "fast_unscented_transform"]
+
+
+def fast_unscented_transform(sigmas, Wm, Wc, noise_cov=None):
+    """Unscented transform for linear residuals, as matrix products.
+
+    Equal to :func:`filterpy.kalman.unscented_transform` with the default mean and
+    residual functions, without forming filterpy's dense ``diag(Wc)``.
+
+    Parameters
+    ----------
+    sigmas : ndarray of shape (n_sigmas, dim)
+    Wm, Wc : ndarray of shape (n_sigmas,)
+    noise_cov : ndarray of shape (dim, dim), optional
+
+    Returns
+    -------
+    x : ndarray of shape (dim,)
+    P : ndarray of shape (dim, dim)
+    """
+    x = Wm @ sigmas
+    y = sigmas - x
+    P = (y.T * Wc) @ y
+    if noise_cov is not None:
+        P = P + noise_cov
+    return x, P
+
+
+class UnscentedKalmanFilter(_FilterpyUKF):
+    """filterpy's ``UnscentedKalmanFilter`` with ``vectorized=``, ``fx=None`` and clear errors.
+
+    Parameters
+    ----------
+    dim_x, dim_z : int
+        State and measurement sizes.
+    dt : float
+        Time step passed to ``fx`` (``> 0``).
+    hx : callable
+        ``hx(x, **hx_args)``; with ``vectorized=True``, ``hx(sigmas, **hx_args)`` taking
+        ``(n_sigmas, dim_x)`` and returning ``(n_sigmas, dim_z)``.
+    fx : callable or None
+        ``fx(x, dt, **fx_args)`` (vectorized alike), or ``None`` for a random walk.
+    points : sigma-point object
+        Any filterpy-protocol set: filterpy's Merwe/Julier/simplex points, or
+        :class:`~filterwnn.MinimalSkewSigmaPoints`,
+        :class:`~filterwnn.SphericalSimplexSigmaPoints`.
+    sqrt_fn, x_mean_fn, z_mean_fn, residual_x, residual_z, state_add : callable, optional
+        As in filterpy. In vectorized mode, ``residual_x``/``residual_z`` are called
+        on whole arrays (``residual(sigmas, mean)`` broadcasting a row), so write them
+        with NumPy operations on the last axis.
+    vectorized : bool, default False
+        Evaluate ``fx``/``hx`` once per step on all sigma points.
+
+    Attributes
+    ----------
+    step : int
+        Count of ``predict`` and ``update`` calls so far (used in error messages).
+
+    Notes
+    -----
+    filterpy 2.0 re-draws the sigma points from the predicted ``(x, P)`` at the end of
+    ``predict``; this class does the same (lazily, in ``update``) in both modes, so the
+    numbers agree with filterpy's at every step.
+    """
+
+    def __init__(
+        self,
+        dim_x,
+        dim_z,
+        dt,
+        hx,
+        fx,
+        points,
+        sqrt_fn=None,
+        x_mean_fn=None,
+        z_mean_fn=None,
+        residual_x=None,
+        residual_z=None,
+        state_add=None,
+        vectorized=False,
+    ):
+        dim_x = check_positive_int(dim_x, "dim_x")
+        dim_z = check_positive_int(dim_z, "dim_z")
+        dt = check_positive(dt, "dt")
+        if not callable(hx):
+            raise TypeError(f"hx must be callable, got {type(hx).__name__}")
+        if fx is not None and not callable(fx):
+            raise TypeError(f"fx must be callable or None (random walk), got {type(fx).__name__}")
+        for attr in ("num_sigmas", "sigma_points", "Wm", "Wc"):
+            if not hasattr(points, attr):
+                raise TypeError(
+                    f"points must follow filterpy's sigma-point protocol (missing {attr!r}), "
+                    f"got {type(points).__name__}"
+                )
+        if getattr(points, "n", dim_x) != dim_x:
+            raise ValueError(f"points.n must equal dim_x={dim_x}, got {points.n}")
+        super().__init__(
+            dim_x,
+            dim_z,
+            dt,
+            hx,
+            fx,
+            points,
+            sqrt_fn=sqrt_fn,
+            x_mean_fn=x_mean_fn,
+            z_mean_fn=z_mean_fn,
+            residual_x=residual_x,
+            residual_z=residual_z,
+            state_add=state_add,
+        )
+        self.vectorized = bool(vectorized)
+        self.step = 0
+        self._sigmas_stale = True  # sigmas_f must be drawn from (x, P) before update
+        self._deviations = None
+
+    # ------------------------------------------------------------------ helpers
+    def _fast_points(self):
+        """True when sigma points may be built as x + sigma_deviations(chol(P))."""
+        pts = self.points_fn
+        return (
+            getattr(pts, "sqrt", None) is cholesky
+            and getattr(pts, "subtract", np.subtract) is np.subtract
+        )
+
+    def _check_state(self):
+        x, P, n = self.x, self.P, self._dim_x
+        if np.shape(x) != (n,):
+            raise ValueError(f"x must have shape ({n},), got {np.shape(x)}")
+        if np.shape(P) != (n, n):
+            raise ValueError(f"P must have shape ({n}, {n}), got {np.shape(P)}")
+        if np.shape(self.Q) != (n, n):
+            raise ValueError(f"Q must have shape ({n}, {n}), got {np.shape(self.Q)}")
+        if not (np.all(np.isfinite(x)) and np.all(np.isfinite(P))):
+            raise NumericalError(
+                f"x and P must be finite before step {self.step + 1}", matrix="P", step=self.step + 1
+            )
+
+    def _sigmas(self, x, P, what):
+        """Sigma points of N(x, P); NumericalError naming ``what`` if P is not PD."""
+        if self.vectorized and self._fast_points():
+            try:
+                L = np.linalg.cholesky(P)
+            except np.linalg.LinAlgError:
+                L = None
+            if L is None or not np.all(np.isfinite(L)):
+                raise self._not_pd(what, P)
+            D = sigma_deviations(self.points_fn, L.T)
+            self._deviations = D
+            return x + D
+        self._deviations = None
+        try:
+            return np.asarray(self.points_fn.sigma_points(x, P), dtype=float)
+        except np.linalg.LinAlgError as exc:
+            raise self._not_pd(what, P) from exc
+
+    def _not_pd(self, what, M):
+        try:
+            ev = np.linalg.eigvalsh(0.5 * (M + M.T)).min()
+            detail = f"; smallest eigenvalue {ev:.3g}"
+        except (np.linalg.LinAlgError, ValueError):
+            detail = ""
+        return NumericalError(
+            f"{what} is not positive definite at step {self.step}{detail}", matrix=what, step=self.step
+        )
+
+    def _snapshot(self):
+        return {k: deepcopy(getattr(self, k)) for k in (
+            "x", "P", "x_prior", "P_prior", "x_post", "P_post", "sigmas_f", "sigmas_h",
+            "K", "y", "z", "S", "SI", "_sigmas_stale", "_deviations",
+            "_log_likelihood", "_likelihood", "_mahalanobis",
+        )}
+
+    def _restore(self, snap):
+        for k, v in snap.items():
+            setattr(self, k, v)
+
+    def _call(self, fn, sigmas, name, dim_out, *args, **kwargs):
+        """Evaluate fx/hx on all sigma points (vectorized) or row by row."""
+        if self.vectorized:
+            out = np.asarray(fn(sigmas, *args, **kwargs), dtype=float)
+            if out.ndim == 1 and dim_out == 1:
+                out = out[:, None]
+            if out.shape != (sigmas.shape[0], dim_out):
+                raise ValueError(
+                    f"vectorized {name} must map ({sigmas.shape[0]}, {sigmas.shape[1]}) sigma "
+                    f"points to shape ({sigmas.shape[0]}, {dim_out}), got {out.shape}"
+                )
+            return out
+        return np.atleast_2d([fn(s, *args, **kwargs) for s in sigmas])
+
+    # ------------------------------------------------------------------ predict
+    def predict(self, dt=None, UT=None, fx=None, **fx_args):
+        """Predict step; ``fx=None`` (here and at construction) is a random walk.
+
+        On return ``x``, ``P`` (and ``x_prior``, ``P_prior``) hold the prediction.
+        Raises :class:`~filterwnn.NumericalError` if ``P`` is not positive definite.
+        """
+        self._check_state()
+        self.step += 1
+        if dt is None:
+            dt = self._dt
+        fx = self.fx if fx is None else fx
+        if fx is None:  # random walk: no sigma points, no factorisation
+            P = self.P + self.Q
+            self.P = 0.5 * (P + P.T)
+            self.x = self.x.copy()
+            self._sigmas_stale = True
+        elif not self.vectorized:  # filterpy's own arithmetic, errors made clear
+            snap = self._snapshot()
+            try:
+                super().predict(dt=dt, UT=UT, fx=fx, **fx_args)
+            except np.linalg.LinAlgError as exc:
+                self._restore(snap)
+                raise self._not_pd("P", snap["P"]) from exc
+            except Exception:
+                self._restore(snap)
+                raise
+            self._sigmas_stale = False  # filterpy drew them from the prior already
+        else:
+            snap = self._snapshot()
+            try:
+                sigmas = self._sigmas(self.x, self.P, "P")
+                self.sigmas_f = self._call(fx, sigmas, "fx", self._dim_x, dt, **fx_args)
+                if UT is None and self.x_mean is None and self.residual_x is np.subtract:
+                    self.x, self.P = fast_unscented_transform(self.sigmas_f, self.Wm, self.Wc, self.Q)
+                else:
+                    UT = unscented_transform if UT is None else UT
+                    self.x, self.P = UT(
+                        self.sigmas_f, self.Wm, self.Wc, self.Q, self.x_mean, self.residual_x
+                    )
+            except Exception:
+                self._restore(snap)
+                raise
+            self.P = 0.5 * (self.P + self.P.T)
+            self._sigmas_stale = True  # filterpy 2.0 re-draws sigmas from the prior
+        self.x_prior = np.copy(self.x)
+        self.P_prior = np.copy(self.P)
+
+    def compute_process_sigmas(self, dt, fx=None, **fx_args):
+        """filterpy's helper: ``sigmas_f`` = the sigma points passed through ``fx``."""
+        fx = self.fx if fx is None else fx
+        sigmas = self._sigmas(self.x, self.P, "P")
+        self.sigmas_f = sigmas if fx is None else self._call(fx, sigmas, "fx", self._dim_x, dt, **fx_args)
+        self._sigmas_stale = False
+
+    # ------------------------------------------------------------------ update
+    def update(self, z, R=None, UT=None, hx=None, **hx_args):
+        """Update with measurement ``z`` (``None`` skips the update, as in filterpy).
+
+        Raises ``ValueError`` for a non-finite ``z`` and
+        :class:`~filterwnn.NumericalError` when ``P`` or ``S`` is not positive definite;
+        either way the filter's state is left as it was.
+        """
+        if z is None:
+            self.step += 1
+            self.z = np.array([[None] * self._dim_z]).T
+            self.x_post = self.x.copy()
+            self.P_post = self.P.copy()
+            return
+        try:
+            z_arr = np.asarray(z, dtype=float)
+        except (TypeError, ValueError) as exc:
+            raise TypeError(f"z must be array-like of numbers or None, got {type(z).__name__}") from exc
+        if not np.all(np.isfinite(z_arr)):
+            raise ValueError(
+                f"z must be finite (use z=None for a missing measurement), got {np.ravel(z_arr)}"
+            )
+        self._check_state()
+        if R is not None and isinstance(R, numbers.Real):
+            R = np.eye(self._dim_z) * R
+        self.step += 1
+        snap = self._snapshot()
+        try:
+            if self._sigmas_stale:
+                self.sigmas_f = self._sigmas(self.x, self.P, "P")
+                self._sigmas_stale = False
+            if not self.vectorized:
+                try:
+                    super().update(z, R=R, UT=UT, hx=hx, **hx_args)
+                except np.linalg.LinAlgError as exc:
+                    raise self._not_pd("S", self.S) from exc
+            else:
+                self._vectorized_update(z_arr, R, UT, hx, **hx_args)
+            if not (np.all(np.isfinite(self.x)) and np.all(np.isfinite(self.P))):
+                raise NumericalError(
+                    f"the update produced non-finite x or P at step {self.step}", matrix="P", step=self.step
+                )
+        except Exception:
+            self._restore(snap)
+            raise
+        self._sigmas_stale = True
+
+    def _vectorized_update(self, z, R, UT, hx, **hx_args):
+        hx = self.hx if hx is None else hx
+        R = self.R if R is None else R
+        sig = self.sigmas_f
+        self.sigmas_h = self._call(hx, sig, "hx", self._dim_z, **hx_args)
+        if UT is None and self.z_mean is None and self.residual_z is np.subtract:
+            zp, S = fast_unscented_transform(self.sigmas_h, self.Wm, self.Wc, R)
+            dz = self.sigmas_h - zp
+        else:
+            UT = unscented_transform if UT is None else UT
+            zp, S = UT(self.sigmas_h, self.Wm, self.Wc, R, self.z_mean, self.residual_z)
+            dz = self.residual_z(self.sigmas_h, zp)
+        if self._deviations is not None and self.residual_x is np.subtract:
+            dx = self._deviations
+        else:
+            dx = self.residual_x(sig, self.x)
+        Pxz = dx.T @ (dz * self.Wc[:, None])
+        S = 0.5 * (S + S.T)
+        self.S = S
+        try:
+            cf = cho_factor(S, lower=True, check_finite=True)
+        except (np.linalg.LinAlgError, ValueError) as exc:
+            raise self._not_pd("S", S) from exc
+        self.SI = cho_solve(cf, np.eye(S.shape[0]))
+        self.K = cho_solve(cf, Pxz.T).T
+        self.y = self.residual_z(z.reshape(np.shape(zp)), zp)
+        self.x = self.state_add(self.x, self.K @ self.y)
+        P = self.P - self.K @ S @ self.K.T
+        self.P = 0.5 * (P + P.T)
+        self.z = deepcopy(z)
+        self.x_post = self.x.copy()
+        self.P_post = self.P.copy()
+        self._log_likelihood = None
+        self._likelihood = None
+        self._mahalanobis = None
+
+    # ------------------------------------------------------------------ smoother
+    def rts_smoother(self, Xs, Ps, Qs=None, dts=None, UT=None):
+        """Rauch-Tung-Striebel smoother over ``batch_filter`` output (filterpy's API).
+
+        Honours ``vectorized`` and ``fx=None`` (then the smoother gain is
+        ``P_k (P_k + Q)^{-1}``, applied by solves).
+
+        Returns
+        -------
+        xs : ndarray of shape (n_steps, dim_x)
+        Ps : ndarray of shape (n_steps, dim_x, dim_x)
+        Ks : ndarray of shape (n_steps, dim_x, dim_x)
+        """
+        if self.fx is not None and not self.vectorized:
+            return super().rts_smoother(Xs, Ps, Qs=Qs, dts=dts, UT=UT)
+        if len(Xs) != len(Ps):
+            raise ValueError(f"Xs and Ps must have the same length, got {len(Xs)} and {len(Ps)}")
+        Xs = np.asarray(Xs, dtype=float)
+        n, dim_x = Xs.shape
+        dts = [self._dt] * n if dts is None else ([dts] * n if np.isscalar(dts) else dts)
+        Qs = [self.Q] * n if Qs is None else Qs
+        UT = unscented_transform if UT is None else UT
+        xs, ps = Xs.copy(), np.array(Ps, dtype=float)
+        Ks = np.zeros((n, dim_x, dim_x))
+        for k in reversed(range(n - 1)):
+            sigmas = self._sigmas(xs[k], ps[k], "P")
+            if self.fx is None:
+                sigmas_f = sigmas
+            else:
+                sigmas_f = self._call(self.fx, sigmas, "fx", dim_x, dts[k])
+            xb, Pb = UT(sigmas_f, self.Wm, self.Wc, Qs[k], self.x_mean, self.residual_x)
+            dyf = self.residual_x(sigmas_f, xb)
+            dzs = self.residual_x(sigmas, Xs[k])
+            Pxb = (dzs.T * self.Wc) @ dyf
+            try:
+                cf = cho_factor(0.5 * (Pb + Pb.T), lower=True)
+            except np.linalg.LinAlgError as exc:
+                raise NumericalError(
+                    f"predicted covariance is not positive definite at smoother step {k}",
+                    matrix="P_prior", step=k,
+                ) from exc
+            K = cho_solve(cf, Pxb.T).T
+            xs[k] = xs[k] + K @ self.residual_x(xs[k + 1], xb)
+            ps[k] = ps[k] + K @ (ps[k + 1] - Pb) @ K.T
+            Ks[k] = K
+        return xs, ps, Ks
