@@ -229,11 +229,15 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         )
 
     def _snapshot(self):
-        return {k: deepcopy(getattr(self, k)) for k in (
+        # References suffice: this class never writes into these arrays in place, it
+        # rebinds them. filterpy's own predict fills sigmas_f in place, so copy that.
+        snap = {k: getattr(self, k) for k in (
             "x", "P", "x_prior", "P_prior", "x_post", "P_post", "sigmas_f", "sigmas_h",
             "K", "y", "z", "S", "SI", "_sigmas_stale", "_deviations",
             "_log_likelihood", "_likelihood", "_mahalanobis",
         )}
+        snap["sigmas_f"] = np.copy(self.sigmas_f)
+        return snap
 
     def _restore(self, snap):
         for k, v in snap.items():
@@ -266,8 +270,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             dt = self._dt
         fx = self.fx if fx is None else fx
         if fx is None:  # random walk: no sigma points, no factorisation
-            P = self.P + self.Q
-            self.P = 0.5 * (P + P.T)
+            self.P = self.P + self.Q
             self.x = self.x.copy()
             self._sigmas_stale = True
         elif not self.vectorized:  # filterpy's own arithmetic, errors made clear
@@ -382,8 +385,11 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         self.K = cho_solve(cf, Pxz.T).T
         self.y = self.residual_z(z.reshape(np.shape(zp)), zp)
         self.x = self.state_add(self.x, self.K @ self.y)
-        P = self.P - self.K @ S @ self.K.T
-        self.P = 0.5 * (P + P.T)
+        if S.shape == (1, 1):  # rank-1 downdate, symmetric by construction
+            self.P = self.P - S[0, 0] * np.outer(self.K[:, 0], self.K[:, 0])
+        else:
+            P = self.P - self.K @ S @ self.K.T
+            self.P = 0.5 * (P + P.T)
         self.z = deepcopy(z)
         self.x_post = self.x.copy()
         self.P_post = self.P.copy()
