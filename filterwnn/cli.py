@@ -32,7 +32,7 @@ def _demo(args):
     kf = model.kalman_filter()
     ref, _, _, _ = kf.batch_filter(zs)
     print(f"filterwnn {__version__}: filterpy's UnscentedKalmanFilter with three point sets")
-    print(f"on a random 4-state linear model, 50 steps (max |x - x_KF| over the run):")
+    print("on a random 4-state linear model, 50 steps (max |x - x_KF| over the run):")
     for points in (
         MerweScaledSigmaPoints(4, alpha=0.5, beta=2.0, kappa=-1.0),
         MinimalSkewSigmaPoints(4),
@@ -59,7 +59,9 @@ def main(argv=None):
     for name, modname in STUDIES.items():
         try:
             mod = importlib.import_module(modname)
-        except ImportError:  # a study not present in this build
+        except ModuleNotFoundError as exc:  # that study is not part of this build
+            if exc.name != modname:
+                raise
             continue
         sp = studies.add_parser(name, help=(mod.__doc__ or name).strip().split("\n")[0])
         mod.add_arguments(sp)
