@@ -121,7 +121,9 @@ def check_covariance(P, name="P", dim=None, *, allow_scalar=True, require_pd=Tru
     dim : int, optional
         Required size.
     require_pd : bool
-        Require positive definiteness (checked by a Cholesky factorisation).
+        Require positive definiteness (checked by a Cholesky factorisation). When
+        false, positive *semi*-definiteness is still required (smallest eigenvalue
+        ``>= -sqrt(eps) * max|P|``), so a singular ``Q`` passes and a negative one does not.
     sym_tol : float
         Relative tolerance for symmetry, ``|P - P.T| <= sym_tol * max|P|``.
     """
@@ -148,6 +150,10 @@ def check_covariance(P, name="P", dim=None, *, allow_scalar=True, require_pd=Tru
     if require_pd and cholesky_lower(arr) is None:
         ev = np.linalg.eigvalsh(0.5 * (arr + arr.T)).min()
         raise ValueError(f"{name} must be positive definite (Cholesky failed); smallest eigenvalue {ev:.3g}")
+    if not require_pd and arr.size:
+        ev = np.linalg.eigvalsh(0.5 * (arr + arr.T)).min()
+        if ev < -np.sqrt(np.finfo(float).eps) * scale:
+            raise ValueError(f"{name} must be positive semi-definite; smallest eigenvalue {ev:.3g}")
     return arr
 
 

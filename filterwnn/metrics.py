@@ -20,26 +20,64 @@ from __future__ import annotations
 import numpy as np
 from scipy import linalg, stats
 
+from ._validation import check_positive, check_positive_int
+
 __all__ = ["mse", "rmse", "nees", "nis", "chi2_bounds", "effective_sample_size"]
+
+
+def _difference(y_true, y_pred):
+    """``y_true - y_pred`` (broadcasting), with an error naming both if shapes clash."""
+    a = np.asarray(y_true, dtype=float)
+    b = np.asarray(y_pred, dtype=float)
+    try:
+        return a - b
+    except ValueError as exc:
+        raise ValueError(
+            f"y_true and y_pred must have the same (or broadcastable) shapes, got {a.shape} and {b.shape}"
+        ) from exc
 
 
 def mse(y_true, y_pred):
     """Mean squared error over all entries."""
-    d = np.asarray(y_true, dtype=float) - np.asarray(y_pred, dtype=float)
+    d = _difference(y_true, y_pred)
     return float(np.mean(d * d))
 
 
 def rmse(y_true, y_pred, axis=None):
     """Root mean squared error (over ``axis``; all entries by default)."""
-    d = np.asarray(y_true, dtype=float) - np.asarray(y_pred, dtype=float)
+    d = _difference(y_true, y_pred)
     return np.sqrt(np.mean(d * d, axis=axis))
 
 
-def _quad(e, P):
-    """``e^T P^{-1} e`` stacked over leading axes, by Cholesky solves (no inverse)."""
+def _quad(e, P, e_name="x_true - x_hat", P_name="P"):
+    """``e^T P^{-1} e`` stacked over leading axes, by Cholesky solves (no inverse).
+
+    Raises ``ValueError`` naming the argument for mismatched shapes, non-finite
+    entries, a non-symmetric or a non-positive-definite ``P``.
+    """
     e = np.asarray(e, dtype=float)
     P = np.asarray(P, dtype=float)
-    L = np.linalg.cholesky(P)
+    if e.ndim < 1 or P.ndim < 2 or P.shape[-2:] != (e.shape[-1], e.shape[-1]):
+        raise ValueError(
+            f"{P_name} must have shape (..., {e.shape[-1] if e.ndim else 1}, "
+            f"{e.shape[-1] if e.ndim else 1}) to match {e_name} of shape {e.shape}, got {P.shape}"
+        )
+    if not np.all(np.isfinite(e)):
+        raise ValueError(f"{e_name} must be finite, got non-finite entries")
+    if not np.all(np.isfinite(P)):
+        raise ValueError(f"{P_name} must be finite, got non-finite entries")
+    Pt = np.swapaxes(P, -1, -2)
+    scale = max(float(np.max(np.abs(P))), np.finfo(float).tiny)
+    asym = float(np.max(np.abs(P - Pt)))
+    if asym > 1e-8 * scale:
+        raise ValueError(f"{P_name} must be symmetric; max |{P_name} - {P_name}.T| = {asym:.3g}")
+    try:
+        L = np.linalg.cholesky(P)
+    except np.linalg.LinAlgError as exc:
+        ev = float(np.min(np.linalg.eigvalsh(0.5 * (P + Pt))))
+        raise ValueError(
+            f"{P_name} must be positive definite (Cholesky failed); smallest eigenvalue {ev:.3g}"
+        ) from exc
     if e.ndim == 1:
         u = linalg.solve_triangular(L, e, lower=True)
         return float(u @ u)
@@ -59,22 +97,51 @@ def nees(x_true, x_hat, P):
     -------
     float or ndarray of shape (...)
     """
-    return _quad(np.asarray(x_true, float) - np.asarray(x_hat, float), P)
+    for name, v in (("x_true", x_true), ("x_hat", x_hat)):
+        if not np.all(np.isfinite(np.asarray(v, dtype=float))):
+            raise ValueError(f"{name} must be finite, got non-finite entries")
+    try:
+        e = np.asarray(x_true, float) - np.asarray(x_hat, float)
+    except ValueError as exc:
+        raise ValueError(
+            f"x_true and x_hat must have the same shape, got {np.shape(x_true)} and {np.shape(x_hat)}"
+        ) from exc
+    return _quad(e, P)
 
 
 def nis(y, S):
     """Normalised innovation squared ``y^T S^{-1} y`` (shapes as in :func:`nees`)."""
-    return _quad(y, S)
+    return _quad(y, S, "y", "S")
 
 
 def chi2_bounds(dof, n_runs=1, alpha=0.05):
     """Two-sided ``1 - alpha`` interval of the average of ``n_runs`` chi-square(dof) draws."""
+    dof = check_positive_int(dof, "dof")
+    n_runs = check_positive_int(n_runs, "n_runs")
+    alpha = check_positive(alpha, "alpha")
+    if not alpha < 1:
+        raise ValueError(f"alpha must satisfy 0 < alpha < 1, got {alpha}")
     lo = stats.chi2.ppf(alpha / 2, dof * n_runs) / n_runs
     hi = stats.chi2.ppf(1 - alpha / 2, dof * n_runs) / n_runs
     return float(lo), float(hi)
 
 
 def effective_sample_size(weights):
-    """``1 / sum(w_i^2)`` of normalised weights (``n`` for equal weights, 1 for one-hot)."""
-    w = np.asarray(weights, dtype=float)
+    """``1 / sum(w_i^2)`` of the normalised weights (``n`` for equal weights, 1 for one-hot).
+
+    ``weights`` must be a non-empty 1-D array of finite, non-negative numbers with a
+    positive sum; they are normalised here.
+    """
+    try:
+        w = np.asarray(weights, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise TypeError(f"weights must be array-like of numbers, got {type(weights).__name__}") from exc
+    if w.ndim != 1 or w.size == 0:
+        raise ValueError(f"weights must be a non-empty 1-D array, got shape {w.shape}")
+    if not np.all(np.isfinite(w)) or np.any(w < 0):
+        raise ValueError(f"weights must be finite and non-negative, got min {np.min(w)}")
+    total = float(np.sum(w))
+    if not total > 0:
+        raise ValueError(f"weights must have a positive sum, got {total}")
+    w = w / total
     return float(1.0 / np.sum(w * w))

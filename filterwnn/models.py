@@ -35,7 +35,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._validation import check_covariance, check_positive_int, check_rng
+from ._validation import as_state, check_covariance, check_positive, check_positive_int, check_rng
 
 __all__ = ["StateSpaceModel", "LinearGaussianModel"]
 
@@ -75,12 +75,14 @@ class StateSpaceModel:
         """
         n_steps = check_positive_int(n_steps, "n_steps")
         rng = check_rng(rng)
+        if x0 is not None:
+            x0 = as_state(x0, "x0", self.dim_x)
         Lq = np.linalg.cholesky(self.Q) if np.any(self.Q) else np.zeros_like(self.Q)
         Lr = np.linalg.cholesky(self.R)
         if x0 is None:
             x = self.x0 + np.linalg.cholesky(self.P0) @ rng.standard_normal(self.dim_x)
         else:
-            x = np.asarray(x0, dtype=float)
+            x = x0.copy()
         xs = np.empty((n_steps, self.dim_x))
         zs = np.empty((n_steps, self.dim_z))
         for k in range(n_steps):
@@ -112,19 +114,26 @@ class LinearGaussianModel(StateSpaceModel):
         self.H = np.atleast_2d(np.asarray(H, dtype=float))
         self.dim_x = self.F.shape[0]
         self.dim_z = self.H.shape[0]
-        if self.F.shape != (self.dim_x, self.dim_x):
+        if self.F.ndim != 2 or self.F.shape != (self.dim_x, self.dim_x):
             raise ValueError(f"F must be square, got shape {self.F.shape}")
-        if self.H.shape[1] != self.dim_x:
+        if self.H.ndim != 2 or self.H.shape[1] != self.dim_x:
             raise ValueError(f"H must have shape (dim_z, {self.dim_x}), got {self.H.shape}")
+        for name, M in (("F", self.F), ("H", self.H)):
+            if not np.all(np.isfinite(M)):
+                raise ValueError(f"{name} must be finite, got non-finite entries")
         self.Q = check_covariance(Q, "Q", self.dim_x, require_pd=False)
         self.R = check_covariance(R, "R", self.dim_z)
-        self.x0 = np.zeros(self.dim_x) if x0 is None else np.asarray(x0, dtype=float)
+        self.x0 = np.zeros(self.dim_x) if x0 is None else as_state(x0, "x0", self.dim_x)
         self.P0 = np.eye(self.dim_x) if P0 is None else check_covariance(P0, "P0", self.dim_x)
-        self.dt = float(dt)
+        self.dt = check_positive(dt, "dt")
 
     @classmethod
     def random(cls, dim_x=4, dim_z=2, rng=None, q=0.1, r=0.5):
         """A random stable linear-Gaussian model (spectral radius 0.95), for tests."""
+        dim_x = check_positive_int(dim_x, "dim_x")
+        dim_z = check_positive_int(dim_z, "dim_z")
+        q = check_positive(q, "q")
+        r = check_positive(r, "r")
         rng = check_rng(rng)
         A = rng.standard_normal((dim_x, dim_x))
         F = 0.95 * A / max(np.abs(np.linalg.eigvals(A)).max(), 1e-12)
