@@ -18,6 +18,9 @@ from .unscented import UnscentedKalmanFilter
 
 # --- wavelet networks (issue 5) ---
 from . import wnn
+from .datasets import make_siso_benchmark
+from .regressor import WNNRegressor
+from .weight_model import WNNWeightModel
 
 # --- dead reckoning (issue 6) ---
 
@@ -33,5 +36,8 @@ __all__ = [
     # --- issue 4 ---
     # --- issue 5 ---
     "wnn",
+    "make_siso_benchmark",
+    "WNNRegressor",
+    "WNNWeightModel",
     # --- issue 6 ---
 ]

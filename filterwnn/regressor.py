@@ -1,0 +1,699 @@
+r"""Wavelet networks trained by filters: the trainer registry and :class:`WNNRegressor`.
+
+Training a WNN with a filter is running the filter on the weight-state model of
+:mod:`filterwnn.weight_model` (``theta_k = theta_{k-1} + u_k``, ``y_k = WNN(theta_k, x_k) + v_k``),
+one training sample per step, epoch after epoch (Niu, Wu and Li, Sec. 4). The trainers,
+by name (:data:`TRAINERS`):
+
+``"bp"``
+    back-propagation: per-sample gradient descent on the squared error (the baseline).
+``"ekf"``
+    extended Kalman filter. By default a rank-1 EKF written for ``dim_z = 1``
+    (``backend="rank1"``): the same equations as filterpy's
+    :class:`~filterpy.kalman.ExtendedKalmanFilter` (which the tests check it against
+    step by step), about 10x faster because it skips filterpy's dense ``(I - K H)``
+    Joseph products; ``ekf_backend="filterpy"`` runs filterpy's class itself.
+``"ukf"``, ``"sukf"``
+    :class:`filterwnn.unscented.UnscentedKalmanFilter` (vectorized, ``fx=None``) with
+    Merwe's ``2n + 1`` points (``alpha=1, beta=2, kappa=0``) or the ``n + 2`` spherical
+    simplex points (Julier 2003; the paper's SUKF).
+``"spf"``, ``"epf"``, ``"upf"``, ``"supf"``
+    particle filters of :mod:`filterwnn.particle_filter`: bootstrap, and the EKF-, UKF- and
+    simplex-UKF-proposal filters. ``weighting="bank"`` (default) weights each particle by
+    its Kalman innovation likelihood ``N(y_k; y_hat_i, S_i)`` (a bank of Kalman filters,
+    the approximation of the optimal proposal's weight ``p(y_k | x_{k-1})``);
+    ``weighting="textbook"`` uses ``p(y|x) p(x|x') / q(x)``, which degenerates to one
+    particle in 160 dimensions (see the findings). ``tempering`` raises the likelihood to a
+    power; the default bank is tempered (0.01) and never resamples, so its particles stay
+    distinct. Predictions average the particles' outputs with their weights.
+
+``"auto"`` noise settings (``process_noise`` Q, ``initial_covariance`` P0) are per trainer and
+start, from the measurements in ``wnn-trainer-targets.md`` / ``wnn-accuracy-limit.md``
+(see :data:`AUTO_SETTINGS`). The paper's ``Q = 1`` does not work literally (UKF/SUKF end
+worse than the mean predictor).
+
+>>> from filterwnn.datasets import make_siso_benchmark
+>>> X, y, X_test, y_test = make_siso_benchmark(rng=0)
+>>> reg = WNNRegressor(n_epochs=5, rng=0).fit(X, y)
+>>> reg.theta_.shape, len(reg.loss_curve_)
+((160,), 5)
+>>> mean, std = reg.predict(X_test[:3], return_std=True)
+>>> mean.shape, bool(np.all(std > 0))
+((3,), True)
+>>> WNNRegressor(trainer="adam").fit(X, y)
+Traceback (most recent call last):
+...
+ValueError: unknown trainer 'adam'; valid: 'bp', 'ekf', 'epf', 'spf', 'sukf', 'supf', 'ukf', 'upf'
+"""
+
+from __future__ import annotations
+
+import copy
+import sys
+import time
+
+import numpy as np
+from sklearn.base import BaseEstimator, RegressorMixin
+from sklearn.utils.validation import check_is_fitted, validate_data
+
+from . import wnn
+from ._validation import (
+    NumericalError,
+    check_choice,
+    check_positive,
+    check_positive_int,
+    check_rng,
+)
+from .weight_model import WNNWeightModel
+
+__all__ = ["TRAINERS", "AUTO_SETTINGS", "PAPER_SETTINGS", "WNNRegressor", "make_trainer"]
+
+
+# ---------------------------------------------------------------------------- settings
+#: ``(trainer, init) -> dict(Q=..., P0=...)`` used for ``"auto"``; ``bp`` uses ``learning_rate``.
+AUTO_SETTINGS = {
+    ("bp", "scaled"): {"learning_rate": 0.05},
+    ("bp", "paper"): {"learning_rate": 0.05},
+    ("ekf", "scaled"): {"Q": 1e-3, "P0": 0.1},
+    ("ekf", "paper"): {"Q": 1e-2, "P0": 0.01},
+    ("ukf", "scaled"): {"Q": 1e-4, "P0": 0.01},
+    ("ukf", "paper"): {"Q": 1e-4, "P0": 0.1},
+    ("sukf", "scaled"): {"Q": 1e-5, "P0": 0.01},
+    ("sukf", "paper"): {"Q": 1e-4, "P0": 0.1},
+    ("spf", "scaled"): {"Q": 1e-5, "P0": 0.01},
+    ("spf", "paper"): {"Q": 1e-4, "P0": 0.1},
+    ("epf", "scaled"): {"Q": 1e-3, "P0": 0.1},
+    ("epf", "paper"): {"Q": 1e-2, "P0": 0.01},
+    ("upf", "scaled"): {"Q": 1e-4, "P0": 0.01},
+    ("upf", "paper"): {"Q": 1e-4, "P0": 0.1},
+    ("supf", "scaled"): {"Q": 1e-5, "P0": 0.01},
+    ("supf", "paper"): {"Q": 1e-4, "P0": 0.1},
+}
+
+#: The paper's literal settings (Sec. 5): Q = 1, R = 0.1, U[0, 1] start; P0 is not stated (1 here).
+PAPER_SETTINGS = {"init": "paper", "process_noise": 1.0, "initial_covariance": 1.0, "measurement_noise": 0.1}
+
+_PF_NAMES = ("spf", "epf", "upf", "supf")
+
+
+# ---------------------------------------------------------------------------- trainers
+class _Trainer:
+    """One trainer: holds the filter state, runs epochs, predicts with a variance.
+
+    Subclasses implement ``epoch(X, y)``, ``theta`` and ``predict(X) -> (mean, var)``.
+    ``diagnostics`` collects per-epoch numbers (e.g. mean ESS) as lists.
+    """
+
+    def __init__(self, model, theta0, settings, rng):
+        self.model = model
+        self.settings = settings
+        self.rng = rng
+        self.diagnostics = {}
+
+    def _record(self, key, value):
+        self.diagnostics.setdefault(key, []).append(value)
+
+    def _check_finite(self, epoch, *arrays):
+        for a in arrays:
+            if not np.all(np.isfinite(a)):
+                raise NumericalError(
+                    f"the {self.name} trainer produced non-finite weights in epoch {epoch}; "
+                    "lower process_noise/initial_covariance (or the learning rate) or use init='scaled'",
+                    matrix="theta",
+                    step=epoch,
+                )
+
+
+class _BPTrainer(_Trainer):
+    """Per-sample gradient descent on ``(y - f)^2 / 2`` (samples in order)."""
+
+    name = "bp"
+
+    def __init__(self, model, theta0, settings, rng):
+        super().__init__(model, theta0, settings, rng)
+        self.x = np.array(theta0, dtype=float)
+        self.lr = float(settings["learning_rate"])
+        self.resid_var = float(model.R[0, 0])
+
+    @property
+    def theta(self):
+        return self.x
+
+    def epoch(self, X, y):
+        wav = self.model.wavelet
+        x = self.x
+        for xk, yk in zip(X, y):
+            xk = xk[None]
+            err = yk - wnn.forward(x, xk, wav)[0]
+            x = x + self.lr * err * wnn.jacobian(x, xk, wav)[0]
+        self.x = x
+        self.resid_var = max(float(np.mean((y - wnn.forward(x, X, wav)) ** 2)), 1e-12)
+
+    def predict(self, X):
+        return wnn.forward(self.x, X, self.model.wavelet), np.full(len(X), self.resid_var)
+
+
+class _EKFTrainer(_Trainer):
+    """EKF on the weight model; ``backend="rank1"`` (default) or ``"filterpy"``."""
+
+    name = "ekf"
+
+    def __init__(self, model, theta0, settings, rng):
+        super().__init__(model, theta0, settings, rng)
+        self.backend = settings.get("ekf_backend", "rank1")
+        self.x = np.array(theta0, dtype=float)
+        self.P = model.P0.copy()
+        if self.backend == "filterpy":
+            from filterpy.kalman import ExtendedKalmanFilter
+
+            self.kf = ExtendedKalmanFilter(model.dim_x, model.dim_z)
+            self.kf.x = self.x.copy()
+            self.kf.P = self.P.copy()
+            self.kf.Q = model.Q.copy()
+            self.kf.R = model.R.copy()
+
+    @property
+    def theta(self):
+        return self.kf.x if self.backend == "filterpy" else self.x
+
+    @property
+    def cov(self):
+        return self.kf.P if self.backend == "filterpy" else self.P
+
+    def epoch(self, X, y):
+        m = self.model
+        if self.backend == "filterpy":
+            kf = self.kf
+            for xk, yk in zip(X, y):
+                kf.predict()
+                kf.update(np.array([yk]), _Bound(m.HJacobian, xk), _Bound(m.hx, xk))
+            return
+        x, P = self.x, self.P
+        Q, r = m.Q, float(m.R[0, 0])
+        diagQ = np.allclose(Q, np.diag(np.diag(Q)))
+        qd = np.diag(Q).copy()
+        idx = np.diag_indices_from(P)
+        wav = m.wavelet
+        for xk, yk in zip(X, y):
+            if diagQ:
+                P[idx] += qd
+            else:
+                P = P + Q
+            xr = xk[None]
+            h = wnn.jacobian(x, xr, wav)[0]
+            Ph = P @ h
+            s = h @ Ph + r
+            k = Ph / s
+            x = x + k * (yk - wnn.forward(x, xr, wav)[0])
+            P -= np.outer(k, Ph)
+        self.x, self.P = x, 0.5 * (P + P.T)
+
+    def predict(self, X):
+        J = wnn.jacobian(self.theta, X, self.model.wavelet)
+        var = np.sum((J @ self.cov) * J, axis=1)
+        return wnn.forward(self.theta, X, self.model.wavelet), var + float(self.model.R[0, 0])
+
+
+class _Bound:
+    """``f(theta)`` = ``fn(theta, x=x)``: picklable partial for filterpy's EKF update."""
+
+    def __init__(self, fn, x):
+        self.fn, self.x = fn, x
+
+    def __call__(self, theta):
+        return self.fn(theta, x=self.x)
+
+
+class _UKFTrainer(_Trainer):
+    """filterwnn's vectorized UKF with ``fx=None`` (random walk), Merwe or simplex points."""
+
+    name = "ukf"
+
+    def _points(self, n):
+        from filterpy.kalman import MerweScaledSigmaPoints
+
+        return MerweScaledSigmaPoints(n, alpha=self.settings.get("alpha", 1.0), beta=2.0, kappa=0.0)
+
+    def __init__(self, model, theta0, settings, rng):
+        super().__init__(model, theta0, settings, rng)
+        from .unscented import UnscentedKalmanFilter
+
+        n = model.dim_x
+        self.kf = UnscentedKalmanFilter(n, 1, 1.0, model.hx, None, self._points(n), vectorized=True)
+        self.kf.x = np.array(theta0, dtype=float)
+        self.kf.P = model.P0.copy()
+        self.kf.Q = model.Q.copy()
+        self.kf.R = model.R.copy()
+
+    @property
+    def theta(self):
+        return self.kf.x
+
+    def epoch(self, X, y):
+        kf = self.kf
+        for xk, yk in zip(X, y):
+            kf.predict()
+            kf.update(np.array([yk]), x=xk)
+        kf.P = 0.5 * (kf.P + kf.P.T)
+
+    def predict(self, X):
+        J = wnn.jacobian(self.kf.x, X, self.model.wavelet)
+        var = np.sum((J @ self.kf.P) * J, axis=1)
+        return wnn.forward(self.kf.x, X, self.model.wavelet), var + float(self.model.R[0, 0])
+
+
+class _SUKFTrainer(_UKFTrainer):
+    name = "sukf"
+
+    def _points(self, n):
+        from .sigma_points import SphericalSimplexSigmaPoints
+
+        return SphericalSimplexSigmaPoints(n, alpha=self.settings.get("alpha", 1.0))
+
+
+class _PFTrainer(_Trainer):
+    """Particle-filter trainers over :mod:`filterwnn.particle_filter`'s presets."""
+
+    preset = None
+
+    def __init__(self, model, theta0, settings, rng):
+        super().__init__(model, theta0, settings, rng)
+        from . import particle_filter as pfmod
+
+        cls = getattr(pfmod, self.preset)
+        kwargs = dict(
+            n_particles=settings["n_particles"],
+            resampling="systematic",
+            ess_threshold=settings["ess_threshold"],
+            vectorized=True,
+            rng=rng,
+            tempering=settings["tempering"],
+        )
+        if self.name != "spf":
+            kwargs["weighting"] = settings["weighting"]
+        if self.name == "upf":
+            from filterpy.kalman import MerweScaledSigmaPoints
+
+            kwargs["points"] = MerweScaledSigmaPoints(model.dim_x, alpha=1.0, beta=2.0, kappa=0.0)
+        elif self.name == "supf":
+            from .sigma_points import SphericalSimplexSigmaPoints
+
+            kwargs["points"] = SphericalSimplexSigmaPoints(model.dim_x, alpha=1.0)
+        if self.name == "epf":
+            kwargs["HJacobian"] = model.HJacobian
+        # fx=None: the random walk, predicted without sigma points (P += Q)
+        self.pf = cls(model.dim_x, 1, 1.0, model.hx, None, **kwargs)
+        self.pf.Q = model.Q.copy()
+        self.pf.R = model.R.copy()
+        self.pf.P = model.P0.copy()
+        theta0 = np.atleast_2d(np.asarray(theta0, dtype=float))
+        if theta0.shape[0] == 1:  # one start: particles drawn from N(theta0, P0)
+            self.pf.x = theta0[0].copy()
+        else:  # one start per particle (the paper's step 1: draws from the initial distribution)
+            self.pf.initialize(theta0, model.P0)
+
+    @property
+    def particles(self):
+        return np.asarray(self.pf.particles)
+
+    @property
+    def weights(self):
+        return np.asarray(self.pf.weights)
+
+    @property
+    def theta(self):
+        return self.particles[int(np.argmax(self.weights))]
+
+    def epoch(self, X, y):
+        pf = self.pf
+        ess, distinct = [], []
+        for xk, yk in zip(X, y):
+            pf.predict()
+            pf.update(np.array([yk]), x=xk)
+            ess.append(pf.ess)
+            distinct.append(pf.n_distinct)
+        self._record("mean_ess", float(np.mean(ess)))
+        self._record("distinct", int(distinct[-1]))
+        self._check_finite(len(self.diagnostics["mean_ess"]), self.particles)
+
+    def predict(self, X):
+        w = self.weights
+        wav = self.model.wavelet
+        Y = wnn.forward(self.particles, X, wav)  # (N, n)
+        mean = w @ Y
+        spread = w @ (Y - mean) ** 2
+        Pp = self.pf.covariances
+        within = 0.0
+        if Pp is not None and np.ndim(Pp) == 3:
+            J = wnn.jacobian(self.particles, X, wav)  # (N, n, d)
+            within = w @ np.sum(np.matmul(J, Pp) * J, axis=2)
+        return mean, spread + within + float(self.model.R[0, 0])
+
+
+class _SPFTrainer(_PFTrainer):
+    name = "spf"
+    preset = "BootstrapParticleFilter"
+
+
+class _EPFTrainer(_PFTrainer):
+    name = "epf"
+    preset = "ExtendedKalmanParticleFilter"
+
+
+class _UPFTrainer(_PFTrainer):
+    name = "upf"
+    preset = "UnscentedParticleFilter"
+
+
+class _SUPFTrainer(_PFTrainer):
+    name = "supf"
+    preset = "SimplexUnscentedParticleFilter"
+
+
+#: Trainer registry: name -> trainer class.
+TRAINERS = {
+    "bp": _BPTrainer,
+    "ekf": _EKFTrainer,
+    "ukf": _UKFTrainer,
+    "sukf": _SUKFTrainer,
+    "spf": _SPFTrainer,
+    "epf": _EPFTrainer,
+    "upf": _UPFTrainer,
+    "supf": _SUPFTrainer,
+}
+
+
+def make_trainer(name, model, theta0, settings, rng=None):
+    """Build the trainer ``name`` (a key of :data:`TRAINERS`) on ``model``.
+
+    Raises ``ValueError`` listing the valid names for an unknown one.
+    """
+    check_choice(name, "trainer", TRAINERS)
+    return TRAINERS[name](model, theta0, settings, check_rng(rng))
+
+
+# ---------------------------------------------------------------------------- estimator
+def _progress(enabled, total, desc):
+    if enabled == "auto":
+        enabled = hasattr(sys.stderr, "isatty") and sys.stderr.isatty()
+    if not enabled:
+        return None
+    from tqdm.auto import tqdm
+
+    return tqdm(total=total, desc=desc, leave=False)
+
+
+class WNNRegressor(RegressorMixin, BaseEstimator):
+    """A 1-output wavelet network trained by a filter (scikit-learn estimator).
+
+    Parameters
+    ----------
+    n_hidden : int, default 20
+        Wavelet nodes.
+    wavelet : {"morlet", "mexican_hat"}
+    trainer : {"ekf", "bp", "ukf", "sukf", "spf", "epf", "upf", "supf"}, default "ekf"
+        The EKF from the scaled start is the default: it measured best for its time
+        (test MSE about 0.04 in about 1 s on the SISO benchmark; see the README table).
+    n_epochs : int, default 50
+        Passes over the training samples (all of them, in order, one filter step each).
+    init : {"scaled", "paper"}, default "scaled"
+        ``"scaled"`` places the wavelets on the data (:func:`filterwnn.wnn.init_scaled`);
+        ``"paper"`` draws every parameter from U[0, 1] as the paper does.
+    process_noise : "auto" or float
+        Q (times the identity) of the random-walk weights; ``"auto"`` from
+        :data:`AUTO_SETTINGS` for the trainer and start.
+    initial_covariance : "auto" or float
+        P0 (times the identity).
+    measurement_noise : float, default 0.1
+        R, the paper's value.
+    n_particles : int, default 50
+        Particles of the particle-filter trainers.
+    weighting : {"bank", "textbook"}, default "bank"
+        Particle weights of ``epf``/``upf``/``supf`` (ignored by the others).
+    early_stopping : bool, default False
+        Hold out ``validation_fraction`` of the training rows (chosen with ``rng``, the
+        rest kept in order), stop after ``n_iter_no_change`` epochs without a lower
+        validation MSE and keep the best epoch's weights.
+    validation_fraction : float, default 0.1
+    rng : None, int, SeedSequence or Generator
+        Initial weights, validation split and particle draws. An int gives the same
+        ``theta_`` on every fit.
+    tempering : "auto" or float
+        Exponent of the particle likelihood; ``"auto"`` is 0.01 for the bank weighting,
+        1 otherwise.
+    ess_threshold : "auto" or float
+        Resample when ESS < ``ess_threshold * n_particles``; ``"auto"`` is 0 (never) for the
+        tempered bank and 0.5 otherwise.
+    learning_rate : "auto" or float
+        Step of the ``bp`` trainer (``"auto"``: 0.05).
+    ekf_backend : {"rank1", "filterpy"}
+        ``"filterpy"`` runs :class:`filterpy.kalman.ExtendedKalmanFilter` (same numbers,
+        about 10x slower).
+    n_iter_no_change : int, default 10
+        Patience of early stopping.
+    warm_start : bool, default False
+        Continue from the previous fit's filter state for another ``n_epochs`` (a long
+        fit can be checkpointed by pickling the estimator between fits, and resumed).
+    progress : bool or "auto", default False
+        A tqdm bar over epochs; off by default (studies show their own), ``"auto"`` shows
+        it only when stderr is a terminal.
+
+    Attributes
+    ----------
+    theta_ : ndarray of shape (n_params,)
+        Learned weights (particle filters: the particle of largest weight; predictions
+        average all particles).
+    loss_curve_ : list of float
+        Training MSE after each epoch (on the rows used for training).
+    validation_scores_ : list of float or None
+        Validation MSE per epoch when ``early_stopping``.
+    best_epoch_ : int
+        Epoch whose weights were kept (the last one without early stopping).
+    n_features_in_ : int
+    n_epochs_ : int
+        Epochs run in total.
+    fit_time_ : float
+        Wall-clock seconds of the training epochs of the last ``fit`` (or accumulated over
+        ``partial_fit`` calls).
+    settings_ : dict
+        The resolved Q, P0, R, tempering, ... actually used.
+    diagnostics_ : dict
+        Per-epoch ``mean_ess`` and ``distinct`` particle counts (particle trainers).
+    """
+
+    def __init__(
+        self,
+        n_hidden=20,
+        wavelet="morlet",
+        trainer="ekf",
+        n_epochs=50,
+        init="scaled",
+        process_noise="auto",
+        initial_covariance="auto",
+        measurement_noise=0.1,
+        n_particles=50,
+        weighting="bank",
+        early_stopping=False,
+        validation_fraction=0.1,
+        rng=None,
+        tempering="auto",
+        ess_threshold="auto",
+        learning_rate="auto",
+        ekf_backend="rank1",
+        n_iter_no_change=10,
+        warm_start=False,
+        progress=False,
+    ):
+        self.n_hidden = n_hidden
+        self.wavelet = wavelet
+        self.trainer = trainer
+        self.n_epochs = n_epochs
+        self.init = init
+        self.process_noise = process_noise
+        self.initial_covariance = initial_covariance
+        self.measurement_noise = measurement_noise
+        self.n_particles = n_particles
+        self.weighting = weighting
+        self.early_stopping = early_stopping
+        self.validation_fraction = validation_fraction
+        self.rng = rng
+        self.tempering = tempering
+        self.ess_threshold = ess_threshold
+        self.learning_rate = learning_rate
+        self.ekf_backend = ekf_backend
+        self.n_iter_no_change = n_iter_no_change
+        self.warm_start = warm_start
+        self.progress = progress
+
+    # ------------------------------------------------------------------ helpers
+    def _resolve(self):
+        check_choice(self.trainer, "trainer", TRAINERS)
+        check_choice(self.init, "init", ("scaled", "paper"))
+        check_choice(self.wavelet, "wavelet", wnn.WAVELETS)
+        check_choice(self.weighting, "weighting", ("bank", "textbook"))
+        check_choice(self.ekf_backend, "ekf_backend", ("rank1", "filterpy"))
+        check_positive_int(self.n_hidden, "n_hidden")
+        check_positive_int(self.n_epochs, "n_epochs")
+        check_positive_int(self.n_particles, "n_particles")
+        check_positive_int(self.n_iter_no_change, "n_iter_no_change")
+        auto = AUTO_SETTINGS[(self.trainer, self.init)]
+        s = {"R": check_positive(self.measurement_noise, "measurement_noise")}
+        if self.trainer == "bp":
+            lr = auto["learning_rate"] if self.learning_rate == "auto" else self.learning_rate
+            s["learning_rate"] = check_positive(lr, "learning_rate")
+            s["Q"], s["P0"] = 0.0, 1.0
+        else:
+            q = auto["Q"] if self.process_noise == "auto" else self.process_noise
+            p0 = auto["P0"] if self.initial_covariance == "auto" else self.initial_covariance
+            s["Q"] = check_positive(q, "process_noise", strict=False)
+            s["P0"] = check_positive(p0, "initial_covariance")
+        if self.trainer in _PF_NAMES:
+            bank = self.trainer != "spf" and self.weighting == "bank"
+            temp = (0.01 if bank else 1.0) if self.tempering == "auto" else self.tempering
+            ess = (0.0 if bank else 0.5) if self.ess_threshold == "auto" else self.ess_threshold
+            s["tempering"] = check_positive(temp, "tempering")
+            s["ess_threshold"] = check_positive(ess, "ess_threshold", strict=False)
+            s["n_particles"] = int(self.n_particles)
+            s["weighting"] = self.weighting if self.trainer != "spf" else "textbook"
+        if self.trainer == "ekf":
+            s["ekf_backend"] = self.ekf_backend
+        return s
+
+    def _start(self, X, n_inputs, rng):
+        n_starts = self.n_particles if self.trainer in _PF_NAMES else 1
+        draws = []
+        for _ in range(n_starts):
+            if self.init == "scaled":
+                draws.append(wnn.init_scaled(X, self.n_hidden, rng=rng))
+            else:
+                draws.append(wnn.init_paper(n_inputs, self.n_hidden, rng=rng))
+        return draws[0] if n_starts == 1 else np.stack(draws)
+
+    def _split(self, X, y, rng):
+        if not self.early_stopping:
+            return X, y, None, None
+        frac = float(self.validation_fraction)
+        if not 0 < frac < 1:
+            raise ValueError(f"validation_fraction must be in (0, 1), got {self.validation_fraction}")
+        n = len(X)
+        n_val = max(1, int(round(frac * n)))
+        if n - n_val < 2:
+            raise ValueError(f"early_stopping needs at least 2 training rows after the split, got {n - n_val}")
+        val = np.zeros(n, dtype=bool)
+        val[rng.choice(n, n_val, replace=False)] = True
+        return X[~val], y[~val], X[val], y[val]
+
+    def _initialize(self, X, y):
+        self._settings = self._resolve()
+        self._rng = check_rng(self.rng)
+        Xt, yt, Xv, yv = self._split(X, y, self._rng)
+        self._data = (Xt, yt, Xv, yv)
+        model = WNNWeightModel(
+            X.shape[1], self.n_hidden, self.wavelet, Q=self._settings["Q"], R=self._settings["R"],
+            P0=self._settings["P0"],
+        )
+        theta0 = self._start(Xt, X.shape[1], self._rng)
+        self._trainer = make_trainer(self.trainer, model, theta0, self._settings, self._rng)
+        self.loss_curve_ = []
+        self.validation_scores_ = [] if self.early_stopping else None
+        self.n_epochs_ = 0
+        self.fit_time_ = 0.0
+        self._best = None
+        self._best_score = np.inf
+        self._no_change = 0
+        self.settings_ = dict(self._settings, init=self.init, trainer=self.trainer)
+
+    def _run_epochs(self, n_epochs):
+        Xt, yt, Xv, yv = self._data
+        tr = self._trainer
+        bar = _progress(self.progress, n_epochs, f"WNN/{self.trainer}")
+        t0 = time.perf_counter()
+        try:
+            for _ in range(n_epochs):
+                tr.epoch(Xt, yt)
+                self.n_epochs_ += 1
+                tr._check_finite(self.n_epochs_, tr.theta)
+                self.loss_curve_.append(float(np.mean((tr.predict(Xt)[0] - yt) ** 2)))
+                if bar is not None:
+                    bar.update(1)
+                    bar.set_postfix(mse=f"{self.loss_curve_[-1]:.3g}")
+                if Xv is not None:
+                    score = float(np.mean((tr.predict(Xv)[0] - yv) ** 2))
+                    self.validation_scores_.append(score)
+                    if score < self._best_score:
+                        self._best_score, self._no_change = score, 0
+                        self._best = (self.n_epochs_, copy.deepcopy(tr))
+                    else:
+                        self._no_change += 1
+                        if self._no_change >= self.n_iter_no_change:
+                            break
+        finally:
+            if bar is not None:
+                bar.close()
+        self.fit_time_ += time.perf_counter() - t0
+        if self._best is not None:
+            self.best_epoch_, self._final = self._best[0], self._best[1]
+        else:
+            self.best_epoch_, self._final = self.n_epochs_, tr
+        self.theta_ = np.array(self._final.theta, dtype=float)
+        self.diagnostics_ = {k: list(v) for k, v in self._final.diagnostics.items()}
+
+    # ------------------------------------------------------------------ API
+    def fit(self, X, y):
+        """Train for ``n_epochs`` epochs (or continue, with ``warm_start``).
+
+        Parameters
+        ----------
+        X : array-like of shape (n_samples, n_features)
+        y : array-like of shape (n_samples,)
+
+        Returns
+        -------
+        self
+        """
+        first = not (self.warm_start and hasattr(self, "_trainer"))
+        X, y = validate_data(self, X, y, reset=first, y_numeric=True)
+        if first:
+            self._initialize(X, y)
+        else:
+            self.fit_time_ = 0.0
+        self._run_epochs(self.n_epochs)
+        return self
+
+    def partial_fit(self, X, y):
+        """Run one more epoch (initialising on the first call); returns self.
+
+        ``X, y`` must be the same training set on every call (the split and the filter
+        state are kept); ``fit_time_`` accumulates. Useful for convergence curves and for
+        checkpointing a long fit (pickle the estimator between calls).
+        """
+        first = not hasattr(self, "_trainer")
+        X, y = validate_data(self, X, y, reset=first, y_numeric=True)
+        if first:
+            self._initialize(X, y)
+        self._run_epochs(1)
+        return self
+
+    def predict(self, X, return_std=False):
+        """Network output, optionally with the predictive standard deviation.
+
+        The std is ``sqrt(J P J^T + R)`` from the filter's covariance ``P`` (Jacobian
+        ``J`` of the output at each row); particle trainers add the weighted spread of the
+        particles' outputs; ``bp`` has no covariance and reports the training RMSE.
+
+        Parameters
+        ----------
+        X : array-like of shape (n_samples, n_features)
+        return_std : bool
+
+        Returns
+        -------
+        y_mean : ndarray of shape (n_samples,)
+        y_std : ndarray of shape (n_samples,), only with ``return_std``
+        """
+        check_is_fitted(self, "theta_")
+        X = validate_data(self, X, reset=False)
+        mean, var = self._final.predict(X)
+        if return_std:
+            return mean, np.sqrt(np.maximum(var, 0.0))
+        return mean

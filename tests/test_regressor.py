@@ -1,0 +1,151 @@
+"""Tests of filterwnn.regressor: trainer registry and the WNNRegressor estimator."""
+
+import pickle
+
+import numpy as np
+import pytest
+from sklearn.base import clone
+from sklearn.model_selection import GridSearchCV
+
+from filterwnn import NumericalError, wnn
+from filterwnn.datasets import make_siso_benchmark
+from filterwnn.regressor import TRAINERS, WNNRegressor, make_trainer
+from filterwnn.weight_model import WNNWeightModel
+
+SINGLE = ["bp", "ekf", "ukf", "sukf"]
+PARTICLE = ["spf", "epf", "upf", "supf"]
+
+
+@pytest.fixture(scope="module")
+def data():
+    X, y, X_test, y_test = make_siso_benchmark(rng=0)
+    return X[:40], y[:40], X_test, y_test
+
+
+def _mse_start(reg, X, y):
+    """Training MSE of the estimator's own start (same rng, zero epochs of training)."""
+    rng = np.random.default_rng(reg.rng)
+    theta0 = wnn.init_scaled(X, reg.n_hidden, rng=rng)
+    return np.mean((wnn.forward(theta0, X) - y) ** 2)
+
+
+@pytest.mark.parametrize("trainer", SINGLE)
+def test_single_filter_trainers_lower_training_mse(data, trainer):
+    X, y, _, _ = data
+    reg = WNNRegressor(n_hidden=4, trainer=trainer, n_epochs=3, rng=0).fit(X, y)
+    factor = 0.9 if trainer == "bp" else 0.5  # plain gradient descent is slow from a small start
+    assert reg.loss_curve_[-1] < factor * _mse_start(reg, X, y)
+
+
+def test_particle_trainers_lower_training_mse(data):
+    pytest.importorskip("filterwnn.particle_filter")
+    X, y, _, _ = data
+    gen = np.random.default_rng(0)  # the estimator's own starts: one scaled draw per particle
+    starts = np.stack([wnn.init_scaled(X, 3, rng=gen) for _ in range(5)])
+    start = np.mean((wnn.forward(starts, X).mean(axis=0) - y) ** 2)
+    for trainer in PARTICLE:
+        reg = WNNRegressor(n_hidden=3, trainer=trainer, n_epochs=2, n_particles=5, rng=0).fit(X, y)
+        assert reg.loss_curve_[-1] < start, trainer
+        assert len(reg.diagnostics_["mean_ess"]) == 2
+
+
+def test_fit_returns_self_and_attributes(data):
+    X, y, X_test, _ = data
+    reg = WNNRegressor(n_hidden=4, n_epochs=3, rng=0)
+    assert reg.fit(X, y) is reg
+    assert reg.theta_.shape == (wnn.n_params(5, 4),)
+    assert len(reg.loss_curve_) == 3 and reg.n_epochs_ == 3
+    assert reg.n_features_in_ == 5
+    assert reg.fit_time_ > 0
+    mean, std = reg.predict(X_test, return_std=True)
+    assert mean.shape == std.shape == (100,)
+    assert np.all(std >= np.sqrt(0.1))  # R = 0.1 is part of the predictive variance
+    np.testing.assert_allclose(reg.predict(X_test), wnn.forward(reg.theta_, X_test))
+
+
+def test_same_seed_same_theta_and_clone(data):
+    X, y, _, _ = data
+    a = WNNRegressor(n_hidden=4, n_epochs=2, rng=3).fit(X, y)
+    b = clone(a).fit(X, y)
+    np.testing.assert_array_equal(a.theta_, b.theta_)
+    c = WNNRegressor(n_hidden=4, n_epochs=2, rng=4).fit(X, y)
+    assert not np.array_equal(a.theta_, c.theta_)
+    assert clone(a).get_params() == a.get_params()
+
+
+def test_grid_search(data):
+    X, y, _, _ = data
+    gs = GridSearchCV(
+        WNNRegressor(n_hidden=3, n_epochs=2, rng=0), {"process_noise": [1e-4, 1e-3]}, cv=2
+    ).fit(X, y)
+    assert gs.best_params_["process_noise"] in (1e-4, 1e-3)
+
+
+def test_unknown_trainer_lists_valid_names(data):
+    X, y, _, _ = data
+    with pytest.raises(ValueError, match="valid: 'bp', 'ekf', 'epf', 'spf', 'sukf', 'supf', 'ukf', 'upf'"):
+        WNNRegressor(trainer="lbfgs").fit(X, y)
+    with pytest.raises(ValueError, match="trainer"):
+        make_trainer("nope", None, None, {})
+    assert set(TRAINERS) == set(SINGLE + PARTICLE)
+
+
+def test_bad_arguments(data):
+    X, y, _, _ = data
+    with pytest.raises(ValueError, match="n_hidden"):
+        WNNRegressor(n_hidden=0).fit(X, y)
+    with pytest.raises(ValueError, match="validation_fraction"):
+        WNNRegressor(early_stopping=True, validation_fraction=1.5).fit(X, y)
+    with pytest.raises(ValueError, match="init"):
+        WNNRegressor(init="zeros").fit(X, y)
+
+
+def test_rank1_ekf_equals_filterpy(data):
+    X, y, _, _ = data
+    a = WNNRegressor(n_hidden=3, n_epochs=2, rng=1).fit(X, y)
+    b = WNNRegressor(n_hidden=3, n_epochs=2, rng=1, ekf_backend="filterpy").fit(X, y)
+    np.testing.assert_allclose(a.theta_, b.theta_, rtol=1e-5, atol=1e-8)
+    np.testing.assert_allclose(a._final.cov, b._final.cov, rtol=1e-5, atol=1e-8)
+
+
+def test_early_stopping_keeps_best_epoch(data):
+    X, y, _, _ = data
+    reg = WNNRegressor(n_hidden=4, n_epochs=15, early_stopping=True, n_iter_no_change=3, rng=0).fit(X, y)
+    assert len(reg.validation_scores_) == reg.n_epochs_ <= 15
+    assert reg.validation_scores_[reg.best_epoch_ - 1] == min(reg.validation_scores_)
+
+
+def test_warm_start_and_partial_fit_resume(data):
+    X, y, _, _ = data
+    full = WNNRegressor(n_hidden=3, n_epochs=4, rng=2).fit(X, y)
+    half = WNNRegressor(n_hidden=3, n_epochs=2, rng=2, warm_start=True).fit(X, y)
+    resumed = pickle.loads(pickle.dumps(half)).fit(X, y)  # checkpoint, then two more epochs
+    np.testing.assert_allclose(resumed.theta_, full.theta_, rtol=1e-12)
+    assert resumed.n_epochs_ == 4
+    step = WNNRegressor(n_hidden=3, rng=2)
+    for _ in range(4):
+        step.partial_fit(X, y)
+    np.testing.assert_allclose(step.theta_, full.theta_, rtol=1e-12)
+    np.testing.assert_allclose(step.loss_curve_, full.loss_curve_, rtol=1e-12)
+
+
+@pytest.mark.filterwarnings("ignore::RuntimeWarning")
+def test_non_finite_weights_raise_numerical_error(data):
+    X, y, _, _ = data
+    with pytest.raises(NumericalError, match="non-finite"):
+        WNNRegressor(trainer="bp", learning_rate=1e200, n_hidden=3, n_epochs=2, rng=0).fit(X, y * 1e200)
+
+
+def test_paper_init_and_mexican_hat(data):
+    X, y, _, _ = data
+    reg = WNNRegressor(n_hidden=4, init="paper", wavelet="mexican_hat", n_epochs=2, rng=0).fit(X, y)
+    assert reg.settings_["Q"] == 1e-2 and reg.settings_["P0"] == 0.01
+    assert np.all(np.isfinite(reg.theta_))
+
+
+def test_make_trainer_runs_on_a_model():
+    model = WNNWeightModel(2, 2, Q=1e-4, R=0.1, P0=0.1)
+    X = np.linspace(-1, 1, 20)[:, None] * [1.0, -1.0]
+    tr = make_trainer("ekf", model, wnn.init_scaled(X, 2, rng=0), {"ekf_backend": "rank1"}, rng=0)
+    tr.epoch(X, np.sin(X[:, 0]))
+    assert tr.theta.shape == (10,)
