@@ -15,6 +15,15 @@ from .sigma_points import MinimalSkewSigmaPoints, SphericalSimplexSigmaPoints
 from .unscented import UnscentedKalmanFilter
 
 # --- particle filters (issue 4) ---
+from .particle_filter import (
+    BootstrapParticleFilter,
+    ExtendedKalmanParticleFilter,
+    ParticleFilter,
+    SimplexUnscentedParticleFilter,
+    UnscentedParticleFilter,
+)
+from .proposals import ExtendedKalmanProposal, PriorProposal, UnscentedKalmanProposal
+from .resampling import resample
 
 # --- wavelet networks (issue 5) ---
 from . import wnn
@@ -34,6 +43,15 @@ __all__ = [
     "SphericalSimplexSigmaPoints",
     "UnscentedKalmanFilter",
     # --- issue 4 ---
+    "ParticleFilter",
+    "BootstrapParticleFilter",
+    "ExtendedKalmanParticleFilter",
+    "UnscentedParticleFilter",
+    "SimplexUnscentedParticleFilter",
+    "PriorProposal",
+    "ExtendedKalmanProposal",
+    "UnscentedKalmanProposal",
+    "resample",
     # --- issue 5 ---
     "wnn",
     "make_siso_benchmark",

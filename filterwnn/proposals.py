@@ -1,0 +1,663 @@
+r"""Importance proposals for particle filters, batched over particles.
+
+A particle filter moves particle ``i`` from :math:`x'_i = x_{k-1}^{(i)}` to
+:math:`x_i \sim q(\cdot \mid x'_i, y_k)` and multiplies its weight by
+
+.. math::
+    \alpha_i = \frac{p(y_k \mid x_i)\, p(x_i \mid x'_i)}{q(x_i \mid x'_i, y_k)} .
+
+The proposals here are small objects that the :class:`~filterwnn.ParticleFilter` calls:
+
+:class:`PriorProposal`
+    :math:`q = p(x_k \mid x'_i)`, the transition prior (the bootstrap filter, SPF);
+    then :math:`\alpha_i = p(y_k \mid x_i)`. Particles carry no covariance.
+:class:`ExtendedKalmanProposal`
+    every particle carries a mean and a covariance :math:`(x'_i, P_i)` and runs one
+    extended Kalman step with ``FJacobian``/``HJacobian``; :math:`q = N(\hat x_i, \hat P_i)`
+    (the EPF).
+:class:`UnscentedKalmanProposal`
+    the same with an unscented Kalman step on any filterpy-protocol sigma points
+    (the UPF of van der Merwe, Doucet, de Freitas and Wan 2000 with Merwe points; the
+    paper's SUPF with :class:`~filterwnn.SphericalSimplexSigmaPoints`).
+
+**Batched over particles.** A Kalman proposal works on the stacks ``x (N, n)`` and
+``P (N, n, n)`` at once: one stacked :func:`numpy.linalg.cholesky` factors every
+particle's covariance, :func:`filterwnn.sigma_points.sigma_deviations` builds all sigma
+deviations in O(n^2) per particle from the set's structure, and with
+``vectorized=True`` the model is called *once* on all ``N * n_sigmas`` points (one row
+per point). With ``dim_z == 1`` the innovation covariance is a scalar, the gain needs no
+solve and the covariance update is the rank-1 downdate
+:math:`\hat P = P^- - P_{xy} P_{xy}^T / S`.
+
+**Sampling without a second Cholesky** (``dim_z == 1``). With :math:`P^- = L L^T` and
+:math:`u = L^{-1} P_{xy} / \sqrt{S}`, :math:`\hat P = L (I - u u^T) L^T`, and
+:math:`(I - u u^T)^{1/2} = I - c\, u u^T` with :math:`c = (1 - \sqrt{1 - |u|^2})/|u|^2`, so
+
+.. math::
+    x = \hat x + L (\varepsilon - c\, u\, (u^T \varepsilon)), \qquad
+    \log q(x) = -\tfrac12 |\varepsilon|^2 - \sum_j \log L_{jj} - \tfrac12 \log(1 - |u|^2)
+               - \tfrac n2 \log 2\pi ,
+
+one batched triangular solve instead of a second stacked Cholesky. ``|u|^2 < 1`` holds
+exactly when :math:`\hat P` is positive definite. With ``dim_z > 1`` the proposal
+factors :math:`\hat P` itself.
+
+The proposals read the model from the object they are given (in practice the particle
+filter): ``dim_x, dim_z, dt, fx, hx, Q, R, vectorized`` and, where used, ``FJacobian,
+HJacobian, x_mean_fn, z_mean_fn, residual_x, residual_z, process_sampler,
+transition_logpdf, measurement_logpdf``. ``fx=None`` is a random walk
+(:math:`x^- = x, P^- = P + Q`: no sigma points, no factorisation).
+
+>>> import numpy as np
+>>> from types import SimpleNamespace
+>>> from filterpy.kalman import MerweScaledSigmaPoints
+>>> model = SimpleNamespace(dim_x=2, dim_z=1, dt=1.0, fx=None, vectorized=True,
+...                         hx=lambda X: X[:, :1] ** 2, Q=0.01 * np.eye(2),
+...                         R=np.array([[0.1]]), x_mean_fn=None, z_mean_fn=None,
+...                         residual_x=None, residual_z=None)
+>>> prop = UnscentedKalmanProposal(MerweScaledSigmaPoints(2, alpha=1, beta=2, kappa=0))
+>>> x, P = np.ones((3, 2)), np.tile(np.eye(2), (3, 1, 1))    # 3 particles
+>>> pred = prop.predict(model, x, P, {})
+>>> upd = prop.update(model, pred, np.array([1.2]), {})
+>>> samples, log_q = prop.sample(upd, np.random.default_rng(0))
+>>> samples.shape, log_q.shape
+((3, 2), (3,))
+>>> np.allclose(prop.logpdf(upd, samples), log_q)
+True
+
+References
+----------
+R. van der Merwe, A. Doucet, N. de Freitas and E. Wan, "The unscented particle filter",
+Technical Report CUED/F-INFENG/TR 380, Cambridge University, 2000 (and NIPS 13, 2001).
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple, Optional
+
+import numpy as np
+from scipy.linalg import solve_triangular
+
+from ._validation import NumericalError
+from .sigma_points import _StaircaseSimplex, _symmetric_scale, sigma_deviations, unit_sigma_points
+
+__all__ = [
+    "PriorProposal",
+    "ExtendedKalmanProposal",
+    "UnscentedKalmanProposal",
+    "KalmanPrediction",
+    "KalmanUpdate",
+    "sample_transition",
+    "transition_logpdf",
+    "measurement_logpdf",
+]
+
+_LOG_2PI = float(np.log(2.0 * np.pi))
+
+
+# ---------------------------------------------------------------------------
+# Calling the model on rows
+# ---------------------------------------------------------------------------
+
+
+def _rows(f, X, out_dim, vectorized, name, args=(), kwargs=None):
+    """``f`` on every row of ``X (m, n)`` -> ``(m, out_dim)``; one call when vectorized."""
+    kwargs = {} if kwargs is None else kwargs
+    m = X.shape[0]
+    if vectorized:
+        Y = np.asarray(f(X, *args, **kwargs), dtype=float)
+        if Y.size != m * out_dim:
+            raise ValueError(
+                f"{name} with vectorized=True must return one row per point, shape "
+                f"({m}, {out_dim}), got shape {Y.shape}"
+            )
+        return Y.reshape(m, out_dim)
+    Y = np.empty((m, out_dim))
+    for i in range(m):
+        yi = np.asarray(f(X[i], *args, **kwargs), dtype=float)
+        if yi.size != out_dim:
+            raise ValueError(f"{name} must return {out_dim} values, got shape {yi.shape}")
+        Y[i] = yi.reshape(out_dim)
+    return Y
+
+
+def _scalars(f, first, X, vectorized, name, kwargs):
+    """A log-density ``f(first, x_row, ...)`` per row of ``X`` -> ``(m,)``."""
+    m = X.shape[0]
+    if vectorized:
+        out = np.asarray(f(first, X, **kwargs), dtype=float).reshape(-1)
+        if out.size != m:
+            raise ValueError(f"{name} with vectorized=True must return shape ({m},), got {out.shape}")
+        return out
+    return np.array([float(f(first, X[i], **kwargs)) for i in range(m)])
+
+
+def _residual(fn, a, b, vectorized):
+    """``fn(a, b)`` broadcasting ``b`` against ``a (..., d)``; ``a - b`` when ``fn`` is None."""
+    if fn is None or fn is np.subtract:
+        return a - b
+    if vectorized:
+        return np.asarray(fn(a, b), dtype=float).reshape(np.broadcast_shapes(np.shape(a), np.shape(b)))
+    a, b = np.broadcast_arrays(a, b)
+    d = a.shape[-1]
+    A, B = a.reshape(-1, d), b.reshape(-1, d)
+    out = np.array([fn(A[i], B[i]) for i in range(A.shape[0])], dtype=float)
+    return out.reshape(a.shape)
+
+
+def _weighted_mean(fn, pts, W):
+    """Weighted mean of ``pts (N, S, d)`` over axis 1 -> ``(N, d)``, or ``fn(pts_i, W)``."""
+    if fn is None:
+        return np.matmul(W, pts)
+    return np.array([np.asarray(fn(p, W), dtype=float).reshape(pts.shape[-1]) for p in pts])
+
+
+def _jacobians(J, X, shape, vectorized, name, args, kwargs):
+    """Jacobians at every row of ``X (N, n)`` -> ``(N,) + shape``.
+
+    Vectorized: one call ``J(X, ...)`` returning ``(N,) + shape`` (or ``shape``, the same
+    for every row). Otherwise one call per row.
+    """
+    N = X.shape[0]
+    if vectorized:
+        out = np.asarray(J(X, *args, **kwargs), dtype=float)
+        if out.shape == shape:
+            return np.broadcast_to(out, (N,) + shape)
+        if out.size != N * int(np.prod(shape)):
+            raise ValueError(f"{name} must return shape {(N,) + shape} or {shape}, got {out.shape}")
+        return out.reshape((N,) + shape)
+    out = np.empty((N,) + shape)
+    for i in range(N):
+        Ji = np.asarray(J(X[i], *args, **kwargs), dtype=float)
+        if Ji.size != int(np.prod(shape)):
+            raise ValueError(f"{name} must return shape {shape}, got {Ji.shape}")
+        out[i] = Ji.reshape(shape)
+    return out
+
+
+def _noise(M, name, dim):
+    """A noise covariance as a float ``(dim, dim)`` array (a scalar means ``M * I``)."""
+    M = np.asarray(M, dtype=float)
+    if M.ndim == 0:
+        M = float(M) * np.eye(dim)
+    elif M.size == dim * dim:
+        M = M.reshape(dim, dim)
+    else:
+        raise ValueError(f"{name} must have shape ({dim}, {dim}), got shape {M.shape}")
+    if not np.all(np.isfinite(M)):
+        raise ValueError(f"{name} must be finite, got non-finite entries")
+    return M
+
+
+def _chol(P, name, step=None):
+    """Stacked lower Cholesky factors of ``P (..., n, n)``; NumericalError if any is not PD."""
+    try:
+        L = np.linalg.cholesky(P)
+    except np.linalg.LinAlgError:
+        L = None
+    if L is None or not np.all(np.isfinite(L)):
+        bad = _first_not_pd(P)
+        where = f" at step {step}" if step is not None else ""
+        raise NumericalError(
+            f"{name} is not positive definite{where}" + (f" (particle {bad})" if bad is not None else ""),
+            matrix=name,
+            step=step,
+        )
+    return L
+
+
+def _first_not_pd(P):
+    if P.ndim < 3:
+        return None
+    for i in range(P.shape[0]):
+        try:
+            Li = np.linalg.cholesky(P[i])
+        except np.linalg.LinAlgError:
+            return i
+        if not np.all(np.isfinite(Li)):
+            return i
+    return None
+
+
+def _solve_lower(L, B):
+    """``L^{-1} B`` for stacked lower-triangular ``L (N, n, n)`` and ``B (N, n, m)``.
+
+    Forward substitution vectorized over the stack (``n`` small steps) for small ``n``,
+    where scipy's batched ``solve_triangular`` (a Python loop over the stack) is slow;
+    scipy's for large ``n``.
+    """
+    N, n, m = B.shape
+    if n > 64:
+        return solve_triangular(L, B, lower=True, check_finite=False)
+    X = np.empty(B.shape)
+    for j in range(n):
+        r = B[:, j, :]
+        if j:
+            r = r - np.matmul(L[:, j : j + 1, :j], X[:, :j, :])[:, 0, :]
+        X[:, j, :] = r / L[:, j, j][:, None]
+    return X
+
+
+def _psd_sqrt(M):
+    """A square root ``A`` with ``A A^T = M`` for a PSD ``M`` (Cholesky, else eigh)."""
+    try:
+        return np.linalg.cholesky(M)
+    except np.linalg.LinAlgError:
+        ev, V = np.linalg.eigh(0.5 * (M + M.T))
+        if ev.min() < -1e-10 * max(ev.max(), 1e-300):
+            raise ValueError(f"Q must be positive semi-definite, smallest eigenvalue {ev.min():.3g}") from None
+        return V * np.sqrt(np.clip(ev, 0.0, None))
+
+
+def _gauss_logpdf_rows(d, M, name):
+    """``log N(d_i; 0, M)`` for the rows of ``d (m, k)``."""
+    try:
+        L = np.linalg.cholesky(M)
+    except np.linalg.LinAlgError:
+        raise ValueError(
+            f"{name} must be positive definite for the Gaussian density "
+            f"(or give your own log-density)"
+        ) from None
+    e = solve_triangular(L, d.T, lower=True)
+    k = d.shape[1]
+    return -0.5 * np.sum(e * e, axis=0) - np.sum(np.log(np.diag(L))) - 0.5 * k * _LOG_2PI
+
+
+# ---------------------------------------------------------------------------
+# Model densities (Gaussian defaults; the model's own callables when given)
+# ---------------------------------------------------------------------------
+
+
+def _transition_mean(model, x_prev, fx_args):
+    if model.fx is None:
+        return x_prev
+    return _rows(model.fx, x_prev, model.dim_x, model.vectorized, "fx", (model.dt,), fx_args)
+
+
+def sample_transition(model, x_prev, fx_args, rng):
+    """Draw ``x_i ~ p(x_k | x_prev_i)`` for every particle.
+
+    ``model.process_sampler(x_prev, rng, **fx_args)`` when given (one call on all rows when
+    vectorized), else ``fx(x_prev) + w`` with ``w ~ N(0, Q)``.
+
+    Parameters
+    ----------
+    model : object with the attributes listed in the module docstring
+    x_prev : ndarray of shape (n_particles, dim_x)
+    fx_args : dict
+    rng : numpy.random.Generator
+
+    Returns
+    -------
+    ndarray of shape (n_particles, dim_x)
+    """
+    sampler = getattr(model, "process_sampler", None)
+    if sampler is not None:
+        return _rows(sampler, x_prev, model.dim_x, model.vectorized, "process_sampler", (rng,), fx_args)
+    mean = _transition_mean(model, x_prev, fx_args)
+    A = _psd_sqrt(_noise(model.Q, "Q", model.dim_x))
+    return mean + rng.standard_normal(mean.shape) @ A.T
+
+
+def transition_logpdf(model, x, x_prev, fx_args, fx_prev=None):
+    """``log p(x_i | x_prev_i)`` for every particle -> ``(n_particles,)``.
+
+    ``model.transition_logpdf(x, x_prev, **fx_args)`` when given (``x`` and ``x_prev``
+    as whole arrays when vectorized, row by row otherwise), else ``log N(x; fx(x_prev), Q)``.
+    ``fx_prev`` may pass ``fx(x_prev)`` when already computed.
+    """
+    f = getattr(model, "transition_logpdf", None)
+    if f is not None:
+        if model.vectorized:
+            out = np.asarray(f(x, x_prev, **fx_args), dtype=float).reshape(-1)
+        else:
+            out = np.array([float(f(x[i], x_prev[i], **fx_args)) for i in range(x.shape[0])])
+        return out
+    mean = _transition_mean(model, x_prev, fx_args) if fx_prev is None else fx_prev
+    d = _residual(getattr(model, "residual_x", None), x, mean, model.vectorized)
+    return _gauss_logpdf_rows(d, _noise(model.Q, "Q", model.dim_x), "Q")
+
+
+def measurement_logpdf(model, z, x, hx_args):
+    """``log p(z | x_i)`` for every particle -> ``(n_particles,)``.
+
+    ``model.measurement_logpdf(z, x, **hx_args)`` when given (``x`` whole when vectorized,
+    row by row otherwise), else ``log N(residual_z(z, hx(x_i)); 0, R)``.
+    """
+    f = getattr(model, "measurement_logpdf", None)
+    if f is not None:
+        return _scalars(f, z, x, model.vectorized, "measurement_logpdf", hx_args)
+    zh = _rows(model.hx, x, model.dim_z, model.vectorized, "hx", (), hx_args)
+    y = _residual(getattr(model, "residual_z", None), z[None, :], zh, model.vectorized)
+    return _gauss_logpdf_rows(y, _noise(model.R, "R", model.dim_z), "R")
+
+
+# ---------------------------------------------------------------------------
+# Kalman steps, batched over particles
+# ---------------------------------------------------------------------------
+
+
+def _unit_transpose_apply(points, Z, B):
+    """``Z^T B`` for unit points ``Z (S, n)`` and ``B (N, S, m)`` -> ``(N, n, m)``, O(S n m).
+
+    Symmetric sets ``[0, c I, -c I]``: ``c (B[1:n+1] - B[n+1:])``. Staircase sets: a
+    prefix sum. Others: the dense product.
+    """
+    n = Z.shape[1]
+    if isinstance(points, _StaircaseSimplex):
+        a, b = points._a, points._b
+        # (Z^T B)_j = a_j sum_{i=1..j+1} B_i + b_j B_{j+2}   (0-based j, rows 1..n+1 of Z)
+        C = np.cumsum(B[:, 1 : n + 1, :], axis=1)
+        return a[:, None] * C + b[:, None] * B[:, 2 : n + 2, :]
+    c = _symmetric_scale(points)
+    if c is not None and Z.shape[0] == 2 * n + 1:
+        return c * (B[:, 1 : n + 1, :] - B[:, n + 1 :, :])
+    return np.matmul(Z.T, B)
+
+
+class KalmanPrediction(NamedTuple):
+    """Per-particle predicted moments.
+
+    Attributes
+    ----------
+    x : ndarray of shape (n_particles, dim_x)
+    P : ndarray of shape (n_particles, dim_x, dim_x)
+    """
+
+    x: np.ndarray
+    P: np.ndarray
+
+
+class KalmanUpdate(NamedTuple):
+    r"""Per-particle Kalman update: the proposal ``N(x, P)`` and the innovation.
+
+    Attributes
+    ----------
+    x : ndarray of shape (n_particles, dim_x)
+        Posterior means :math:`\hat x_i`.
+    P : ndarray of shape (n_particles, dim_x, dim_x)
+        Posterior covariances :math:`\hat P_i`.
+    z_pred : ndarray of shape (n_particles, dim_z)
+        Predicted measurements :math:`\\hat y_i`.
+    S : ndarray of shape (n_particles, dim_z, dim_z)
+        Innovation covariances.
+    Pxy : ndarray of shape (n_particles, dim_x, dim_z)
+        Cross covariances.
+    log_likelihood : ndarray of shape (n_particles,)
+        :math:`\log N(y; \hat y_i, S_i)` (the bank weight).
+    L_prior : ndarray of shape (n_particles, dim_x, dim_x) or None
+        Lower Cholesky factors ``L_i`` of the predicted covariances, when computed.
+    LinvPxy : ndarray of shape (n_particles, dim_x, dim_z) or None
+        :math:`L_i^{-1} P_{xy,i}` when known without a solve (unscented:
+        :math:`Z^T (W_c \circ \Delta Y)`, since :math:`P_{xy} = L Z^T (W_c \circ \Delta Y)`).
+    H : ndarray of shape (n_particles, dim_z, dim_x) or None
+        Measurement Jacobians (extended): :math:`L^{-1} P_{xy} = L^T H^T`.
+    """
+
+    x: np.ndarray
+    P: np.ndarray
+    z_pred: np.ndarray
+    S: np.ndarray
+    Pxy: np.ndarray
+    log_likelihood: np.ndarray
+    L_prior: Optional[np.ndarray]
+    LinvPxy: Optional[np.ndarray] = None
+    H: Optional[np.ndarray] = None
+
+
+def _kalman_finish(model, x_prior, P_prior, z, z_pred, S, Pxy, L_prior, step, LinvPxy=None, H=None):
+    """Gain, posterior and innovation likelihood from the batched moments."""
+    R = _noise(model.R, "R", model.dim_z)
+    S = S + R
+    y = _residual(getattr(model, "residual_z", None), z[None, :], z_pred, model.vectorized)
+    if model.dim_z == 1:
+        s = S[:, 0, 0]
+        if not np.all(s > 0) or not np.all(np.isfinite(s)):
+            raise NumericalError(f"S is not positive at step {step} (min {np.min(s):.3g})", matrix="S", step=step)
+        pxy = Pxy[:, :, 0]
+        K = pxy / s[:, None]
+        x = x_prior + K * y
+        P = P_prior - K[:, :, None] * pxy[:, None, :]
+        loglik = -0.5 * (y[:, 0] ** 2 / s + np.log(s) + _LOG_2PI)
+    else:
+        Ls = _chol(S, "S", step)
+        Kt = np.linalg.solve(S, np.swapaxes(Pxy, -1, -2))  # (N, m, n)
+        x = x_prior + np.matmul(y[:, None, :], Kt)[:, 0, :]
+        P = P_prior - np.matmul(Pxy, Kt)
+        e = _solve_lower(Ls, y[:, :, None])[:, :, 0]
+        loglik = (
+            -0.5 * np.sum(e * e, axis=1)
+            - np.sum(np.log(np.diagonal(Ls, axis1=1, axis2=2)), axis=1)
+            - 0.5 * model.dim_z * _LOG_2PI
+        )
+    P = 0.5 * (P + np.swapaxes(P, -1, -2))
+    return KalmanUpdate(x, P, z_pred, S, Pxy, loglik, L_prior, LinvPxy, H)
+
+
+class _KalmanProposal:
+    """Shared sampling and density of ``q = N(x_hat_i, P_hat_i)``."""
+
+    uses_covariance = True
+
+    def predict(self, model, x, P, fx_args, step=None):  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    def update(self, model, prediction, z, hx_args, step=None):  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    @staticmethod
+    def _with_factor(upd, P_prior, step):
+        """``upd`` with ``L_prior`` and ``LinvPxy`` filled in (at most one Cholesky, no solve
+        for the extended and unscented steps)."""
+        if upd.L_prior is None:
+            if P_prior is None:
+                raise ValueError("P_prior is needed to factor the predicted covariance")
+            upd = upd._replace(L_prior=_chol(P_prior, "P_prior", step))
+        if upd.LinvPxy is None:
+            if upd.H is not None:
+                LinvPxy = np.matmul(np.swapaxes(upd.L_prior, -1, -2), np.swapaxes(upd.H, -1, -2))
+            else:
+                LinvPxy = _solve_lower(upd.L_prior, upd.Pxy)
+            upd = upd._replace(LinvPxy=LinvPxy)
+        return upd
+
+    @staticmethod
+    def _rank1(upd, step):
+        """``u = L^{-1} Pxy / sqrt(S)`` and ``|u|^2`` (``dim_z == 1``)."""
+        u = upd.LinvPxy[:, :, 0] / np.sqrt(upd.S[:, 0:1, 0])
+        r2 = np.sum(u * u, axis=1)
+        if not np.all(r2 < 1.0):
+            bad = int(np.argmax(~(r2 < 1.0)))
+            raise NumericalError(
+                f"posterior covariance of particle {bad} is not positive definite at step {step} "
+                f"(|u|^2 = {r2[bad]:.6g} >= 1)",
+                matrix="P",
+                step=step,
+            )
+        return upd.L_prior, u, r2
+
+    def sample(self, upd, rng, step=None, P_prior=None):
+        """Draw one sample per particle from ``N(x_hat_i, P_hat_i)`` and its log-density.
+
+        Parameters
+        ----------
+        upd : KalmanUpdate
+        rng : numpy.random.Generator
+        step : int, optional
+            For error messages.
+        P_prior : ndarray of shape (n_particles, dim_x, dim_x), optional
+            Predicted covariances, factored here when ``upd.L_prior`` is None and
+            ``dim_z == 1`` (the rank-1 path).
+
+        Returns
+        -------
+        x : ndarray of shape (n_particles, dim_x)
+        log_q : ndarray of shape (n_particles,)
+        """
+        N, n = upd.x.shape
+        eps = rng.standard_normal((N, n))
+        if upd.S.shape[-1] == 1 and (upd.L_prior is not None or P_prior is not None):
+            upd = self._with_factor(upd, P_prior, step)
+            L, u, r2 = self._rank1(upd, step)
+            with np.errstate(invalid="ignore", divide="ignore"):
+                c = np.where(r2 > 1e-300, (1.0 - np.sqrt(1.0 - r2)) / np.where(r2 > 0, r2, 1.0), 0.5)
+            v = eps - (c * np.sum(u * eps, axis=1))[:, None] * u
+            x = upd.x + np.matmul(L, v[:, :, None])[:, :, 0]
+            logdet = 2.0 * np.sum(np.log(np.diagonal(L, axis1=1, axis2=2)), axis=1) + np.log1p(-r2)
+        else:
+            Lp = _chol(upd.P, "P", step)
+            x = upd.x + np.matmul(Lp, eps[:, :, None])[:, :, 0]
+            logdet = 2.0 * np.sum(np.log(np.diagonal(Lp, axis1=1, axis2=2)), axis=1)
+        log_q = -0.5 * (np.sum(eps * eps, axis=1) + logdet + n * _LOG_2PI)
+        return x, log_q
+
+    def logpdf(self, upd, x, step=None, P_prior=None):
+        """``log N(x_i; x_hat_i, P_hat_i)`` for one point per particle -> ``(n_particles,)``.
+
+        Uses the rank-1 form (one triangular solve) when ``dim_z == 1`` and the
+        predicted factor is known, else a Cholesky of ``P_hat``.
+        """
+        N, n = upd.x.shape
+        d = np.asarray(x, dtype=float) - upd.x
+        if upd.S.shape[-1] == 1 and (upd.L_prior is not None or P_prior is not None):
+            upd = self._with_factor(upd, P_prior, step)
+            L, u, r2 = self._rank1(upd, step)
+            e = _solve_lower(L, d[:, :, None])[:, :, 0]
+            ue = np.sum(u * e, axis=1)
+            maha = np.sum(e * e, axis=1) + ue * ue / (1.0 - r2)
+            logdet = 2.0 * np.sum(np.log(np.diagonal(L, axis1=1, axis2=2)), axis=1) + np.log1p(-r2)
+        else:
+            Lp = _chol(upd.P, "P", step)
+            e = _solve_lower(Lp, d[:, :, None])[:, :, 0]
+            maha = np.sum(e * e, axis=1)
+            logdet = 2.0 * np.sum(np.log(np.diagonal(Lp, axis1=1, axis2=2)), axis=1)
+        return -0.5 * (maha + logdet + n * _LOG_2PI)
+
+    def __repr__(self):
+        return f"{type(self).__name__}()"
+
+
+class PriorProposal:
+    """The transition prior ``q = p(x_k | x_{k-1})``: the bootstrap (SPF) proposal.
+
+    Particles carry no covariance; the incremental weight is the likelihood
+    ``p(y_k | x_k)``. Sampling uses ``process_sampler`` when the model has one, else
+    ``fx(x) + N(0, Q)``.
+    """
+
+    uses_covariance = False
+
+    def sample(self, model, x_prev, fx_args, rng):
+        """Draw every particle's successor -> ``(n_particles, dim_x)``."""
+        return sample_transition(model, x_prev, fx_args, rng)
+
+    def __repr__(self):
+        return "PriorProposal()"
+
+
+class ExtendedKalmanProposal(_KalmanProposal):
+    """One extended Kalman step per particle (the EPF proposal).
+
+    Predict: :math:`x^-_i = f(x_i)`, :math:`P^-_i = F_i P_i F_i^T + Q` with
+    ``F_i = FJacobian(x_i, dt, **fx_args)`` (random walk when ``fx`` is None). Update:
+    ``H_i = HJacobian(x^-_i, **hx_args)``, :math:`P_{xy} = P^- H^T`,
+    :math:`S = H P^- H^T + R`. With ``vectorized=True`` the Jacobians are called once on
+    all particles (``(N, dim_x)`` in, ``(N, rows, dim_x)`` or one shared matrix out).
+    """
+
+    def predict(self, model, x, P, fx_args, step=None):
+        """Predicted ``(x (N, n), P (N, n, n))`` from the particles' ``x (N, n)``, ``P (N, n, n)``."""
+        Q = _noise(model.Q, "Q", model.dim_x)
+        if model.fx is None:
+            return KalmanPrediction(x.copy(), P + Q)
+        n = model.dim_x
+        F = _jacobians(model.FJacobian, x, (n, n), model.vectorized, "FJacobian", (model.dt,), fx_args)
+        xp = _rows(model.fx, x, n, model.vectorized, "fx", (model.dt,), fx_args)
+        Pp = np.matmul(np.matmul(F, P), np.swapaxes(F, -1, -2)) + Q
+        return KalmanPrediction(xp, 0.5 * (Pp + np.swapaxes(Pp, -1, -2)))
+
+    def update(self, model, prediction, z, hx_args, step=None):
+        """Batched EKF update with measurement ``z (dim_z,)`` -> :class:`KalmanUpdate`."""
+        xp, Pp = prediction
+        n, m = model.dim_x, model.dim_z
+        H = _jacobians(model.HJacobian, xp, (m, n), model.vectorized, "HJacobian", (), hx_args)
+        zp = _rows(model.hx, xp, m, model.vectorized, "hx", (), hx_args)
+        Pxy = np.matmul(Pp, np.swapaxes(H, -1, -2))
+        S = np.matmul(H, Pxy)
+        return _kalman_finish(model, xp, Pp, z, zp, S, Pxy, None, step, H=H)
+
+
+class UnscentedKalmanProposal(_KalmanProposal):
+    """One unscented Kalman step per particle (the UPF proposal; SUPF with reduced points).
+
+    Parameters
+    ----------
+    points : sigma-point object
+        Any filterpy-protocol set (``n``, ``Wm``, ``Wc``, ``num_sigmas()``,
+        ``sigma_points(x, P)``); Merwe, Julier and the package's staircase sets are
+        built in O(n^2) per particle.
+
+    Notes
+    -----
+    As filterpy 2.0 does, the update draws fresh sigma points from the predicted
+    ``(x^-_i, P^-_i)``; the factor of ``P^-_i`` is kept for the rank-1 sampling. With
+    ``fx=None`` the predict is ``P^- = P + Q`` and a step costs one stacked Cholesky.
+    """
+
+    def __init__(self, points):
+        for attr in ("n", "Wm", "Wc", "num_sigmas", "sigma_points"):
+            if not hasattr(points, attr):
+                raise TypeError(
+                    f"points must follow filterpy's sigma-point protocol (missing {attr!r}), "
+                    f"got {type(points).__name__}"
+                )
+        self.points = points
+        self._Z = unit_sigma_points(points)
+
+    def _sigmas(self, x, P, step, name):
+        L = _chol(P, name, step)
+        D = sigma_deviations(self.points, np.swapaxes(L, -1, -2))
+        return L, D, x[:, None, :] + D
+
+    def _check_n(self, model):
+        if self.points.n != model.dim_x:
+            raise ValueError(f"points.n must equal dim_x={model.dim_x}, got {self.points.n}")
+
+    def predict(self, model, x, P, fx_args, step=None):
+        """Predicted ``(x (N, n), P (N, n, n))`` by the unscented transform through ``fx``."""
+        self._check_n(model)
+        Q = _noise(model.Q, "Q", model.dim_x)
+        if model.fx is None:
+            return KalmanPrediction(x.copy(), P + Q)
+        N, n = x.shape
+        _, _, sig = self._sigmas(x, P, step, "P")
+        S_ = sig.shape[1]
+        F = _rows(model.fx, sig.reshape(N * S_, n), n, model.vectorized, "fx", (model.dt,), fx_args)
+        F = F.reshape(N, S_, n)
+        Wm, Wc = self.points.Wm, self.points.Wc
+        xp = _weighted_mean(getattr(model, "x_mean_fn", None), F, Wm)
+        dX = _residual(getattr(model, "residual_x", None), F, xp[:, None, :], model.vectorized)
+        Pp = np.matmul(np.swapaxes(dX * Wc[:, None], -1, -2), dX) + Q
+        return KalmanPrediction(xp, 0.5 * (Pp + np.swapaxes(Pp, -1, -2)))
+
+    def update(self, model, prediction, z, hx_args, step=None):
+        """Batched UKF update with measurement ``z (dim_z,)`` -> :class:`KalmanUpdate`."""
+        self._check_n(model)
+        xp, Pp = prediction
+        N, n = xp.shape
+        m = model.dim_z
+        L, D, sig = self._sigmas(xp, Pp, step, "P_prior")
+        S_ = sig.shape[1]
+        Hs = _rows(model.hx, sig.reshape(N * S_, n), m, model.vectorized, "hx", (), hx_args).reshape(N, S_, m)
+        Wm, Wc = self.points.Wm, self.points.Wc
+        zp = _weighted_mean(getattr(model, "z_mean_fn", None), Hs, Wm)
+        dY = _residual(getattr(model, "residual_z", None), Hs, zp[:, None, :], model.vectorized)
+        WdY = dY * Wc[:, None]
+        S = np.matmul(np.swapaxes(dY, -1, -2), WdY)
+        # Pxy = D^T (Wc dY) = L (Z^T (Wc dY)); the bracket is L^{-1} Pxy for the sampling
+        LinvPxy = _unit_transpose_apply(self.points, self._Z, WdY)
+        Pxy = np.matmul(L, LinvPxy)
+        return _kalman_finish(model, xp, Pp, z, zp, S, Pxy, L, step, LinvPxy=LinvPxy)
+
+    def __repr__(self):
+        return f"UnscentedKalmanProposal(points={type(self.points).__name__}(n={self.points.n}))"

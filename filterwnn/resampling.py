@@ -1,0 +1,279 @@
+r"""Resampling schemes for particle filters, and log-weight arithmetic.
+
+A particle filter carries normalised weights :math:`w_i` (``sum w_i = 1``). Resampling
+replaces the weighted cloud by an (equally weighted) one in which particle ``i`` appears
+:math:`N_i` times, with :math:`E[N_i] = n\,w_i` (*unbiasedness*) for ``n`` draws. The
+four classic schemes differ only in how much extra variance :math:`\operatorname{Var}(N_i)`
+they add (Douc, Cappe and Moulines 2005; Hol, Schon and Gustafsson 2006):
+
+``multinomial``
+    ``n`` independent draws from the categorical distribution ``w`` (the most variance).
+``stratified``
+    one uniform draw in each stratum :math:`[(k + u_k)/n]`, ``k = 0 .. n-1``.
+``systematic``
+    one uniform :math:`u`, then the points :math:`(k + u)/n` (the least variance in
+    practice; the default).
+``residual``
+    first :math:`\lfloor n w_i \rfloor` deterministic copies of each particle, then the
+    remaining :math:`n - \sum_i \lfloor n w_i \rfloor` draws multinomially from the
+    residual weights :math:`n w_i - \lfloor n w_i \rfloor` (renormalised). filterpy's
+    ``residual_resample`` gets this wrong (filterpy issue #290: it draws the residual
+    part from the *original* weights' cumulative sum over ``N`` instead of ``n - sum``
+    draws of the residual weights, and its output is not unbiased); the version here is.
+
+Every scheme is a pure function ``scheme(weights, rng, n=None) -> indices`` that returns
+``n`` (default ``len(weights)``) integer indices into the particle array; ``n`` may be
+larger (up-sampling) or smaller (down-sampling) than the cloud. :func:`resample` looks
+the scheme up by name. Weights are validated (finite, non-negative, positive sum) and
+normalised internally.
+
+Weights are best kept on the log scale: :func:`normalize_log_weights` turns unnormalised
+log-weights into normalised weights with ``logsumexp``, without underflow.
+
+>>> import numpy as np
+>>> w = np.array([0.1, 0.2, 0.3, 0.4])
+>>> resample(w, "systematic", rng=0).shape
+(4,)
+>>> np.sort(resample([0.0, 1.0, 0.0], "residual", rng=1, n=5))
+array([1, 1, 1, 1, 1])
+>>> effective_sample_size(np.full(8, 1 / 8))
+8.0
+>>> w, lse = normalize_log_weights(np.array([-1000.0, -1000.0]))
+>>> w, round(lse, 4)
+(array([0.5, 0.5]), -999.3069)
+
+References
+----------
+R. Douc, O. Cappe and E. Moulines, "Comparison of resampling schemes for particle
+filtering", ISPA 2005.
+J. D. Hol, T. B. Schon and F. Gustafsson, "On resampling algorithms for particle
+filters", NSSPW 2006.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.special import logsumexp
+
+from ._validation import check_choice, check_positive_int, check_rng
+
+__all__ = [
+    "multinomial",
+    "stratified",
+    "systematic",
+    "residual",
+    "resample",
+    "SCHEMES",
+    "effective_sample_size",
+    "normalize_log_weights",
+]
+
+
+def _check_weights(weights, name="weights"):
+    """Finite, non-negative, positive-sum 1-D weights, returned normalised."""
+    try:
+        w = np.asarray(weights, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise TypeError(f"{name} must be array-like of numbers, got {type(weights).__name__}") from exc
+    if w.ndim != 1 or w.size == 0:
+        raise ValueError(f"{name} must be a non-empty 1-D array, got shape {w.shape}")
+    if not np.all(np.isfinite(w)):
+        raise ValueError(f"{name} must be finite, got non-finite entries")
+    if np.any(w < 0):
+        raise ValueError(f"{name} must be non-negative, got min {w.min()}")
+    total = w.sum()
+    if not total > 0:
+        raise ValueError(f"{name} must have a positive sum, got {total}")
+    return w / total
+
+
+def _check_n(n, size):
+    return size if n is None else check_positive_int(n, "n")
+
+
+def _search(w, u):
+    """Indices ``i`` with ``c[i-1] <= u < c[i]`` for the cumulative sum ``c`` of ``w``.
+
+    The cumulative sum is divided by its last entry, so it ends at exactly 1.0, and a
+    zero-weight particle can never be selected (its cumulative value equals its
+    predecessor's, and ``side="right"`` picks the first strictly larger one).
+    """
+    c = np.cumsum(w)
+    c /= c[-1]
+    return np.searchsorted(c, u, side="right")
+
+
+# --- the schemes, unvalidated (the particle filter's hot path) -------------------------
+
+
+def _multinomial(w, rng, n):
+    return np.sort(_search(w, rng.random(n)))
+
+
+def _stratified(w, rng, n):
+    return _search(w, (np.arange(n) + rng.random(n)) / n)
+
+
+def _systematic(w, rng, n):
+    return _search(w, (np.arange(n) + rng.random()) / n)
+
+
+def _residual(w, rng, n):
+    nw = n * w
+    counts = np.floor(nw).astype(np.intp)
+    n_rest = n - int(counts.sum())
+    if n_rest > 0:
+        rest = nw - counts
+        rest = np.clip(rest, 0.0, None)
+        counts += np.bincount(_search(rest, rng.random(n_rest)), minlength=w.size)
+    return np.repeat(np.arange(w.size), counts)
+
+
+_IMPL = {
+    "multinomial": _multinomial,
+    "stratified": _stratified,
+    "systematic": _systematic,
+    "residual": _residual,
+}
+
+
+# --- public functions ------------------------------------------------------------------
+
+
+def _public(impl, doc_name):
+    def scheme(weights, rng, n=None):
+        w = _check_weights(weights)
+        return impl(w, check_rng(rng), _check_n(n, w.size))
+
+    scheme.__name__ = doc_name
+    scheme.__qualname__ = doc_name
+    return scheme
+
+
+_DOC = """{title} resampling.
+
+    Parameters
+    ----------
+    weights : array-like of shape (n_particles,)
+        Non-negative weights with a positive sum (normalised here).
+    rng : None, int, SeedSequence, BitGenerator or Generator
+        Source of randomness (normalised with :func:`numpy.random.default_rng`).
+    n : int, optional
+        Number of indices to draw (default ``n_particles``); larger or smaller than
+        ``n_particles`` up- or down-samples.
+
+    Returns
+    -------
+    indices : ndarray of int, shape (n,)
+        Indices into the particle array; ``E[count of i] = n * weights[i]``.
+    {extra}
+    """
+
+multinomial = _public(_multinomial, "multinomial")
+multinomial.__doc__ = _DOC.format(title="Multinomial", extra="Indices come out sorted.")
+stratified = _public(_stratified, "stratified")
+stratified.__doc__ = _DOC.format(title="Stratified", extra="Indices come out sorted.")
+systematic = _public(_systematic, "systematic")
+systematic.__doc__ = _DOC.format(
+    title="Systematic", extra="Indices come out sorted; equal weights with ``n = n_particles`` keep every particle."
+)
+residual = _public(_residual, "residual")
+residual.__doc__ = _DOC.format(
+    title="Residual (correct, unlike filterpy's: its issue #290)",
+    extra="Indices come out sorted; particle ``i`` gets at least ``floor(n * w_i)`` copies.",
+)
+#: Registry of scheme names -> public functions.
+SCHEMES = {
+    "multinomial": multinomial,
+    "stratified": stratified,
+    "systematic": systematic,
+    "residual": residual,
+}
+
+
+def get_scheme(name):
+    """The unvalidated implementation of scheme ``name`` (for the particle filter's loop).
+
+    Raises ``ValueError`` listing the valid names for an unknown one.
+    """
+    if not isinstance(name, str):
+        raise TypeError(f"resampling must be a scheme name (str), got {type(name).__name__}")
+    check_choice(name, "resampling scheme", _IMPL)
+    return _IMPL[name]
+
+
+def resample(weights, scheme="systematic", rng=None, n=None):
+    """Draw ``n`` particle indices from ``weights`` with the named scheme.
+
+    Parameters
+    ----------
+    weights : array-like of shape (n_particles,)
+        Non-negative weights with a positive sum.
+    scheme : {"systematic", "stratified", "residual", "multinomial"}
+        Name of the scheme; an unknown name raises ``ValueError`` listing the valid ones.
+    rng : None, int, SeedSequence, BitGenerator or Generator
+    n : int, optional
+        Number of indices (default ``n_particles``).
+
+    Returns
+    -------
+    indices : ndarray of int, shape (n,)
+
+    Examples
+    --------
+    >>> resample([0.5, 0.5], "systematic", rng=0)
+    array([0, 1])
+    >>> resample([1.0], "magic")
+    Traceback (most recent call last):
+    ...
+    ValueError: unknown resampling scheme 'magic'; valid: 'multinomial', 'residual', 'stratified', 'systematic'
+    """
+    impl = get_scheme(scheme)
+    w = _check_weights(weights)
+    return impl(w, check_rng(rng), _check_n(n, w.size))
+
+
+def effective_sample_size(weights):
+    """Kish's effective sample size ``1 / sum(w_i^2)`` of (normalised) weights.
+
+    Parameters
+    ----------
+    weights : array-like of shape (n_particles,)
+        Non-negative weights with a positive sum (normalised here).
+
+    Returns
+    -------
+    float
+        ``n_particles`` for equal weights, 1 for a one-hot weight.
+    """
+    w = _check_weights(weights)
+    return float(1.0 / np.dot(w, w))
+
+
+def normalize_log_weights(log_weights):
+    """Normalised weights and the log of their sum, from unnormalised log-weights.
+
+    Parameters
+    ----------
+    log_weights : array-like of shape (n_particles,)
+        Unnormalised log-weights; ``-inf`` (weight 0) is allowed, NaN is not.
+
+    Returns
+    -------
+    weights : ndarray of shape (n_particles,)
+        ``exp(log_weights - logsumexp(log_weights))``, summing to 1.
+    log_sum : float
+        ``logsumexp(log_weights)``; ``-inf`` when every weight is 0 (then ``weights``
+        is all NaN and the caller must raise).
+    """
+    lw = np.asarray(log_weights, dtype=float)
+    if lw.ndim != 1 or lw.size == 0:
+        raise ValueError(f"log_weights must be a non-empty 1-D array, got shape {lw.shape}")
+    if np.any(np.isnan(lw)):
+        raise ValueError("log_weights must not contain NaN")
+    if np.any(lw == np.inf):
+        raise ValueError("log_weights must not contain +inf")
+    lse = logsumexp(lw)
+    if not np.isfinite(lse):
+        return np.full(lw.shape, np.nan), float(lse)
+    return np.exp(lw - lse), float(lse)
