@@ -1,0 +1,772 @@
+r"""Vehicle dead reckoning (DR) and GPS/DR navigation models, and their simulation.
+
+The model of Zhang, Ma, Chen and Mastorakis (the second paper, eqs. 1-3). The state is
+
+.. math::
+    X = [e,\ v_e,\ a_e,\ n,\ v_n,\ a_n]^T
+
+(east and north position, velocity and acceleration, in m, m/s, m/s^2), the transition
+is :math:`X_k = \Phi X_{k-1} + W_{k-1}` with :math:`\Phi = \mathrm{diag}(A, A)`,
+
+.. math::
+    A = \begin{bmatrix} 1 & T & c \\ 0 & 1 & T \\ 0 & 0 & 1 \end{bmatrix},\qquad
+    c = T^2/2 \ \text{(default, ``accel_term="kinematic"``)}\quad\text{or}\quad
+    c = T^2 \ \text{(``accel_term="paper"``)},
+
+and the DR measurement is the gyro heading and the odometer distance per sample
+
+.. math::
+    Y = [\theta,\ s]^T,\qquad \theta = \operatorname{atan2}(v_e, v_n),\qquad
+    s = T \zeta \sqrt{v_e^2 + v_n^2}.
+
+Choices and their reasons:
+
+* ``T^2/2`` is the exact constant-acceleration kinematics and matches the white-jerk
+  process noise of :func:`filterpy.common.Q_continuous_white_noise`; the paper prints
+  ``T^2``, which we read as a typo and offer only as ``accel_term="paper"``.
+* The heading is measured from north, clockwise positive, with ``atan2``: the paper's
+  ``arctan(v_e / v_n)`` loses the quadrant when ``v_n < 0``. Heading residuals are
+  wrapped to ``[-pi, pi)`` by :func:`dr_residual` and the unscented filters average
+  headings with :func:`dr_z_mean` (a circular mean); every filter in the package uses
+  these two, the neural filter's online loss included. Without the wrap, a vehicle
+  driving through heading 180 degrees makes an EKF diverge by kilometres.
+* The heading is undefined at zero speed. The analytic Jacobian guards it by using
+  ``max(|v|, min_speed)`` in the denominators (so it stays finite), and
+  :meth:`GPSDRModel.R_for` inflates the heading variance for a standing vehicle.
+* Position is **not observable** from ``[theta, s]`` (``H`` has zero columns for
+  ``e`` and ``n``): a DR-only position is the known start plus the integrated velocity
+  estimate, and its error is a random walk for every filter. GPS fixes make it
+  observable; :class:`GPSDRModel` adds them, and its 8-state form also estimates the
+  odometer scale ``zeta`` and a heading bias ``b`` (real sensors have both; a 6-state
+  filter is tens of metres off with a 2 % scale error).
+
+Missing GPS is said explicitly, never with NaN: :meth:`GPSDRModel.update` takes
+``z_gps=None`` and then uses the DR-only ``hx``/``HJacobian``/``R``.
+
+Every function is written on the last axis, so it accepts one state ``(dim_x,)`` or a
+stack of points ``(n_points, dim_x)`` (what ``vectorized=True`` unscented filters pass).
+
+>>> import numpy as np
+>>> m = DRModel(dt=0.1)
+>>> x = np.array([0.0, 10.0, 0.0, 0.0, 10.0, 0.0])      # 45 degrees, 14.14 m/s
+>>> np.round(m.hx(x), 4)                                 # [heading rad, distance m]
+array([0.7854, 1.4142])
+>>> m.fx(np.stack([x, x])).shape                         # vectorized: rows are points
+(2, 6)
+>>> float(dr_residual(np.array([np.pi - 0.01, 1.0]), np.array([-np.pi + 0.01, 1.0]))[0])
+-0.02
+>>> run = simulate_scenario(SCENARIOS["straight"](), rng=0)
+>>> run.x_true.shape, run.z_dr.shape
+((2000, 6), (2000, 2))
+
+References
+----------
+Zhang L., Ma H., Chen Y., Mastorakis N. E., "Recurrent neural network approaches for
+nonlinear filters of navigation systems".
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+from typing import NamedTuple
+
+import numpy as np
+from filterpy.common import Q_continuous_white_noise
+
+from ._validation import (
+    as_state,
+    check_choice,
+    check_covariance,
+    check_positive,
+    check_positive_int,
+    check_rng,
+)
+from .models import StateSpaceModel
+
+__all__ = [
+    "wrap_angle",
+    "transition_matrix",
+    "dr_fx",
+    "dr_hx",
+    "dr_HJacobian",
+    "dr_residual",
+    "dr_z_mean",
+    "gps_hx",
+    "DRModel",
+    "GPSDRModel",
+    "Scenario",
+    "DRRun",
+    "SCENARIOS",
+    "simulate_scenario",
+]
+
+#: Indices of the position, velocity and acceleration states.
+POS = (0, 3)
+VEL = (1, 4)
+ACC = (2, 5)
+
+_ACCEL_TERMS = ("kinematic", "paper")
+
+
+# --------------------------------------------------------------------------- pure maths
+
+
+def wrap_angle(a):
+    """Wrap angles (rad) to ``[-pi, pi)``; any shape."""
+    return (np.asarray(a, dtype=float) + np.pi) % (2.0 * np.pi) - np.pi
+
+
+def transition_matrix(dt, accel_term="kinematic", dim_x=6):
+    r"""The transition matrix :math:`\Phi` of shape ``(dim_x, dim_x)``.
+
+    ``dim_x = 6`` is the kinematic state; ``dim_x = 8`` appends the odometer scale and
+    the heading bias, both constant (random walks through ``Q``).
+    ``accel_term="kinematic"`` puts ``T^2/2`` in the position-acceleration entries (exact
+    constant-acceleration kinematics); ``"paper"`` puts the paper's printed ``T^2``.
+    """
+    dt = check_positive(dt, "dt")
+    check_choice(accel_term, "accel_term", _ACCEL_TERMS)
+    c = 0.5 * dt * dt if accel_term == "kinematic" else dt * dt
+    A = np.array([[1.0, dt, c], [0.0, 1.0, dt], [0.0, 0.0, 1.0]])
+    F = np.eye(dim_x)
+    F[0:3, 0:3] = A
+    F[3:6, 3:6] = A
+    return F
+
+
+def dr_fx(x, dt, accel_term="kinematic"):
+    """Noise-free transition ``Phi x`` on the last axis: ``(dim_x,)`` or ``(n, dim_x)``.
+
+    Works for the 6-state model and for the 8-state one (scale and bias unchanged).
+    """
+    x = np.asarray(x, dtype=float)
+    c = 0.5 * dt * dt if accel_term == "kinematic" else dt * dt
+    out = x.copy()
+    out[..., 0] = x[..., 0] + dt * x[..., 1] + c * x[..., 2]
+    out[..., 1] = x[..., 1] + dt * x[..., 2]
+    out[..., 3] = x[..., 3] + dt * x[..., 4] + c * x[..., 5]
+    out[..., 4] = x[..., 4] + dt * x[..., 5]
+    return out
+
+
+def _scale_bias(x, zeta, augmented):
+    if augmented:
+        return x[..., 6], x[..., 7]
+    return zeta, 0.0
+
+
+def dr_hx(x, dt, zeta=1.0, augmented=False):
+    """DR measurement ``[heading, odometer distance]`` on the last axis.
+
+    Parameters
+    ----------
+    x : ndarray of shape (dim_x,) or (n_points, dim_x)
+    dt : float
+        Sample interval ``T`` (s).
+    zeta : float
+        Odometer scale (6-state model).
+    augmented : bool
+        8-state model: ``zeta = x[..., 6]`` and the measured heading is
+        ``atan2(v_e, v_n) + x[..., 7]`` (a heading bias), wrapped.
+
+    Returns
+    -------
+    ndarray of shape (2,) or (n_points, 2)
+        Heading in ``[-pi, pi)`` (rad, from north, clockwise) and distance (m).
+    """
+    x = np.asarray(x, dtype=float)
+    ve, vn = x[..., 1], x[..., 4]
+    z_scale, bias = _scale_bias(x, zeta, augmented)
+    theta = wrap_angle(np.arctan2(ve, vn) + bias)  # atan2 gives (-pi, pi]; we use [-pi, pi)
+    s = dt * z_scale * np.hypot(ve, vn)
+    return np.stack([theta, s], axis=-1)
+
+
+def dr_HJacobian(x, dt, zeta=1.0, augmented=False, min_speed=0.1):
+    r"""Analytic Jacobian of :func:`dr_hx`, shape ``(2, dim_x)`` or ``(n_points, 2, dim_x)``.
+
+    :math:`\partial\theta/\partial v_e = v_n/v^2`, :math:`\partial\theta/\partial v_n = -v_e/v^2`,
+    :math:`\partial s/\partial v_e = T\zeta v_e/v`, :math:`\partial s/\partial v_n = T\zeta v_n/v`;
+    8-state: :math:`\partial s/\partial\zeta = T v`, :math:`\partial\theta/\partial b = 1`.
+    Zero-speed guard: ``v`` is replaced by ``max(v, min_speed)`` in the denominators, so
+    the Jacobian stays finite (the heading itself is undefined at ``v = 0``).
+    """
+    x = np.asarray(x, dtype=float)
+    ve, vn = x[..., 1], x[..., 4]
+    z_scale, _ = _scale_bias(x, zeta, augmented)
+    v_true = np.hypot(ve, vn)
+    v = np.maximum(v_true, min_speed)
+    v2 = v * v
+    H = np.zeros(x.shape[:-1] + (2, x.shape[-1]))
+    H[..., 0, 1] = vn / v2
+    H[..., 0, 4] = -ve / v2
+    H[..., 1, 1] = dt * z_scale * ve / v
+    H[..., 1, 4] = dt * z_scale * vn / v
+    if augmented:
+        H[..., 1, 6] = dt * v_true
+        H[..., 0, 7] = 1.0
+    return H
+
+
+def dr_residual(a, b):
+    """Measurement residual ``a - b`` with the heading (entry 0) wrapped to ``[-pi, pi)``.
+
+    Works for the DR measurement ``[theta, s]`` and the GPS/DR one ``[theta, s, e, n]``,
+    on the last axis (``(dim_z,)`` or ``(n_points, dim_z)`` broadcast against a row).
+    """
+    d = np.subtract(a, b)
+    d = np.array(d, dtype=float, copy=True)
+    d[..., 0] = wrap_angle(d[..., 0])
+    return d
+
+
+def dr_z_mean(sigmas, Wm):
+    """Weighted mean of measurement sigma points with a circular mean for the heading.
+
+    Parameters
+    ----------
+    sigmas : ndarray of shape (n_sigmas, dim_z)
+        Entry 0 is the heading (rad); the rest are averaged linearly.
+    Wm : ndarray of shape (n_sigmas,)
+
+    Returns
+    -------
+    ndarray of shape (dim_z,)
+        Heading ``atan2(sum W sin, sum W cos)``; the others ``sum W z``.
+    """
+    sigmas = np.atleast_2d(np.asarray(sigmas, dtype=float))
+    Wm = np.asarray(Wm, dtype=float)
+    z = Wm @ sigmas
+    z[0] = np.arctan2(Wm @ np.sin(sigmas[:, 0]), Wm @ np.cos(sigmas[:, 0]))
+    return z
+
+
+def gps_hx(x):
+    """GPS position ``[e, n]`` on the last axis: ``(2,)`` or ``(n_points, 2)``."""
+    x = np.asarray(x, dtype=float)
+    return np.stack([x[..., 0], x[..., 3]], axis=-1)
+
+
+# --------------------------------------------------------------------------- models
+
+
+def _kinematic_Q(dt, q):
+    return Q_continuous_white_noise(dim=3, dt=dt, spectral_density=q, block_size=2, order_by_dim=True)
+
+
+class DRModel(StateSpaceModel):
+    r"""The paper's DR-only model: 6 states, ``[heading, odometer]`` measurements.
+
+    Parameters
+    ----------
+    dt : float
+        Sample interval ``T`` (s), default 0.1 (10 Hz DR).
+    zeta : float
+        Odometer scale coefficient (known here; estimated by ``GPSDRModel(augmented=True)``).
+    q : float
+        Power spectral density of the white jerk (m^2/s^5); ``Q`` is filterpy's
+        ``Q_continuous_white_noise(dim=3, block_size=2, order_by_dim=True)``.
+    sigma_heading : float
+        Heading noise standard deviation (rad), default 1 degree.
+    sigma_odometer : float
+        Odometer distance noise per sample (m), default 0.02.
+    accel_term : {"kinematic", "paper"}
+        ``T^2/2`` (default) or the paper's printed ``T^2`` in :math:`\Phi`.
+    min_speed : float
+        Zero-speed guard of the Jacobian (m/s).
+    x0, P0 : array-like, optional
+        Prior; default the paper's start: position (0, 0) known, velocity
+        (10, 10) m/s with standard deviation 0.5 m/s, acceleration 0 (sd 0.1).
+
+    Attributes
+    ----------
+    dim_x, dim_z : int
+        6 and 2.
+    F, Q, R : ndarray
+        Transition matrix ``(6, 6)``, process noise ``(6, 6)``, measurement noise ``(2, 2)``.
+    """
+
+    dim_x = 6
+    dim_z = 2
+
+    def __init__(
+        self,
+        dt=0.1,
+        *,
+        zeta=1.0,
+        q=0.1,
+        sigma_heading=np.deg2rad(1.0),
+        sigma_odometer=0.02,
+        accel_term="kinematic",
+        min_speed=0.1,
+        x0=None,
+        P0=None,
+    ):
+        self.dt = check_positive(dt, "dt")
+        self.zeta = check_positive(zeta, "zeta")
+        self.q = check_positive(q, "q", strict=False)
+        self.sigma_heading = check_positive(sigma_heading, "sigma_heading")
+        self.sigma_odometer = check_positive(sigma_odometer, "sigma_odometer")
+        self.accel_term = check_choice(accel_term, "accel_term", _ACCEL_TERMS)
+        self.min_speed = check_positive(min_speed, "min_speed")
+        self.F = transition_matrix(self.dt, accel_term, 6)
+        self.Q = _kinematic_Q(self.dt, self.q)
+        self.R = np.diag([self.sigma_heading**2, self.sigma_odometer**2])
+        self.x0 = (
+            np.array([0.0, 10.0, 0.0, 0.0, 10.0, 0.0]) if x0 is None else as_state(x0, "x0", 6)
+        )
+        self.P0 = (
+            np.diag([1e-4, 0.25, 0.01, 1e-4, 0.25, 0.01])
+            if P0 is None
+            else check_covariance(P0, "P0", 6)
+        )
+
+    def fx(self, x, dt=None, **fx_args):
+        """``Phi x`` for ``(6,)`` or ``(n_points, 6)``."""
+        return dr_fx(x, self.dt if dt is None else dt, self.accel_term)
+
+    def FJacobian(self, x=None, dt=None, **fx_args):
+        """The (constant) transition matrix ``(6, 6)``."""
+        return self.F if dt is None else transition_matrix(dt, self.accel_term, 6)
+
+    def hx(self, x, **hx_args):
+        """``[atan2(v_e, v_n), T zeta |v|]`` for ``(6,)`` or ``(n_points, 6)``."""
+        return dr_hx(x, self.dt, self.zeta)
+
+    def HJacobian(self, x, **hx_args):
+        """Analytic ``(2, 6)`` Jacobian (``(n_points, 2, 6)`` for stacked states)."""
+        return dr_HJacobian(x, self.dt, self.zeta, min_speed=self.min_speed)
+
+    residual_z = staticmethod(dr_residual)
+    z_mean = staticmethod(dr_z_mean)
+
+    def simulate(self, n_steps, rng=None, x0=None):
+        """Simulate with process noise from ``Q`` and wrapped headings (see base class)."""
+        xs, zs = super().simulate(n_steps, rng=rng, x0=x0)
+        zs[:, 0] = wrap_angle(zs[:, 0])
+        return xs, zs
+
+    def ekf(self, x0=None, P0=None, R=None):
+        """A filterpy :class:`~filterpy.kalman.ExtendedKalmanFilter` set up on this model.
+
+        Update it with ``kf.update(z, model.HJacobian, model.hx, residual=model.residual_z)``.
+        """
+        from filterpy.kalman import ExtendedKalmanFilter
+
+        kf = ExtendedKalmanFilter(dim_x=6, dim_z=2)
+        kf.F = self.F.copy()
+        kf.Q = self.Q.copy()
+        kf.R = self.R.copy() if R is None else check_covariance(R, "R", 2)
+        kf.x = (self.x0 if x0 is None else as_state(x0, "x0", 6)).copy()
+        kf.P = (self.P0 if P0 is None else check_covariance(P0, "P0", 6)).copy()
+        return kf
+
+
+class GPSDRModel(StateSpaceModel):
+    r"""GPS/DR: the DR model plus GPS position fixes, optionally with sensor calibration states.
+
+    The full measurement is ``[theta, s, e, n]`` (``dim_z = 4``) when a GPS fix is there,
+    and the DR-only ``[theta, s]`` when it is not: :meth:`hx`, :meth:`HJacobian` and
+    :meth:`R_for` take ``gps=True/False``, and :meth:`update` picks them from
+    ``z_gps=None``. NaN never enters (a missing fix is ``None``).
+
+    With ``augmented=True`` the state is 8-dimensional,
+    ``[e, v_e, a_e, n, v_n, a_n, zeta, b]``: the odometer scale ``zeta`` and a heading
+    bias ``b`` (rad, measured heading = true heading + b) as random walks with
+    spectral densities ``q_scale`` and ``q_bias``. They are observable only while GPS
+    fixes arrive, and then remove the systematic DR error during outages.
+
+    Parameters
+    ----------
+    dt : float
+        DR sample interval (s).
+    augmented : bool
+        Estimate ``zeta`` and ``b`` (8 states) or not (6 states, ``zeta`` known).
+    zeta : float
+        Odometer scale assumed by the 6-state model, and the prior mean of the 8-state one.
+    q, sigma_heading, sigma_odometer, accel_term, min_speed
+        As in :class:`DRModel`.
+    sigma_gps : float
+        GPS position noise per axis (m).
+    q_scale, q_bias : float
+        Random-walk spectral densities of ``zeta`` (1/s) and ``b`` (rad^2/s).
+    sd_scale, sd_bias : float
+        Prior standard deviations of ``zeta`` and ``b``.
+    stationary_inflation : float
+        Factor on the heading variance used by ``R_for(stationary=True)``.
+    x0, P0 : array-like, optional
+        Prior (default as :class:`DRModel`, extended by ``zeta`` and ``b = 0``).
+    """
+
+    def __init__(
+        self,
+        dt=0.1,
+        *,
+        augmented=False,
+        zeta=1.0,
+        q=0.1,
+        sigma_heading=np.deg2rad(1.0),
+        sigma_odometer=0.02,
+        sigma_gps=3.0,
+        q_scale=1e-7,
+        q_bias=1e-7,
+        sd_scale=0.05,
+        sd_bias=np.deg2rad(5.0),
+        stationary_inflation=1e6,
+        accel_term="kinematic",
+        min_speed=0.1,
+        x0=None,
+        P0=None,
+    ):
+        self.dt = check_positive(dt, "dt")
+        self.augmented = bool(augmented)
+        self.dim_x = 8 if self.augmented else 6
+        self.dim_z = 4
+        self.zeta = check_positive(zeta, "zeta")
+        self.q = check_positive(q, "q", strict=False)
+        self.sigma_heading = check_positive(sigma_heading, "sigma_heading")
+        self.sigma_odometer = check_positive(sigma_odometer, "sigma_odometer")
+        self.sigma_gps = check_positive(sigma_gps, "sigma_gps")
+        self.q_scale = check_positive(q_scale, "q_scale", strict=False)
+        self.q_bias = check_positive(q_bias, "q_bias", strict=False)
+        self.stationary_inflation = check_positive(stationary_inflation, "stationary_inflation")
+        self.accel_term = check_choice(accel_term, "accel_term", _ACCEL_TERMS)
+        self.min_speed = check_positive(min_speed, "min_speed")
+        n = self.dim_x
+        self.F = transition_matrix(self.dt, accel_term, n)
+        Q = np.zeros((n, n))
+        Q[:6, :6] = _kinematic_Q(self.dt, self.q)
+        if self.augmented:
+            Q[6, 6] = self.q_scale * self.dt
+            Q[7, 7] = self.q_bias * self.dt
+        self.Q = Q
+        self.R = np.diag(
+            [self.sigma_heading**2, self.sigma_odometer**2, self.sigma_gps**2, self.sigma_gps**2]
+        )
+        x0_default = [0.0, 10.0, 0.0, 0.0, 10.0, 0.0] + ([self.zeta, 0.0] if self.augmented else [])
+        self.x0 = np.array(x0_default) if x0 is None else as_state(x0, "x0", n)
+        p0 = [1e-4, 0.25, 0.01, 1e-4, 0.25, 0.01]
+        if self.augmented:
+            p0 += [check_positive(sd_scale, "sd_scale") ** 2, check_positive(sd_bias, "sd_bias") ** 2]
+        self.P0 = np.diag(p0) if P0 is None else check_covariance(P0, "P0", n)
+
+    def fx(self, x, dt=None, **fx_args):
+        """``Phi x`` for ``(dim_x,)`` or ``(n_points, dim_x)``."""
+        return dr_fx(x, self.dt if dt is None else dt, self.accel_term)
+
+    def FJacobian(self, x=None, dt=None, **fx_args):
+        """The (constant) transition matrix ``(dim_x, dim_x)``."""
+        return self.F if dt is None else transition_matrix(dt, self.accel_term, self.dim_x)
+
+    def hx(self, x, gps=True, **hx_args):
+        """``[theta, s, e, n]`` (``gps=True``) or ``[theta, s]``, on the last axis."""
+        z = dr_hx(x, self.dt, self.zeta, self.augmented)
+        if not gps:
+            return z
+        return np.concatenate([z, gps_hx(x)], axis=-1)
+
+    def HJacobian(self, x, gps=True, **hx_args):
+        """Analytic Jacobian ``(4, dim_x)`` (``gps=True``) or ``(2, dim_x)``."""
+        H = dr_HJacobian(x, self.dt, self.zeta, self.augmented, self.min_speed)
+        if not gps:
+            return H
+        G = np.zeros(H.shape[:-2] + (2, self.dim_x))
+        G[..., 0, 0] = 1.0
+        G[..., 1, 3] = 1.0
+        return np.concatenate([H, G], axis=-2)
+
+    def R_for(self, gps=True, stationary=False):
+        """Measurement noise for the chosen measurement: ``(4, 4)`` or ``(2, 2)``.
+
+        ``stationary=True`` multiplies the heading variance by ``stationary_inflation``:
+        the heading of a standing vehicle says nothing about its (zero) velocity, and
+        the linearisation at ``|v| ~ 0`` is meaningless.
+        """
+        R = self.R if gps else self.R[:2, :2]
+        if stationary:
+            R = R.copy()
+            R[0, 0] *= self.stationary_inflation
+        return R
+
+    residual_z = staticmethod(dr_residual)
+    z_mean = staticmethod(dr_z_mean)
+
+    @staticmethod
+    def measurement(z_dr, z_gps=None):
+        """Stack a DR measurement and an optional GPS fix: ``((4,) or (2,), has_gps)``."""
+        z = as_state(z_dr, "z_dr", 2)
+        if z_gps is None:
+            return z, False
+        return np.concatenate([z, as_state(z_gps, "z_gps", 2)]), True
+
+    def update(self, kf, z_dr, z_gps=None, *, stationary=False, R=None):
+        """Update a filterpy-style filter with a DR measurement and an optional GPS fix.
+
+        Works with filterpy's ``ExtendedKalmanFilter`` (analytic Jacobian, wrapped
+        residual) and with any unscented filter whose ``hx`` is this model's ``hx`` and
+        whose ``update(z, R=..., **hx_args)`` follows filterpy (``gps`` is passed as an
+        ``hx`` argument, so the measurement size follows the fix). ``z_gps=None`` means
+        no fix (a tunnel): the DR-only measurement, ``hx`` and ``R`` are used.
+
+        Parameters
+        ----------
+        kf : filter
+            The filter to update in place.
+        z_dr : array-like of shape (2,)
+            ``[heading (rad), odometer distance (m)]``, finite.
+        z_gps : array-like of shape (2,) or None
+            ``[e, n]`` fix (m), or ``None`` when there is none.
+        stationary : bool
+            The vehicle stands still: heading variance inflated (see :meth:`R_for`).
+        R : ndarray, optional
+            Override of the measurement noise for this call (shape to match).
+        """
+        from filterpy.kalman import ExtendedKalmanFilter
+
+        z, gps = self.measurement(z_dr, z_gps)
+        if R is None:
+            R = self.R_for(gps, stationary)
+        if isinstance(kf, ExtendedKalmanFilter):
+            kf.update(z, self.HJacobian, self.hx, R=R, args=(gps,), hx_args=(gps,),
+                      residual=dr_residual)
+        else:
+            kf.update(z, R=R, gps=gps)
+        return kf
+
+    def ekf(self, x0=None, P0=None):
+        """A filterpy ``ExtendedKalmanFilter`` on this model (update it with :meth:`update`)."""
+        from filterpy.kalman import ExtendedKalmanFilter
+
+        kf = ExtendedKalmanFilter(dim_x=self.dim_x, dim_z=4)
+        kf.F, kf.Q, kf.R = self.F.copy(), self.Q.copy(), self.R.copy()
+        kf.x = (self.x0 if x0 is None else as_state(x0, "x0", self.dim_x)).copy()
+        kf.P = (self.P0 if P0 is None else check_covariance(P0, "P0", self.dim_x)).copy()
+        return kf
+
+
+# --------------------------------------------------------------------------- simulation
+
+
+@dataclass(frozen=True)
+class Scenario:
+    """A simulated drive and its sensors (all times in s, angles in degrees).
+
+    The truth has no process noise: its acceleration follows the speed and turn
+    profile (piecewise constant over each sample), integrated by the kinematic
+    transition, so the truth is exactly what the model with ``T^2/2`` describes.
+
+    Attributes
+    ----------
+    name : str
+    duration, dt : float
+        Length of the run and DR sample interval.
+    speed, heading : float
+        Initial speed (m/s) and heading (deg from north, clockwise).
+    turns : tuple of (t_start, t_end, angle_deg)
+        Constant-rate turns (positive clockwise).
+    speed_changes : tuple of (t_start, t_end, delta_speed)
+        Constant-rate speed changes (m/s).
+    sigma_heading, sigma_odometer : float
+        Nominal DR noise (deg, m per sample).
+    t_switch, factor : float
+        From ``t_switch`` on, both DR noise levels are multiplied by ``factor``.
+    outlier_prob, outlier_deg : float
+        After ``t_switch``, each heading has this chance of a +-``outlier_deg`` error.
+    odometer_scale, heading_bias : float
+        True odometer scale ``zeta`` and heading bias (deg).
+    gps_rate, sigma_gps : float
+        GPS fix rate (Hz; 0 for none) and noise per axis (m).
+    outages : tuple of (t_start, t_end)
+        Intervals without GPS.
+    """
+
+    name: str = "straight"
+    duration: float = 200.0
+    dt: float = 0.1
+    speed: float = 10.0 * np.sqrt(2.0)
+    heading: float = 45.0
+    turns: tuple = ()
+    speed_changes: tuple = ()
+    sigma_heading: float = 1.0
+    sigma_odometer: float = 0.02
+    t_switch: float = 150.0
+    factor: float = 1.0
+    outlier_prob: float = 0.0
+    outlier_deg: float = 30.0
+    odometer_scale: float = 1.0
+    heading_bias: float = 0.0
+    gps_rate: float = 0.0
+    sigma_gps: float = 3.0
+    outages: tuple = field(default=())
+
+    @property
+    def n_steps(self):
+        return int(round(self.duration / self.dt))
+
+    @property
+    def x0(self):
+        """True initial state ``(6,)``."""
+        h = np.deg2rad(self.heading)
+        return np.array([0.0, self.speed * np.sin(h), 0.0, 0.0, self.speed * np.cos(h), 0.0])
+
+    def with_(self, **changes):
+        """A copy with some fields changed."""
+        return replace(self, **changes)
+
+
+_TURNING = dict(
+    turns=((20.0, 30.0, 90.0), (60.0, 75.0, -135.0), (100.0, 110.0, 60.0), (160.0, 175.0, -90.0)),
+    speed_changes=((40.0, 50.0, -6.0), (85.0, 95.0, 8.0), (130.0, 140.0, -4.0)),
+)
+
+#: Named scenario factories; each accepts keyword overrides of :class:`Scenario` fields.
+SCENARIOS = {
+    # the paper: straight road, 10*sqrt(2) m/s at 45 deg, noise x20 at 150 s
+    "straight": lambda **kw: Scenario(**{"name": "straight", "factor": 20.0, **kw}),
+    # turns and speed changes, noise x5 at 150 s
+    "turns": lambda **kw: Scenario(**{"name": "turns", "factor": 5.0, **_TURNING, **kw}),
+    # heading near 180 deg: west-south-west... through south (180) and back, noise x5
+    "heading180": lambda **kw: Scenario(
+        **{
+            "name": "heading180",
+            "heading": 170.0,
+            "turns": ((20.0, 40.0, 20.0), (90.0, 110.0, -25.0), (160.0, 180.0, 30.0)),
+            "factor": 5.0,
+            **kw,
+        }
+    ),
+    # noise x5 plus 10 % heading outliers of +-30 deg after 150 s
+    "outliers": lambda **kw: Scenario(
+        **{"name": "outliers", "factor": 5.0, "outlier_prob": 0.1, **kw}
+    ),
+    # GPS/DR: turning route, 1 Hz GPS (3 m) with outages, 2 % odometer scale, 2 deg bias
+    "gpsdr": lambda **kw: Scenario(
+        **{
+            "name": "gpsdr",
+            "factor": 1.0,
+            "odometer_scale": 1.02,
+            "heading_bias": 2.0,
+            "gps_rate": 1.0,
+            "outages": ((50.0, 80.0), (120.0, 170.0)),
+            **_TURNING,
+            **kw,
+        }
+    ),
+}
+
+
+class DRRun(NamedTuple):
+    """One simulated drive.
+
+    Attributes
+    ----------
+    t : ndarray of shape (n_steps,)
+        Sample times ``dt, 2 dt, ...`` (s).
+    x0 : ndarray of shape (6,)
+        True state at ``t = 0``.
+    x_true : ndarray of shape (n_steps, 6)
+        True states at ``t``.
+    z_dr : ndarray of shape (n_steps, 2)
+        ``[heading (rad, wrapped), odometer distance (m)]``.
+    gps_steps : ndarray of shape (n_fixes,)
+        Indices into ``t`` of the steps with a GPS fix.
+    z_gps : ndarray of shape (n_fixes, 2)
+        The fixes ``[e, n]`` (m).
+    R_true : ndarray of shape (n_steps, 2)
+        True DR noise variances ``[heading, odometer]`` at each step (for oracle filters).
+    scenario : Scenario
+    """
+
+    t: np.ndarray
+    x0: np.ndarray
+    x_true: np.ndarray
+    z_dr: np.ndarray
+    gps_steps: np.ndarray
+    z_gps: np.ndarray
+    R_true: np.ndarray
+    scenario: Scenario
+
+    def gps_list(self):
+        """Per-step list: the fix ``(2,)`` or ``None`` (missing GPS is ``None``, never NaN)."""
+        out = [None] * len(self.t)
+        for k, z in zip(self.gps_steps, self.z_gps):
+            out[int(k)] = z
+        return out
+
+
+def _profile_rate(windows, t):
+    rate = 0.0
+    for t0, t1, amount in windows:
+        if t0 <= t < t1:
+            rate += amount / (t1 - t0)
+    return rate
+
+
+def true_trajectory(scenario):
+    """Noise-free truth of a scenario: ``(t (n,), x0 (6,), x_true (n, 6))``."""
+    sc = scenario
+    n = sc.n_steps
+    dt = sc.dt
+    x = sc.x0.copy()
+    xs = np.empty((n, 6))
+
+    def accel(x, t):
+        ve, vn = x[1], x[4]
+        v = np.hypot(ve, vn)
+        dv = _profile_rate(sc.speed_changes, t)
+        om = np.deg2rad(_profile_rate(sc.turns, t))
+        ue, un = (ve / v, vn / v) if v > 0 else (0.0, 0.0)
+        return dv * ue + om * vn, dv * un - om * ve
+
+    x[2], x[5] = accel(x, 0.0)
+    for k in range(n):
+        x = dr_fx(x, dt)
+        t = (k + 1) * dt
+        x[2], x[5] = accel(x, t)
+        xs[k] = x
+    return dt * np.arange(1, n + 1), sc.x0.copy(), xs
+
+
+def simulate_scenario(scenario, rng=None):
+    """Simulate the truth and the sensors of a :class:`Scenario`.
+
+    Random numbers are drawn in a fixed order (heading noise, odometer noise, outlier
+    draws, GPS noise), always for every step, so two scenarios differing only in noise
+    levels share their random numbers.
+
+    Returns
+    -------
+    DRRun
+    """
+    if not isinstance(scenario, Scenario):
+        raise TypeError(f"scenario must be a Scenario, got {type(scenario).__name__}")
+    rng = check_rng(rng)
+    sc = scenario
+    t, x0, xs = true_trajectory(sc)
+    n = len(t)
+    f = np.where(t >= sc.t_switch, sc.factor, 1.0)
+    sh = np.deg2rad(sc.sigma_heading) * f
+    so = sc.sigma_odometer * f
+    e_h = rng.standard_normal(n)
+    e_s = rng.standard_normal(n)
+    u_out = rng.random(n)
+    sign_out = np.where(rng.random(n) < 0.5, -1.0, 1.0)
+    e_g = rng.standard_normal((n, 2))
+    heading = np.arctan2(xs[:, 1], xs[:, 4]) + np.deg2rad(sc.heading_bias) + sh * e_h
+    outlier = (t >= sc.t_switch) & (u_out < sc.outlier_prob)
+    heading = heading + outlier * sign_out * np.deg2rad(sc.outlier_deg)
+    dist = sc.dt * sc.odometer_scale * np.hypot(xs[:, 1], xs[:, 4]) + so * e_s
+    z_dr = np.stack([wrap_angle(heading), dist], axis=1)
+    if sc.gps_rate > 0:
+        every = max(int(round(1.0 / (sc.gps_rate * sc.dt))), 1)
+        steps = np.arange(every - 1, n, every)
+        ok = np.ones(len(steps), dtype=bool)
+        for a, b in sc.outages:
+            ok &= ~((t[steps] >= a) & (t[steps] < b))
+        steps = steps[ok]
+        z_gps = xs[steps][:, [0, 3]] + sc.sigma_gps * e_g[steps]
+    else:
+        steps = np.zeros(0, dtype=int)
+        z_gps = np.zeros((0, 2))
+    R_true = np.stack([sh**2, so**2], axis=1)
+    return DRRun(t, x0, xs, z_dr, steps, z_gps, R_true, sc)
