@@ -32,6 +32,17 @@ from .regressor import WNNRegressor
 from .weight_model import WNNWeightModel
 
 # --- dead reckoning (issue 6) ---
+from .dead_reckoning import (
+    SCENARIOS as DR_SCENARIOS,
+    DRModel,
+    GPSDRModel,
+    Scenario,
+    dr_residual,
+    dr_z_mean,
+    simulate_scenario,
+    wrap_angle,
+)
+from .neural_filter import NeuralFilter
 
 __all__ = [
     "__version__",
@@ -58,4 +69,13 @@ __all__ = [
     "WNNRegressor",
     "WNNWeightModel",
     # --- issue 6 ---
+    "DR_SCENARIOS",
+    "DRModel",
+    "GPSDRModel",
+    "Scenario",
+    "dr_residual",
+    "dr_z_mean",
+    "simulate_scenario",
+    "wrap_angle",
+    "NeuralFilter",
 ]
