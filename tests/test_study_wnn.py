@@ -1,0 +1,80 @@
+"""Tests of filterwnn.studies.wnn: reproducibility across workers and backends, outputs."""
+
+import csv
+
+import numpy as np
+import pytest
+
+from filterwnn.cli import main
+from filterwnn.studies import wnn as study
+
+TINY = dict(n_runs=2, n_epochs=2, pf_epochs=1, n_particles=3, trainers=["bp", "ekf", "spf"],
+            paper_table=True, paper_runs=1, references=(), sweep_particles=(2,), sweep_runs=1, seed=7)
+
+
+def _numbers(res):
+    return [(r["table"], r["trainer"], r["run"], r["n_particles"], r["test_mse"], r["train_mse"],
+             r["mean_ess"], tuple(r["curve_test"])) for r in res.runs]
+
+
+@pytest.fixture(scope="module")
+def serial():
+    return study.run_study(**TINY, n_jobs=1)
+
+
+def test_identical_numbers_for_one_and_two_jobs(serial):
+    two = study.run_study(**TINY, n_jobs=2)
+    np.testing.assert_equal(_numbers(two), _numbers(serial))  # NaN == NaN here; exact otherwise
+
+
+def test_local_dask_cluster_gives_the_same_numbers(serial):
+    distributed = pytest.importorskip("dask.distributed")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False) as cluster:
+        with distributed.Client(cluster):
+            res = study.run_study(**TINY, n_jobs=2, backend="dask")
+    np.testing.assert_equal(_numbers(res), _numbers(serial))
+
+
+def test_runs_redraw_data_and_table_rows(serial):
+    ekf = [r for r in serial.runs if r["trainer"] == "ekf" and r["table"] == "working"]
+    assert len(ekf) == 2 and ekf[0]["var_test"] != ekf[1]["var_test"]  # each run its own data
+    assert [(r["table"], r["trainer"]) for r in serial.table] == [
+        ("working", "bp"), ("working", "ekf"), ("working", "spf"),
+        ("paper", "bp"), ("paper", "ekf"), ("paper", "spf"),
+    ]
+    row = serial.table[1]
+    assert row["test_mse_q1"] <= row["test_mse_median"] <= row["test_mse_q3"]
+    assert row["paper_mse"] == study.PAPER_TABLE1["ekf"][0]
+    assert {s["n_particles"] for s in serial.sweep} == {2, 3}
+    assert all(len(r["curve_test"]) == r_ep for r, r_ep in
+               ((r, 2 if r["trainer"] != "spf" else 1) for r in serial.runs if r["table"] == "working"))
+
+
+def test_run_seeds_are_spawned_children():
+    seeds = study.run_seeds(3, 4)
+    ss = np.random.SeedSequence(3).spawn(4)
+    assert seeds[2] == (ss[2].entropy, tuple(ss[2].spawn_key))
+
+
+def test_reference_rows(tmp_path):
+    r = study.fit_reference("MLPRegressor", study.run_seeds(0, 1)[0])
+    assert r["test_mse"] < 0.1
+    with pytest.raises(ValueError, match="reference"):
+        study.fit_reference("SVR", study.run_seeds(0, 1)[0])
+
+
+def test_cli_writes_table_csv_and_figures(tmp_path, capsys):
+    out = tmp_path / "wnn"
+    rc = main(["study", "wnn", "--runs", "1", "--epochs", "2", "--pf-epochs", "1", "--particles", "2",
+               "--trainers", "ekf,supf", "--sweep-particles", "3", "--sweep-runs", "1", "--paper-runs", "1",
+               "--out", str(out), "--no-progress"])
+    assert rc == 0
+    text = capsys.readouterr().out
+    assert "reduced protocol" in text and "MLPRegressor" in text
+    with open(out / "table1.csv") as f:
+        rows = list(csv.DictReader(f))
+    assert list(rows[0]) == list(study.TABLE_COLUMNS)
+    assert {r["trainer"] for r in rows} == {"ekf", "supf", "MLPRegressor", "GaussianProcessRegressor"}
+    for name in ("table1.md", "runs.csv", "fig3_particles_mse.png", "fig4_particles_time.png",
+                 "fig5_supf_convergence.png"):
+        assert (out / name).stat().st_size > 0
