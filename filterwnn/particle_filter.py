@@ -68,7 +68,6 @@ from __future__ import annotations
 
 import numpy as np
 from filterpy.kalman import MerweScaledSigmaPoints
-from scipy.special import logsumexp
 
 from ._validation import (
     NumericalError,
@@ -104,6 +103,14 @@ __all__ = [
 
 WEIGHTINGS = ("textbook", "bank")
 PROPOSALS = ("prior", "extended", "unscented", "simplex")
+
+
+def _logsumexp(a):
+    """``log(sum(exp(a)))`` of a 1-D array (``-inf`` if every entry is ``-inf``)."""
+    m = np.max(a)
+    if not np.isfinite(m):
+        return float(m)
+    return float(m + np.log(np.sum(np.exp(a - m))))
 
 
 def _check_callable(f, name, allow_none=True):
@@ -498,9 +505,9 @@ class ParticleFilter:
                 step=step,
             )
         log_inc = lw_prev + log_alpha
-        log_lik_step = float(logsumexp(log_inc))
+        log_lik_step = float(_logsumexp(log_inc))
         new_lw = lw_prev + self.tempering * log_alpha
-        lse = logsumexp(new_lw)
+        lse = _logsumexp(new_lw)
         if not np.isfinite(lse):
             raise NumericalError(
                 f"all particle weights underflowed at step {step}: the measurement is impossible "

@@ -258,7 +258,7 @@ def _gauss_logpdf_rows(d, M, name):
             f"{name} must be positive definite for the Gaussian density "
             f"(or give your own log-density)"
         ) from None
-    e = solve_triangular(L, d.T, lower=True)
+    e = solve_triangular(L, d.T, lower=True, check_finite=False)
     k = d.shape[1]
     return -0.5 * np.sum(e * e, axis=0) - np.sum(np.log(np.diag(L))) - 0.5 * k * _LOG_2PI
 
