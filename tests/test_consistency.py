@@ -9,6 +9,13 @@ Kirubarajan 2001, sec. 5.4). Every test also has a *negative control*: the same 
 told a process noise 20 times too small must fail the same check, so the check has
 power.
 
+Particle filters: the bootstrap filter and the Kalman-proposal filters with
+``weighting="bank"`` are tested. (With ``weighting="textbook"`` the EPF/UPF/SUPF on this
+model degenerate -- effective sample size near 1 out of 100, a single distinct particle
+and a collapsed sample covariance at some steps -- a property of carrying each particle's
+posterior covariance into the next proposal, not of this package's arithmetic, which
+``tests/test_particle_filter.py`` pins to closed forms.)
+
 Runs are independent streams from ``np.random.SeedSequence(seed).spawn(M)`` and the
 numbers are deterministic; the thresholds (fraction of steps inside the 95 % band,
 overall average) leave room for the sampling spread of a correct filter.
@@ -24,6 +31,7 @@ from filterwnn import (
     SphericalSimplexSigmaPoints,
     UnscentedKalmanFilter,
 )
+from filterwnn import particle_filter as pf_module
 from filterwnn.metrics import chi2_bounds, nees, nis
 
 N_RUNS = 50
@@ -118,3 +126,55 @@ def test_overconfident_ukf_fails_the_check():
     assert band_fraction(ne, MODEL.dim_x) < 0.3
     assert ne.mean() > 1.5 * MODEL.dim_x
     assert ni.mean() > 1.2 * MODEL.dim_z
+
+
+# --------------------------------------------------------------------------- particle filters
+
+N_RUNS_PF = 30
+PF_CASES = {
+    # name: (class, n_particles, keywords)
+    "bootstrap-300": ("BootstrapParticleFilter", 300, {}),
+    "epf-bank-30": ("ExtendedKalmanParticleFilter", 30, {"weighting": "bank"}),
+    "upf-bank-30": ("UnscentedParticleFilter", 30, {"weighting": "bank"}),
+    "supf-bank-30": ("SimplexUnscentedParticleFilter", 30, {"weighting": "bank", "resampling": "stratified"}),
+}
+
+
+def run_pf(case, q_scale=1.0):
+    """NEES of the posterior and NIS of the predicted measurement ``H x_prior``,
+    ``S = H P_prior H^T + R``, over the first ``N_RUNS_PF`` seeded runs."""
+    name, n, kw = PF_CASES[case]
+    m = MODEL
+    seeds = np.random.SeedSequence(4).spawn(N_RUNS_PF)
+    est = np.empty((N_RUNS_PF, N_STEPS, m.dim_x))
+    cov = np.empty((N_RUNS_PF, N_STEPS, m.dim_x, m.dim_x))
+    inn = np.empty((N_RUNS_PF, N_STEPS, m.dim_z))
+    inn_cov = np.empty((N_RUNS_PF, N_STEPS, m.dim_z, m.dim_z))
+    for r in range(N_RUNS_PF):
+        _, zs = SCENARIOS[r]
+        pf = getattr(pf_module, name)(m.dim_x, m.dim_z, m.dt, m.hx, m.fx, n, FJacobian=m.FJacobian,
+                                      HJacobian=m.HJacobian, vectorized=True, rng=seeds[r], **kw)
+        pf.Q, pf.R = m.Q * q_scale, m.R.copy()
+        pf.x, pf.P = m.x0.copy(), m.P0.copy()
+        for k in range(N_STEPS):
+            pf.predict()
+            inn[r, k] = zs[k] - m.H @ pf.x_prior
+            inn_cov[r, k] = m.H @ pf.P_prior @ m.H.T + m.R
+            pf.update(zs[k])
+            est[r, k], cov[r, k] = pf.x, pf.P
+    return nees(TRUTH[:N_RUNS_PF], est, cov), nis(inn, inn_cov)
+
+
+@pytest.mark.parametrize("case", sorted(PF_CASES))
+def test_particle_filters_are_nees_and_nis_consistent(case):
+    ne, ni = run_pf(case)
+    assert band_fraction(ne, MODEL.dim_x) >= MIN_FRACTION
+    assert band_fraction(ni, MODEL.dim_z) >= MIN_FRACTION
+    # the particle approximation adds Monte-Carlo error: allow 20 % on the grand average
+    assert overall_ok(ne, MODEL.dim_x, rel=0.2) and overall_ok(ni, MODEL.dim_z, rel=0.2)
+
+
+def test_overconfident_particle_filter_fails_the_check():
+    ne, ni = run_pf("upf-bank-30", q_scale=0.05)
+    assert band_fraction(ne, MODEL.dim_x) < 0.3
+    assert ne.mean() > 1.5 * MODEL.dim_x and ni.mean() > 1.2 * MODEL.dim_z
