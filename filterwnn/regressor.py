@@ -80,7 +80,7 @@ AUTO_SETTINGS = {
     ("ukf", "paper"): {"Q": 1e-4, "P0": 0.1},
     ("sukf", "scaled"): {"Q": 1e-5, "P0": 0.01},
     ("sukf", "paper"): {"Q": 1e-4, "P0": 0.1},
-    ("spf", "scaled"): {"Q": 1e-5, "P0": 0.01},
+    ("spf", "scaled"): {"Q": 1e-4, "P0": 0.01},
     ("spf", "paper"): {"Q": 1e-4, "P0": 0.1},
     ("epf", "scaled"): {"Q": 1e-3, "P0": 0.1},
     ("epf", "paper"): {"Q": 1e-2, "P0": 0.01},

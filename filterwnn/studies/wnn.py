@@ -229,6 +229,7 @@ def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_
             "curve_test": curve_test,
             "settings": _settings_text(table, trainer, reg) if hasattr(reg, "settings_") else table,
             "n_particles": n_particles if trainer in PARTICLE_TRAINERS else 0,
+            "epochs": int(getattr(reg, "n_epochs_", 0)),
             "status": status,
         }
 
@@ -278,6 +279,7 @@ def fit_reference(name, run_seed, run=0):
             "curve_test": [],
             "settings": settings,
             "n_particles": 0,
+            "epochs": 0,
             "status": "ok",
         }
 
@@ -366,6 +368,7 @@ def summarize(runs):
             "mean_ess": float(np.mean(ess)) if ess else float("nan"),
             "distinct_median": float(np.median(distinct)) if distinct else float("nan"),
             "n_runs": len(rs),
+            "epochs": max(r.get("epochs", 0) for r in rs),
             "n_failed": sum(r["status"] != "ok" for r in rs),
             "var_test_median": _q([r["var_test"] for r in rs], 0.5),
             "paper_mse": paper[0] if table != "reference" else float("nan"),
@@ -384,6 +387,7 @@ def run_study(
     seed=2026,
     paper_table=True,
     paper_runs=None,
+    paper_pf_epochs=None,
     references=REFERENCES,
     sweep_particles=(5, 10, 20),
     sweep_runs=None,
@@ -410,6 +414,8 @@ def run_study(
         Also run every trainer at the paper's literal settings.
     paper_runs : int, optional
         Runs of the paper-settings table (default ``n_runs``).
+    paper_pf_epochs : int, optional
+        Epochs of the particle filters in the paper-settings table (default ``pf_epochs``).
     references : sequence of str
         scikit-learn references to fit on the same runs.
     sweep_particles : sequence of int
@@ -443,10 +449,12 @@ def run_study(
     for name in references:
         for i in range(n_runs):
             tasks.append(("reference", (name, seeds[i]), {"run": i}))
+    paper_pf_epochs = pf_epochs if paper_pf_epochs is None else check_positive_int(paper_pf_epochs, "paper_pf_epochs")
     if paper_table:
         for t in trainers:
             for i in range(paper_runs):
-                tasks.append(("fit", (t, seeds[i], epochs(t), n_particles),
+                ep = paper_pf_epochs if t in PARTICLE_TRAINERS else n_epochs
+                tasks.append(("fit", (t, seeds[i], ep, n_particles),
                               {"table": "paper", "run": i, "track_test": False}))
     sweep_pf = [t for t in trainers if t in PARTICLE_TRAINERS]
     n_main = len(tasks)
@@ -480,7 +488,8 @@ def run_study(
             })
     config = dict(
         n_runs=n_runs, n_epochs=n_epochs, pf_epochs=pf_epochs, n_particles=n_particles, seed=seed,
-        trainers=list(trainers), paper_runs=paper_runs if paper_table else 0, sweep_particles=list(sweep_particles),
+        trainers=list(trainers), paper_runs=paper_runs if paper_table else 0, paper_pf_epochs=paper_pf_epochs,
+        sweep_particles=list(sweep_particles),
         sweep_runs=sweep_runs, n_jobs=n_jobs, backend=backend or "loky",
     )
     return StudyResult(runs=main + swept, table=table, sweep=sweep, config=config)
@@ -528,9 +537,9 @@ def markdown_table(result):
                   "scale it with --runs, --epochs, --pf-epochs, --particles."]
     lines += ["", f"Timings: median seconds per fit with {c['n_jobs']} joblib worker(s) ({c['backend']}), "
               "one BLAS thread each; parallel workers contend for memory bandwidth."]
-    head = ("| trainer | settings | test MSE median | q1 | q3 | fit time (s) | mean ESS | distinct particles "
+    head = ("| trainer | settings | epochs | test MSE median | q1 | q3 | fit time (s) | mean ESS | distinct particles "
             "| runs | paper MSE | paper time (s) |")
-    sep = "|---" * 11 + "|"
+    sep = "|---" * 12 + "|"
     for table, title in (
         ("working", "Working settings (scaled start, settings from the prototypes' validation)"),
         ("paper", "Paper's settings (U[0,1] start, Q = 1, P0 = 1, R = 0.1, textbook weights, resampling every step)"),
@@ -543,7 +552,8 @@ def markdown_table(result):
         for r in rows:
             failed = f" ({r['n_failed']} failed)" if r["n_failed"] else ""
             lines.append(
-                f"| {r['trainer']} | {r['settings'].split(': ', 1)[-1]} | {_fmt(r['test_mse_median'])}{failed} | "
+                f"| {r['trainer']} | {r['settings'].split(': ', 1)[-1]} | {r['epochs'] or '-'} | "
+                f"{_fmt(r['test_mse_median'])}{failed} | "
                 f"{_fmt(r['test_mse_q1'])} | {_fmt(r['test_mse_q3'])} | {_fmt(r['fit_time_median'])} | "
                 f"{_fmt(r['mean_ess'])} | {_fmt(r['distinct_median'])} | {r['n_runs']} | "
                 f"{_fmt(r['paper_mse'], 4)} | {_fmt(r['paper_time'])} |"
@@ -579,7 +589,7 @@ def write_outputs(result, out, figures=True):
             w.writerow({k: r[k] for k in TABLE_COLUMNS})
     paths.append(p)
     p = os.path.join(out, "runs.csv")
-    fields = ["table", "trainer", "run", "n_particles", "test_mse", "train_mse", "fit_time", "mean_ess", "distinct",
+    fields = ["table", "trainer", "run", "n_particles", "epochs", "test_mse", "train_mse", "fit_time", "mean_ess", "distinct",
               "var_test", "status", "settings"]
     with open(p, "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=fields, extrasaction="ignore")
@@ -625,6 +635,8 @@ def add_arguments(parser):
                         help="comma-separated particle counts for Figs. 3-4 (paper: 50,100,150,200,250; '' skips)")
     parser.add_argument("--sweep-runs", type=int, default=2, help="runs per sweep point (default 2)")
     parser.add_argument("--paper-runs", type=int, default=None, help="runs at the paper's settings (default --runs)")
+    parser.add_argument("--paper-pf-epochs", type=int, default=None,
+                        help="particle-filter epochs at the paper's settings (default --pf-epochs)")
     parser.add_argument("--no-paper-table", action="store_true", help="skip the paper-settings table")
     parser.add_argument("--trainers", default=",".join(ALL_TRAINERS), help="comma-separated trainers")
     parser.add_argument("--seed", type=int, default=2026, help="root seed (SeedSequence(seed).spawn(runs))")
@@ -659,6 +671,7 @@ def run(args):
         res = run_study(
             n_runs=args.runs, n_epochs=args.epochs, pf_epochs=args.pf_epochs, n_particles=args.particles,
             trainers=trainers, seed=args.seed, paper_table=not args.no_paper_table, paper_runs=args.paper_runs,
+            paper_pf_epochs=args.paper_pf_epochs,
             sweep_particles=sweep, sweep_runs=args.sweep_runs, n_jobs=args.jobs, backend=args.backend,
             progress=progress,
         )
