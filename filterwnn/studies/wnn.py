@@ -44,7 +44,7 @@ protocol that finishes in a few minutes on 2 cores, and says so in its output;
 >>> [row["trainer"] for row in res.table]
 ['ekf', 'spf']
 >>> sorted(res.table[0])[:3]
-['distinct_median', 'fit_time_median', 'mean_ess']
+['distinct_median', 'epochs', 'fit_time_median']
 """
 
 from __future__ import annotations
