@@ -113,11 +113,18 @@ def _rows(f, X, out_dim, vectorized, name, args=(), kwargs=None):
             )
         return Y.reshape(m, out_dim)
     Y = np.empty((m, out_dim))
-    for i in range(m):
-        yi = np.asarray(f(X[i], *args, **kwargs), dtype=float)
-        if yi.size != out_dim:
-            raise ValueError(f"{name} must return {out_dim} values, got shape {yi.shape}")
-        Y[i] = yi.reshape(out_dim)
+    if m == 0:
+        return Y
+    # check the first point fully, then assign without per-call checks (hot loop)
+    y0 = np.asarray(f(X[0], *args, **kwargs), dtype=float)
+    if y0.size != out_dim:
+        raise ValueError(f"{name} must return {out_dim} values, got shape {y0.shape}")
+    Y[0] = y0.reshape(out_dim)
+    try:
+        for i in range(1, m):
+            Y[i] = f(X[i], *args, **kwargs)
+    except ValueError as exc:
+        raise ValueError(f"{name} must return {out_dim} values for every point: {exc}") from exc
     return Y
 
 
@@ -415,10 +422,13 @@ def _kalman_finish(model, x_prior, P_prior, z, z_pred, S, Pxy, L_prior, step, Li
         if not np.all(s > 0) or not np.all(np.isfinite(s)):
             raise NumericalError(f"S is not positive at step {step} (min {np.min(s):.3g})", matrix="S", step=step)
         pxy = Pxy[:, :, 0]
-        K = pxy / s[:, None]
-        x = x_prior + K * y
-        P = P_prior - K[:, :, None] * pxy[:, None, :]
+        x = x_prior + pxy * (y / s[:, None])
+        # rank-1 downdate with v v^T, v = Pxy / sqrt(S): exactly symmetric, no extra pass
+        v = pxy / np.sqrt(s)[:, None]
+        P = v[:, :, None] * v[:, None, :]
+        np.subtract(P_prior, P, out=P)
         loglik = -0.5 * (y[:, 0] ** 2 / s + np.log(s) + _LOG_2PI)
+        return KalmanUpdate(x, P, z_pred, S, Pxy, loglik, L_prior, LinvPxy, H)
     else:
         Ls = _chol(S, "S", step)
         Kt = np.linalg.solve(S, np.swapaxes(Pxy, -1, -2))  # (N, m, n)
@@ -616,8 +626,9 @@ class UnscentedKalmanProposal(_KalmanProposal):
 
     def _sigmas(self, x, P, step, name):
         L = _chol(P, name, step)
-        D = sigma_deviations(self.points, np.swapaxes(L, -1, -2))
-        return L, D, x[:, None, :] + D
+        sig = sigma_deviations(self.points, np.swapaxes(L, -1, -2))
+        sig += x[:, None, :]  # in place: the deviations are not needed again
+        return L, sig
 
     def _check_n(self, model):
         if self.points.n != model.dim_x:
@@ -630,7 +641,7 @@ class UnscentedKalmanProposal(_KalmanProposal):
         if model.fx is None:
             return KalmanPrediction(x.copy(), P + Q)
         N, n = x.shape
-        _, _, sig = self._sigmas(x, P, step, "P")
+        _, sig = self._sigmas(x, P, step, "P")
         S_ = sig.shape[1]
         F = _rows(model.fx, sig.reshape(N * S_, n), n, model.vectorized, "fx", (model.dt,), fx_args)
         F = F.reshape(N, S_, n)
@@ -646,7 +657,7 @@ class UnscentedKalmanProposal(_KalmanProposal):
         xp, Pp = prediction
         N, n = xp.shape
         m = model.dim_z
-        L, D, sig = self._sigmas(xp, Pp, step, "P_prior")
+        L, sig = self._sigmas(xp, Pp, step, "P_prior")
         S_ = sig.shape[1]
         Hs = _rows(model.hx, sig.reshape(N * S_, n), m, model.vectorized, "hx", (), hx_args).reshape(N, S_, m)
         Wm, Wc = self.points.Wm, self.points.Wc
