@@ -82,7 +82,8 @@ def wnn_convergence(runs, ax=None):
                 continue
             n = min(len(c) for c in curves)
             med = np.median(np.array([c[:n] for c in curves]), axis=0)
-            ax.plot(np.arange(1, n + 1), med, style, color=color, label=f"{trainer.upper()} {label}")
+            ax.plot(np.arange(1, n + 1), med, style, color=color, marker="." if n < 40 else None,
+                    label=f"{trainer.upper()} {label}")
     ax.set_xlabel("epoch")
     ax.set_ylabel("MSE (median over runs)")
     ax.set_yscale("log")
