@@ -148,13 +148,19 @@ def check_covariance(P, name="P", dim=None, *, allow_scalar=True, require_pd=Tru
     if asym > sym_tol * scale:
         raise ValueError(f"{name} must be symmetric; max |{name} - {name}.T| = {asym:.3g}")
     if require_pd and cholesky_lower(arr) is None:
-        ev = np.linalg.eigvalsh(0.5 * (arr + arr.T)).min()
+        ev = _min_eigenvalue(arr, scale)
         raise ValueError(f"{name} must be positive definite (Cholesky failed); smallest eigenvalue {ev:.3g}")
     if not require_pd and arr.size:
-        ev = np.linalg.eigvalsh(0.5 * (arr + arr.T)).min()
+        ev = _min_eigenvalue(arr, scale)
         if ev < -np.sqrt(np.finfo(float).eps) * scale:
             raise ValueError(f"{name} must be positive semi-definite; smallest eigenvalue {ev:.3g}")
     return arr
+
+
+def _min_eigenvalue(arr, scale):
+    """Smallest eigenvalue of the symmetric part, computed on ``arr / scale`` (no overflow)."""
+    unit = arr / scale
+    return float(np.linalg.eigvalsh(0.5 * (unit + unit.T)).min()) * scale
 
 
 def check_weights(w, name="weights", n=None):
