@@ -309,17 +309,31 @@ class NeuralFilter:
         p = self._init_params(U.shape[1])
         self.loss_curve_ = []
         bs = min(self.batch_size, n)
+        W1, b1, W2, b2 = p["W1"], p["b1"], p["W2"], p["b2"]  # updated in place
+        lr = self.lr
         for _ in range(self.epochs):
             order = self.rng.permutation(n)
             total = 0.0
-            for i in range(0, n, bs):
-                idx = order[i:i + bs]
-                out, Hh = self._forward(U[idx], p)
-                g = (out - T[idx]) * mask
-                total += 0.5 * float(np.sum(g * g))
-                grads = self._backward(U[idx], Hh, g / len(idx), p)
-                for k in p:
-                    p[k] -= self.lr * grads[k]
+            if bs == 1:  # per-sample SGD, written out (the hot loop of phase 1)
+                for i in order:
+                    u = U[i]
+                    h = 0.5 * (1.0 + np.tanh(0.5 * (W1 @ u + b1)))
+                    g = (W2 @ h + b2 - T[i]) * mask
+                    total += 0.5 * float(g @ g)
+                    gh = (g @ W2) * h * (1.0 - h)
+                    W2 -= lr * np.outer(g, h)
+                    b2 -= lr * g
+                    W1 -= lr * np.outer(gh, u)
+                    b1 -= lr * gh
+            else:
+                for i in range(0, n, bs):
+                    idx = order[i:i + bs]
+                    out, Hh = self._forward(U[idx], p)
+                    g = (out - T[idx]) * mask
+                    total += 0.5 * float(np.sum(g * g))
+                    grads = self._backward(U[idx], Hh, g / len(idx), p)
+                    for k in p:
+                        p[k] -= lr * grads[k]
             self.loss_curve_.append(total / n)
         if not all(np.all(np.isfinite(v)) for v in p.values()):
             from ._validation import NumericalError

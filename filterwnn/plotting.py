@@ -94,3 +94,108 @@ def wnn_convergence(runs, ax=None):
 
 
 # --- dead-reckoning study (issue 6) ---
+
+import numpy as np  # noqa: E402  (issue 6 section)
+
+__all__ += ["dr_position_errors", "dr_outage_errors"]
+
+_DR_PAPER_PAIR = ("EKF", "NN", "EKF-oracle")
+
+
+def _dr_colors(names):
+    import matplotlib.pyplot as plt
+
+    cyc = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    return {n: cyc[i % len(cyc)] for i, n in enumerate(names)}
+
+
+def dr_position_errors(t, errors, t_switch=None, title="", single=_DR_PAPER_PAIR, run=0):
+    """The second paper's Figs. 4-5: east and north position error against time.
+
+    Parameters
+    ----------
+    t : ndarray of shape (n_steps,)
+    errors : dict of {str: ndarray of shape (n_runs, n_steps, 2)}
+        Signed east/north errors per filter (``StudyResult.errors[s]["filters"]``).
+    t_switch : float, optional
+        Time of the noise increase (a dashed line).
+    single : sequence of str
+        Filters drawn in the top row (one run, signed error, as in the paper).
+    run : int
+        The run shown in the top row.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Top row: one run; bottom row: RMS over runs (log scale) with the 10-90 %
+        band of the absolute error over runs.
+    """
+    import matplotlib.pyplot as plt
+
+    names = list(errors)
+    col = _dr_colors(names)
+    fig, axes = plt.subplots(2, 2, figsize=(12, 7.5), sharex=True)
+    for j, axis in enumerate(("east", "north")):
+        ax = axes[0, j]
+        for n in single:
+            if n in errors:
+                ax.plot(t, errors[n][run, :, j], color=col[n], lw=1.2,
+                        ls="-" if n.startswith("NN") else "--", label=n)
+        ax.set_title(f"{axis} position error, run {run}")
+        ax.set_ylabel("error [m]")
+        ax = axes[1, j]
+        for n in names:
+            e = np.abs(errors[n][:, :, j])
+            rms = np.sqrt(np.mean(e**2, axis=0))
+            ax.plot(t, rms, color=col[n], lw=1.3, label=n)
+            lo, hi = np.percentile(e, [10, 90], axis=0)
+            ax.fill_between(t, np.maximum(lo, 1e-3), hi, color=col[n], alpha=0.08)
+        ax.set_yscale("log")
+        ax.set_ylim(1e-2, None)
+        ax.set_title(f"{axis}: RMS over {errors[names[0]].shape[0]} runs (band: 10-90 % of |error|)")
+        ax.set_xlabel("time [s]")
+        ax.set_ylabel("|error| [m]")
+        for ax in axes[:, j]:
+            if t_switch is not None:
+                ax.axvline(t_switch, color="k", ls=":", lw=1)
+            ax.grid(alpha=0.3)
+    axes[0, 0].legend(fontsize=8)
+    axes[1, 1].legend(fontsize=7, ncol=2)
+    fig.suptitle(f"DR position error: {title}")
+    fig.tight_layout()
+    return fig
+
+
+def dr_outage_errors(t, errors, outages=(), title=""):
+    """GPS/DR horizontal position error against time with the GPS outages shaded.
+
+    Parameters
+    ----------
+    t : ndarray of shape (n_steps,)
+    errors : dict of {str: ndarray of shape (n_runs, n_steps, 2)}
+    outages : sequence of (t_start, t_end)
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    import matplotlib.pyplot as plt
+
+    names = list(errors)
+    col = _dr_colors(names)
+    fig, ax = plt.subplots(figsize=(10, 4.8))
+    for n in names:
+        h = np.hypot(errors[n][..., 0], errors[n][..., 1])
+        ax.plot(t, np.sqrt(np.mean(h**2, axis=0)), color=col[n], lw=1.3, label=n)
+        lo, hi = np.percentile(h, [10, 90], axis=0)
+        ax.fill_between(t, np.maximum(lo, 1e-3), hi, color=col[n], alpha=0.08)
+    for i, (a, b) in enumerate(outages):
+        ax.axvspan(a, b, color="0.85", zorder=0, label="GPS outage" if i == 0 else None)
+    ax.set_yscale("log")
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("horizontal error [m]")
+    ax.set_title(f"GPS/DR horizontal error, RMS over runs (band 10-90 %): {title}")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8, ncol=2)
+    fig.tight_layout()
+    return fig

@@ -1,0 +1,576 @@
+"""The second paper's dead-reckoning study: EKF, adaptive EKF, UKF/SUKF and the neural filter.
+
+``filterwnn study dr`` runs seeded Monte-Carlo runs of every scenario in
+:data:`filterwnn.dead_reckoning.SCENARIOS` (the paper's straight road with the noise
+raised x20 at 150 s, a turning route, a run through heading 180 degrees, heading
+outliers, and GPS/DR with 1 Hz fixes, outages, a 2 % odometer-scale error and a
+2-degree heading bias), with common random numbers: run ``i`` of every filter sees the
+same drive, the same sensor noise and the same initial error, drawn from
+``SeedSequence(seed).spawn(n_runs)[i]`` whatever the number of worker processes.
+
+Filters (DR-only scenarios)
+
+``EKF``          filterpy ``ExtendedKalmanFilter``, nominal ``R`` throughout (too small after the switch)
+``EKF-oracle``   the same, told the true ``R`` at every step (the reference envelope)
+``AEKF``         innovation-adaptive ``R`` over a 3 s window (:class:`InnovationAdaptiveEKF`)
+``UKF``          unscented, Merwe points (13), circular heading mean
+``SUKF``         unscented, spherical-simplex points (8)
+``NN``           :class:`~filterwnn.NeuralFilter`, position pass-through (the default form),
+                 trained on the paper's 30 points at the scenario's initial velocity
+``NN-faithful``  the paper's absolute form, same training
+``NN-gen``       pass-through form trained once on 1500 random motions (knows no route)
+``UPF``          unscented particle filter (when :mod:`filterwnn.particle_filter` exists)
+
+Filters (GPS/DR): ``EKF`` (6 states), ``EKF-8`` (odometer scale and heading bias
+estimated; the oracle there), ``UKF-8``, ``SUKF-8``, ``DR-only`` (6-state EKF without GPS).
+
+Scores: east/north RMSE before and after the noise switch (pooled over runs and
+steps), the median and 95th percentile of the final horizontal error, the velocity
+RMSE after the switch, divergence counts (a run diverges when its horizontal error
+exceeds 3x the oracle filter's RMS error at the same time, floored at 1 m, at any time),
+and the median time per step. The GPS/DR table scores the error with GPS and in the
+outages and at the end of each outage.
+
+>>> res = run_study(scenarios=["straight"], n_runs=2, filters=["EKF", "NN"], n_steps=100, seed=1)
+>>> sorted(res.table[0].keys())[:3]
+['div', 'filter', 'final_median']
+>>> len(res.table)
+2
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import os
+import time
+from collections import deque
+from typing import NamedTuple
+
+import numpy as np
+from filterpy.kalman import ExtendedKalmanFilter, MerweScaledSigmaPoints
+
+from .._validation import check_positive_int
+from ..dead_reckoning import (
+    SCENARIOS,
+    DRModel,
+    GPSDRModel,
+    dr_residual,
+    dr_z_mean,
+    simulate_scenario,
+)
+from ..neural_filter import (
+    NeuralFilter,
+    make_training_set,
+    paper_training_states,
+    random_motion_states,
+)
+from ..sigma_points import SphericalSimplexSigmaPoints
+
+try:  # the package's vectorized UKF; filterpy's has the same API
+    from ..unscented import UnscentedKalmanFilter as _UKF
+
+    _VECTORIZED = True
+except ImportError:  # pragma: no cover
+    from filterpy.kalman import UnscentedKalmanFilter as _UKF
+
+    _VECTORIZED = False
+
+__all__ = [
+    "InnovationAdaptiveEKF",
+    "DR_FILTERS",
+    "GPSDR_FILTERS",
+    "StudyResult",
+    "run_study",
+    "run_one",
+    "summarize",
+    "write_outputs",
+    "add_arguments",
+    "run",
+]
+
+DR_FILTERS = ("EKF", "EKF-oracle", "AEKF", "UKF", "SUKF", "NN", "NN-faithful", "NN-gen", "UPF")
+GPSDR_FILTERS = ("EKF", "EKF-8", "UKF-8", "SUKF-8", "DR-only")
+UPF_PARTICLES = 50
+#: Filters run only when asked for (``--filters``): the UPF costs about 100x the EKF.
+OPT_IN = ("UPF",)
+ORACLE = {"dr": "EKF-oracle", "gpsdr": "EKF-8"}
+DEFAULT_SCENARIOS = ("straight", "turns", "heading180", "outliers", "gpsdr")
+DIV_FACTOR = 3.0
+DIV_FLOOR = 1.0
+
+
+def _has_upf():
+    try:
+        from .. import particle_filter  # noqa: F401
+
+        return hasattr(particle_filter, "UnscentedParticleFilter")
+    except ImportError:
+        return False
+
+
+class InnovationAdaptiveEKF(ExtendedKalmanFilter):
+    """filterpy's EKF with a diagonal ``R`` learned from the innovations over a window.
+
+    Before each update, ``R_ii = max(R0_ii, mean(y_i^2) - mean((H P^- H^T)_ii))`` over
+    the last ``window`` updates (Mehra's innovation-based adaptive estimation), so the
+    filter follows a rise of the measurement noise within about one window. It
+    mistakes manoeuvre innovations for noise on a turning route.
+
+    Parameters
+    ----------
+    dim_x, dim_z : int
+    window : int
+        Innovations averaged (30 = 3 s at 10 Hz).
+    """
+
+    def __init__(self, dim_x, dim_z, window=30):
+        super().__init__(dim_x, dim_z)
+        self.window = check_positive_int(window, "window")
+        self._ys = deque(maxlen=self.window)
+        self._hph = deque(maxlen=self.window)
+        self.R0 = None
+
+    def update(self, z, HJacobian, Hx, R=None, args=(), hx_args=(), residual=np.subtract):
+        if z is None:
+            return super().update(None, HJacobian, Hx)
+        if self.R0 is None:
+            self.R0 = np.array(self.R, dtype=float)
+        H = HJacobian(self.x, *args)
+        hph = np.einsum("ij,jk,ik->i", H, self.P, H)
+        if len(self._ys) >= max(5, self.window // 3):
+            est = np.mean(np.square(self._ys), axis=0) - np.mean(self._hph, axis=0)
+            self.R = np.diag(np.maximum(np.diag(self.R0), est))
+        super().update(z, HJacobian, Hx, R=None, args=args, hx_args=hx_args, residual=residual)
+        self._ys.append(np.asarray(self.y, dtype=float).copy())
+        self._hph.append(hph)
+
+
+# ----------------------------------------------------------------------------- runners
+
+
+def _ukf(model, points, x0, P0, gps):
+    f = _UKF(model.dim_x, 4 if gps else 2, model.dt, hx=model.hx, fx=model.fx, points=points,
+             z_mean_fn=dr_z_mean, residual_z=dr_residual,
+             **({"vectorized": not gps} if _VECTORIZED else {}))  # dim_z varies with GPS
+    f.x, f.P, f.Q = x0.copy(), P0.copy(), model.Q.copy()
+    f.R = model.R.copy()
+    return f
+
+
+def _points(kind, n):
+    if kind == "merwe":
+        return MerweScaledSigmaPoints(n, alpha=0.5, beta=2.0, kappa=0.0)
+    return SphericalSimplexSigmaPoints(n, w0=0.2)
+
+
+def _dr_filter_run(name, run, x0, nn_cache, rng_nn):
+    """Estimates ``(n_steps, 6)`` of one DR-only filter on one run."""
+    model = DRModel(dt=run.scenario.dt)
+    n = len(run.t)
+    out = np.empty((n, 6))
+    P0 = model.P0
+    if name in ("EKF", "EKF-oracle", "AEKF"):
+        kf = InnovationAdaptiveEKF(6, 2) if name == "AEKF" else ExtendedKalmanFilter(6, 2)
+        kf.F, kf.Q, kf.R = model.F.copy(), model.Q.copy(), model.R.copy()
+        kf.x, kf.P = x0.copy(), P0.copy()
+        for k in range(n):
+            kf.predict()
+            R = np.diag(run.R_true[k]) if name == "EKF-oracle" else None
+            kf.update(run.z_dr[k], model.HJacobian, model.hx, R=R, residual=dr_residual)
+            out[k] = kf.x
+        return out
+    if name in ("UKF", "SUKF"):
+        f = _ukf(model, _points("merwe" if name == "UKF" else "simplex", 6), x0, P0, False)
+        for k in range(n):
+            f.predict()
+            f.update(run.z_dr[k])
+            out[k] = f.x
+        return out
+    if name.startswith("NN"):
+        nf = _neural_filter(name, run, model, nn_cache, rng_nn)
+        nf.reset(x0)
+        return nf.batch_filter(run.z_dr)
+    if name == "UPF":
+        return _upf_run(run, model, x0, P0, rng_nn)
+    raise ValueError(f"unknown filter {name!r}; valid: {', '.join(DR_FILTERS)}")
+
+
+def _neural_filter(name, run, model, nn_cache, rng_nn):
+    if name == "NN-gen":
+        return nn_cache["NN-gen"]
+    sc = run.scenario
+    form, feat = ("absolute", "angle") if name == "NN-faithful" else ("passthrough", "velocity")
+    states = paper_training_states(30, speed=sc.speed, heading_deg=sc.heading)
+    Xp, Z, X = make_training_set(states, model, rng=rng_nn)
+    return NeuralFilter(model, form=form, features=feat, rng=rng_nn).fit(Xp, Z, X)
+
+
+def train_general_nn(seed=0, n_states=1500, epochs=60, dt=0.1):
+    """``NN-gen``: the pass-through network trained on random motions (no route knowledge)."""
+    model = DRModel(dt=dt)
+    rng = np.random.default_rng(np.random.SeedSequence([seed, 6060]))
+    Xp, Z, X = make_training_set(random_motion_states(n_states, rng), model, rng=rng)
+    return NeuralFilter(model, form="passthrough", features="velocity", epochs=epochs,
+                        batch_size=10, rng=rng).fit(Xp, Z, X)
+
+
+def _upf_run(run, model, x0, P0, rng, n_particles=UPF_PARTICLES):
+    """The unscented particle filter (issue 4) on a DR-only run (fixed ``dim_z = 2``)."""
+    from ..particle_filter import UnscentedParticleFilter
+
+    pf = UnscentedParticleFilter(6, 2, model.dt, model.hx, model.fx, n_particles=n_particles,
+                                 points=_points("merwe", 6), residual_z=dr_residual,
+                                 z_mean_fn=_z_mean_rows, vectorized=True, rng=rng)
+    pf.x, pf.P, pf.Q, pf.R = x0.copy(), P0.copy(), model.Q.copy(), model.R.copy()
+    out = np.empty((len(run.t), 6))
+    for k, z in enumerate(run.z_dr):
+        pf.predict()
+        pf.update(z)
+        out[k] = pf.x
+    return out
+
+
+def _z_mean_rows(sigmas, Wm):
+    """Circular heading mean for stacked sigma sets ``(..., n_sigmas, 2)``."""
+    sigmas = np.asarray(sigmas, dtype=float)
+    if sigmas.ndim == 2:
+        return dr_z_mean(sigmas, Wm)
+    Wm = np.asarray(Wm, dtype=float)
+    z = np.einsum("...i,...ij->...j", np.broadcast_to(Wm, sigmas.shape[:-1]), sigmas)
+    z[..., 0] = np.arctan2(np.sum(Wm * np.sin(sigmas[..., 0]), axis=-1),
+                           np.sum(Wm * np.cos(sigmas[..., 0]), axis=-1))
+    return z
+
+
+def _gpsdr_filter_run(name, run, x0, rng):
+    sc = run.scenario
+    aug = name.endswith("-8")
+    model = GPSDRModel(dt=sc.dt, augmented=aug, sigma_gps=sc.sigma_gps)
+    x0m = np.concatenate([x0, [1.0, 0.0]]) if aug else x0
+    P0 = model.P0
+    n = len(run.t)
+    out = np.empty((n, 6))
+    gps_z = run.gps_list()
+    if name == "DR-only":
+        gps_z = [None] * n
+    if name in ("EKF", "EKF-8", "DR-only"):
+        kf = model.ekf(x0=x0m, P0=P0)
+    elif name in ("UKF-8", "SUKF-8"):
+        kf = _ukf(model, _points("merwe" if name == "UKF-8" else "simplex", 8), x0m, P0, True)
+    else:
+        raise ValueError(f"unknown filter {name!r}; valid: {', '.join(GPSDR_FILTERS)}")
+    for k in range(n):
+        kf.predict()
+        model.update(kf, run.z_dr[k], gps_z[k])
+        out[k] = kf.x[:6]
+    return out
+
+
+_ALL_FILTERS = DR_FILTERS + GPSDR_FILTERS
+
+
+def _child(ss, *keys):
+    """A child of ``ss`` by fixed key (``SeedSequence.spawn`` would depend on call history)."""
+    return np.random.SeedSequence(ss.entropy, spawn_key=tuple(ss.spawn_key) + keys)
+
+
+def run_one(scenario, filters, seed_seq, nn_cache=None):
+    """One Monte-Carlo run of one scenario: every filter on the same simulated drive.
+
+    Parameters
+    ----------
+    scenario : Scenario
+    filters : sequence of str
+    seed_seq : numpy.random.SeedSequence
+        This run's seed; spawns the drive, the initial error and the NN/UPF streams.
+    nn_cache : dict, optional
+        ``{"NN-gen": fitted NeuralFilter}``.
+
+    Returns
+    -------
+    dict
+        ``"x_true" (n_steps, 6)``, ``"est" {filter: (n_steps, 6)}``,
+        ``"seconds" {filter: float}``, ``"extra" {filter: (dim_x - 6)-vector}``.
+    """
+    run = simulate_scenario(scenario, rng=np.random.default_rng(_child(seed_seq, 0)))
+    x0 = run.x0 + np.array([0.0, 0.5, 0.0, 0.0, 0.5, 0.0]) * np.random.default_rng(
+        _child(seed_seq, 1)).standard_normal(6)
+    gps = scenario.gps_rate > 0
+    est, secs = {}, {}
+    for name in filters:
+        rng = np.random.default_rng(_child(seed_seq, 2, _ALL_FILTERS.index(name)))
+        t0 = time.perf_counter()
+        if gps:
+            est[name] = _gpsdr_filter_run(name, run, x0, rng)
+        else:
+            est[name] = _dr_filter_run(name, run, x0, nn_cache or {}, rng)
+        secs[name] = time.perf_counter() - t0
+    return {"x_true": run.x_true, "t": run.t, "est": est, "seconds": secs}
+
+
+# ----------------------------------------------------------------------------- scoring
+
+
+class StudyResult(NamedTuple):
+    """What :func:`run_study` returns.
+
+    Attributes
+    ----------
+    table : list of dict
+        One row per (scenario, filter) with the scores (see :func:`summarize`).
+    errors : dict
+        ``{scenario: {"t": (n_steps,), "filters": {name: (n_runs, n_steps, 2)}}}``:
+        east/north position errors (estimate minus truth) of every run.
+    scenarios : dict
+        ``{name: Scenario}`` as run.
+    settings : dict
+        ``seed``, ``n_runs``, ``jobs``, ``filters``.
+    """
+
+    table: list
+    errors: dict
+    scenarios: dict
+    settings: dict
+
+
+def summarize(scenario, t, errs, vel_errs, secs, n_steps):
+    """Score one scenario: rows of dict, one per filter (see the module docstring)."""
+    kind = "gpsdr" if scenario.gps_rate > 0 else "dr"
+    oracle = ORACLE[kind] if ORACLE[kind] in errs else None
+    horiz = {f: np.hypot(e[..., 0], e[..., 1]) for f, e in errs.items()}
+    env = None
+    if oracle is not None:
+        env = np.maximum(np.sqrt(np.mean(horiz[oracle] ** 2, axis=0)), DIV_FLOOR)
+    after = t >= scenario.t_switch
+    in_out = np.zeros(len(t), dtype=bool)
+    ends = []
+    for a, b in scenario.outages:
+        in_out |= (t >= a) & (t < b)
+        ends.append(int(np.searchsorted(t, b - 1e-9)) - 1)
+    rows = []
+    for f, e in errs.items():
+        h = horiz[f]
+        row = {"scenario": scenario.name, "filter": f, "runs": e.shape[0]}
+        if kind == "dr":
+            row["rmse_e_before"] = float(np.sqrt(np.mean(e[:, ~after, 0] ** 2)))
+            row["rmse_n_before"] = float(np.sqrt(np.mean(e[:, ~after, 1] ** 2)))
+            row["rmse_e_after"] = float(np.sqrt(np.mean(e[:, after, 0] ** 2))) if after.any() else np.nan
+            row["rmse_n_after"] = float(np.sqrt(np.mean(e[:, after, 1] ** 2))) if after.any() else np.nan
+            row["vel_rmse_after"] = (
+                float(np.sqrt(np.mean(np.sum(vel_errs[f][:, after] ** 2, axis=-1)))) if after.any() else np.nan
+            )
+        else:
+            gps_on = (~in_out) & (t > 5.0)
+            row["rmse_gps"] = float(np.sqrt(np.mean(h[:, gps_on] ** 2)))
+            row["rmse_outage"] = float(np.sqrt(np.mean(h[:, in_out] ** 2))) if in_out.any() else np.nan
+            row["outage_end_median"] = "/".join(f"{np.median(h[:, k]):.2f}" for k in ends)
+            row["vel_rmse_after"] = float(np.sqrt(np.mean(np.sum(vel_errs[f] ** 2, axis=-1))))
+        row["final_median"] = float(np.median(h[:, -1]))
+        row["final_p95"] = float(np.percentile(h[:, -1], 95))
+        row["div"] = int(np.sum(np.any(h > DIV_FACTOR * env, axis=1))) if env is not None else -1
+        row["us_per_step"] = float(np.median(secs[f]) / n_steps * 1e6)
+        rows.append(row)
+    return rows
+
+
+def run_study(scenarios=DEFAULT_SCENARIOS, n_runs=10, filters=None, seed=0, jobs=1,
+              n_steps=None, factor=None, progress=False):
+    """Run the Monte-Carlo study and score it.
+
+    Parameters
+    ----------
+    scenarios : sequence of str
+        Keys of :data:`~filterwnn.dead_reckoning.SCENARIOS`.
+    n_runs : int
+        Monte-Carlo runs per scenario.
+    filters : sequence of str, optional
+        Subset of :data:`DR_FILTERS` / :data:`GPSDR_FILTERS` (each scenario runs the ones
+        that apply; default all but :data:`OPT_IN`).
+    seed : int
+        Root seed; run ``i`` uses ``SeedSequence(seed).spawn(n_runs)[i]`` in every scenario.
+    jobs : int
+        Worker processes (joblib); the numbers do not depend on it.
+    n_steps : int, optional
+        Truncate the drives (tests); the noise switch stays at its time.
+    factor : float, optional
+        Override the noise factor of the DR-only scenarios.
+    progress : bool
+        Show a tqdm bar.
+
+    Returns
+    -------
+    StudyResult
+    """
+    from joblib import Parallel, delayed
+
+    n_runs = check_positive_int(n_runs, "n_runs")
+    jobs = check_positive_int(jobs, "jobs")
+    for s in scenarios:
+        if s not in SCENARIOS:
+            raise ValueError(f"unknown scenario {s!r}; valid: {', '.join(SCENARIOS)}")
+    upf = _has_upf()
+    want = set(filters) if filters is not None else None
+    if want is not None:
+        bad = want - set(DR_FILTERS) - set(GPSDR_FILTERS)
+        if bad:
+            raise ValueError(f"unknown filters {sorted(bad)}; valid: {sorted(set(DR_FILTERS) | set(GPSDR_FILTERS))}")
+    seeds = np.random.SeedSequence(seed).spawn(n_runs)
+    scs, tasks, flist = {}, [], {}
+    for name in scenarios:
+        sc = SCENARIOS[name]()
+        if factor is not None and sc.gps_rate == 0:
+            sc = sc.with_(factor=float(factor))
+        if n_steps is not None:
+            sc = sc.with_(duration=check_positive_int(n_steps, "n_steps") * sc.dt)
+        scs[name] = sc
+        pool = GPSDR_FILTERS if sc.gps_rate > 0 else DR_FILTERS
+        default = [f for f in pool if f not in OPT_IN]
+        fl = [f for f in pool if (f in want if want is not None else f in default)
+              and (upf or not f.startswith("UPF"))]
+        flist[name] = fl
+        tasks += [(name, i) for i in range(n_runs)]
+    nn_cache = {}
+    if any("NN-gen" in fl for fl in flist.values()):
+        nn_cache["NN-gen"] = train_general_nn(seed)
+
+    def job(name, i):
+        from threadpoolctl import threadpool_limits
+
+        with threadpool_limits(1):
+            return run_one(scs[name], flist[name], seeds[i], nn_cache)
+
+    gen = Parallel(n_jobs=jobs, return_as="generator")(delayed(job)(n, i) for n, i in tasks)
+    if progress:
+        from tqdm import tqdm
+
+        gen = tqdm(gen, total=len(tasks), desc="dr study", unit="run")
+    results = list(gen)
+    table, errors = [], {}
+    for name in scenarios:
+        res = [r for (n, _), r in zip(tasks, results) if n == name]
+        t = res[0]["t"]
+        errs = {f: np.stack([r["est"][f][:, [0, 3]] - r["x_true"][:, [0, 3]] for r in res]) for f in flist[name]}
+        verr = {f: np.stack([r["est"][f][:, [1, 4]] - r["x_true"][:, [1, 4]] for r in res]) for f in flist[name]}
+        secs = {f: np.array([r["seconds"][f] for r in res]) for f in flist[name]}
+        table += summarize(scs[name], t, errs, verr, secs, len(t))
+        errors[name] = {"t": t, "filters": errs}
+    return StudyResult(table, errors, scs, {"seed": seed, "n_runs": n_runs, "jobs": jobs, "filters": flist})
+
+
+# ----------------------------------------------------------------------------- output
+
+_DR_COLS = [
+    ("filter", "filter"), ("rmse_e_before", "RMSE e <150"), ("rmse_n_before", "RMSE n <150"),
+    ("rmse_e_after", "RMSE e >=150"), ("rmse_n_after", "RMSE n >=150"),
+    ("final_median", "median err@end"), ("final_p95", "p95 err@end"),
+    ("vel_rmse_after", "vel RMSE >=150 [m/s]"), ("div", "div"), ("us_per_step", "us/step"),
+]
+_GPS_COLS = [
+    ("filter", "filter"), ("rmse_gps", "horiz RMSE GPS on"), ("rmse_outage", "horiz RMSE in outages"),
+    ("outage_end_median", "median err at outage ends"), ("final_median", "median err@end"),
+    ("div", "div"), ("us_per_step", "us/step"),
+]
+
+
+def _fmt(v):
+    if isinstance(v, float):
+        return "nan" if not np.isfinite(v) else (f"{v:.0f}" if abs(v) >= 1000 else f"{v:.2f}")
+    return str(v)
+
+
+def markdown_table(result):
+    """The study's tables as Markdown (one per scenario)."""
+    lines = []
+    for name, sc in result.scenarios.items():
+        rows = [r for r in result.table if r["scenario"] == name]
+        cols = _GPS_COLS if sc.gps_rate > 0 else _DR_COLS
+        head = f"### {name}: "
+        if sc.gps_rate > 0:
+            head += (f"GPS {sc.gps_rate:g} Hz ({sc.sigma_gps:g} m), outages {list(sc.outages)}, "
+                     f"odometer scale {sc.odometer_scale:g}, heading bias {sc.heading_bias:g} deg")
+        else:
+            head += f"noise x{sc.factor:g} at {sc.t_switch:g} s" + (
+                f", {sc.outlier_prob:.0%} heading outliers of {sc.outlier_deg:g} deg" if sc.outlier_prob else "")
+        n = rows[0]["runs"] if rows else 0
+        oracle = ORACLE["gpsdr" if sc.gps_rate > 0 else "dr"]
+        lines += [head + f" ({n} runs, positions in m; div: error > {DIV_FACTOR:g}x {oracle} RMS envelope)", ""]
+        lines.append("| " + " | ".join(c[1] for c in cols) + " |")
+        lines.append("|" + "---|" * len(cols))
+        for r in rows:
+            lines.append("| " + " | ".join(_fmt(r.get(c[0], "")) for c in cols) + " |")
+        lines.append("")
+    return "\n".join(lines)
+
+
+def write_outputs(result, out_dir, figures=True):
+    """Write ``dr_table.md``, ``dr_table.csv`` and the figures to ``out_dir``; returns the paths."""
+    os.makedirs(out_dir, exist_ok=True)
+    paths = []
+    md = os.path.join(out_dir, "dr_table.md")
+    with open(md, "w") as fh:
+        s = result.settings
+        fh.write(f"# Dead-reckoning study (seed {s['seed']}, {s['n_runs']} runs per scenario)\n\n")
+        fh.write(markdown_table(result))
+    paths.append(md)
+    keys = []
+    for r in result.table:
+        keys += [k for k in r if k not in keys]
+    csv_path = os.path.join(out_dir, "dr_table.csv")
+    with open(csv_path, "w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=keys)
+        w.writeheader()
+        for r in result.table:
+            w.writerow(r)
+    paths.append(csv_path)
+    if figures:
+        import matplotlib
+
+        matplotlib.use("Agg", force=False)
+        from .. import plotting
+
+        for name, sc in result.scenarios.items():
+            e = result.errors[name]
+            if sc.gps_rate > 0:
+                fig = plotting.dr_outage_errors(e["t"], e["filters"], outages=sc.outages, title=name)
+                p = os.path.join(out_dir, f"dr_gpsdr_{name}.png")
+            else:
+                fig = plotting.dr_position_errors(e["t"], e["filters"], t_switch=sc.t_switch, title=name)
+                p = os.path.join(out_dir, f"dr_errors_{name}.png")
+            fig.savefig(p, dpi=110)
+            paths.append(p)
+            import matplotlib.pyplot as plt
+
+            plt.close(fig)
+    return paths
+
+
+def add_arguments(parser):
+    """Options of ``filterwnn study dr``."""
+    parser.add_argument("--runs", type=int, default=10, help="Monte-Carlo runs per scenario (default 10)")
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--jobs", type=int, default=2, help="worker processes (numbers do not depend on it)")
+    parser.add_argument("--scenarios", default=",".join(DEFAULT_SCENARIOS),
+                        help=f"comma-separated subset of {', '.join(SCENARIOS)}")
+    parser.add_argument("--filters", default=None, help="comma-separated subset of the filters (default all)")
+    parser.add_argument("--factor", type=float, default=None, help="override the DR noise factor at 150 s")
+    parser.add_argument("--out", default="results/dr", help="output folder (default results/dr)")
+    parser.add_argument("--no-figures", action="store_true")
+    parser.add_argument("--quiet", action="store_true", help="no progress bar")
+
+
+def run(args):
+    """Entry point of ``filterwnn study dr``."""
+    filters = args.filters.split(",") if args.filters else None
+    res = run_study(scenarios=args.scenarios.split(","), n_runs=args.runs, filters=filters,
+                    seed=args.seed, jobs=args.jobs, factor=args.factor, progress=not args.quiet)
+    paths = write_outputs(res, args.out, figures=not args.no_figures)
+    print(markdown_table(res))
+    print("wrote:", ", ".join(paths))
+    return 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    p = argparse.ArgumentParser()
+    add_arguments(p)
+    run(p.parse_args())

@@ -1,0 +1,96 @@
+"""Tests of the dead-reckoning study: reproducibility, jobs-independence, outputs."""
+
+import argparse
+import os
+
+import numpy as np
+import pytest
+
+from filterwnn.studies import dr
+
+SMALL = dict(scenarios=["straight", "gpsdr"], n_runs=2, n_steps=120,
+             filters=["EKF", "EKF-oracle", "AEKF", "SUKF", "NN", "EKF-8", "DR-only"], seed=3)
+
+
+def _numbers(res):
+    return [{k: v for k, v in r.items() if k != "us_per_step"} for r in res.table]
+
+
+@pytest.fixture(scope="module")
+def small_result():
+    return dr.run_study(**SMALL)
+
+
+def test_same_seed_same_numbers(small_result):
+    again = dr.run_study(**SMALL)
+    assert _numbers(small_result) == _numbers(again)
+    for name in small_result.errors:
+        for f, e in small_result.errors[name]["filters"].items():
+            np.testing.assert_array_equal(e, again.errors[name]["filters"][f])
+    other = dr.run_study(**{**SMALL, "seed": 4})
+    assert _numbers(small_result) != _numbers(other)
+
+
+def test_jobs_do_not_change_numbers(small_result):
+    par = dr.run_study(**{**SMALL, "jobs": 2})
+    assert _numbers(small_result) == _numbers(par)
+
+
+def test_table_contents(small_result):
+    rows = {(r["scenario"], r["filter"]): r for r in small_result.table}
+    assert set(rows) == {("straight", f) for f in ("EKF", "EKF-oracle", "AEKF", "SUKF", "NN")} | {
+        ("gpsdr", f) for f in ("EKF", "EKF-8", "DR-only")}
+    for r in small_result.table:
+        assert r["runs"] == 2 and np.isfinite(r["final_median"]) and r["div"] >= 0
+    assert rows[("straight", "EKF-oracle")]["div"] == 0
+    e = small_result.errors["straight"]["filters"]["EKF"]
+    assert e.shape == (2, 120, 2)
+
+
+def test_common_random_numbers_across_filters():
+    # EKF and the oracle EKF see identical data: identical before the noise switch
+    res = dr.run_study(scenarios=["straight"], n_runs=2, n_steps=200, filters=["EKF", "EKF-oracle"], seed=1)
+    f = res.errors["straight"]["filters"]
+    np.testing.assert_array_equal(f["EKF"], f["EKF-oracle"])
+
+
+def test_write_outputs_and_cli(small_result, tmp_path):
+    paths = dr.write_outputs(small_result, str(tmp_path))
+    names = {os.path.basename(p) for p in paths}
+    assert {"dr_table.md", "dr_table.csv", "dr_errors_straight.png", "dr_gpsdr_gpsdr.png"} <= names
+    text = (tmp_path / "dr_table.md").read_text()
+    assert "| EKF-oracle |" in text and "EKF-8" in text
+    parser = argparse.ArgumentParser()
+    dr.add_arguments(parser)
+    args = parser.parse_args(["--runs", "1", "--scenarios", "straight", "--filters", "EKF",
+                              "--out", str(tmp_path / "cli"), "--no-figures", "--quiet", "--jobs", "1"])
+    assert dr.run(args) == 0
+    assert (tmp_path / "cli" / "dr_table.csv").exists()
+
+
+def test_bad_arguments():
+    with pytest.raises(ValueError, match="scenario"):
+        dr.run_study(scenarios=["moon"], n_runs=1)
+    with pytest.raises(ValueError, match="filters"):
+        dr.run_study(scenarios=["straight"], n_runs=1, filters=["KF9"])
+
+
+@pytest.mark.slow
+def test_long_run_100k_steps_stays_finite():
+    from filterwnn.dead_reckoning import DRModel, SCENARIOS, dr_residual, simulate_scenario
+    from filterwnn.neural_filter import NeuralFilter, make_training_set, paper_training_states
+
+    sc = SCENARIOS["turns"](duration=10000.0, turns=((20.0, 9990.0, 3000.0),), speed_changes=())
+    run = simulate_scenario(sc, rng=0)
+    assert len(run.t) == 100_000
+    m = DRModel()
+    kf = m.ekf(x0=run.x0)
+    for z in run.z_dr:
+        kf.predict()
+        kf.update(z, m.HJacobian, m.hx, residual=dr_residual)
+    assert np.all(np.isfinite(kf.x)) and np.all(np.isfinite(kf.P))
+    assert np.all(np.linalg.eigvalsh(kf.P) > 0)
+    Xp, Z, X = make_training_set(paper_training_states(), m, rng=0)
+    nf = NeuralFilter(m, rng=1).fit(Xp, Z, X)
+    means = nf.reset(run.x0).batch_filter(run.z_dr)
+    assert np.all(np.isfinite(means))
