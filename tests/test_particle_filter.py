@@ -57,8 +57,8 @@ def make(cls, n_particles=200, rng=1, **kw):
 def lin_data():
     xs, zs = LIN.simulate(20, rng=4)
     kf = LIN.kalman_filter()
-    means, covs, _, _ = kf.batch_filter(zs)
-    return zs, means, covs
+    means, covs, means_p, covs_p = kf.batch_filter(zs)
+    return zs, means, covs, means_p, covs_p
 
 
 # Monte-Carlo tolerances for 2,000 particles (stated once for the file). The effective
@@ -78,25 +78,34 @@ COV_TOL = 0.35
     ids=lambda v: v if isinstance(v, str) else v.__name__,
 )
 def test_every_filter_matches_the_kalman_filter_on_a_linear_gaussian_model(cls, weighting, lin_data):
-    zs, kf_means, kf_covs = lin_data
+    zs, kf_means, kf_covs, kf_means_p, kf_covs_p = lin_data
     pf = make(cls, 2000, weighting=weighting)
     if weighting == "bank":
         # a Gaussian-sum start whose mixture is exactly N(x0, P0): means ~ N(x0, P0/2),
         # each with covariance P0/2
         L = np.linalg.cholesky(LIN.P0 / 2)
         pf.initialize(LIN.x0 + pf.rng.standard_normal((2000, 3)) @ L.T, LIN.P0 / 2)
-    means, covs = pf.batch_filter(zs)
-    sd = np.sqrt(np.diagonal(kf_covs, axis1=1, axis2=2))
-    assert np.max(np.abs(means - kf_means) / sd) < MEAN_TOL
-    Lk = np.linalg.cholesky(kf_covs)
-    W = np.linalg.solve(Lk, np.swapaxes(np.linalg.solve(Lk, covs - kf_covs), 1, 2))
-    assert np.max(np.abs(np.linalg.eigvalsh(0.5 * (W + np.swapaxes(W, 1, 2))))) < COV_TOL
+    out = {"prior": ([], []), "post": ([], [])}
+    for z in zs:
+        pf.predict()
+        out["prior"][0].append(pf.x_prior)
+        out["prior"][1].append(pf.P_prior)
+        pf.update(z)
+        out["post"][0].append(pf.x_post)
+        out["post"][1].append(pf.P_post)
+    for key, ref_m, ref_P in (("prior", kf_means_p, kf_covs_p), ("post", kf_means, kf_covs)):
+        means, covs = np.array(out[key][0]), np.array(out[key][1])
+        sd = np.sqrt(np.diagonal(ref_P, axis1=1, axis2=2))
+        assert np.max(np.abs(means - ref_m) / sd) < MEAN_TOL, key
+        Lk = np.linalg.cholesky(ref_P)
+        W = np.linalg.solve(Lk, np.swapaxes(np.linalg.solve(Lk, covs - ref_P), 1, 2))
+        assert np.max(np.abs(np.linalg.eigvalsh(0.5 * (W + np.swapaxes(W, 1, 2))))) < COV_TOL, key
     assert np.mean(pf.ess_history) > 700 and np.min(pf.ess_history) > 100
 
 
 @pytest.mark.parametrize("cls", KALMAN_PRESETS, ids=lambda c: c.__name__)
 def test_bank_of_identical_particles_is_exactly_the_kalman_filter(cls, lin_data):
-    zs, kf_means, kf_covs = lin_data
+    zs, kf_means, kf_covs = lin_data[:3]
     pf = make(cls, 5, weighting="bank")
     pf.initialize(np.tile(LIN.x0, (5, 1)))
     means, covs = pf.batch_filter(zs)
@@ -376,3 +385,28 @@ def test_presets_share_the_issue_constructor():
     for cls in PRESETS:
         names = list(inspect.signature(cls).parameters)
         assert names[: len(expected)] == expected
+
+
+def wrap(a):
+    return (a + np.pi) % (2 * np.pi) - np.pi
+
+
+def angle_residual(a, b):
+    return wrap(np.subtract(a, b))
+
+
+def angle_hx(x):
+    return x  # the raw (unwrapped) heading
+
+
+@pytest.mark.parametrize("cls", [BootstrapParticleFilter, UnscentedParticleFilter], ids=lambda c: c.__name__)
+def test_residual_z_wraps_angles_in_weights_and_kalman_steps(cls):
+    """A heading near +pi measured as -pi + 0.02: only the wrapped residual sees a 0.07 rad error."""
+    lls = {}
+    for residual in (None, angle_residual):
+        pf = cls(1, 1, 1.0, angle_hx, None, 200, residual_z=residual, vectorized=True, rng=0)
+        pf.x, pf.P, pf.Q, pf.R = np.array([np.pi - 0.05]), np.array([[1e-3]]), np.array([[1e-4]]), np.array([[1e-3]])
+        pf.predict()
+        pf.update(np.array([-np.pi + 0.02]))
+        lls[residual is None] = pf.log_likelihood
+    assert lls[False] > -5.0 and lls[True] < -1000.0
