@@ -78,3 +78,17 @@ def test_cli_writes_table_csv_and_figures(tmp_path, capsys):
     for name in ("table1.md", "runs.csv", "fig3_particles_mse.png", "fig4_particles_time.png",
                  "fig5_supf_convergence.png"):
         assert (out / name).stat().st_size > 0
+
+
+def test_cache_resumes_with_identical_numbers(tmp_path, serial):
+    cache = tmp_path / "cache"
+    small = dict(TINY, paper_table=False, sweep_particles=())
+    first = study.run_study(**small, cache_dir=str(cache))
+    assert len(list(cache.glob("*.json"))) == 6
+    again = study.run_study(**small, cache_dir=str(cache), cached_only=True)
+    np.testing.assert_equal(_numbers(again), _numbers(first))
+    working = [n for n in _numbers(serial) if n[0] == "working"]
+    np.testing.assert_equal(_numbers(first), working)
+    empty = study.run_study(**small, cache_dir=str(tmp_path / "none"), cached_only=True)
+    assert empty.table == [] and empty.config["n_done"] == 0
+    assert "Incomplete: 0 of 6" in study.markdown_table(empty)

@@ -291,7 +291,18 @@ def _task(task):
     return fit_run(*args, **kwargs)
 
 
-def run_tasks(tasks, n_jobs=1, backend=None, progress=False):
+def _task_key(task):
+    import hashlib
+    import json
+
+    return hashlib.sha1(json.dumps(task, sort_keys=True, default=list).encode()).hexdigest()[:20]
+
+
+def _indexed_task(i, task):
+    return i, _task(task)
+
+
+def run_tasks(tasks, n_jobs=1, backend=None, progress=False, cache_dir=None, cached_only=False):
     """Run study tasks through joblib; results in task order whatever ``n_jobs``.
 
     Parameters
@@ -305,29 +316,62 @@ def run_tasks(tasks, n_jobs=1, backend=None, progress=False):
         default (loky). "dask" needs a ``dask.distributed.Client`` (see :func:`run`).
     progress : bool
         A tqdm bar over tasks.
+    cache_dir : str, optional
+        Checkpoint folder: each finished task is saved there as JSON (named by a hash of
+        the task), and tasks already there are loaded instead of run, so an interrupted
+        study resumes where it stopped, with the same numbers.
+    cached_only : bool
+        Only load cached results; tasks not in the cache give ``None``.
+
+    Returns
+    -------
+    list
+        One result dict per task (``None`` for a task skipped by ``cached_only``).
     """
+    import json
+
     from joblib import Parallel, delayed
 
+    out = [None] * len(tasks)
+    keys = [_task_key(t) for t in tasks]
+    if cache_dir is not None:
+        os.makedirs(cache_dir, exist_ok=True)
+        for i, k in enumerate(keys):
+            path = os.path.join(cache_dir, k + ".json")
+            if os.path.exists(path):
+                with open(path) as f:
+                    out[i] = json.load(f)
+    pending = [i for i in range(len(tasks)) if out[i] is None]
+    if cached_only:
+        pending = []
+
+    def save(i, r):
+        out[i] = r
+        if cache_dir is not None:
+            path = os.path.join(cache_dir, keys[i] + ".json")
+            with open(path + ".tmp", "w") as f:
+                json.dump(r, f)
+            os.replace(path + ".tmp", path)
+
     bar = None
-    if progress:
+    if progress and pending:
         from tqdm.auto import tqdm
 
-        bar = tqdm(total=len(tasks), desc="WNN study", unit="fit")
-    out = []
+        bar = tqdm(total=len(pending), desc="WNN study", unit="fit")
     try:
         if n_jobs == 1 and backend is None:
-            for t in tasks:
-                out.append(_task(t))
+            for i in pending:
+                save(i, _task(tasks[i]))
                 if bar is not None:
                     bar.update(1)
-        else:
+        elif pending:
             from joblib import parallel_config
 
             # parallel_config registers external backends such as "dask" on first use
             with parallel_config(backend=backend or "loky", n_jobs=n_jobs):
-                par = Parallel(return_as="generator")
-                for r in par(delayed(_task)(t) for t in tasks):
-                    out.append(r)
+                par = Parallel(return_as="generator_unordered")
+                for i, r in par(delayed(_indexed_task)(i, tasks[i]) for i in pending):
+                    save(i, r)
                     if bar is not None:
                         bar.update(1)
     finally:
@@ -394,6 +438,8 @@ def run_study(
     n_jobs=1,
     backend=None,
     progress=False,
+    cache_dir=None,
+    cached_only=False,
 ):
     """Run the study (Table 1 rows, the particle sweep and the curves) and return numbers.
 
@@ -422,8 +468,8 @@ def run_study(
         Particle counts of Figs. 3-4 (the paper: 50..250); empty to skip.
     sweep_runs : int, optional
         Runs per sweep point (default ``n_runs``).
-    n_jobs, backend, progress
-        See :func:`run_tasks`.
+    n_jobs, backend, progress, cache_dir, cached_only
+        See :func:`run_tasks` (``cache_dir`` makes the study resumable).
 
     Returns
     -------
@@ -465,14 +511,25 @@ def run_study(
             for i in range(sweep_runs):
                 tasks.append(("fit", (t, seeds[i], pf_epochs, int(n)),
                               {"table": "sweep", "run": i, "track_test": False}))
-    # longest first: better load balance, same numbers
+    # schedule: the working table run by run (so an interrupted study has whole runs),
+    # then references, paper table and sweep; longest first inside each; same numbers
     cost = {"bp": 1, "ekf": 1, "ukf": 8, "sukf": 8, "spf": 5, "epf": 60, "upf": 150, "supf": 120}
-    order = sorted(range(len(tasks)), key=lambda k: -_task_cost(tasks[k], cost))
-    results = run_tasks([tasks[k] for k in order], n_jobs=n_jobs, backend=backend, progress=progress)
+    group = {"working": 0, "paper": 2, "sweep": 3}
+
+    def priority(k):
+        kind, args, kwargs = tasks[k]
+        g = 1 if kind == "reference" else group[kwargs["table"]]
+        return (g, kwargs["run"] if g == 0 else 0, -_task_cost(tasks[k], cost))
+
+    order = sorted(range(len(tasks)), key=priority)
+    results = run_tasks([tasks[k] for k in order], n_jobs=n_jobs, backend=backend, progress=progress,
+                        cache_dir=cache_dir, cached_only=cached_only)
     out = [None] * len(tasks)
     for k, r in zip(order, results):
         out[k] = r
-    main, swept = out[:n_main], out[n_main:]
+    n_total, n_done = len(out), sum(r is not None for r in out)
+    main = [r for r in out[:n_main] if r is not None]
+    swept = [r for r in out[n_main:] if r is not None]
     table = summarize([r for r in main])
     sweep = []
     pool = [r for r in main if r["table"] == "working" and r["trainer"] in PARTICLE_TRAINERS] + swept
@@ -490,7 +547,7 @@ def run_study(
         n_runs=n_runs, n_epochs=n_epochs, pf_epochs=pf_epochs, n_particles=n_particles, seed=seed,
         trainers=list(trainers), paper_runs=paper_runs if paper_table else 0, paper_pf_epochs=paper_pf_epochs,
         sweep_particles=list(sweep_particles),
-        sweep_runs=sweep_runs, n_jobs=n_jobs, backend=backend or "loky",
+        sweep_runs=sweep_runs, n_jobs=n_jobs, backend=backend or "loky", n_tasks=n_total, n_done=n_done,
     )
     return StudyResult(runs=main + swept, table=table, sweep=sweep, config=config)
 
@@ -532,6 +589,9 @@ def markdown_table(result):
         "seed, so the test-set variance differs between runs (median var(y_test) "
         f"{_fmt(_q([r['var_test'] for r in result.runs], 0.5))}; predicting the mean scores that).",
     ]
+    if c.get("n_done", 0) < c.get("n_tasks", 0):
+        lines += ["", f"**Incomplete: {c['n_done']} of {c['n_tasks']} fits finished** (the rows say how many "
+                  "runs each has)."]
     if is_reduced(c):
         lines += ["", "**This is a reduced protocol** (the paper: 50 runs, 200 epochs, 50 particles); "
                   "scale it with --runs, --epochs, --pf-epochs, --particles."]
@@ -646,6 +706,11 @@ def add_arguments(parser):
     parser.add_argument("--scheduler", default=None,
                         help="with --backend dask: a dask.distributed scheduler address (default: a local cluster)")
     parser.add_argument("--out", default="wnn-study", help="output folder (default ./wnn-study)")
+    parser.add_argument("--cache", default=None,
+                        help="checkpoint folder (default OUT/cache): finished fits are saved there and reused, "
+                             "so an interrupted study resumes; 'none' disables it")
+    parser.add_argument("--cached-only", action="store_true",
+                        help="only summarize the fits already in the cache (run nothing)")
     parser.add_argument("--no-figures", action="store_true")
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
 
@@ -666,12 +731,13 @@ def run(args):
             n = os.cpu_count() if args.jobs in (None, -1) else max(1, args.jobs)
             client = Client(LocalCluster(n_workers=n, threads_per_worker=1))
     progress = (not args.no_progress) and sys.stderr.isatty()
+    cache = os.path.join(args.out, "cache") if args.cache is None else (None if args.cache == "none" else args.cache)
     t0 = time.perf_counter()
     try:
         res = run_study(
             n_runs=args.runs, n_epochs=args.epochs, pf_epochs=args.pf_epochs, n_particles=args.particles,
             trainers=trainers, seed=args.seed, paper_table=not args.no_paper_table, paper_runs=args.paper_runs,
-            paper_pf_epochs=args.paper_pf_epochs,
+            paper_pf_epochs=args.paper_pf_epochs, cache_dir=cache, cached_only=args.cached_only,
             sweep_particles=sweep, sweep_runs=args.sweep_runs, n_jobs=args.jobs, backend=args.backend,
             progress=progress,
         )
