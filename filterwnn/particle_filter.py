@@ -339,6 +339,15 @@ class ParticleFilter:
         covariances : array-like of shape (dim_x, dim_x) or (n_particles, dim_x, dim_x), optional
             Per-particle covariances for the Kalman proposals (default ``P`` for every
             particle). Ignored by the prior proposal.
+
+        Notes
+        -----
+        The default start (means drawn from ``N(x, P)``, each particle with covariance
+        ``P``, as van der Merwe et al. start the UPF) is right for textbook weights, where
+        the covariances only shape the proposal. In the bank every particle is a Gaussian,
+        so that start is a mixture with covariance ``2 P``; for a Gaussian-sum start that
+        is exactly ``N(x, P)``, draw the means from ``N(x, P - C)`` and pass
+        ``covariances=C`` (e.g. ``C = P / 2``).
         """
         X = np.asarray(particles, dtype=float)
         if X.shape != (self.n_particles, self.dim_x):
@@ -379,6 +388,15 @@ class ParticleFilter:
         self.initialize(x + self.rng.standard_normal((self.n_particles, self.dim_x)) @ L.T, P)
 
     # ------------------------------------------------------------------ helpers
+    def _check_Q(self):
+        """``Q`` as a finite symmetric ``(dim_x, dim_x)`` array (PSD is checked where it is factored)."""
+        Q = _noise(self.Q, "Q", self.dim_x)
+        scale = max(np.max(np.abs(Q)), np.finfo(float).tiny)
+        asym = np.max(np.abs(Q - Q.T))
+        if asym > 1e-8 * scale:
+            raise ValueError(f"Q must be symmetric; max |Q - Q.T| = {asym:.3g}")
+        return Q
+
     def _moments(self, X, w, C=None):
         if self.x_mean_fn is None:
             x = w @ X
@@ -426,6 +444,7 @@ class ParticleFilter:
         particles themselves move in ``update``), or of the mixture of the particles'
         predicted Gaussians (bank).
         """
+        Q = self._check_Q()
         if self.particles is None:
             self._draw_initial()
         if self._pending is not None:
@@ -434,13 +453,20 @@ class ParticleFilter:
         w = self.weights
         if self.proposal.uses_covariance:
             pred = self.proposal.predict(self, self.particles, self.covariances, fx_args, step=step)
+            if not (np.all(np.isfinite(pred.x)) and np.all(np.isfinite(pred.P))):
+                bad = int(np.argmin(np.isfinite(pred.x).all(axis=1) & np.isfinite(pred.P).all(axis=(1, 2))))
+                raise NumericalError(
+                    f"non-finite Kalman prediction at step {step} (particle {bad}: check fx, FJacobian and Q)",
+                    matrix="P_prior",
+                    step=step,
+                )
             self._pending = {"kind": "kalman", "x_prev": self.particles, "prediction": pred, "fx_args": fx_args}
             if self.weighting == "bank":
                 x, P = self._moments(pred.x, w, pred.P)  # the mixture of the predicted Gaussians
             else:
                 # sampled particles move by the transition: spread of the predicted means + Q
                 x, P = self._moments(pred.x, w)
-                P = P + _noise(self.Q, "Q", self.dim_x)
+                P = P + Q
         else:
             new = self.proposal.sample(self, self.particles, fx_args, self.rng)
             if not np.all(np.isfinite(new)):
@@ -474,6 +500,8 @@ class ParticleFilter:
             self._record(self.ess, self._distinct(self.particles), False)
             return
         z = as_measurement(z, self.dim_z)
+        check_covariance(self.R, "R", self.dim_z)
+        self._check_Q()
         if self.particles is None:
             self._draw_initial()
         step = self.step
