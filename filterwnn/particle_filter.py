@@ -508,6 +508,7 @@ class ParticleFilter:
         pend = self._pending
         lw_prev = self.log_weights
         covs = None
+        log_lik_max = None
         if pend is not None and pend["kind"] == "kalman":
             pred = pend["prediction"]
             upd = self.proposal.update(self, pred, z, hx_args, step=step)
@@ -520,6 +521,7 @@ class ParticleFilter:
                 log_lik = measurement_logpdf(self, z, X, hx_args)
                 log_tr = transition_logpdf(self, X, pend["x_prev"], pend["fx_args"])
                 log_alpha = log_lik + log_tr - log_q
+                log_lik_max = np.max(log_lik)
         elif self.proposal.uses_covariance and self.weighting == "bank":
             # update without predict: a Kalman update of every particle in place
             upd = self.proposal.update(
@@ -544,9 +546,16 @@ class ParticleFilter:
         new_lw = lw_prev + self.tempering * log_alpha
         lse = _logsumexp(new_lw)
         if not np.isfinite(lse):
+            if log_lik_max is None or not np.isfinite(log_lik_max):
+                log_lik_max = np.max(log_alpha) if log_lik_max is None else log_lik_max
+                detail = f"the measurement is impossible under every particle (largest log-likelihood {log_lik_max:.6g})"
+            else:
+                detail = (
+                    f"largest log-likelihood {log_lik_max:.6g}, but the transition density is 0 "
+                    f"at every sample (largest log-weight increment {np.max(log_alpha):.6g})"
+                )
             raise NumericalError(
-                f"all particle weights underflowed at step {step}: the measurement is impossible "
-                f"under every particle (largest log-likelihood {np.max(log_alpha):.6g})",
+                f"all particle weights underflowed at step {step}: {detail}",
                 matrix="weights",
                 step=step,
             )

@@ -316,6 +316,17 @@ def test_all_weights_underflowing_raises_numerical_error_with_step(lin_data):
     assert info.value.step == 2 and np.all(np.isfinite(pf.x))
 
 
+def impossible_transition(x, x_prev):
+    return np.full(x.shape[0], -np.inf)
+
+
+def test_zero_transition_density_everywhere_is_named_in_the_error(lin_data):
+    pf = make(UnscentedParticleFilter, 20, transition_logpdf=impossible_transition)
+    pf.predict()
+    with pytest.raises(NumericalError, match="underflowed at step 1: largest log-likelihood .*transition density is 0"):
+        pf.update(lin_data[0][0])
+
+
 def nan_hx(x):
     return np.full((x.shape[0], 2), np.nan)
 
