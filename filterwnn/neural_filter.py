@@ -63,6 +63,7 @@ from __future__ import annotations
 import numpy as np
 
 from ._validation import (
+    NumericalError,
     as_measurement,
     as_state,
     check_choice,
@@ -193,6 +194,8 @@ class NeuralFilter:
 
     Attributes
     ----------
+    step : int
+        Count of ``update`` calls since ``fit``/``reset`` (named in errors).
     x, x_prior, x_post : ndarray of shape (6,)
         Estimate after ``update``, prediction after ``predict``; filterpy's names.
     P : None
@@ -230,6 +233,7 @@ class NeuralFilter:
         self.P = None
         self._last = None
         self.params_ = None
+        self.step = 0
 
     # ----------------------------------------------------------------- network pieces
     def _offset(self, Xp):
@@ -335,11 +339,11 @@ class NeuralFilter:
                     for k in p:
                         p[k] -= lr * grads[k]
             self.loss_curve_.append(total / n)
-        if not all(np.all(np.isfinite(v)) for v in p.values()):
-            from ._validation import NumericalError
-
-            raise NumericalError("phase-1 training produced non-finite weights; lower lr",
-                                 matrix="weights")
+            if not (np.isfinite(total) and all(np.all(np.isfinite(v)) for v in p.values())):
+                epoch = len(self.loss_curve_)
+                raise NumericalError(
+                    f"phase-1 training produced non-finite weights at epoch {epoch}; lower lr "
+                    f"(lr={self.lr})", matrix="weights", step=epoch)
         self.params_fit_ = {k: v.copy() for k, v in p.items()}
         self.params_ = {k: v.copy() for k, v in p.items()}
         self.n_features_in_ = U.shape[1]
@@ -353,6 +357,7 @@ class NeuralFilter:
         self.x_prior = self.x.copy()
         self.x_post = self.x.copy()
         self._last = None
+        self.step = 0
         return self
 
     def _check_fitted(self):
@@ -389,14 +394,25 @@ class NeuralFilter:
         """
         self._check_fitted()
         if z is None:
+            self.step += 1
             self.x_post = self.x.copy()
             return
         z = as_measurement(z, 2)
+        self.step += 1
+        saved = {k: v.copy() for k, v in self.params_.items()} if self.lr_online > 0 else None
         if self.lr_online > 0 and self._last is not None:
             self._online_step(z)
         U, off = self._inputs(self.x_prior, z)
         out, _ = self._forward(U[None, :], self.params_)
-        self.x = self._state(out[0], off, self.x_prior)
+        x = self._state(out[0], off, self.x_prior)
+        if not np.all(np.isfinite(x)):
+            if saved is not None:
+                self.params_ = saved
+            raise NumericalError(
+                f"the neural filter's estimate became non-finite at step {self.step} "
+                f"(lr_online={self.lr_online}); x and the weights are left as before",
+                matrix="x", step=self.step)
+        self.x = x
         self.x_post = self.x.copy()
         self._last = (U, off, self.x_prior)
 
