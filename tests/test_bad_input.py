@@ -29,6 +29,12 @@ from filterwnn import (
 )
 from filterwnn import _validation as val
 from filterwnn.sigma_points import sigma_deviations, unit_sigma_points
+from filterwnn import dead_reckoning as dr
+from filterwnn import neural_filter as nfm
+from filterwnn import particle_filter as pfm
+from filterwnn import resampling
+from filterwnn.regressor import WNNRegressor
+from filterwnn.studies import wnn as wnn_study
 from filterwnn.weight_model import WNNWeightModel
 
 RNG_MSG = r"rng must be None, an int seed, a SeedSequence, a BitGenerator or a numpy\.random\.Generator, got "
@@ -317,7 +323,175 @@ WNN_ROWS = [
             "into shape (3,2)'; should raise ValueError 'X must have shape (3, 2), got (4, 2)'"),
 ]
 
-ROWS = VALIDATION_ROWS + MODEL_ROWS + METRIC_ROWS + SIGMA_ROWS + UKF_ROWS + WNN_ROWS
+# --------------------------------------------------------------------------- particle filters, resampling
+def make_pf(**kw):
+    args = dict(dim_x=3, dim_z=2, dt=1.0, hx=hx_lin, fx=fx_lin, n_particles=10, vectorized=True, rng=0)
+    args.update(kw)
+    return pfm.ParticleFilter(**args)
+
+
+def pf_run_with(**attrs):
+    pf = make_pf(proposal=attrs.pop("proposal", "prior"))
+    pf.Q, pf.R = MODEL.Q.copy(), MODEL.R.copy()
+    for k, v in attrs.items():
+        setattr(pf, k, v)
+    pf.predict()
+    pf.update(np.zeros(2))
+
+
+PF_ROWS = [
+    row(lambda: make_pf(n_particles=0), ValueError, r"n_particles must be >= 1, got 0", "pf-n-zero"),
+    row(lambda: make_pf(n_particles=-5), ValueError, r"n_particles must be >= 1, got -5", "pf-n-neg"),
+    row(lambda: make_pf(n_particles=2.5), TypeError, r"n_particles must be an integer, got float 2.5", "pf-n-float"),
+    row(lambda: make_pf(dt=0.0), ValueError, r"dt must be finite and > 0, got 0.0", "pf-dt-zero"),
+    row(lambda: make_pf(dt=-1.0), ValueError, r"dt must be finite and > 0, got -1.0", "pf-dt-neg"),
+    row(lambda: make_pf(proposal="optimal"), ValueError, r"unknown proposal 'optimal'; valid: 'extended', 'prior', 'simplex', 'unscented'", "pf-proposal"),
+    row(lambda: make_pf(proposal=3), TypeError, "proposal must be a name or a proposal object .*got int", "pf-proposal-type"),
+    row(lambda: make_pf(resampling="foo"), ValueError, r"unknown resampling scheme 'foo'; valid: 'multinomial', 'residual', 'stratified', 'systematic'", "pf-resampling"),
+    row(lambda: make_pf(weighting="foo"), ValueError, r"unknown weighting 'foo'; valid: 'bank', 'textbook'", "pf-weighting"),
+    row(lambda: make_pf(weighting="bank"), ValueError, "weighting='bank' needs a Kalman proposal", "pf-bank-prior"),
+    row(lambda: make_pf(ess_threshold=2), ValueError, r"ess_threshold must be a number in \[0, 1\], got 2", "pf-ess"),
+    row(lambda: make_pf(tempering=0.0), ValueError, r"tempering must be finite and > 0, got 0.0", "pf-tempering"),
+    row(lambda: make_pf(hx=None), TypeError, "hx must be callable, got NoneType", "pf-hx"),
+    row(lambda: make_pf(proposal="extended"), ValueError, "the extended Kalman proposal needs HJacobian, got None", "pf-epf-jacobian"),
+    row(lambda: pf_run_with(x=np.zeros(4)), ValueError, r"x must have length 3, got shape \(4,\)", "pf-x-shape"),
+    row(lambda: pf_run_with(x=np.array([np.nan, 0.0, 0.0])), ValueError, "x must be finite", "pf-x-nan"),
+    row(lambda: pf_run_with(P=-I3), ValueError, "P must be positive definite .*smallest eigenvalue -1", "pf-P-not-pd"),
+    row(lambda: pf_run_with(P=NONSYM3), ValueError, r"P must be symmetric; max \|P - P.T\| = 0.5", "pf-P-nonsym"),
+    row(lambda: pf_run_with(Q=I2), ValueError, r"Q must have shape \(3, 3\), got shape \(2, 2\)", "pf-Q-shape"),
+    row(lambda: pf_run_with(Q=np.full((3, 3), np.nan)), ValueError, "Q must be finite", "pf-Q-nan"),
+    row(lambda: pf_run_with(Q=-I3), ValueError, "Q must be positive semi-definite, smallest eigenvalue -1", "pf-Q-not-psd"),
+    row(lambda: pf_run_with(R=I3), ValueError, r"R must have shape \(2, 2\), got shape \(3, 3\)", "pf-R-shape"),
+    row(lambda: pf_run_with(R=np.full((2, 2), np.inf)), ValueError, "R must be finite", "pf-R-inf"),
+    row(lambda: pf_run_with(R=-I2), ValueError, "R must be positive definite.*smallest eigenvalue -1", "pf-R-not-pd"),
+    row(lambda: pf_run_with(Q=NONSYM3), ValueError, "Q must be symmetric", "pf-Q-nonsym"),
+    row(lambda: pf_run_with(R=NONSYM2), ValueError, "R must be symmetric", "pf-R-nonsym"),
+    row(lambda: pf_run_with(proposal="unscented", Q=NONSYM3), ValueError, "Q must be symmetric", "upf-Q-nonsym"),
+    row(lambda: make_pf().update(np.zeros(3)), ValueError, r"z must have 2 entries, got shape \(3,\)", "pf-z-len"),
+    row(lambda: make_pf().update([np.nan, 0.0]), ValueError, "z must be finite .*use z=None", "pf-z-nan"),
+    row(lambda: make_pf().update("ab"), TypeError, "z must be array-like of numbers or None, got str", "pf-z-type"),
+    row(lambda: make_pf().batch_filter(np.zeros((4, 3))), ValueError, r"z must have 2 entries, got shape \(3,\)", "pf-zs-shape"),
+    row(lambda: make_pf().initialize(np.zeros((5, 3))), ValueError, r"particles must have shape \(10, 3\), got shape \(5, 3\)", "pf-init-shape"),
+    row(lambda: make_pf().initialize(np.full((10, 3), np.nan)), ValueError, "particles must be finite", "pf-init-nan"),
+    row(lambda: make_pf(proposal="unscented").initialize(np.zeros((10, 3)), -I3), ValueError, "covariances must be positive definite .*-1", "upf-init-cov"),
+    row(lambda: make_pf(proposal="unscented").initialize(np.zeros((10, 3)), np.zeros((4, 3, 3))), ValueError, r"covariances must have shape", "upf-init-cov-shape"),
+    row(lambda: resampling.resample([0.5, 0.5], "foo", rng=0), ValueError, "unknown resampling scheme 'foo'; valid:", "resample-name"),
+    row(lambda: resampling.resample([0.5, 0.5], "systematic", rng=0, n=0), ValueError, r"n must be >= 1, got 0", "resample-n"),
+    row(lambda: resampling.normalize_log_weights([np.nan, 0.0]), ValueError, "log_weights must not contain NaN", "log-weights-nan"),
+]
+
+# --------------------------------------------------------------------------- regressor
+X_REG, Y_REG = datasets.make_siso_benchmark(rng=0)[:2]
+X_REG, Y_REG = X_REG[:20], Y_REG[:20]
+
+
+def fit_reg(X=None, y=None, **kw):
+    kw = {"n_hidden": 2, "n_epochs": 1, **kw}
+    return WNNRegressor(**kw).fit(X_REG if X is None else X, Y_REG if y is None else y)
+
+
+REGRESSOR_ROWS = [
+    row(lambda: fit_reg(n_hidden=0), ValueError, r"n_hidden must be >= 1, got 0", "reg-hidden-zero"),
+    row(lambda: fit_reg(n_hidden=-2), ValueError, r"n_hidden must be >= 1, got -2", "reg-hidden-neg"),
+    row(lambda: fit_reg(n_epochs=0), ValueError, r"n_epochs must be >= 1, got 0", "reg-epochs-zero"),
+    row(lambda: fit_reg(n_epochs=-1), ValueError, r"n_epochs must be >= 1, got -1", "reg-epochs-neg"),
+    row(lambda: fit_reg(n_epochs=2.5), TypeError, r"n_epochs must be an integer, got float 2.5", "reg-epochs-float"),
+    row(lambda: fit_reg(trainer="adam"), ValueError, r"unknown trainer 'adam'; valid: 'bp', 'ekf', 'epf', 'spf', 'sukf', 'supf', 'ukf', 'upf'", "reg-trainer"),
+    row(lambda: fit_reg(wavelet="haar"), ValueError, r"unknown wavelet 'haar'; valid: 'mexican_hat', 'morlet'", "reg-wavelet"),
+    row(lambda: fit_reg(init="zeros"), ValueError, r"unknown init 'zeros'; valid: 'paper', 'scaled'", "reg-init"),
+    row(lambda: fit_reg(trainer="spf", n_particles=0), ValueError, r"n_particles must be >= 1, got 0", "reg-particles"),
+    row(lambda: fit_reg(weighting="foo"), ValueError, r"unknown weighting 'foo'", "reg-weighting"),
+    row(lambda: fit_reg(ekf_backend="foo"), ValueError, r"unknown ekf_backend 'foo'; valid: 'filterpy', 'rank1'", "reg-backend"),
+    row(lambda: fit_reg(process_noise=-1.0), ValueError, r"process_noise must be finite and >= 0, got -1.0", "reg-Q-neg"),
+    row(lambda: fit_reg(initial_covariance=0.0), ValueError, r"initial_covariance must be finite and > 0, got 0.0", "reg-P0-zero"),
+    row(lambda: fit_reg(measurement_noise=0.0), ValueError, r"measurement_noise must be finite and > 0, got 0.0", "reg-R-zero"),
+    row(lambda: fit_reg(trainer="bp", learning_rate=-1.0), ValueError, r"learning_rate must be finite and > 0, got -1.0", "reg-lr"),
+    row(lambda: fit_reg(trainer="spf", tempering=0.0), ValueError, r"tempering must be finite and > 0, got 0.0", "reg-tempering"),
+    row(lambda: fit_reg(trainer="spf", ess_threshold=2.0), ValueError, r"ess_threshold must be a number in \[0, 1\], got 2.0", "reg-ess"),
+    row(lambda: fit_reg(early_stopping=True, validation_fraction=1.5), ValueError, r"validation_fraction must be in \(0, 1\), got 1.5", "reg-valfrac"),
+    row(lambda: fit_reg(early_stopping=True, n_iter_no_change=0), ValueError, r"n_iter_no_change must be >= 1, got 0", "reg-patience"),
+    row(lambda: fit_reg(y=Y_REG[:-1]), ValueError, r"inconsistent numbers of samples: \[20, 19\]", "reg-X-y-lengths"),
+    row(lambda: WNNRegressor(n_hidden=2).partial_fit(X_REG, Y_REG[:-2]), ValueError, r"inconsistent numbers of samples: \[20, 18\]", "reg-partial-X-y-lengths"),
+    row(lambda: fit_reg(X=np.where(X_REG > 0.5, np.nan, X_REG)), ValueError, "Input X contains NaN", "reg-X-nan"),
+    row(lambda: fit_reg(y=np.where(Y_REG > 0, np.inf, Y_REG)), ValueError, "Input y contains infinity", "reg-y-inf"),
+    row(lambda: fit_reg(X=Y_REG, y=Y_REG), ValueError, "Expected 2D array, got 1D array", "reg-X-1d"),
+    row(lambda: fit_reg().predict(np.zeros((3, 7))), ValueError, "X has 7 features, but WNNRegressor is expecting 5 features", "reg-predict-features"),
+    row(lambda: fit_reg().predict(np.full((3, 5), np.nan)), ValueError, "Input X contains NaN", "reg-predict-nan"),
+    row(lambda: fit_reg(progress="yes"), ValueError, "progress", "reg-progress",
+        gap="regressor.py WNNRegressor(progress='yes').fit: accepted (any truthy value shows the bar); should raise "
+            "ValueError \"progress must be True, False or 'auto', got 'yes'\""),
+]
+
+# --------------------------------------------------------------------------- dead reckoning and the neural filter
+GPS = dr.GPSDRModel()
+NF_DATA = nfm.make_training_set(nfm.paper_training_states(), dr.DRModel(), rng=0)
+NF = nfm.NeuralFilter(epochs=1, rng=0).fit(*NF_DATA)
+DR_ROWS = [
+    row(lambda: dr.DRModel(dt=0.0), ValueError, r"dt must be finite and > 0, got 0.0", "drm-dt"),
+    row(lambda: dr.DRModel(sigma_heading=-1.0), ValueError, r"sigma_heading must be finite and > 0, got -1.0", "drm-sigma"),
+    row(lambda: dr.DRModel(q=-1.0), ValueError, r"q must be finite and >= 0, got -1.0", "drm-q"),
+    row(lambda: dr.DRModel(accel_term="foo"), ValueError, r"unknown accel_term 'foo'; valid: 'kinematic', 'paper'", "drm-accel"),
+    row(lambda: dr.DRModel(x0=np.zeros(5)), ValueError, r"x0 must have length 6, got shape \(5,\)", "drm-x0"),
+    row(lambda: dr.DRModel(P0=-np.eye(6)), ValueError, "P0 must be positive definite .*-1", "drm-P0"),
+    row(lambda: dr.DRModel(zeta=0.0), ValueError, r"zeta must be finite and > 0, got 0.0", "drm-zeta"),
+    row(lambda: dr.DRModel().simulate(0, rng=0), ValueError, r"n_steps must be >= 1, got 0", "drm-simulate-n"),
+    row(lambda: dr.DRModel().ekf(R=-np.eye(2)), ValueError, "R must be positive definite", "drm-ekf-R"),
+    row(lambda: dr.GPSDRModel(sigma_gps=0.0), ValueError, r"sigma_gps must be finite and > 0, got 0.0", "gps-sigma"),
+    row(lambda: dr.GPSDRModel(dt=-1.0), ValueError, r"dt must be finite and > 0, got -1.0", "gps-dt"),
+    row(lambda: dr.GPSDRModel(augmented=True, x0=np.zeros(6)), ValueError, r"x0 must have length 8, got shape \(6,\)", "gps-x0"),
+    row(lambda: GPS.update(GPS.ekf(), np.zeros(3)), ValueError, r"z_dr must have length 2, got shape \(3,\)", "gps-update-zdr-len"),
+    row(lambda: GPS.update(GPS.ekf(), [np.nan, 1.0]), ValueError, r"z_dr must be finite, got \[nan  1.\]", "gps-update-zdr-nan"),
+    row(lambda: GPS.update(GPS.ekf(), [0.0, 1.0], [np.nan, 0.0]), ValueError, "z_gps must be finite", "gps-update-zgps-nan"),
+    row(lambda: GPS.update(GPS.ekf(), [0.0, 1.0], [0.0, 0.0, 0.0]), ValueError, r"z_gps must have length 2, got shape \(3,\)", "gps-update-zgps-len"),
+    row(lambda: dr.transition_matrix(0.0), ValueError, r"dt must be finite and > 0, got 0.0", "transition-dt"),
+    row(lambda: dr.simulate_scenario("straight"), TypeError, "scenario must be a Scenario, got str", "scenario-type"),
+    row(lambda: dr.simulate_scenario(dr.SCENARIOS["straight"](dt=0.0)), ValueError, r"dt must be finite and > 0, got 0.0", "scenario-dt",
+        gap="dead_reckoning.py simulate_scenario(Scenario(dt=0.0)): ZeroDivisionError 'float division by zero'; "
+            "should raise ValueError 'dt must be finite and > 0, got 0.0' (validate Scenario fields)"),
+    row(lambda: dr.simulate_scenario(dr.SCENARIOS["straight"](duration=-1.0)), ValueError, r"duration must be finite and > 0, got -1.0", "scenario-duration",
+        gap="dead_reckoning.py simulate_scenario(Scenario(duration=-1.0)): numpy 'negative dimensions are not allowed'; "
+            "should raise ValueError 'duration must be finite and > 0, got -1.0'"),
+    row(lambda: dr.simulate_scenario(dr.SCENARIOS["gpsdr"](sigma_gps=-1.0)), ValueError, r"sigma_gps must be finite and > 0, got -1.0", "scenario-sigma-gps",
+        gap="dead_reckoning.py simulate_scenario(Scenario(sigma_gps=-1.0)): accepted silently (GPS noise sign flipped); "
+            "should raise ValueError 'sigma_gps must be finite and > 0, got -1.0' (also gps_rate=-1 is accepted)"),
+    row(lambda: nfm.NeuralFilter(n_hidden=0), ValueError, r"n_hidden must be >= 1, got 0", "nf-hidden"),
+    row(lambda: nfm.NeuralFilter(epochs=0), ValueError, r"epochs must be >= 1, got 0", "nf-epochs"),
+    row(lambda: nfm.NeuralFilter(epochs=-3), ValueError, r"epochs must be >= 1, got -3", "nf-epochs-neg"),
+    row(lambda: nfm.NeuralFilter(form="foo"), ValueError, r"unknown form 'foo'; valid: 'absolute', 'passthrough', 'relative'", "nf-form"),
+    row(lambda: nfm.NeuralFilter(features="foo"), ValueError, r"unknown features 'foo'; valid: 'angle', 'velocity'", "nf-features"),
+    row(lambda: nfm.NeuralFilter(lr=0.0), ValueError, r"lr must be finite and > 0, got 0.0", "nf-lr"),
+    row(lambda: nfm.NeuralFilter(lr_online=-1.0), ValueError, r"lr_online must be finite and >= 0, got -1.0", "nf-lr-online"),
+    row(lambda: nfm.NeuralFilter(model=MODEL), ValueError, "model must be a 6-state DR model, got dim_x=3", "nf-model"),
+    row(lambda: nfm.NeuralFilter(epochs=1).fit(NF_DATA[0], NF_DATA[1][:-1], NF_DATA[2]), ValueError, r"X_prior, Z, X_true must have shapes \(n, 6\), \(n, 2\), \(n, 6\); got \(30, 6\), \(29, 2\), \(30, 6\)", "nf-fit-lengths"),
+    row(lambda: nfm.NeuralFilter(epochs=1).fit(NF_DATA[0], np.full_like(NF_DATA[1], np.nan), NF_DATA[2]), ValueError, "X_prior, Z and X_true must be finite", "nf-fit-nan"),
+    row(lambda: nfm.NeuralFilter().update([0.0, 1.0]), ValueError, r"NeuralFilter is not fitted; call fit\(X_prior, Z, X_true\) first", "nf-unfitted"),
+    row(lambda: pickle.loads(pickle.dumps(NF)).update([np.nan, 1.0]), ValueError, r"z must be finite .*got \[nan  1.\]", "nf-z-nan"),
+    row(lambda: pickle.loads(pickle.dumps(NF)).update([0.0, 1.0, 2.0]), ValueError, r"z must have 2 entries, got shape \(3,\)", "nf-z-len"),
+    row(lambda: pickle.loads(pickle.dumps(NF)).batch_filter(np.zeros((5, 3))), ValueError, r"zs must have shape \(n_steps, 2\), got \(5, 3\)", "nf-zs-shape"),
+    row(lambda: pickle.loads(pickle.dumps(NF)).reset(np.zeros(5)), ValueError, r"x0 must have length 6, got shape \(5,\)", "nf-reset-x0"),
+    row(lambda: nfm.make_training_set(np.zeros((5, 5))), ValueError, r"states must have shape \(n_states, 6\), got \(5, 5\)", "nf-training-states"),
+    row(lambda: nfm.paper_training_states(0), ValueError, r"n_points must be >= 2, got 0", "nf-paper-states"),
+    row(lambda: nfm.random_motion_states(0, rng=0), ValueError, r"n must be >= 1, got 0", "nf-random-states"),
+]
+
+# --------------------------------------------------------------------------- studies
+WNN_STUDY = dict(n_runs=1, n_epochs=1, pf_epochs=1, n_particles=2, trainers=["bp"], paper_table=False,
+                 references=(), sweep_particles=(), sweep_runs=1, seed=7)
+STUDY_ROWS = [
+    row(lambda: wnn_study.run_study(**{**WNN_STUDY, "n_runs": 0}), ValueError, r"n_runs must be >= 1, got 0", "study-wnn-runs"),
+    row(lambda: wnn_study.run_study(**{**WNN_STUDY, "n_epochs": -1}), ValueError, r"n_epochs must be >= 1, got -1", "study-wnn-epochs"),
+    row(lambda: wnn_study.run_study(**{**WNN_STUDY, "n_particles": 0}), ValueError, r"n_particles must be >= 1, got 0", "study-wnn-particles"),
+    row(lambda: wnn_study.run_study(**{**WNN_STUDY, "trainers": ["adam"]}), ValueError, r"unknown trainer 'adam'; valid:", "study-wnn-trainer"),
+    row(lambda: wnn_study.run_study(**{**WNN_STUDY, "seed": -1}), ValueError, r"seed must be >= 0, got -1", "study-wnn-seed",
+        gap="studies/wnn.py run_study(seed=-1): numpy 'expected non-negative integer' (does not name seed); should raise "
+            "ValueError 'seed must be >= 0, got -1'"),
+    row(lambda: wnn_study.run_study(**{**WNN_STUDY, "seed": "x"}), TypeError, r"seed must be an integer", "study-wnn-seed-type",
+        gap="studies/wnn.py run_study(seed='x'): numpy 'SeedSequence expects int or sequence of ints for entropy not x'; "
+            "should raise TypeError 'seed must be an integer, got str'"),
+]
+
+ROWS = (VALIDATION_ROWS + MODEL_ROWS + METRIC_ROWS + SIGMA_ROWS + UKF_ROWS + WNN_ROWS + PF_ROWS + REGRESSOR_ROWS
+        + DR_ROWS + STUDY_ROWS)
 
 
 @pytest.mark.parametrize("call, exc, match", ROWS)
@@ -335,6 +509,14 @@ RNG_ENTRY_POINTS = {
     "wnn.init_scaled": lambda rng: wnn.init_scaled(X3, 2, rng=rng),
     "WNNWeightModel.simulate": lambda rng: WNNWeightModel(2, 2).simulate(3, rng=rng),
     "datasets.make_siso_benchmark": lambda rng: datasets.make_siso_benchmark(rng=rng),
+    "resampling.resample": lambda rng: resampling.resample([0.5, 0.5], "systematic", rng=rng),
+    "ParticleFilter": lambda rng: make_pf(rng=rng),
+    "WNNRegressor.fit": lambda rng: fit_reg(rng=rng),
+    "NeuralFilter": lambda rng: nfm.NeuralFilter(rng=rng),
+    "neural_filter.make_training_set": lambda rng: nfm.make_training_set(nfm.paper_training_states(), rng=rng),
+    "neural_filter.random_motion_states": lambda rng: nfm.random_motion_states(5, rng=rng),
+    "dead_reckoning.simulate_scenario": lambda rng: dr.simulate_scenario(dr.SCENARIOS["straight"](duration=1.0), rng=rng),
+    "DRModel.simulate": lambda rng: dr.DRModel().simulate(3, rng=rng),
 }
 
 
@@ -417,3 +599,51 @@ def test_failed_ukf_update_does_not_advance_the_step_counter(vectorized):
     with pytest.raises(NumericalError):
         f.update(np.zeros(2), R=-1e3 * I2)
     _assert_same(f, before)
+
+
+PF_FAILING_UPDATES = {
+    "z-nan": lambda f: f.update(np.array([np.nan, 0.0])),
+    "z-len3": lambda f: f.update(np.zeros(3)),
+    "z-type": lambda f: f.update("ab"),
+    "R-shape": lambda f: (setattr(f, "R", I3), f.update(np.zeros(2))),
+    "R-not-pd": lambda f: (setattr(f, "R", -I2), f.update(np.zeros(2))),
+    "R-nan": lambda f: (setattr(f, "R", np.full((2, 2), np.nan)), f.update(np.zeros(2))),
+}
+
+
+@pytest.mark.parametrize("proposal", ["prior", "unscented"])
+@pytest.mark.parametrize("how", sorted(PF_FAILING_UPDATES))
+def test_failed_particle_filter_update_leaves_state_unchanged(proposal, how):
+    def fresh():
+        f = make_pf(proposal=proposal, rng=3)
+        f.Q, f.R = MODEL.Q.copy(), MODEL.R.copy()
+        f.predict()
+        return f
+
+    f = fresh()
+    keys = ("x", "P", "x_post", "P_post", "particles", "log_weights", "step", "log_marginal_likelihood")
+    before = {k: np.array(getattr(f, k), copy=True) for k in keys}
+    rng_state = f.rng.bit_generator.state
+    with pytest.raises((ValueError, TypeError)):
+        PF_FAILING_UPDATES[how](f)
+    for k in keys:
+        np.testing.assert_array_equal(getattr(f, k), before[k], err_msg=k)
+    assert f.rng.bit_generator.state == rng_state
+    # the filter goes on exactly as an untouched twin
+    f.R = MODEL.R.copy()
+    g = fresh()
+    f.update(np.array([0.1, 0.2])); g.update(np.array([0.1, 0.2]))
+    np.testing.assert_array_equal(f.particles, g.particles)
+
+
+def test_failed_neural_filter_update_leaves_state_unchanged():
+    nf = pickle.loads(pickle.dumps(NF))
+    nf.predict()
+    before = (nf.x.copy(), nf.x_prior.copy(), {k: v.copy() for k, v in nf.params_.items()})
+    for bad in ([np.nan, 1.0], [0.0, 1.0, 2.0], "ab"):
+        with pytest.raises((ValueError, TypeError)):
+            nf.update(bad)
+        np.testing.assert_array_equal(nf.x, before[0])
+        np.testing.assert_array_equal(nf.x_prior, before[1])
+        for k, v in before[2].items():
+            np.testing.assert_array_equal(nf.params_[k], v)
