@@ -194,3 +194,13 @@ def test_prior_proposal_uses_process_sampler(rng):
 def test_points_protocol_checked():
     with pytest.raises(TypeError, match="points must follow filterpy's sigma-point protocol"):
         UnscentedKalmanProposal(object())
+
+
+@pytest.mark.parametrize("points", POINTS + [SphericalSimplexSigmaPoints(4, alpha=0.5, w0=0.3)], ids=lambda p: type(p).__name__)
+def test_batched_sigma_points_equal_the_sigma_point_sets(points, rng):
+    from filterwnn.proposals import batched_sigma_points
+
+    x, P = _cloud(rng, N=3)
+    sig = batched_sigma_points(points, x, np.linalg.cholesky(P))
+    for i in range(3):
+        np.testing.assert_allclose(sig[i], points.sigma_points(x[i], P[i]), atol=1e-12)
