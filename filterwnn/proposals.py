@@ -39,9 +39,11 @@ solve and the covariance update is the rank-1 downdate
     \log q(x) = -\tfrac12 |\varepsilon|^2 - \sum_j \log L_{jj} - \tfrac12 \log(1 - |u|^2)
                - \tfrac n2 \log 2\pi ,
 
-one batched triangular solve instead of a second stacked Cholesky. ``|u|^2 < 1`` holds
-exactly when :math:`\hat P` is positive definite. With ``dim_z > 1`` the proposal
-factors :math:`\hat P` itself.
+instead of a second stacked Cholesky. Not even a triangular solve is needed:
+:math:`L^{-1} P_{xy} = Z^T (W_c \circ \Delta Y)` for the unscented step (its cross
+covariance is :math:`L Z^T (W_c \circ \Delta Y)`) and :math:`L^T H^T` for the extended
+one. ``|u|^2 < 1`` holds exactly when :math:`\hat P` is positive definite. With
+``dim_z > 1`` the proposal factors :math:`\hat P` itself.
 
 The proposals read the model from the object they are given (in practice the particle
 filter): ``dim_x, dim_z, dt, fx, hx, Q, R, vectorized`` and, where used, ``FJacobian,
