@@ -66,6 +66,8 @@ Technical Report CUED/F-INFENG/TR 380, Cambridge University, 2000.
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 from filterpy.kalman import MerweScaledSigmaPoints
 
@@ -111,6 +113,30 @@ def _logsumexp(a):
     if not np.isfinite(m):
         return float(m)
     return float(m + np.log(np.sum(np.exp(a - m))))
+
+
+def _repair_pd(C):
+    """Copy of the stack ``C (N, n, n)`` with every non-PD matrix's eigenvalues clipped.
+
+    Returns the repaired stack and the number of matrices changed.
+    """
+    C = np.array(C, dtype=float)
+    n_bad = 0
+    for i in range(C.shape[0]):
+        try:
+            np.linalg.cholesky(C[i])
+            if np.all(np.isfinite(C[i])):
+                continue
+        except np.linalg.LinAlgError:
+            pass
+        M = 0.5 * (C[i] + C[i].T)
+        M[~np.isfinite(M)] = 0.0
+        ev, V = np.linalg.eigh(M)
+        floor = 1e-12 * max(np.max(np.abs(ev)), np.finfo(float).tiny)
+        C[i] = (V * np.maximum(ev, floor)) @ V.T
+        C[i] = 0.5 * (C[i] + C[i].T)
+        n_bad += 1
+    return C, n_bad
 
 
 def _check_callable(f, name, allow_none=True):
@@ -178,6 +204,12 @@ class ParticleFilter:
     measurement_logpdf : callable, optional
         ``measurement_logpdf(z, x, **hx_args)``: log-likelihood (default
         ``log N(z; hx(x), R)``). The bank weight stays the Kalman innovation likelihood.
+    recover : bool, default False
+        Opt-in recovery instead of :class:`~filterwnn.NumericalError` (each use warns
+        with a ``RuntimeWarning`` naming the step): a particle covariance that is not
+        positive definite is repaired by clipping its eigenvalues to ``1e-12`` times the
+        largest (then the step is retried); a measurement under which every weight
+        underflows (or is NaN) is skipped as an outlier, as if ``z`` were None.
 
     Attributes
     ----------
@@ -237,6 +269,7 @@ class ParticleFilter:
         transition_logpdf=None,
         process_sampler=None,
         measurement_logpdf=None,
+        recover=False,
     ):
         self.dim_x = check_positive_int(dim_x, "dim_x")
         self.dim_z = check_positive_int(dim_z, "dim_z")
@@ -253,6 +286,9 @@ class ParticleFilter:
         self.transition_logpdf = _check_callable(transition_logpdf, "transition_logpdf")
         self.process_sampler = _check_callable(process_sampler, "process_sampler")
         self.measurement_logpdf = _check_callable(measurement_logpdf, "measurement_logpdf")
+        if not isinstance(recover, (bool, np.bool_)):
+            raise TypeError(f"recover must be a bool, got {type(recover).__name__}")
+        self.recover = bool(recover)
         self.weighting = check_choice(weighting, "weighting", WEIGHTINGS)
         get_scheme(resampling)  # validates the name
         self.resampling = resampling
@@ -388,6 +424,25 @@ class ParticleFilter:
         self.initialize(x + self.rng.standard_normal((self.n_particles, self.dim_x)) @ L.T, P)
 
     # ------------------------------------------------------------------ helpers
+    def _repairing(self, fn, C, step, what):
+        """``fn(C)``; with ``recover=True`` a covariance failure repairs ``C`` once and retries.
+
+        Returns ``(result, C_used)``.
+        """
+        try:
+            return fn(C), C
+        except NumericalError as exc:
+            if not self.recover or exc.matrix not in ("P", "P_prior"):
+                raise
+            C2, n_bad = _repair_pd(C)
+            warnings.warn(
+                f"step {step}: {n_bad} particle {what} covariance(s) not positive definite ({exc}); "
+                "eigenvalues clipped (recover=True)",
+                RuntimeWarning,
+                stacklevel=3,
+            )
+            return fn(C2), C2
+
     def _check_Q(self):
         """``Q`` as a finite symmetric ``(dim_x, dim_x)`` array (PSD is checked where it is factored)."""
         Q = _noise(self.Q, "Q", self.dim_x)
@@ -452,7 +507,12 @@ class ParticleFilter:
         step = self.step + 1
         w = self.weights
         if self.proposal.uses_covariance:
-            pred = self.proposal.predict(self, self.particles, self.covariances, fx_args, step=step)
+            pred, covs_used = self._repairing(
+                lambda C: self.proposal.predict(self, self.particles, C, fx_args, step=step),
+                self.covariances,
+                step,
+                "posterior",
+            )
             if not (np.all(np.isfinite(pred.x)) and np.all(np.isfinite(pred.P))):
                 bad = int(np.argmin(np.isfinite(pred.x).all(axis=1) & np.isfinite(pred.P).all(axis=(1, 2))))
                 raise NumericalError(
@@ -460,6 +520,7 @@ class ParticleFilter:
                     matrix="P_prior",
                     step=step,
                 )
+            self.covariances = covs_used
             self._pending = {"kind": "kalman", "x_prev": self.particles, "prediction": pred, "fx_args": fx_args}
             if self.weighting == "bank":
                 x, P = self._moments(pred.x, w, pred.P)  # the mixture of the predicted Gaussians
@@ -511,13 +572,31 @@ class ParticleFilter:
         log_lik_max = None
         if pend is not None and pend["kind"] == "kalman":
             pred = pend["prediction"]
-            upd = self.proposal.update(self, pred, z, hx_args, step=step)
+            upd, P_prior = self._repairing(
+                lambda C: self.proposal.update(self, KalmanPrediction(pred.x, C), z, hx_args, step=step),
+                pred.P,
+                step,
+                "predicted",
+            )
             covs = upd.P
             if self.weighting == "bank":
                 X = upd.x
                 log_alpha = upd.log_likelihood
             else:
-                X, log_q = self.proposal.sample(upd, self.rng, step=step, P_prior=pred.P)
+                try:
+                    X, log_q = self.proposal.sample(upd, self.rng, step=step, P_prior=P_prior)
+                except NumericalError as exc:
+                    if not self.recover or exc.matrix not in ("P", "P_prior"):
+                        raise
+                    covs, n_bad = _repair_pd(upd.P)
+                    warnings.warn(
+                        f"step {step}: {n_bad} particle proposal covariance(s) not positive definite "
+                        f"({exc}); eigenvalues clipped (recover=True)",
+                        RuntimeWarning,
+                        stacklevel=2,
+                    )
+                    upd = upd._replace(P=covs, L_prior=None, LinvPxy=None)
+                    X, log_q = self.proposal.sample(upd, self.rng, step=step)
                 log_lik = measurement_logpdf(self, z, X, hx_args)
                 log_tr = transition_logpdf(self, X, pend["x_prev"], pend["fx_args"])
                 log_alpha = log_lik + log_tr - log_q
@@ -534,7 +613,19 @@ class ParticleFilter:
             covs = self.covariances
             log_alpha = measurement_logpdf(self, z, X, hx_args)
 
-        if np.any(np.isnan(log_alpha)) or np.any(log_alpha == np.inf):
+        bad_weights = np.any(np.isnan(log_alpha)) or np.any(log_alpha == np.inf)
+        if self.recover and (bad_weights or not np.any(log_alpha > -np.inf)):
+            warnings.warn(
+                f"step {step}: the measurement gives no finite particle weight "
+                "(all underflow or NaN); skipped as an outlier (recover=True)",
+                RuntimeWarning,
+                stacklevel=2,
+            )
+            self._finish_without_measurement()
+            self.x_post, self.P_post = self.x.copy(), self.P.copy()
+            self._record(self.ess, self._distinct(self.particles), False)
+            return
+        if bad_weights:
             bad = int(np.argmax(np.isnan(log_alpha) | (log_alpha == np.inf)))
             raise NumericalError(
                 f"non-finite particle weight at step {step} (particle {bad}: log-weight {log_alpha[bad]})",
@@ -647,6 +738,7 @@ class _Preset(ParticleFilter):
         transition_logpdf=None,
         process_sampler=None,
         measurement_logpdf=None,
+        recover=False,
     ):
         super().__init__(
             dim_x,
@@ -672,6 +764,7 @@ class _Preset(ParticleFilter):
             transition_logpdf=transition_logpdf,
             process_sampler=process_sampler,
             measurement_logpdf=measurement_logpdf,
+            recover=recover,
         )
 
 

@@ -421,3 +421,25 @@ def test_residual_z_wraps_angles_in_weights_and_kalman_steps(cls):
         pf.update(np.array([-np.pi + 0.02]))
         lls[residual is None] = pf.log_likelihood
     assert lls[False] > -5.0 and lls[True] < -1000.0
+
+
+def test_opt_in_recovery_repairs_covariances_and_skips_impossible_measurements(lin_data):
+    zs = lin_data[0]
+    pf = make(UnscentedParticleFilter, 4, recover=True)
+    C = np.tile(np.eye(3), (4, 1, 1))
+    C[2] = -np.eye(3)
+    pf.initialize(np.zeros((4, 3)), C)
+    with pytest.warns(RuntimeWarning, match=r"step 1: 1 particle posterior covariance\(s\) not positive definite"):
+        pf.predict()
+    pf.update(zs[0])
+    assert np.all(np.isfinite(pf.x)) and np.all(np.linalg.eigvalsh(pf.covariances) > 0)
+
+    pf = make(BootstrapParticleFilter, 30, measurement_logpdf=impossible_logpdf, recover=True)
+    pf.predict()
+    lw = pf.log_weights.copy()
+    with pytest.warns(RuntimeWarning, match="step 1: the measurement gives no finite particle weight"):
+        pf.update(zs[0])
+    np.testing.assert_array_equal(pf.log_weights, lw)
+    np.testing.assert_array_equal(pf.x_post, pf.x_prior)
+    with pytest.raises(TypeError, match="recover must be a bool, got str"):
+        make(BootstrapParticleFilter, 3, recover="yes")
