@@ -367,7 +367,8 @@ def batched_sigma_points(points, x, L):
     """
     N, n = x.shape
     U = np.swapaxes(L, -1, -2)
-    if isinstance(points, _StaircaseSimplex):
+    if isinstance(points, _StaircaseSimplex) and n > 16:
+        # (for small n the stacked cumsum of sigma_deviations, below, has less Python overhead)
         a, b = points._a, points._b
         U = np.ascontiguousarray(U)  # rows of U are read one by one below
         sig = np.empty((N, n + 2, n))
@@ -406,7 +407,8 @@ def _unit_transpose_apply(points, Z, B):
     prefix sum. Others: the dense product.
     """
     n = Z.shape[1]
-    if isinstance(points, _StaircaseSimplex):
+    if isinstance(points, _StaircaseSimplex) and n > 16:
+        # (for small n the stacked cumsum of sigma_deviations, below, has less Python overhead)
         a, b = points._a, points._b
         # (Z^T B)_j = a_j sum_{i=1..j+1} B_i + b_j B_{j+2}   (0-based j, rows 1..n+1 of Z)
         C = np.cumsum(B[:, 1 : n + 1, :], axis=1)

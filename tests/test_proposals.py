@@ -204,3 +204,15 @@ def test_batched_sigma_points_equal_the_sigma_point_sets(points, rng):
     sig = batched_sigma_points(points, x, np.linalg.cholesky(P))
     for i in range(3):
         np.testing.assert_allclose(sig[i], points.sigma_points(x[i], P[i]), atol=1e-12)
+
+
+def test_batched_sigma_points_large_staircase_path(rng):
+    from filterwnn.proposals import batched_sigma_points
+
+    pts = SphericalSimplexSigmaPoints(24, alpha=0.7)
+    x = rng.standard_normal((2, 24))
+    A = rng.standard_normal((2, 24, 24))
+    P = A @ np.swapaxes(A, 1, 2) + np.eye(24)
+    sig = batched_sigma_points(pts, x, np.linalg.cholesky(P))
+    for i in range(2):
+        np.testing.assert_allclose(sig[i], pts.sigma_points(x[i], P[i]), atol=1e-11)
