@@ -394,6 +394,8 @@ class GPSDRModel(StateSpaceModel):
         Prior standard deviations of ``zeta`` and ``b``.
     stationary_inflation : float
         Factor on the heading variance used by ``R_for(stationary=True)``.
+    sigma_zupt : float
+        Standard deviation (m/s) of the zero-velocity update (``update(zupt=True)``).
     x0, P0 : array-like, optional
         Prior (default as :class:`DRModel`, extended by ``zeta`` and ``b = 0``).
     """
@@ -413,6 +415,7 @@ class GPSDRModel(StateSpaceModel):
         sd_scale=0.05,
         sd_bias=np.deg2rad(5.0),
         stationary_inflation=1e6,
+        sigma_zupt=0.01,
         accel_term="kinematic",
         min_speed=0.1,
         x0=None,
@@ -430,6 +433,7 @@ class GPSDRModel(StateSpaceModel):
         self.q_scale = check_positive(q_scale, "q_scale", strict=False)
         self.q_bias = check_positive(q_bias, "q_bias", strict=False)
         self.stationary_inflation = check_positive(stationary_inflation, "stationary_inflation")
+        self.sigma_zupt = check_positive(sigma_zupt, "sigma_zupt")
         self.accel_term = check_choice(accel_term, "accel_term", _ACCEL_TERMS)
         self.min_speed = check_positive(min_speed, "min_speed")
         n = self.dim_x
@@ -458,16 +462,29 @@ class GPSDRModel(StateSpaceModel):
         """The (constant) transition matrix ``(dim_x, dim_x)``."""
         return self.F if dt is None else transition_matrix(dt, self.accel_term, self.dim_x)
 
-    def hx(self, x, gps=True, **hx_args):
-        """``[theta, s, e, n]`` (``gps=True``) or ``[theta, s]``, on the last axis."""
-        z = dr_hx(x, self.dt, self.zeta, self.augmented)
+    def hx(self, x, gps=True, zupt=False, **hx_args):
+        """``[theta, s, e, n]`` (``gps=True``) or ``[theta, s]``, on the last axis.
+
+        ``zupt=True``: the DR part is the zero-velocity pseudo-measurement ``[v_e, v_n]``.
+        """
+        if zupt:
+            x = np.asarray(x, dtype=float)
+            z = np.stack([x[..., 1], x[..., 4]], axis=-1)
+        else:
+            z = dr_hx(x, self.dt, self.zeta, self.augmented)
         if not gps:
             return z
         return np.concatenate([z, gps_hx(x)], axis=-1)
 
-    def HJacobian(self, x, gps=True, **hx_args):
-        """Analytic Jacobian ``(4, dim_x)`` (``gps=True``) or ``(2, dim_x)``."""
-        H = dr_HJacobian(x, self.dt, self.zeta, self.augmented, self.min_speed)
+    def HJacobian(self, x, gps=True, zupt=False, **hx_args):
+        """Analytic Jacobian ``(4, dim_x)`` (``gps=True``) or ``(2, dim_x)`` (``zupt`` as in :meth:`hx`)."""
+        if zupt:
+            x = np.asarray(x, dtype=float)
+            H = np.zeros(x.shape[:-1] + (2, self.dim_x))
+            H[..., 0, 1] = 1.0
+            H[..., 1, 4] = 1.0
+        else:
+            H = dr_HJacobian(x, self.dt, self.zeta, self.augmented, self.min_speed)
         if not gps:
             return H
         G = np.zeros(H.shape[:-2] + (2, self.dim_x))
@@ -475,15 +492,19 @@ class GPSDRModel(StateSpaceModel):
         G[..., 1, 3] = 1.0
         return np.concatenate([H, G], axis=-2)
 
-    def R_for(self, gps=True, stationary=False):
+    def R_for(self, gps=True, stationary=False, zupt=False):
         """Measurement noise for the chosen measurement: ``(4, 4)`` or ``(2, 2)``.
 
         ``stationary=True`` multiplies the heading variance by ``stationary_inflation``:
-        the heading of a standing vehicle says nothing about its (zero) velocity, and
-        the linearisation at ``|v| ~ 0`` is meaningless.
+        at (nearly) zero speed the heading says nothing about the velocity, and the
+        linearisation at ``|v| ~ 0`` is meaningless. ``zupt=True``: the DR block is
+        ``sigma_zupt^2 I`` for the zero-velocity pseudo-measurement.
         """
         R = self.R if gps else self.R[:2, :2]
-        if stationary:
+        if zupt:
+            R = R.copy()
+            R[:2, :2] = self.sigma_zupt**2 * np.eye(2)
+        elif stationary:
             R = R.copy()
             R[0, 0] *= self.stationary_inflation
         return R
@@ -499,7 +520,7 @@ class GPSDRModel(StateSpaceModel):
             return z, False
         return np.concatenate([z, as_state(z_gps, "z_gps", 2)]), True
 
-    def update(self, kf, z_dr, z_gps=None, *, stationary=False, R=None):
+    def update(self, kf, z_dr, z_gps=None, *, stationary=False, zupt=False, R=None):
         """Update a filterpy-style filter with a DR measurement and an optional GPS fix.
 
         Works with filterpy's ``ExtendedKalmanFilter`` (analytic Jacobian, wrapped
@@ -517,18 +538,29 @@ class GPSDRModel(StateSpaceModel):
         z_gps : array-like of shape (2,) or None
             ``[e, n]`` fix (m), or ``None`` when there is none.
         stationary : bool
-            The vehicle stands still: heading variance inflated (see :meth:`R_for`).
+            (Nearly) zero speed: heading variance inflated (see :meth:`R_for`).
+        zupt : bool
+            The odometer says the vehicle stands still: the DR measurement is replaced by
+            the zero-velocity update ``[v_e, v_n] = 0`` (a range-only odometer cannot hold
+            the velocity at zero: its Jacobian vanishes there). For unscented filters
+            the filter's ``residual_z`` still wraps entry 0, which matters only if the
+            predicted east velocity of a standing vehicle exceeds pi m/s.
         R : ndarray, optional
             Override of the measurement noise for this call (shape to match).
         """
         from filterpy.kalman import ExtendedKalmanFilter
 
         z, gps = self.measurement(z_dr, z_gps)
+        if zupt:
+            z = z.copy()
+            z[:2] = 0.0
         if R is None:
-            R = self.R_for(gps, stationary)
+            R = self.R_for(gps, stationary, zupt)
         if isinstance(kf, ExtendedKalmanFilter):
-            kf.update(z, self.HJacobian, self.hx, R=R, args=(gps,), hx_args=(gps,),
-                      residual=dr_residual)
+            kf.update(z, self.HJacobian, self.hx, R=R, args=(gps, zupt), hx_args=(gps, zupt),
+                      residual=np.subtract if zupt else dr_residual)
+        elif zupt:
+            kf.update(z, R=R, gps=gps, zupt=True)
         else:
             kf.update(z, R=R, gps=gps)
         return kf

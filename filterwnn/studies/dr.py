@@ -41,6 +41,7 @@ outages and at the end of each outage.
 from __future__ import annotations
 
 import argparse
+import copy
 import csv
 import os
 import time
@@ -53,6 +54,8 @@ from filterpy.kalman import ExtendedKalmanFilter, MerweScaledSigmaPoints
 from .._validation import check_positive_int
 from ..dead_reckoning import (
     SCENARIOS,
+    DRRun,
+    Scenario,
     DRModel,
     GPSDRModel,
     dr_residual,
@@ -87,6 +90,10 @@ __all__ = [
     "write_outputs",
     "add_arguments",
     "run",
+    "load_car_drive",
+    "with_outage",
+    "real_drive_outages",
+    "real_drive_table",
 ]
 
 DR_FILTERS = ("EKF", "EKF-oracle", "AEKF", "UKF", "SUKF", "NN", "NN-faithful", "NN-gen", "UPF")
@@ -94,6 +101,16 @@ GPSDR_FILTERS = ("EKF", "EKF-8", "UKF-8", "SUKF-8", "DR-only")
 UPF_PARTICLES = 50
 #: Filters run only when asked for (``--filters``): the UPF costs about 100x the EKF.
 OPT_IN = ("UPF",)
+#: Below this odometer speed (m/s) the GPS/DR filters treat the heading as uninformative;
+#: an odometer reading of exactly 0 triggers a zero-velocity update.
+STANDSTILL_SPEED = 1.0
+
+
+def _motion_flags(run, slow_speed=None):
+    """``(slow, still)`` per step from the odometer: heading ignored / zero-velocity update."""
+    s = run.z_dr[:, 1]
+    v = STANDSTILL_SPEED if slow_speed is None else slow_speed
+    return s < v * run.scenario.dt, s <= 0.0
 ORACLE = {"dr": "EKF-oracle", "gpsdr": "EKF-8"}
 DEFAULT_SCENARIOS = ("straight", "turns", "heading180", "outliers", "gpsdr")
 DIV_FACTOR = 3.0
@@ -260,9 +277,10 @@ def _gpsdr_filter_run(name, run, x0, rng):
         kf = _ukf(model, _points("merwe" if name == "UKF-8" else "simplex", 8), x0m, P0, True)
     else:
         raise ValueError(f"unknown filter {name!r}; valid: {', '.join(GPSDR_FILTERS)}")
+    slow, still = _motion_flags(run)
     for k in range(n):
         kf.predict()
-        model.update(kf, run.z_dr[k], gps_z[k])
+        model.update(kf, run.z_dr[k], gps_z[k], stationary=bool(slow[k]), zupt=bool(still[k]))
         out[k] = kf.x[:6]
     return out
 
@@ -545,6 +563,238 @@ def write_outputs(result, out_dir, figures=True):
     return paths
 
 
+# ----------------------------------------------------------------------------- real drive
+
+CAR_DRIVE = "2021-04-27C-car-hill-drive"
+#: Reference speeds below this (m/s) give an odometer reading of 0 (standstill).
+MIN_ODOMETER_SPEED = 0.05
+_WGS84_A, _WGS84_E2 = 6378137.0, 6.69437999014e-3
+
+
+def _onav_dir(drive):
+    try:
+        import importlib.resources as resources
+
+        root = resources.files("onavdata")
+    except (ImportError, ModuleNotFoundError) as exc:
+        raise ImportError(
+            "the real-drive part needs the optional 'onavdata' package: pip install 'filterwnn[data]' "
+            "(or pip install onavdata)"
+        ) from exc
+    d = root / "data" / "HGuide n380" / drive
+    if not d.is_dir():
+        raise ValueError(f"drive {drive!r} not found in onavdata (looked in {d})")
+    return d
+
+
+def _read_zipped_csv(folder, name):
+    import io
+    import zipfile
+
+    with (folder / f"{name}.csv.zip").open("rb") as fh:
+        zf = zipfile.ZipFile(io.BytesIO(fh.read()))
+        with zf.open(zf.namelist()[0]) as f:
+            header = [h.strip() for h in f.readline().decode().strip().split(",")]
+            data = np.loadtxt(io.TextIOWrapper(f), delimiter=",", usecols=range(len(header)), ndmin=2)
+    return {h: data[:, i] for i, h in enumerate(header)}
+
+
+def load_car_drive(drive=CAR_DRIVE, dt=0.1, odometer_scale=1.02, odometer_noise=0.02, rng=0):
+    """A real car drive from ``onavdata`` as a :class:`~filterwnn.dead_reckoning.DRRun`.
+
+    The HGuide n380 drives ship 100 Hz IMU increments, 1 Hz GNSS fixes and the
+    INS/GNSS reference solution, as zipped CSV files read here through
+    :mod:`importlib.resources` (``pip install onavdata``, the ``data`` extra).
+
+    * truth: the reference INS position (latitude/longitude to local east/north metres
+      about the first valid sample) and velocity, on a ``dt`` grid, rows with
+      ``InsMode == 4`` only;
+    * heading: the gyro's yaw, ``DeltaTheta[0]`` (the body down axis per the package's
+      meta file; an angle increment per 100 Hz sample), integrated from the reference
+      heading at the start -- so it drifts like a real DR gyro;
+    * odometer: the car has none, so ``dt * odometer_scale * |v_ref| + noise`` (clipped
+      at 0), a stated 2 % scale error by default -- never the GNSS speed, which an
+      outage would take away too;
+    * GPS: the receiver's 1 Hz fixes, each on its nearest grid step.
+
+    Returns
+    -------
+    DRRun
+        ``scenario`` describes the drive (``gps_rate=1``, no outages: cut them in with
+        :func:`with_outage`).
+    """
+    rng = check_rng_local(rng)
+    folder = _onav_dir(drive)
+    pos = _read_zipped_csv(folder, "n380-position")
+    vel = _read_zipped_csv(folder, "n380-velocity")
+    att = _read_zipped_csv(folder, "n380-attitude")
+    imu = _read_zipped_csv(folder, "n380-imu-nav")
+    gnss = _read_zipped_csv(folder, "n380-gnss-pvt")
+    ok = (pos["SystemTov"] > 0) & (pos["InsGnssBIT.InsMode"] == 4)
+    tp = pos["SystemTov"][ok]
+    lat, lon, h = pos["Latitude"][ok], pos["Longitude"][ok], pos["AltitudeAboveEllipsoid"][ok]
+    lat0, lon0, h0 = lat[0], lon[0], h[0]
+    sl = np.sin(lat0)
+    rn = _WGS84_A / np.sqrt(1 - _WGS84_E2 * sl * sl)
+    rm = _WGS84_A * (1 - _WGS84_E2) / (1 - _WGS84_E2 * sl * sl) ** 1.5
+
+    def en(la, lo):
+        return (lo - lon0) * (rn + h0) * np.cos(lat0), (la - lat0) * (rm + h0)
+
+    t0 = tp[0]
+    n = int((tp[-1] - t0) / dt) - 1
+    t = t0 + dt * np.arange(1, n + 1)
+    e_ref, n_ref = en(lat, lon)
+    okv = (vel["SystemTov"] > 0) & (vel["InsGnssBIT.InsMode"] == 4)
+    tv = vel["SystemTov"][okv]
+    ve = np.interp(t, tv, vel["VelocityNED[1]"][okv])
+    vn = np.interp(t, tv, vel["VelocityNED[0]"][okv])
+    x_true = np.zeros((n, 6))
+    x_true[:, 0] = np.interp(t, tp, e_ref)
+    x_true[:, 3] = np.interp(t, tp, n_ref)
+    x_true[:, 1], x_true[:, 4] = ve, vn
+    x_true[:, 2] = np.gradient(ve, dt)
+    x_true[:, 5] = np.gradient(vn, dt)
+    x0 = np.array([np.interp(t0, tp, e_ref), np.interp(t0, tv, vel["VelocityNED[1]"][okv]), 0.0,
+                   np.interp(t0, tp, n_ref), np.interp(t0, tv, vel["VelocityNED[0]"][okv]), 0.0])
+    # gyro heading: integrate the yaw increments from the reference heading at t0
+    oka = (att["SystemTov"] > 0) & (att["InsGnssBIT.InsMode"] == 4)
+    heading0 = np.interp(t0, att["SystemTov"][oka], np.unwrap(att["EulerAttitude[2]"][oka]))
+    ti = imu["SystemTov"]
+    cum = np.cumsum(imu["DeltaTheta[0]"])
+    theta = heading0 + np.interp(t, ti, cum) - np.interp(t0, ti, cum)
+    speed = np.hypot(ve, vn)
+    moving = speed > MIN_ODOMETER_SPEED  # a wheel odometer reads exactly 0 at standstill
+    dist = np.where(moving, np.maximum(dt * odometer_scale * speed + odometer_noise * rng.standard_normal(n), 0.0), 0.0)
+    z_dr = np.stack([wrap_angle_local(theta), dist], axis=1)
+    okg = (gnss["SystemTov"] > t0) & (gnss["InsGnssBIT.GpsMode"] > 0)
+    tg = gnss["SystemTov"][okg]
+    steps = np.round((tg - t0) / dt).astype(int) - 1
+    keep = (steps >= 0) & (steps < n)
+    steps, idx = np.unique(steps[keep], return_index=True)
+    ge, gn = en(gnss["GnssLatitude"][okg][keep][idx], gnss["GnssLongitude"][okg][keep][idx])
+    z_gps = np.stack([ge, gn], axis=1)
+    sc = Scenario(name=drive, duration=n * dt, dt=dt, speed=float(np.hypot(x0[1], x0[4])),
+                  heading=float(np.degrees(heading0)), t_switch=np.inf, factor=1.0,
+                  odometer_scale=odometer_scale, sigma_odometer=odometer_noise, gps_rate=1.0,
+                  sigma_gps=1.0)
+    R_true = np.tile([np.deg2rad(1.0) ** 2, odometer_noise**2], (n, 1))
+    return DRRun(t - t0, x0, x_true, z_dr, steps, z_gps, R_true, sc)
+
+
+def check_rng_local(rng):
+    from .._validation import check_rng
+
+    return check_rng(rng)
+
+
+def wrap_angle_local(a):
+    from ..dead_reckoning import wrap_angle
+
+    return wrap_angle(a)
+
+
+def with_outage(run, start, length):
+    """A copy of ``run`` without GPS fixes in ``[start, start + length)`` (times of ``run.t``)."""
+    tf = run.t[run.gps_steps]
+    keep = ~((tf >= start) & (tf < start + length))
+    sc = run.scenario.with_(outages=((float(start), float(start + length)),))
+    return run._replace(gps_steps=run.gps_steps[keep], z_gps=run.z_gps[keep], scenario=sc)
+
+
+#: GPS/DR model settings for the real drive (a car's manoeuvres need a larger jerk PSD,
+#: the receiver's fixes are about 1 m, and the gyro's heading drifts: a random-walk bias).
+REAL_MODEL = dict(q=2.0, sigma_heading=np.deg2rad(1.0), sigma_odometer=0.02, sigma_gps=1.0,
+                  q_scale=1e-6, q_bias=1e-6)
+
+
+def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "EKF", "EKF-8"),
+                       model_kwargs=None, slow_speed=None):
+    """Cut ``n_placements`` GPS outages of ``length`` s into a drive; error at each outage end.
+
+    Placements are spread evenly from the first step to ``length`` s before the end
+    (the first one starts before the car moves). ``EKF``/``EKF-8`` are the 6- and
+    8-state GPS/DR EKFs (heading treated as uninformative below
+    :data:`STANDSTILL_SPEED`); ``DR-mech`` integrates ``s [sin theta, cos theta]`` from
+    the true position at the outage start (dead reckoning without a filter).
+
+    Returns
+    -------
+    dict
+        ``starts (n_placements,)``, ``moved (n_placements,)`` (distance driven during
+        each outage, m), and per filter ``(n_placements,)`` end-of-outage horizontal
+        errors (m); NaN never appears (a non-finite estimate raises).
+    """
+    kw = dict(REAL_MODEL, **(model_kwargs or {}))
+    dt = run.scenario.dt
+    t_end = run.t[-1]
+    starts = np.linspace(0.0, t_end - length - 1.0, n_placements)
+    out = {"starts": starts, "length": length}
+    moved = []
+    for a in starts:
+        k0 = int(np.searchsorted(run.t, a))
+        k1 = int(np.searchsorted(run.t, a + length)) - 1
+        moved.append(float(np.sum(np.hypot(*np.diff(run.x_true[k0:k1 + 1][:, [0, 3]], axis=0).T))))
+    out["moved"] = np.array(moved)
+    slow, still = _motion_flags(run, slow_speed)
+    gps = run.gps_list()
+    for name in filters:
+        errs = []
+        for a in starts:
+            k0 = int(np.searchsorted(run.t, a))
+            k1 = int(np.searchsorted(run.t, a + length)) - 1
+            if name == "DR-mech":
+                p = run.x_true[k0 - 1, [0, 3]] if k0 > 0 else run.x0[[0, 3]]
+                z = run.z_dr[k0:k1 + 1]
+                p = p + np.sum(z[:, 1:2] * np.stack([np.sin(z[:, 0]), np.cos(z[:, 0])], axis=1), axis=0)
+                errs.append(float(np.hypot(*(p - run.x_true[k1, [0, 3]]))))
+                continue
+            errs.append(None)
+        if name == "DR-mech":
+            out[name] = np.array(errs)
+            continue
+        # one pass with GPS, a snapshot at each outage start, then the outage alone
+        model = GPSDRModel(dt=dt, augmented=name == "EKF-8", **kw)
+        x0 = np.concatenate([run.x0, [1.0, 0.0]]) if model.augmented else run.x0.copy()
+        P0 = model.P0.copy()
+        P0[0, 0] = P0[3, 3] = 1.0
+        kf = model.ekf(x0=x0, P0=P0)
+        k0s = [int(np.searchsorted(run.t, a)) for a in starts]
+        snaps = {}
+        for k in range(max(k0s) + 1):
+            if k in k0s:
+                snaps[k] = copy.deepcopy(kf)
+            kf.predict()
+            model.update(kf, run.z_dr[k], gps[k], stationary=bool(slow[k]), zupt=bool(still[k]))
+        for j, a in enumerate(starts):
+            k0 = k0s[j]
+            k1 = int(np.searchsorted(run.t, a + length)) - 1
+            f = copy.deepcopy(snaps[k0])
+            for k in range(k0, k1 + 1):
+                f.predict()
+                model.update(f, run.z_dr[k], None, stationary=bool(slow[k]), zupt=bool(still[k]))
+            if not np.all(np.isfinite(f.x)):
+                raise FloatingPointError(f"{name}: non-finite state at step {k1} (outage at {a:.1f} s)")
+            errs[j] = float(np.hypot(f.x[0] - run.x_true[k1, 0], f.x[3] - run.x_true[k1, 3]))
+        out[name] = np.array(errs)
+    return out
+
+
+def real_drive_table(res, min_moved=100.0):
+    """Markdown: median/p90/max end-of-outage error over all placements and moving ones."""
+    mv = res["moved"] >= min_moved
+    names = [k for k in res if k not in ("starts", "moved", "length")]
+    lines = [f"### real drive {CAR_DRIVE}: {len(res['starts'])} GPS outages of {res['length']:g} s "
+             f"({int(mv.sum())} with >= {min_moved:g} m driven)", "",
+             "| filter | median all | p90 all | max all | median moving | max moving |", "|---|---|---|---|---|---|"]
+    for n in names:
+        e = res[n]
+        em = e[mv] if mv.any() else np.array([np.nan])
+        lines.append(f"| {n} | {np.median(e):.2f} | {np.percentile(e, 90):.2f} | {e.max():.2f} | "
+                     f"{np.median(em):.2f} | {em.max():.2f} |")
+    return "\n".join(lines) + "\n"
+
+
 def add_arguments(parser):
     """Options of ``filterwnn study dr``."""
     parser.add_argument("--runs", type=int, default=10, help="Monte-Carlo runs per scenario (default 10)")
@@ -557,6 +807,8 @@ def add_arguments(parser):
     parser.add_argument("--out", default="results/dr", help="output folder (default results/dr)")
     parser.add_argument("--no-figures", action="store_true")
     parser.add_argument("--quiet", action="store_true", help="no progress bar")
+    parser.add_argument("--real", action="store_true",
+                        help=f"also run the GPS/DR filters on the real drive {CAR_DRIVE} (needs onavdata)")
 
 
 def run(args):
@@ -566,6 +818,18 @@ def run(args):
                     seed=args.seed, jobs=args.jobs, factor=args.factor, progress=not args.quiet)
     paths = write_outputs(res, args.out, figures=not args.no_figures)
     print(markdown_table(res))
+    if getattr(args, "real", False):
+        try:
+            drive = load_car_drive()
+        except ImportError as exc:
+            print(f"skipping the real drive: {exc}")
+        else:
+            text = real_drive_table(real_drive_outages(drive))
+            p = os.path.join(args.out, "dr_real_drive.md")
+            with open(p, "w") as fh:
+                fh.write(text)
+            paths.append(p)
+            print(text)
     print("wrote:", ", ".join(paths))
     return 0
 
