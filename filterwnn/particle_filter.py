@@ -303,13 +303,13 @@ class ParticleFilter:
         self.proposal = self._make_proposal(proposal, points)
         if self.weighting == "bank" and not self.proposal.uses_covariance:
             raise ValueError(
-                "weighting='bank' needs a Kalman proposal (extended or unscented), "
-                f"got {self.proposal!r}"
+                "weighting='bank' needs a Kalman proposal (extended or unscented) whose particles "
+                f"carry covariances, got {self.proposal!r}"
             )
         if isinstance(self.proposal, ExtendedKalmanProposal):
             if self.HJacobian is None:
                 raise ValueError("the extended Kalman proposal needs HJacobian, got None")
-            if self.fx is not None and self.FJacobian is None:
+            if self.fx is not None and self.FJacobian is None and self.proposal.uses_covariance:
                 raise ValueError("the extended Kalman proposal needs FJacobian when fx is given, got None")
 
         # filterpy's defaults
@@ -432,7 +432,7 @@ class ParticleFilter:
         try:
             return fn(C), C
         except NumericalError as exc:
-            if not self.recover or exc.matrix not in ("P", "P_prior"):
+            if not self.recover or exc.matrix not in ("P", "P_prior") or C is None:
                 raise
             C2, n_bad = _repair_pd(C)
             warnings.warn(
@@ -486,7 +486,7 @@ class ParticleFilter:
         else:
             # no measurement: the optimal proposal is the transition, weights unchanged
             self.particles = sample_transition(self, pend["x_prev"], pend["fx_args"], self.rng)
-        self.covariances = pred.P
+        self.covariances = pred.P if self.proposal.uses_covariance else None
 
     # ------------------------------------------------------------------ filterpy API
     def predict(self, **fx_args):
@@ -506,7 +506,7 @@ class ParticleFilter:
             self._finish_without_measurement()
         step = self.step + 1
         w = self.weights
-        if self.proposal.uses_covariance:
+        if getattr(self.proposal, "is_kalman", self.proposal.uses_covariance):
             pred, covs_used = self._repairing(
                 lambda C: self.proposal.predict(self, self.particles, C, fx_args, step=step),
                 self.covariances,
@@ -578,7 +578,7 @@ class ParticleFilter:
                 step,
                 "predicted",
             )
-            covs = upd.P
+            covs = upd.P if self.proposal.uses_covariance else None
             if self.weighting == "bank":
                 X = upd.x
                 log_alpha = upd.log_likelihood
@@ -588,14 +588,15 @@ class ParticleFilter:
                 except NumericalError as exc:
                     if not self.recover or exc.matrix not in ("P", "P_prior"):
                         raise
-                    covs, n_bad = _repair_pd(upd.P)
+                    repaired, n_bad = _repair_pd(upd.P)
+                    covs = repaired if self.proposal.uses_covariance else None
                     warnings.warn(
                         f"step {step}: {n_bad} particle proposal covariance(s) not positive definite "
                         f"({exc}); eigenvalues clipped (recover=True)",
                         RuntimeWarning,
                         stacklevel=2,
                     )
-                    upd = upd._replace(P=covs, L_prior=None, LinvPxy=None)
+                    upd = upd._replace(P=repaired, L_prior=None, LinvPxy=None)
                     X, log_q = self.proposal.sample(upd, self.rng, step=step)
                 log_lik = measurement_logpdf(self, z, X, hx_args)
                 log_tr = transition_logpdf(self, X, pend["x_prev"], pend["fx_args"])

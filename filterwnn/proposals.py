@@ -201,7 +201,12 @@ def _noise(M, name, dim):
 
 
 def _chol(P, name, step=None):
-    """Stacked lower Cholesky factors of ``P (..., n, n)``; NumericalError if any is not PD."""
+    """Stacked lower Cholesky factors of ``P (..., n, n)``; NumericalError if any is not PD.
+
+    A broadcast stack (one matrix repeated, stride 0) is factored once.
+    """
+    if P.ndim == 3 and P.shape[0] > 1 and P.strides[0] == 0:
+        return np.broadcast_to(_chol(P[:1], name, step), P.shape)
     try:
         L = np.linalg.cholesky(P)
     except np.linalg.LinAlgError:
@@ -502,9 +507,36 @@ def _kalman_finish(model, x_prior, P_prior, z, z_pred, S, Pxy, L_prior, step, Li
 
 
 class _KalmanProposal:
-    """Shared sampling and density of ``q = N(x_hat_i, P_hat_i)``."""
+    r"""Shared sampling and density of ``q = N(x_hat_i, P_hat_i)``.
 
-    uses_covariance = True
+    ``carry_covariance=True`` (van der Merwe et al.'s UPF) starts each particle's Kalman
+    step from the particle's own covariance ``P_i``, which it carries from step to step.
+    ``carry_covariance=False`` starts it from the particle as a point, ``P^- = Q`` and
+    ``x^- = f(x'_i)``: the local linearisation of the optimal proposal
+    :math:`p(x_k \mid x'_i, y_k)` (Doucet, Godsill and Andrieu 2000, sec. II-D; exact for
+    linear-Gaussian models). Its textbook weights stay balanced where the carried
+    covariance is much wider than ``Q`` (then the carried version's weight
+    :math:`p(x \mid x')/q(x)` collapses to one particle); it needs no per-particle
+    covariance storage, and not the bank weighting.
+    """
+
+    is_kalman = True
+
+    def __init__(self, carry_covariance=True):
+        if not isinstance(carry_covariance, (bool, np.bool_)):
+            raise TypeError(f"carry_covariance must be a bool, got {type(carry_covariance).__name__}")
+        self.carry_covariance = bool(carry_covariance)
+
+    @property
+    def uses_covariance(self):
+        """Whether particles carry covariances (``carry_covariance``)."""
+        return self.carry_covariance
+
+    @staticmethod
+    def _point_prediction(model, x):
+        """``x^- = f(x)``, ``P^- = Q`` for every particle (``P^-`` a broadcast view)."""
+        Q = _noise(model.Q, "Q", model.dim_x)
+        return x, np.broadcast_to(Q, (x.shape[0],) + Q.shape)
 
     def predict(self, model, x, P, fx_args, step=None):  # pragma: no cover - abstract
         raise NotImplementedError
@@ -601,7 +633,8 @@ class _KalmanProposal:
         return -0.5 * (maha + logdet + n * _LOG_2PI)
 
     def __repr__(self):
-        return f"{type(self).__name__}()"
+        extra = "" if self.carry_covariance else "carry_covariance=False"
+        return f"{type(self).__name__}({extra})"
 
 
 class PriorProposal:
@@ -613,6 +646,7 @@ class PriorProposal:
     """
 
     uses_covariance = False
+    is_kalman = False
 
     def sample(self, model, x_prev, fx_args, rng):
         """Draw every particle's successor -> ``(n_particles, dim_x)``."""
@@ -634,6 +668,8 @@ class ExtendedKalmanProposal(_KalmanProposal):
 
     def predict(self, model, x, P, fx_args, step=None):
         """Predicted ``(x (N, n), P (N, n, n))`` from the particles' ``x (N, n)``, ``P (N, n, n)``."""
+        if P is None:
+            return KalmanPrediction(*self._point_prediction(model, _transition_mean(model, x, fx_args)))
         Q = _noise(model.Q, "Q", model.dim_x)
         if model.fx is None:
             return KalmanPrediction(x.copy(), P + Q)
@@ -671,7 +707,8 @@ class UnscentedKalmanProposal(_KalmanProposal):
     ``fx=None`` the predict is ``P^- = P + Q`` and a step costs one stacked Cholesky.
     """
 
-    def __init__(self, points):
+    def __init__(self, points, carry_covariance=True):
+        super().__init__(carry_covariance)
         for attr in ("n", "Wm", "Wc", "num_sigmas", "sigma_points"):
             if not hasattr(points, attr):
                 raise TypeError(
@@ -692,6 +729,8 @@ class UnscentedKalmanProposal(_KalmanProposal):
     def predict(self, model, x, P, fx_args, step=None):
         """Predicted ``(x (N, n), P (N, n, n))`` by the unscented transform through ``fx``."""
         self._check_n(model)
+        if P is None:
+            return KalmanPrediction(*self._point_prediction(model, _transition_mean(model, x, fx_args)))
         Q = _noise(model.Q, "Q", model.dim_x)
         if model.fx is None:
             return KalmanPrediction(x.copy(), P + Q)
@@ -726,4 +765,5 @@ class UnscentedKalmanProposal(_KalmanProposal):
         return _kalman_finish(model, xp, Pp, z, zp, S, Pxy, L, step, LinvPxy=LinvPxy)
 
     def __repr__(self):
-        return f"UnscentedKalmanProposal(points={type(self.points).__name__}(n={self.points.n}))"
+        extra = "" if self.carry_covariance else ", carry_covariance=False"
+        return f"UnscentedKalmanProposal(points={type(self.points).__name__}(n={self.points.n}){extra})"

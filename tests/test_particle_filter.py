@@ -443,3 +443,34 @@ def test_opt_in_recovery_repairs_covariances_and_skips_impossible_measurements(l
     np.testing.assert_array_equal(pf.x_post, pf.x_prior)
     with pytest.raises(TypeError, match="recover must be a bool, got str"):
         make(BootstrapParticleFilter, 3, recover="yes")
+
+
+@pytest.mark.parametrize("kind", ["unscented", "extended"])
+def test_point_started_kalman_proposal_is_the_optimal_one_on_a_linear_model(kind, lin_data):
+    """carry_covariance=False: P^- = Q from each particle, the optimal proposal here; it
+    matches the KF within the file's tolerances with a higher ESS than the carried one."""
+    from filterpy.kalman import MerweScaledSigmaPoints
+
+    from filterwnn import ExtendedKalmanProposal
+
+    zs, kf_means, kf_covs = lin_data[:3]
+    ess = {}
+    for carry in (True, False):
+        prop = (
+            UnscentedKalmanProposal(MerweScaledSigmaPoints(3, 1.0, 2.0, 0.0), carry_covariance=carry)
+            if kind == "unscented"
+            else ExtendedKalmanProposal(carry_covariance=carry)
+        )
+        pf = make(ParticleFilter, 2000, proposal=prop)
+        means, covs = pf.batch_filter(zs)
+        ess[carry] = np.mean(pf.ess_history)
+        if not carry:
+            assert pf.covariances is None
+            sd = np.sqrt(np.diagonal(kf_covs, axis1=1, axis2=2))
+            assert np.max(np.abs(means - kf_means) / sd) < MEAN_TOL
+            Lk = np.linalg.cholesky(kf_covs)
+            W = np.linalg.solve(Lk, np.swapaxes(np.linalg.solve(Lk, covs - kf_covs), 1, 2))
+            assert np.max(np.abs(np.linalg.eigvalsh(0.5 * (W + np.swapaxes(W, 1, 2))))) < COV_TOL
+    assert ess[False] > ess[True]
+    with pytest.raises(ValueError, match="carry covariances"):
+        make(ParticleFilter, 10, proposal=prop, weighting="bank")
