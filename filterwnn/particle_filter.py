@@ -466,7 +466,9 @@ class ParticleFilter:
     @staticmethod
     def _distinct(X):
         """Number of distinct rows (exact equality: copies made by resampling)."""
-        return len({row.tobytes() for row in np.ascontiguousarray(X)})
+        X = np.ascontiguousarray(X)
+        rows = X.view(np.dtype((np.void, X.dtype.itemsize * X.shape[1]))).ravel()
+        return int(np.unique(rows).size)
 
     def _record(self, ess, n_distinct, resampled):
         self.ess, self.n_distinct = float(ess), int(n_distinct)

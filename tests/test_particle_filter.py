@@ -202,8 +202,8 @@ def g_rmse(cls, xs, zs, rng, n_particles, **kw):
 
 
 def test_upf_and_supf_beat_the_bootstrap_filter_on_the_gamma_noise_benchmark():
-    """16 seeded runs of 60 steps, 100 particles each: UPF and SUPF have lower mean and
-    median RMSE than SPF (measured: SPF ~0.3/0.18, UPF and SUPF ~0.18/0.04-0.05).
+    """12 seeded runs of 60 steps, 100 particles each: UPF and SUPF have lower mean and
+    median RMSE than SPF (measured mean/median: SPF 0.32/0.22, UPF 0.24/0.085, SUPF 0.24/0.095).
 
     At n = 1 the SUPF's simplex needs beta = 2 (as the UPF's Merwe default has) for the
     quadratic measurement's fourth-moment term; with the default beta = 0 its proposal
@@ -211,7 +211,7 @@ def test_upf_and_supf_beat_the_bootstrap_filter_on_the_gamma_noise_benchmark():
     """
     supf_points = SphericalSimplexSigmaPoints(1, beta=2.0)
     rmse = {"SPF": [], "UPF": [], "SUPF": []}
-    for seed in np.random.SeedSequence(2000).spawn(16):
+    for seed in np.random.SeedSequence(2000).spawn(12):
         gen = np.random.default_rng(seed)
         xs, zs = g_simulate(60, gen)
         rmse["SPF"].append(g_rmse(BootstrapParticleFilter, xs, zs, gen, 100))

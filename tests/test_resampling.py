@@ -86,7 +86,7 @@ def test_residual_is_unbiased_where_filterpy_is_not():
     """filterpy issue #290: its residual_resample is biased; ours matches n*w."""
     gen = np.random.default_rng(3)
     w = np.array([0.05, 0.05, 0.1, 0.8])
-    R = 8000
+    R = 4000
     counts = np.zeros(4)
     for _ in range(R):
         counts += np.bincount(resample(w, "residual", rng=gen), minlength=4)
@@ -152,7 +152,7 @@ weights_strategy = st.lists(
 ).filter(lambda w: sum(w) > 0)
 
 
-@settings(max_examples=150, deadline=None)
+@settings(max_examples=100, deadline=None)
 @given(
     w=weights_strategy,
     n=st.integers(1, 200),
@@ -167,7 +167,7 @@ def test_property_indices_valid_and_only_positive_weights(w, n, name, seed):
     assert np.all(w[idx] > 0)
 
 
-@settings(max_examples=150, deadline=None)
+@settings(max_examples=100, deadline=None)
 @given(
     w=weights_strategy,
     n=st.integers(1, 200),
