@@ -396,6 +396,9 @@ class GPSDRModel(StateSpaceModel):
         Factor on the heading variance used by ``R_for(stationary=True)``.
     sigma_zupt : float
         Standard deviation (m/s) of the zero-velocity update (``update(zupt=True)``).
+    sigma_low_speed : float
+        Extra velocity noise (m/s, per axis) of the low-speed form (``update(low_speed=True)``):
+        pulling away, a car's track and its gyro heading differ by tens of degrees.
     x0, P0 : array-like, optional
         Prior (default as :class:`DRModel`, extended by ``zeta`` and ``b = 0``).
     """
@@ -416,6 +419,7 @@ class GPSDRModel(StateSpaceModel):
         sd_bias=np.deg2rad(5.0),
         stationary_inflation=1e6,
         sigma_zupt=0.01,
+        sigma_low_speed=0.5,
         accel_term="kinematic",
         min_speed=0.1,
         x0=None,
@@ -434,6 +438,7 @@ class GPSDRModel(StateSpaceModel):
         self.q_bias = check_positive(q_bias, "q_bias", strict=False)
         self.stationary_inflation = check_positive(stationary_inflation, "stationary_inflation")
         self.sigma_zupt = check_positive(sigma_zupt, "sigma_zupt")
+        self.sigma_low_speed = check_positive(sigma_low_speed, "sigma_low_speed", strict=False)
         self.accel_term = check_choice(accel_term, "accel_term", _ACCEL_TERMS)
         self.min_speed = check_positive(min_speed, "min_speed")
         n = self.dim_x
@@ -462,27 +467,25 @@ class GPSDRModel(StateSpaceModel):
         """The (constant) transition matrix ``(dim_x, dim_x)``."""
         return self.F if dt is None else transition_matrix(dt, self.accel_term, self.dim_x)
 
-    def hx(self, x, gps=True, zupt=False, **hx_args):
+    def hx(self, x, gps=True, velocity=False, **hx_args):
         """``[theta, s, e, n]`` (``gps=True``) or ``[theta, s]``, on the last axis.
 
-        ``zupt=True``: the DR part is the zero-velocity pseudo-measurement ``[v_e, v_n]``.
+        ``velocity=True``: the DR part is the velocity vector the sensors measure,
+        ``zeta R(b) [v_e, v_n]`` (``R(b)`` rotates by the heading bias; the zero-velocity
+        and low-speed forms of :meth:`update`).
         """
-        if zupt:
-            x = np.asarray(x, dtype=float)
-            z = np.stack([x[..., 1], x[..., 4]], axis=-1)
+        if velocity:
+            z = self._velocity_hx(x)
         else:
             z = dr_hx(x, self.dt, self.zeta, self.augmented)
         if not gps:
             return z
         return np.concatenate([z, gps_hx(x)], axis=-1)
 
-    def HJacobian(self, x, gps=True, zupt=False, **hx_args):
-        """Analytic Jacobian ``(4, dim_x)`` (``gps=True``) or ``(2, dim_x)`` (``zupt`` as in :meth:`hx`)."""
-        if zupt:
-            x = np.asarray(x, dtype=float)
-            H = np.zeros(x.shape[:-1] + (2, self.dim_x))
-            H[..., 0, 1] = 1.0
-            H[..., 1, 4] = 1.0
+    def HJacobian(self, x, gps=True, velocity=False, **hx_args):
+        """Analytic Jacobian ``(4, dim_x)`` (``gps=True``) or ``(2, dim_x)`` (``velocity`` as in :meth:`hx`)."""
+        if velocity:
+            H = self._velocity_H(x)
         else:
             H = dr_HJacobian(x, self.dt, self.zeta, self.augmented, self.min_speed)
         if not gps:
@@ -520,7 +523,45 @@ class GPSDRModel(StateSpaceModel):
             return z, False
         return np.concatenate([z, as_state(z_gps, "z_gps", 2)]), True
 
-    def update(self, kf, z_dr, z_gps=None, *, stationary=False, zupt=False, R=None):
+    def _velocity_hx(self, x):
+        """``zeta R(b) [v_e, v_n]``: the measured velocity vector ``s/T [sin theta, cos theta]``."""
+        x = np.asarray(x, dtype=float)
+        ve, vn = x[..., 1], x[..., 4]
+        if not self.augmented:
+            return self.zeta * np.stack([ve, vn], axis=-1)
+        zeta, c, s = x[..., 6], np.cos(x[..., 7]), np.sin(x[..., 7])
+        return zeta[..., None] * np.stack([ve * c + vn * s, vn * c - ve * s], axis=-1)
+
+    def _velocity_H(self, x):
+        x = np.asarray(x, dtype=float)
+        H = np.zeros(x.shape[:-1] + (2, self.dim_x))
+        if not self.augmented:
+            H[..., 0, 1] = H[..., 1, 4] = self.zeta
+            return H
+        ve, vn, zeta = x[..., 1], x[..., 4], x[..., 6]
+        c, s = np.cos(x[..., 7]), np.sin(x[..., 7])
+        H[..., 0, 1], H[..., 0, 4] = zeta * c, zeta * s
+        H[..., 1, 1], H[..., 1, 4] = -zeta * s, zeta * c
+        H[..., 0, 6], H[..., 1, 6] = ve * c + vn * s, vn * c - ve * s
+        H[..., 0, 7], H[..., 1, 7] = zeta * (vn * c - ve * s), -zeta * (ve * c + vn * s)
+        return H
+
+    def velocity_measurement(self, z_dr):
+        """Polar to Cartesian: ``(w, R_w)`` from ``[theta, s]``, independent of the state.
+
+        ``w = s / T [sin theta, cos theta]`` (the measured velocity vector; the model
+        is ``w = zeta R(b) v``, see :meth:`hx` with ``velocity=True``) and its
+        first-order covariance ``J diag(sigma_s^2 / T^2, sigma_heading^2) J^T``. Linear
+        in the velocity, so it has no singularity at zero speed.
+        """
+        z_dr = np.asarray(z_dr, dtype=float)
+        th = z_dr[0]
+        w = z_dr[1] / self.dt
+        J = np.array([[np.sin(th), w * np.cos(th)], [np.cos(th), -w * np.sin(th)]])
+        Rw = J @ np.diag([(self.sigma_odometer / self.dt) ** 2, self.sigma_heading**2]) @ J.T
+        return w * np.array([np.sin(th), np.cos(th)]), Rw + 1e-12 * np.eye(2)
+
+    def update(self, kf, z_dr, z_gps=None, *, stationary=False, zupt=False, low_speed=False, R=None):
         """Update a filterpy-style filter with a DR measurement and an optional GPS fix.
 
         Works with filterpy's ``ExtendedKalmanFilter`` (analytic Jacobian, wrapped
@@ -545,22 +586,35 @@ class GPSDRModel(StateSpaceModel):
             the velocity at zero: its Jacobian vanishes there). For unscented filters
             the filter's ``residual_z`` still wraps entry 0, which matters only if the
             predicted east velocity of a standing vehicle exceeds pi m/s.
+        low_speed : bool
+            Moving slowly (e.g. pulling away): the DR measurement enters as the measured
+            velocity vector of :meth:`velocity_measurement`, modelled as
+            ``zeta R(b) [v_e, v_n]`` (smooth, no singularity at zero speed), because the
+            odometer's Jacobian vanishes at zero estimated speed and the filter could
+            never pick up speed from rest.
         R : ndarray, optional
             Override of the measurement noise for this call (shape to match).
         """
         from filterpy.kalman import ExtendedKalmanFilter
 
         z, gps = self.measurement(z_dr, z_gps)
+        velocity = zupt or low_speed
         if zupt:
             z = z.copy()
             z[:2] = 0.0
+        elif low_speed:
+            z = z.copy()
+            z[:2], Rv = self.velocity_measurement(z[:2])
         if R is None:
             R = self.R_for(gps, stationary, zupt)
+            if low_speed and not zupt:
+                R = R.copy()
+                R[:2, :2] = Rv + self.sigma_low_speed**2 * np.eye(2)
         if isinstance(kf, ExtendedKalmanFilter):
-            kf.update(z, self.HJacobian, self.hx, R=R, args=(gps, zupt), hx_args=(gps, zupt),
-                      residual=np.subtract if zupt else dr_residual)
-        elif zupt:
-            kf.update(z, R=R, gps=gps, zupt=True)
+            kf.update(z, self.HJacobian, self.hx, R=R, args=(gps, velocity), hx_args=(gps, velocity),
+                      residual=np.subtract if velocity else dr_residual)
+        elif velocity:
+            kf.update(z, R=R, gps=gps, velocity=True)
         else:
             kf.update(z, R=R, gps=gps)
         return kf
@@ -787,7 +841,9 @@ def simulate_scenario(scenario, rng=None):
     heading = np.arctan2(xs[:, 1], xs[:, 4]) + np.deg2rad(sc.heading_bias) + sh * e_h
     outlier = (t >= sc.t_switch) & (u_out < sc.outlier_prob)
     heading = heading + outlier * sign_out * np.deg2rad(sc.outlier_deg)
-    dist = sc.dt * sc.odometer_scale * np.hypot(xs[:, 1], xs[:, 4]) + so * e_s
+    speed = np.hypot(xs[:, 1], xs[:, 4])
+    # an odometer never reads negative, and reads exactly 0 at standstill
+    dist = np.where(speed > 0, np.maximum(sc.dt * sc.odometer_scale * speed + so * e_s, 0.0), 0.0)
     z_dr = np.stack([wrap_angle(heading), dist], axis=1)
     if sc.gps_rate > 0:
         every = max(int(round(1.0 / (sc.gps_rate * sc.dt))), 1)

@@ -244,3 +244,43 @@ def test_gpsdr_helpers():
     z, has = m.measurement([0.1, 1.0], [3.0, 4.0])
     assert z.shape == (4,) and has
     assert isinstance(m.ekf(), ExtendedKalmanFilter)
+
+
+def test_pulling_away_from_rest_needs_the_low_speed_update():
+    """From standstill the odometer's Jacobian is 0: only the velocity-vector form picks up speed."""
+    sc = Scenario(name="pull-away", duration=25.0, speed=0.0, heading=120.0,
+                  speed_changes=((5.0, 15.0, 10.0),))
+    run = simulate_scenario(sc, rng=4)
+    assert np.all(run.z_dr[run.t < 5.0, 1] == 0.0)          # odometer reads 0 at rest
+    m = GPSDRModel(augmented=True)
+    still = run.z_dr[:, 1] <= 0.0
+    slow = run.z_dr[:, 1] < 0.1 * 1.0
+
+    def go(use_flags):
+        f = m.ekf(x0=np.r_[run.x0, 1.0, 0.0])
+        for k in range(len(run.t)):
+            f.predict()
+            if use_flags:
+                m.update(f, run.z_dr[k], None, zupt=bool(still[k]), low_speed=bool(slow[k]))
+            else:
+                m.update(f, run.z_dr[k], None)
+        return f.x
+
+    x = go(True)
+    assert np.all(np.isfinite(x))
+    assert np.hypot(x[1] - run.x_true[-1, 1], x[4] - run.x_true[-1, 4]) < 0.5
+    stuck = go(False)
+    assert np.hypot(stuck[1], stuck[4]) < 1.0                # never picks up speed
+
+
+def test_velocity_measurement_is_polar_to_cartesian():
+    m = GPSDRModel(augmented=True, dt=0.1)
+    v_true = 5.0 * np.array([np.sin(np.deg2rad(45)), np.cos(np.deg2rad(45))])
+    x = np.array([0, v_true[0], 0, 0, v_true[1], 0, 1.02, np.deg2rad(2.0)])
+    w, Rw = m.velocity_measurement([np.deg2rad(47.0), 0.1 * 1.02 * 5.0])
+    np.testing.assert_allclose(m.hx(x, gps=False, velocity=True), w, atol=1e-12)
+    np.linalg.cholesky(Rw)
+    for xx in _random_states(np.random.default_rng(0), 5, 8):
+        f = lambda v: m.hx(v, gps=True, velocity=True)  # noqa: E731
+        cols = [(f(xx + d) - f(xx - d)) / 2e-6 for d in 1e-6 * np.eye(8)]
+        np.testing.assert_allclose(m.HJacobian(xx, gps=True, velocity=True), np.stack(cols, -1), atol=1e-6)

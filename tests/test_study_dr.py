@@ -94,3 +94,33 @@ def test_long_run_100k_steps_stays_finite():
     nf = NeuralFilter(m, rng=1).fit(Xp, Z, X)
     means = nf.reset(run.x0).batch_filter(run.z_dr)
     assert np.all(np.isfinite(means))
+
+
+def test_real_drive_outages_never_nan():
+    """The onavdata car drive: outages anywhere, including before the car first moves."""
+    pytest.importorskip("onavdata", reason="the real drive needs the optional 'onavdata' package (data extra)")
+    run = dr.load_car_drive()
+    n = len(run.t)
+    assert run.x_true.shape == (n, 6) and run.z_dr.shape == (n, 2)
+    assert np.all(np.isfinite(run.x_true)) and np.all(np.isfinite(run.z_dr)) and np.all(np.isfinite(run.z_gps))
+    assert np.all(run.z_dr[:, 1] >= 0) and np.any(run.z_dr[:, 1] == 0)  # stands still at times
+    first_move = run.t[np.argmax(np.hypot(run.x_true[:, 1], run.x_true[:, 4]) > 1.0)]
+    assert first_move > 30.0
+    cut = dr.with_outage(run, 0.0, 30.0)
+    assert np.all(cut.t[cut.gps_steps] >= 30.0) and len(cut.gps_steps) < len(run.gps_steps)
+    res = dr.real_drive_outages(run, n_placements=3, length=30.0)
+    assert res["starts"][0] == 0.0 and res["starts"][0] < first_move
+    for name in ("DR-mech", "EKF", "EKF-8"):
+        assert res[name].shape == (3,) and np.all(np.isfinite(res[name]))
+    assert "| EKF-8 |" in dr.real_drive_table(res)
+
+
+def test_real_drive_skips_cleanly_without_onavdata(monkeypatch):
+    import importlib.resources
+
+    def missing(name):
+        raise ModuleNotFoundError(f"No module named {name!r}")
+
+    monkeypatch.setattr(importlib.resources, "files", missing)
+    with pytest.raises(ImportError, match="pip install"):
+        dr._onav_dir(dr.CAR_DRIVE)
