@@ -23,8 +23,8 @@ on two problems:
     a 6-state vehicle model (position, heading, speed, turn rate, heading-sensor bias)
     with three measurements (position and biased heading).
 
-Times are medians over repeats of the mean time per step; ratios are against the filterpy
-loop measured in the same run. Run ``python benchmarks/bench_particle.py`` (about 2-3
+Times are medians over repeats of the mean time per step, the repeats interleaved across
+variants; ratios are against the filterpy loop measured in the same run. Run ``python benchmarks/bench_particle.py`` (about 2-3
 minutes) or ``--quick``. One BLAS thread.
 """
 
@@ -173,25 +173,23 @@ class Ours:
         self.pf.update(z, **hx_args)
 
 
-def time_per_step(make, prob, n_steps, repeats, seed=0):
-    """Median over ``repeats`` (fresh filter each) of the mean time per step (1 warm-up step)."""
-    out = []
-    for r in range(repeats):
-        f = make(np.random.default_rng([seed, r]))
-        f.step(prob["zs"][0], prob["hx_args"][0])  # warm-up (and the initial draw)
-        t0 = time.perf_counter()
-        for k in range(1, n_steps + 1):
-            f.step(prob["zs"][k], prob["hx_args"][k])
-        out.append((time.perf_counter() - t0) / n_steps)
-    return float(np.median(out))
+def time_steps(make, prob, n_steps, seed):
+    """Mean time per step of a fresh filter over ``n_steps`` steps (after 1 warm-up step)."""
+    f = make(np.random.default_rng(seed))
+    f.step(prob["zs"][0], prob["hx_args"][0])  # warm-up (and the initial draw)
+    t0 = time.perf_counter()
+    for k in range(1, n_steps + 1):
+        f.step(prob["zs"][k], prob["hx_args"][k])
+    return (time.perf_counter() - t0) / n_steps
 
 
 def bench(name, prob, n_particles, plan):
+    """Repeats are interleaved (round r times every variant once), so a change in the
+    machine's load hits all variants alike; each variant's time is its median."""
     n = prob["dim_x"]
     merwe = MerweScaledSigmaPoints(n, alpha=1.0, beta=2.0, kappa=0.0)
     simplex = SphericalSimplexSigmaPoints(n)
-    rows = {}
-    for label, make, (steps, reps) in [
+    variants = [
         ("UPF  filterpy loop", lambda g: FilterpyLoopUPF(prob, merwe, n_particles, g), plan["loop"]),
         ("SUPF filterpy loop", lambda g: FilterpyLoopUPF(prob, simplex, n_particles, g), plan["loop"]),
         ("UPF  ours, per-point", lambda g: Ours(UnscentedParticleFilter, prob, n_particles, g, False), plan["point"]),
@@ -200,9 +198,17 @@ def bench(name, prob, n_particles, plan):
         ("SUPF ours, batched", lambda g: Ours(SimplexUnscentedParticleFilter, prob, n_particles, g, True), plan["batched"]),
         ("UPF  ours, batched, bank", lambda g: Ours(UnscentedParticleFilter, prob, n_particles, g, True, "bank"), plan["batched"]),
         ("SUPF ours, batched, bank", lambda g: Ours(SimplexUnscentedParticleFilter, prob, n_particles, g, True, "bank"), plan["batched"]),
-    ]:
-        rows[label] = time_per_step(make, prob, steps, reps)
-        print(f"  {label:<26s} {1e3 * rows[label]:9.2f} ms/step   ({steps} steps x {reps} repeats)", flush=True)
+    ]
+    repeats = plan["repeats"]
+    times = {label: [] for label, _, _ in variants}
+    for r in range(repeats):
+        for label, make, steps in variants:
+            times[label].append(time_steps(make, prob, steps, seed=[0, r]))
+    rows = {label: float(np.median(ts)) for label, ts in times.items()}
+    for label, _, steps in variants:
+        spread = (min(times[label]), max(times[label]))
+        print(f"  {label:<26s} {1e3 * rows[label]:9.2f} ms/step   (median of {repeats} x {steps} steps; "
+              f"range {1e3 * spread[0]:.1f}-{1e3 * spread[1]:.1f})", flush=True)
     up, sp = rows["UPF  filterpy loop"], rows["SUPF filterpy loop"]
     print(f"\n  ratios ({name}, {n_particles} particles, n = {n}):")
     print(f"    batched UPF  vs filterpy UPF loop : {up / rows['UPF  ours, batched']:6.1f}x faster")
@@ -236,11 +242,11 @@ def main(argv=None):
     ap.add_argument("--quick", action="store_true", help="fewer steps and repeats (about a minute)")
     args = ap.parse_args(argv)
     if args.quick:
-        plan_wnn = {"loop": (1, 2), "point": (1, 2), "batched": (3, 3)}
-        plan_six = {"loop": (3, 2), "point": (3, 2), "batched": (10, 3)}
+        plan_wnn = {"loop": 1, "point": 1, "batched": 3, "repeats": 2}
+        plan_six = {"loop": 3, "point": 3, "batched": 10, "repeats": 2}
     else:
-        plan_wnn = {"loop": (2, 3), "point": (2, 3), "batched": (10, 5)}
-        plan_six = {"loop": (10, 3), "point": (10, 3), "batched": (40, 5)}
+        plan_wnn = {"loop": 2, "point": 2, "batched": 8, "repeats": 3}
+        plan_six = {"loop": 10, "point": 10, "batched": 40, "repeats": 3}
     print(f"python {platform.python_version()}, numpy {np.__version__}, {platform.processor() or platform.machine()}, "
           f"1 BLAS thread; {args.particles} particles; textbook weights unless 'bank'")
     with threadpool_limits(1):
