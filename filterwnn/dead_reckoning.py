@@ -78,7 +78,6 @@ from ._validation import (
     check_choice,
     check_covariance,
     check_positive,
-    check_positive_int,
     check_rng,
 )
 from .models import StateSpaceModel

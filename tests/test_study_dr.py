@@ -9,7 +9,7 @@ import pytest
 from filterwnn.studies import dr
 
 SMALL = dict(scenarios=["straight", "gpsdr"], n_runs=2, n_steps=120,
-             filters=["EKF", "EKF-oracle", "AEKF", "SUKF", "NN", "EKF-8", "DR-only"], seed=3)
+             filters=["EKF", "EKF-oracle", "AEKF", "NN", "EKF-8", "DR-only"], seed=3)
 
 
 def _numbers(res):
@@ -38,7 +38,7 @@ def test_jobs_do_not_change_numbers(small_result):
 
 def test_table_contents(small_result):
     rows = {(r["scenario"], r["filter"]): r for r in small_result.table}
-    assert set(rows) == {("straight", f) for f in ("EKF", "EKF-oracle", "AEKF", "SUKF", "NN")} | {
+    assert set(rows) == {("straight", f) for f in ("EKF", "EKF-oracle", "AEKF", "NN")} | {
         ("gpsdr", f) for f in ("EKF", "EKF-8", "DR-only")}
     for r in small_result.table:
         assert r["runs"] == 2 and np.isfinite(r["final_median"]) and r["div"] >= 0

@@ -59,7 +59,7 @@ from typing import NamedTuple
 import numpy as np
 from filterpy.kalman import ExtendedKalmanFilter, MerweScaledSigmaPoints
 
-from .._validation import check_positive_int
+from .._validation import check_positive_int, check_rng
 from ..dead_reckoning import (
     SCENARIOS,
     DRRun,
@@ -69,6 +69,7 @@ from ..dead_reckoning import (
     dr_residual,
     dr_z_mean,
     simulate_scenario,
+    wrap_angle,
 )
 from ..neural_filter import (
     NeuralFilter,
@@ -163,7 +164,7 @@ class InnovationAdaptiveEKF(ExtendedKalmanFilter):
         if self.R0 is None:
             self.R0 = np.array(self.R, dtype=float)
         H = HJacobian(self.x, *args)
-        hph = np.einsum("ij,jk,ik->i", H, self.P, H)
+        hph = np.sum((H @ self.P) * H, axis=1)  # diag(H P H^T)
         if len(self._ys) >= max(5, self.window // 3):
             est = np.mean(np.square(self._ys), axis=0) - np.mean(self._hph, axis=0)
             self.R = np.diag(np.maximum(np.diag(self.R0), est))
@@ -263,7 +264,7 @@ def _z_mean_rows(sigmas, Wm):
     if sigmas.ndim == 2:
         return dr_z_mean(sigmas, Wm)
     Wm = np.asarray(Wm, dtype=float)
-    z = np.einsum("...i,...ij->...j", np.broadcast_to(Wm, sigmas.shape[:-1]), sigmas)
+    z = np.matmul(Wm, sigmas)
     z[..., 0] = np.arctan2(np.sum(Wm * np.sin(sigmas[..., 0]), axis=-1),
                            np.sum(Wm * np.cos(sigmas[..., 0]), axis=-1))
     return z
@@ -632,7 +633,7 @@ def load_car_drive(drive=CAR_DRIVE, dt=0.1, odometer_scale=1.02, odometer_noise=
         ``scenario`` describes the drive (``gps_rate=1``, no outages: cut them in with
         :func:`with_outage`).
     """
-    rng = check_rng_local(rng)
+    rng = check_rng(rng)
     folder = _onav_dir(drive)
     pos = _read_zipped_csv(folder, "n380-position")
     vel = _read_zipped_csv(folder, "n380-velocity")
@@ -675,7 +676,7 @@ def load_car_drive(drive=CAR_DRIVE, dt=0.1, odometer_scale=1.02, odometer_noise=
     speed = np.hypot(ve, vn)
     moving = speed > MIN_ODOMETER_SPEED  # a wheel odometer reads exactly 0 at standstill
     dist = np.where(moving, np.maximum(dt * odometer_scale * speed + odometer_noise * rng.standard_normal(n), 0.0), 0.0)
-    z_dr = np.stack([wrap_angle_local(theta), dist], axis=1)
+    z_dr = np.stack([wrap_angle(theta), dist], axis=1)
     okg = (gnss["SystemTov"] > t0) & (gnss["InsGnssBIT.GpsMode"] > 0)
     tg = gnss["SystemTov"][okg]
     steps = np.round((tg - t0) / dt).astype(int) - 1
@@ -689,18 +690,6 @@ def load_car_drive(drive=CAR_DRIVE, dt=0.1, odometer_scale=1.02, odometer_noise=
                   sigma_gps=1.0)
     R_true = np.tile([np.deg2rad(1.0) ** 2, odometer_noise**2], (n, 1))
     return DRRun(t - t0, x0, x_true, z_dr, steps, z_gps, R_true, sc)
-
-
-def check_rng_local(rng):
-    from .._validation import check_rng
-
-    return check_rng(rng)
-
-
-def wrap_angle_local(a):
-    from ..dead_reckoning import wrap_angle
-
-    return wrap_angle(a)
 
 
 def with_outage(run, start, length):
