@@ -362,7 +362,9 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         hx = self.hx if hx is None else hx
         R = self.R if R is None else R
         sig = self.sigmas_f
-        self.sigmas_h = self._call(hx, sig, "hx", self._dim_z, **hx_args)
+        # z may change size between sensors (filterpy allows it): the size is R's
+        dim_z = np.shape(R)[0] if np.ndim(R) == 2 else self._dim_z
+        self.sigmas_h = self._call(hx, sig, "hx", dim_z, **hx_args)
         if UT is None and self.z_mean is None and self.residual_z is np.subtract:
             zp, S = fast_unscented_transform(self.sigmas_h, self.Wm, self.Wc, R)
             dz = self.sigmas_h - zp

@@ -211,3 +211,11 @@ def test_pickle_mid_run_continues_identically():
     for z in zs[10:]:
         a.predict(); a.update(z); b.predict(); b.update(z)
     assert np.array_equal(a.x, b.x) and np.array_equal(a.P, b.P)
+
+
+def test_vectorized_measurement_size_may_change_with_R():
+    """Like filterpy: a second sensor with another z size, given its own hx and R."""
+    ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), True)
+    ukf.predict()
+    ukf.update(np.array([0.4]), R=np.eye(1) * 0.1, hx=lambda X: X[:, :1])
+    assert ukf.x.shape == (3,) and ukf.K.shape == (3, 1)
