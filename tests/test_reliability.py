@@ -110,15 +110,6 @@ _PREDICT_GAPS = {
     "it raises a plain ValueError 'x must be finite, got [nan nan nan]' (from the sigma points of the NaN "
     "prior) with no .step; should raise NumericalError(step=7) naming the non-finite prior.",
 }
-for _k in ("epf", "upf", "supf"):
-    for _w in ("textbook", "bank"):
-        _PREDICT_GAPS[f"{_k}-{_w}"] = (
-            f"particle_filter.py ParticleFilter.predict() with the {_k} proposal ({_w}): when fx returns NaN "
-            "at step 4 predict returns normally with NaN x_prior/P_prior (no finiteness check of the Kalman "
-            "prediction, unlike the prior proposal's 'non-finite particles after predict at step 4'); the "
-            "following update raises NumericalError(step=4) ('non-finite particle weight' / 'P_prior is not "
-            "positive definite'). Should raise NumericalError(step=4) in predict, leaving x, P as they were."
-        )
 
 
 @pytest.mark.filterwarnings("ignore::RuntimeWarning")
@@ -167,12 +158,6 @@ def _nf_data():
 
 
 @pytest.mark.filterwarnings("ignore::RuntimeWarning")
-@pytest.mark.xfail(
-    strict=True,
-    reason="neural_filter.py NeuralFilter.update with lr_online=1e12: the on-line weights and x become "
-    "non-finite at update 15 of the 'straight' run and the filter carries on silently (it has no step "
-    "counter); should raise NumericalError(step=15) at that update and keep x, params_ as before.",
-)
 def test_neural_filter_online_divergence_raises_at_its_step():
     m, Xp, Z, X = _nf_data()
     nf = nfm.NeuralFilter(m, rng=1, epochs=20, lr_online=1e12).fit(Xp, Z, X)
@@ -181,8 +166,12 @@ def test_neural_filter_online_divergence_raises_at_its_step():
     with pytest.raises(NumericalError) as info:
         for z in run.z_dr:
             nf.predict()
+            x, params = nf.x.copy(), {k: v.copy() for k, v in nf.params_.items()}
             nf.update(z)
-    assert info.value.step == 15
+    assert info.value.step == 15 and "15" in str(info.value)
+    np.testing.assert_array_equal(nf.x, x)  # the failed update left the filter as it was
+    for k, v in params.items():
+        np.testing.assert_array_equal(nf.params_[k], v)
 
 
 @pytest.mark.filterwarnings("ignore::RuntimeWarning")
@@ -193,12 +182,6 @@ def test_neural_filter_phase_one_divergence_raises():
 
 
 @pytest.mark.filterwarnings("ignore::RuntimeWarning")
-@pytest.mark.xfail(
-    strict=True,
-    reason="neural_filter.py NeuralFilter.fit with lr=1e30: NumericalError('phase-1 training produced "
-    "non-finite weights; lower lr') has step=None and is raised only after all epochs; should give the "
-    "epoch where the weights first became non-finite (step=1 here) in .step and the message.",
-)
 def test_neural_filter_phase_one_divergence_names_the_epoch():
     m, Xp, Z, X = _nf_data()
     with pytest.raises(NumericalError) as info:
@@ -370,7 +353,9 @@ def test_gpsdr_ekf_100k_steps_with_outages(augmented):
         _assert_covariance_ok(kf.P, k)
         err[k] = np.hypot(kf.x[0] - run.x_true[k, 0], kf.x[3] - run.x_true[k, 3])
     assert np.all(np.isfinite(err))
-    assert np.median(err) < 20.0  # GPS keeps the position bounded over 100,000 steps
+    # GPS keeps the position error bounded over 100,000 steps (a diverging filter is km off;
+    # the 6-state filter carries the unmodelled 2 % odometer scale and 2 deg heading bias)
+    assert np.percentile(err, 99) < 100.0
 
 
 @pytest.mark.slow
@@ -394,7 +379,8 @@ def test_gpsdr_sukf_8_state_100k_steps_with_outages():
 
 @pytest.mark.slow
 def test_dr_only_vectorized_sukf_100k_steps():
-    run = dr.simulate_scenario(long_gpsdr_scenario(10_000.0).with_(gps_rate=0.0), rng=2)
+    sc = long_gpsdr_scenario(10_000.0).with_(gps_rate=0.0, odometer_scale=1.0, heading_bias=0.0)
+    run = dr.simulate_scenario(sc, rng=2)
     m = dr.DRModel()
     f = UnscentedKalmanFilter(6, 2, m.dt, m.hx, m.fx, SphericalSimplexSigmaPoints(6, w0=0.2),
                               residual_z=dr.dr_residual, z_mean_fn=dr.dr_z_mean, vectorized=True)
@@ -422,11 +408,15 @@ def z_mean_rows(sigmas, Wm):
 @pytest.mark.slow
 def test_upf_100_particles_on_the_6_state_gpsdr_model_10k_steps():
     """GPS at 1 Hz with outages; steps without a fix give the GPS rows no information
-    (the filter's own position with a variance of 1e12 m^2), so ``dim_z`` stays 4."""
+    (the filter's own position with a variance of 1e12 m^2), so ``dim_z`` stays 4.
+
+    ``weighting="bank"``: with the textbook weight this model degenerates at once (ESS 1.0
+    and a single distinct particle from the first step, so the sample covariance ``P``
+    is singular), because the DR transition noise is far narrower than the proposal."""
     run = dr.simulate_scenario(long_gpsdr_scenario(1_000.0), rng=4)
     assert len(run.t) == 10_000
     m = dr.GPSDRModel(augmented=False)
-    pf = pfm.UnscentedParticleFilter(6, 4, m.dt, m.hx, m.fx, 100, residual_z=dr.dr_residual,
+    pf = pfm.UnscentedParticleFilter(6, 4, m.dt, m.hx, m.fx, 100, residual_z=dr.dr_residual, weighting="bank",
                                      z_mean_fn=z_mean_rows, vectorized=True, rng=0)
     pf.x, pf.P, pf.Q = run.x0.copy(), m.P0.copy(), m.Q.copy()
     R_fix, R_none = m.R.copy(), m.R.copy()
@@ -450,14 +440,14 @@ def test_upf_100_particles_on_the_6_state_gpsdr_model_10k_steps():
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("trainer", ["ekf", "supf"])
-def test_long_regressor_training_checkpointed_every_10_epochs(trainer):
+@pytest.mark.parametrize("trainer, n_hidden, n_epochs", [("ekf", 20, 30), ("supf", 10, 15)])
+def test_long_regressor_training_checkpointed_three_times(trainer, n_hidden, n_epochs):
     X, y, _, _ = datasets.make_siso_benchmark(rng=0)
-    kw = dict(trainer=trainer, n_hidden=20, n_particles=10, rng=11)
-    full = WNNRegressor(n_epochs=30, **kw).fit(X, y)
-    reg = WNNRegressor(n_epochs=10, warm_start=True, **kw)
+    kw = dict(trainer=trainer, n_hidden=n_hidden, n_particles=10, rng=11)
+    full = WNNRegressor(n_epochs=n_epochs, **kw).fit(X, y)
+    reg = WNNRegressor(n_epochs=n_epochs // 3, warm_start=True, **kw)
     for _ in range(3):
         reg = pickle.loads(pickle.dumps(reg.fit(X, y)))  # checkpoint to bytes, resume
     np.testing.assert_array_equal(reg.theta_, full.theta_)
     np.testing.assert_array_equal(reg.loss_curve_, full.loss_curve_)
-    assert reg.n_epochs_ == 30
+    assert reg.n_epochs_ == n_epochs
