@@ -413,7 +413,11 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
     wavelet : {"morlet", "mexican_hat"}
     trainer : {"ekf", "bp", "ukf", "sukf", "spf", "epf", "upf", "supf"}, default "ekf"
         The EKF from the scaled start is the default: it measured best for its time
-        (test MSE about 0.04 in about 1 s on the SISO benchmark; see the README table).
+        (study, 6 runs: median test MSE 0.045 after 5 epochs, 0.039 after 20, at 0.1 s
+        per epoch on a loaded 2-core machine; BP needs 200 epochs for 0.053, SUKF 200
+        epochs at 7x the cost per epoch for 0.037). The most accurate trainer measured is
+        ``"epf"`` with the bank weighting (0.013 after 10 epochs, 20 particles, about 30x
+        the EKF's time per epoch).
     n_epochs : int, default 50
         Passes over the training samples (all of them, in order, one filter step each).
     init : {"scaled", "paper"}, default "scaled"

@@ -400,7 +400,7 @@ def summarize(runs):
         mse = [r["test_mse"] for r in rs]
         paper = PAPER_TABLE1.get(trainer, (float("nan"), float("nan")))
         ess = [r["mean_ess"] for r in rs if np.isfinite(r["mean_ess"])]
-        distinct = [r["distinct"] for r in rs if r["distinct"] >= 0]
+        distinct = [r["distinct"] for r in rs if r["distinct"] > 0]
         rows.append({
             "table": table,
             "trainer": trainer,
