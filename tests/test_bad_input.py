@@ -34,6 +34,7 @@ from filterwnn import neural_filter as nfm
 from filterwnn import particle_filter as pfm
 from filterwnn import resampling
 from filterwnn.regressor import WNNRegressor
+from filterwnn.studies import dr as dr_study
 from filterwnn.studies import wnn as wnn_study
 from filterwnn.weight_model import WNNWeightModel
 
@@ -488,6 +489,20 @@ STUDY_ROWS = [
     row(lambda: wnn_study.run_study(**{**WNN_STUDY, "seed": "x"}), TypeError, r"seed must be an integer", "study-wnn-seed-type",
         gap="studies/wnn.py run_study(seed='x'): numpy 'SeedSequence expects int or sequence of ints for entropy not x'; "
             "should raise TypeError 'seed must be an integer, got str'"),
+]
+
+DR_STUDY = dict(scenarios=["straight"], n_runs=1, filters=["EKF"])
+STUDY_ROWS += [
+    row(lambda: dr_study.run_study(**{**DR_STUDY, "n_runs": 0}), ValueError, r"n_runs must be >= 1, got 0", "study-dr-runs"),
+    row(lambda: dr_study.run_study(**{**DR_STUDY, "jobs": 0}), ValueError, r"jobs must be >= 1, got 0", "study-dr-jobs"),
+    row(lambda: dr_study.run_study(**{**DR_STUDY, "filters": ["KF9"]}), ValueError, r"unknown filters \['KF9'\]; valid:", "study-dr-filters"),
+    row(lambda: dr_study.run_study(**{**DR_STUDY, "scenarios": ["moon"]}), ValueError, r"unknown scenario 'moon'; valid:", "study-dr-scenario"),
+    row(lambda: dr_study.run_study(**{**DR_STUDY, "seed": -1}), ValueError, r"seed must be >= 0, got -1", "study-dr-seed",
+        gap="studies/dr.py run_study(seed=-1): numpy 'expected non-negative integer' (does not name seed); should raise "
+            "ValueError 'seed must be >= 0, got -1'"),
+    row(lambda: dr_study.run_study(**{**DR_STUDY, "scenarios": []}), ValueError, r"scenarios must not be empty", "study-dr-no-scenarios",
+        gap="studies/dr.py run_study(scenarios=[]): runs and returns an empty study; should raise ValueError "
+            "'scenarios must not be empty, got []'"),
 ]
 
 ROWS = (VALIDATION_ROWS + MODEL_ROWS + METRIC_ROWS + SIGMA_ROWS + UKF_ROWS + WNN_ROWS + PF_ROWS + REGRESSOR_ROWS
