@@ -143,9 +143,9 @@ def test_normalize_log_weights_is_shift_invariant_without_underflow(lw, shift):
     assert np.all(np.isfinite(w)) and np.sum(w) == pytest.approx(1.0, abs=1e-12)
     assert np.isfinite(lse)
     shifted = lw + shift
-    if np.all(np.isfinite(shifted)) and np.ptp(shifted) > 0 and abs(shift) < 1e12:
+    if abs(shift) < 1e6:  # shifted log-weights keep ~1e-10 absolute precision
         w2, lse2 = normalize_log_weights(shifted)
-        np.testing.assert_allclose(w2, w, rtol=1e-6, atol=1e-12)
+        np.testing.assert_allclose(w2, w, rtol=1e-8, atol=1e-12)
         assert lse2 == pytest.approx(lse + shift, rel=1e-12, abs=1e-6)
 
 
