@@ -166,6 +166,9 @@ class _StaircaseSimplex(MerweScaledSigmaPoints):
             raise ValueError(f"P must have shape ({self.n}, {self.n}), got {P.shape}")
         if not np.all(np.isfinite(P)):
             raise ValueError("P must be finite, got non-finite entries")
+        asym = np.max(np.abs(P - P.T))
+        if asym > 1e-8 * max(np.max(np.abs(P)), np.finfo(float).tiny):
+            raise ValueError(f"P must be symmetric; max |P - P.T| = {asym:.3g}")
         try:
             U = self.sqrt(P)
         except np.linalg.LinAlgError as exc:
@@ -331,6 +334,15 @@ class SphericalSimplexSigmaPoints(_StaircaseSimplex):
 # ---------------------------------------------------------------------------
 
 
+def _check_protocol(points):
+    for attr in ("n", "num_sigmas", "sigma_points", "Wm", "Wc"):
+        if not hasattr(points, attr):
+            raise TypeError(
+                f"points must follow filterpy's sigma-point protocol (missing {attr!r}), "
+                f"got {type(points).__name__}"
+            )
+
+
 def unit_sigma_points(points):
     """Unit points ``Z`` of a filterpy-protocol sigma-point object.
 
@@ -346,6 +358,7 @@ def unit_sigma_points(points):
     -------
     Z : ndarray of shape (num_sigmas, n)
     """
+    _check_protocol(points)
     Z = getattr(points, "Z", None)
     if Z is not None:
         return Z
@@ -400,7 +413,11 @@ def sigma_deviations(points, U):
     D : ndarray of shape (..., num_sigmas, n)
         ``sigmas = x[..., None, :] + D``.
     """
+    _check_protocol(points)
     U = np.asarray(U, dtype=float)
+    n = points.n
+    if U.ndim < 2 or U.shape[-2:] != (n, n):
+        raise ValueError(f"U must have shape (..., {n}, {n}), got {U.shape}")
     if isinstance(points, _StaircaseSimplex):
         return _staircase_apply(points._a, points._b, U)
     c = _symmetric_scale(points)

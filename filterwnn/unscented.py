@@ -61,6 +61,7 @@ from filterpy.kalman import unscented_transform
 from scipy.linalg import cho_factor, cho_solve, cholesky
 
 from ._validation import NumericalError, check_positive, check_positive_int
+from ._validation import cholesky_lower as cholesky_or_none
 from .sigma_points import sigma_deviations
 
 __all__ = ["UnscentedKalmanFilter", "fast_unscented_transform"]
@@ -89,6 +90,13 @@ def fast_unscented_transform(sigmas, Wm, Wc, noise_cov=None):
     if noise_cov is not None:
         P = P + noise_cov
     return x, P
+
+
+def _check_symmetric(M, name, tol=1e-8):
+    """ValueError unless ``|M - M.T| <= tol * max|M|`` (the house rule of check_covariance)."""
+    asym = np.max(np.abs(M - M.T)) if M.size else 0.0
+    if asym > tol * max(np.max(np.abs(M)), np.finfo(float).tiny):
+        raise ValueError(f"{name} must be symmetric; max |{name} - {name}.T| = {asym:.3g}")
 
 
 class UnscentedKalmanFilter(_FilterpyUKF):
@@ -187,7 +195,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             and getattr(pts, "subtract", np.subtract) is np.subtract
         )
 
-    def _check_state(self):
+    def _check_state(self, check_Q=False):
         x, P, n = self.x, self.P, self._dim_x
         if np.shape(x) != (n,):
             raise ValueError(f"x must have shape ({n},), got {np.shape(x)}")
@@ -199,6 +207,11 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             raise NumericalError(
                 f"x and P must be finite before step {self.step + 1}", matrix="P", step=self.step + 1
             )
+        _check_symmetric(P, "P")
+        if check_Q:
+            if not np.all(np.isfinite(self.Q)):
+                raise ValueError("Q must be finite, got non-finite entries")
+            _check_symmetric(self.Q, "Q")
 
     def _sigmas(self, x, P, what):
         """Sigma points of N(x, P); NumericalError naming ``what`` if P is not PD."""
@@ -234,7 +247,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         snap = {k: getattr(self, k) for k in (
             "x", "P", "x_prior", "P_prior", "x_post", "P_post", "sigmas_f", "sigmas_h",
             "K", "y", "z", "S", "SI", "_sigmas_stale", "_deviations",
-            "_log_likelihood", "_likelihood", "_mahalanobis",
+            "_log_likelihood", "_likelihood", "_mahalanobis", "step",
         )}
         snap["sigmas_f"] = np.copy(self.sigmas_f)
         return snap
@@ -262,45 +275,43 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         """Predict step; ``fx=None`` (here and at construction) is a random walk.
 
         On return ``x``, ``P`` (and ``x_prior``, ``P_prior``) hold the prediction.
-        Raises :class:`~filterwnn.NumericalError` if ``P`` is not positive definite.
+        Raises :class:`~filterwnn.NumericalError` if ``P`` is not positive definite or
+        ``fx`` returns non-finite values, with the state left as it was.
         """
-        self._check_state()
-        self.step += 1
-        if dt is None:
-            dt = self._dt
+        self._check_state(check_Q=True)
+        dt = self._dt if dt is None else check_positive(dt, "dt")
         fx = self.fx if fx is None else fx
-        if fx is None:  # random walk: no sigma points, no factorisation
-            self.P = self.P + self.Q
-            self.x = self.x.copy()
-            self._sigmas_stale = True
-        elif not self.vectorized:  # filterpy's own arithmetic, errors made clear
-            snap = self._snapshot()
-            try:
-                super().predict(dt=dt, UT=UT, fx=fx, **fx_args)
-            except np.linalg.LinAlgError as exc:
-                self._restore(snap)
-                raise self._not_pd("P", snap["P"]) from exc
-            except Exception:
-                self._restore(snap)
-                raise
-            self._sigmas_stale = False  # filterpy drew them from the prior already
-        else:
-            snap = self._snapshot()
-            try:
+        snap = self._snapshot()
+        self.step += 1
+        try:
+            if fx is None:  # random walk: no sigma points, no factorisation
+                self.P = self.P + self.Q
+                self.x = self.x.copy()
+                self._sigmas_stale = True
+            else:
                 sigmas = self._sigmas(self.x, self.P, "P")
                 self.sigmas_f = self._call(fx, sigmas, "fx", self._dim_x, dt, **fx_args)
-                if UT is None and self.x_mean is None and self.residual_x is np.subtract:
+                if self.vectorized and UT is None and self.x_mean is None and self.residual_x is np.subtract:
                     self.x, self.P = fast_unscented_transform(self.sigmas_f, self.Wm, self.Wc, self.Q)
-                else:
+                else:  # filterpy's own arithmetic (bit-identical in loop mode)
                     UT = unscented_transform if UT is None else UT
                     self.x, self.P = UT(
                         self.sigmas_f, self.Wm, self.Wc, self.Q, self.x_mean, self.residual_x
                     )
-            except Exception:
-                self._restore(snap)
-                raise
-            self.P = 0.5 * (self.P + self.P.T)
-            self._sigmas_stale = True  # filterpy 2.0 re-draws sigmas from the prior
+                if not (np.all(np.isfinite(self.x)) and np.all(np.isfinite(self.P))):
+                    raise NumericalError(
+                        f"fx produced a non-finite prediction (x_prior or P_prior) at step {self.step}",
+                        matrix="P_prior", step=self.step,
+                    )
+                if self.vectorized:
+                    self.P = 0.5 * (self.P + self.P.T)
+                    self._sigmas_stale = True  # filterpy 2.0 re-draws sigmas from the prior
+                else:  # as filterpy 2.0: the update's sigma points are the prior's
+                    self.sigmas_f = self._sigmas(self.x, self.P, "P_prior")
+                    self._sigmas_stale = False
+        except Exception:
+            self._restore(snap)
+            raise
         self.x_prior = np.copy(self.x)
         self.P_prior = np.copy(self.P)
 
@@ -334,10 +345,9 @@ class UnscentedKalmanFilter(_FilterpyUKF):
                 f"z must be finite (use z=None for a missing measurement), got {np.ravel(z_arr)}"
             )
         self._check_state()
-        if R is not None and isinstance(R, numbers.Real):
-            R = np.eye(self._dim_z) * R
-        self.step += 1
+        z_arr, R = self._check_measurement(z_arr, R)
         snap = self._snapshot()
+        self.step += 1
         try:
             if self._sigmas_stale:
                 self.sigmas_f = self._sigmas(self.x, self.P, "P")
@@ -347,6 +357,9 @@ class UnscentedKalmanFilter(_FilterpyUKF):
                     super().update(z, R=R, UT=UT, hx=hx, **hx_args)
                 except np.linalg.LinAlgError as exc:
                     raise self._not_pd("S", self.S) from exc
+                # filterpy inverts S without asking whether it is positive definite
+                if np.any(np.isfinite(self.S)) and cholesky_or_none(self.S) is None:
+                    raise self._not_pd("S", self.S)
             else:
                 self._vectorized_update(z_arr, R, UT, hx, **hx_args)
             if not (np.all(np.isfinite(self.x)) and np.all(np.isfinite(self.P))):
@@ -357,6 +370,33 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             self._restore(snap)
             raise
         self._sigmas_stale = True
+
+    def _check_measurement(self, z, R):
+        """Validate ``z`` and ``R`` together; returns ``(z, R)`` as float arrays.
+
+        Without an ``R`` argument, ``z`` must have ``dim_z`` entries and ``self.R`` be
+        ``(dim_z, dim_z)``; with one (another sensor, as filterpy allows), ``R`` must be
+        square and match the length of ``z``.
+        """
+        given = R is not None
+        R = self.R if R is None else R
+        if isinstance(R, numbers.Real):
+            R = np.eye(self._dim_z if not given else np.size(z)) * R
+        R = np.asarray(R, dtype=float)
+        z = np.atleast_1d(z)
+        m = self._dim_z if not given else (R.shape[0] if R.ndim == 2 else self._dim_z)
+        if z.size == m and z.ndim > 1:
+            z = z.reshape(m)
+        if not given and z.shape != (m,):
+            raise ValueError(f"z must have {m} entries, got shape {np.shape(z)}")
+        if z.ndim != 1:
+            raise ValueError(f"z must be 1-D, got shape {z.shape}")
+        if R.shape != (z.size, z.size):
+            raise ValueError(f"R must have shape ({z.size}, {z.size}), got shape {R.shape}")
+        if not np.all(np.isfinite(R)):
+            raise ValueError("R must be finite, got non-finite entries")
+        _check_symmetric(R, "R")
+        return z, R
 
     def _vectorized_update(self, z, R, UT, hx, **hx_args):
         hx = self.hx if hx is None else hx

@@ -102,15 +102,7 @@ def failing_step(name, k, where):
 
 
 # --------------------------------------------------------------------------- part 2: failures
-_PREDICT_GAPS = {
-    "ukf-vec": "unscented.py UnscentedKalmanFilter(vectorized=True).predict(): when fx returns NaN at step 7 "
-    "the predict succeeds with a NaN P_prior; the failure surfaces one call later as NumericalError "
-    "'x and P must be finite before step 8' (step=8). Should raise NumericalError(step=7) in that predict "
-    "and restore x, P (check the finiteness of x_prior/P_prior before committing).",
-    "ukf-loop": "unscented.py UnscentedKalmanFilter(vectorized=False).predict(): when fx returns NaN at step 7 "
-    "it raises a plain ValueError 'x must be finite, got [nan nan nan]' (from the sigma points of the NaN "
-    "prior) with no .step; should raise NumericalError(step=7) naming the non-finite prior.",
-}
+_PREDICT_GAPS = {}
 
 
 @pytest.mark.filterwarnings("ignore::RuntimeWarning")
