@@ -28,6 +28,7 @@ __all__ = [
     "check_weights",
     "check_rng",
     "check_positive_int",
+    "check_seed",
     "check_positive",
     "check_choice",
     "cholesky_lower",
@@ -225,3 +226,12 @@ def check_choice(value, name, choices):
         valid = ", ".join(repr(c) for c in sorted(choices))
         raise ValueError(f"unknown {name} {value!r}; valid: {valid}")
     return value
+
+
+def check_seed(seed, name="seed"):
+    """A root seed for :class:`numpy.random.SeedSequence`: an int ``>= 0``."""
+    if isinstance(seed, bool) or not isinstance(seed, numbers.Integral):
+        raise TypeError(f"{name} must be a non-negative integer, got {type(seed).__name__} {seed!r}")
+    if seed < 0:
+        raise ValueError(f"{name} must be >= 0, got {seed}")
+    return int(seed)

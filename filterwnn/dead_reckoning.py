@@ -684,6 +684,17 @@ class Scenario:
     sigma_gps: float = 3.0
     outages: tuple = field(default=())
 
+    def __post_init__(self):
+        for name in ("duration", "dt", "factor"):
+            check_positive(getattr(self, name), name)
+        for name in ("speed", "sigma_heading", "sigma_odometer", "outlier_deg", "gps_rate",
+                     "sigma_gps", "odometer_scale"):
+            check_positive(getattr(self, name), name, strict=False)
+        if not self.t_switch >= 0:  # inf means never
+            raise ValueError(f"t_switch must be >= 0 (inf: never), got {self.t_switch}")
+        if not 0 <= self.outlier_prob <= 1:
+            raise ValueError(f"outlier_prob must satisfy 0 <= outlier_prob <= 1, got {self.outlier_prob}")
+
     @property
     def n_steps(self):
         return int(round(self.duration / self.dt))

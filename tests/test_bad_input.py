@@ -409,15 +409,9 @@ DR_ROWS = [
     row(lambda: GPS.update(GPS.ekf(), [0.0, 1.0], [0.0, 0.0, 0.0]), ValueError, r"z_gps must have length 2, got shape \(3,\)", "gps-update-zgps-len"),
     row(lambda: dr.transition_matrix(0.0), ValueError, r"dt must be finite and > 0, got 0.0", "transition-dt"),
     row(lambda: dr.simulate_scenario("straight"), TypeError, "scenario must be a Scenario, got str", "scenario-type"),
-    row(lambda: dr.simulate_scenario(dr.SCENARIOS["straight"](dt=0.0)), ValueError, r"dt must be finite and > 0, got 0.0", "scenario-dt",
-        gap="dead_reckoning.py simulate_scenario(Scenario(dt=0.0)): ZeroDivisionError 'float division by zero'; "
-            "should raise ValueError 'dt must be finite and > 0, got 0.0' (validate Scenario fields)"),
-    row(lambda: dr.simulate_scenario(dr.SCENARIOS["straight"](duration=-1.0)), ValueError, r"duration must be finite and > 0, got -1.0", "scenario-duration",
-        gap="dead_reckoning.py simulate_scenario(Scenario(duration=-1.0)): numpy 'negative dimensions are not allowed'; "
-            "should raise ValueError 'duration must be finite and > 0, got -1.0'"),
-    row(lambda: dr.simulate_scenario(dr.SCENARIOS["gpsdr"](sigma_gps=-1.0)), ValueError, r"sigma_gps must be finite and > 0, got -1.0", "scenario-sigma-gps",
-        gap="dead_reckoning.py simulate_scenario(Scenario(sigma_gps=-1.0)): accepted silently (GPS noise sign flipped); "
-            "should raise ValueError 'sigma_gps must be finite and > 0, got -1.0' (also gps_rate=-1 is accepted)"),
+    row(lambda: dr.simulate_scenario(dr.SCENARIOS["straight"](dt=0.0)), ValueError, r"dt must be finite and > 0, got 0.0", "scenario-dt"),
+    row(lambda: dr.simulate_scenario(dr.SCENARIOS["straight"](duration=-1.0)), ValueError, r"duration must be finite and > 0, got -1.0", "scenario-duration"),
+    row(lambda: dr.simulate_scenario(dr.SCENARIOS["gpsdr"](sigma_gps=-1.0)), ValueError, r"sigma_gps must be finite and >= 0, got -1.0", "scenario-sigma-gps"),
     row(lambda: nfm.NeuralFilter(n_hidden=0), ValueError, r"n_hidden must be >= 1, got 0", "nf-hidden"),
     row(lambda: nfm.NeuralFilter(epochs=0), ValueError, r"epochs must be >= 1, got 0", "nf-epochs"),
     row(lambda: nfm.NeuralFilter(epochs=-3), ValueError, r"epochs must be >= 1, got -3", "nf-epochs-neg"),
@@ -460,12 +454,8 @@ STUDY_ROWS += [
     row(lambda: dr_study.run_study(**{**DR_STUDY, "jobs": 0}), ValueError, r"jobs must be >= 1, got 0", "study-dr-jobs"),
     row(lambda: dr_study.run_study(**{**DR_STUDY, "filters": ["KF9"]}), ValueError, r"unknown filters \['KF9'\]; valid:", "study-dr-filters"),
     row(lambda: dr_study.run_study(**{**DR_STUDY, "scenarios": ["moon"]}), ValueError, r"unknown scenario 'moon'; valid:", "study-dr-scenario"),
-    row(lambda: dr_study.run_study(**{**DR_STUDY, "seed": -1}), ValueError, r"seed must be >= 0, got -1", "study-dr-seed",
-        gap="studies/dr.py run_study(seed=-1): numpy 'expected non-negative integer' (does not name seed); should raise "
-            "ValueError 'seed must be >= 0, got -1'"),
-    row(lambda: dr_study.run_study(**{**DR_STUDY, "scenarios": []}), ValueError, r"scenarios must not be empty", "study-dr-no-scenarios",
-        gap="studies/dr.py run_study(scenarios=[]): runs and returns an empty study; should raise ValueError "
-            "'scenarios must not be empty, got []'"),
+    row(lambda: dr_study.run_study(**{**DR_STUDY, "seed": -1}), ValueError, r"seed must be >= 0, got -1", "study-dr-seed"),
+    row(lambda: dr_study.run_study(**{**DR_STUDY, "scenarios": []}), ValueError, r"scenarios must name at least one of .*got \[\]", "study-dr-no-scenarios"),
 ]
 
 ROWS = (VALIDATION_ROWS + MODEL_ROWS + METRIC_ROWS + SIGMA_ROWS + UKF_ROWS + WNN_ROWS + PF_ROWS + REGRESSOR_ROWS

@@ -59,7 +59,7 @@ from typing import NamedTuple
 import numpy as np
 from filterpy.kalman import ExtendedKalmanFilter, MerweScaledSigmaPoints
 
-from .._validation import check_positive_int, check_rng
+from .._validation import check_seed, check_positive_int, check_rng
 from ..dead_reckoning import (
     SCENARIOS,
     DRRun,
@@ -243,12 +243,16 @@ def train_general_nn(seed=0, n_states=1500, epochs=60, dt=0.1):
 
 
 def _upf_run(run, model, x0, P0, rng, n_particles=UPF_PARTICLES):
-    """The unscented particle filter (issue 4) on a DR-only run (fixed ``dim_z = 2``)."""
+    """The unscented particle filter (issue 4) on a DR-only run (fixed ``dim_z = 2``).
+
+    Bank weighting: with the textbook weight the carried covariances are far wider than
+    ``Q`` and the weights collapse to one particle (ESS 1.0, a singular ``P``) at once.
+    """
     from ..particle_filter import UnscentedParticleFilter
 
     pf = UnscentedParticleFilter(6, 2, model.dt, model.hx, model.fx, n_particles=n_particles,
                                  points=_points("merwe", 6), residual_z=dr_residual,
-                                 z_mean_fn=_z_mean_rows, vectorized=True, rng=rng)
+                                 z_mean_fn=_z_mean_rows, vectorized=True, weighting="bank", rng=rng)
     pf.x, pf.P, pf.Q, pf.R = x0.copy(), P0.copy(), model.Q.copy(), model.R.copy()
     out = np.empty((len(run.t), 6))
     for k, z in enumerate(run.z_dr):
@@ -434,6 +438,10 @@ def run_study(scenarios=DEFAULT_SCENARIOS, n_runs=10, filters=None, seed=0, jobs
 
     n_runs = check_positive_int(n_runs, "n_runs")
     jobs = check_positive_int(jobs, "jobs")
+    seed = check_seed(seed)
+    scenarios = list(scenarios)
+    if not scenarios:
+        raise ValueError(f"scenarios must name at least one of {', '.join(SCENARIOS)}, got []")
     for s in scenarios:
         if s not in SCENARIOS:
             raise ValueError(f"unknown scenario {s!r}; valid: {', '.join(SCENARIOS)}")
