@@ -231,7 +231,7 @@ def check_choice(value, name, choices):
 def check_seed(seed, name="seed"):
     """A root seed for :class:`numpy.random.SeedSequence`: an int ``>= 0``."""
     if isinstance(seed, bool) or not isinstance(seed, numbers.Integral):
-        raise TypeError(f"{name} must be a non-negative integer, got {type(seed).__name__} {seed!r}")
+        raise TypeError(f"{name} must be an integer >= 0, got {type(seed).__name__} {seed!r}")
     if seed < 0:
         raise ValueError(f"{name} must be >= 0, got {seed}")
     return int(seed)

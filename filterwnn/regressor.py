@@ -394,6 +394,8 @@ def make_trainer(name, model, theta0, settings, rng=None):
 
 # ---------------------------------------------------------------------------- estimator
 def _progress(enabled, total, desc):
+    if not (isinstance(enabled, bool) or enabled == "auto"):
+        raise ValueError(f"progress must be True, False or 'auto', got {enabled!r}")
     if enabled == "auto":
         enabled = hasattr(sys.stderr, "isatty") and sys.stderr.isatty()
     if not enabled:

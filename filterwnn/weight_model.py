@@ -39,7 +39,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import wnn
-from ._validation import check_choice, check_covariance, check_positive_int, check_rng
+from ._validation import as_state, check_choice, check_covariance, check_positive, check_positive_int, check_rng
 from .models import StateSpaceModel
 
 __all__ = ["WNNWeightModel"]
@@ -86,10 +86,10 @@ class WNNWeightModel(StateSpaceModel):
         self.wavelet = check_choice(wavelet, "wavelet", wnn.WAVELETS)
         self.dim_x = wnn.n_params(self.n_inputs, self.n_hidden)
         self.dim_z = 1
-        self.dt = float(dt)
+        self.dt = check_positive(dt, "dt")
         self.Q = _as_cov(Q, "Q", self.dim_x)
         self.R = check_covariance(R, "R", 1)
-        self.x0 = np.zeros(self.dim_x) if x0 is None else np.asarray(x0, dtype=float).reshape(self.dim_x)
+        self.x0 = np.zeros(self.dim_x) if x0 is None else as_state(x0, "x0", self.dim_x)
         self.P0 = _as_cov(P0, "P0", self.dim_x)
 
     def fx(self, x, dt=None, **fx_args):
@@ -145,7 +145,9 @@ class WNNWeightModel(StateSpaceModel):
         rng = check_rng(rng)
         if X is None:
             X = rng.uniform(-1.0, 1.0, (n_steps, self.n_inputs))
-        X = np.asarray(X, dtype=float).reshape(n_steps, self.n_inputs)
+        X = np.asarray(X, dtype=float)
+        if X.shape != (n_steps, self.n_inputs):
+            raise ValueError(f"X must have shape ({n_steps}, {self.n_inputs}), got {X.shape}")
         if x0 is None:
             theta = self.x0 + np.linalg.cholesky(self.P0) @ rng.standard_normal(self.dim_x)
         else:

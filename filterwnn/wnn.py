@@ -185,6 +185,8 @@ def _check_X(X, name="X"):
         X = X[None, :]
     if X.ndim != 2:
         raise ValueError(f"{name} must have shape (n_samples, n_inputs), got shape {X.shape}")
+    if not np.all(np.isfinite(X)):
+        raise ValueError(f"{name} must be finite, got non-finite entries")
     return X
 
 

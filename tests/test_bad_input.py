@@ -262,12 +262,8 @@ WNN_ROWS = [
     row(lambda: wnn.n_params(2, -4), ValueError, r"n_hidden must be >= 1, got -4", "n_params-hidden-neg"),
     row(lambda: wnn.init_paper(2, 0, rng=0), ValueError, r"n_hidden must be >= 1, got 0", "init_paper-hidden"),
     row(lambda: wnn.init_scaled(X3, 0, rng=0), ValueError, r"n_hidden must be >= 1, got 0", "init_scaled-hidden"),
-    row(lambda: wnn.forward(THETA, np.array([[np.nan, 0.0], [0.0, 0.0]])), ValueError, "X must be finite", "forward-X-nan",
-        gap="wnn.py forward(theta, X with NaN): returns NaN outputs silently (also jacobian); should raise "
-            "ValueError 'X must be finite, ...' at this public boundary"),
-    row(lambda: wnn.init_scaled(np.array([[np.nan, 0.0], [1.0, 0.0]]), 2, rng=0), ValueError, "X must be finite", "init_scaled-X-nan",
-        gap="wnn.py init_scaled(X with NaN, 2, rng=0): returns finite-looking weights computed from NaN-free parts, "
-            "no error; should raise ValueError 'X must be finite, ...'"),
+    row(lambda: wnn.forward(THETA, np.array([[np.nan, 0.0], [0.0, 0.0]])), ValueError, "X must be finite", "forward-X-nan"),
+    row(lambda: wnn.init_scaled(np.array([[np.nan, 0.0], [1.0, 0.0]]), 2, rng=0), ValueError, "X must be finite", "init_scaled-X-nan"),
     row(lambda: WNNWeightModel(2, 0), ValueError, r"n_hidden must be >= 1, got 0", "wm-hidden"),
     row(lambda: WNNWeightModel(0, 2), ValueError, r"n_inputs must be >= 1, got 0", "wm-inputs"),
     row(lambda: WNNWeightModel(2, 2, wavelet="haar"), ValueError, r"unknown wavelet 'haar'", "wm-wavelet"),
@@ -276,15 +272,9 @@ WNN_ROWS = [
     row(lambda: WNNWeightModel(2, 2, Q=-1.0), ValueError, "Q must be positive semi-definite; smallest eigenvalue -1", "wm-Q-neg"),
     row(lambda: WNNWeightModel(2, 2, P0=-1.0), ValueError, "P0 must be positive semi-definite", "wm-P0-neg"),
     row(lambda: WNNWeightModel(2, 2).simulate(0, rng=0), ValueError, r"n_steps must be >= 1, got 0", "wm-simulate-n"),
-    row(lambda: WNNWeightModel(2, 2, x0=np.zeros(3)), ValueError, r"x0 must have length 10, got shape \(3,\)", "wm-x0-shape",
-        gap="weight_model.py WNNWeightModel(2, 2, x0=np.zeros(3)): numpy 'cannot reshape array of size 3 into shape "
-            "(10,)'; should raise ValueError 'x0 must have length 10, got shape (3,)' (as_state)"),
-    row(lambda: WNNWeightModel(2, 2, dt=0.0), ValueError, r"dt must be finite and > 0, got 0.0", "wm-dt-zero",
-        gap="weight_model.py WNNWeightModel(2, 2, dt=0.0): accepted (also dt=-1); should raise ValueError "
-            "'dt must be finite and > 0, got 0.0'"),
-    row(lambda: WNNWeightModel(2, 2).simulate(3, rng=0, X=np.zeros((4, 2))), ValueError, r"X must have shape \(3, 2\), got \(4, 2\)", "wm-simulate-X-shape",
-        gap="weight_model.py WNNWeightModel.simulate(3, X=np.zeros((4, 2))): numpy 'cannot reshape array of size 8 "
-            "into shape (3,2)'; should raise ValueError 'X must have shape (3, 2), got (4, 2)'"),
+    row(lambda: WNNWeightModel(2, 2, x0=np.zeros(3)), ValueError, r"x0 must have length 10, got shape \(3,\)", "wm-x0-shape"),
+    row(lambda: WNNWeightModel(2, 2, dt=0.0), ValueError, r"dt must be finite and > 0, got 0.0", "wm-dt-zero"),
+    row(lambda: WNNWeightModel(2, 2).simulate(3, rng=0, X=np.zeros((4, 2))), ValueError, r"X must have shape \(3, 2\), got \(4, 2\)", "wm-simulate-X-shape"),
 ]
 
 # --------------------------------------------------------------------------- particle filters, resampling
@@ -381,9 +371,7 @@ REGRESSOR_ROWS = [
     row(lambda: fit_reg(X=Y_REG, y=Y_REG), ValueError, "Expected 2D array, got 1D array", "reg-X-1d"),
     row(lambda: fit_reg().predict(np.zeros((3, 7))), ValueError, "X has 7 features, but WNNRegressor is expecting 5 features", "reg-predict-features"),
     row(lambda: fit_reg().predict(np.full((3, 5), np.nan)), ValueError, "Input X contains NaN", "reg-predict-nan"),
-    row(lambda: fit_reg(progress="yes"), ValueError, "progress", "reg-progress",
-        gap="regressor.py WNNRegressor(progress='yes').fit: accepted (any truthy value shows the bar); should raise "
-            "ValueError \"progress must be True, False or 'auto', got 'yes'\""),
+    row(lambda: fit_reg(progress="yes"), ValueError, "progress", "reg-progress"),
 ]
 
 # --------------------------------------------------------------------------- dead reckoning and the neural filter
@@ -440,12 +428,8 @@ STUDY_ROWS = [
     row(lambda: wnn_study.run_study(**{**WNN_STUDY, "n_epochs": -1}), ValueError, r"n_epochs must be >= 1, got -1", "study-wnn-epochs"),
     row(lambda: wnn_study.run_study(**{**WNN_STUDY, "n_particles": 0}), ValueError, r"n_particles must be >= 1, got 0", "study-wnn-particles"),
     row(lambda: wnn_study.run_study(**{**WNN_STUDY, "trainers": ["adam"]}), ValueError, r"unknown trainer 'adam'; valid:", "study-wnn-trainer"),
-    row(lambda: wnn_study.run_study(**{**WNN_STUDY, "seed": -1}), ValueError, r"seed must be >= 0, got -1", "study-wnn-seed",
-        gap="studies/wnn.py run_study(seed=-1): numpy 'expected non-negative integer' (does not name seed); should raise "
-            "ValueError 'seed must be >= 0, got -1'"),
-    row(lambda: wnn_study.run_study(**{**WNN_STUDY, "seed": "x"}), TypeError, r"seed must be an integer", "study-wnn-seed-type",
-        gap="studies/wnn.py run_study(seed='x'): numpy 'SeedSequence expects int or sequence of ints for entropy not x'; "
-            "should raise TypeError 'seed must be an integer, got str'"),
+    row(lambda: wnn_study.run_study(**{**WNN_STUDY, "seed": -1}), ValueError, r"seed must be >= 0, got -1", "study-wnn-seed"),
+    row(lambda: wnn_study.run_study(**{**WNN_STUDY, "seed": "x"}), TypeError, r"seed must be an integer", "study-wnn-seed-type"),
 ]
 
 DR_STUDY = dict(scenarios=["straight"], n_runs=1, filters=["EKF"])

@@ -57,7 +57,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .._validation import check_choice, check_positive_int
+from .._validation import check_choice, check_positive_int, check_seed
 from ..datasets import make_siso_benchmark
 from ..regressor import AUTO_SETTINGS, PAPER_SETTINGS, TRAINERS, WNNRegressor
 
@@ -126,6 +126,7 @@ class StudyResult(NamedTuple):
 # ---------------------------------------------------------------------------- seeds
 def run_seeds(seed, n_runs):
     """``SeedSequence(seed).spawn(n_runs)`` as picklable ``(entropy, spawn_key)`` pairs."""
+    seed = check_seed(seed)
     return [(ss.entropy, tuple(ss.spawn_key)) for ss in np.random.SeedSequence(seed).spawn(n_runs)]
 
 
