@@ -476,6 +476,17 @@ class ParticleFilter:
         self.n_distinct_history.append(self.n_distinct)
         self.resampled_history.append(bool(resampled))
 
+    def _skip_measurement(self, step, why):
+        """``recover=True``: treat the measurement as an outlier, warn, keep the prior."""
+        warnings.warn(
+            f"step {step}: the measurement gives {why}; skipped as an outlier (recover=True)",
+            RuntimeWarning,
+            stacklevel=3,
+        )
+        self._finish_without_measurement()
+        self.x_post, self.P_post = self.x.copy(), self.P.copy()
+        self._record(self.ess, self._distinct(self.particles), False)
+
     def _finish_without_measurement(self):
         """Complete a pending prediction with no measurement (``z=None``)."""
         pend = self._pending
@@ -574,12 +585,18 @@ class ParticleFilter:
         log_lik_max = None
         if pend is not None and pend["kind"] == "kalman":
             pred = pend["prediction"]
-            upd, P_prior = self._repairing(
-                lambda C: self.proposal.update(self, KalmanPrediction(pred.x, C), z, hx_args, step=step),
-                pred.P,
-                step,
-                "predicted",
-            )
+            try:
+                upd, P_prior = self._repairing(
+                    lambda C: self.proposal.update(self, KalmanPrediction(pred.x, C), z, hx_args, step=step),
+                    pred.P,
+                    step,
+                    "predicted",
+                )
+            except NumericalError as exc:
+                if not (self.recover and exc.matrix == "S"):
+                    raise
+                self._skip_measurement(step, f"no usable Kalman update ({exc})")
+                return
             covs = upd.P if self.proposal.uses_covariance else None
             if self.weighting == "bank":
                 X = upd.x
@@ -618,15 +635,7 @@ class ParticleFilter:
 
         bad_weights = np.any(np.isnan(log_alpha)) or np.any(log_alpha == np.inf)
         if self.recover and (bad_weights or not np.any(log_alpha > -np.inf)):
-            warnings.warn(
-                f"step {step}: the measurement gives no finite particle weight "
-                "(all underflow or NaN); skipped as an outlier (recover=True)",
-                RuntimeWarning,
-                stacklevel=2,
-            )
-            self._finish_without_measurement()
-            self.x_post, self.P_post = self.x.copy(), self.P.copy()
-            self._record(self.ess, self._distinct(self.particles), False)
+            self._skip_measurement(step, "no finite particle weight (all underflow or NaN)")
             return
         if bad_weights:
             bad = int(np.argmax(np.isnan(log_alpha) | (log_alpha == np.inf)))

@@ -130,17 +130,9 @@ def test_numerical_failure_is_raised_at_its_step_and_leaves_the_filter(name, whe
     np.testing.assert_array_equal(f.P, P)
 
 
-_RECOVER_GAP = (
-    "particle_filter.py ParticleFilter(recover=True) with the {kind} proposal: a measurement whose hx gives "
-    "inf at step 4 raises NumericalError 'S is not positive definite at step 4 (particle 0)' instead of "
-    "being skipped as an outlier with a RuntimeWarning, as the bootstrap and EKF-proposal filters do "
-    "(the recover docstring: a measurement under which no weight is finite is skipped)."
-)
-
 
 @pytest.mark.parametrize("name", [
-    n if not n.startswith(("upf", "supf")) else pytest.param(n, marks=GAP(_RECOVER_GAP.format(kind=n)))
-    for n in FILTERS if not n.startswith("ukf")
+    n for n in FILTERS if not n.startswith("ukf")
 ])
 def test_opt_in_recovery_skips_an_unusable_measurement_with_a_warning(name):
     f = build(name)
