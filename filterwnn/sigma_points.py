@@ -65,7 +65,6 @@ import warnings
 import numpy as np
 from filterpy.common import pretty_str
 from filterpy.kalman import JulierSigmaPoints, MerweScaledSigmaPoints
-from scipy.linalg import cholesky
 
 from ._validation import NumericalError, as_state, check_positive_int
 

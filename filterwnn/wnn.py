@@ -242,7 +242,7 @@ def jacobian(theta, X, wavelet="morlet"):
     X, W, v, a, t, a_eff = _hidden(theta, X)
     g = v[..., None, :] * dpsi(t) / a_eff[..., None, :]  # (..., n, H)
     da_sign = np.where(np.abs(a) >= DILATION_FLOOR, np.sign(a), 0.0)
-    n, H = t.shape[-2], t.shape[-1]
+    H = t.shape[-1]
     JW = (g[..., :, :, None] * X[:, None, :]).reshape(g.shape[:-1] + (H * X.shape[1],))
     Jv = psi(t)
     Ja = -g * t * da_sign[..., None, :]

@@ -6,7 +6,6 @@ import numpy as np
 import pytest
 from filterpy.kalman import (
     JulierSigmaPoints,
-    KalmanFilter,
     MerweScaledSigmaPoints,
     UnscentedKalmanFilter as FilterpyUKF,
 )

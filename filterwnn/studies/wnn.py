@@ -59,7 +59,7 @@ import numpy as np
 
 from .._validation import check_choice, check_positive_int, check_seed
 from ..datasets import make_siso_benchmark
-from ..regressor import AUTO_SETTINGS, PAPER_SETTINGS, TRAINERS, WNNRegressor
+from ..regressor import PAPER_SETTINGS, TRAINERS, WNNRegressor
 
 __all__ = [
     "ALL_TRAINERS",
