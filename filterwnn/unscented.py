@@ -185,6 +185,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         self.step = 0
         self._sigmas_stale = True  # sigmas_f must be drawn from (x, P) before update
         self._deviations = None
+        self._trusted = {}  # the P and Q objects already checked (or produced) here
 
     # ------------------------------------------------------------------ helpers
     def _fast_points(self):
@@ -207,11 +208,14 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             raise NumericalError(
                 f"x and P must be finite before step {self.step + 1}", matrix="P", step=self.step + 1
             )
-        _check_symmetric(P, "P")
-        if check_Q:
+        # symmetry costs a full pass: check what the user set, not what we produced
+        if P is not self._trusted.get("P"):
+            _check_symmetric(P, "P")
+        if check_Q and self.Q is not self._trusted.get("Q"):
             if not np.all(np.isfinite(self.Q)):
                 raise ValueError("Q must be finite, got non-finite entries")
             _check_symmetric(self.Q, "Q")
+            self._trusted["Q"] = self.Q
 
     def _sigmas(self, x, P, what):
         """Sigma points of N(x, P); NumericalError naming ``what`` if P is not PD."""
@@ -314,6 +318,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             raise
         self.x_prior = np.copy(self.x)
         self.P_prior = np.copy(self.P)
+        self._trusted["P"] = self.P
 
     def compute_process_sigmas(self, dt, fx=None, **fx_args):
         """filterpy's helper: ``sigmas_f`` = the sigma points passed through ``fx``."""
@@ -370,6 +375,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             self._restore(snap)
             raise
         self._sigmas_stale = True
+        self._trusted["P"] = self.P
 
     def _check_measurement(self, z, R):
         """Validate ``z`` and ``R`` together; returns ``(z, R)`` as float arrays.
