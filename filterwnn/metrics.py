@@ -20,6 +20,8 @@ from __future__ import annotations
 import numpy as np
 from scipy import linalg, stats
 
+from .resampling import effective_sample_size  # one definition, re-exported here
+
 from ._validation import check_positive, check_positive_int
 
 __all__ = ["mse", "rmse", "nees", "nis", "chi2_bounds", "effective_sample_size"]
@@ -124,24 +126,3 @@ def chi2_bounds(dof, n_runs=1, alpha=0.05):
     lo = stats.chi2.ppf(alpha / 2, dof * n_runs) / n_runs
     hi = stats.chi2.ppf(1 - alpha / 2, dof * n_runs) / n_runs
     return float(lo), float(hi)
-
-
-def effective_sample_size(weights):
-    """``1 / sum(w_i^2)`` of the normalised weights (``n`` for equal weights, 1 for one-hot).
-
-    ``weights`` must be a non-empty 1-D array of finite, non-negative numbers with a
-    positive sum; they are normalised here.
-    """
-    try:
-        w = np.asarray(weights, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise TypeError(f"weights must be array-like of numbers, got {type(weights).__name__}") from exc
-    if w.ndim != 1 or w.size == 0:
-        raise ValueError(f"weights must be a non-empty 1-D array, got shape {w.shape}")
-    if not np.all(np.isfinite(w)) or np.any(w < 0):
-        raise ValueError(f"weights must be finite and non-negative, got min {np.min(w)}")
-    total = float(np.sum(w))
-    if not total > 0:
-        raise ValueError(f"weights must have a positive sum, got {total}")
-    w = w / total
-    return float(1.0 / np.sum(w * w))
