@@ -28,6 +28,7 @@ __all__ = [
     "check_weights",
     "check_rng",
     "check_positive_int",
+    "check_symmetric",
     "check_seed",
     "check_positive",
     "check_choice",
@@ -145,9 +146,7 @@ def check_covariance(P, name="P", dim=None, *, allow_scalar=True, require_pd=Tru
     if not np.all(np.isfinite(arr)):
         raise ValueError(f"{name} must be finite, got non-finite entries")
     scale = max(np.max(np.abs(arr)), np.finfo(float).tiny)
-    asym = np.max(np.abs(arr - arr.T))
-    if asym > sym_tol * scale:
-        raise ValueError(f"{name} must be symmetric; max |{name} - {name}.T| = {asym:.3g}")
+    check_symmetric(arr, name, sym_tol)
     if require_pd and cholesky_lower(arr) is None:
         ev = _min_eigenvalue(arr, scale)
         raise ValueError(f"{name} must be positive definite (Cholesky failed); smallest eigenvalue {ev:.3g}")
@@ -156,6 +155,20 @@ def check_covariance(P, name="P", dim=None, *, allow_scalar=True, require_pd=Tru
         if ev < -np.sqrt(np.finfo(float).eps) * scale:
             raise ValueError(f"{name} must be positive semi-definite; smallest eigenvalue {ev:.3g}")
     return arr
+
+
+def check_symmetric(M, name="P", tol=1e-8):
+    """Require ``max|M - M^T| <= tol * max|M|`` (stacked over leading axes); return ``M``.
+
+    The one symmetry rule of the package, used wherever a covariance enters.
+    """
+    M = np.asarray(M, dtype=float)
+    if M.size:
+        scale = max(float(np.max(np.abs(M))), np.finfo(float).tiny)
+        asym = float(np.max(np.abs(M - np.swapaxes(M, -1, -2))))
+        if asym > tol * scale:
+            raise ValueError(f"{name} must be symmetric; max |{name} - {name}.T| = {asym:.3g}")
+    return M
 
 
 def _min_eigenvalue(arr, scale):

@@ -22,7 +22,7 @@ from scipy import linalg, stats
 
 from .resampling import effective_sample_size  # one definition, re-exported here
 
-from ._validation import check_positive, check_positive_int
+from ._validation import check_positive, check_positive_int, check_symmetric
 
 __all__ = ["mse", "rmse", "nees", "nis", "chi2_bounds", "effective_sample_size"]
 
@@ -69,10 +69,7 @@ def _quad(e, P, e_name="x_true - x_hat", P_name="P"):
     if not np.all(np.isfinite(P)):
         raise ValueError(f"{P_name} must be finite, got non-finite entries")
     Pt = np.swapaxes(P, -1, -2)
-    scale = max(float(np.max(np.abs(P))), np.finfo(float).tiny)
-    asym = float(np.max(np.abs(P - Pt)))
-    if asym > 1e-8 * scale:
-        raise ValueError(f"{P_name} must be symmetric; max |{P_name} - {P_name}.T| = {asym:.3g}")
+    check_symmetric(P, P_name)
     try:
         L = np.linalg.cholesky(P)
     except np.linalg.LinAlgError as exc:

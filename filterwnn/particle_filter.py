@@ -80,6 +80,7 @@ from ._validation import (
     check_positive,
     check_positive_int,
     check_rng,
+    check_symmetric,
 )
 from .proposals import (
     ExtendedKalmanProposal,
@@ -445,12 +446,7 @@ class ParticleFilter:
 
     def _check_Q(self):
         """``Q`` as a finite symmetric ``(dim_x, dim_x)`` array (PSD is checked where it is factored)."""
-        Q = _noise(self.Q, "Q", self.dim_x)
-        scale = max(np.max(np.abs(Q)), np.finfo(float).tiny)
-        asym = np.max(np.abs(Q - Q.T))
-        if asym > 1e-8 * scale:
-            raise ValueError(f"Q must be symmetric; max |Q - Q.T| = {asym:.3g}")
-        return Q
+        return check_symmetric(_noise(self.Q, "Q", self.dim_x), "Q")
 
     def _moments(self, X, w, C=None):
         if self.x_mean_fn is None:

@@ -82,7 +82,7 @@ import numpy as np
 from scipy.linalg import solve_triangular
 
 from ._validation import NumericalError
-from .sigma_points import _StaircaseSimplex, _symmetric_scale, sigma_deviations, unit_sigma_points
+from .sigma_points import _StaircaseSimplex, _check_protocol, _symmetric_scale, sigma_deviations, unit_sigma_points
 
 __all__ = [
     "batched_sigma_points",
@@ -709,12 +709,7 @@ class UnscentedKalmanProposal(_KalmanProposal):
 
     def __init__(self, points, carry_covariance=True):
         super().__init__(carry_covariance)
-        for attr in ("n", "Wm", "Wc", "num_sigmas", "sigma_points"):
-            if not hasattr(points, attr):
-                raise TypeError(
-                    f"points must follow filterpy's sigma-point protocol (missing {attr!r}), "
-                    f"got {type(points).__name__}"
-                )
+        _check_protocol(points, ("n", "Wm", "Wc", "num_sigmas", "sigma_points"))
         self.points = points
         self._Z = unit_sigma_points(points)
 

@@ -66,7 +66,7 @@ import numpy as np
 from filterpy.common import pretty_str
 from filterpy.kalman import JulierSigmaPoints, MerweScaledSigmaPoints
 
-from ._validation import NumericalError, as_state, check_positive_int
+from ._validation import NumericalError, as_state, check_positive_int, check_symmetric
 
 __all__ = [
     "MinimalSkewSigmaPoints",
@@ -165,9 +165,7 @@ class _StaircaseSimplex(MerweScaledSigmaPoints):
             raise ValueError(f"P must have shape ({self.n}, {self.n}), got {P.shape}")
         if not np.all(np.isfinite(P)):
             raise ValueError("P must be finite, got non-finite entries")
-        asym = np.max(np.abs(P - P.T))
-        if asym > 1e-8 * max(np.max(np.abs(P)), np.finfo(float).tiny):
-            raise ValueError(f"P must be symmetric; max |P - P.T| = {asym:.3g}")
+        check_symmetric(P, "P")
         try:
             U = self.sqrt(P)
         except np.linalg.LinAlgError as exc:
@@ -333,8 +331,9 @@ class SphericalSimplexSigmaPoints(_StaircaseSimplex):
 # ---------------------------------------------------------------------------
 
 
-def _check_protocol(points):
-    for attr in ("n", "num_sigmas", "sigma_points", "Wm", "Wc"):
+def _check_protocol(points, attrs=("n", "num_sigmas", "sigma_points", "Wm", "Wc")):
+    """TypeError unless ``points`` has filterpy's sigma-point attributes ``attrs``."""
+    for attr in attrs:
         if not hasattr(points, attr):
             raise TypeError(
                 f"points must follow filterpy's sigma-point protocol (missing {attr!r}), "

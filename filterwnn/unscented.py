@@ -60,9 +60,9 @@ from filterpy.kalman import UnscentedKalmanFilter as _FilterpyUKF
 from filterpy.kalman import unscented_transform
 from scipy.linalg import cho_factor, cho_solve, cholesky
 
-from ._validation import NumericalError, check_positive, check_positive_int
+from ._validation import NumericalError, check_positive, check_positive_int, check_symmetric
 from ._validation import cholesky_lower as cholesky_or_none
-from .sigma_points import sigma_deviations
+from .sigma_points import _check_protocol, sigma_deviations
 
 __all__ = ["UnscentedKalmanFilter", "fast_unscented_transform"]
 
@@ -90,13 +90,6 @@ def fast_unscented_transform(sigmas, Wm, Wc, noise_cov=None):
     if noise_cov is not None:
         P = P + noise_cov
     return x, P
-
-
-def _check_symmetric(M, name, tol=1e-8):
-    """ValueError unless ``|M - M.T| <= tol * max|M|`` (the house rule of check_covariance)."""
-    asym = np.max(np.abs(M - M.T)) if M.size else 0.0
-    if asym > tol * max(np.max(np.abs(M)), np.finfo(float).tiny):
-        raise ValueError(f"{name} must be symmetric; max |{name} - {name}.T| = {asym:.3g}")
 
 
 class UnscentedKalmanFilter(_FilterpyUKF):
@@ -159,12 +152,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             raise TypeError(f"hx must be callable, got {type(hx).__name__}")
         if fx is not None and not callable(fx):
             raise TypeError(f"fx must be callable or None (random walk), got {type(fx).__name__}")
-        for attr in ("num_sigmas", "sigma_points", "Wm", "Wc"):
-            if not hasattr(points, attr):
-                raise TypeError(
-                    f"points must follow filterpy's sigma-point protocol (missing {attr!r}), "
-                    f"got {type(points).__name__}"
-                )
+        _check_protocol(points, ("num_sigmas", "sigma_points", "Wm", "Wc"))  # n is optional here
         if getattr(points, "n", dim_x) != dim_x:
             raise ValueError(f"points.n must equal dim_x={dim_x}, got {points.n}")
         super().__init__(
@@ -210,11 +198,11 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             )
         # symmetry costs a full pass: check what the user set, not what we produced
         if P is not self._trusted.get("P"):
-            _check_symmetric(P, "P")
+            check_symmetric(P, "P")
         if check_Q and self.Q is not self._trusted.get("Q"):
             if not np.all(np.isfinite(self.Q)):
                 raise ValueError("Q must be finite, got non-finite entries")
-            _check_symmetric(self.Q, "Q")
+            check_symmetric(self.Q, "Q")
             self._trusted["Q"] = self.Q
 
     def _sigmas(self, x, P, what):
@@ -401,7 +389,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             raise ValueError(f"R must have shape ({z.size}, {z.size}), got shape {R.shape}")
         if not np.all(np.isfinite(R)):
             raise ValueError("R must be finite, got non-finite entries")
-        _check_symmetric(R, "R")
+        check_symmetric(R, "R")
         return z, R
 
     def _vectorized_update(self, z, R, UT, hx, **hx_args):
