@@ -235,14 +235,12 @@ class UnscentedKalmanFilter(_FilterpyUKF):
 
     def _snapshot(self):
         # References suffice: this class never writes into these arrays in place, it
-        # rebinds them. filterpy's own predict fills sigmas_f in place, so copy that.
-        snap = {k: getattr(self, k) for k in (
+        # rebinds them (its predict does not call filterpy's, which fills sigmas_f in place).
+        return {k: getattr(self, k) for k in (
             "x", "P", "x_prior", "P_prior", "x_post", "P_post", "sigmas_f", "sigmas_h",
             "K", "y", "z", "S", "SI", "_sigmas_stale", "_deviations",
             "_log_likelihood", "_likelihood", "_mahalanobis", "step",
         )}
-        snap["sigmas_f"] = np.copy(self.sigmas_f)
-        return snap
 
     def _restore(self, snap):
         for k, v in snap.items():
