@@ -9,7 +9,8 @@ from filterwnn.cli import main
 from filterwnn.studies import wnn as study
 
 TINY = dict(n_runs=2, n_epochs=2, pf_epochs=1, n_particles=3, trainers=["bp", "ekf", "spf"],
-            paper_table=True, paper_runs=1, references=(), sweep_particles=(2,), sweep_runs=1, seed=7)
+            paper_table=True, paper_runs=1, references=(), sweep_particles=(2,), sweep_runs=1, seed=7,
+            tune_runs=1)
 
 
 def _numbers(res):
@@ -84,11 +85,76 @@ def test_cache_resumes_with_identical_numbers(tmp_path, serial):
     cache = tmp_path / "cache"
     small = dict(TINY, paper_table=False, sweep_particles=())
     first = study.run_study(**small, cache_dir=str(cache))
-    assert len(list(cache.glob("*.json"))) == 6
+    n_tune = sum(len(study.candidates(t)) for t in TINY["trainers"])  # one tuning run each
+    assert len(list(cache.glob("*.json"))) == 6 + n_tune
     again = study.run_study(**small, cache_dir=str(cache), cached_only=True)
     np.testing.assert_equal(_numbers(again), _numbers(first))
     working = [n for n in _numbers(serial) if n[0] == "working"]
     np.testing.assert_equal(_numbers(first), working)
     empty = study.run_study(**small, cache_dir=str(tmp_path / "none"), cached_only=True)
     assert empty.table == [] and empty.config["n_done"] == 0
-    assert "Incomplete: 0 of 6" in study.markdown_table(empty)
+    assert "Settings search incomplete" in study.markdown_table(empty)
+    assert "Incomplete: 0 of 6" in study.markdown_table(study.run_study(
+        **{**small, "tune_runs": 0}, cache_dir=str(tmp_path / "none"), cached_only=True))
+
+
+# ---------------------------------------------------------------------------- settings search
+def test_working_runs_use_the_settings_chosen_on_validation(serial):
+    chosen = {r["trainer"]: r for r in serial.tuning if r["chosen"]}
+    assert set(chosen) == {"bp", "ekf", "spf"}
+    assert sum(r["trainer"] == "ekf" for r in serial.tuning) == len(study.TUNING_GRID["ekf"])
+    for row in serial.table:
+        if row["table"] != "working":
+            continue
+        c = chosen[row["trainer"]]
+        assert row["epochs"] == c["best_epoch"]
+        for key, name in (("process_noise", "Q"), ("initial_covariance", "P0"), ("learning_rate", "lr")):
+            if key in c["params"]:
+                assert f"{name}={c['params'][key]:g}," in row["settings"] + ","
+    assert "validation split" in study.markdown_table(serial)
+    assert "**yes**" in study.tuning_table(serial)
+
+
+def test_tuning_never_reads_the_test_rows(monkeypatch):
+    real = study.make_siso_benchmark
+
+    def poisoned(rng=None):
+        X, y, X_test, y_test = real(rng=rng)
+        return X, y, np.full_like(X_test, np.nan), np.full_like(y_test, np.nan)
+
+    monkeypatch.setattr(study, "make_siso_benchmark", poisoned)
+    r = study.tune_run("ekf", study.tune_seeds(0, 1)[0], 3, params={"process_noise": 1e-3})
+    assert r["status"] == "ok" and np.all(np.isfinite(r["curve_val"])) and len(r["curve_val"]) == 3
+    assert "test_mse" not in r
+
+
+def test_tune_seeds_are_independent_of_run_seeds():
+    runs = {tuple(k) for _, k in study.run_seeds(5, 50)}
+    tune = {tuple(k) for _, k in study.tune_seeds(5, 5)}
+    assert not runs & tune
+
+
+def test_select_settings_prefers_the_lowest_median_and_skips_failures():
+    def res(c, curve, status="ok"):
+        return {"trainer": "ukf", "candidate": c, "params": {"process_noise": 10.0 ** -c}, "curve_val": curve,
+                "status": status}
+
+    inf = float("inf")
+    rs = [res(0, [1.0, 0.5, 0.6]), res(0, [1.0, 0.7, 0.4]),
+          res(1, [0.1, inf, inf], "failed: P not positive definite"), res(1, [0.2, inf, inf], "failed: x")]
+    chosen, rows = study.select_settings(rs)
+    assert chosen == {"params": {"process_noise": 1.0}, "epochs": 3, "val_mse": 0.5}
+    assert [r["n_failed"] for r in rows] == [0, 2] and rows[0]["chosen"] and not rows[1]["chosen"]
+
+
+def test_particle_candidates_centre_on_their_proposal_filter():
+    got = study.candidates("epf", {"ekf": {"process_noise": 1e-3, "initial_covariance": 0.1}})
+    assert [c["process_noise"] for c in got] == [1e-4, 1e-3, 1e-2]
+    assert {c["initial_covariance"] for c in got} == {0.1}
+    auto = study.candidates("supf")  # parent not searched: its AUTO_SETTINGS
+    assert auto[1]["process_noise"] == study.AUTO_SETTINGS[("sukf", "scaled")]["Q"]
+
+
+def test_no_search_uses_auto_settings_and_all_epochs():
+    res = study.run_study(**{**TINY, "paper_table": False, "sweep_particles": (), "tune_runs": 0})
+    assert res.tuning == [] and all(r["epochs"] == (2 if r["trainer"] != "spf" else 1) for r in res.table)

@@ -6,9 +6,9 @@ trainers plus the SUKF (``bp, ekf, ukf, sukf, spf, epf, upf, supf``), over indep
 and writes
 
 ``table1.md``
-    the Markdown table: one row per trainer at its *working* settings (scaled start, the
-    ``"auto"`` noise of :data:`filterwnn.regressor.AUTO_SETTINGS`, bank weighting for
-    EPF/UPF/SUPF), a second table at the *paper's* settings (U[0, 1] start, Q = 1,
+    the Markdown table: one row per trainer at its *working* settings (scaled start, bank
+    weighting for EPF/UPF/SUPF; Q, P0 or the learning rate, and the number of epochs
+    chosen on a validation split, see *Settings* below), a second table at the *paper's* settings (U[0, 1] start, Q = 1,
     R = 0.1, P0 = 1, textbook particle weights), reference rows for scikit-learn's
     ``MLPRegressor`` and ``GaussianProcessRegressor`` on the same data, and the paper's
     Table 1 values beside ours;
@@ -17,9 +17,22 @@ and writes
     test_mse_q3, fit_time_median, mean_ess``;
 ``runs.csv``
     one line per (table, trainer, run): test/train MSE, fit time, ESS, distinct particles;
+``tuning.md``, ``tuning.csv``
+    every candidate setting tried on the validation split, its best epoch and validation
+    MSE, and which one was chosen;
 ``fig3_particles_mse.png``, ``fig4_particles_time.png``, ``fig5_supf_convergence.png``
     test MSE and training time against the number of particles for the four particle
     filters, and the SUPF convergence curve (training and test MSE per epoch).
+
+**Settings.** Before the runs, each trainer tries the candidates of :data:`TUNING_GRID`
+on ``tune_runs`` separate *tuning* runs (their own seeds, independent of the table's runs):
+it trains on the first 80 % of the tuning run's training rows and scores the last 20 %
+after every epoch. The candidate and epoch with the lowest median validation MSE are then
+used for every run of the table (trained on all 100 training rows). The test rows are
+never looked at to choose anything. The particle filters search Q around the value chosen
+for the filter their proposal uses (EPF: EKF, UPF: UKF, SUPF: SUKF) and keep its P0, so
+their candidates are set after the single filters' search. ``tune_runs=0`` skips the search
+and uses :data:`filterwnn.regressor.AUTO_SETTINGS` for the full ``n_epochs``.
 
 **Runs.** Run ``i`` uses ``SeedSequence(seed).spawn(n_runs)[i]``; it re-draws its data
 from its own seed (so the test set's variance differs between runs: 1.66 for one seed,
@@ -40,7 +53,7 @@ protocol that finishes in a few minutes on 2 cores, and says so in its output;
 ``--runs``, ``--epochs``, ``--pf-epochs``, ``--particles`` and ``--sweep-particles`` scale it.
 
 >>> res = run_study(n_runs=2, n_epochs=2, pf_epochs=1, n_particles=3, trainers=["ekf", "spf"],
-...                 paper_table=False, references=(), sweep_particles=(), seed=1)
+...                 paper_table=False, references=(), sweep_particles=(), seed=1, tune_runs=1)
 >>> [row["trainer"] for row in res.table]
 ['ekf', 'spf']
 >>> sorted(res.table[0])[:3]
@@ -59,7 +72,7 @@ import numpy as np
 
 from .._validation import check_choice, check_positive_int, check_seed
 from ..datasets import make_siso_benchmark
-from ..regressor import PAPER_SETTINGS, TRAINERS, WNNRegressor
+from ..regressor import AUTO_SETTINGS, PAPER_SETTINGS, TRAINERS, WNNRegressor
 
 __all__ = [
     "ALL_TRAINERS",
@@ -67,8 +80,14 @@ __all__ = [
     "PAPER_TABLE1",
     "REFERENCES",
     "TABLE_COLUMNS",
+    "TUNING_GRID",
+    "PROPOSAL_PARENT",
     "StudyResult",
     "run_seeds",
+    "tune_seeds",
+    "candidates",
+    "tune_run",
+    "select_settings",
     "fit_run",
     "fit_reference",
     "run_tasks",
@@ -76,6 +95,7 @@ __all__ = [
     "run_study",
     "write_outputs",
     "markdown_table",
+    "tuning_table",
     "is_reduced",
     "add_arguments",
     "run",
@@ -87,6 +107,23 @@ REFERENCES = ("MLPRegressor", "GaussianProcessRegressor")
 TABLE_COLUMNS = (
     "trainer", "settings", "test_mse_median", "test_mse_q1", "test_mse_q3", "fit_time_median", "mean_ess",
 )
+
+#: Candidates tried on the validation split, per trainer (``WNNRegressor`` keywords).
+#: EPF/UPF/SUPF are not listed: they search ``Q x {0.1, 1, 10}`` around the Q chosen for
+#: their proposal's filter (:data:`PROPOSAL_PARENT`) and keep its P0 (see :func:`candidates`).
+TUNING_GRID = {
+    "bp": [{"learning_rate": lr} for lr in (0.02, 0.05, 0.1, 0.2)],
+    "ekf": [{"process_noise": q, "initial_covariance": p} for q in (1e-4, 1e-3, 1e-2) for p in (0.01, 0.1)],
+    "ukf": [{"process_noise": q, "initial_covariance": p} for q in (1e-6, 1e-5, 1e-4) for p in (0.01, 0.1)],
+    "sukf": [{"process_noise": q, "initial_covariance": p} for q in (1e-6, 1e-5, 1e-4) for p in (0.01, 0.1)],
+    "spf": [{"process_noise": q, "initial_covariance": 0.01} for q in (1e-5, 1e-4, 1e-3)],
+}
+
+#: The single filter whose step each particle filter's proposal runs.
+PROPOSAL_PARENT = {"epf": "ekf", "upf": "ukf", "supf": "sukf"}
+
+#: Fraction of a tuning run's training rows (the last ones) held out for validation.
+VALIDATION_FRACTION = 0.2
 
 #: The paper's Table 1: trainer -> (test MSE, training time in s). It has no SUKF row.
 PAPER_TABLE1 = {
@@ -115,12 +152,16 @@ class StudyResult(NamedTuple):
         ``fit_time_median``, ``n_runs``.
     config : dict
         The protocol's size and seed.
+    tuning : list of dict
+        One row per (trainer, candidate) tried on the validation split (see
+        :func:`select_settings`); empty when ``tune_runs=0``.
     """
 
     runs: list
     table: list
     sweep: list
     config: dict
+    tuning: list = []
 
 
 # ---------------------------------------------------------------------------- seeds
@@ -135,6 +176,130 @@ def _child(run_seed, k):
     so that the same run gives the same streams however the tasks are scheduled."""
     entropy, key = run_seed
     return np.random.SeedSequence(entropy, spawn_key=tuple(key) + (k,))
+
+
+def tune_seeds(seed, n_runs):
+    """Seeds of the tuning runs: ``SeedSequence(seed, spawn_key=(10**6 + j,))``.
+
+    Their spawn keys lie far beyond any table run's (``(i,)``, ``i < 10**6``), so the
+    tuning data are independent of every run that is scored.
+    """
+    seed = check_seed(seed)
+    return [(seed, (10**6 + j,)) for j in range(n_runs)]
+
+
+def candidates(trainer, chosen=None):
+    """The settings tried for ``trainer`` on the validation split.
+
+    Parameters
+    ----------
+    trainer : str
+    chosen : dict, optional
+        ``trainer -> settings dict`` already chosen; EPF/UPF/SUPF centre their Q on their
+        parent's choice there (else on the parent's :data:`~filterwnn.regressor.AUTO_SETTINGS`).
+
+    Returns
+    -------
+    list of dict
+        ``WNNRegressor`` keyword sets.
+
+    >>> candidates("upf", {"ukf": {"process_noise": 1e-5, "initial_covariance": 0.01}})
+    [{'process_noise': 1e-06, 'initial_covariance': 0.01}, {'process_noise': 1e-05, 'initial_covariance': 0.01}, {'process_noise': 0.0001, 'initial_covariance': 0.01}]
+    """
+    check_choice(trainer, "trainer", TRAINERS)
+    if trainer in TUNING_GRID:
+        return [dict(c) for c in TUNING_GRID[trainer]]
+    parent = PROPOSAL_PARENT[trainer]
+    base = (chosen or {}).get(parent)
+    if base is None:
+        auto = AUTO_SETTINGS[(parent, "scaled")]
+        base = {"process_noise": auto["Q"], "initial_covariance": auto["P0"]}
+    q = base["process_noise"]
+    return [{"process_noise": float(f"{q * f:.3g}"), "initial_covariance": base["initial_covariance"]}
+            for f in (0.1, 1.0, 10.0)]
+
+
+def tune_run(trainer, tune_seed, n_epochs, n_particles=50, params=None, candidate=0, run=0):
+    """Train on the first 80 % of a tuning run's training rows; validation MSE per epoch.
+
+    The run's test rows are drawn (so the data match :func:`fit_run`'s for the same seed)
+    and discarded unseen. A fit that fails numerically scores ``inf`` from the failing epoch on.
+
+    Returns
+    -------
+    dict
+        ``table`` ("tuning"), ``trainer``, ``candidate``, ``params``, ``run``, ``curve_val``
+        (validation MSE after each epoch), ``fit_time``, ``status``.
+    """
+    from threadpoolctl import threadpool_limits
+
+    params = dict(params or {})
+    with threadpool_limits(limits=1):
+        X, y, _, _ = make_siso_benchmark(rng=_child(tune_seed, 0))  # test rows unused
+        n_val = int(round(VALIDATION_FRACTION * len(X)))
+        Xt, yt, Xv, yv = X[:-n_val], y[:-n_val], X[-n_val:], y[-n_val:]
+        reg = WNNRegressor(trainer=trainer, n_epochs=n_epochs, n_particles=n_particles, init="scaled",
+                           rng=_child(tune_seed, 1), **params)
+        curve, status = [], "ok"
+        try:
+            for _ in range(n_epochs):
+                reg.partial_fit(Xt, yt)
+                mse = float(np.mean((reg.predict(Xv) - yv) ** 2))
+                curve.append(mse if np.isfinite(mse) else float("inf"))
+        except np.linalg.LinAlgError as exc:
+            status = f"failed: {exc}"
+        curve += [float("inf")] * (n_epochs - len(curve))
+    return {
+        "table": "tuning", "trainer": trainer, "candidate": int(candidate), "params": params, "run": run,
+        "curve_val": curve, "fit_time": float(getattr(reg, "fit_time_", float("nan"))), "status": status,
+        "n_particles": n_particles if trainer in PARTICLE_TRAINERS else 0,
+    }
+
+
+def select_settings(results):
+    """Pick, for one trainer, the candidate and epoch of lowest median validation MSE.
+
+    A candidate that failed numerically (NumericalError) in any tuning run is passed over
+    unless every candidate did.
+
+    Parameters
+    ----------
+    results : list of dict
+        :func:`tune_run` results of one trainer (every candidate, every tuning run).
+
+    Returns
+    -------
+    chosen : dict
+        ``params`` (the keywords), ``epochs`` (1-based), ``val_mse``.
+    rows : list of dict
+        One per candidate: ``trainer``, ``params``, ``best_epoch``, ``val_mse`` (median over
+        tuning runs at its best epoch), ``val_mse_last``, ``n_runs``, ``n_failed``, ``chosen``.
+
+    >>> rs = [{"trainer": "ekf", "candidate": c, "params": {"process_noise": q}, "curve_val": cv,
+    ...        "status": "ok"} for c, q, cv in ((0, 1e-3, [3.0, 2.0, 2.5]), (1, 1e-2, [4.0, 1.0, 9.0]))]
+    >>> chosen, rows = select_settings(rs)
+    >>> chosen
+    {'params': {'process_noise': 0.01}, 'epochs': 2, 'val_mse': 1.0}
+    """
+    by = {}
+    for r in results:
+        by.setdefault(r["candidate"], []).append(r)
+    rows = []
+    for c in sorted(by):
+        rs = by[c]
+        n = min(len(r["curve_val"]) for r in rs)
+        med = np.median(np.array([r["curve_val"][:n] for r in rs], dtype=float), axis=0)
+        med = np.where(np.isfinite(med), med, np.inf)
+        e = int(np.argmin(med))
+        rows.append({
+            "trainer": rs[0]["trainer"], "candidate": c, "params": dict(rs[0]["params"]), "best_epoch": e + 1,
+            "val_mse": float(med[e]), "val_mse_last": float(med[-1]), "n_runs": len(rs),
+            "n_failed": sum(r["status"] != "ok" for r in rs), "chosen": False,
+        })
+    # a setting that failed numerically in any tuning run is chosen only if all did
+    best = min(rows, key=lambda r: (r["n_failed"] > 0, r["val_mse"], r["candidate"]))
+    best["chosen"] = True
+    return {"params": best["params"], "epochs": best["best_epoch"], "val_mse": best["val_mse"]}, rows
 
 
 # ---------------------------------------------------------------------------- one run
@@ -289,6 +454,8 @@ def _task(task):
     kind, args, kwargs = task
     if kind == "reference":
         return fit_reference(*args, **kwargs)
+    if kind == "tune":
+        return tune_run(*args, **kwargs)
     return fit_run(*args, **kwargs)
 
 
@@ -309,7 +476,8 @@ def run_tasks(tasks, n_jobs=1, backend=None, progress=False, cache_dir=None, cac
     Parameters
     ----------
     tasks : list of (kind, args, kwargs)
-        ``kind`` "fit" (:func:`fit_run`) or "reference" (:func:`fit_reference`).
+        ``kind`` "fit" (:func:`fit_run`), "tune" (:func:`tune_run`) or "reference"
+        (:func:`fit_reference`).
     n_jobs : int
         joblib workers (``-1``: all cores).
     backend : str, optional
@@ -441,8 +609,9 @@ def run_study(
     progress=False,
     cache_dir=None,
     cached_only=False,
+    tune_runs=2,
 ):
-    """Run the study (Table 1 rows, the particle sweep and the curves) and return numbers.
+    """Run the study (settings search, Table 1 rows, the particle sweep, the curves).
 
     Parameters
     ----------
@@ -471,6 +640,9 @@ def run_study(
         Runs per sweep point (default ``n_runs``).
     n_jobs, backend, progress, cache_dir, cached_only
         See :func:`run_tasks` (``cache_dir`` makes the study resumable).
+    tune_runs : int
+        Tuning runs of the settings search on the validation split (module docstring);
+        0 uses :data:`~filterwnn.regressor.AUTO_SETTINGS` and all ``n_epochs``.
 
     Returns
     -------
@@ -484,15 +656,53 @@ def run_study(
         check_choice(t, "trainer", TRAINERS)
     paper_runs = n_runs if paper_runs is None else check_positive_int(paper_runs, "paper_runs", minimum=0)
     sweep_runs = n_runs if sweep_runs is None else check_positive_int(sweep_runs, "sweep_runs")
+    tune_runs = check_positive_int(tune_runs, "tune_runs", minimum=0)
     seeds = run_seeds(seed, max(n_runs, paper_runs, sweep_runs))
 
     def epochs(t):
         return pf_epochs if t in PARTICLE_TRAINERS else n_epochs
 
+    run_kw = dict(n_jobs=n_jobs, backend=backend, progress=progress, cache_dir=cache_dir, cached_only=cached_only)
+    chosen, tuning, complete = {}, [], True
+    if tune_runs:
+        tseeds = tune_seeds(seed, tune_runs)
+        first = [t for t in trainers if t not in PROPOSAL_PARENT]
+        second = [t for t in trainers if t in PROPOSAL_PARENT]
+        for phase in (first, second):
+            ttasks = []
+            parents = {k: v["params"] for k, v in chosen.items()}
+            for t in phase:
+                for c, params in enumerate(candidates(t, parents)):
+                    for j in range(tune_runs):
+                        ttasks.append(("tune", (t, tseeds[j], epochs(t), n_particles),
+                                       {"params": params, "candidate": c, "run": j}))
+            ttasks.sort(key=lambda task: -_task_cost(task, _COST))
+            results = run_tasks(ttasks, **run_kw)
+            for t in phase:
+                rs = [r for r in results if r is not None and r["trainer"] == t]
+                if len(rs) < len(candidates(t, parents)) * tune_runs:
+                    complete = False
+                    continue
+                choice, rows = select_settings(rs)
+                chosen[t] = choice
+                tuning += rows
+
+    def working(t):
+        """(epochs, params) of trainer t's table runs."""
+        if t in chosen:
+            return chosen[t]["epochs"], dict(chosen[t]["params"])
+        return epochs(t), None
+
     tasks = []
+    if tune_runs and not complete:
+        trainers = [t for t in trainers if t in chosen]  # cached_only with an unfinished search
     for t in trainers:
+        ep, params = working(t)
         for i in range(n_runs):
-            tasks.append(("fit", (t, seeds[i], epochs(t), n_particles), {"table": "working", "run": i}))
+            kw = {"table": "working", "run": i}
+            if params is not None:
+                kw["params"] = params
+            tasks.append(("fit", (t, seeds[i], ep, n_particles), kw))
     for name in references:
         for i in range(n_runs):
             tasks.append(("reference", (name, seeds[i]), {"run": i}))
@@ -509,22 +719,23 @@ def run_study(
         if n == n_particles:
             continue  # reuse the main table's runs
         for t in sweep_pf:
+            ep, params = working(t)
             for i in range(sweep_runs):
-                tasks.append(("fit", (t, seeds[i], pf_epochs, int(n)),
-                              {"table": "sweep", "run": i, "track_test": False}))
+                kw = {"table": "sweep", "run": i, "track_test": False}
+                if params is not None:
+                    kw["params"] = params
+                tasks.append(("fit", (t, seeds[i], ep, int(n)), kw))
     # schedule: the working table run by run (so an interrupted study has whole runs),
     # then references, paper table and sweep; longest first inside each; same numbers
-    cost = {"bp": 1, "ekf": 1, "ukf": 8, "sukf": 8, "spf": 5, "epf": 60, "upf": 150, "supf": 120}
     group = {"working": 0, "paper": 2, "sweep": 3}
 
     def priority(k):
         kind, args, kwargs = tasks[k]
         g = 1 if kind == "reference" else group[kwargs["table"]]
-        return (g, kwargs["run"] if g == 0 else 0, -_task_cost(tasks[k], cost))
+        return (g, kwargs["run"] if g == 0 else 0, -_task_cost(tasks[k], _COST))
 
     order = sorted(range(len(tasks)), key=priority)
-    results = run_tasks([tasks[k] for k in order], n_jobs=n_jobs, backend=backend, progress=progress,
-                        cache_dir=cache_dir, cached_only=cached_only)
+    results = run_tasks([tasks[k] for k in order], **run_kw)
     out = [None] * len(tasks)
     for k, r in zip(order, results):
         out[k] = r
@@ -549,8 +760,13 @@ def run_study(
         trainers=list(trainers), paper_runs=paper_runs if paper_table else 0, paper_pf_epochs=paper_pf_epochs,
         sweep_particles=list(sweep_particles),
         sweep_runs=sweep_runs, n_jobs=n_jobs, backend=backend or "loky", n_tasks=n_total, n_done=n_done,
+        tune_runs=tune_runs, validation_fraction=VALIDATION_FRACTION, tuning_complete=complete,
     )
-    return StudyResult(runs=main + swept, table=table, sweep=sweep, config=config)
+    return StudyResult(runs=main + swept, table=table, sweep=sweep, config=config, tuning=tuning)
+
+
+#: Rough seconds per epoch and particle, for scheduling the longest tasks first.
+_COST = {"bp": 1, "ekf": 1, "ukf": 6, "sukf": 6, "spf": 0.4, "epf": 1.2, "upf": 4, "supf": 4}
 
 
 def _task_cost(task, cost):
@@ -601,8 +817,15 @@ def markdown_table(result):
     head = ("| trainer | settings | epochs | test MSE median | q1 | q3 | fit time (s) | mean ESS | distinct particles "
             "| runs | paper MSE | paper time (s) |")
     sep = "|---" * 12 + "|"
+    if c.get("tune_runs"):
+        working_title = (f"Working settings (scaled start; Q, P0 or learning rate and the epochs chosen on a "
+                         f"validation split of {c['tune_runs']} separate tuning run(s), never on test data)")
+    else:
+        working_title = "Working settings (scaled start, AUTO_SETTINGS, no search)"
+    if c.get("tune_runs") and not c.get("tuning_complete", True):
+        lines += ["", "**Settings search incomplete**: trainers whose search has not finished have no row."]
     for table, title in (
-        ("working", "Working settings (scaled start, settings from the prototypes' validation)"),
+        ("working", working_title),
         ("paper", "Paper's settings (U[0,1] start, Q = 1, P0 = 1, R = 0.1, textbook weights, resampling every step)"),
         ("reference", "References on the same runs"),
     ):
@@ -625,6 +848,31 @@ def markdown_table(result):
         for s in result.sweep:
             lines.append(f"| {s['trainer']} | {s['n_particles']} | {_fmt(s['test_mse_median'])} | "
                          f"{_fmt(s['fit_time_median'])} | {s['n_runs']} |")
+    return "\n".join(lines) + "\n"
+
+
+def _params_text(params):
+    names = {"process_noise": "Q", "initial_covariance": "P0", "learning_rate": "lr"}
+    return ", ".join(f"{names.get(k, k)}={v:g}" for k, v in params.items())
+
+
+def tuning_table(result):
+    """The settings search as Markdown: every candidate, its best epoch and validation MSE."""
+    c = result.config
+    lines = [
+        "# Settings search on a validation split",
+        "",
+        f"Each candidate trained on the first {1 - c.get('validation_fraction', VALIDATION_FRACTION):.0%} of the "
+        f"training rows of {c.get('tune_runs', 0)} tuning run(s) (seeds independent of the table's runs) and was "
+        "scored on the remaining rows after every epoch; the row marked chosen (lowest median validation MSE, "
+        "at its best epoch) is what the table's runs use. Test rows are never used.",
+        "",
+        "| trainer | candidate | best epoch | validation MSE (median) | at the last epoch | runs | failed | chosen |",
+        "|---|---|---|---|---|---|---|---|",
+    ]
+    for r in result.tuning:
+        lines.append(f"| {r['trainer']} | {_params_text(r['params'])} | {r['best_epoch']} | {_fmt(r['val_mse'])} | "
+                     f"{_fmt(r['val_mse_last'])} | {r['n_runs']} | {r['n_failed']} | {'**yes**' if r['chosen'] else ''} |")
     return "\n".join(lines) + "\n"
 
 
@@ -658,6 +906,20 @@ def write_outputs(result, out, figures=True):
         for r in result.runs:
             w.writerow(r)
     paths.append(p)
+    if result.tuning:
+        p = os.path.join(out, "tuning.md")
+        with open(p, "w") as f:
+            f.write(tuning_table(result))
+        paths.append(p)
+        p = os.path.join(out, "tuning.csv")
+        fields = ["trainer", "candidate", "settings", "best_epoch", "val_mse", "val_mse_last", "n_runs", "n_failed",
+                  "chosen"]
+        with open(p, "w", newline="") as f:
+            w = csv.DictWriter(f, fieldnames=fields, extrasaction="ignore")
+            w.writeheader()
+            for r in result.tuning:
+                w.writerow(dict(r, settings=_params_text(r["params"])))
+        paths.append(p)
     if figures:
         import matplotlib
 
@@ -699,6 +961,9 @@ def add_arguments(parser):
     parser.add_argument("--paper-pf-epochs", type=int, default=None,
                         help="particle-filter epochs at the paper's settings (default --pf-epochs)")
     parser.add_argument("--no-paper-table", action="store_true", help="skip the paper-settings table")
+    parser.add_argument("--tune-runs", type=int, default=2,
+                        help="tuning runs of the settings search on a validation split (default 2; 0: use the "
+                             "regressor's AUTO_SETTINGS and all epochs)")
     parser.add_argument("--trainers", default=",".join(ALL_TRAINERS), help="comma-separated trainers")
     parser.add_argument("--seed", type=int, default=2026, help="root seed (SeedSequence(seed).spawn(runs))")
     parser.add_argument("--jobs", type=int, default=1, help="joblib workers (-1: all cores); same numbers for any value")
@@ -740,7 +1005,7 @@ def run(args):
             trainers=trainers, seed=args.seed, paper_table=not args.no_paper_table, paper_runs=args.paper_runs,
             paper_pf_epochs=args.paper_pf_epochs, cache_dir=cache, cached_only=args.cached_only,
             sweep_particles=sweep, sweep_runs=args.sweep_runs, n_jobs=args.jobs, backend=args.backend,
-            progress=progress,
+            progress=progress, tune_runs=args.tune_runs,
         )
     finally:
         if client is not None:
