@@ -25,7 +25,6 @@ __all__ = [
     "as_state",
     "as_measurement",
     "check_covariance",
-    "check_weights",
     "check_rng",
     "check_positive_int",
     "check_symmetric",
@@ -175,23 +174,6 @@ def _min_eigenvalue(arr, scale):
     """Smallest eigenvalue of the symmetric part, computed on ``arr / scale`` (no overflow)."""
     unit = arr / scale
     return float(np.linalg.eigvalsh(0.5 * (unit + unit.T)).min()) * scale
-
-
-def check_weights(w, name="weights", n=None):
-    """Validate normalised non-negative weights; returns a float 1-D array summing to 1."""
-    arr = np.asarray(w, dtype=float)
-    if arr.ndim != 1 or arr.size == 0:
-        raise ValueError(f"{name} must be a non-empty 1-D array, got shape {arr.shape}")
-    if n is not None and arr.size != n:
-        raise ValueError(f"{name} must have length {n}, got {arr.size}")
-    if not np.all(np.isfinite(arr)) or np.any(arr < 0):
-        raise ValueError(f"{name} must be finite and non-negative, got min {np.nanmin(arr)}")
-    total = arr.sum()
-    if not total > 0:
-        raise ValueError(f"{name} must have a positive sum, got {total}")
-    if abs(total - 1.0) > 1e-8:
-        raise ValueError(f"{name} must sum to 1, got {total:.12g}")
-    return arr
 
 
 def check_rng(rng):

@@ -966,7 +966,8 @@ def add_arguments(parser):
                              "regressor's AUTO_SETTINGS and all epochs)")
     parser.add_argument("--trainers", default=",".join(ALL_TRAINERS), help="comma-separated trainers")
     parser.add_argument("--seed", type=int, default=2026, help="root seed (SeedSequence(seed).spawn(runs))")
-    parser.add_argument("--jobs", type=int, default=1, help="joblib workers (-1: all cores); same numbers for any value")
+    parser.add_argument("--jobs", type=int, default=-1,
+                        help="joblib workers (default -1: all cores); same numbers for any value")
     parser.add_argument("--backend", default=None,
                         help="joblib backend name (loky, threading, dask, ...); default joblib's (loky)")
     parser.add_argument("--scheduler", default=None,
