@@ -8,7 +8,7 @@ module (``filterwnn.sigma_points``, ``filterwnn.particle_filter``, ...).
 __version__ = "0.1.0"
 
 from ._validation import NumericalError
-from .models import LinearGaussianModel, StateSpaceModel
+from .models import GammaNoiseModel, LinearGaussianModel, StateSpaceModel
 
 # --- sigma points and the unscented filter (issue 3) ---
 from .sigma_points import MinimalSkewSigmaPoints, SphericalSimplexSigmaPoints
@@ -48,6 +48,7 @@ __all__ = [
     "__version__",
     "NumericalError",
     "StateSpaceModel",
+    "GammaNoiseModel",
     "LinearGaussianModel",
     # --- issue 3 ---
     "MinimalSkewSigmaPoints",
