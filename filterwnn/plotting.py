@@ -9,6 +9,15 @@ from __future__ import annotations
 
 __all__ = []
 
+
+def _figure(ax=None, figsize=(6, 4)):
+    """``(fig, ax)``: a new figure, or the given ``ax`` and its figure."""
+    if ax is not None:
+        return ax.figure, ax
+    import matplotlib.pyplot as plt
+
+    return plt.subplots(figsize=figsize)
+
 # --- sigma points and particle filters (issues 3-4) ---
 
 # --- WNN study (issue 5) ---
@@ -33,10 +42,7 @@ def wnn_particle_sweep(sweep, metric="test_mse_median", ax=None):
     """
     import matplotlib.pyplot as plt
 
-    if ax is None:
-        fig, ax = plt.subplots(figsize=(6, 4))
-    else:
-        fig = ax.figure
+    fig, ax = _figure(ax)
     for trainer in dict.fromkeys(r["trainer"] for r in sweep):
         rows = sorted((r for r in sweep if r["trainer"] == trainer), key=lambda r: r["n_particles"])
         ax.plot([r["n_particles"] for r in rows], [r[metric] for r in rows], "o-", label=trainer.upper())
@@ -69,10 +75,7 @@ def wnn_convergence(runs, ax=None):
     import matplotlib.pyplot as plt
     import numpy as np
 
-    if ax is None:
-        fig, ax = plt.subplots(figsize=(6, 4))
-    else:
-        fig = ax.figure
+    fig, ax = _figure(ax)
     for i, trainer in enumerate(dict.fromkeys(r["trainer"] for r in runs)):
         color = f"C{i % 10}"
         sel = [r for r in runs if r["trainer"] == trainer]
