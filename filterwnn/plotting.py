@@ -40,8 +40,6 @@ def wnn_particle_sweep(sweep, metric="test_mse_median", ax=None):
     -------
     matplotlib.figure.Figure
     """
-    import matplotlib.pyplot as plt
-
     fig, ax = _figure(ax)
     for trainer in dict.fromkeys(r["trainer"] for r in sweep):
         rows = sorted((r for r in sweep if r["trainer"] == trainer), key=lambda r: r["n_particles"])
@@ -72,7 +70,6 @@ def wnn_convergence(runs, ax=None):
     -------
     matplotlib.figure.Figure
     """
-    import matplotlib.pyplot as plt
     import numpy as np
 
     fig, ax = _figure(ax)
