@@ -242,12 +242,10 @@ def tune_run(trainer, tune_seed, n_epochs, n_particles=50, params=None, candidat
                            rng=_child(tune_seed, 1), **params)
         curve, status = [], "ok"
         try:
-            for _ in range(n_epochs):
-                reg.partial_fit(Xt, yt)
-                mse = float(np.mean((reg.predict(Xv) - yv) ** 2))
-                curve.append(mse if np.isfinite(mse) else float("inf"))
+            _train_tracked(reg, Xt, yt, Xv, yv, n_epochs, curve)
         except np.linalg.LinAlgError as exc:
             status = f"failed: {exc}"
+        curve = [v if np.isfinite(v) else float("inf") for v in curve]
         curve += [float("inf")] * (n_epochs - len(curve))
     return {
         "table": "tuning", "trainer": trainer, "candidate": int(candidate), "params": params, "run": run,
@@ -303,6 +301,14 @@ def select_settings(results):
 
 
 # ---------------------------------------------------------------------------- one run
+def _train_tracked(reg, X, y, X_eval, y_eval, n_epochs, curve):
+    """``n_epochs`` epochs of ``partial_fit``, appending the MSE on ``(X_eval, y_eval)`` after
+    each to ``curve`` (kept up to the failing epoch if a NumericalError interrupts)."""
+    for _ in range(n_epochs):
+        reg.partial_fit(X, y)
+        curve.append(float(np.mean((reg.predict(X_eval) - y_eval) ** 2)))
+
+
 def _settings_text(table, trainer, reg):
     s = reg.settings_
     if trainer == "bp":
@@ -366,9 +372,7 @@ def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_
         status = "ok"
         try:
             if track_test:
-                for _ in range(n_epochs):
-                    reg.partial_fit(X, y)
-                    curve_test.append(float(np.mean((reg.predict(X_test) - y_test) ** 2)))
+                _train_tracked(reg, X, y, X_test, y_test, n_epochs, curve_test)
             else:
                 reg.fit(X, y)
             test_mse = float(np.mean((reg.predict(X_test) - y_test) ** 2))
@@ -680,7 +684,7 @@ def run_study(
             results = run_tasks(ttasks, **run_kw)
             for t in phase:
                 rs = [r for r in results if r is not None and r["trainer"] == t]
-                if len(rs) < len(candidates(t, parents)) * tune_runs:
+                if len(rs) < sum(task[1][0] == t for task in ttasks):
                     complete = False
                     continue
                 choice, rows = select_settings(rs)
@@ -688,21 +692,18 @@ def run_study(
                 tuning += rows
 
     def working(t):
-        """(epochs, params) of trainer t's table runs."""
+        """(epochs, extra task keywords) of trainer t's table and sweep runs."""
         if t in chosen:
-            return chosen[t]["epochs"], dict(chosen[t]["params"])
-        return epochs(t), None
+            return chosen[t]["epochs"], {"params": dict(chosen[t]["params"])}
+        return epochs(t), {}
 
     tasks = []
     if tune_runs and not complete:
         trainers = [t for t in trainers if t in chosen]  # cached_only with an unfinished search
     for t in trainers:
-        ep, params = working(t)
+        ep, extra = working(t)
         for i in range(n_runs):
-            kw = {"table": "working", "run": i}
-            if params is not None:
-                kw["params"] = params
-            tasks.append(("fit", (t, seeds[i], ep, n_particles), kw))
+            tasks.append(("fit", (t, seeds[i], ep, n_particles), {"table": "working", "run": i, **extra}))
     for name in references:
         for i in range(n_runs):
             tasks.append(("reference", (name, seeds[i]), {"run": i}))
@@ -719,12 +720,10 @@ def run_study(
         if n == n_particles:
             continue  # reuse the main table's runs
         for t in sweep_pf:
-            ep, params = working(t)
+            ep, extra = working(t)
             for i in range(sweep_runs):
-                kw = {"table": "sweep", "run": i, "track_test": False}
-                if params is not None:
-                    kw["params"] = params
-                tasks.append(("fit", (t, seeds[i], ep, int(n)), kw))
+                tasks.append(("fit", (t, seeds[i], ep, int(n)),
+                              {"table": "sweep", "run": i, "track_test": False, **extra}))
     # schedule: the working table run by run (so an interrupted study has whole runs),
     # then references, paper table and sweep; longest first inside each; same numbers
     group = {"working": 0, "paper": 2, "sweep": 3}
