@@ -479,6 +479,10 @@ class ParticleFilter:
             RuntimeWarning,
             stacklevel=3,
         )
+        self._no_measurement_step()
+
+    def _no_measurement_step(self):
+        """End a step without a measurement: the prior is the posterior, nothing resampled."""
         self._finish_without_measurement()
         self.x_post, self.P_post = self.x.copy(), self.P.copy()
         self._record(self.ess, self._distinct(self.particles), False)
@@ -565,9 +569,7 @@ class ParticleFilter:
         if z is None:
             if self.particles is None:
                 self._draw_initial()
-            self._finish_without_measurement()
-            self.x_post, self.P_post = self.x.copy(), self.P.copy()
-            self._record(self.ess, self._distinct(self.particles), False)
+            self._no_measurement_step()
             return
         z = as_measurement(z, self.dim_z)
         check_covariance(self.R, "R", self.dim_z)
