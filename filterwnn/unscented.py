@@ -392,10 +392,10 @@ class UnscentedKalmanFilter(_FilterpyUKF):
 
     def _vectorized_update(self, z, R, UT, hx, **hx_args):
         hx = self.hx if hx is None else hx
-        R = self.R if R is None else R
         sig = self.sigmas_f
         # z may change size between sensors (filterpy allows it): the size is R's
-        dim_z = np.shape(R)[0] if np.ndim(R) == 2 else self._dim_z
+        # (R comes from _check_measurement: always square 2-D)
+        dim_z = R.shape[0]
         self.sigmas_h = self._call(hx, sig, "hx", dim_z, **hx_args)
         if UT is None and self.z_mean is None and self.residual_z is np.subtract:
             zp, S = fast_unscented_transform(self.sigmas_h, self.Wm, self.Wc, R)
