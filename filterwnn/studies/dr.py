@@ -252,7 +252,7 @@ def _upf_run(run, model, x0, P0, rng, n_particles=UPF_PARTICLES):
 
     pf = UnscentedParticleFilter(6, 2, model.dt, model.hx, model.fx, n_particles=n_particles,
                                  points=_points("merwe", 6), residual_z=dr_residual,
-                                 z_mean_fn=_z_mean_rows, vectorized=True, weighting="bank", rng=rng)
+                                 z_mean_fn=dr_z_mean, vectorized=True, weighting="bank", rng=rng)
     pf.x, pf.P, pf.Q, pf.R = x0.copy(), P0.copy(), model.Q.copy(), model.R.copy()
     out = np.empty((len(run.t), 6))
     for k, z in enumerate(run.z_dr):
@@ -260,18 +260,6 @@ def _upf_run(run, model, x0, P0, rng, n_particles=UPF_PARTICLES):
         pf.update(z)
         out[k] = pf.x
     return out
-
-
-def _z_mean_rows(sigmas, Wm):
-    """Circular heading mean for stacked sigma sets ``(..., n_sigmas, 2)``."""
-    sigmas = np.asarray(sigmas, dtype=float)
-    if sigmas.ndim == 2:
-        return dr_z_mean(sigmas, Wm)
-    Wm = np.asarray(Wm, dtype=float)
-    z = np.matmul(Wm, sigmas)
-    z[..., 0] = np.arctan2(np.sum(Wm * np.sin(sigmas[..., 0]), axis=-1),
-                           np.sum(Wm * np.cos(sigmas[..., 0]), axis=-1))
-    return z
 
 
 def _gpsdr_filter_run(name, run, x0, rng):
