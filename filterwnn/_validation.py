@@ -225,8 +225,4 @@ def check_choice(value, name, choices):
 
 def check_seed(seed, name="seed"):
     """A root seed for :class:`numpy.random.SeedSequence`: an int ``>= 0``."""
-    if isinstance(seed, bool) or not isinstance(seed, numbers.Integral):
-        raise TypeError(f"{name} must be an integer >= 0, got {type(seed).__name__} {seed!r}")
-    if seed < 0:
-        raise ValueError(f"{name} must be >= 0, got {seed}")
-    return int(seed)
+    return check_positive_int(seed, name, minimum=0)
