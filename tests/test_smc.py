@@ -179,3 +179,30 @@ def test_wnn_posterior_smoke():
     move = make_weight_model_move(model, X[:3], y[:3], n_steps=2)
     assert move.target.n_rows == 3
     assert move(res.particles, 0).shape == (20, 15)
+
+
+# ---------------------------------------------------------------- WNNRegressor(trainer="smc")
+def test_regressor_smc_trainer():
+    from filterwnn import WNNRegressor
+
+    rng = np.random.default_rng(2)
+    X = rng.uniform(-1, 1, (30, 2))
+    y = np.sin(2 * X[:, 0]) + 0.1 * rng.normal(size=30)
+    reg = WNNRegressor(trainer="smc", n_hidden=2, n_particles=12, n_epochs=2, rng=0).fit(X, y)
+    assert reg.settings_["Q"] == 0.0 and reg.settings_["n_particles"] == 12
+    d = reg.diagnostics_
+    assert len(d["mean_ess"]) == 1 and d["mean_ess"][0] >= 12 / 2 - 1e-6
+    assert len(d["acceptance"]) == 2 and len(d["distinct"]) == 2  # sampler, then one rejuvenation epoch
+    assert 1 <= d["distinct_ancestors"][-1] <= 12
+    mean, std = reg.predict(X[:5], return_std=True)
+    P = reg._final.particles
+    assert P.shape == (12, reg.theta_.size)
+    from filterwnn import wnn
+
+    Y = wnn.forward(P, X[:5])
+    np.testing.assert_allclose(mean, Y.mean(axis=0))
+    np.testing.assert_allclose(std**2, Y.var(axis=0) + 0.1)
+    again = WNNRegressor(trainer="smc", n_hidden=2, n_particles=12, n_epochs=2, rng=0).fit(X, y)
+    np.testing.assert_array_equal(again.predict(X[:5]), mean)
+    # the SMC fit beats the mean predictor on its training rows
+    assert np.mean((reg.predict(X) - y) ** 2) < np.var(y)
