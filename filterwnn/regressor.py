@@ -103,10 +103,11 @@ AUTO_SETTINGS = {
     ("supf", "scaled"): {"Q": 1e-5, "P0": 0.01},
     ("supf", "paper"): {"Q": 1e-4, "P0": 0.1},
     # smc: a static posterior (Q = 0); P0 multiplies the prior matched to the start
+    # (kernel "mala": n_moves MALA steps per rung; "hmc": n_moves HMC steps of n_leapfrog leapfrog steps)
     ("smc", "scaled"): {"Q": 0.0, "P0": 1.0, "output_scale": 1.0, "n_moves": 30, "ess_fraction": 0.5,
-                        "preconditioner": "diag"},
+                        "kernel": "mala", "n_leapfrog": 10, "preconditioner": "diag"},
     ("smc", "paper"): {"Q": 0.0, "P0": 1.0, "output_scale": 1.0, "n_moves": 30, "ess_fraction": 0.5,
-                       "preconditioner": "diag"},
+                       "kernel": "mala", "n_leapfrog": 10, "preconditioner": "diag"},
 }
 
 #: The paper's literal settings (Sec. 5): Q = 1, R = 0.1, U[0, 1] start; P0 is not stated (1 here).
@@ -423,7 +424,12 @@ class _SMCTrainer(_Trainer):
         s = self.settings
         if self.result is None:
             target = smc.RowsTarget(self._prior(X), X, y)
-            self.move = smc.MALAMove(target, n_steps=s["n_moves"], preconditioner=s["preconditioner"])
+            if s.get("kernel", "mala") == "hmc":
+                self.move = smc.HMCMove(
+                    target, n_steps=s["n_moves"], n_leapfrog=s["n_leapfrog"], preconditioner=s["preconditioner"]
+                )
+            else:
+                self.move = smc.MALAMove(target, n_steps=s["n_moves"], preconditioner=s["preconditioner"])
             res = smc.smc_sampler(
                 target, s["n_particles"], self.rng, move=self.move, ess_fraction=s["ess_fraction"]
             )
