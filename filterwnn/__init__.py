@@ -31,6 +31,10 @@ from .datasets import make_siso_benchmark
 from .regressor import WNNRegressor
 from .weight_model import WNNWeightModel
 
+# --- posterior samples of static weights (issue 13) ---
+from . import smc
+from .smc import HMCMove, MALAMove, RowsTarget, smc_sampler
+
 # --- dead reckoning (issue 6) ---
 from .dead_reckoning import (
     SCENARIOS as DR_SCENARIOS,
@@ -69,6 +73,12 @@ __all__ = [
     "make_siso_benchmark",
     "WNNRegressor",
     "WNNWeightModel",
+    # --- issue 13 ---
+    "smc",
+    "RowsTarget",
+    "MALAMove",
+    "HMCMove",
+    "smc_sampler",
     # --- issue 6 ---
     "DR_SCENARIOS",
     "DRModel",
