@@ -13,7 +13,8 @@ Protocol, fixed before any test number:
    default ``WNNRegressor()`` (EKF) on the same seeds.
 
 Candidates are written ``key=value,key=value`` over the ``("smc", "scaled")`` settings
-(``n_moves``, ``preconditioner``, ``output_scale``, ``ess_fraction``) plus ``N`` (particles).
+(``kernel``, ``n_moves``, ``n_leapfrog``, ``preconditioner``, ``output_scale``, ``ess_fraction``)
+plus ``N`` (particles); the spec ``ekf`` validates the default ``WNNRegressor()`` for reference.
 Run with one BLAS thread, e.g.::
 
     OPENBLAS_NUM_THREADS=1 python benchmarks/smc_siso.py --validate "N=50" "N=50,preconditioner=cov"
@@ -62,9 +63,17 @@ def validate(specs, seeds):
             X, y, _, _ = make_siso_benchmark(rng=seed)
             val = np.zeros(len(X), bool)
             val[np.random.default_rng(1000 + seed).choice(len(X), 20, replace=False)] = True
-            reg, dt = fit_smc(spec, X[~val], y[~val], seed)
+            if spec == "ekf":  # the default regressor, for reference
+                t0 = time.perf_counter()
+                reg, extra = WNNRegressor(rng=seed).fit(X[~val], y[~val]), ""
+                dt = time.perf_counter() - t0
+            else:
+                reg, dt = fit_smc(spec, X[~val], y[~val], seed)
+                d = reg.diagnostics_
+                extra = (f" ESS {d['mean_ess'][0]:.1f}, acceptance {d['acceptance'][0]:.2f}, "
+                         f"ancestors {d['distinct_ancestors'][0]}, rungs {d['n_rungs'][0]}")
             scores.append(float(np.mean((reg.predict(X[val]) - y[val]) ** 2)))
-            print(f"  {spec} seed {seed}: validation MSE {scores[-1]:.4f} ({dt:.1f} s)", flush=True)
+            print(f"  {spec} seed {seed}: validation MSE {scores[-1]:.4f} ({dt:.1f} s){extra}", flush=True)
         print(f"VALIDATE {spec}: median {np.median(scores):.4f}  {np.round(scores, 4).tolist()}", flush=True)
 
 
