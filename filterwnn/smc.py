@@ -247,11 +247,13 @@ class MALAMove:
     def _factor(self, x):
         """The preconditioner ``M`` as ``(sqrt of diag, None)`` or ``(None, lower Cholesky)``."""
         floor = self.var_floor * self.target.prior_variance
-        var = np.maximum(x.var(axis=0), floor)
-        if self.preconditioner == "diag" or len(x) < 2:
+        if len(x) < 2:
+            return np.sqrt(floor), None
+        var = np.maximum(x.var(axis=0, ddof=1), floor)
+        if self.preconditioner == "diag":
             return np.sqrt(var), None
-        C = np.cov(x, rowvar=False)
-        M = (1.0 - self.shrinkage) * C
+        # (1 - s) C + s diag(C), with the floored variances on the diagonal: positive definite
+        M = (1.0 - self.shrinkage) * np.cov(x, rowvar=False)
         M[np.diag_indices_from(M)] = var
         return None, np.linalg.cholesky(0.5 * (M + M.T))
 

@@ -209,3 +209,11 @@ def test_regressor_smc_trainer():
     np.testing.assert_array_equal(again.predict(X[:5]), mean)
     # the SMC fit beats the mean predictor on its training rows
     assert np.mean((reg.predict(X) - y) ** 2) < np.var(y)
+
+
+def test_cov_preconditioner_with_few_particles(blr, rng):
+    """Fewer particles than dimensions: the shrunk covariance stays positive definite."""
+    model, X, y = blr
+    move = MALAMove(RowsTarget(model, X, y), n_steps=2, preconditioner="cov")
+    out = move(rng.normal(size=(2, 3)), rng)
+    assert out.shape == (2, 3) and np.all(np.isfinite(out))
