@@ -8,8 +8,10 @@ Tolerances (set once here). With ``N`` particles, an i.i.d. sample's mean has st
 ``sd / sqrt(N)`` and its variance a relative standard error ``sqrt(2 / N)`` (0.063 at
 N = 500). SMC particles are correlated through resampling, so the tests allow 5 i.i.d.
 standard errors: ``Z_TOL = 5`` on the mean, ``VAR_RTOL = 0.3`` on the variances. Over seeds
-0-9 (N = 500, 10 moves per rung) the worst coordinate's |z| was 0.9-3.5 and the worst relative
-variance error 0.04-0.18; the log-evidence error was within 0.13.
+0-9 (N = 500, 10 MALA steps per rung) the worst coordinate's |z| was 0.9-3.5 and the worst relative
+variance error 0.04-0.18. The log-evidence estimate is unbiased here with a seed-to-seed sd of
+0.09 (MALA) to 0.14 (HMC, 2 steps of 5 leapfrogs) over seeds 0-19 (largest error 0.36), so
+``LOGZ_ATOL = 0.6`` is about 4 sd.
 """
 
 import numpy as np
@@ -22,7 +24,7 @@ from filterwnn.weight_model import WNNWeightModel
 
 Z_TOL = 5.0
 VAR_RTOL = 0.3
-LOGZ_ATOL = 0.3
+LOGZ_ATOL = 0.6
 
 
 class BayesianLinearRegression:
