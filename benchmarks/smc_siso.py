@@ -99,7 +99,8 @@ def test(spec, seeds):
             ekf_mse=float(np.mean((ekf.predict(Xt) - yt) ** 2)),
         )
         rows.append(row)
-        print("  " + "  ".join(f"{k}={v:.4g}" if isinstance(v, float) else f"{k}={v}" for k, v in row.items()), flush=True)
+        cells = (f"{k}={v:.4g}" if isinstance(v, float) else f"{k}={v}" for k, v in row.items())
+        print("  " + "  ".join(cells), flush=True)
     med = {k: float(np.median([r[k] for r in rows])) for k in rows[0] if k != "seed"}
     print(f"TEST {spec} seeds {list(seeds)} medians: " + "  ".join(f"{k}={v:.4g}" for k, v in med.items()), flush=True)
     print(f"  mean ESS over seeds {np.mean([r['mean_ess'] for r in rows]):.1f}; "

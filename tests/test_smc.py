@@ -96,7 +96,8 @@ def test_smc_ladder_and_records(blr):
     betas = np.array(res.betas)
     assert betas[-1] == 1.0 and np.all(np.diff(betas) > 0) and betas[0] > 0
     k = len(betas)
-    assert all(len(v) == k for v in (res.ess, res.acceptance, res.step_sizes, res.distinct_particles, res.distinct_ancestors))
+    records = (res.ess, res.acceptance, res.step_sizes, res.distinct_particles, res.distinct_ancestors)
+    assert all(len(v) == k for v in records)
     # every rung but the last is set by bisection to ESS = N/2; the last (beta = 1) keeps at least N/2
     np.testing.assert_allclose(res.ess[:-1], 100.0, rtol=1e-6)
     assert res.ess[-1] >= 100.0 - 1e-6
