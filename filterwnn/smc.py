@@ -532,6 +532,12 @@ def make_weight_model_move(model, X=None, y=None, **kwargs):
     default); add each row as it is seen with ``move.target.append(x_k, y_k)`` before the
     filter's update, and pass ``move`` as ``ParticleFilter(..., move=move)``.
 
+    The prior is the model's ``N(x0, P0)``: it must be the filter's initial distribution
+    (e.g. ``x0, var = scaled_prior(X, n_hidden)`` and ``P0 = var``), or the move pulls the
+    particles toward ``x0`` (zeros by default). The move's target is the static posterior
+    ``p(theta | rows)``; with ``Q > 0`` the filter's target is a random walk's, which this
+    move leaves invariant only approximately (exactly when ``Q = 0``).
+
     Parameters
     ----------
     model : WNNWeightModel
