@@ -14,7 +14,7 @@ Protocol, fixed before any test number:
 
 Candidates are written ``key=value,key=value`` over the ``("smc", "scaled")`` settings
 (``kernel``, ``n_moves``, ``n_leapfrog``, ``preconditioner``, ``output_scale``, ``ess_fraction``)
-plus ``N`` (particles); the spec ``ekf`` validates the default ``WNNRegressor()`` for reference.
+plus ``N`` (particles) and ``R`` (``measurement_noise``, default 0.1); the spec ``ekf`` validates the default ``WNNRegressor()`` for reference.
 Run with one BLAS thread, e.g.::
 
     OPENBLAS_NUM_THREADS=1 python benchmarks/smc_siso.py --validate "N=50" "N=50,preconditioner=cov"
@@ -45,12 +45,13 @@ def _parse(spec):
 def fit_smc(spec, X, y, seed):
     cfg = _parse(spec)
     n = int(cfg.pop("N", 50))
+    r = float(cfg.pop("R", 0.1))
     key = ("smc", "scaled")
     saved = dict(regmod.AUTO_SETTINGS[key])
     regmod.AUTO_SETTINGS[key].update(cfg)
     try:
         t0 = time.perf_counter()
-        reg = WNNRegressor(trainer="smc", n_particles=n, n_epochs=1, rng=seed).fit(X, y)
+        reg = WNNRegressor(trainer="smc", n_particles=n, n_epochs=1, measurement_noise=r, rng=seed).fit(X, y)
         return reg, time.perf_counter() - t0
     finally:
         regmod.AUTO_SETTINGS[key] = saved
@@ -72,8 +73,11 @@ def validate(specs, seeds):
                 d = reg.diagnostics_
                 extra = (f" ESS {d['mean_ess'][0]:.1f}, acceptance {d['acceptance'][0]:.2f}, "
                          f"ancestors {d['distinct_ancestors'][0]}, rungs {d['n_rungs'][0]}")
-            scores.append(float(np.mean((reg.predict(X[val]) - y[val]) ** 2)))
-            print(f"  {spec} seed {seed}: validation MSE {scores[-1]:.4f} ({dt:.1f} s){extra}", flush=True)
+            mean, std = reg.predict(X[val], return_std=True)
+            scores.append(float(np.mean((mean - y[val]) ** 2)))
+            cover = float(np.mean(np.abs(y[val] - mean) <= 1.645 * std))
+            print(f"  {spec} seed {seed}: validation MSE {scores[-1]:.4f}, coverage90 {cover:.2f} "
+                  f"({dt:.1f} s){extra}", flush=True)
         print(f"VALIDATE {spec}: median {np.median(scores):.4f}  {np.round(scores, 4).tolist()}", flush=True)
 
 
