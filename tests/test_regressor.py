@@ -83,11 +83,11 @@ def test_grid_search(data):
 
 def test_unknown_trainer_lists_valid_names(data):
     X, y, _, _ = data
-    with pytest.raises(ValueError, match="valid: 'bp', 'ekf', 'epf', 'spf', 'sukf', 'supf', 'ukf', 'upf'"):
+    with pytest.raises(ValueError, match="valid: 'bp', 'ekf', 'epf', 'smc', 'spf', 'sukf', 'supf', 'ukf', 'upf'"):
         WNNRegressor(trainer="lbfgs").fit(X, y)
     with pytest.raises(ValueError, match="trainer"):
         make_trainer("nope", None, None, {})
-    assert set(TRAINERS) == set(SINGLE + PARTICLE)
+    assert set(TRAINERS) == set(SINGLE + PARTICLE + ["smc"])  # smc: tests/test_smc.py
 
 
 def test_bad_arguments(data):
