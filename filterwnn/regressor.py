@@ -433,9 +433,14 @@ class _SMCTrainer(_Trainer):
                 )
             else:
                 self.move = smc.MALAMove(target, n_steps=s["n_moves"], preconditioner=s["preconditioner"])
-            res = smc.smc_sampler(
-                target, s["n_particles"], self.rng, move=self.move, ess_fraction=s["ess_fraction"]
-            )
+            try:
+                res = smc.smc_sampler(
+                    target, s["n_particles"], self.rng, move=self.move, ess_fraction=s["ess_fraction"]
+                )
+            except (NumericalError, RuntimeError) as err:
+                raise NumericalError(
+                    f"the smc trainer failed in epoch 1: {err}", matrix="theta", step=1
+                ) from err
             self.result, self.particles = res, res.particles
             self._record("mean_ess", float(np.mean(res.ess)))
             self._record("n_rungs", len(res.betas))

@@ -70,7 +70,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ._validation import check_choice, check_positive, check_positive_int, check_rng
+from ._validation import NumericalError, check_choice, check_positive, check_positive_int, check_rng
 from .resampling import effective_sample_size, normalize_log_weights, resample
 
 __all__ = ["RowsTarget", "MALAMove", "HMCMove", "SMCResult", "smc_sampler", "make_weight_model_move"]
@@ -475,6 +475,13 @@ def smc_sampler(
     Returns
     -------
     SMCResult
+
+    Raises
+    ------
+    NumericalError
+        When every particle's likelihood is zero or not finite (``step`` is the rung).
+    RuntimeError
+        When the ladder exceeds ``max_rungs``.
     """
     rng = check_rng(rng)
     n_particles = check_positive_int(n_particles, "n_particles", minimum=2)
@@ -503,7 +510,13 @@ def smc_sampler(
         new = _next_beta(ll, beta, ess_fraction * n_particles)
         w, log_sum = normalize_log_weights((new - beta) * ll)
         if not np.isfinite(log_sum):
-            raise RuntimeError(f"every particle has zero likelihood at beta={beta:.3g}")
+            rung = len(out["betas"]) + 1
+            raise NumericalError(
+                f"every particle has a zero or non-finite likelihood at rung {rung} (beta={beta:.3g}); "
+                "check the rows for non-finite or huge values, or widen the noise R",
+                matrix="log_likelihood",
+                step=rung,
+            )
         log_z += log_sum - np.log(n_particles)
         out["ess"].append(effective_sample_size(w))
         idx = resample(w, resampling, rng)

@@ -220,3 +220,12 @@ def test_cov_preconditioner_with_few_particles(blr, rng):
     move = MALAMove(RowsTarget(model, X, y), n_steps=2, preconditioner="cov")
     out = move(rng.normal(size=(2, 3)), rng)
     assert out.shape == (2, 3) and np.all(np.isfinite(out))
+
+
+def test_zero_likelihood_raises_numerical_error(blr):
+    from filterwnn import NumericalError
+
+    model, X, y = blr
+    with pytest.raises(NumericalError, match="rung 1") as info:
+        smc_sampler(RowsTarget(model, X, y * np.inf), n_particles=10, rng=0)
+    assert info.value.step == 1
