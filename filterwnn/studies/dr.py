@@ -78,6 +78,7 @@ from ..neural_filter import (
     random_motion_states,
 )
 from ..sigma_points import SphericalSimplexSigmaPoints
+from . import _args
 
 try:  # the package's vectorized UKF; filterpy's has the same API
     from ..unscented import UnscentedKalmanFilter as _UKF
@@ -791,25 +792,30 @@ def real_drive_table(res, min_moved=100.0):
 
 def add_arguments(parser):
     """Options of ``filterwnn study dr``."""
-    parser.add_argument("--runs", type=int, default=10, help="Monte-Carlo runs per scenario (default 10)")
-    parser.add_argument("--seed", type=int, default=0)
-    parser.add_argument("--jobs", type=int, default=2, help="worker processes (numbers do not depend on it)")
-    parser.add_argument("--scenarios", default=",".join(DEFAULT_SCENARIOS),
+    parser.add_argument("--runs", type=_args.positive_int, default=10, help="Monte-Carlo runs per scenario")
+    parser.add_argument("--seed", type=_args.seed, default=0,
+                        help="root seed, an integer >= 0 (run i uses SeedSequence(seed).spawn(runs)[i])")
+    parser.add_argument("--jobs", type=_args.positive_int, default=2,
+                        help="worker processes (the numbers do not depend on it)")
+    parser.add_argument("--scenarios", type=_args.name_list(SCENARIOS), default=",".join(DEFAULT_SCENARIOS),
                         help=f"comma-separated subset of {', '.join(SCENARIOS)}")
-    parser.add_argument("--filters", default=None, help="comma-separated subset of the filters (default all)")
-    parser.add_argument("--factor", type=float, default=None, help="override the DR noise factor at 150 s")
-    parser.add_argument("--out", default="results/dr", help="output folder (default results/dr)")
-    parser.add_argument("--no-figures", action="store_true")
-    parser.add_argument("--quiet", action="store_true", help="no progress bar")
+    parser.add_argument("--filters", type=_args.name_list(dict.fromkeys(_ALL_FILTERS)), default=None,
+                        help=f"comma-separated subset of {', '.join(dict.fromkeys(_ALL_FILTERS))} (default all "
+                             f"that apply to each scenario, but {', '.join(OPT_IN)})")
+    parser.add_argument("--factor", type=_args.positive_float, default=None,
+                        help="override the DR noise factor at 150 s of the DR-only scenarios (default each "
+                             "scenario's own)")
+    parser.add_argument("--out", default="results/dr", help="output folder")
+    parser.add_argument("--no-figures", action="store_true", help="write the tables only (no PNG figures)")
+    _args.add_progress_flag(parser, "--quiet")
     parser.add_argument("--real", action="store_true",
                         help=f"also run the GPS/DR filters on the real drive {CAR_DRIVE} (needs onavdata)")
 
 
 def run(args):
     """Entry point of ``filterwnn study dr``."""
-    filters = args.filters.split(",") if args.filters else None
-    res = run_study(scenarios=args.scenarios.split(","), n_runs=args.runs, filters=filters,
-                    seed=args.seed, jobs=args.jobs, factor=args.factor, progress=not args.quiet)
+    res = run_study(scenarios=args.scenarios, n_runs=args.runs, filters=args.filters,
+                    seed=args.seed, jobs=args.jobs, factor=args.factor, progress=not args.no_progress)
     paths = write_outputs(res, args.out, figures=not args.no_figures)
     print(markdown_table(res))
     if getattr(args, "real", False):
