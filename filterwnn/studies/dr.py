@@ -10,6 +10,7 @@ same drive, the same sensor noise and the same initial error, drawn from
 
 Filters (DR-only scenarios)
 
+===============  ===========
 ``EKF``          filterpy ``ExtendedKalmanFilter``, nominal ``R`` throughout (too small after the switch)
 ``EKF-oracle``   the same, told the true ``R`` at every step (the reference envelope)
 ``AEKF``         innovation-adaptive ``R`` over a 3 s window (:class:`InnovationAdaptiveEKF`)
@@ -20,6 +21,7 @@ Filters (DR-only scenarios)
 ``NN-faithful``  the paper's absolute form, same training
 ``NN-gen``       pass-through form trained once on 1500 random motions (knows no route)
 ``UPF``          unscented particle filter (when :mod:`filterwnn.particle_filter` exists)
+===============  ===========
 
 Filters (GPS/DR): ``EKF`` (6 states), ``EKF-8`` (odometer scale and heading bias
 estimated; the oracle there), ``UKF-8``, ``SUKF-8``, ``DR-only`` (6-state EKF without GPS).
