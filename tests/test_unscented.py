@@ -67,7 +67,7 @@ def test_equals_filterpy_on_nonlinear_model_at_every_step(points, vectorized):
         np.testing.assert_allclose(ours.x, ref.x, atol=ATOL)
         np.testing.assert_allclose(ours.P, ref.P, atol=ATOL)
         np.testing.assert_allclose(ours.log_likelihood, ref.log_likelihood, rtol=1e-9)
-    assert ours.step == 60
+    assert ours.step == 30  # the time step: predict advances it, update does not
 
 
 def test_non_vectorized_is_bit_identical_to_filterpy():
@@ -91,15 +91,16 @@ def test_random_walk_equals_filterpy_with_identity_fx(vectorized):
         np.testing.assert_allclose(ours.P, ref.P, atol=ATOL)
 
 
-def test_random_walk_predict_needs_no_factorisation(monkeypatch):
+def test_random_walk_step_needs_one_factorisation(monkeypatch):
+    """predict factors P_prior once (its check), and update reuses the factor."""
     ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), True, f=None)
     calls = []
     real = np.linalg.cholesky
     monkeypatch.setattr(np.linalg, "cholesky", lambda a: calls.append(1) or real(a))
-    ukf.predict()
-    assert calls == []
-    ukf.update(np.array([1.2, 0.1]))
-    assert len(calls) == 1  # one Cholesky per step
+    for z in ([1.2, 0.1], [1.1, 0.0]):
+        ukf.predict()
+        ukf.update(np.array(z))
+    assert len(calls) == 2  # one Cholesky per step
 
 
 @pytest.mark.parametrize("vectorized", [False, True])
@@ -154,9 +155,9 @@ def test_not_positive_definite_P_raises_numerical_error_with_step(vectorized):
     ukf.predict(); ukf.update(np.array([1.2, 0.1]))
     ukf.P = -np.eye(3)
     x = ukf.x.copy()
-    with pytest.raises(NumericalError, match="P is not positive definite at step 3") as info:
+    with pytest.raises(NumericalError, match="P is not positive definite at step 2") as info:
         ukf.predict()
-    assert info.value.matrix == "P" and info.value.step == 3
+    assert info.value.matrix == "P" and info.value.step == 2 and ukf.step == 1
     assert isinstance(info.value, np.linalg.LinAlgError) and isinstance(info.value, ValueError)
     assert np.array_equal(ukf.x, x) and np.array_equal(ukf.P, -np.eye(3))
 
@@ -164,7 +165,7 @@ def test_not_positive_definite_P_raises_numerical_error_with_step(vectorized):
 def test_not_positive_definite_S_raises():
     ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), True)
     ukf.predict()
-    with pytest.raises(NumericalError, match="S is not positive definite at step 2") as info:
+    with pytest.raises(NumericalError, match="S is not positive definite at step 1") as info:
         ukf.update(np.array([1.0, 0.0]), R=-10 * np.eye(2))
     assert info.value.matrix == "S"
 
