@@ -13,8 +13,9 @@ alike):
 
 It prints the medians and the ratio ours / Merwe's per ``n`` (below 1: ours is faster).
 
-Run: ``python benchmarks/bench_sigma_points.py`` (``--quick`` for a short run). One BLAS
-thread.
+Run: ``python benchmarks/bench_sigma_points.py`` (``--quick`` for a short run; from a
+checkout that is not the installed copy, ``PYTHONPATH=. python benchmarks/...``: the
+header prints which ``filterwnn`` was timed). One BLAS thread.
 """
 
 from __future__ import annotations
@@ -33,6 +34,7 @@ from filterpy.kalman import MerweScaledSigmaPoints  # noqa: E402
 from filterpy.kalman import UnscentedKalmanFilter as FilterpyUKF  # noqa: E402
 from threadpoolctl import threadpool_limits  # noqa: E402
 
+import filterwnn  # noqa: E402
 from filterwnn import MinimalSkewSigmaPoints, SphericalSimplexSigmaPoints  # noqa: E402
 
 SETS = {
@@ -87,7 +89,8 @@ def main(argv=None):
     print(f"bench_sigma_points: filterpy UKF, fx = x + 0.1 dt sin(x), range-bearing hx; "
           f"median of {args.repeats} repeats ({args.number} sigma_points calls, {args.steps} "
           f"steps each); 1 BLAS thread")
-    print(f"python {platform.python_version()}, numpy {np.__version__}, {platform.machine()}")
+    print(f"python {platform.python_version()}, numpy {np.__version__}, {platform.machine()}; "
+          f"filterwnn from {os.path.dirname(filterwnn.__file__)}")
     print(f"{'n':>3s} | {'sigma_points us: Merwe':>22s} {'spher':>6s} {'minsk':>6s} "
           f"{'ratio s/M':>9s} {'m/M':>5s} | {'UKF step us: Merwe':>18s} {'spher':>6s} "
           f"{'minsk':>6s} {'ratio s/M':>9s} {'m/M':>5s}")

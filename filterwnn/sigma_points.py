@@ -60,6 +60,7 @@ S. J. Julier, "The spherical simplex unscented transformation", ACC 2003.
 
 from __future__ import annotations
 
+import math
 import warnings
 
 import numpy as np
@@ -84,8 +85,12 @@ _DENSE_MAX_N = 32
 
 
 def _nearly_symmetric(P, tol=1e-8):
-    """The package's symmetry rule (``check_symmetric``) in as few NumPy calls as possible."""
-    return float(np.abs(P - P.T).max()) <= tol * float(np.abs(P).max())
+    """A fast pre-check of the package's symmetry rule (``check_symmetric``).
+
+    For a covariance ``max|P|`` is on the diagonal, so the diagonal sets the scale; when
+    this says no (an asymmetric or an indefinite ``P``), ``check_symmetric`` decides.
+    """
+    return float(np.abs(P - P.T).max()) <= tol * float(P.diagonal().max())
 
 
 def _check_scaling(alpha, beta, w0):
@@ -202,7 +207,7 @@ class _StaircaseSimplex(MerweScaledSigmaPoints):
             sigmas = x + D
         else:  # a custom subtract (angles): x - (-d), as filterpy does
             sigmas = np.array([self.subtract(x, -d) for d in D])
-        if not np.isfinite(sigmas.sum()):
+        if not math.isfinite(sigmas.sum()):
             self._check_finite(x, P)
             if not np.all(np.isfinite(sigmas)):
                 raise NumericalError(

@@ -335,17 +335,25 @@ class UnscentedKalmanFilter(_FilterpyUKF):
                 f"vectorized {role} must map sigma points of shape {A.shape} and a mean of "
                 f"shape {np.shape(b)} to shape {A.shape}, got {out.shape}; {fix}"
             )
-        try:  # a function written for one row: compare on this first sigma set
-            rows = np.array([fn(a.copy(), np.copy(b)) for a in A], dtype=float)
-        except (IndexError, ValueError, TypeError):  # written for arrays only: cannot compare
-            rows = None
-        if rows is not None and rows.shape == out.shape:
-            bad = ~np.isclose(out, rows, rtol=1e-9, atol=1e-12, equal_nan=True)
+        # A function written for one row (filterpy's y[1] = wrap(y[1])) wraps a sigma
+        # point instead of a column. Compare it with a row-by-row call on this first
+        # sigma set, and on a probe whose residuals all exceed pi (where a wrap of the
+        # wrong entries shows even if the sigma points are close together).
+        probe = np.asarray(b, dtype=float) + 4.0 * (1.0 + np.arange(A.size).reshape(A.shape))
+        for label, X in (("sigma point", A), ("probe row", probe)):
+            try:
+                vec = out if X is A else np.asarray(fn(X.copy(), np.copy(b)), dtype=float)
+                rows = np.array([fn(a.copy(), np.copy(b)) for a in X], dtype=float)
+            except (IndexError, ValueError, TypeError):  # written for arrays only: cannot compare
+                break
+            if rows.shape != vec.shape:
+                break
+            bad = ~np.isclose(vec, rows, rtol=1e-9, atol=1e-12, equal_nan=True)
             if bad.any():
                 i, j = np.argwhere(bad)[0]
                 raise ValueError(
-                    f"vectorized {role} differs from {role} applied row by row (sigma point {i}, "
-                    f"column {j}: {out[i, j]:.6g} against {rows[i, j]:.6g}): in vectorized mode it "
+                    f"vectorized {role} differs from {role} applied row by row ({label} {i}, "
+                    f"column {j}: {vec[i, j]:.6g} against {rows[i, j]:.6g}): in vectorized mode it "
                     f"receives all {A.shape[0]} sigma points at once, so an index such as y[1] "
                     f"selects a sigma point, not a column; {fix}"
                 )
