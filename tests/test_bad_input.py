@@ -232,6 +232,12 @@ for _vec in (False, True):
         row(lambda v=_vec: _with(v, P=NONSYM3).predict(), ValueError, "P must be symmetric", f"ukf-{_v}-P-nonsym"),
         row(lambda v=_vec: predicted_ukf(v).predict(dt=0.0), ValueError, r"dt must be finite and > 0, got 0.0", f"ukf-{_v}-predict-dt-zero"),
         row(lambda v=_vec: predicted_ukf(v).predict(dt=-1.0), ValueError, r"dt must be finite and > 0, got -1.0", f"ukf-{_v}-predict-dt-neg"),
+        # issue 15: the fix is in the message; Q is checked at predict in both modes
+        row(lambda v=_vec: _with(v, Q=0.1).predict(), ValueError, r"Q must have shape \(3, 3\), got \(\); .*use Q = q \* np.eye\(3\)", f"ukf-{_v}-Q-scalar"),
+        row(lambda v=_vec: _with(v, P=0.1).update(np.zeros(2)), ValueError, r"P must have shape \(3, 3\), got \(\); .*use P = p \* np.eye\(3\)", f"ukf-{_v}-P-scalar"),
+        row(lambda v=_vec: _with(v, Q=-I3).predict(), ValueError, r"Q must be positive semi-definite; smallest eigenvalue -1; Q must be a covariance", f"ukf-{_v}-Q-negative"),
+        row(lambda v=_vec: _with(v, Q=NONSYM3).predict(), ValueError, r"symmetrise it: Q = 0.5 \* \(Q \+ Q.T\)", f"ukf-{_v}-Q-nonsym-fix"),
+        row(lambda v=_vec: predicted_ukf(v).update(np.zeros(2), R=np.zeros(3)), ValueError, r"R must have shape \(2, 2\), got shape \(3,\); use R = np.diag\(variances\)", f"ukf-{_v}-R-vector"),
     ]
 UKF_ROWS += [
     row(lambda: predicted_ukf(False).update(np.zeros(1)), ValueError, r"z must have 2 entries, got shape \(1,\)", "ukf-loop-z-len1"),
