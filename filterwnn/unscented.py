@@ -250,7 +250,9 @@ class UnscentedKalmanFilter(_FilterpyUKF):
                 raise ValueError(f"{name} must have shape ({n}, {n}), got {np.shape(M)}; "
                                  + _SHAPE_FIX[name].format(n=n))
         if not (np.all(np.isfinite(x)) and np.all(np.isfinite(P))):
-            raise NumericalError(f"x and P must be finite {when}", matrix="P", step=self.step)
+            raise NumericalError(
+                f"x and P must be finite {when}; set them again (x_post and P_post hold the "
+                "last update's values)", matrix="P", step=self.step)
         # symmetry costs a full pass: check what the user set, not what we produced
         if P is not self._trusted.get("P"):
             _with_fix(check_symmetric, P, "P")
@@ -521,7 +523,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             raise ValueError(f"R must have shape ({z.size}, {z.size}), got shape {R.shape}; "
                              + _SHAPE_FIX["R"].format(n=z.size))
         if not np.all(np.isfinite(R)):
-            raise ValueError("R must be finite, got non-finite entries")
+            raise ValueError("R must be finite, got non-finite entries; use R = np.diag(variances)")
         _with_fix(check_symmetric, R, "R")
         return z, R
 
