@@ -257,8 +257,11 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         if P is not self._trusted.get("P"):
             _with_fix(check_symmetric, P, "P")
         if check_Q and self.Q is not self._trusted.get("Q"):
-            # once per Q object: finite, symmetric, positive semi-definite
-            _with_fix(check_covariance, self.Q, "Q", n, allow_scalar=False, require_pd=False)
+            # once per Q object: finite, symmetric, positive semi-definite (a Cholesky
+            # settles the usual positive definite Q; eigenvalues only for a singular one)
+            _with_fix(check_symmetric, self.Q, "Q")
+            if cholesky_or_none(self.Q) is None:
+                _with_fix(check_covariance, self.Q, "Q", n, allow_scalar=False, require_pd=False)
             self._trusted["Q"] = self.Q
 
     def _sigmas(self, x, P, what):
@@ -426,7 +429,8 @@ class UnscentedKalmanFilter(_FilterpyUKF):
                         matrix="P_prior", step=self.step,
                     )
             if self.vectorized:
-                self.P = 0.5 * (self.P + self.P.T)
+                if fx is not None:  # P + Q is already symmetric
+                    self.P = 0.5 * (self.P + self.P.T)
                 # P_prior must be positive definite, as loop mode checks by drawing the
                 # sigma points; the factor is kept for the update's sigma points
                 self._chol = (self.P, self._cholesky(self.P, "P_prior"))
