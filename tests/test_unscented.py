@@ -94,6 +94,7 @@ def test_random_walk_equals_filterpy_with_identity_fx(vectorized):
 def test_random_walk_step_needs_one_factorisation(monkeypatch):
     """predict factors P_prior once (its check), and update reuses the factor."""
     ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), True, f=None)
+    ukf.predict(); ukf.update(np.array([1.2, 0.1]))  # the first predict also checks Q, once
     calls = []
     real = np.linalg.cholesky
     monkeypatch.setattr(np.linalg, "cholesky", lambda a: calls.append(1) or real(a))
