@@ -82,10 +82,10 @@ def main(argv=None):
     ap.add_argument("--repeats", type=int, default=15, help="repeats (medians are reported)")
     ap.add_argument("--number", type=int, default=200, help="sigma_points calls per repeat")
     ap.add_argument("--steps", type=int, default=50, help="UKF steps per repeat")
-    ap.add_argument("--quick", action="store_true", help="n = 2, 4, 8, 20; 5 repeats")
+    ap.add_argument("--quick", action="store_true", help="n = 2, 4, 8, 20; 7 repeats")
     args = ap.parse_args(argv)
     if args.quick:
-        args.dims, args.repeats, args.number, args.steps = [2, 4, 8, 20], 5, 100, 20
+        args.dims, args.repeats, args.number, args.steps = [2, 4, 8, 20], 7, 100, 30
     print(f"bench_sigma_points: filterpy UKF, fx = x + 0.1 dt sin(x), range-bearing hx; "
           f"median of {args.repeats} repeats ({args.number} sigma_points calls, {args.steps} "
           f"steps each); 1 BLAS thread")
@@ -95,7 +95,7 @@ def main(argv=None):
           f"{'ratio s/M':>9s} {'m/M':>5s} | {'UKF step us: Merwe':>18s} {'spher':>6s} "
           f"{'minsk':>6s} {'ratio s/M':>9s} {'m/M':>5s}")
     rng = np.random.default_rng(0)
-    worst = 0.0
+    worst = worst_min = 0.0
     with threadpool_limits(1), warnings.catch_warnings():
         warnings.simplefilter("ignore", UserWarning)
         for n in args.dims:
@@ -115,12 +115,15 @@ def main(argv=None):
             mu = {k: 1e6 * float(np.median(v)) for k, v in t_ukf.items()}
             rs, rm = mu["spherical"] / mu["merwe"], mu["minskew"] / mu["merwe"]
             worst = max(worst, rs, rm)
+            lo = {k: min(v) for k, v in t_ukf.items()}  # the least disturbed repeat
+            worst_min = max(worst_min, lo["spherical"] / lo["merwe"], lo["minskew"] / lo["merwe"])
             print(f"{n:3d} | {mp['merwe']:22.1f} {mp['spherical']:6.1f} {mp['minskew']:6.1f} "
                   f"{mp['spherical'] / mp['merwe']:9.2f} {mp['minskew'] / mp['merwe']:5.2f} | "
                   f"{mu['merwe']:18.1f} {mu['spherical']:6.1f} {mu['minskew']:6.1f} "
                   f"{rs:9.2f} {rm:5.2f}")
     print(f"largest UKF-step ratio ours / Merwe over n = {args.dims[0]}..{args.dims[-1]}: "
-          f"{worst:.2f} (target <= 1)")
+          f"{worst:.2f} of medians, {worst_min:.2f} of minima (target <= 1; on a shared "
+          "machine the minima are the steadier estimate)")
 
 
 if __name__ == "__main__":
