@@ -11,6 +11,8 @@ from ._validation import NumericalError
 from .models import GammaNoiseModel, LinearGaussianModel, StateSpaceModel
 
 # --- sigma points and the unscented filter (issue 3) ---
+from . import angles
+from .angles import angle_mean, angle_residual
 from .sigma_points import MinimalSkewSigmaPoints, SphericalSimplexSigmaPoints
 from .unscented import UnscentedKalmanFilter
 
@@ -54,6 +56,9 @@ __all__ = [
     "MinimalSkewSigmaPoints",
     "SphericalSimplexSigmaPoints",
     "UnscentedKalmanFilter",
+    "angles",
+    "angle_residual",
+    "angle_mean",
     # --- issue 4 ---
     "ParticleFilter",
     "BootstrapParticleFilter",

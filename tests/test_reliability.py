@@ -95,9 +95,7 @@ def build(name, rng=0, n_particles=20):
 
 def failing_step(name, k, where):
     """The step number the filter should report for a failure in cycle ``k`` (0-based):
-    the UKF counts predict and update calls, the particle filters predict calls."""
-    if name.startswith("ukf"):
-        return 2 * k + 1 if where == "predict" else 2 * k + 2
+    the time step, which every filter's ``predict`` advances (issue 15)."""
     return k + 1
 
 
