@@ -71,19 +71,10 @@ MEAN_TOL = 0.25
 COV_TOL = 0.35
 
 
-@pytest.mark.parametrize(
-    "cls, weighting",
-    [(c, "textbook") for c in PRESETS] + [(c, "bank") for c in KALMAN_PRESETS],
-    ids=lambda v: v if isinstance(v, str) else v.__name__,
-)
-def test_every_filter_matches_the_kalman_filter_on_a_linear_gaussian_model(cls, weighting, lin_data):
+@pytest.mark.parametrize("cls", PRESETS, ids=lambda c: c.__name__)
+def test_every_filter_matches_the_kalman_filter_on_a_linear_gaussian_model(cls, lin_data):
     zs, kf_means, kf_covs, kf_means_p, kf_covs_p = lin_data
-    pf = make(cls, 2000, weighting=weighting)
-    if weighting == "bank":
-        # a Gaussian-sum start whose mixture is exactly N(x0, P0): means ~ N(x0, P0/2),
-        # each with covariance P0/2
-        L = np.linalg.cholesky(LIN.P0 / 2)
-        pf.initialize(LIN.x0 + pf.rng.standard_normal((2000, 3)) @ L.T, LIN.P0 / 2)
+    pf = make(cls, 2000)
     out = {"prior": ([], []), "post": ([], [])}
     for z in zs:
         pf.predict()
@@ -100,37 +91,6 @@ def test_every_filter_matches_the_kalman_filter_on_a_linear_gaussian_model(cls, 
         W = np.linalg.solve(Lk, np.swapaxes(np.linalg.solve(Lk, covs - ref_P), 1, 2))
         assert np.max(np.abs(np.linalg.eigvalsh(0.5 * (W + np.swapaxes(W, 1, 2))))) < COV_TOL, key
     assert np.mean(pf.ess_history) > 700 and np.min(pf.ess_history) > 100
-
-
-@pytest.mark.parametrize("cls", KALMAN_PRESETS, ids=lambda c: c.__name__)
-def test_bank_of_identical_particles_is_exactly_the_kalman_filter(cls, lin_data):
-    zs, kf_means, kf_covs = lin_data[:3]
-    pf = make(cls, 5, weighting="bank")
-    pf.initialize(np.tile(LIN.x0, (5, 1)))
-    means, covs = pf.batch_filter(zs)
-    np.testing.assert_allclose(means, kf_means, atol=1e-9)
-    np.testing.assert_allclose(covs, kf_covs, atol=1e-9)
-    kf = LIN.kalman_filter()
-    total = 0.0
-    for z in zs:
-        kf.predict()
-        kf.update(z)
-        total += kf.log_likelihood
-    assert pf.log_marginal_likelihood == pytest.approx(total, abs=1e-8)
-    assert pf.n_distinct_history == [1] * len(zs)
-
-
-def test_tempering_scales_the_bank_log_weights(lin_data):
-    zs = lin_data[0]
-    lw = {}
-    for tau in (1.0, 0.01):
-        pf = make(UnscentedParticleFilter, 20, rng=9, weighting="bank", tempering=tau, ess_threshold=0.0)
-        pf.batch_filter(zs)
-        assert not any(pf.resampled_history)
-        lw[tau] = pf.log_weights
-    d = lw[0.01] - 0.01 * lw[1.0]
-    np.testing.assert_allclose(d, d[0], atol=1e-9)
-    assert pf.n_distinct == 20
 
 
 # --- the UPF benchmark of van der Merwe et al. (2000) -------------------------------------
@@ -291,9 +251,7 @@ def test_particle_covariance_not_positive_definite_raises(lin_data):
     "kwargs, exc, match",
     [
         (dict(resampling="magic"), ValueError, "unknown resampling scheme 'magic'; valid: 'multinomial'"),
-        (dict(weighting="optimal"), ValueError, "unknown weighting 'optimal'; valid: 'bank', 'textbook'"),
         (dict(proposal="magic"), ValueError, "unknown proposal 'magic'; valid: 'extended', 'prior'"),
-        (dict(weighting="bank"), ValueError, "weighting='bank' needs a Kalman proposal"),
         (dict(ess_threshold=1.5), ValueError, r"ess_threshold must be a number in \[0, 1\], got 1.5"),
         (dict(tempering=0.0), ValueError, "tempering must be finite and > 0, got 0.0"),
         (dict(rng="seed"), TypeError, "rng must be None, an int seed"),
@@ -329,7 +287,7 @@ def test_presets_share_the_issue_constructor():
 
     expected = [
         "dim_x", "dim_z", "dt", "hx", "fx", "n_particles", "points", "FJacobian", "HJacobian",
-        "x_mean_fn", "z_mean_fn", "residual_x", "residual_z", "weighting", "resampling",
+        "x_mean_fn", "z_mean_fn", "residual_x", "residual_z", "resampling",
         "ess_threshold", "vectorized", "rng",
     ]
     for cls in PRESETS:
@@ -411,8 +369,6 @@ def test_point_started_kalman_proposal_is_the_optimal_one_on_a_linear_model(kind
             W = np.linalg.solve(Lk, np.swapaxes(np.linalg.solve(Lk, covs - kf_covs), 1, 2))
             assert np.max(np.abs(np.linalg.eigvalsh(0.5 * (W + np.swapaxes(W, 1, 2))))) < COV_TOL
     assert ess[False] > ess[True]
-    with pytest.raises(ValueError, match="carry covariances"):
-        make(ParticleFilter, 10, proposal=prop, weighting="bank")
 
 
 # --- the gamma-noise model itself ---------------------------------------------------------
