@@ -15,8 +15,10 @@ from .sigma_points import MinimalSkewSigmaPoints, SphericalSimplexSigmaPoints
 from .unscented import UnscentedKalmanFilter
 
 # --- particle filters (issue 4) ---
+from .gaussian_sum import GaussianSumFilter
 from .particle_filter import (
     BootstrapParticleFilter,
+    DegeneracyWarning,
     ExtendedKalmanParticleFilter,
     ParticleFilter,
     SimplexUnscentedParticleFilter,
@@ -56,6 +58,8 @@ __all__ = [
     "UnscentedKalmanFilter",
     # --- issue 4 ---
     "ParticleFilter",
+    "DegeneracyWarning",
+    "GaussianSumFilter",
     "BootstrapParticleFilter",
     "ExtendedKalmanParticleFilter",
     "UnscentedParticleFilter",
