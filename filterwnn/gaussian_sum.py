@@ -313,6 +313,15 @@ class GaussianSumFilter:
         self.n_distinct_history.append(self.n_distinct)
         self.resampled_history.append(bool(resampled))
 
+    def __getstate__(self):
+        state = self.__dict__.copy()
+        del state["_resample"]  # a scheme's raw implementation (or a wrapped callable): looked up again
+        return state
+
+    def __setstate__(self, state):
+        self.__dict__.update(state)
+        self._resample = get_scheme(self.resampling)
+
     def batch_filter(self, zs, fx_args=None, hx_args=None):
         """``predict``/``update`` over ``zs``; returns ``means (n_steps, dim_x)`` and
         ``covariances (n_steps, dim_x, dim_x)`` of ``x``/``P``."""

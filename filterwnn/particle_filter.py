@@ -488,10 +488,10 @@ class ParticleFilter:
             self._prediction = None
         step = self.step + 1
         pred = self.proposal.predict(model, self.particles, self.covariances, fx_args, self.rng, step)
-        bad = ~np.isfinite(pred.particles).all(axis=1)
-        if pred.covariances is not None:
-            bad |= ~np.isfinite(pred.covariances).all(axis=(1, 2))
-        if np.any(bad):
+        if not (np.isfinite(pred.particles).all() and (pred.covariances is None or np.isfinite(pred.covariances).all())):
+            bad = ~np.isfinite(pred.particles).all(axis=1)
+            if pred.covariances is not None:
+                bad |= ~np.isfinite(pred.covariances).all(axis=(1, 2))
             raise NumericalError(
                 f"non-finite prediction at step {step} (particle {int(np.argmax(bad))}: check fx, FJacobian and Q)",
                 matrix="particles",
@@ -605,6 +605,15 @@ class ParticleFilter:
                 step=step,
             )
         return Y
+
+    def __getstate__(self):
+        state = self.__dict__.copy()
+        del state["_resample"]  # a scheme's raw implementation (or a wrapped callable): looked up again
+        return state
+
+    def __setstate__(self, state):
+        self.__dict__.update(state)
+        self._resample = get_scheme(self.resampling)
 
     def batch_filter(self, zs, fx_args=None, hx_args=None):
         """Run ``predict``/``update`` over a sequence of measurements.

@@ -284,15 +284,17 @@ class ProposalModel:
         self.recover = recover
         self._factors = {}
 
-    def noise(self, name):
+    def noise(self, name, check=True):
         """The :class:`~filterwnn._linalg.NoiseFactor` of ``"Q"`` or ``"R"``.
 
         Validated (shape, finite, symmetric; ``Q`` positive semi-definite, ``R`` positive
         definite) and factored when the matrix changed since the last call, else cached.
+        ``check=False`` trusts the cache without comparing (inside one filter step, after
+        the filter's own check).
         """
         M = getattr(self, name)
         hit = self._factors.get(name)
-        if hit is not None and hit[0].shape == np.shape(M) and np.array_equal(hit[0], M):
+        if hit is not None and (not check or (hit[0].shape == np.shape(M) and np.array_equal(hit[0], M))):
             return hit[1]
         dim = self.dim_x if name == "Q" else self.dim_z
         A = check_symmetric(_noise(M, name, dim), name)
@@ -341,7 +343,7 @@ class ProposalModel:
             return _rows(self.process_sampler, x_prev, self.dim_x, self.vectorized, "process_sampler",
                          (rng,), fx_args)
         mean = self.transition_mean(x_prev, fx_args)
-        A = self.noise("Q").sqrt
+        A = self.noise("Q", check=False).sqrt
         if self.dim_x == 1:
             return mean + rng.standard_normal(mean.shape) * A[0, 0]
         return mean + rng.standard_normal(mean.shape) @ A.T
@@ -371,7 +373,7 @@ class ProposalModel:
         if self.measurement_logpdf is not None:
             return _scalars(self.measurement_logpdf, z, X, self.vectorized, "measurement_logpdf", hx_args)
         y = self.residual_z_rows(z[None, :], self.measure(X, hx_args))
-        return self.noise("R").logpdf(y)
+        return self.noise("R", check=False).logpdf(y)
 
 
 class Prediction(NamedTuple):

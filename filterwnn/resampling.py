@@ -169,7 +169,16 @@ def stratified(w, rng, n):
 @register("systematic", "Systematic",
           "Indices come out sorted; equal weights with ``n = n_particles`` keep every particle.")
 def systematic(w, rng, n):
-    return _search(w, (np.arange(n) + rng.random()) / n)
+    # point k = (k + u) / n goes to the first i with k + u < n c_i, so the points below c_i
+    # number ceil(n c_i - u): counts are their differences (O(n), no binary search)
+    u = rng.random()
+    c = np.cumsum(w)
+    c *= n / c[-1]
+    c -= u
+    m = np.ceil(c, out=c)
+    np.clip(m, 0.0, n, out=m)
+    counts = np.diff(m, prepend=0.0).astype(np.intp)
+    return np.repeat(np.arange(w.size), counts)
 
 
 @register("residual", "Residual (correct, unlike filterpy's: its issue #290)",
