@@ -13,9 +13,13 @@ of steps; the ratio is ours / ``particles`` (<= 1.0 is the goal of issue 12).
 """
 
 import argparse
+import sys
 import time
+from pathlib import Path
 
 import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # this checkout's filterwnn, not an installed one
 
 import particles
 from particles import state_space_models as ssm

@@ -294,14 +294,21 @@ class ProposalModel:
         """
         M = getattr(self, name)
         hit = self._factors.get(name)
-        if hit is not None and (not check or (hit[0].shape == np.shape(M) and np.array_equal(hit[0], M))):
-            return hit[1]
+        if hit is not None:
+            if not check:
+                return hit[1]
+            if type(M) is np.ndarray and M.dtype == np.float64:  # the usual case: compare the bytes
+                if M.shape == hit[0].shape and M.tobytes() == hit[2]:
+                    return hit[1]
+            elif np.shape(M) == hit[0].shape and np.array_equal(hit[0], M):
+                return hit[1]
         dim = self.dim_x if name == "Q" else self.dim_z
         A = check_symmetric(_noise(M, name, dim), name)
         if name == "R":
             check_covariance(A, "R", dim)
         factor = NoiseFactor(A, name)
-        self._factors[name] = (np.array(M, dtype=float, copy=True), factor)
+        kept = np.array(M, dtype=float, copy=True)
+        self._factors[name] = (kept, factor, kept.tobytes())
         return factor
 
     # --- the model on rows -------------------------------------------------------------

@@ -175,9 +175,11 @@ def systematic(w, rng, n):
     c = np.cumsum(w)
     c *= n / c[-1]
     c -= u
-    m = np.ceil(c, out=c)
-    np.clip(m, 0.0, n, out=m)
-    counts = np.diff(m, prepend=0.0).astype(np.intp)
+    m = np.ceil(c, out=c)  # >= 0 (c >= 0, u < 1); the last is n up to rounding: pin it
+    m[-1] = n
+    counts = np.empty(m.size, dtype=np.intp)
+    counts[0] = m[0]
+    np.subtract(m[1:], m[:-1], out=counts[1:], casting="unsafe")
     return np.repeat(np.arange(w.size), counts)
 
 

@@ -561,3 +561,17 @@ def test_every_preset_with_defaults_tracks_or_warns_on_the_range_bearing_tracker
     rmse = np.sqrt(np.mean((means[:, [0, 2]] - xs[:, [0, 2]]) ** 2))
     warned = any(issubclass(w.category, DegeneracyWarning) for w in rec)
     assert rmse < 3.0 or warned, (rmse, warned)
+
+
+def test_Q_and_R_are_checked_again_when_changed_in_place(lin_data):
+    """Q and R are checked and factored once, again only when they change (in place too)."""
+    pf = make(BootstrapParticleFilter, 10)
+    pf.predict()
+    pf.update(lin_data[0][0])
+    pf.Q[0, 1] += 5.0
+    with pytest.raises(ValueError, match="Q must be symmetric"):
+        pf.predict()
+    pf.Q = LIN.Q.copy()
+    pf.R = -np.eye(2)
+    with pytest.raises(ValueError, match="R must be positive definite"):
+        pf.predict()
