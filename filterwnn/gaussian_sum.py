@@ -172,13 +172,13 @@ class GaussianSumFilter:
             HJacobian=HJacobian, x_mean_fn=x_mean_fn, z_mean_fn=z_mean_fn, residual_x=residual_x,
             residual_z=residual_z, recover=bool(recover),
         )
-        self.x = np.zeros(self.dim_x)
-        self.P = np.eye(self.dim_x)
+        self.means = None
+        self._x = np.zeros(self.dim_x)
+        self._P = np.eye(self.dim_x)
         self.Q = np.eye(self.dim_x)
         self.R = np.eye(self.dim_z)
-        self.x_prior, self.P_prior = self.x.copy(), self.P.copy()
-        self.x_post, self.P_post = self.x.copy(), self.P.copy()
-        self.means = None
+        self.x_prior, self.P_prior = self._x.copy(), self._P.copy()
+        self.x_post, self.P_post = self._x.copy(), self._P.copy()
         self.covariances = None
         self.log_weights = None
         self._predicted = False
@@ -188,6 +188,34 @@ class GaussianSumFilter:
         self.ess = np.nan
         self.n_distinct = 0
         self.ess_history, self.n_distinct_history, self.resampled_history = [], [], []
+
+    @property
+    def x(self):
+        """Mixture mean (see ``combine``); set it with ``P`` before the first ``predict`` for a
+        one-component start ``N(x, P)``, or use :meth:`initialize`."""
+        return self._x
+
+    @x.setter
+    def x(self, value):
+        self._refuse_mid_run("x")
+        self._x = value
+
+    @property
+    def P(self):
+        """Mixture covariance (see ``combine``)."""
+        return self._P
+
+    @P.setter
+    def P(self, value):
+        self._refuse_mid_run("P")
+        self._P = value
+
+    def _refuse_mid_run(self, name):
+        if self.means is not None:
+            raise ValueError(
+                f"{name} cannot be set once the components exist (step {self.step}): it would be "
+                f"ignored; call initialize(means, covariances) to restart the mixture"
+            )
 
     @property
     def weights(self):
@@ -229,8 +257,8 @@ class GaussianSumFilter:
                 lw = np.log(w / w.sum())
         self.means, self.covariances, self.log_weights = M.copy(), np.array(C), lw
         self._predicted = False
-        self.x, self.P = self._moments(self.means, self.covariances)
-        self.x_post, self.P_post = self.x.copy(), self.P.copy()
+        self._x, self._P = self._moments(self.means, self.covariances)
+        self.x_post, self.P_post = self._x.copy(), self._P.copy()
 
     def _sync(self):
         m = self._model
@@ -238,7 +266,7 @@ class GaussianSumFilter:
         m.noise("Q")
         m.noise("R")
         if self.means is None:  # one component N(x, P)
-            self.initialize(as_state(self.x, "x", self.dim_x)[None, :], check_covariance(self.P, "P", self.dim_x))
+            self.initialize(as_state(self._x, "x", self.dim_x)[None, :], check_covariance(self._P, "P", self.dim_x))
         return m
 
     def _moments(self, M, C):
@@ -260,8 +288,8 @@ class GaussianSumFilter:
         self.means, self.covariances = pred.particles, pred.covariances
         self._predicted = True
         self.step = step
-        self.x, self.P = self._moments(self.means, self.covariances)
-        self.x_prior, self.P_prior = self.x.copy(), self.P.copy()
+        self._x, self._P = self._moments(self.means, self.covariances)
+        self.x_prior, self.P_prior = self._x.copy(), self._P.copy()
 
     def update(self, z, **hx_args):
         """Kalman-update every component with ``z`` and reweight by its innovation likelihood.
@@ -271,7 +299,7 @@ class GaussianSumFilter:
         model = self._sync()
         step = self.step
         if z is None:
-            self.x_post, self.P_post = self.x.copy(), self.P.copy()
+            self.x_post, self.P_post = self._x.copy(), self._P.copy()
             self._record(self.ess, self.n_components, False)
             return
         z = as_measurement(z, self.dim_z)
@@ -303,7 +331,7 @@ class GaussianSumFilter:
         self._predicted = False
         self.log_likelihood = log_lik
         self.log_marginal_likelihood += log_lik
-        self.x, self.P = x, P
+        self._x, self._P = x, P
         self.x_post, self.P_post = x.copy(), P.copy()
         self._record(ess, n_distinct, resampled)
 

@@ -133,3 +133,13 @@ def test_bad_arguments():
     f.initialize(np.zeros((2, 3)), C)
     with pytest.raises(NumericalError, match=r"not positive definite at step 1 \(particle 1\)"):
         f.predict()
+
+
+def test_x_and_P_set_mid_run_are_refused():
+    f = make("ukf")
+    f.x, f.P = LIN.x0.copy(), LIN.P0.copy()  # before the first predict: the start N(x, P)
+    f.predict()
+    with pytest.raises(ValueError, match=r"x cannot be set once the components exist \(step 1\)"):
+        f.x = np.zeros(3)
+    with pytest.raises(ValueError, match="P cannot be set once the components exist"):
+        f.P = np.eye(3)
