@@ -17,8 +17,10 @@ from .sigma_points import MinimalSkewSigmaPoints, SphericalSimplexSigmaPoints
 from .unscented import UnscentedKalmanFilter
 
 # --- particle filters (issue 4) ---
+from .gaussian_sum import GaussianSumFilter
 from .particle_filter import (
     BootstrapParticleFilter,
+    DegeneracyWarning,
     ExtendedKalmanParticleFilter,
     ParticleFilter,
     SimplexUnscentedParticleFilter,
@@ -61,6 +63,8 @@ __all__ = [
     "angle_mean",
     # --- issue 4 ---
     "ParticleFilter",
+    "DegeneracyWarning",
+    "GaussianSumFilter",
     "BootstrapParticleFilter",
     "ExtendedKalmanParticleFilter",
     "UnscentedParticleFilter",

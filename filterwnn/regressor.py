@@ -305,12 +305,25 @@ class _PFTrainer(_Trainer):
             kwargs["points"] = SphericalSimplexSigmaPoints(model.dim_x, alpha=1.0)
         if self.name == "epf":
             kwargs["HJacobian"] = model.HJacobian
+        theta0 = np.atleast_2d(np.asarray(theta0, dtype=float))
+        self._bank = kwargs.pop("weighting", "textbook") == "bank"
+        if self._bank:  # a bank of Kalman filters is the Gaussian-sum filter, not a particle filter
+            from .gaussian_sum import GaussianSumFilter
+
+            n = kwargs.pop("n_particles")
+            comp = {"epf": "ekf", "upf": "ukf", "supf": "sukf"}[self.name]
+            self.pf = GaussianSumFilter(model.dim_x, 1, 1.0, model.hx, None, component=comp, **kwargs)
+            self.pf.Q, self.pf.R = model.Q.copy(), model.R.copy()
+            if theta0.shape[0] == 1:  # one start: component means drawn from N(theta0, P0)
+                L = np.linalg.cholesky(model.P0)
+                theta0 = theta0[0] + self.pf.rng.standard_normal((n, model.dim_x)) @ L.T
+            self.pf.initialize(theta0, model.P0)
+            return
         # fx=None: the random walk, predicted without sigma points (P += Q)
         self.pf = cls(model.dim_x, 1, 1.0, model.hx, None, **kwargs)
         self.pf.Q = model.Q.copy()
         self.pf.R = model.R.copy()
         self.pf.P = model.P0.copy()
-        theta0 = np.atleast_2d(np.asarray(theta0, dtype=float))
         if theta0.shape[0] == 1:  # one start: particles drawn from N(theta0, P0)
             self.pf.x = theta0[0].copy()
         else:  # one start per particle (the paper's step 1: draws from the initial distribution)
@@ -318,7 +331,7 @@ class _PFTrainer(_Trainer):
 
     @property
     def particles(self):
-        return np.asarray(self.pf.particles)
+        return np.asarray(self.pf.means if self._bank else self.pf.particles)
 
     @property
     def weights(self):

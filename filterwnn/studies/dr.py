@@ -251,12 +251,14 @@ def _upf_run(run, model, x0, P0, rng, n_particles=UPF_PARTICLES):
     Bank weighting: with the textbook weight the carried covariances are far wider than
     ``Q`` and the weights collapse to one particle (ESS 1.0, a singular ``P``) at once.
     """
-    from ..particle_filter import UnscentedParticleFilter
+    from ..gaussian_sum import GaussianSumFilter
 
-    pf = UnscentedParticleFilter(6, 2, model.dt, model.hx, model.fx, n_particles=n_particles,
-                                 points=_points("merwe", 6), residual_z=dr_residual,
-                                 z_mean_fn=dr_z_mean, vectorized=True, weighting="bank", rng=rng)
-    pf.x, pf.P, pf.Q, pf.R = x0.copy(), P0.copy(), model.Q.copy(), model.R.copy()
+    pf = GaussianSumFilter(6, 2, model.dt, model.hx, model.fx, component="ukf", points=_points("merwe", 6),
+                           residual_z=dr_residual, z_mean_fn=dr_z_mean, vectorized=True,
+                           ess_threshold=1.0, rng=rng)
+    pf.Q, pf.R = model.Q.copy(), model.R.copy()
+    means = x0 + pf.rng.standard_normal((n_particles, 6)) @ np.linalg.cholesky(P0).T
+    pf.initialize(means, P0)  # components drawn from N(x0, P0), each with covariance P0
     out = np.empty((len(run.t), 6))
     for k, z in enumerate(run.z_dr):
         pf.predict()
