@@ -285,7 +285,7 @@ class ProposalModel:
         self._factors = {}
 
     def noise(self, name, check=True):
-        """The :class:`~filterwnn._linalg.NoiseFactor` of ``"Q"`` or ``"R"``.
+        """The ``NoiseFactor`` (the checked Cholesky factor, in ``filterwnn._linalg``) of ``"Q"`` or ``"R"``.
 
         Validated (shape, finite, symmetric; ``Q`` positive semi-definite, ``R`` positive
         definite) and factored when the matrix changed since the last call, else cached.
