@@ -34,7 +34,7 @@ does not work literally (UKF/SUKF end worse than the mean predictor).
 
 >>> from filterwnn.datasets import make_siso_benchmark
 >>> X, y, X_test, y_test = make_siso_benchmark(rng=0)
->>> reg = WNNRegressor(n_epochs=5, rng=0).fit(X, y)
+>>> reg = WNNRegressor(n_epochs=5, random_state=0).fit(X, y)
 >>> reg.theta_.shape, len(reg.loss_curve_)
 ((160,), 5)
 >>> mean, std = reg.predict(X_test[:3], return_std=True)
@@ -397,16 +397,28 @@ def make_trainer(name, model, theta0, settings, rng=None):
 
 
 # ---------------------------------------------------------------------------- estimator
-def _progress(enabled, total, desc):
-    if not (isinstance(enabled, bool) or enabled == "auto"):
-        raise ValueError(f"progress must be True, False or 'auto', got {enabled!r}")
-    if enabled == "auto":
-        enabled = hasattr(sys.stderr, "isatty") and sys.stderr.isatty()
-    if not enabled:
+def _check_verbose(verbose):
+    """``verbose`` as an int >= 0 (``True``/``False`` count as 1/0, as in scikit-learn)."""
+    if isinstance(verbose, bool):
+        return int(verbose)
+    return check_positive_int(verbose, "verbose", minimum=0)
+
+
+def _progress(verbose, total, desc):
+    """A tqdm bar over ``total`` epochs when ``verbose >= 1``, else None."""
+    if verbose < 1:
         return None
     from tqdm.auto import tqdm
 
     return tqdm(total=total, desc=desc, leave=False)
+
+
+def _write_line(line, bar):
+    """One per-epoch line on stdout (through the bar, so that it is not overwritten)."""
+    if bar is None:
+        print(line, file=sys.stdout)
+    else:
+        bar.write(line, file=sys.stdout)
 
 
 class WNNRegressor(RegressorMixin, BaseEstimator):
@@ -441,13 +453,17 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
     weighting : {"bank", "textbook"}, default "bank"
         Particle weights of ``epf``/``upf``/``supf`` (ignored by the others).
     early_stopping : bool, default False
-        Hold out ``validation_fraction`` of the training rows (chosen with ``rng``, the
-        rest kept in order), stop after ``n_iter_no_change`` epochs without a lower
-        validation MSE and keep the best epoch's weights.
+        Hold out ``validation_fraction`` of the training rows (chosen with
+        ``random_state``, the rest kept in order), stop after ``n_iter_no_change`` epochs
+        without a lower validation MSE and keep the best epoch's weights.
     validation_fraction : float, default 0.1
-    rng : None, int, SeedSequence or Generator
-        Initial weights, validation split and particle draws. An int gives the same
-        ``theta_`` on every fit.
+    random_state : None, int, SeedSequence, BitGenerator or Generator, default None
+        Seeds the initial weights, the validation split and the particle draws
+        (normalised with :func:`numpy.random.default_rng` when ``fit`` starts; the
+        legacy ``RandomState`` is refused). An int gives the same ``theta_`` on every
+        fit; a ``Generator`` is drawn from, so each fit differs. scikit-learn's name
+        for the seed (``check_estimator`` and ``set_random_state`` set it); the rest of
+        the package calls it ``rng``.
     tempering : "auto" or float
         Exponent of the particle likelihood; ``"auto"`` is 0.01 for the bank weighting,
         1 otherwise.
@@ -464,9 +480,10 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
     warm_start : bool, default False
         Continue from the previous fit's filter state for another ``n_epochs`` (a long
         fit can be checkpointed by pickling the estimator between fits, and resumed).
-    progress : bool or "auto", default False
-        A tqdm bar over epochs; off by default (studies show their own), ``"auto"`` shows
-        it only when stderr is a terminal.
+    verbose : int, default 0
+        0: silent (the studies show their own bars). 1: a tqdm bar over the epochs
+        (on stderr). 2 or more: the bar and one line per epoch on stdout with the
+        training MSE (and the validation MSE with ``early_stopping``).
 
     Attributes
     ----------
@@ -505,14 +522,14 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
         weighting="bank",
         early_stopping=False,
         validation_fraction=0.1,
-        rng=None,
+        random_state=None,
         tempering="auto",
         ess_threshold="auto",
         learning_rate="auto",
         ekf_backend="rank1",
         n_iter_no_change=10,
         warm_start=False,
-        progress=False,
+        verbose=0,
     ):
         self.n_hidden = n_hidden
         self.wavelet = wavelet
@@ -526,14 +543,14 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
         self.weighting = weighting
         self.early_stopping = early_stopping
         self.validation_fraction = validation_fraction
-        self.rng = rng
+        self.random_state = random_state
         self.tempering = tempering
         self.ess_threshold = ess_threshold
         self.learning_rate = learning_rate
         self.ekf_backend = ekf_backend
         self.n_iter_no_change = n_iter_no_change
         self.warm_start = warm_start
-        self.progress = progress
+        self.verbose = verbose
 
     # ------------------------------------------------------------------ helpers
     def _resolve(self):
@@ -595,7 +612,7 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
 
     def _initialize(self, X, y):
         self._settings = self._resolve()
-        self._rng = check_rng(self.rng)
+        self._rng = check_rng(self.random_state, "random_state")
         Xt, yt, Xv, yv = self._split(X, y, self._rng)
         self._data = (Xt, yt, Xv, yv)
         model = WNNWeightModel(
@@ -616,7 +633,8 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
     def _run_epochs(self, n_epochs):
         Xt, yt, Xv, yv = self._data
         tr = self._trainer
-        bar = _progress(self.progress, n_epochs, f"WNN/{self.trainer}")
+        verbose = _check_verbose(self.verbose)
+        bar = _progress(verbose, n_epochs, f"WNN/{self.trainer}")
         t0 = time.perf_counter()
         try:
             for _ in range(n_epochs):
@@ -630,6 +648,12 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
                 if Xv is not None:
                     score = float(np.mean((tr.predict(Xv)[0] - yv) ** 2))
                     self.validation_scores_.append(score)
+                if verbose >= 2:
+                    line = f"epoch {self.n_epochs_}: training MSE {self.loss_curve_[-1]:.6g}"
+                    if Xv is not None:
+                        line += f", validation MSE {score:.6g}"
+                    _write_line(line, bar)
+                if Xv is not None:
                     if score < self._best_score:
                         self._best_score, self._no_change = score, 0
                         self._best = (self.n_epochs_, copy.deepcopy(tr))

@@ -24,7 +24,7 @@ def data():
 
 def _mse_start(reg, X, y):
     """Training MSE of the estimator's own start (same rng, zero epochs of training)."""
-    rng = np.random.default_rng(reg.rng)
+    rng = np.random.default_rng(reg.random_state)
     theta0 = wnn.init_scaled(X, reg.n_hidden, rng=rng)
     return np.mean((wnn.forward(theta0, X) - y) ** 2)
 
@@ -32,7 +32,7 @@ def _mse_start(reg, X, y):
 @pytest.mark.parametrize("trainer", SINGLE)
 def test_single_filter_trainers_lower_training_mse(data, trainer):
     X, y, _, _ = data
-    reg = WNNRegressor(n_hidden=4, trainer=trainer, n_epochs=3, rng=0).fit(X, y)
+    reg = WNNRegressor(n_hidden=4, trainer=trainer, n_epochs=3, random_state=0).fit(X, y)
     factor = 0.9 if trainer == "bp" else 0.5  # plain gradient descent is slow from a small start
     assert reg.loss_curve_[-1] < factor * _mse_start(reg, X, y)
 
@@ -44,14 +44,14 @@ def test_particle_trainers_lower_training_mse(data):
     starts = np.stack([wnn.init_scaled(X, 3, rng=gen) for _ in range(5)])
     start = np.mean((wnn.forward(starts, X).mean(axis=0) - y) ** 2)
     for trainer in PARTICLE:
-        reg = WNNRegressor(n_hidden=3, trainer=trainer, n_epochs=2, n_particles=5, rng=0).fit(X, y)
+        reg = WNNRegressor(n_hidden=3, trainer=trainer, n_epochs=2, n_particles=5, random_state=0).fit(X, y)
         assert reg.loss_curve_[-1] < start, trainer
         assert len(reg.diagnostics_["mean_ess"]) == 2
 
 
 def test_fit_returns_self_and_attributes(data):
     X, y, X_test, _ = data
-    reg = WNNRegressor(n_hidden=4, n_epochs=3, rng=0)
+    reg = WNNRegressor(n_hidden=4, n_epochs=3, random_state=0)
     assert reg.fit(X, y) is reg
     assert reg.theta_.shape == (wnn.n_params(5, 4),)
     assert len(reg.loss_curve_) == 3 and reg.n_epochs_ == 3
@@ -65,10 +65,10 @@ def test_fit_returns_self_and_attributes(data):
 
 def test_same_seed_same_theta_and_clone(data):
     X, y, _, _ = data
-    a = WNNRegressor(n_hidden=4, n_epochs=2, rng=3).fit(X, y)
+    a = WNNRegressor(n_hidden=4, n_epochs=2, random_state=3).fit(X, y)
     b = clone(a).fit(X, y)
     np.testing.assert_array_equal(a.theta_, b.theta_)
-    c = WNNRegressor(n_hidden=4, n_epochs=2, rng=4).fit(X, y)
+    c = WNNRegressor(n_hidden=4, n_epochs=2, random_state=4).fit(X, y)
     assert not np.array_equal(a.theta_, c.theta_)
     assert clone(a).get_params() == a.get_params()
 
@@ -76,7 +76,7 @@ def test_same_seed_same_theta_and_clone(data):
 def test_grid_search(data):
     X, y, _, _ = data
     gs = GridSearchCV(
-        WNNRegressor(n_hidden=3, n_epochs=2, rng=0), {"process_noise": [1e-4, 1e-3]}, cv=2
+        WNNRegressor(n_hidden=3, n_epochs=2, random_state=0), {"process_noise": [1e-4, 1e-3]}, cv=2
     ).fit(X, y)
     assert gs.best_params_["process_noise"] in (1e-4, 1e-3)
 
@@ -102,27 +102,27 @@ def test_bad_arguments(data):
 
 def test_rank1_ekf_equals_filterpy(data):
     X, y, _, _ = data
-    a = WNNRegressor(n_hidden=3, n_epochs=2, rng=1).fit(X, y)
-    b = WNNRegressor(n_hidden=3, n_epochs=2, rng=1, ekf_backend="filterpy").fit(X, y)
+    a = WNNRegressor(n_hidden=3, n_epochs=2, random_state=1).fit(X, y)
+    b = WNNRegressor(n_hidden=3, n_epochs=2, random_state=1, ekf_backend="filterpy").fit(X, y)
     np.testing.assert_allclose(a.theta_, b.theta_, rtol=1e-5, atol=1e-8)
     np.testing.assert_allclose(a._final.cov, b._final.cov, rtol=1e-5, atol=1e-8)
 
 
 def test_early_stopping_keeps_best_epoch(data):
     X, y, _, _ = data
-    reg = WNNRegressor(n_hidden=4, n_epochs=15, early_stopping=True, n_iter_no_change=3, rng=0).fit(X, y)
+    reg = WNNRegressor(n_hidden=4, n_epochs=15, early_stopping=True, n_iter_no_change=3, random_state=0).fit(X, y)
     assert len(reg.validation_scores_) == reg.n_epochs_ <= 15
     assert reg.validation_scores_[reg.best_epoch_ - 1] == min(reg.validation_scores_)
 
 
 def test_warm_start_and_partial_fit_resume(data):
     X, y, _, _ = data
-    full = WNNRegressor(n_hidden=3, n_epochs=4, rng=2).fit(X, y)
-    half = WNNRegressor(n_hidden=3, n_epochs=2, rng=2, warm_start=True).fit(X, y)
+    full = WNNRegressor(n_hidden=3, n_epochs=4, random_state=2).fit(X, y)
+    half = WNNRegressor(n_hidden=3, n_epochs=2, random_state=2, warm_start=True).fit(X, y)
     resumed = pickle.loads(pickle.dumps(half)).fit(X, y)  # checkpoint, then two more epochs
     np.testing.assert_allclose(resumed.theta_, full.theta_, rtol=1e-12)
     assert resumed.n_epochs_ == 4
-    step = WNNRegressor(n_hidden=3, rng=2)
+    step = WNNRegressor(n_hidden=3, random_state=2)
     for _ in range(4):
         step.partial_fit(X, y)
     np.testing.assert_allclose(step.theta_, full.theta_, rtol=1e-12)
@@ -133,12 +133,12 @@ def test_warm_start_and_partial_fit_resume(data):
 def test_non_finite_weights_raise_numerical_error(data):
     X, y, _, _ = data
     with pytest.raises(NumericalError, match="non-finite"):
-        WNNRegressor(trainer="bp", learning_rate=1e200, n_hidden=3, n_epochs=2, rng=0).fit(X, y * 1e200)
+        WNNRegressor(trainer="bp", learning_rate=1e200, n_hidden=3, n_epochs=2, random_state=0).fit(X, y * 1e200)
 
 
 def test_paper_init_and_mexican_hat(data):
     X, y, _, _ = data
-    reg = WNNRegressor(n_hidden=4, init="paper", wavelet="mexican_hat", n_epochs=2, rng=0).fit(X, y)
+    reg = WNNRegressor(n_hidden=4, init="paper", wavelet="mexican_hat", n_epochs=2, random_state=0).fit(X, y)
     assert reg.settings_["Q"] == 1e-2 and reg.settings_["P0"] == 0.01
     assert np.all(np.isfinite(reg.theta_))
 
@@ -149,3 +149,31 @@ def test_make_trainer_runs_on_a_model():
     tr = make_trainer("ekf", model, wnn.init_scaled(X, 2, rng=0), {"ekf_backend": "rank1"}, rng=0)
     tr.epoch(X, np.sin(X[:, 0]))
     assert tr.theta.shape == (10,)
+
+
+def test_random_state_is_the_seed_scikit_learn_sets(data):
+    from sklearn.utils._testing import set_random_state
+
+    X, y, _, _ = data
+    params = WNNRegressor().get_params()
+    assert "random_state" in params and "rng" not in params and "progress" not in params
+    reg = WNNRegressor(n_hidden=3, n_epochs=1)
+    set_random_state(reg, 7)  # what check_estimator does
+    assert reg.random_state == 7
+    a = reg.fit(X, y).theta_.copy()
+    np.testing.assert_array_equal(a, WNNRegressor(n_hidden=3, n_epochs=1, random_state=7).fit(X, y).theta_)
+    with pytest.raises(TypeError, match="random_state must be None, an int seed"):
+        WNNRegressor(random_state=np.random.RandomState(0)).fit(X, y)
+
+
+def test_verbose_levels(data, capsys):
+    X, y, _, _ = data
+    WNNRegressor(n_hidden=3, n_epochs=2, random_state=0).fit(X, y)
+    assert capsys.readouterr().out == ""
+    reg = WNNRegressor(n_hidden=3, n_epochs=2, random_state=0, verbose=2, early_stopping=True).fit(X, y)
+    lines = capsys.readouterr().out.splitlines()
+    assert len(lines) == 2
+    assert lines[1] == (f"epoch 2: training MSE {reg.loss_curve_[1]:.6g}, "
+                        f"validation MSE {reg.validation_scores_[1]:.6g}")
+    WNNRegressor(n_hidden=3, n_epochs=2, random_state=0, verbose=True).fit(X, y)  # a bar, no lines
+    assert capsys.readouterr().out == ""
