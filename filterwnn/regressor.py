@@ -503,21 +503,26 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
         Learned weights (particle filters: the particle of largest weight; predictions
         average all particles).
     loss_curve_ : list of float
-        Training MSE after each epoch (on the rows used for training).
+        Training MSE after each iteration (an epoch of ``fit`` or a ``partial_fit``
+        call), on the rows that iteration trained on.
     validation_scores_ : list of float or None
         Validation MSE per epoch when ``early_stopping``.
     best_epoch_ : int
-        Epoch whose weights were kept (the last one without early stopping).
+        Iteration whose weights were kept (the last one without early stopping).
     n_features_in_ : int
-    n_epochs_ : int
-        Epochs run in total.
+    n_iter_ : int
+        Iterations run since the start was drawn: epochs of ``fit`` (summed over
+        warm starts) plus one per ``partial_fit`` call, as in ``MLPRegressor``.
+    t_ : int
+        Filter steps run (training rows seen, counted once per pass), as in
+        ``MLPRegressor``.
     fit_time_ : float
         Wall-clock seconds of the training epochs of the last ``fit`` (or accumulated over
         ``partial_fit`` calls).
     settings_ : dict
         The resolved Q, P0, R, tempering, ... actually used.
     diagnostics_ : dict
-        Per-epoch ``mean_ess`` and ``distinct`` particle counts (particle trainers).
+        Per-iteration ``mean_ess`` and ``distinct`` particle counts (particle trainers).
     """
 
     def __init__(
@@ -622,11 +627,15 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
         val[rng.choice(n, n_val, replace=False)] = True
         return X[~val], y[~val], X[val], y[val]
 
-    def _initialize(self, X, y):
+    def _initialize(self, X, y, early_stopping):
         self._settings = self._resolve()
         self._rng = check_rng(self.random_state, "random_state")
-        Xt, yt, Xv, yv = self._split(X, y, self._rng)
-        self._data = (Xt, yt, Xv, yv)
+        if early_stopping:
+            self._data = self._split(X, y, self._rng)
+            self._source = (X, y)
+        else:
+            self._data, self._source = (X, y, None, None), None
+        Xt = self._data[0]
         model = WNNWeightModel(
             X.shape[1], self.n_hidden, self.wavelet, Q=self._settings["Q"], R=self._settings["R"],
             P0=self._settings["P0"],
@@ -634,16 +643,35 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
         theta0 = self._start(Xt, X.shape[1], self._rng)
         self._trainer = make_trainer(self.trainer, model, theta0, self._settings, self._rng)
         self.loss_curve_ = []
-        self.validation_scores_ = [] if self.early_stopping else None
-        self.n_epochs_ = 0
+        self.validation_scores_ = [] if early_stopping else None
+        self.n_iter_ = 0
+        self.t_ = 0
         self.fit_time_ = 0.0
+        self._reset_best()
+        self.settings_ = dict(self._settings, init=self.init, trainer=self.trainer)
+
+    def _reset_best(self):
         self._best = None
         self._best_score = np.inf
         self._no_change = 0
-        self.settings_ = dict(self._settings, init=self.init, trainer=self.trainer)
 
-    def _run_epochs(self, n_epochs):
-        Xt, yt, Xv, yv = self._data
+    def _continue_on(self, X, y):
+        """A warm-started ``fit`` trains on the rows it is given (the first fit's split
+        is kept when they are the same rows, so that a resumed fit equals an
+        uninterrupted one)."""
+        if not self.early_stopping:
+            self._data, self._source = (X, y, None, None), None
+            return
+        src = self._source
+        if src is not None and np.array_equal(src[0], X) and np.array_equal(src[1], y):
+            return
+        self._data, self._source = self._split(X, y, self._rng), (X, y)
+        if self.validation_scores_ is None:
+            self.validation_scores_ = []
+        self._reset_best()  # scores on other validation rows do not compare
+
+    def _run_epochs(self, n_epochs, data):
+        Xt, yt, Xv, yv = data
         tr = self._trainer
         verbose = _check_verbose(self.verbose)
         bar = _progress(verbose, n_epochs, f"WNN/{self.trainer}")
@@ -655,8 +683,9 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
         try:
             for _ in range(n_epochs):
                 tr.epoch(Xt, yt)
-                self.n_epochs_ += 1
-                tr._check_finite(self.n_epochs_, tr.theta)
+                self.n_iter_ += 1
+                self.t_ += len(Xt)
+                tr._check_finite(self.n_iter_, tr.theta)
                 self.loss_curve_.append(float(np.mean((tr.predict(Xt)[0] - yt) ** 2)))
                 if bar is not None:
                     bar.update(1)
@@ -665,14 +694,14 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
                     score = float(np.mean((tr.predict(Xv)[0] - yv) ** 2))
                     self.validation_scores_.append(score)
                 if verbose >= 2:
-                    line = f"epoch {self.n_epochs_}: training MSE {self.loss_curve_[-1]:.6g}"
+                    line = f"epoch {self.n_iter_}: training MSE {self.loss_curve_[-1]:.6g}"
                     if Xv is not None:
                         line += f", validation MSE {score:.6g}"
                     _write_line(line, bar)
                 if Xv is not None:
                     if score < self._best_score:
                         self._best_score, self._no_change = score, 0
-                        self._best = (self.n_epochs_, copy.deepcopy(tr))
+                        self._best = (self.n_iter_, copy.deepcopy(tr))
                     else:
                         self._no_change += 1
                         if self._no_change >= self.n_iter_no_change:
@@ -685,13 +714,17 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
         if self._best is not None:
             self.best_epoch_, self._final = self._best[0], self._best[1]
         else:
-            self.best_epoch_, self._final = self.n_epochs_, tr
+            self.best_epoch_, self._final = self.n_iter_, tr
         self.theta_ = np.array(self._final.theta, dtype=float)
         self.diagnostics_ = {k: list(v) for k, v in self._final.diagnostics.items()}
 
     # ------------------------------------------------------------------ API
     def fit(self, X, y):
         """Train for ``n_epochs`` epochs (or continue, with ``warm_start``).
+
+        Each epoch is one filter step per row, in order. With ``warm_start`` and a
+        previous fit (or ``partial_fit``), the filter's state and covariance are kept
+        and ``n_epochs`` more epochs run on the rows given here.
 
         Parameters
         ----------
@@ -705,24 +738,66 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
         first = not (self.warm_start and hasattr(self, "_trainer"))
         X, y = validate_data(self, X, y, reset=first, y_numeric=True)
         if first:
-            self._initialize(X, y)
+            self._initialize(X, y, self.early_stopping)
         else:
+            self._continue_on(X, y)
             self.fit_time_ = 0.0
-        self._run_epochs(self.n_epochs)
+        self._run_epochs(self.n_epochs, self._data)
         return self
 
     def partial_fit(self, X, y):
-        """Run one more epoch (initialising on the first call); returns self.
+        """Online training: one filter pass over these rows, keeping the filter's state.
 
-        ``X, y`` must be the same training set on every call (the split and the filter
-        state are kept); ``fit_time_`` accumulates. Useful for convergence curves and for
-        checkpointing a long fit (pickle the estimator between calls).
+        A filter trainer is online by nature: each row is one predict/update step of
+        the filter whose state is the weight vector. ``partial_fit`` runs one step per
+        given row, in order, and keeps the state and covariance (the particles and
+        their weights, for the particle trainers) for the next call, so rows fed in
+        chunks give the same weights and covariance as one call over all of them, bit
+        for bit, for every trainer (the particle trainers make the same draws in the
+        same order; ``"bp"``'s reported std is the RMSE on the last call's rows). The
+        first call draws the start: ``init="scaled"`` places it on the first call's
+        rows, ``init="paper"`` does not look at the rows.
+
+        As in scikit-learn's ``MLPRegressor``, each call is one iteration:
+        ``n_iter_`` grows by one, ``t_`` by the number of rows, ``loss_curve_`` gains the
+        training MSE on these rows after the pass and ``fit_time_`` accumulates.
+        ``early_stopping`` and ``n_epochs`` are not used. After ``fit``, ``partial_fit``
+        continues from the weights the estimator predicts with (the best epoch's, with
+        early stopping). Pickling the estimator between calls checkpoints the filter.
+
+        Parameters
+        ----------
+        X : array-like of shape (n_samples, n_features)
+        y : array-like of shape (n_samples,)
+
+        Returns
+        -------
+        self
+
+        Examples
+        --------
+        Rows arriving in four chunks train the same network as one pass over all of
+        them:
+
+        >>> from filterwnn.datasets import make_siso_benchmark
+        >>> X, y, X_test, y_test = make_siso_benchmark(rng=0)
+        >>> online = WNNRegressor(init="paper", random_state=0)
+        >>> for rows in np.array_split(np.arange(len(X)), 4):
+        ...     online = online.partial_fit(X[rows], y[rows])
+        >>> batch = WNNRegressor(init="paper", random_state=0).partial_fit(X, y)
+        >>> bool(np.array_equal(online.theta_, batch.theta_))
+        True
+        >>> online.n_iter_, online.t_, len(online.loss_curve_)
+        (4, 100, 4)
         """
         first = not hasattr(self, "_trainer")
         X, y = validate_data(self, X, y, reset=first, y_numeric=True)
         if first:
-            self._initialize(X, y)
-        self._run_epochs(1)
+            self._initialize(X, y, early_stopping=False)
+        else:
+            self._trainer = self._final  # continue from the weights used to predict
+            self._reset_best()
+        self._run_epochs(1, (X, y, None, None))
         return self
 
     def predict(self, X, return_std=False):

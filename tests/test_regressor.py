@@ -1,5 +1,6 @@
 """Tests of filterwnn.regressor: trainer registry and the WNNRegressor estimator."""
 
+import copy
 import pickle
 
 import numpy as np
@@ -54,7 +55,7 @@ def test_fit_returns_self_and_attributes(data):
     reg = WNNRegressor(n_hidden=4, n_epochs=3, random_state=0)
     assert reg.fit(X, y) is reg
     assert reg.theta_.shape == (wnn.n_params(5, 4),)
-    assert len(reg.loss_curve_) == 3 and reg.n_epochs_ == 3
+    assert len(reg.loss_curve_) == 3 and reg.n_iter_ == 3
     assert reg.n_features_in_ == 5
     assert reg.fit_time_ > 0
     mean, std = reg.predict(X_test, return_std=True)
@@ -111,7 +112,7 @@ def test_rank1_ekf_equals_filterpy(data):
 def test_early_stopping_keeps_best_epoch(data):
     X, y, _, _ = data
     reg = WNNRegressor(n_hidden=4, n_epochs=15, early_stopping=True, n_iter_no_change=3, random_state=0).fit(X, y)
-    assert len(reg.validation_scores_) == reg.n_epochs_ <= 15
+    assert len(reg.validation_scores_) == reg.n_iter_ <= 15
     assert reg.validation_scores_[reg.best_epoch_ - 1] == min(reg.validation_scores_)
 
 
@@ -121,7 +122,7 @@ def test_warm_start_and_partial_fit_resume(data):
     half = WNNRegressor(n_hidden=3, n_epochs=2, random_state=2, warm_start=True).fit(X, y)
     resumed = pickle.loads(pickle.dumps(half)).fit(X, y)  # checkpoint, then two more epochs
     np.testing.assert_allclose(resumed.theta_, full.theta_, rtol=1e-12)
-    assert resumed.n_epochs_ == 4
+    assert resumed.n_iter_ == 4
     step = WNNRegressor(n_hidden=3, random_state=2)
     for _ in range(4):
         step.partial_fit(X, y)
@@ -177,3 +178,81 @@ def test_verbose_levels(data, capsys):
                         f"validation MSE {reg.validation_scores_[1]:.6g}")
     WNNRegressor(n_hidden=3, n_epochs=2, random_state=0, verbose=True).fit(X, y)  # a bar, no lines
     assert capsys.readouterr().out == ""
+
+
+# ---------------------------------------------------------------------------- online training
+CHUNKS = [7, 20, 21]  # 40 rows as 7, 13, 1 and 19
+
+
+def _online(reg, X, y, cuts=CHUNKS):
+    for rows in np.split(np.arange(len(X)), cuts):
+        reg.partial_fit(X[rows], y[rows])
+    return reg
+
+
+@pytest.mark.parametrize("trainer, extra", [(t, {}) for t in SINGLE + PARTICLE]
+                         + [("ekf", {"ekf_backend": "filterpy"})])
+def test_partial_fit_in_chunks_equals_one_pass_bit_for_bit(data, trainer, extra):
+    X, y, X_test, _ = data
+    kw = dict(trainer=trainer, n_hidden=3, n_particles=5, init="paper", random_state=0, **extra)
+    whole = WNNRegressor(**kw).partial_fit(X, y)
+    chunked = _online(WNNRegressor(**kw), X, y)
+    np.testing.assert_array_equal(chunked.theta_, whole.theta_)
+    mean_w, std_w = whole.predict(X_test, return_std=True)
+    mean_c, std_c = chunked.predict(X_test, return_std=True)
+    np.testing.assert_array_equal(mean_c, mean_w)
+    if trainer != "bp":  # bp's std is the RMSE of the last call's rows
+        np.testing.assert_array_equal(std_c, std_w)  # the covariance (or particle bank) too
+    assert (whole.n_iter_, whole.t_) == (1, 40)
+    assert (chunked.n_iter_, chunked.t_, len(chunked.loss_curve_)) == (4, 40, 4)
+
+
+def test_partial_fit_learns_from_every_chunk(data):
+    """The issue's symptom: 5 disjoint chunks gave the weights of 5 epochs on the first."""
+    X, y, _, _ = data
+    kw = dict(n_hidden=3, init="paper", random_state=0)
+    online = _online(WNNRegressor(**kw), X, y, cuts=[8, 16, 24, 32])
+    first_chunk = WNNRegressor(n_epochs=5, **kw).fit(X[:8], y[:8])
+    assert not np.allclose(online.theta_, first_chunk.theta_)
+    np.testing.assert_array_equal(online.theta_, WNNRegressor(**kw).partial_fit(X, y).theta_)
+
+
+def test_partial_fit_loss_curve_is_the_mse_on_the_rows_of_each_call(data):
+    X, y, _, _ = data
+    reg = WNNRegressor(n_hidden=3, random_state=0).partial_fit(X[:10], y[:10])
+    assert reg.loss_curve_[-1] == pytest.approx(np.mean((reg.predict(X[:10]) - y[:10]) ** 2), rel=1e-12)
+    t0 = reg.fit_time_
+    reg.partial_fit(X[10:], y[10:])
+    assert reg.loss_curve_[-1] == pytest.approx(np.mean((reg.predict(X[10:]) - y[10:]) ** 2), rel=1e-12)
+    assert reg.fit_time_ > t0 and reg.best_epoch_ == reg.n_iter_ == 2
+
+
+def test_repeated_partial_fit_on_all_rows_equals_fit_epochs(data):
+    X, y, _, _ = data
+    full = WNNRegressor(n_hidden=3, n_epochs=3, random_state=2).fit(X, y)
+    step = WNNRegressor(n_hidden=3, random_state=2)
+    for _ in range(3):
+        step.partial_fit(X, y)
+    np.testing.assert_array_equal(step.theta_, full.theta_)
+    np.testing.assert_array_equal(step._final.cov, full._final.cov)
+    assert step.loss_curve_ == full.loss_curve_
+
+
+def test_partial_fit_after_fit_continues_from_the_kept_weights(data):
+    X, y, _, _ = data
+    reg = WNNRegressor(n_hidden=3, n_epochs=8, early_stopping=True, n_iter_no_change=2, random_state=0).fit(X, y)
+    assert reg.best_epoch_ < reg.n_iter_  # early stopping kept an earlier epoch's weights
+    kept = copy.deepcopy(reg._final)
+    kept.epoch(X[:5], y[:5])
+    reg.partial_fit(X[:5], y[:5])
+    np.testing.assert_array_equal(reg.theta_, kept.theta)
+    assert reg.best_epoch_ == reg.n_iter_ == len(reg.loss_curve_)
+
+
+def test_warm_start_fit_trains_on_the_rows_it_is_given(data):
+    X, y, _, _ = data
+    reg = WNNRegressor(n_hidden=3, n_epochs=2, warm_start=True, random_state=0).fit(X[:20], y[:20])
+    other = pickle.loads(pickle.dumps(reg)).fit(X[20:], y[20:])
+    same = pickle.loads(pickle.dumps(reg)).fit(X[:20], y[:20])
+    assert not np.allclose(other.theta_, same.theta_)
+    assert other.t_ == same.t_ == 80

@@ -466,4 +466,4 @@ def test_long_regressor_training_checkpointed_three_times(trainer, n_hidden, n_e
         reg = pickle.loads(pickle.dumps(reg.fit(X, y)))  # checkpoint to bytes, resume
     np.testing.assert_array_equal(reg.theta_, full.theta_)
     np.testing.assert_array_equal(reg.loss_curve_, full.loss_curve_)
-    assert reg.n_epochs_ == n_epochs
+    assert reg.n_iter_ == n_epochs

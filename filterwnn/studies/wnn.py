@@ -399,7 +399,7 @@ def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_
             "curve_test": curve_test,
             "settings": _settings_text(table, trainer, reg) if hasattr(reg, "settings_") else table,
             "n_particles": n_particles if trainer in PARTICLE_TRAINERS else 0,
-            "epochs": int(getattr(reg, "n_epochs_", 0)),
+            "epochs": int(getattr(reg, "n_iter_", 0)),
             "status": status,
         }
 
