@@ -211,16 +211,20 @@ class _EKFTrainer(_Trainer):
         qd = np.diag(Q).copy()
         idx = np.diag_indices_from(P)
         wav = m.wavelet
+        # theta = [W, v, a, b] and dy/dv = psi(t): the output psi(t) v is read off the
+        # Jacobian row, by the same product wnn.forward computes (one network pass a step)
+        n_hidden = m.n_hidden
+        v_part = slice(n_hidden * X.shape[1], n_hidden * (X.shape[1] + 1))
         for xk, yk in zip(X, y):
             if diagQ:
                 P[idx] += qd
             else:
                 P += Q  # only the lower triangle is read
-            xr = xk[None]
-            h = wnn.jacobian(x, xr, wav)[0]
+            h = wnn.jacobian(x, xk[None], wav)[0]
+            f = np.matmul(h[None, v_part], x[v_part, None])[0, 0]
             Ph = dsymv(1.0, P, h, lower=1)
             s = h @ Ph + r
-            x = x + (Ph / s) * (yk - wnn.forward(x, xr, wav)[0])
+            x = x + (Ph / s) * (yk - f)
             P = dsyr(-1.0 / s, Ph, a=P, lower=1, overwrite_a=1)
         self.x, self.P_lower = x, P
 
