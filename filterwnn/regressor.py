@@ -118,6 +118,10 @@ class _Trainer:
     def _record(self, key, value):
         self.diagnostics.setdefault(key, []).append(value)
 
+    def predict_mean(self, X):
+        """The predictive mean alone (the loss curve needs no variance)."""
+        return self.predict(X)[0]
+
     def _check_finite(self, epoch, *arrays):
         for a in arrays:
             if not np.all(np.isfinite(a)):
@@ -228,6 +232,9 @@ class _EKFTrainer(_Trainer):
             P = dsyr(-1.0 / s, Ph, a=P, lower=1, overwrite_a=1)
         self.x, self.P_lower = x, P
 
+    def predict_mean(self, X):
+        return wnn.forward(self.theta, X, self.model.wavelet)
+
     def predict(self, X):
         J = wnn.jacobian(self.theta, X, self.model.wavelet)
         var = np.sum((J @ self.cov) * J, axis=1)
@@ -275,6 +282,9 @@ class _UKFTrainer(_Trainer):
             kf.predict()
             kf.update(np.array([yk]), x=xk)
         kf.P = 0.5 * (kf.P + kf.P.T)
+
+    def predict_mean(self, X):
+        return wnn.forward(self.kf.x, X, self.model.wavelet)
 
     def predict(self, X):
         J = wnn.jacobian(self.kf.x, X, self.model.wavelet)
@@ -690,12 +700,12 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
                 self.n_iter_ += 1
                 self.t_ += len(Xt)
                 tr._check_finite(self.n_iter_, tr.theta)
-                self.loss_curve_.append(float(np.mean((tr.predict(Xt)[0] - yt) ** 2)))
+                self.loss_curve_.append(float(np.mean((tr.predict_mean(Xt) - yt) ** 2)))
                 if bar is not None:
                     bar.update(1)
                     bar.set_postfix(mse=f"{self.loss_curve_[-1]:.3g}")
                 if Xv is not None:
-                    score = float(np.mean((tr.predict(Xv)[0] - yv) ** 2))
+                    score = float(np.mean((tr.predict_mean(Xv) - yv) ** 2))
                     self.validation_scores_.append(score)
                 if verbose >= 2:
                     line = f"epoch {self.n_iter_}: training MSE {self.loss_curve_[-1]:.6g}"
