@@ -53,9 +53,10 @@ import sys
 import time
 
 import numpy as np
+from scipy.linalg.blas import dsymv, dsyr
 from sklearn.base import BaseEstimator, RegressorMixin
 from sklearn.utils.validation import check_is_fitted, validate_data
-from threadpoolctl import threadpool_limits
+from threadpoolctl import ThreadpoolController
 
 from . import wnn
 from ._validation import (
@@ -179,6 +180,8 @@ class _EKFTrainer(_Trainer):
         self.backend = settings.get("ekf_backend", "rank1")
         self.x = np.array(theta0, dtype=float)
         self.P_lower = np.asfortranarray(model.P0, dtype=float).copy(order="F")
+        Q = model.Q
+        self.q_diag = np.diag(Q).copy() if np.allclose(Q, np.diag(np.diag(Q))) else None
         if self.backend == "filterpy":
             from filterpy.kalman import ExtendedKalmanFilter
 
@@ -207,12 +210,8 @@ class _EKFTrainer(_Trainer):
                 kf.predict()
                 kf.update(np.array([yk]), _Bound(m.HJacobian, xk), _Bound(m.hx, xk))
             return
-        from scipy.linalg.blas import dsymv, dsyr
-
         x, P = self.x, self.P_lower
-        Q, r = m.Q, float(m.R[0, 0])
-        diagQ = np.allclose(Q, np.diag(np.diag(Q)))
-        qd = np.diag(Q).copy()
+        Q, r, qd = m.Q, float(m.R[0, 0]), self.q_diag
         idx = np.diag_indices_from(P)
         wav = m.wavelet
         # theta = [W, v, a, b] and dy/dv = psi(t): the output psi(t) v is read off the
@@ -220,7 +219,7 @@ class _EKFTrainer(_Trainer):
         n_hidden = m.n_hidden
         v_part = slice(n_hidden * X.shape[1], n_hidden * (X.shape[1] + 1))
         for xk, yk in zip(X, y):
-            if diagQ:
+            if qd is not None:
                 P[idx] += qd
             else:
                 P += Q  # only the lower triangle is read
@@ -437,6 +436,16 @@ def _progress(verbose, total, desc):
     from tqdm.auto import tqdm
 
     return tqdm(total=total, desc=desc, leave=False)
+
+
+_BLAS = []  # the ThreadpoolController, built on first use (scanning the libraries costs 1 ms)
+
+
+def _one_blas_thread():
+    """Limit every loaded BLAS to one thread; ``.restore_original_limits()`` undoes it."""
+    if not _BLAS:
+        _BLAS.append(ThreadpoolController())
+    return _BLAS[0].limit(limits=1, user_api="blas")
 
 
 def _write_line(line, bar):
@@ -693,7 +702,7 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
         # one BLAS thread: the rank-1 and small dense products of a filter step run 3x
         # faster on one thread than on several, and the numbers do not depend on the
         # machine's thread count (the studies limit their workers the same way)
-        limits = threadpool_limits(limits=1, user_api="blas")
+        limits = _one_blas_thread()
         try:
             for _ in range(n_epochs):
                 tr.epoch(Xt, yt)
