@@ -516,9 +516,10 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
         Continue from the previous fit's filter state for another ``n_epochs`` (a long
         fit can be checkpointed by pickling the estimator between fits, and resumed).
     verbose : int, default 0
-        0: silent (the studies show their own bars). 1: a tqdm bar over the epochs
-        (on stderr). 2 or more: the bar and one line per epoch on stdout with the
-        training MSE (and the validation MSE with ``early_stopping``).
+        0: silent (the studies show their own bars). 1: a tqdm bar over the epochs of
+        ``fit`` (on stderr). 2 or more: also one line per iteration (epoch of ``fit``,
+        call of ``partial_fit``) on stdout with the training MSE (and the validation
+        MSE with ``early_stopping``).
 
     Attributes
     ----------
@@ -693,11 +694,11 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
             self.validation_scores_ = []
         self._reset_best()  # scores on other validation rows do not compare
 
-    def _run_epochs(self, n_epochs, data):
+    def _run_epochs(self, n_epochs, data, show_bar=True):
         Xt, yt, Xv, yv = data
         tr = self._trainer
         verbose = _check_verbose(self.verbose)
-        bar = _progress(verbose, n_epochs, f"WNN/{self.trainer}")
+        bar = _progress(verbose, n_epochs, f"WNN/{self.trainer}") if show_bar else None
         t0 = time.perf_counter()
         # one BLAS thread: the rank-1 and small dense products of a filter step run 3x
         # faster on one thread than on several, and the numbers do not depend on the
@@ -717,7 +718,7 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
                     score = float(np.mean((tr.predict_mean(Xv) - yv) ** 2))
                     self.validation_scores_.append(score)
                 if verbose >= 2:
-                    line = f"epoch {self.n_iter_}: training MSE {self.loss_curve_[-1]:.6g}"
+                    line = f"iteration {self.n_iter_}: training MSE {self.loss_curve_[-1]:.6g}"
                     if Xv is not None:
                         line += f", validation MSE {score:.6g}"
                     _write_line(line, bar)
@@ -820,7 +821,7 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
         else:
             self._trainer = self._final  # continue from the weights used to predict
             self._reset_best()
-        self._run_epochs(1, (X, y, None, None))
+        self._run_epochs(1, (X, y, None, None), show_bar=False)
         return self
 
     def predict(self, X, return_std=False):

@@ -174,10 +174,13 @@ def test_verbose_levels(data, capsys):
     reg = WNNRegressor(n_hidden=3, n_epochs=2, random_state=0, verbose=2, early_stopping=True).fit(X, y)
     lines = capsys.readouterr().out.splitlines()
     assert len(lines) == 2
-    assert lines[1] == (f"epoch 2: training MSE {reg.loss_curve_[1]:.6g}, "
+    assert lines[1] == (f"iteration 2: training MSE {reg.loss_curve_[1]:.6g}, "
                         f"validation MSE {reg.validation_scores_[1]:.6g}")
     WNNRegressor(n_hidden=3, n_epochs=2, random_state=0, verbose=True).fit(X, y)  # a bar, no lines
-    assert capsys.readouterr().out == ""
+    out = capsys.readouterr()
+    assert out.out == "" and "WNN/ekf" in out.err
+    reg.partial_fit(X[:5], y[:5])  # no bar for one pass, the line still
+    assert capsys.readouterr().out == f"iteration 3: training MSE {reg.loss_curve_[2]:.6g}\n"
 
 
 # ---------------------------------------------------------------------------- online training
