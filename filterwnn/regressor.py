@@ -40,6 +40,16 @@ does not work literally (UKF/SUKF end worse than the mean predictor).
 >>> mean, std = reg.predict(X_test[:3], return_std=True)
 >>> mean.shape, bool(np.all(std > 0))
 ((3,), True)
+
+Online training: a filter trains one row per step, so rows that arrive over time are
+fed to ``partial_fit`` as they come; the filter's state and covariance carry over
+between calls (:meth:`WNNRegressor.partial_fit`):
+
+>>> online = WNNRegressor(random_state=0)
+>>> for start in range(0, len(X), 25):
+...     online = online.partial_fit(X[start:start + 25], y[start:start + 25])
+>>> online.n_iter_, online.t_
+(4, 100)
 >>> WNNRegressor(trainer="adam").fit(X, y)
 Traceback (most recent call last):
 ...
