@@ -38,7 +38,7 @@ from filterwnn.studies import dr as dr_study
 from filterwnn.studies import wnn as wnn_study
 from filterwnn.weight_model import WNNWeightModel
 
-RNG_MSG = r"rng must be None, an int seed, a SeedSequence, a BitGenerator or a numpy\.random\.Generator, got "
+RNG_MSG = r"(rng|random_state) must be None, an int seed, a SeedSequence, a BitGenerator or a numpy\.random\.Generator, got "
 BAD_RNGS = [
     pytest.param("seed", "str", id="str"),
     pytest.param(1.5, "float", id="float"),
@@ -373,7 +373,9 @@ REGRESSOR_ROWS = [
     row(lambda: fit_reg(X=Y_REG, y=Y_REG), ValueError, "Expected 2D array, got 1D array", "reg-X-1d"),
     row(lambda: fit_reg().predict(np.zeros((3, 7))), ValueError, "X has 7 features, but WNNRegressor is expecting 5 features", "reg-predict-features"),
     row(lambda: fit_reg().predict(np.full((3, 5), np.nan)), ValueError, "Input X contains NaN", "reg-predict-nan"),
-    row(lambda: fit_reg(progress="yes"), ValueError, "progress", "reg-progress"),
+    row(lambda: fit_reg(verbose="yes"), TypeError, r"verbose must be an integer, got str 'yes'", "reg-verbose-str"),
+    row(lambda: fit_reg(verbose=-1), ValueError, r"verbose must be >= 0, got -1", "reg-verbose-neg"),
+    row(lambda: fit_reg(random_state=-1), ValueError, r"random_state seed must be >= 0, got -1", "reg-random-state-neg"),
 ]
 
 # --------------------------------------------------------------------------- dead reckoning and the neural filter
@@ -465,7 +467,7 @@ RNG_ENTRY_POINTS = {
     "datasets.make_siso_benchmark": lambda rng: datasets.make_siso_benchmark(rng=rng),
     "resampling.resample": lambda rng: resampling.resample([0.5, 0.5], "systematic", rng=rng),
     "ParticleFilter": lambda rng: make_pf(rng=rng),
-    "WNNRegressor.fit": lambda rng: fit_reg(rng=rng),
+    "WNNRegressor.fit": lambda rng: fit_reg(random_state=rng),  # scikit-learn's name
     "NeuralFilter": lambda rng: nfm.NeuralFilter(rng=rng),
     "neural_filter.make_training_set": lambda rng: nfm.make_training_set(nfm.paper_training_states(), rng=rng),
     "neural_filter.random_motion_states": lambda rng: nfm.random_motion_states(5, rng=rng),

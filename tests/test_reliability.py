@@ -166,7 +166,7 @@ def test_regressor_weights_that_become_non_finite_raise_with_the_epoch(trainer):
     if trainer == "ekf":
         kw = {"process_noise": 1e308}
     with pytest.raises(NumericalError) as info:
-        WNNRegressor(trainer=trainer, n_hidden=3, n_epochs=2, n_particles=5, rng=0, **kw).fit(X, y)
+        WNNRegressor(trainer=trainer, n_hidden=3, n_epochs=2, n_particles=5, random_state=0, **kw).fit(X, y)
     assert isinstance(info.value.step, int) and info.value.step >= 1
     assert str(info.value.step) in str(info.value)
 
@@ -220,7 +220,7 @@ def _pf_run(name):
 
 
 def _regressor(trainer):
-    return lambda rng: WNNRegressor(trainer=trainer, n_hidden=3, n_epochs=2, n_particles=4, rng=rng).fit(
+    return lambda rng: WNNRegressor(trainer=trainer, n_hidden=3, n_epochs=2, n_particles=4, random_state=rng).fit(
         X_SISO, Y_SISO).theta_
 
 
@@ -330,7 +330,7 @@ def test_neural_filter_with_online_learning_pickled_mid_run_continues_bit_identi
 
 @pytest.mark.parametrize("trainer", sorted(TRAINERS))
 def test_regressor_checkpointed_and_resumed_equals_uninterrupted(trainer):
-    kw = dict(trainer=trainer, n_hidden=3, n_particles=4, rng=3)
+    kw = dict(trainer=trainer, n_hidden=3, n_particles=4, random_state=3)
     full = WNNRegressor(n_epochs=4, **kw).fit(X_SISO, Y_SISO)
     part = WNNRegressor(n_epochs=2, warm_start=True, **kw).fit(X_SISO, Y_SISO)
     resumed = pickle.loads(pickle.dumps(part)).fit(X_SISO, Y_SISO)
@@ -464,11 +464,11 @@ def test_upf_100_particles_on_the_6_state_gpsdr_model_10k_steps():
 @pytest.mark.parametrize("trainer, n_hidden, n_epochs", [("ekf", 20, 30), ("supf", 10, 15)])
 def test_long_regressor_training_checkpointed_three_times(trainer, n_hidden, n_epochs):
     X, y, _, _ = datasets.make_siso_benchmark(rng=0)
-    kw = dict(trainer=trainer, n_hidden=n_hidden, n_particles=10, rng=11)
+    kw = dict(trainer=trainer, n_hidden=n_hidden, n_particles=10, random_state=11)
     full = WNNRegressor(n_epochs=n_epochs, **kw).fit(X, y)
     reg = WNNRegressor(n_epochs=n_epochs // 3, warm_start=True, **kw)
     for _ in range(3):
         reg = pickle.loads(pickle.dumps(reg.fit(X, y)))  # checkpoint to bytes, resume
     np.testing.assert_array_equal(reg.theta_, full.theta_)
     np.testing.assert_array_equal(reg.loss_curve_, full.loss_curve_)
-    assert reg.n_epochs_ == n_epochs
+    assert reg.n_iter_ == n_epochs

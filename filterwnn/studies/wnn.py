@@ -240,7 +240,7 @@ def tune_run(trainer, tune_seed, n_epochs, n_particles=50, params=None, candidat
         n_val = int(round(VALIDATION_FRACTION * len(X)))
         Xt, yt, Xv, yv = X[:-n_val], y[:-n_val], X[-n_val:], y[-n_val:]
         reg = WNNRegressor(trainer=trainer, n_epochs=n_epochs, n_particles=n_particles, init="scaled",
-                           rng=_child(tune_seed, 1), **params)
+                           random_state=_child(tune_seed, 1), **params)
         curve, status = [], "ok"
         try:
             _train_tracked(reg, Xt, yt, Xv, yv, n_epochs, curve)
@@ -368,7 +368,7 @@ def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_
         X, y, X_test, y_test = make_siso_benchmark(rng=_child(run_seed, 0))
         kw = _params(table, trainer)
         kw.update(params or {})
-        reg = WNNRegressor(trainer=trainer, n_epochs=n_epochs, n_particles=n_particles, rng=_child(run_seed, 1), **kw)
+        reg = WNNRegressor(trainer=trainer, n_epochs=n_epochs, n_particles=n_particles, random_state=_child(run_seed, 1), **kw)
         curve_test = []
         status = "ok"
         try:
@@ -400,7 +400,7 @@ def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_
             "curve_test": curve_test,
             "settings": _settings_text(table, trainer, reg) if hasattr(reg, "settings_") else table,
             "n_particles": n_particles if trainer in PARTICLE_TRAINERS else 0,
-            "epochs": int(getattr(reg, "n_epochs_", 0)),
+            "epochs": int(getattr(reg, "n_iter_", 0)),
             "status": status,
         }
 
