@@ -17,10 +17,20 @@ over the last ``window`` updates (the current one included)
     T_i = \frac{\overline{y_i^2}}{\overline{(H P^- H^T)_{ii}} + R_{ii}}
     \;\sim\; \chi^2_n / n \quad \text{while } R \text{ is right}
 
-(``n`` innovations in the window). ``R_ii`` is left alone while :math:`T_i` stays within
-the two-sided :math:`\chi^2_n/n` quantiles at level ``alpha`` (Bar-Shalom, Li and
+(``n`` innovations in the window). ``R`` is left alone while every :math:`T_i` stays
+within the two-sided :math:`\chi^2_n/n` quantiles at level ``alpha`` (Bar-Shalom, Li and
 Kirubarajan 2001, ch. 5, the NIS test), so with the right noise the filter *is* the
-plain EKF; when the test rejects, ``R_ii`` becomes :math:`\max(\hat R_{ii}, R^{min}_{ii})`.
+plain EKF. A plain moving window lags a step change by up to its length, which is what
+broke the first version of this filter. So when the test rejects, the filter finds the
+change point, the newest ``m`` innovations whose variance ratio
+:math:`\lambda_m = \overline{u}_{\text{newest } m}`, :math:`u_j = y_j^2 / ((H P^- H^T)_j +
+R)`, maximises the generalised likelihood ratio :math:`\tfrac m2(\lambda_m - 1 - \ln
+\lambda_m)` of a variance change (summed over the rejecting components; Basseville and
+Nikiforov 1993, ch. 2), drops the older innovations, and sets
+:math:`R_{ii} = \max(\hat R_{ii}, R^{min}_{ii})` from the newest ``m``. Until the window
+has refilled, ``R`` is re-estimated at every update (plain covariance matching over the
+innovations since the change); then the test takes over again. A x20 rise is caught
+after one innovation and ``R`` is near its new value within a few.
 
 Adding to ``P`` what the mis-weighted measurements added. Until the test rejects, the
 filter takes noisier measurements with the old ``R``; the error they put into the state is
@@ -36,14 +46,15 @@ filter keeps :math:`G_j` for every update in the window, and when ``R`` rises it
 .. math::
     P \mathrel{+}= \sum_j G_j \,\mathrm{diag}\big(\max(y_j^2 - (H P^- H^T)_j - R_j, 0)\big)\, G_j^T
 
-over the updates not yet accounted for (each once), with the one-sample covariance-matching
-estimate of :math:`R^{true}_j - R_j` (clipped at 0, so conservative). A rise caught after
-one sample adds one sample's worth; a rise caught late adds the whole lag's. Falling ``R``
-never shrinks ``P``. ``inflate=False`` leaves ``P`` alone.
+over the updates in the window not yet accounted for (each once), with the one-sample
+covariance-matching estimate of :math:`R^{true}_j - R_j` (clipped at 0, so conservative).
+A rise caught after one sample adds one sample's worth; a rise caught late adds the whole
+lag's. Falling ``R`` never shrinks ``P``. ``inflate=False`` leaves ``P`` alone.
 
-(The issue's first remedy, ``P`` multiplied by the ratio of the new ``R`` to the old one,
-suits a late estimate only: with the test catching a x20 rise after one sample it keeps
-the old gain through the rise, and on separate seeds it was worse than no inflation.)
+(Issue 14's first remedy, ``P`` multiplied by the ratio of the new ``R`` to the old one,
+suits a late estimate only: scaling ``P`` and ``R`` together keeps the old gain, so with
+the rise caught after one sample it kept taking the x20 noise at the nominal gain, and
+on separate seeds it was worse than no inflation.)
 
 Settings from first principles, not fitted: ``alpha = 1e-4`` (a false alarm about once
 per 10^4 updates and component with the right noise), ``window = 30`` (3 s at 10 Hz; the
@@ -53,9 +64,11 @@ specification) floors the estimate, so the filter never trusts a sensor more tha
 specification. Only the diagonal of ``R`` adapts: ``R = R_min + diag(d)``, ``d >= 0``,
 which stays positive definite.
 
-What it costs: per update one ring-buffer write, a few length-``dim_z`` reductions and
-the product ``F (I - K H) G`` over the window (``H`` and ``h(x)`` are evaluated once, as
-in the plain EKF); see the study's ``us/step``.
+What it costs: per update one ring-buffer write, a few length-``dim_z`` operations and
+the products ``F G`` and ``(I - K H) G`` over the window's ``(window, dim_x, dim_z)``
+sensitivities (``H`` and ``h(x)`` are evaluated once, as in the plain EKF); the change
+point and the ``P`` correction only when the test rejects. About 2x filterpy's EKF per
+step on the 6-state DR model (``benchmarks/bench_aekf.py``).
 
 What it cannot do: it takes innovations from manoeuvres the model does not follow for
 measurement noise (on a turning road ``R`` and ``P`` rise during the turns), and a
@@ -69,6 +82,8 @@ Myers, K. A. and Tapley, B. D. (1976). Adaptive sequential estimation with unkno
 statistics. IEEE Trans. Automatic Control 21(4), 520-523.
 Mohamed, A. H. and Schwarz, K. P. (1999). Adaptive Kalman filtering for INS/GPS.
 Journal of Geodesy 73, 193-203.
+Basseville, M. and Nikiforov, I. V. (1993). Detection of Abrupt Changes: Theory and
+Application. Prentice Hall.
 Gelb, A. (ed.) (1974). Applied Optimal Estimation, ch. 7 (suboptimal filter design and
 sensitivity analysis). MIT Press.
 Bar-Shalom, Y., Li, X. R. and Kirubarajan, T. (2001). Estimation with Applications to
@@ -119,9 +134,10 @@ class AdaptiveExtendedKalmanFilter(ExtendedKalmanFilter):
         Innovations in the moving window (30 = 3 s at 10 Hz).
     alpha : float
         Level of the two-sided :math:`\chi^2` test on each component of the window's
-        normalised innovations; ``R`` changes only when it rejects (``0 < alpha < 0.5``).
+        normalised innovations; ``R`` changes only when it rejects, and then follows the
+        innovations since the change until the window refills (``0 < alpha < 0.5``).
     min_samples : int, optional
-        Innovations needed before the first test; default ``min(10, window)``.
+        Innovations recorded before the first test; default ``min(10, window)``.
     inflate : bool
         When ``R`` rises, add to ``P`` the covariance that the window's measurements,
         processed with the old ``R``, put into the state (module docstring).
@@ -189,16 +205,21 @@ class AdaptiveExtendedKalmanFilter(ExtendedKalmanFilter):
         self._r = np.full((W, dz), np.inf)   # diag(R) the update used (inf: not yet processed)
         self._due = np.zeros((W, dz), bool)  # excess not yet added to P
         self._G = np.zeros((W, self.dim_x, dz))
-        self._sum = np.zeros((2, dz))        # running sums of _buf
-        self._count = 0
+        self._sum = np.zeros((2, dz))        # sums of _buf over the valid slots
+        self._count = 0                      # innovations recorded
+        self._n = 0                          # of which in the window (the newest ones)
+        self._settling = False               # re-estimating R after a detected change
         self.nis = np.full(dz, np.nan)
+
+    def _newest(self, m):
+        """Ring-buffer slots of the ``m`` newest innovations, newest first."""
+        return (self._count - 1 - np.arange(m)) % self.window
 
     def predict(self, u=0):
         """filterpy's predict; the window's sensitivities are carried by ``F`` too."""
         super().predict(u)
         if self.adapt and self.inflate and self._count:
-            n = min(self._count, self.window)
-            self._G[:n] = np.matmul(self.F, self._G[:n])
+            self._G = np.matmul(self.F, self._G)
 
     def predict_update(self, z, HJacobian, Hx, args=(), hx_args=(), u=0):
         """``predict(u)`` then ``update(z, HJacobian, Hx, args=args, hx_args=hx_args)``."""
@@ -228,16 +249,20 @@ class AdaptiveExtendedKalmanFilter(ExtendedKalmanFilter):
         y = np.reshape(r, -1)
         H2 = np.reshape(H, (self.dim_z, -1))
         i = self._count % self.window
-        if i == 0:  # the window wraps: refresh the running sums (no drift)
-            self._sum = self._buf.sum(axis=0)
         row = np.empty((2, self.dim_z))
         row[0] = y * y
         row[1] = ((H2 @ self.P) * H2).sum(axis=1)  # diag(H P- H^T)
-        self._sum += row - self._buf[i]
+        if self._n == self.window:  # the oldest leaves
+            self._sum += row - self._buf[i]
+        else:
+            self._sum += row
+            self._n += 1
         self._buf[i] = row
         self._r[i] = np.inf
         self._due[i] = False
         self._count += 1
+        if i == self.window - 1 and self._n == self.window:  # refresh the sums (no drift)
+            self._sum = self._buf.sum(axis=0)
         if R is None:
             self._adapt()
         super().update(z, lambda *_: H, lambda *_: hx, R=R, residual=lambda *_: r)
@@ -245,36 +270,58 @@ class AdaptiveExtendedKalmanFilter(ExtendedKalmanFilter):
         self._r[i] = np.diag(R_used)
         self._due[i] = True
         if self.inflate:
-            n = min(self._count, self.window)
             K = np.reshape(self.K, (-1, self.dim_z))
-            self._G[:n] = np.matmul(self._I - K @ H2, self._G[:n])
+            self._G = np.matmul(self._I - K @ H2, self._G)
             self._G[i] = K
 
     def _adapt(self):
         if self.R_min is None:
             self.R_min = check_covariance(self.R, "R", self.dim_z)
-        n = min(self._count, self.window)
-        if n < self.min_samples:
+        if self._count < self.min_samples:
             return
+        n = self._n
         y2, hph = self._sum / n
         r_old = np.diag(self.R)
-        self.nis = nis = y2 / (hph + r_old)
-        move = (nis > self._hi[n - 1]) | (nis < self._lo[n - 1])
-        if not move.any():
-            return
         r_min = np.diag(self.R_min)
+        self.nis = nis = y2 / (hph + r_old)
+        if self._settling:  # after a change: plain covariance matching until the window refills
+            move = np.ones(self.dim_z, bool)
+            self._settling = n < self.window
+        else:
+            up, down = nis > self._hi[n - 1], nis < self._lo[n - 1]
+            move = up | down
+            if not move.any():
+                return
+            # the change point: the newest m innovations that best explain the rejection
+            # (generalised likelihood ratio of a variance change, summed over components)
+            slots = self._newest(n)
+            u = self._buf[slots, 0] / (self._buf[slots, 1] + r_old)
+            m_ = np.arange(1, n + 1)[:, None]
+            lam = np.maximum(np.cumsum(u, axis=0) / m_, 1e-300)
+            ok = np.where(up, lam > 1.0, lam < 1.0) & move
+            llr = np.where(ok, 0.5 * m_ * (lam - 1.0 - np.log(lam)), 0.0).sum(axis=1)
+            m = int(np.argmax(llr)) + 1
+            keep = self._buf[slots[:m]].sum(axis=0)
+            y2, hph = keep / m
+            r_new = np.where(move, np.maximum(y2 - hph, r_min), r_old)
+            if np.array_equal(r_new, r_old):
+                return
+            self._n, self._sum = m, keep
+            self._settling = m < self.window
         r_new = np.where(move, np.maximum(y2 - hph, r_min), r_old)
         if np.array_equal(r_new, r_old):
             return
         rise = r_new > r_old
         self.R = self.R_min + np.diag(r_new - r_min)
         if self.inflate and rise.any():
-            due = self._due[:n] & rise  # processed, not yet accounted for, rising components
-            b = self._buf[:n]
-            excess = np.where(due, np.maximum(b[:, 0] - b[:, 1] - self._r[:n], 0.0), 0.0)
+            slots = self._newest(self._n)
+            due = self._due[slots] & rise  # processed, not yet accounted for, rising components
+            b = self._buf[slots]
+            excess = np.where(due, np.maximum(b[:, 0] - b[:, 1] - self._r[slots], 0.0), 0.0)
+            self._due[slots] &= ~rise
             if np.any(excess > 0):
+                G = self._G[slots]
                 tr = np.trace(self.P)
-                self.P = self.P + np.einsum("wik,wk,wjk->ij", self._G[:n], excess, self._G[:n])
+                self.P = self.P + np.einsum("wik,wk,wjk->ij", G, excess, G)
                 self.inflation = float(np.trace(self.P) / tr)
                 self.n_inflations += 1
-            self._due[:n] &= ~rise

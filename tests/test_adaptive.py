@@ -47,6 +47,7 @@ def test_R_follows_a_step_up_and_back_down(rng):
     np.testing.assert_array_equal(R[:300], 1.0)     # right noise: R untouched
     assert 15.0 < np.median(R[340:600]) < 40.0       # true 25
     assert R[304] > 2.0                              # the x25 rise is caught within 5 samples
+    assert R[310] > 8.0                              # and R is near 25 within 10 (change point)
     assert R[-1] < 2.0                               # and R comes back down (floor R_min = 1)
     assert np.all(R >= 1.0)
 
@@ -170,8 +171,9 @@ def test_bad_settings(kw, match):
 
 def test_dr_study_straight_road_small():
     # 2 runs, 20 s past the x20 rise. Measured: EKF 3.11 m/s and 7.7 m, oracle 1.29 m/s and
-    # 6.2 m, this filter 1.66 m/s and 6.4 m; the lagging window without the chi2 test or
-    # the P correction (the study's AEKF before issue 14) gave 2.54 m/s and 12.2 m.
+    # 6.2 m, this filter 1.39 m/s and 6.0 m; the lagging window without the chi2 test, the
+    # change point or the P correction (the study's AEKF before issue 14) gave 2.54 m/s
+    # and 12.2 m.
     from filterwnn.studies import dr
 
     res = dr.run_study(scenarios=["straight"], n_runs=2, n_steps=1700,
