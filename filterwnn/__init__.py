@@ -48,6 +48,9 @@ from .dead_reckoning import (
 )
 from .neural_filter import NeuralFilter
 
+# --- adaptive EKF (issue 14) ---
+from .adaptive import AdaptiveExtendedKalmanFilter
+
 __all__ = [
     "__version__",
     "NumericalError",
@@ -88,4 +91,6 @@ __all__ = [
     "simulate_scenario",
     "wrap_angle",
     "NeuralFilter",
+    # --- issue 14 ---
+    "AdaptiveExtendedKalmanFilter",
 ]

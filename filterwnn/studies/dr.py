@@ -13,7 +13,8 @@ Filters (DR-only scenarios)
 ===============  ===========
 ``EKF``          filterpy ``ExtendedKalmanFilter``, nominal ``R`` throughout (too small after the switch)
 ``EKF-oracle``   the same, told the true ``R`` at every step (the reference envelope)
-``AEKF``         innovation-adaptive ``R`` over a 3 s window (:class:`InnovationAdaptiveEKF`)
+``AEKF``         ``R`` matched to the innovations over 3 s, ``P`` inflated when it rises
+                 (:class:`~filterwnn.AdaptiveExtendedKalmanFilter`)
 ``UKF``          unscented, Merwe points (13), circular heading mean
 ``SUKF``         unscented, spherical-simplex points (8)
 ``NN``           :class:`~filterwnn.NeuralFilter`, position pass-through (the default form),
@@ -55,13 +56,13 @@ import copy
 import csv
 import os
 import time
-from collections import deque
 from typing import NamedTuple
 
 import numpy as np
 from filterpy.kalman import ExtendedKalmanFilter, MerweScaledSigmaPoints
 
 from .._validation import check_seed, check_positive_int, check_rng
+from ..adaptive import AdaptiveExtendedKalmanFilter
 from ..dead_reckoning import (
     SCENARIOS,
     DRRun,
@@ -92,7 +93,6 @@ except ImportError:  # pragma: no cover
     _VECTORIZED = False
 
 __all__ = [
-    "InnovationAdaptiveEKF",
     "DR_FILTERS",
     "GPSDR_FILTERS",
     "StudyResult",
@@ -139,43 +139,6 @@ def _has_upf():
         return False
 
 
-class InnovationAdaptiveEKF(ExtendedKalmanFilter):
-    """filterpy's EKF with a diagonal ``R`` learned from the innovations over a window.
-
-    Before each update, ``R_ii = max(R0_ii, mean(y_i^2) - mean((H P^- H^T)_ii))`` over
-    the last ``window`` updates (Mehra's innovation-based adaptive estimation), so the
-    filter follows a rise of the measurement noise within about one window. It
-    mistakes manoeuvre innovations for noise on a turning route.
-
-    Parameters
-    ----------
-    dim_x, dim_z : int
-    window : int
-        Innovations averaged (30 = 3 s at 10 Hz).
-    """
-
-    def __init__(self, dim_x, dim_z, window=30):
-        super().__init__(dim_x, dim_z)
-        self.window = check_positive_int(window, "window")
-        self._ys = deque(maxlen=self.window)
-        self._hph = deque(maxlen=self.window)
-        self.R0 = None
-
-    def update(self, z, HJacobian, Hx, R=None, args=(), hx_args=(), residual=np.subtract):
-        if z is None:
-            return super().update(None, HJacobian, Hx)
-        if self.R0 is None:
-            self.R0 = np.array(self.R, dtype=float)
-        H = HJacobian(self.x, *args)
-        hph = np.sum((H @ self.P) * H, axis=1)  # diag(H P H^T)
-        if len(self._ys) >= max(5, self.window // 3):
-            est = np.mean(np.square(self._ys), axis=0) - np.mean(self._hph, axis=0)
-            self.R = np.diag(np.maximum(np.diag(self.R0), est))
-        super().update(z, HJacobian, Hx, R=None, args=args, hx_args=hx_args, residual=residual)
-        self._ys.append(np.asarray(self.y, dtype=float).copy())
-        self._hph.append(hph)
-
-
 # ----------------------------------------------------------------------------- runners
 
 
@@ -201,7 +164,7 @@ def _dr_filter_run(name, run, x0, nn_cache, rng_nn):
     out = np.empty((n, 6))
     P0 = model.P0
     if name in ("EKF", "EKF-oracle", "AEKF"):
-        kf = InnovationAdaptiveEKF(6, 2) if name == "AEKF" else ExtendedKalmanFilter(6, 2)
+        kf = AdaptiveExtendedKalmanFilter(6, 2) if name == "AEKF" else ExtendedKalmanFilter(6, 2)
         kf.F, kf.Q, kf.R = model.F.copy(), model.Q.copy(), model.R.copy()
         kf.x, kf.P = x0.copy(), P0.copy()
         for k in range(n):
