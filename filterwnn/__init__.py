@@ -11,12 +11,16 @@ from ._validation import NumericalError
 from .models import GammaNoiseModel, LinearGaussianModel, StateSpaceModel
 
 # --- sigma points and the unscented filter (issue 3) ---
+from . import angles
+from .angles import angle_mean, angle_residual
 from .sigma_points import MinimalSkewSigmaPoints, SphericalSimplexSigmaPoints
 from .unscented import UnscentedKalmanFilter
 
 # --- particle filters (issue 4) ---
+from .gaussian_sum import GaussianSumFilter
 from .particle_filter import (
     BootstrapParticleFilter,
+    DegeneracyWarning,
     ExtendedKalmanParticleFilter,
     ParticleFilter,
     SimplexUnscentedParticleFilter,
@@ -48,6 +52,9 @@ from .dead_reckoning import (
 )
 from .neural_filter import NeuralFilter
 
+# --- adaptive EKF (issue 14) ---
+from .adaptive import AdaptiveExtendedKalmanFilter
+
 __all__ = [
     "__version__",
     "NumericalError",
@@ -58,8 +65,13 @@ __all__ = [
     "MinimalSkewSigmaPoints",
     "SphericalSimplexSigmaPoints",
     "UnscentedKalmanFilter",
+    "angles",
+    "angle_residual",
+    "angle_mean",
     # --- issue 4 ---
     "ParticleFilter",
+    "DegeneracyWarning",
+    "GaussianSumFilter",
     "BootstrapParticleFilter",
     "ExtendedKalmanParticleFilter",
     "UnscentedParticleFilter",
@@ -89,4 +101,6 @@ __all__ = [
     "simulate_scenario",
     "wrap_angle",
     "NeuralFilter",
+    # --- issue 14 ---
+    "AdaptiveExtendedKalmanFilter",
 ]

@@ -176,21 +176,22 @@ def _min_eigenvalue(arr, scale):
     return float(np.linalg.eigvalsh(0.5 * (unit + unit.T)).min()) * scale
 
 
-def check_rng(rng):
+def check_rng(rng, name="rng"):
     """Normalise ``rng`` with :func:`numpy.random.default_rng` (SPEC 7).
 
     Accepts ``None``, an int, a :class:`numpy.random.SeedSequence`, a ``BitGenerator``
     or a ``Generator``; anything else raises ``TypeError``. The legacy
     ``RandomState`` is refused: it would tie results to the global stream.
+    ``name`` is the argument the messages name (an estimator's ``random_state``).
     """
     if rng is None or isinstance(
         rng, (numbers.Integral, np.random.SeedSequence, np.random.BitGenerator, np.random.Generator)
     ):
         if isinstance(rng, numbers.Integral) and rng < 0:
-            raise ValueError(f"rng seed must be >= 0, got {rng}")
+            raise ValueError(f"{name} seed must be >= 0, got {rng}")
         return np.random.default_rng(rng)
     raise TypeError(
-        "rng must be None, an int seed, a SeedSequence, a BitGenerator or a "
+        f"{name} must be None, an int seed, a SeedSequence, a BitGenerator or a "
         f"numpy.random.Generator, got {type(rng).__name__}"
     )
 

@@ -15,8 +15,19 @@ import sys
 
 from . import __version__
 from .studies import STUDIES
+from .studies import _args
 
 __all__ = ["main"]
+
+_DESCRIPTION = """\
+Reduced sigma points, particle filters, filter-trained wavelet networks and GPS/DR navigation.
+
+commands:
+  filterwnn demo            a ten-second tour: reduced sigma points in filterpy's UKF
+  filterwnn study wnn       the first paper's WNN study (Table 1, Figs. 3-5)
+  filterwnn study dr        the second paper's dead-reckoning study (Figs. 4-5)
+
+Each command has its own options: filterwnn study wnn --help."""
 
 
 def _demo(args):
@@ -46,15 +57,18 @@ def _demo(args):
     return 0
 
 
-def main(argv=None):
-    """Entry point of the ``filterwnn`` command."""
-    parser = argparse.ArgumentParser(prog="filterwnn", description=__doc__.split("\n\n")[0])
+def _build_parser():
+    """The ``filterwnn`` parser with every command and every study's options."""
+    fmt = _args.HelpFormatter
+    parser = argparse.ArgumentParser(prog="filterwnn", description=_DESCRIPTION, formatter_class=fmt)
     parser.add_argument("--version", action="version", version=f"filterwnn {__version__}")
-    sub = parser.add_subparsers(dest="command", required=True)
-    demo = sub.add_parser("demo", help="a ten-second tour of the reduced sigma points")
-    demo.add_argument("--seed", type=int, default=0)
+    sub = parser.add_subparsers(dest="command", required=True, metavar="{demo,study}")
+    demo = sub.add_parser("demo", help="a ten-second tour of the reduced sigma points", formatter_class=fmt,
+                          description="filterpy's UnscentedKalmanFilter with Merwe's, the minimal-skew and the\n"
+                                      "spherical-simplex points on a random 4-state linear model.")
+    demo.add_argument("--seed", type=_args.seed, default=0, help="seed of the model and the simulated run (>= 0)")
     demo.set_defaults(func=_demo)
-    study = sub.add_parser("study", help="reproduce one of the papers' studies")
+    study = sub.add_parser("study", help="reproduce one of the papers' studies", formatter_class=fmt)
     studies = study.add_subparsers(dest="study", required=True)
     for name, modname in STUDIES.items():
         try:
@@ -63,10 +77,28 @@ def main(argv=None):
             if exc.name != modname:
                 raise
             continue
-        sp = studies.add_parser(name, help=(mod.__doc__ or name).strip().split("\n")[0])
+        summary = (mod.__doc__ or name).strip().split("\n")[0]
+        sp = studies.add_parser(name, help=summary, description=summary, formatter_class=fmt)
         mod.add_arguments(sp)
         sp.set_defaults(func=mod.run)
-    args = parser.parse_args(argv)
+    return parser
+
+
+def main(argv=None):
+    """Entry point of the ``filterwnn`` command.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        The arguments (default ``sys.argv[1:]``). A bad value exits with status 2 and one
+        argparse error line, before any work starts.
+
+    Returns
+    -------
+    int
+        The exit status of the command (0 on success).
+    """
+    args = _build_parser().parse_args(argv)
     return args.func(args) or 0
 
 

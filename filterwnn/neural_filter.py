@@ -195,7 +195,9 @@ class NeuralFilter:
     Attributes
     ----------
     step : int
-        Count of ``update`` calls since ``fit``/``reset`` (named in errors).
+        The time step since ``fit``/``reset``: ``predict`` advances it by one;
+        ``update`` and its errors report the current step (as in every filter of the
+        package).
     x, x_prior, x_post : ndarray of shape (6,)
         Estimate after ``update``, prediction after ``predict``; filterpy's names.
     P : None
@@ -366,9 +368,10 @@ class NeuralFilter:
 
     # ----------------------------------------------------------------- filtering
     def predict(self):
-        r"""``x_prior = Phi x`` (no covariance)."""
+        r"""``x_prior = Phi x`` (no covariance); advances ``step`` by one."""
         self.x_prior = self.model.fx(self.x)
         self.x = self.x_prior.copy()
+        self.step += 1
 
     def _online_step(self, z):
         U, off, Xp_prev = self._last
@@ -386,6 +389,8 @@ class NeuralFilter:
     def update(self, z):
         """``x = K_NN(x_prior, z)``; with ``lr_online > 0``, one phase-2 step first.
 
+        Does not advance ``step`` (``predict`` does); its errors report the current step.
+
         Parameters
         ----------
         z : array-like of shape (2,) or None
@@ -394,11 +399,9 @@ class NeuralFilter:
         """
         self._check_fitted()
         if z is None:
-            self.step += 1
             self.x_post = self.x.copy()
             return
         z = as_measurement(z, 2)
-        self.step += 1
         saved = {k: v.copy() for k, v in self.params_.items()} if self.lr_online > 0 else None
         if self.lr_online > 0 and self._last is not None:
             self._online_step(z)

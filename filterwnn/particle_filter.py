@@ -1,49 +1,37 @@
 r"""Particle filters with filterpy's look: SPF, EPF, UPF and SUPF, batched over particles.
 
-One :class:`ParticleFilter` runs the generic loop of van der Merwe, Doucet, de Freitas
-and Wan (2000) (paper 1, section 3, steps 1-5); the importance proposal
-(:mod:`filterwnn.proposals`) and the resampling scheme (:mod:`filterwnn.resampling`) are
-arguments. For each step ``k`` and particle ``i``:
+One :class:`ParticleFilter` runs the generic sequential importance resampling loop (van
+der Merwe, Doucet, de Freitas and Wan 2000, section 3, steps 1-5); the importance
+proposal (:mod:`filterwnn.proposals`) and the resampling scheme
+(:mod:`filterwnn.resampling`) are arguments. At time step ``k``:
 
-1. *Proposal*: a Kalman proposal runs one (extended or unscented) Kalman step from the
-   particle's mean and covariance :math:`(x_{k-1}^{(i)}, P_{k-1}^{(i)})` with the
-   measurement :math:`y_k`, giving :math:`N(\hat x_k^{(i)}, \hat P_k^{(i)})`; the prior
-   proposal uses :math:`p(x_k \mid x_{k-1}^{(i)})`.
-2. *Weights* (log scale), by ``weighting``:
+1. ``predict``: the proposal's time update (:math:`x_k^{(i)} \sim p(x_k \mid x_{k-1}^{(i)})`
+   for the prior proposal; every particle's Kalman prediction for the Kalman ones).
+2. ``update(z)``: the proposal draws the new particles and returns each one's log-weight
+   increment :math:`\log \alpha_i = \log p(z_k \mid x_k^{(i)}) + \log p(x_k^{(i)} \mid
+   x_{k-1}^{(i)}) - \log q(x_k^{(i)} \mid x_{k-1}^{(i)}, z_k)`; the filter adds it
+   (times ``tempering``, 1 by default), normalises on the log scale, forms the weighted
+   moments (the paper's eqs. 8-9) :math:`x = \sum_i w_i x^{(i)}`,
+   :math:`P = \sum_i w_i (x^{(i)} - x)(x^{(i)} - x)^T`, and resamples when the effective
+   sample size :math:`1/\sum_i w_i^2` is below ``ess_threshold * n_particles`` (1, the
+   default, resamples every step; 0 never), then applies the optional ``move``
+   (resample-move, Gilks and Berzuini 2001).
 
-   ``"textbook"``
-       sample :math:`x_k^{(i)} \sim q` and multiply the weight by
-       :math:`\alpha_i = p(y_k \mid x_k^{(i)})\, p(x_k^{(i)} \mid x_{k-1}^{(i)}) / q(x_k^{(i)})`
-       (for the prior proposal :math:`\alpha_i = p(y_k \mid x_k^{(i)})`); the particle
-       keeps :math:`\hat P_k^{(i)}` as its covariance.
-   ``"bank"``
-       no sampling: the particle *is* its Kalman filter, :math:`x_k^{(i)} = \hat x_k^{(i)}`,
-       and :math:`\alpha_i = N(y_k; \hat y_k^{(i)}, S_k^{(i)})`, the innovation
-       likelihood, which approximates the optimal proposal's weight
-       :math:`p(y_k \mid x_{k-1}^{(i)})`. In 160 dimensions the textbook weight collapses
-       (effective sample size 1 at every step in the project's prototypes); the bank
-       does not.
+The marginal log-likelihood :math:`\log p(z_k \mid z_{1:k-1}) \approx \log \sum_i w_{k-1,i}
+\alpha_i` is kept per step (``log_likelihood``) and summed (``log_marginal_likelihood``).
 
-   ``tempering`` :math:`\tau` raises the incremental weight to a power,
-   :math:`w_i \propto w_i\, \alpha_i^\tau` (``tempering=0.01`` with ``ess_threshold=0``
-   is the tempered, non-resampling bank that the WNN trainer uses).
-3. *Estimate*: the weighted mean and covariance (the paper's eqs. 8-9),
-   :math:`x = \sum_i w_i x^{(i)}`, :math:`P = \sum_i w_i (x^{(i)} - x)(x^{(i)} - x)^T`;
-   in the bank, where every particle is a Gaussian, :math:`P` is the *mixture*
-   covariance (:math:`+ \sum_i w_i \hat P^{(i)}`). (For sampled particles the spread of
-   the samples already represents :math:`\hat P^{(i)}`; adding it again would double it.)
-4. *Resample* when the effective sample size :math:`1/\sum_i w_i^2` is below
-   ``ess_threshold * n_particles`` (``1.0``, the default, means every step as in the
-   paper; ``0`` never), copying means and covariances.
+When the weights collapse (ESS below 2 for 3 consecutive updates) the filter warns once
+with a :class:`DegeneracyWarning` naming the step, the ESS and what to try.
 
-The marginal log-likelihood :math:`\log p(y_k \mid y_{1:k-1}) \approx \log \sum_i w_{k-1,i}
-\alpha_i` (untempered) is kept per step (``log_likelihood``) and summed
-(``log_marginal_likelihood``).
+The particle filters are *not* the Gaussian-sum filter: a bank of Kalman filters weighted
+by their innovation likelihoods, never sampled, is :class:`filterwnn.GaussianSumFilter`,
+a different algorithm.
 
 Presets (all with the same constructor, so one script loops over them):
 :class:`BootstrapParticleFilter` (SPF), :class:`ExtendedKalmanParticleFilter` (EPF),
-:class:`UnscentedParticleFilter` (UPF, Merwe points) and
-:class:`SimplexUnscentedParticleFilter` (the first paper's SUPF, spherical-simplex points).
+:class:`UnscentedParticleFilter` (UPF, Merwe points, alpha=1, beta=2, kappa=0) and
+:class:`SimplexUnscentedParticleFilter` (the first paper's SUPF, spherical-simplex points
+with beta=2).
 
 >>> import numpy as np
 >>> from filterwnn.models import LinearGaussianModel
@@ -55,13 +43,15 @@ Presets (all with the same constructor, so one script loops over them):
 >>> means, covs = pf.batch_filter(zs)
 >>> means.shape, covs.shape
 ((10, 2), (10, 2, 2))
->>> len(pf.ess_history), bool(np.isfinite(pf.log_marginal_likelihood))
-(10, True)
+>>> len(pf.ess_history), bool(np.isfinite(pf.log_marginal_likelihood)), pf.step
+(10, True, 10)
 
 References
 ----------
 R. van der Merwe, A. Doucet, N. de Freitas and E. Wan, "The unscented particle filter",
 Technical Report CUED/F-INFENG/TR 380, Cambridge University, 2000.
+W. R. Gilks and C. Berzuini, "Following a moving target: Monte Carlo inference for
+dynamic Bayesian models", JRSS B 63, 2001.
 """
 
 from __future__ import annotations
@@ -80,23 +70,13 @@ from ._validation import (
     check_positive,
     check_positive_int,
     check_rng,
-    check_symmetric,
 )
-from .proposals import (
-    ExtendedKalmanProposal,
-    KalmanPrediction,
-    PriorProposal,
-    UnscentedKalmanProposal,
-    _noise,
-    _residual,
-    measurement_logpdf,
-    sample_transition,
-    transition_logpdf,
-)
+from .proposals import ExtendedKalmanProposal, PriorProposal, ProposalModel, UnscentedKalmanProposal
 from .resampling import get_scheme
 from .sigma_points import SphericalSimplexSigmaPoints
 
 __all__ = [
+    "DegeneracyWarning",
     "ParticleFilter",
     "BootstrapParticleFilter",
     "ExtendedKalmanParticleFilter",
@@ -104,8 +84,17 @@ __all__ = [
     "SimplexUnscentedParticleFilter",
 ]
 
-WEIGHTINGS = ("textbook", "bank")
 PROPOSALS = ("prior", "extended", "unscented", "simplex")
+
+#: ESS below this for ``_DEGENERATE_RUN`` consecutive updates triggers the warning.
+_DEGENERATE_ESS = 2.0
+_DEGENERATE_RUN = 3
+
+
+class DegeneracyWarning(RuntimeWarning):
+    """The particle weights collapsed: the effective sample size stayed below 2 for 3
+    consecutive updates. Raised once per filter; the message names the step, the ESS and
+    what to try."""
 
 
 def _logsumexp(a):
@@ -116,36 +105,17 @@ def _logsumexp(a):
     return float(m + np.log(np.sum(np.exp(a - m))))
 
 
-def _repair_pd(C):
-    """Copy of the stack ``C (N, n, n)`` with every non-PD matrix's eigenvalues clipped.
-
-    Returns the repaired stack and the number of matrices changed.
-    """
-    C = np.array(C, dtype=float)
-    n_bad = 0
-    for i in range(C.shape[0]):
-        try:
-            np.linalg.cholesky(C[i])
-            if np.all(np.isfinite(C[i])):
-                continue
-        except np.linalg.LinAlgError:
-            pass
-        M = 0.5 * (C[i] + C[i].T)
-        M[~np.isfinite(M)] = 0.0
-        ev, V = np.linalg.eigh(M)
-        floor = 1e-12 * max(np.max(np.abs(ev)), np.finfo(float).tiny)
-        C[i] = (V * np.maximum(ev, floor)) @ V.T
-        C[i] = 0.5 * (C[i] + C[i].T)
-        n_bad += 1
-    return C, n_bad
-
-
 def _check_callable(f, name, allow_none=True):
     if f is None and allow_none:
         return None
     if not callable(f):
         raise TypeError(f"{name} must be callable{' or None' if allow_none else ''}, got {type(f).__name__}")
     return f
+
+
+_MODEL_FIELDS = ("dim_x", "dim_z", "dt", "fx", "hx", "Q", "R", "vectorized", "FJacobian", "HJacobian",
+                 "x_mean_fn", "z_mean_fn", "residual_x", "residual_z", "process_sampler",
+                 "transition_logpdf", "measurement_logpdf", "recover")
 
 
 class ParticleFilter:
@@ -167,13 +137,14 @@ class ParticleFilter:
     n_particles : int
         Number of particles.
     proposal : {"prior", "extended", "unscented", "simplex"} or proposal object
-        The importance proposal: a name, or a :class:`~filterwnn.PriorProposal`,
-        :class:`~filterwnn.ExtendedKalmanProposal` or
-        :class:`~filterwnn.UnscentedKalmanProposal` object. ``"unscented"`` uses
-        ``points`` (default Merwe, alpha=1, beta=2, kappa=0); ``"simplex"`` uses
-        ``points`` (default :class:`~filterwnn.SphericalSimplexSigmaPoints`).
+        The importance proposal: a name, or any object with the protocol of
+        :mod:`filterwnn.proposals` (``carries_covariance``, ``predict``, ``propose``),
+        e.g. :class:`~filterwnn.PriorProposal`, :class:`~filterwnn.ExtendedKalmanProposal`,
+        :class:`~filterwnn.UnscentedKalmanProposal` or your own. ``"unscented"`` uses
+        ``points`` (default Merwe, alpha=1, beta=2, kappa=0); ``"simplex"`` uses ``points``
+        (default ``SphericalSimplexSigmaPoints(dim_x, beta=2)``).
     points : sigma-point object, optional
-        For the unscented proposals.
+        For the unscented proposals; ``points.n`` must equal ``dim_x`` (checked here).
     FJacobian, HJacobian : callable, optional
         ``FJacobian(x, dt, **fx_args)`` and ``HJacobian(x, **hx_args)`` for the extended
         proposal (with ``vectorized=True`` called on ``(n_particles, dim_x)`` and
@@ -182,67 +153,77 @@ class ParticleFilter:
         As in filterpy's ``UnscentedKalmanFilter`` (angles): ``x_mean_fn(points, weights)``,
         ``residual_x(a, b)``. With ``vectorized=True`` residuals are called on whole
         arrays. ``x_mean_fn`` also forms the weighted particle mean.
-    weighting : {"textbook", "bank"}, default "textbook"
-        See the module docstring. ``"bank"`` needs a Kalman proposal.
     resampling : {"systematic", "stratified", "residual", "multinomial"}
         Resampling scheme (:mod:`filterwnn.resampling`).
     ess_threshold : float in [0, 1], default 1.0
         Resample when ``ESS < ess_threshold * n_particles``; 1 means every step, 0 never.
     tempering : float > 0, default 1.0
-        Exponent on the incremental weight.
+        Exponent on the log-weight increment. 1 is the particle filter; other values
+        are a heuristic (tempered weights), not Bayesian filtering.
     vectorized : bool, default False
         Call ``fx``, ``hx`` (and the optional callables below) once on all points.
     rng : None, int, SeedSequence, BitGenerator or Generator
-        All randomness (initial draw, proposals, resampling); the same seed gives
-        bit-identical output.
+        All randomness (initial draw, proposals, resampling, ``move``); the same seed
+        gives bit-identical output.
     transition_logpdf : callable, optional
         ``transition_logpdf(x, x_prev, **fx_args)``: log-density of the transition, for
-        non-Gaussian process noise (default ``log N(x; fx(x_prev), Q)``).
+        non-Gaussian process noise (default ``log N(x; fx(x_prev), Q)``, on Q's support
+        when Q is singular).
     process_sampler : callable, optional
         ``process_sampler(x_prev, rng, **fx_args)``: a draw from the transition (default
         ``fx(x_prev) + N(0, Q)``). ``fx`` and ``Q`` must then be its mean and covariance,
         which the Kalman proposals use.
     measurement_logpdf : callable, optional
         ``measurement_logpdf(z, x, **hx_args)``: log-likelihood (default
-        ``log N(z; hx(x), R)``). The bank weight stays the Kalman innovation likelihood.
+        ``log N(z; hx(x), R)``).
     recover : bool, default False
         Opt-in recovery instead of :class:`~filterwnn.NumericalError` (each use warns
         with a ``RuntimeWarning`` naming the step): a particle covariance that is not
         positive definite is repaired by clipping its eigenvalues to ``1e-12`` times the
         largest (then the step is retried); a measurement under which every weight
         underflows (or is NaN) is skipped as an outlier, as if ``z`` were None.
+    move : callable, optional
+        ``move(particles, rng) -> particles`` (both ``(n_particles, dim_x)``), applied to
+        the particles right after each resampling (resample-move, Gilks and Berzuini
+        2001), e.g. MCMC steps. It **must leave the current posterior invariant** (e.g. a
+        Metropolis-Hastings kernel targeting :math:`p(x_k \\mid z_{1:k})`); the filter
+        cannot check that. The particle covariances (Kalman proposals) are kept.
 
     Attributes
     ----------
     x : ndarray of shape (dim_x,)
-        State estimate; set it (and ``P``) before the first ``predict``: the particles
-        are drawn from ``N(x, P)`` then, unless :meth:`initialize` set them.
+        State estimate. Set it (and ``P``) before the first ``predict``: the particles are
+        drawn from ``N(x, P)`` then, unless :meth:`initialize` set them. Setting ``x`` or
+        ``P`` once the particles exist raises ``ValueError`` (use :meth:`initialize`).
     P : ndarray of shape (dim_x, dim_x)
     Q : ndarray of shape (dim_x, dim_x)
-        Process noise covariance (identity by default, as in filterpy).
+        Process noise covariance (identity by default, as in filterpy); may be singular
+        (e.g. ``Q_discrete_white_noise``). Checked and factored only when it changes.
     R : ndarray of shape (dim_z, dim_z)
-        Measurement noise covariance.
+        Measurement noise covariance (positive definite).
     x_prior, P_prior, x_post, P_post : ndarray
         Moments after the last ``predict`` / ``update``.
     particles : ndarray of shape (n_particles, dim_x) or None
+        The weighted cloud after the last ``update`` (``initialize``).
     covariances : ndarray of shape (n_particles, dim_x, dim_x) or None
-        Per-particle covariances (Kalman proposals only).
+        Per-particle covariances (proposals that carry them).
     log_weights : ndarray of shape (n_particles,)
         Normalised log-weights; ``weights`` is their exponential.
     log_likelihood : float
         ``log p(z_k | z_{1:k-1})`` estimated at the last update (``nan`` before one).
     log_marginal_likelihood : float
         Its sum over all updates, ``log p(z_{1:k})``.
-    ess, n_distinct : float, int
-        Effective sample size (before resampling) and number of distinct particles
-        (after resampling) at the last step; ``ess_history`` and
-        ``n_distinct_history`` keep one entry per ``update`` (``z=None`` included).
-    resampled_history : list of bool
+    ess : float
+        Effective sample size at the last update (before resampling).
+    n_distinct : int
+        Number of distinct particles the last resampling kept (counted from its indices);
+        ``n_particles`` when the step did not resample. ``ess_history``,
+        ``n_distinct_history`` and ``resampled_history`` keep one entry per ``update``
+        (``z=None`` included).
     step : int
-        Time step: the count of ``predict`` calls (named in error messages).
+        The time step: ``predict`` advances it by one; ``update`` works at (and its
+        errors and warnings name) the current step. 0 before the first ``predict``.
     """
-
-    _default_proposal = "prior"
 
     def __init__(
         self,
@@ -261,7 +242,6 @@ class ParticleFilter:
         z_mean_fn=None,
         residual_x=None,
         residual_z=None,
-        weighting="textbook",
         resampling="systematic",
         ess_threshold=1.0,
         tempering=1.0,
@@ -271,6 +251,7 @@ class ParticleFilter:
         process_sampler=None,
         measurement_logpdf=None,
         recover=False,
+        move=None,
     ):
         self.dim_x = check_positive_int(dim_x, "dim_x")
         self.dim_z = check_positive_int(dim_z, "dim_z")
@@ -287,11 +268,11 @@ class ParticleFilter:
         self.transition_logpdf = _check_callable(transition_logpdf, "transition_logpdf")
         self.process_sampler = _check_callable(process_sampler, "process_sampler")
         self.measurement_logpdf = _check_callable(measurement_logpdf, "measurement_logpdf")
+        self.move = _check_callable(move, "move")
         if not isinstance(recover, (bool, np.bool_)):
             raise TypeError(f"recover must be a bool, got {type(recover).__name__}")
         self.recover = bool(recover)
-        self.weighting = check_choice(weighting, "weighting", WEIGHTINGS)
-        get_scheme(resampling)  # validates the name
+        self._resample = get_scheme(resampling)  # validates the name (or callable)
         self.resampling = resampling
         if isinstance(ess_threshold, bool) or not np.isscalar(ess_threshold) or not 0 <= ess_threshold <= 1:
             raise ValueError(f"ess_threshold must be a number in [0, 1], got {ess_threshold!r}")
@@ -302,29 +283,25 @@ class ParticleFilter:
         self.vectorized = bool(vectorized)
         self.rng = check_rng(rng)
         self.proposal = self._make_proposal(proposal, points)
-        if self.weighting == "bank" and not self.proposal.uses_covariance:
-            raise ValueError(
-                "weighting='bank' needs a Kalman proposal (extended or unscented) whose particles "
-                f"carry covariances, got {self.proposal!r}"
-            )
         if isinstance(self.proposal, ExtendedKalmanProposal):
             if self.HJacobian is None:
                 raise ValueError("the extended Kalman proposal needs HJacobian, got None")
-            if self.fx is not None and self.FJacobian is None and self.proposal.uses_covariance:
+            if self.fx is not None and self.FJacobian is None and self.proposal.carries_covariance:
                 raise ValueError("the extended Kalman proposal needs FJacobian when fx is given, got None")
 
         # filterpy's defaults
-        self.x = np.zeros(self.dim_x)
-        self.P = np.eye(self.dim_x)
+        self._x = np.zeros(self.dim_x)
+        self._P = np.eye(self.dim_x)
         self.Q = np.eye(self.dim_x)
         self.R = np.eye(self.dim_z)
-        self.x_prior, self.P_prior = self.x.copy(), self.P.copy()
-        self.x_post, self.P_post = self.x.copy(), self.P.copy()
+        self.x_prior, self.P_prior = self._x.copy(), self._P.copy()
+        self.x_post, self.P_post = self._x.copy(), self._P.copy()
 
+        self._model = ProposalModel(self.dim_x, self.dim_z)
         self.particles = None
         self.covariances = None
         self.log_weights = np.full(self.n_particles, -np.log(self.n_particles))
-        self._pending = None
+        self._prediction = None
         self.step = 0
         self.log_likelihood = np.nan
         self.log_marginal_likelihood = 0.0
@@ -333,6 +310,8 @@ class ParticleFilter:
         self.ess_history = []
         self.n_distinct_history = []
         self.resampled_history = []
+        self._low_ess_run = 0
+        self._warned_degenerate = False
 
     # ------------------------------------------------------------------ set-up
     def _make_proposal(self, proposal, points):
@@ -346,16 +325,49 @@ class ParticleFilter:
                 if proposal == "unscented":
                     points = MerweScaledSigmaPoints(self.dim_x, alpha=1.0, beta=2.0, kappa=0.0)
                 else:
-                    points = SphericalSimplexSigmaPoints(self.dim_x)
+                    points = SphericalSimplexSigmaPoints(self.dim_x, beta=2.0)
+            n = getattr(points, "n", None)
+            if n != self.dim_x:
+                raise ValueError(f"points.n must equal dim_x={self.dim_x}, got {n}")
             return UnscentedKalmanProposal(points)
-        if not hasattr(proposal, "uses_covariance"):
+        missing = [a for a in ("carries_covariance", "predict", "propose") if not hasattr(proposal, a)]
+        if missing:
             raise TypeError(
-                "proposal must be a name or a proposal object (PriorProposal, "
-                f"ExtendedKalmanProposal, UnscentedKalmanProposal), got {type(proposal).__name__}"
+                "proposal must be a name or a proposal object (carries_covariance, predict, propose; "
+                f"see filterwnn.proposals), got {type(proposal).__name__} without {', '.join(missing)}"
             )
-        if isinstance(proposal, UnscentedKalmanProposal) and proposal.points.n != self.dim_x:
-            raise ValueError(f"points.n must equal dim_x={self.dim_x}, got {proposal.points.n}")
+        check = getattr(proposal, "check", None)
+        if check is not None:
+            check(self.dim_x)
         return proposal
+
+    @property
+    def x(self):
+        """State estimate, shape ``(dim_x,)``."""
+        return self._x
+
+    @x.setter
+    def x(self, value):
+        self._refuse_mid_run("x")
+        self._x = value
+
+    @property
+    def P(self):
+        """State covariance, shape ``(dim_x, dim_x)``."""
+        return self._P
+
+    @P.setter
+    def P(self, value):
+        self._refuse_mid_run("P")
+        self._P = value
+
+    def _refuse_mid_run(self, name):
+        if self.particles is not None:
+            raise ValueError(
+                f"{name} cannot be set once the particles exist (step {self.step}): it would be "
+                f"ignored; call initialize(particles) to restart the cloud, or set x and P "
+                f"before the first predict"
+            )
 
     @property
     def weights(self):
@@ -374,17 +386,8 @@ class ParticleFilter:
         ----------
         particles : array-like of shape (n_particles, dim_x)
         covariances : array-like of shape (dim_x, dim_x) or (n_particles, dim_x, dim_x), optional
-            Per-particle covariances for the Kalman proposals (default ``P`` for every
-            particle). Ignored by the prior proposal.
-
-        Notes
-        -----
-        The default start (means drawn from ``N(x, P)``, each particle with covariance
-        ``P``, as van der Merwe et al. start the UPF) is right for textbook weights, where
-        the covariances only shape the proposal. In the bank every particle is a Gaussian,
-        so that start is a mixture with covariance ``2 P``; for a Gaussian-sum start that
-        is exactly ``N(x, P)``, draw the means from ``N(x, P - C)`` and pass
-        ``covariances=C`` (e.g. ``C = P / 2``).
+            Per-particle covariances for proposals that carry them (default ``P`` for
+            every particle); ignored by the others.
         """
         X = np.asarray(particles, dtype=float)
         if X.shape != (self.n_particles, self.dim_x):
@@ -394,77 +397,39 @@ class ParticleFilter:
         if not np.all(np.isfinite(X)):
             raise ValueError("particles must be finite, got non-finite entries")
         C = None
-        if self.proposal.uses_covariance:
-            if covariances is None:
-                C = np.broadcast_to(check_covariance(self.P, "P", self.dim_x), (self.n_particles, self.dim_x, self.dim_x))
-            else:
-                C = np.asarray(covariances, dtype=float)
-                if C.ndim == 2:
-                    C = check_covariance(C, "covariances", self.dim_x)
-                    C = np.broadcast_to(C, (self.n_particles, self.dim_x, self.dim_x))
-                elif C.shape != (self.n_particles, self.dim_x, self.dim_x):
-                    raise ValueError(
-                        f"covariances must have shape ({self.dim_x}, {self.dim_x}) or "
-                        f"({self.n_particles}, {self.dim_x}, {self.dim_x}), got shape {C.shape}"
-                    )
-                if not np.all(np.isfinite(C)):
-                    raise ValueError("covariances must be finite, got non-finite entries")
-            C = np.array(C)
+        if self.proposal.carries_covariance:
+            C = _stack_covariances(self._P if covariances is None else covariances,
+                                   "P" if covariances is None else "covariances", self.n_particles, self.dim_x)
         self.particles = X.copy()
         self.covariances = C
         self.log_weights = np.full(self.n_particles, -np.log(self.n_particles))
-        self._pending = None
-        w = self.weights
-        self.x, self.P = self._moments(self.particles, w, self.covariances if self.weighting == "bank" else None)
-        self.x_post, self.P_post = self.x.copy(), self.P.copy()
+        self._prediction = None
+        self._x, self._P = self._moments(self._sync_model(), self.particles, self.weights)
+        self.x_post, self.P_post = self._x.copy(), self._P.copy()
 
     def _draw_initial(self):
-        x = as_state(self.x, "x", self.dim_x)
-        P = check_covariance(self.P, "P", self.dim_x)
+        x = as_state(self._x, "x", self.dim_x)
+        P = check_covariance(self._P, "P", self.dim_x)
         L = np.linalg.cholesky(P)
         self.initialize(x + self.rng.standard_normal((self.n_particles, self.dim_x)) @ L.T, P)
 
     # ------------------------------------------------------------------ helpers
-    def _repairing(self, fn, C, step, what):
-        """``fn(C)``; with ``recover=True`` a covariance failure repairs ``C`` once and retries.
-
-        Returns ``(result, C_used)``.
-        """
-        try:
-            return fn(C), C
-        except NumericalError as exc:
-            if not self.recover or exc.matrix not in ("P", "P_prior") or C is None:
-                raise
-            C2, n_bad = _repair_pd(C)
-            warnings.warn(
-                f"step {step}: {n_bad} particle {what} covariance(s) not positive definite ({exc}); "
-                "eigenvalues clipped (recover=True)",
-                RuntimeWarning,
-                stacklevel=3,
-            )
-            return fn(C2), C2
-
-    def _check_Q(self):
-        """``Q`` as a finite symmetric ``(dim_x, dim_x)`` array (PSD is checked where it is factored)."""
-        return check_symmetric(_noise(self.Q, "Q", self.dim_x), "Q")
-
-    def _moments(self, X, w, C=None):
-        if self.x_mean_fn is None:
-            x = w @ X
-        else:
-            x = as_state(self.x_mean_fn(X, w), "x_mean_fn(particles, weights)", self.dim_x)
-        d = _residual(self.residual_x, X, x[None, :], self.vectorized)
-        P = (d.T * w) @ d
-        if C is not None:
-            P = P + np.tensordot(w, C, axes=1)
-        return x, 0.5 * (P + P.T)
+    def _sync_model(self):
+        """The :class:`ProposalModel` the proposals see, with the filter's current settings;
+        ``Q`` and ``R`` are checked and factored only when they changed."""
+        m = self._model
+        for name in _MODEL_FIELDS:
+            setattr(m, name, getattr(self, name))
+        m.noise("Q")
+        m.noise("R")
+        return m
 
     @staticmethod
-    def _distinct(X):
-        """Number of distinct rows (exact equality: copies made by resampling)."""
-        X = np.ascontiguousarray(X)
-        rows = X.view(np.dtype((np.void, X.dtype.itemsize * X.shape[1]))).ravel()
-        return int(np.unique(rows).size)
+    def _moments(model, X, w):
+        x = model.mean_x(X, w)
+        d = model.residual_x_rows(X, x[None, :])
+        P = (d.T * w) @ d
+        return x, 0.5 * (P + P.T)
 
     def _record(self, ess, n_distinct, resampled):
         self.ess, self.n_distinct = float(ess), int(n_distinct)
@@ -472,92 +437,83 @@ class ParticleFilter:
         self.n_distinct_history.append(self.n_distinct)
         self.resampled_history.append(bool(resampled))
 
-    def _skip_measurement(self, step, why):
+    def _watch_degeneracy(self, ess):
+        self._low_ess_run = self._low_ess_run + 1 if ess < _DEGENERATE_ESS else 0
+        if self._low_ess_run >= _DEGENERATE_RUN and not self._warned_degenerate:
+            self._warned_degenerate = True
+            warnings.warn(
+                f"{type(self).__name__}: the particle weights collapsed: the effective sample size "
+                f"stayed below {_DEGENERATE_ESS:g} for {_DEGENERATE_RUN} consecutive updates (step "
+                f"{self.step}: ESS {ess:.3g} of {self.n_particles} particles). Try more particles, a "
+                f"wider proposal (e.g. carry_covariance=False, or a larger Q in the proposal), or "
+                f"filterwnn.GaussianSumFilter",
+                DegeneracyWarning,
+                stacklevel=3,
+            )
+
+    def _no_measurement(self, model, step):
+        """End a step without a measurement: move, keep the weights, the prior is the posterior."""
+        if self._prediction is not None:
+            out = self.proposal.propose(model, self._prediction, None, {}, self.rng, step)
+            self.particles, self.covariances = out.particles, out.covariances
+            self._prediction = None
+        self.x_post, self.P_post = self._x.copy(), self._P.copy()
+        self._record(self.ess, self.n_particles, False)
+
+    def _skip_measurement(self, model, step, why):
         """``recover=True``: treat the measurement as an outlier, warn, keep the prior."""
         warnings.warn(
             f"step {step}: the measurement gives {why}; skipped as an outlier (recover=True)",
             RuntimeWarning,
             stacklevel=3,
         )
-        self._no_measurement_step()
-
-    def _no_measurement_step(self):
-        """End a step without a measurement: the prior is the posterior, nothing resampled."""
-        self._finish_without_measurement()
-        self.x_post, self.P_post = self.x.copy(), self.P.copy()
-        self._record(self.ess, self._distinct(self.particles), False)
-
-    def _finish_without_measurement(self):
-        """Complete a pending prediction with no measurement (``z=None``)."""
-        pend = self._pending
-        self._pending = None
-        if pend is None or pend["kind"] == "prior":
-            return
-        pred = pend["prediction"]
-        if self.weighting == "bank":
-            self.particles = pred.x
-        else:
-            # no measurement: the optimal proposal is the transition, weights unchanged
-            self.particles = sample_transition(self, pend["x_prev"], pend["fx_args"], self.rng)
-        self.covariances = pred.P if self.proposal.uses_covariance else None
+        self._no_measurement(model, step)
 
     # ------------------------------------------------------------------ filterpy API
     def predict(self, **fx_args):
-        """Propagate the particles one step; ``fx_args`` go to ``fx`` and ``FJacobian``.
+        """Advance the time step by one and propagate the particles (the proposal's time
+        update); ``fx_args`` go to ``fx`` and ``FJacobian``.
 
         At the first call the particles are drawn from ``N(x, P)`` unless
         :meth:`initialize` set them. Afterwards ``x_prior``/``P_prior`` (and ``x``/``P``)
-        are the predicted weighted moments: of the moved particles (prior proposal), of the
-        particles' predicted means plus ``Q`` (Kalman proposals, textbook weights; the
-        particles themselves move in ``update``), or of the mixture of the particles'
-        predicted Gaussians (bank).
+        are the predicted weighted moments (for the Kalman proposals: the spread of the
+        predicted means plus ``Q``).
         """
-        Q = self._check_Q()
+        model = self._sync_model()
         if self.particles is None:
             self._draw_initial()
-        if self._pending is not None:
-            self._finish_without_measurement()
+        if self._prediction is not None:  # predict twice: the first one's move, no measurement
+            out = self.proposal.propose(model, self._prediction, None, {}, self.rng, self.step)
+            self.particles, self.covariances = out.particles, out.covariances
+            self._prediction = None
         step = self.step + 1
-        w = self.weights
-        if getattr(self.proposal, "is_kalman", self.proposal.uses_covariance):
-            pred, covs_used = self._repairing(
-                lambda C: self.proposal.predict(self, self.particles, C, fx_args, step=step),
-                self.covariances,
-                step,
-                "posterior",
+        pred = self.proposal.predict(model, self.particles, self.covariances, fx_args, self.rng, step)
+        if not (np.isfinite(pred.particles).all() and (pred.covariances is None or np.isfinite(pred.covariances).all())):
+            bad = ~np.isfinite(pred.particles).all(axis=1)
+            if pred.covariances is not None:
+                bad |= ~np.isfinite(pred.covariances).all(axis=(1, 2))
+            raise NumericalError(
+                f"non-finite prediction at step {step} (particle {int(np.argmax(bad))}: check fx, FJacobian and Q)",
+                matrix="particles",
+                step=step,
             )
-            if not (np.all(np.isfinite(pred.x)) and np.all(np.isfinite(pred.P))):
-                bad = int(np.argmin(np.isfinite(pred.x).all(axis=1) & np.isfinite(pred.P).all(axis=(1, 2))))
-                raise NumericalError(
-                    f"non-finite Kalman prediction at step {step} (particle {bad}: check fx, FJacobian and Q)",
-                    matrix="P_prior",
-                    step=step,
-                )
-            self.covariances = covs_used
-            self._pending = {"kind": "kalman", "x_prev": self.particles, "prediction": pred, "fx_args": fx_args}
-            if self.weighting == "bank":
-                x, P = self._moments(pred.x, w, pred.P)  # the mixture of the predicted Gaussians
-            else:
-                # sampled particles move by the transition: spread of the predicted means + Q
-                x, P = self._moments(pred.x, w)
-                P = P + Q
-        else:
-            new = self.proposal.sample(self, self.particles, fx_args, self.rng)
-            if not np.all(np.isfinite(new)):
-                raise NumericalError(f"non-finite particles after predict at step {step}", matrix="particles", step=step)
-            self.particles = new
-            self._pending = {"kind": "prior"}
-            x, P = self._moments(new, w)
+        x, P = self._moments(model, pred.particles, self.weights)
+        if pred.spread is not None:
+            P = P + pred.spread
+        self._prediction = pred
         self.step = step
-        self.x, self.P = x, P
+        self._x, self._P = x, P
         self.x_prior, self.P_prior = x.copy(), P.copy()
 
     def update(self, z, **hx_args):
-        """Weight (and resample) the particles with measurement ``z``.
+        """Weight (and resample) the particles with measurement ``z`` at the current step.
 
-        ``z=None`` skips the update (the step is recorded with unchanged weights); a ``z``
-        with NaN or inf raises ``ValueError`` and leaves the filter unchanged; ``hx_args``
-        go to ``hx``, ``HJacobian`` and ``measurement_logpdf``.
+        The proposal draws the particles and their log-weight increment; the filter adds
+        it, normalises, forms the moments and resamples when the ESS asks for it (then
+        applies ``move``). ``z=None`` skips the measurement (the step is recorded with
+        unchanged weights); a ``z`` with NaN or inf raises ``ValueError`` and leaves the
+        filter unchanged; ``hx_args`` go to ``hx``, ``HJacobian`` and ``measurement_logpdf``.
+        Without a preceding ``predict`` the particles are reweighted in place.
 
         Raises
         ------
@@ -566,75 +522,55 @@ class ParticleFilter:
             log-likelihood), a weight is NaN, or a particle covariance is not positive
             definite. The filter's state is left as it was before the call.
         """
-        if z is None:
-            if self.particles is None:
-                self._draw_initial()
-            self._no_measurement_step()
-            return
-        z = as_measurement(z, self.dim_z)
-        check_covariance(self.R, "R", self.dim_z)
-        self._check_Q()
+        model = self._sync_model()
         if self.particles is None:
             self._draw_initial()
         step = self.step
-        pend = self._pending
-        lw_prev = self.log_weights
-        covs = None
-        log_lik_max = None
-        if pend is not None and pend["kind"] == "kalman":
-            pred = pend["prediction"]
-            try:
-                upd, P_prior = self._repairing(
-                    lambda C: self.proposal.update(self, KalmanPrediction(pred.x, C), z, hx_args, step=step),
-                    pred.P,
-                    step,
-                    "predicted",
-                )
-            except NumericalError as exc:
-                if not (self.recover and exc.matrix == "S"):
-                    raise
-                self._skip_measurement(step, f"no usable Kalman update ({exc})")
-                return
-            covs = upd.P if self.proposal.uses_covariance else None
-            if self.weighting == "bank":
-                X = upd.x
-                log_alpha = upd.log_likelihood
+        if z is None:
+            self._no_measurement(model, step)
+            return
+        z = as_measurement(z, self.dim_z)
+        try:
+            if self._prediction is None:  # no predict since the last update: reweight in place
+                ll = model.log_likelihood(z, self.particles, hx_args)
+                out = (self.particles, self.covariances, ll, ll)
             else:
-                try:
-                    X, log_q = self.proposal.sample(upd, self.rng, step=step, P_prior=P_prior)
-                except NumericalError as exc:
-                    if not self.recover or exc.matrix not in ("P", "P_prior"):
-                        raise
-                    repaired, n_bad = _repair_pd(upd.P)
-                    covs = repaired if self.proposal.uses_covariance else None
-                    warnings.warn(
-                        f"step {step}: {n_bad} particle proposal covariance(s) not positive definite "
-                        f"({exc}); eigenvalues clipped (recover=True)",
-                        RuntimeWarning,
-                        stacklevel=2,
-                    )
-                    upd = upd._replace(P=repaired, L_prior=None, LinvPxy=None)
-                    X, log_q = self.proposal.sample(upd, self.rng, step=step)
-                log_lik = measurement_logpdf(self, z, X, hx_args)
-                log_tr = transition_logpdf(self, X, pend["x_prev"], pend["fx_args"])
-                log_alpha = log_lik + log_tr - log_q
-                log_lik_max = np.max(log_lik)
-        elif self.proposal.uses_covariance and self.weighting == "bank":
-            # update without predict: a Kalman update of every particle in place
-            upd = self.proposal.update(
-                self, KalmanPrediction(self.particles, self.covariances), z, hx_args, step=step
-            )
-            X, covs, log_alpha = upd.x, upd.P, upd.log_likelihood
-        else:
-            # bootstrap particles (or an update without predict): reweight in place
-            X = self.particles
-            covs = self.covariances
-            log_alpha = measurement_logpdf(self, z, X, hx_args)
+                out = self.proposal.propose(model, self._prediction, z, hx_args, self.rng, step)
+        except NumericalError as exc:
+            if not (self.recover and exc.matrix == "S"):
+                raise
+            self._skip_measurement(model, step, f"no usable Kalman update ({exc})")
+            return
+        X, covs, log_alpha, log_lik = out
+        log_w = self._add_weights(model, step, log_alpha, log_lik)
+        if log_w is None:
+            return
+        w = np.exp(log_w)
+        ess = 1.0 / np.dot(w, w)
+        x, P = self._moments(model, X, w)
+        n_distinct = self.n_particles
+        resampled = self.ess_threshold >= 1.0 or ess < self.ess_threshold * self.n_particles
+        if resampled:
+            idx = self._resample(w, self.rng, self.n_particles)
+            X = X[idx]
+            covs = None if covs is None else covs[idx]
+            log_w = np.full(self.n_particles, -np.log(self.n_particles))
+            n_distinct = int(np.count_nonzero(np.bincount(idx, minlength=self.n_particles)))
+            if self.move is not None:
+                X = self._apply_move(X, step)
+        self.particles, self.covariances, self.log_weights = X, covs, log_w
+        self._prediction = None
+        self._x, self._P = x, P
+        self.x_post, self.P_post = x.copy(), P.copy()
+        self._record(ess, n_distinct, resampled)
+        self._watch_degeneracy(ess)
 
+    def _add_weights(self, model, step, log_alpha, log_lik):
+        """New normalised log-weights from the increment (None when skipped as an outlier)."""
         bad_weights = np.any(np.isnan(log_alpha)) or np.any(log_alpha == np.inf)
         if self.recover and (bad_weights or not np.any(log_alpha > -np.inf)):
-            self._skip_measurement(step, "no finite particle weight (all underflow or NaN)")
-            return
+            self._skip_measurement(model, step, "no finite particle weight (all underflow or NaN)")
+            return None
         if bad_weights:
             bad = int(np.argmax(np.isnan(log_alpha) | (log_alpha == np.inf)))
             raise NumericalError(
@@ -642,47 +578,42 @@ class ParticleFilter:
                 matrix="weights",
                 step=step,
             )
-        log_inc = lw_prev + log_alpha
-        log_lik_step = float(_logsumexp(log_inc))
-        new_lw = lw_prev + self.tempering * log_alpha
+        lw_prev = self.log_weights
+        new_lw = lw_prev + log_alpha if self.tempering == 1.0 else lw_prev + self.tempering * log_alpha
         lse = _logsumexp(new_lw)
         if not np.isfinite(lse):
-            if log_lik_max is None or not np.isfinite(log_lik_max):
-                log_lik_max = np.max(log_alpha) if log_lik_max is None else log_lik_max
-                detail = f"the measurement is impossible under every particle (largest log-likelihood {log_lik_max:.6g})"
+            lmax = np.max(log_alpha if log_lik is None else log_lik)
+            if log_lik is None or not np.isfinite(lmax):
+                detail = f"the measurement is impossible under every particle (largest log-likelihood {lmax:.6g})"
             else:
                 detail = (
-                    f"largest log-likelihood {log_lik_max:.6g}, but the transition density is 0 "
+                    f"largest log-likelihood {lmax:.6g}, but the transition density is 0 "
                     f"at every sample (largest log-weight increment {np.max(log_alpha):.6g})"
                 )
+            raise NumericalError(f"all particle weights underflowed at step {step}: {detail}", matrix="weights", step=step)
+        log_lik_step = lse if self.tempering == 1.0 else _logsumexp(lw_prev + log_alpha)
+        self.log_likelihood = float(log_lik_step)
+        self.log_marginal_likelihood += float(log_lik_step)
+        return new_lw - lse
+
+    def _apply_move(self, X, step):
+        Y = np.asarray(self.move(X, self.rng), dtype=float)
+        if Y.shape != X.shape or not np.all(np.isfinite(Y)):
             raise NumericalError(
-                f"all particle weights underflowed at step {step}: {detail}",
-                matrix="weights",
+                f"move must return finite particles of shape {X.shape} at step {step}, got shape {Y.shape}",
+                matrix="particles",
                 step=step,
             )
-        new_lw = new_lw - lse
-        w = np.exp(new_lw)
-        ess = 1.0 / np.dot(w, w)
-        bank = self.weighting == "bank"
-        x, P = self._moments(X, w, covs if bank else None)
+        return Y
 
-        resampled = self.ess_threshold >= 1.0 or ess < self.ess_threshold * self.n_particles
-        if resampled:
-            idx = get_scheme(self.resampling)(w, self.rng, self.n_particles)
-            X = X[idx]
-            if covs is not None:
-                covs = covs[idx]
-            new_lw = np.full(self.n_particles, -np.log(self.n_particles))
-        # commit
-        self.particles = np.ascontiguousarray(X)
-        self.covariances = covs
-        self.log_weights = new_lw
-        self._pending = None
-        self.log_likelihood = log_lik_step
-        self.log_marginal_likelihood += log_lik_step
-        self.x, self.P = x, P
-        self.x_post, self.P_post = x.copy(), P.copy()
-        self._record(ess, self._distinct(self.particles), resampled)
+    def __getstate__(self):
+        state = self.__dict__.copy()
+        del state["_resample"]  # a scheme's raw implementation (or a wrapped callable): looked up again
+        return state
+
+    def __setstate__(self, state):
+        self.__dict__.update(state)
+        self._resample = get_scheme(self.resampling)
 
     def batch_filter(self, zs, fx_args=None, hx_args=None):
         """Run ``predict``/``update`` over a sequence of measurements.
@@ -707,15 +638,27 @@ class ParticleFilter:
         for k, z in enumerate(zs):
             self.predict(**fx_args)
             self.update(z, **hx_args)
-            means[k], covs[k] = self.x, self.P
+            means[k], covs[k] = self._x, self._P
         return means, covs
 
     def __repr__(self):
         return (
             f"{type(self).__name__}(dim_x={self.dim_x}, dim_z={self.dim_z}, n_particles={self.n_particles}, "
-            f"proposal={self.proposal!r}, weighting={self.weighting!r}, resampling={self.resampling!r}, "
+            f"proposal={self.proposal!r}, resampling={self.resampling!r}, "
             f"ess_threshold={self.ess_threshold}, tempering={self.tempering}, step={self.step})"
         )
+
+
+def _stack_covariances(C, name, n, dim):
+    """``C`` as a writable ``(n, dim, dim)`` stack (one matrix repeated, or one per row)."""
+    C = np.asarray(C, dtype=float)
+    if C.ndim == 2 or C.ndim == 0:
+        C = np.broadcast_to(check_covariance(C, name, dim), (n, dim, dim))
+    elif C.shape != (n, dim, dim):
+        raise ValueError(f"{name} must have shape ({dim}, {dim}) or ({n}, {dim}, {dim}), got shape {C.shape}")
+    if not np.all(np.isfinite(C)):
+        raise ValueError(f"{name} must be finite, got non-finite entries")
+    return np.array(C)
 
 
 class _Preset(ParticleFilter):
@@ -739,7 +682,6 @@ class _Preset(ParticleFilter):
         z_mean_fn=None,
         residual_x=None,
         residual_z=None,
-        weighting="textbook",
         resampling="systematic",
         ess_threshold=1.0,
         vectorized=False,
@@ -749,6 +691,7 @@ class _Preset(ParticleFilter):
         process_sampler=None,
         measurement_logpdf=None,
         recover=False,
+        move=None,
     ):
         super().__init__(
             dim_x,
@@ -765,7 +708,6 @@ class _Preset(ParticleFilter):
             z_mean_fn=z_mean_fn,
             residual_x=residual_x,
             residual_z=residual_z,
-            weighting=weighting,
             resampling=resampling,
             ess_threshold=ess_threshold,
             tempering=tempering,
@@ -775,6 +717,7 @@ class _Preset(ParticleFilter):
             process_sampler=process_sampler,
             measurement_logpdf=measurement_logpdf,
             recover=recover,
+            move=move,
         )
 
 
@@ -782,17 +725,17 @@ _PRESET_DOC = """{what}
 
     The constructor is shared by the four presets: ``(dim_x, dim_z, dt, hx, fx,
     n_particles, *, points=None, FJacobian=None, HJacobian=None, x_mean_fn=None,
-    z_mean_fn=None, residual_x=None, residual_z=None, weighting="textbook",
-    resampling="systematic", ess_threshold=1.0, vectorized=False, rng=None)`` plus the
-    keyword-only ``tempering``, ``transition_logpdf``, ``process_sampler`` and
-    ``measurement_logpdf``; see :class:`ParticleFilter` for their meaning. {extra}
+    z_mean_fn=None, residual_x=None, residual_z=None, resampling="systematic",
+    ess_threshold=1.0, vectorized=False, rng=None)`` plus the keyword-only ``tempering``,
+    ``transition_logpdf``, ``process_sampler``, ``measurement_logpdf``, ``recover`` and
+    ``move``; see :class:`ParticleFilter` for their meaning. {extra}
     """
 
 
 class BootstrapParticleFilter(_Preset):
     __doc__ = _PRESET_DOC.format(
         what="The bootstrap particle filter (SPF): the transition prior as proposal.",
-        extra="``points`` and the Jacobians are ignored; ``weighting`` must be ``'textbook'``.",
+        extra="``points`` and the Jacobians are ignored.",
     )
     _proposal_name = "prior"
 
@@ -820,12 +763,11 @@ class SimplexUnscentedParticleFilter(_Preset):
     __doc__ = _PRESET_DOC.format(
         what="The first paper's SUPF: the UPF with reduced (n + 2) sigma points.",
         extra=(
-            "``points`` defaults to ``SphericalSimplexSigmaPoints(dim_x)`` (what the paper's "
-            "equations give, and what works at n = 160); ``MinimalSkewSigmaPoints`` suits small states. "
-            "For small states with strongly nonlinear measurements pass ``beta=2`` as the UPF's Merwe "
-            "default has (on van der Merwe et al.'s gamma-noise benchmark, n = 1 and a quadratic "
-            "measurement, the default ``beta=0`` gives a too narrow proposal and loses to the bootstrap "
-            "filter; ``SphericalSimplexSigmaPoints(1, beta=2)`` beats it, see the tests)."
+            "``points`` defaults to ``SphericalSimplexSigmaPoints(dim_x, beta=2)`` (the paper's "
+            "equations with the Gaussian-optimal beta = 2 that the UPF's Merwe default also has: on "
+            "van der Merwe et al.'s gamma-noise benchmark, n = 1 with a quadratic measurement, "
+            "beta = 0 gives a too narrow proposal and loses to the bootstrap filter); "
+            "``MinimalSkewSigmaPoints`` suits small states."
         ),
     )
     _proposal_name = "simplex"

@@ -1,16 +1,33 @@
-r"""Importance proposals for particle filters, batched over particles.
+r"""Importance proposals for particle filters, batched over particles: a small protocol.
 
 A particle filter moves particle ``i`` from :math:`x'_i = x_{k-1}^{(i)}` to
-:math:`x_i \sim q(\cdot \mid x'_i, y_k)` and multiplies its weight by
+:math:`x_i \sim q(\cdot \mid x'_i, y_k)` and adds to its log-weight
 
 .. math::
-    \alpha_i = \frac{p(y_k \mid x_i)\, p(x_i \mid x'_i)}{q(x_i \mid x'_i, y_k)} .
+    \log \alpha_i = \log p(y_k \mid x_i) + \log p(x_i \mid x'_i) - \log q(x_i \mid x'_i, y_k) .
 
-The proposals here are small objects that the :class:`~filterwnn.ParticleFilter` calls:
+**The proposal owns its weight.** A proposal is any object with
+
+``carries_covariance`` : bool
+    whether each particle carries a covariance (Kalman proposals) or is a point;
+``predict(model, particles, covariances, fx_args, rng, step) -> Prediction``
+    the time update (called by the filter's ``predict``): the moved particles, or each
+    particle's predicted mean (and covariance), and what ``propose`` needs later;
+``propose(model, prediction, z, hx_args, rng, step) -> Proposed``
+    the measurement step (called by the filter's ``update``): the new particles, their
+    covariances (or None) and the log-weight increment :math:`\log \alpha_i`
+    (``z=None``: no measurement, a draw from the transition and a zero increment).
+
+The filter adds the increment, normalises, forms the moments and resamples; it never asks
+what kind of proposal it holds (as in Chopin's ``particles``, where a guided model gives
+both the draw and its ``logG``, and Stone Soup's ``KalmanProposal``). The proposals see
+the model only through a :class:`ProposalModel` (``fx``/``hx`` on rows, residuals, the
+noise ``Q``/``R`` factored once, the transition and measurement densities), never the
+filter.
 
 :class:`PriorProposal`
     :math:`q = p(x_k \mid x'_i)`, the transition prior (the bootstrap filter, SPF);
-    then :math:`\alpha_i = p(y_k \mid x_i)`. Particles carry no covariance.
+    then :math:`\log \alpha_i = \log p(y_k \mid x_i)`. Particles carry no covariance.
 :class:`ExtendedKalmanProposal`
     every particle carries a mean and a covariance :math:`(x'_i, P_i)` and runs one
     extended Kalman step with ``FJacobian``/``HJacobian``; :math:`q = N(\hat x_i, \hat P_i)`
@@ -20,15 +37,22 @@ The proposals here are small objects that the :class:`~filterwnn.ParticleFilter`
     (the UPF of van der Merwe, Doucet, de Freitas and Wan 2000 with Merwe points; the
     paper's SUPF with :class:`~filterwnn.SphericalSimplexSigmaPoints`).
 
+**A singular Q** (rank :math:`r < n`, e.g. filterpy's ``Q_discrete_white_noise``): the
+transition :math:`x = f(x') + G v`, :math:`Q = G G^T`, :math:`v \sim N(0, I_r)`, has a
+density only on an affine subspace. The Kalman proposals then sample *in the noise
+space*: :math:`v` from the Kalman posterior :math:`N(\hat x_i, \hat P_i)` conditioned on
+that subspace, and weight by :math:`p(y \mid x)\, N(v; 0, I_r) / q(v)` (both densities in
+the same coordinates). :meth:`ProposalModel.log_transition` evaluates the density on
+Q's support and raises :class:`~filterwnn.NumericalError` naming the step for a particle
+off it.
+
 **Batched over particles.** A Kalman proposal works on the stacks ``x (N, n)`` and
 ``P (N, n, n)`` at once: one stacked :func:`numpy.linalg.cholesky` factors every
 particle's covariance, :func:`batched_sigma_points` builds all sigma points in O(n^2)
-per particle from the set's structure (the structure of
-:func:`filterwnn.sigma_points.sigma_deviations`, fused with the means), and with
-``vectorized=True`` the model is called *once* on all ``N * n_sigmas`` points (one row
-per point). With ``dim_z == 1`` the innovation covariance is a scalar, the gain needs no
-solve and the covariance update is the rank-1 downdate
-:math:`\hat P = P^- - P_{xy} P_{xy}^T / S`.
+per particle from the set's structure, and with ``vectorized=True`` the model is called
+*once* on all ``N * n_sigmas`` points (one row per point). With ``dim_z == 1`` the
+innovation covariance is a scalar, the gain needs no solve and the covariance update is
+the rank-1 downdate :math:`\hat P = P^- - P_{xy} P_{xy}^T / S`.
 
 **Sampling without a second Cholesky** (``dim_z == 1``). With :math:`P^- = L L^T` and
 :math:`u = L^{-1} P_{xy} / \sqrt{S}`, :math:`\hat P = L (I - u u^T) L^T`, and
@@ -39,64 +63,54 @@ solve and the covariance update is the rank-1 downdate
     \log q(x) = -\tfrac12 |\varepsilon|^2 - \sum_j \log L_{jj} - \tfrac12 \log(1 - |u|^2)
                - \tfrac n2 \log 2\pi ,
 
-instead of a second stacked Cholesky. Not even a triangular solve is needed:
-:math:`L^{-1} P_{xy} = Z^T (W_c \circ \Delta Y)` for the unscented step (its cross
-covariance is :math:`L Z^T (W_c \circ \Delta Y)`) and :math:`L^T H^T` for the extended
-one. ``|u|^2 < 1`` holds exactly when :math:`\hat P` is positive definite. With
-``dim_z > 1`` the proposal factors :math:`\hat P` itself.
-
-The proposals read the model from the object they are given (in practice the particle
-filter): ``dim_x, dim_z, dt, fx, hx, Q, R, vectorized`` and, where used, ``FJacobian,
-HJacobian, x_mean_fn, z_mean_fn, residual_x, residual_z, process_sampler,
-transition_logpdf, measurement_logpdf``. ``fx=None`` is a random walk
-(:math:`x^- = x, P^- = P + Q`: no sigma points, no factorisation).
+instead of a second stacked Cholesky. :math:`L^{-1} P_{xy} = Z^T (W_c \circ \Delta Y)`
+for the unscented step and :math:`L^T H^T` for the extended one. ``|u|^2 < 1`` holds
+exactly when :math:`\hat P` is positive definite. With ``dim_z > 1`` the proposal
+factors :math:`\hat P` itself. ``fx=None`` is a random walk (:math:`x^- = x, P^- = P + Q`).
 
 >>> import numpy as np
->>> from types import SimpleNamespace
 >>> from filterpy.kalman import MerweScaledSigmaPoints
->>> model = SimpleNamespace(dim_x=2, dim_z=1, dt=1.0, fx=None, vectorized=True,
-...                         hx=lambda X: X[:, :1] ** 2, Q=0.01 * np.eye(2),
-...                         R=np.array([[0.1]]), x_mean_fn=None, z_mean_fn=None,
-...                         residual_x=None, residual_z=None)
+>>> model = ProposalModel(2, 1, dt=1.0, fx=None, hx=lambda X: X[:, :1] ** 2,
+...                       Q=0.01 * np.eye(2), R=np.array([[0.1]]), vectorized=True)
 >>> prop = UnscentedKalmanProposal(MerweScaledSigmaPoints(2, alpha=1, beta=2, kappa=0))
 >>> x, P = np.ones((3, 2)), np.tile(np.eye(2), (3, 1, 1))    # 3 particles
->>> pred = prop.predict(model, x, P, {})
->>> upd = prop.update(model, pred, np.array([1.2]), {})
->>> samples, log_q = prop.sample(upd, np.random.default_rng(0))
->>> samples.shape, log_q.shape
-((3, 2), (3,))
->>> np.allclose(prop.logpdf(upd, samples), log_q)
-True
+>>> rng = np.random.default_rng(0)
+>>> pred = prop.predict(model, x, P, {}, rng, step=1)
+>>> out = prop.propose(model, pred, np.array([1.2]), {}, rng, step=1)
+>>> out.particles.shape, out.covariances.shape, out.log_weight.shape
+((3, 2), (3, 2, 2), (3,))
 
 References
 ----------
 R. van der Merwe, A. Doucet, N. de Freitas and E. Wan, "The unscented particle filter",
 Technical Report CUED/F-INFENG/TR 380, Cambridge University, 2000 (and NIPS 13, 2001).
+A. Doucet, S. Godsill and C. Andrieu, "On sequential Monte Carlo sampling methods for
+Bayesian filtering", Statistics and Computing 10, 2000.
 """
 
 from __future__ import annotations
 
-from typing import NamedTuple, Optional
+import warnings
+from typing import Any, NamedTuple, Optional
 
 import numpy as np
 from scipy.linalg import solve_triangular
 
-from ._validation import NumericalError
+from ._linalg import LOG_2PI, NoiseFactor, cholesky, repair_pd
+from ._validation import NumericalError, check_covariance, check_symmetric
 from .sigma_points import _StaircaseSimplex, _check_protocol, _symmetric_scale, sigma_deviations, unit_sigma_points
 
 __all__ = [
+    "ProposalModel",
+    "Prediction",
+    "Proposed",
     "batched_sigma_points",
     "PriorProposal",
     "ExtendedKalmanProposal",
     "UnscentedKalmanProposal",
     "KalmanPrediction",
     "KalmanUpdate",
-    "sample_transition",
-    "transition_logpdf",
-    "measurement_logpdf",
 ]
-
-_LOG_2PI = float(np.log(2.0 * np.pi))
 
 
 # ---------------------------------------------------------------------------
@@ -200,41 +214,6 @@ def _noise(M, name, dim):
     return M
 
 
-def _chol(P, name, step=None):
-    """Stacked lower Cholesky factors of ``P (..., n, n)``; NumericalError if any is not PD.
-
-    A broadcast stack (one matrix repeated, stride 0) is factored once.
-    """
-    if P.ndim == 3 and P.shape[0] > 1 and P.strides[0] == 0:
-        return np.broadcast_to(_chol(P[:1], name, step), P.shape)
-    try:
-        L = np.linalg.cholesky(P)
-    except np.linalg.LinAlgError:
-        L = None
-    if L is None or not np.all(np.isfinite(L)):
-        bad = _first_not_pd(P)
-        where = f" at step {step}" if step is not None else ""
-        raise NumericalError(
-            f"{name} is not positive definite{where}" + (f" (particle {bad})" if bad is not None else ""),
-            matrix=name,
-            step=step,
-        )
-    return L
-
-
-def _first_not_pd(P):
-    if P.ndim < 3:
-        return None
-    for i in range(P.shape[0]):
-        try:
-            Li = np.linalg.cholesky(P[i])
-        except np.linalg.LinAlgError:
-            return i
-        if not np.all(np.isfinite(Li)):
-            return i
-    return None
-
-
 def _solve_lower(L, B):
     """``L^{-1} B`` for stacked lower-triangular ``L (N, n, n)`` and ``B (N, n, m)``.
 
@@ -254,98 +233,195 @@ def _solve_lower(L, B):
     return X
 
 
-def _psd_sqrt(M):
-    """A square root ``A`` with ``A A^T = M`` for a PSD ``M`` (Cholesky, else eigh)."""
-    try:
-        return np.linalg.cholesky(M)
-    except np.linalg.LinAlgError:
-        ev, V = np.linalg.eigh(0.5 * (M + M.T))
-        if ev.min() < -1e-10 * max(ev.max(), 1e-300):
-            raise ValueError(f"Q must be positive semi-definite, smallest eigenvalue {ev.min():.3g}") from None
-        return V * np.sqrt(np.clip(ev, 0.0, None))
-
-
-def _gauss_logpdf_rows(d, M, name):
-    """``log N(d_i; 0, M)`` for the rows of ``d (m, k)``."""
-    try:
-        L = np.linalg.cholesky(M)
-    except np.linalg.LinAlgError:
-        raise ValueError(
-            f"{name} must be positive definite for the Gaussian density "
-            f"(or give your own log-density)"
-        ) from None
-    e = solve_triangular(L, d.T, lower=True, check_finite=False)
-    k = d.shape[1]
-    return -0.5 * np.sum(e * e, axis=0) - np.sum(np.log(np.diag(L))) - 0.5 * k * _LOG_2PI
-
-
 # ---------------------------------------------------------------------------
-# Model densities (Gaussian defaults; the model's own callables when given)
+# The model side of a proposal
 # ---------------------------------------------------------------------------
 
 
-def _transition_mean(model, x_prev, fx_args):
-    if model.fx is None:
-        return x_prev
-    return _rows(model.fx, x_prev, model.dim_x, model.vectorized, "fx", (model.dt,), fx_args)
-
-
-def sample_transition(model, x_prev, fx_args, rng):
-    """Draw ``x_i ~ p(x_k | x_prev_i)`` for every particle.
-
-    ``model.process_sampler(x_prev, rng, **fx_args)`` when given (one call on all rows when
-    vectorized), else ``fx(x_prev) + w`` with ``w ~ N(0, Q)``.
+class ProposalModel:
+    """What a proposal may use of the state-space model: a small object, not the filter.
 
     Parameters
     ----------
-    model : object with the attributes listed in the module docstring
-    x_prev : ndarray of shape (n_particles, dim_x)
-    fx_args : dict
-    rng : numpy.random.Generator
+    dim_x, dim_z : int
+    dt : float
+        Passed to ``fx`` as ``fx(x, dt, **fx_args)``.
+    fx : callable or None
+        Transition mean (``None``: a random walk).
+    hx : callable
+        Measurement function.
+    Q, R : array-like of shape (dim_x, dim_x) and (dim_z, dim_z), or scalars
+        Process and measurement noise (``Q`` may be singular). Each is checked and
+        factored once, again only when it changes (:meth:`noise`).
+    vectorized : bool
+        The callables take one 2-D array, one row per point.
+    FJacobian, HJacobian, x_mean_fn, z_mean_fn, residual_x, residual_z : callable, optional
+        As in :class:`~filterwnn.ParticleFilter`.
+    process_sampler, transition_logpdf, measurement_logpdf : callable, optional
+        Non-Gaussian transition and likelihood (see :class:`~filterwnn.ParticleFilter`).
+    recover : bool
+        Kalman proposals repair a non-PD particle covariance (with a warning) instead of
+        raising.
 
-    Returns
-    -------
-    ndarray of shape (n_particles, dim_x)
+    Attributes are plain and may be reassigned.
     """
-    sampler = getattr(model, "process_sampler", None)
-    if sampler is not None:
-        return _rows(sampler, x_prev, model.dim_x, model.vectorized, "process_sampler", (rng,), fx_args)
-    mean = _transition_mean(model, x_prev, fx_args)
-    A = _psd_sqrt(_noise(model.Q, "Q", model.dim_x))
-    return mean + rng.standard_normal(mean.shape) @ A.T
+
+    def __init__(self, dim_x, dim_z, dt=1.0, fx=None, hx=None, Q=None, R=None, *, vectorized=False,
+                 FJacobian=None, HJacobian=None, x_mean_fn=None, z_mean_fn=None, residual_x=None,
+                 residual_z=None, process_sampler=None, transition_logpdf=None, measurement_logpdf=None,
+                 recover=False):
+        self.dim_x, self.dim_z, self.dt = dim_x, dim_z, dt
+        self.fx, self.hx = fx, hx
+        self.Q = np.eye(dim_x) if Q is None else Q
+        self.R = np.eye(dim_z) if R is None else R
+        self.vectorized = vectorized
+        self.FJacobian, self.HJacobian = FJacobian, HJacobian
+        self.x_mean_fn, self.z_mean_fn = x_mean_fn, z_mean_fn
+        self.residual_x, self.residual_z = residual_x, residual_z
+        self.process_sampler = process_sampler
+        self.transition_logpdf = transition_logpdf
+        self.measurement_logpdf = measurement_logpdf
+        self.recover = recover
+        self._factors = {}
+
+    def noise(self, name, check=True):
+        """The ``NoiseFactor`` (the checked Cholesky factor, in ``filterwnn._linalg``) of ``"Q"`` or ``"R"``.
+
+        Validated (shape, finite, symmetric; ``Q`` positive semi-definite, ``R`` positive
+        definite) and factored when the matrix changed since the last call, else cached.
+        ``check=False`` trusts the cache without comparing (inside one filter step, after
+        the filter's own check).
+        """
+        M = getattr(self, name)
+        hit = self._factors.get(name)
+        if hit is not None:
+            if not check:
+                return hit[1]
+            if type(M) is np.ndarray and M.dtype == np.float64:  # the usual case: compare the bytes
+                if M.shape == hit[0].shape and M.tobytes() == hit[2]:
+                    return hit[1]
+            elif np.shape(M) == hit[0].shape and np.array_equal(hit[0], M):
+                return hit[1]
+        dim = self.dim_x if name == "Q" else self.dim_z
+        A = check_symmetric(_noise(M, name, dim), name)
+        if name == "R":
+            check_covariance(A, "R", dim)
+        factor = NoiseFactor(A, name)
+        kept = np.array(M, dtype=float, copy=True)
+        self._factors[name] = (kept, factor, kept.tobytes())
+        return factor
+
+    # --- the model on rows -------------------------------------------------------------
+    def transition_mean(self, x_prev, fx_args):
+        """``fx(x_prev)`` on every row -> ``(N, dim_x)`` (``x_prev`` for a random walk)."""
+        if self.fx is None:
+            return x_prev
+        return _rows(self.fx, x_prev, self.dim_x, self.vectorized, "fx", (self.dt,), fx_args)
+
+    def measure(self, X, hx_args):
+        """``hx`` on every row -> ``(N, dim_z)``."""
+        return _rows(self.hx, X, self.dim_z, self.vectorized, "hx", (), hx_args)
+
+    def residual_x_rows(self, a, b):
+        """``residual_x(a, b)`` broadcast over rows (``a - b`` by default)."""
+        return _residual(self.residual_x, a, b, self.vectorized)
+
+    def residual_z_rows(self, a, b):
+        """``residual_z(a, b)`` broadcast over rows (``a - b`` by default)."""
+        return _residual(self.residual_z, a, b, self.vectorized)
+
+    def mean_x(self, X, w):
+        """Weighted mean of the rows ``X (N, dim_x)`` (``x_mean_fn(X, w)`` when given)."""
+        if self.x_mean_fn is None:
+            return w @ X
+        x = np.asarray(self.x_mean_fn(X, w), dtype=float).reshape(-1)
+        if x.shape != (self.dim_x,) or not np.all(np.isfinite(x)):
+            raise ValueError(f"x_mean_fn(particles, weights) must return {self.dim_x} finite values, got {x}")
+        return x
+
+    # --- densities ----------------------------------------------------------------------
+    def sample_transition(self, x_prev, fx_args, rng):
+        """Draw ``x_i ~ p(x_k | x_prev_i)`` for every row -> ``(N, dim_x)``.
+
+        ``process_sampler(x_prev, rng, **fx_args)`` when given, else ``fx(x_prev) + w``
+        with ``w ~ N(0, Q)`` (``Q`` may be singular).
+        """
+        if self.process_sampler is not None:
+            return _rows(self.process_sampler, x_prev, self.dim_x, self.vectorized, "process_sampler",
+                         (rng,), fx_args)
+        mean = self.transition_mean(x_prev, fx_args)
+        A = self.noise("Q", check=False).sqrt
+        if self.dim_x == 1:
+            return mean + rng.standard_normal(mean.shape) * A[0, 0]
+        return mean + rng.standard_normal(mean.shape) @ A.T
+
+    def log_transition(self, x, x_prev, fx_args, fx_prev=None, step=None):
+        """``log p(x_i | x_prev_i)`` for every row -> ``(N,)``.
+
+        ``transition_logpdf(x, x_prev, **fx_args)`` when given, else
+        ``log N(residual_x(x, fx(x_prev)); 0, Q)``, on Q's support when Q is singular
+        (a row off the support raises :class:`~filterwnn.NumericalError` naming ``step``).
+        ``fx_prev`` may pass ``fx(x_prev)`` when already computed.
+        """
+        f = self.transition_logpdf
+        if f is not None:
+            if self.vectorized:
+                return np.asarray(f(x, x_prev, **fx_args), dtype=float).reshape(-1)
+            return np.array([float(f(x[i], x_prev[i], **fx_args)) for i in range(x.shape[0])])
+        mean = self.transition_mean(x_prev, fx_args) if fx_prev is None else fx_prev
+        return self.noise("Q").logpdf(self.residual_x_rows(x, mean), step=step)
+
+    def log_likelihood(self, z, X, hx_args):
+        """``log p(z | x_i)`` for every row -> ``(N,)``.
+
+        ``measurement_logpdf(z, x, **hx_args)`` when given, else
+        ``log N(residual_z(z, hx(x_i)); 0, R)``.
+        """
+        if self.measurement_logpdf is not None:
+            return _scalars(self.measurement_logpdf, z, X, self.vectorized, "measurement_logpdf", hx_args)
+        y = self.residual_z_rows(z[None, :], self.measure(X, hx_args))
+        return self.noise("R", check=False).logpdf(y)
 
 
-def transition_logpdf(model, x, x_prev, fx_args, fx_prev=None):
-    """``log p(x_i | x_prev_i)`` for every particle -> ``(n_particles,)``.
+class Prediction(NamedTuple):
+    """What a proposal's ``predict`` hands to the filter (and back to its ``propose``).
 
-    ``model.transition_logpdf(x, x_prev, **fx_args)`` when given (``x`` and ``x_prev``
-    as whole arrays when vectorized, row by row otherwise), else ``log N(x; fx(x_prev), Q)``.
-    ``fx_prev`` may pass ``fx(x_prev)`` when already computed.
+    Attributes
+    ----------
+    particles : ndarray of shape (n_particles, dim_x)
+        The moved particles, or every particle's predicted mean (Kalman proposals).
+    covariances : ndarray of shape (n_particles, dim_x, dim_x) or None
+        Per-particle predicted covariances.
+    spread : ndarray of shape (dim_x, dim_x) or None
+        Added to the weighted spread of ``particles`` to give the predicted covariance
+        (``Q`` when the particles themselves move only in ``propose``).
+    context : object
+        Anything the proposal's ``propose`` needs (the previous particles, ``fx_args``).
     """
-    f = getattr(model, "transition_logpdf", None)
-    if f is not None:
-        if model.vectorized:
-            out = np.asarray(f(x, x_prev, **fx_args), dtype=float).reshape(-1)
-        else:
-            out = np.array([float(f(x[i], x_prev[i], **fx_args)) for i in range(x.shape[0])])
-        return out
-    mean = _transition_mean(model, x_prev, fx_args) if fx_prev is None else fx_prev
-    d = _residual(getattr(model, "residual_x", None), x, mean, model.vectorized)
-    return _gauss_logpdf_rows(d, _noise(model.Q, "Q", model.dim_x), "Q")
+
+    particles: np.ndarray
+    covariances: Optional[np.ndarray] = None
+    spread: Optional[np.ndarray] = None
+    context: Any = None
 
 
-def measurement_logpdf(model, z, x, hx_args):
-    """``log p(z | x_i)`` for every particle -> ``(n_particles,)``.
+class Proposed(NamedTuple):
+    """What a proposal's ``propose`` returns.
 
-    ``model.measurement_logpdf(z, x, **hx_args)`` when given (``x`` whole when vectorized,
-    row by row otherwise), else ``log N(residual_z(z, hx(x_i)); 0, R)``.
+    Attributes
+    ----------
+    particles : ndarray of shape (n_particles, dim_x)
+    covariances : ndarray of shape (n_particles, dim_x, dim_x) or None
+    log_weight : ndarray of shape (n_particles,)
+        The increment ``log p(z|x) + log p(x|x') - log q(x|x', z)`` (zeros for ``z=None``).
+    log_likelihood : ndarray of shape (n_particles,) or None
+        ``log p(z|x_i)`` alone, for error messages (None when not computed).
     """
-    f = getattr(model, "measurement_logpdf", None)
-    if f is not None:
-        return _scalars(f, z, x, model.vectorized, "measurement_logpdf", hx_args)
-    zh = _rows(model.hx, x, model.dim_z, model.vectorized, "hx", (), hx_args)
-    y = _residual(getattr(model, "residual_z", None), z[None, :], zh, model.vectorized)
-    return _gauss_logpdf_rows(y, _noise(model.R, "R", model.dim_z), "R")
+
+    particles: np.ndarray
+    covariances: Optional[np.ndarray]
+    log_weight: np.ndarray
+    log_likelihood: Optional[np.ndarray] = None
 
 
 # ---------------------------------------------------------------------------
@@ -478,7 +554,7 @@ def _kalman_finish(model, x_prior, P_prior, z, z_pred, S, Pxy, L_prior, step, Li
     """Gain, posterior and innovation likelihood from the batched moments."""
     R = _noise(model.R, "R", model.dim_z)
     S = S + R
-    y = _residual(getattr(model, "residual_z", None), z[None, :], z_pred, model.vectorized)
+    y = _residual(model.residual_z, z[None, :], z_pred, model.vectorized)
     if model.dim_z == 1:
         s = S[:, 0, 0]
         if not np.all(s > 0) or not np.all(np.isfinite(s)):
@@ -489,10 +565,10 @@ def _kalman_finish(model, x_prior, P_prior, z, z_pred, S, Pxy, L_prior, step, Li
         v = pxy / np.sqrt(s)[:, None]
         P = v[:, :, None] * v[:, None, :]
         np.subtract(P_prior, P, out=P)
-        loglik = -0.5 * (y[:, 0] ** 2 / s + np.log(s) + _LOG_2PI)
+        loglik = -0.5 * (y[:, 0] ** 2 / s + np.log(s) + LOG_2PI)
         return KalmanUpdate(x, P, z_pred, S, Pxy, loglik, L_prior, LinvPxy, H)
     else:
-        Ls = _chol(S, "S", step)
+        Ls = cholesky(S, "S", step)
         Kt = np.linalg.solve(S, np.swapaxes(Pxy, -1, -2))  # (N, m, n)
         x = x_prior + np.matmul(y[:, None, :], Kt)[:, 0, :]
         P = P_prior - np.matmul(Pxy, Kt)
@@ -500,27 +576,54 @@ def _kalman_finish(model, x_prior, P_prior, z, z_pred, S, Pxy, L_prior, step, Li
         loglik = (
             -0.5 * np.sum(e * e, axis=1)
             - np.sum(np.log(np.diagonal(Ls, axis1=1, axis2=2)), axis=1)
-            - 0.5 * model.dim_z * _LOG_2PI
+            - 0.5 * model.dim_z * LOG_2PI
         )
     P = 0.5 * (P + np.swapaxes(P, -1, -2))
     return KalmanUpdate(x, P, z_pred, S, Pxy, loglik, L_prior, LinvPxy, H)
 
 
+class PriorProposal:
+    """The transition prior ``q = p(x_k | x_{k-1})``: the bootstrap (SPF) proposal.
+
+    Particles carry no covariance; the log-weight increment is the log-likelihood
+    ``log p(y_k | x_k)``. Sampling uses ``process_sampler`` when the model has one, else
+    ``fx(x) + N(0, Q)`` (``Q`` may be singular).
+    """
+
+    carries_covariance = False
+
+    def predict(self, model, particles, covariances, fx_args, rng, step=None):
+        """Move every particle by the transition -> :class:`Prediction`."""
+        return Prediction(model.sample_transition(particles, fx_args, rng))
+
+    def propose(self, model, prediction, z, hx_args, rng, step=None):
+        """Weight the moved particles by the likelihood -> :class:`Proposed`."""
+        X = prediction.particles
+        if z is None:
+            return Proposed(X, None, np.zeros(X.shape[0]))
+        log_lik = model.log_likelihood(z, X, hx_args)
+        return Proposed(X, None, log_lik, log_lik)
+
+    def __repr__(self):
+        return "PriorProposal()"
+
+
+class _KalmanContext(NamedTuple):
+    x_prev: np.ndarray
+    fx_args: dict
+
+
 class _KalmanProposal:
-    r"""Shared sampling and density of ``q = N(x_hat_i, P_hat_i)``.
+    r"""A Kalman step per particle as proposal, ``q = N(x_hat_i, P_hat_i)``.
 
     ``carry_covariance=True`` (van der Merwe et al.'s UPF) starts each particle's Kalman
     step from the particle's own covariance ``P_i``, which it carries from step to step.
     ``carry_covariance=False`` starts it from the particle as a point, ``P^- = Q`` and
     ``x^- = f(x'_i)``: the local linearisation of the optimal proposal
     :math:`p(x_k \mid x'_i, y_k)` (Doucet, Godsill and Andrieu 2000, sec. II-D; exact for
-    linear-Gaussian models). Its textbook weights stay balanced where the carried
-    covariance is much wider than ``Q`` (then the carried version's weight
-    :math:`p(x \mid x')/q(x)` collapses to one particle); it needs no per-particle
-    covariance storage, and not the bank weighting.
+    linear-Gaussian models; it needs a positive definite ``Q``). Its weights stay
+    balanced where the carried covariance is much wider than ``Q``.
     """
-
-    is_kalman = True
 
     def __init__(self, carry_covariance=True):
         if not isinstance(carry_covariance, (bool, np.bool_)):
@@ -528,20 +631,91 @@ class _KalmanProposal:
         self.carry_covariance = bool(carry_covariance)
 
     @property
-    def uses_covariance(self):
+    def carries_covariance(self):
         """Whether particles carry covariances (``carry_covariance``)."""
         return self.carry_covariance
 
+    def check(self, dim_x):
+        """Raise ``ValueError`` when the proposal does not fit a ``dim_x`` state."""
+
+    # --- the protocol -------------------------------------------------------------------
+    def predict(self, model, particles, covariances, fx_args, rng, step=None):
+        """Every particle's Kalman prediction -> :class:`Prediction` (spread ``Q``)."""
+        P = covariances if self.carry_covariance else None
+        pred, _ = _repairing(model, lambda C: self.kalman_predict(model, particles, C, fx_args, step),
+                             P, step, "posterior")
+        Q = _noise(model.Q, "Q", model.dim_x)
+        return Prediction(pred.x, pred.P, Q, _KalmanContext(particles, fx_args))
+
+    def propose(self, model, prediction, z, hx_args, rng, step=None):
+        """Kalman update, one draw from ``N(x_hat_i, P_hat_i)`` and its weight -> :class:`Proposed`."""
+        ctx = prediction.context
+        if z is None:  # no measurement: the optimal proposal is the transition, zero increment
+            X = model.sample_transition(ctx.x_prev, ctx.fx_args, rng)
+            return Proposed(X, prediction.covariances if self.carry_covariance else None, np.zeros(X.shape[0]))
+        upd, P_prior = _repairing(
+            model,
+            lambda C: self.kalman_update(model, KalmanPrediction(prediction.particles, C), z, hx_args, step),
+            prediction.covariances, step, "predicted",
+        )
+        singular = model.transition_logpdf is None and not model.noise("Q").full_rank
+        fx_prev = model.transition_mean(ctx.x_prev, ctx.fx_args) if singular or model.transition_logpdf is None else None
+        if singular:
+            if not self.carry_covariance:
+                raise ValueError("carry_covariance=False needs a positive definite Q (P^- = Q); Q is singular")
+            X, log_ratio = self._sample_noise_space(model, upd, fx_prev, rng, step)
+            log_lik = model.log_likelihood(z, X, hx_args)
+            return Proposed(X, upd.P, log_lik + log_ratio, log_lik)
+        try:
+            X, log_q = self.sample(upd, rng, step=step, P_prior=P_prior)
+        except NumericalError as exc:
+            if not model.recover or exc.matrix not in ("P", "P_prior"):
+                raise
+            repaired, n_bad = repair_pd(upd.P)
+            warnings.warn(
+                f"step {step}: {n_bad} particle proposal covariance(s) not positive definite "
+                f"({exc}); eigenvalues clipped (recover=True)",
+                RuntimeWarning,
+                stacklevel=4,
+            )
+            upd = upd._replace(P=repaired, L_prior=None, LinvPxy=None)
+            X, log_q = self.sample(upd, rng, step=step)
+        log_lik = model.log_likelihood(z, X, hx_args)
+        log_tr = model.log_transition(X, ctx.x_prev, ctx.fx_args, fx_prev=fx_prev, step=step)
+        covs = upd.P if self.carry_covariance else None
+        return Proposed(X, covs, log_lik + log_tr - log_q, log_lik)
+
+    @staticmethod
+    def _sample_noise_space(model, upd, fx_prev, rng, step):
+        r"""Singular ``Q = G G^T``: ``x = f(x') + G v`` with ``v`` from ``N(x_hat, P_hat)``
+        conditioned on that subspace; returns ``x`` and ``log N(v; 0, I) - log q(v)``."""
+        G = model.noise("Q").G
+        N, n = upd.x.shape
+        r = G.shape[1]
+        Lp = cholesky(upd.P, "P", step)
+        B = _solve_lower(Lp, np.broadcast_to(G, (N, n, r)))
+        c = _solve_lower(Lp, (upd.x - fx_prev)[:, :, None])
+        A = np.matmul(np.swapaxes(B, -1, -2), B)  # precision of v under q
+        b = np.matmul(np.swapaxes(B, -1, -2), c)[:, :, 0]
+        LA = cholesky(A, "noise-space proposal precision", step)
+        v_hat = np.linalg.solve(A, b[:, :, None])[:, :, 0]
+        eps = rng.standard_normal((N, r))
+        v = v_hat + np.linalg.solve(np.swapaxes(LA, -1, -2), eps[:, :, None])[:, :, 0]
+        log_q = -0.5 * np.sum(eps * eps, axis=1) + np.sum(np.log(np.diagonal(LA, axis1=1, axis2=2)), axis=1)
+        log_p = -0.5 * np.sum(v * v, axis=1)
+        return fx_prev + v @ G.T, log_p - log_q
+
+    # --- the Kalman steps ---------------------------------------------------------------
     @staticmethod
     def _point_prediction(model, x):
         """``x^- = f(x)``, ``P^- = Q`` for every particle (``P^-`` a broadcast view)."""
         Q = _noise(model.Q, "Q", model.dim_x)
         return x, np.broadcast_to(Q, (x.shape[0],) + Q.shape)
 
-    def predict(self, model, x, P, fx_args, step=None):  # pragma: no cover - abstract
+    def kalman_predict(self, model, x, P, fx_args, step=None):  # pragma: no cover - abstract
         raise NotImplementedError
 
-    def update(self, model, prediction, z, hx_args, step=None):  # pragma: no cover - abstract
+    def kalman_update(self, model, prediction, z, hx_args, step=None):  # pragma: no cover - abstract
         raise NotImplementedError
 
     @staticmethod
@@ -551,7 +725,7 @@ class _KalmanProposal:
         if upd.L_prior is None:
             if P_prior is None:
                 raise ValueError("P_prior is needed to factor the predicted covariance")
-            upd = upd._replace(L_prior=_chol(P_prior, "P_prior", step))
+            upd = upd._replace(L_prior=cholesky(P_prior, "P_prior", step))
         if upd.LinvPxy is None:
             if upd.H is not None:
                 LinvPxy = np.matmul(np.swapaxes(upd.L_prior, -1, -2), np.swapaxes(upd.H, -1, -2))
@@ -604,10 +778,10 @@ class _KalmanProposal:
             x = upd.x + np.matmul(L, v[:, :, None])[:, :, 0]
             logdet = 2.0 * np.sum(np.log(np.diagonal(L, axis1=1, axis2=2)), axis=1) + np.log1p(-r2)
         else:
-            Lp = _chol(upd.P, "P", step)
+            Lp = cholesky(upd.P, "P", step)
             x = upd.x + np.matmul(Lp, eps[:, :, None])[:, :, 0]
             logdet = 2.0 * np.sum(np.log(np.diagonal(Lp, axis1=1, axis2=2)), axis=1)
-        log_q = -0.5 * (np.sum(eps * eps, axis=1) + logdet + n * _LOG_2PI)
+        log_q = -0.5 * (np.sum(eps * eps, axis=1) + logdet + n * LOG_2PI)
         return x, log_q
 
     def logpdf(self, upd, x, step=None, P_prior=None):
@@ -626,34 +800,33 @@ class _KalmanProposal:
             maha = np.sum(e * e, axis=1) + ue * ue / (1.0 - r2)
             logdet = 2.0 * np.sum(np.log(np.diagonal(L, axis1=1, axis2=2)), axis=1) + np.log1p(-r2)
         else:
-            Lp = _chol(upd.P, "P", step)
+            Lp = cholesky(upd.P, "P", step)
             e = _solve_lower(Lp, d[:, :, None])[:, :, 0]
             maha = np.sum(e * e, axis=1)
             logdet = 2.0 * np.sum(np.log(np.diagonal(Lp, axis1=1, axis2=2)), axis=1)
-        return -0.5 * (maha + logdet + n * _LOG_2PI)
+        return -0.5 * (maha + logdet + n * LOG_2PI)
 
     def __repr__(self):
         extra = "" if self.carry_covariance else "carry_covariance=False"
         return f"{type(self).__name__}({extra})"
 
 
-class PriorProposal:
-    """The transition prior ``q = p(x_k | x_{k-1})``: the bootstrap (SPF) proposal.
-
-    Particles carry no covariance; the incremental weight is the likelihood
-    ``p(y_k | x_k)``. Sampling uses ``process_sampler`` when the model has one, else
-    ``fx(x) + N(0, Q)``.
-    """
-
-    uses_covariance = False
-    is_kalman = False
-
-    def sample(self, model, x_prev, fx_args, rng):
-        """Draw every particle's successor -> ``(n_particles, dim_x)``."""
-        return sample_transition(model, x_prev, fx_args, rng)
-
-    def __repr__(self):
-        return "PriorProposal()"
+def _repairing(model, fn, C, step, what):
+    """``fn(C)``; with ``model.recover`` a covariance failure repairs ``C`` once (warning
+    with the step) and retries. Returns ``(result, C_used)``."""
+    try:
+        return fn(C), C
+    except NumericalError as exc:
+        if not model.recover or exc.matrix not in ("P", "P_prior") or C is None:
+            raise
+        C2, n_bad = repair_pd(C)
+        warnings.warn(
+            f"step {step}: {n_bad} particle {what} covariance(s) not positive definite ({exc}); "
+            "eigenvalues clipped (recover=True)",
+            RuntimeWarning,
+            stacklevel=5,
+        )
+        return fn(C2), C2
 
 
 class ExtendedKalmanProposal(_KalmanProposal):
@@ -666,10 +839,10 @@ class ExtendedKalmanProposal(_KalmanProposal):
     all particles (``(N, dim_x)`` in, ``(N, rows, dim_x)`` or one shared matrix out).
     """
 
-    def predict(self, model, x, P, fx_args, step=None):
+    def kalman_predict(self, model, x, P, fx_args, step=None):
         """Predicted ``(x (N, n), P (N, n, n))`` from the particles' ``x (N, n)``, ``P (N, n, n)``."""
         if P is None:
-            return KalmanPrediction(*self._point_prediction(model, _transition_mean(model, x, fx_args)))
+            return KalmanPrediction(*self._point_prediction(model, model.transition_mean(x, fx_args)))
         Q = _noise(model.Q, "Q", model.dim_x)
         if model.fx is None:
             return KalmanPrediction(x.copy(), P + Q)
@@ -679,7 +852,7 @@ class ExtendedKalmanProposal(_KalmanProposal):
         Pp = np.matmul(np.matmul(F, P), np.swapaxes(F, -1, -2)) + Q
         return KalmanPrediction(xp, 0.5 * (Pp + np.swapaxes(Pp, -1, -2)))
 
-    def update(self, model, prediction, z, hx_args, step=None):
+    def kalman_update(self, model, prediction, z, hx_args, step=None):
         """Batched EKF update with measurement ``z (dim_z,)`` -> :class:`KalmanUpdate`."""
         xp, Pp = prediction
         n, m = model.dim_x, model.dim_z
@@ -699,6 +872,7 @@ class UnscentedKalmanProposal(_KalmanProposal):
         Any filterpy-protocol set (``n``, ``Wm``, ``Wc``, ``num_sigmas()``,
         ``sigma_points(x, P)``); Merwe, Julier and the package's staircase sets are
         built in O(n^2) per particle.
+    carry_covariance : bool, default True
 
     Notes
     -----
@@ -713,19 +887,20 @@ class UnscentedKalmanProposal(_KalmanProposal):
         self.points = points
         self._Z = unit_sigma_points(points)
 
+    def check(self, dim_x):
+        """Raise ``ValueError`` unless ``points.n == dim_x``."""
+        if self.points.n != dim_x:
+            raise ValueError(f"points.n must equal dim_x={dim_x}, got {self.points.n}")
+
     def _sigmas(self, x, P, step, name):
-        L = _chol(P, name, step)
+        L = cholesky(P, name, step)
         return L, batched_sigma_points(self.points, x, L)
 
-    def _check_n(self, model):
-        if self.points.n != model.dim_x:
-            raise ValueError(f"points.n must equal dim_x={model.dim_x}, got {self.points.n}")
-
-    def predict(self, model, x, P, fx_args, step=None):
+    def kalman_predict(self, model, x, P, fx_args, step=None):
         """Predicted ``(x (N, n), P (N, n, n))`` by the unscented transform through ``fx``."""
-        self._check_n(model)
+        self.check(model.dim_x)
         if P is None:
-            return KalmanPrediction(*self._point_prediction(model, _transition_mean(model, x, fx_args)))
+            return KalmanPrediction(*self._point_prediction(model, model.transition_mean(x, fx_args)))
         Q = _noise(model.Q, "Q", model.dim_x)
         if model.fx is None:
             return KalmanPrediction(x.copy(), P + Q)
@@ -735,14 +910,14 @@ class UnscentedKalmanProposal(_KalmanProposal):
         F = _rows(model.fx, sig.reshape(N * S_, n), n, model.vectorized, "fx", (model.dt,), fx_args)
         F = F.reshape(N, S_, n)
         Wm, Wc = self.points.Wm, self.points.Wc
-        xp = _weighted_mean(getattr(model, "x_mean_fn", None), F, Wm)
-        dX = _residual(getattr(model, "residual_x", None), F, xp[:, None, :], model.vectorized)
+        xp = _weighted_mean(model.x_mean_fn, F, Wm)
+        dX = _residual(model.residual_x, F, xp[:, None, :], model.vectorized)
         Pp = np.matmul(np.swapaxes(dX * Wc[:, None], -1, -2), dX) + Q
         return KalmanPrediction(xp, 0.5 * (Pp + np.swapaxes(Pp, -1, -2)))
 
-    def update(self, model, prediction, z, hx_args, step=None):
+    def kalman_update(self, model, prediction, z, hx_args, step=None):
         """Batched UKF update with measurement ``z (dim_z,)`` -> :class:`KalmanUpdate`."""
-        self._check_n(model)
+        self.check(model.dim_x)
         xp, Pp = prediction
         N, n = xp.shape
         m = model.dim_z
@@ -750,8 +925,8 @@ class UnscentedKalmanProposal(_KalmanProposal):
         S_ = sig.shape[1]
         Hs = _rows(model.hx, sig.reshape(N * S_, n), m, model.vectorized, "hx", (), hx_args).reshape(N, S_, m)
         Wm, Wc = self.points.Wm, self.points.Wc
-        zp = _weighted_mean(getattr(model, "z_mean_fn", None), Hs, Wm)
-        dY = _residual(getattr(model, "residual_z", None), Hs, zp[:, None, :], model.vectorized)
+        zp = _weighted_mean(model.z_mean_fn, Hs, Wm)
+        dY = _residual(model.residual_z, Hs, zp[:, None, :], model.vectorized)
         WdY = dY * Wc[:, None]
         S = np.matmul(np.swapaxes(dY, -1, -2), WdY)
         # Pxy = D^T (Wc dY) = L (Z^T (Wc dY)); the bracket is L^{-1} Pxy for the sampling

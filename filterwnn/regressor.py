@@ -47,12 +47,22 @@ does not work literally (UKF/SUKF end worse than the mean predictor).
 
 >>> from filterwnn.datasets import make_siso_benchmark
 >>> X, y, X_test, y_test = make_siso_benchmark(rng=0)
->>> reg = WNNRegressor(n_epochs=5, rng=0).fit(X, y)
+>>> reg = WNNRegressor(n_epochs=5, random_state=0).fit(X, y)
 >>> reg.theta_.shape, len(reg.loss_curve_)
 ((160,), 5)
 >>> mean, std = reg.predict(X_test[:3], return_std=True)
 >>> mean.shape, bool(np.all(std > 0))
 ((3,), True)
+
+Online training: a filter trains one row per step, so rows that arrive over time are
+fed to ``partial_fit`` as they come; the filter's state and covariance carry over
+between calls (:meth:`WNNRegressor.partial_fit`):
+
+>>> online = WNNRegressor(random_state=0)
+>>> for start in range(0, len(X), 25):
+...     online = online.partial_fit(X[start:start + 25], y[start:start + 25])
+>>> online.n_iter_, online.t_
+(4, 100)
 >>> WNNRegressor(trainer="adam").fit(X, y)
 Traceback (most recent call last):
 ...
@@ -66,8 +76,10 @@ import sys
 import time
 
 import numpy as np
+from scipy.linalg.blas import dsymv, dsyr
 from sklearn.base import BaseEstimator, RegressorMixin
 from sklearn.utils.validation import check_is_fitted, validate_data
+from threadpoolctl import ThreadpoolController
 
 from . import wnn
 from ._validation import (
@@ -139,6 +151,10 @@ class _Trainer:
     def _record(self, key, value):
         self.diagnostics.setdefault(key, []).append(value)
 
+    def predict_mean(self, X):
+        """The predictive mean alone (the loss curve needs no variance)."""
+        return self.predict(X)[0]
+
     def _check_finite(self, epoch, *arrays):
         for a in arrays:
             if not np.all(np.isfinite(a)):
@@ -180,7 +196,14 @@ class _BPTrainer(_Trainer):
 
 
 class _EKFTrainer(_Trainer):
-    """EKF on the weight model; ``backend="rank1"`` (default) or ``"filterpy"``."""
+    """EKF on the weight model; ``backend="rank1"`` (default) or ``"filterpy"``.
+
+    The rank-1 backend keeps ``P`` as its lower triangle (a Fortran array whose upper
+    triangle is never read): ``P h`` by BLAS ``dsymv`` and the update
+    ``P - (P h)(P h)^T / s`` by ``dsyr`` read and write half the matrix, so ``P`` is
+    symmetric by construction and no pass has to symmetrise it. A pass over rows is
+    then the same arithmetic however the rows are split into calls (``partial_fit``).
+    """
 
     name = "ekf"
 
@@ -188,13 +211,15 @@ class _EKFTrainer(_Trainer):
         super().__init__(model, theta0, settings, rng)
         self.backend = settings.get("ekf_backend", "rank1")
         self.x = np.array(theta0, dtype=float)
-        self.P = model.P0.copy()
+        self.P_lower = np.asfortranarray(model.P0, dtype=float).copy(order="F")
+        Q = model.Q
+        self.q_diag = np.diag(Q).copy() if np.allclose(Q, np.diag(np.diag(Q))) else None
         if self.backend == "filterpy":
             from filterpy.kalman import ExtendedKalmanFilter
 
             self.kf = ExtendedKalmanFilter(model.dim_x, model.dim_z)
             self.kf.x = self.x.copy()
-            self.kf.P = self.P.copy()
+            self.kf.P = model.P0.copy()
             self.kf.Q = model.Q.copy()
             self.kf.R = model.R.copy()
 
@@ -204,7 +229,10 @@ class _EKFTrainer(_Trainer):
 
     @property
     def cov(self):
-        return self.kf.P if self.backend == "filterpy" else self.P
+        if self.backend == "filterpy":
+            return self.kf.P
+        L = np.tril(self.P_lower)
+        return L + np.tril(L, -1).T
 
     def epoch(self, X, y):
         m = self.model
@@ -214,25 +242,29 @@ class _EKFTrainer(_Trainer):
                 kf.predict()
                 kf.update(np.array([yk]), _Bound(m.HJacobian, xk), _Bound(m.hx, xk))
             return
-        x, P = self.x, self.P
-        Q, r = m.Q, float(m.R[0, 0])
-        diagQ = np.allclose(Q, np.diag(np.diag(Q)))
-        qd = np.diag(Q).copy()
+        x, P = self.x, self.P_lower
+        Q, r, qd = m.Q, float(m.R[0, 0]), self.q_diag
         idx = np.diag_indices_from(P)
         wav = m.wavelet
+        # theta = [W, v, a, b] and dy/dv = psi(t): the output psi(t) v is read off the
+        # Jacobian row, by the same product wnn.forward computes (one network pass a step)
+        n_hidden = m.n_hidden
+        v_part = slice(n_hidden * X.shape[1], n_hidden * (X.shape[1] + 1))
         for xk, yk in zip(X, y):
-            if diagQ:
+            if qd is not None:
                 P[idx] += qd
             else:
-                P = P + Q
-            xr = xk[None]
-            h = wnn.jacobian(x, xr, wav)[0]
-            Ph = P @ h
+                P += Q  # only the lower triangle is read
+            h = wnn.jacobian(x, xk[None], wav)[0]
+            f = np.matmul(h[None, v_part], x[v_part, None])[0, 0]
+            Ph = dsymv(1.0, P, h, lower=1)
             s = h @ Ph + r
-            k = Ph / s
-            x = x + k * (yk - wnn.forward(x, xr, wav)[0])
-            P -= np.outer(k, Ph)
-        self.x, self.P = x, 0.5 * (P + P.T)
+            x = x + (Ph / s) * (yk - f)
+            P = dsyr(-1.0 / s, Ph, a=P, lower=1, overwrite_a=1)
+        self.x, self.P_lower = x, P
+
+    def predict_mean(self, X):
+        return wnn.forward(self.theta, X, self.model.wavelet)
 
     def predict(self, X):
         J = wnn.jacobian(self.theta, X, self.model.wavelet)
@@ -282,6 +314,9 @@ class _UKFTrainer(_Trainer):
             kf.update(np.array([yk]), x=xk)
         kf.P = 0.5 * (kf.P + kf.P.T)
 
+    def predict_mean(self, X):
+        return wnn.forward(self.kf.x, X, self.model.wavelet)
+
     def predict(self, X):
         J = wnn.jacobian(self.kf.x, X, self.model.wavelet)
         var = np.sum((J @ self.kf.P) * J, axis=1)
@@ -327,12 +362,25 @@ class _PFTrainer(_Trainer):
             kwargs["points"] = SphericalSimplexSigmaPoints(model.dim_x, alpha=1.0)
         if self.name == "epf":
             kwargs["HJacobian"] = model.HJacobian
+        theta0 = np.atleast_2d(np.asarray(theta0, dtype=float))
+        self._bank = kwargs.pop("weighting", "textbook") == "bank"
+        if self._bank:  # a bank of Kalman filters is the Gaussian-sum filter, not a particle filter
+            from .gaussian_sum import GaussianSumFilter
+
+            n = kwargs.pop("n_particles")
+            comp = {"epf": "ekf", "upf": "ukf", "supf": "sukf"}[self.name]
+            self.pf = GaussianSumFilter(model.dim_x, 1, 1.0, model.hx, None, component=comp, **kwargs)
+            self.pf.Q, self.pf.R = model.Q.copy(), model.R.copy()
+            if theta0.shape[0] == 1:  # one start: component means drawn from N(theta0, P0)
+                L = np.linalg.cholesky(model.P0)
+                theta0 = theta0[0] + self.pf.rng.standard_normal((n, model.dim_x)) @ L.T
+            self.pf.initialize(theta0, model.P0)
+            return
         # fx=None: the random walk, predicted without sigma points (P += Q)
         self.pf = cls(model.dim_x, 1, 1.0, model.hx, None, **kwargs)
         self.pf.Q = model.Q.copy()
         self.pf.R = model.R.copy()
         self.pf.P = model.P0.copy()
-        theta0 = np.atleast_2d(np.asarray(theta0, dtype=float))
         if theta0.shape[0] == 1:  # one start: particles drawn from N(theta0, P0)
             self.pf.x = theta0[0].copy()
         else:  # one start per particle (the paper's step 1: draws from the initial distribution)
@@ -340,7 +388,7 @@ class _PFTrainer(_Trainer):
 
     @property
     def particles(self):
-        return np.asarray(self.pf.particles)
+        return np.asarray(self.pf.means if self._bank else self.pf.particles)
 
     @property
     def weights(self):
@@ -487,16 +535,38 @@ def make_trainer(name, model, theta0, settings, rng=None):
 
 
 # ---------------------------------------------------------------------------- estimator
-def _progress(enabled, total, desc):
-    if not (isinstance(enabled, bool) or enabled == "auto"):
-        raise ValueError(f"progress must be True, False or 'auto', got {enabled!r}")
-    if enabled == "auto":
-        enabled = hasattr(sys.stderr, "isatty") and sys.stderr.isatty()
-    if not enabled:
+def _check_verbose(verbose):
+    """``verbose`` as an int >= 0 (``True``/``False`` count as 1/0, as in scikit-learn)."""
+    if isinstance(verbose, bool):
+        return int(verbose)
+    return check_positive_int(verbose, "verbose", minimum=0)
+
+
+def _progress(verbose, total, desc):
+    """A tqdm bar over ``total`` epochs when ``verbose >= 1``, else None."""
+    if verbose < 1:
         return None
     from tqdm.auto import tqdm
 
     return tqdm(total=total, desc=desc, leave=False)
+
+
+_BLAS = []  # the ThreadpoolController, built on first use (scanning the libraries costs 1 ms)
+
+
+def _one_blas_thread():
+    """Limit every loaded BLAS to one thread; ``.restore_original_limits()`` undoes it."""
+    if not _BLAS:
+        _BLAS.append(ThreadpoolController())
+    return _BLAS[0].limit(limits=1, user_api="blas")
+
+
+def _write_line(line, bar):
+    """One per-epoch line on stdout (through the bar, so that it is not overwritten)."""
+    if bar is None:
+        print(line, file=sys.stdout)
+    else:
+        bar.write(line, file=sys.stdout)
 
 
 class WNNRegressor(RegressorMixin, BaseEstimator):
@@ -531,13 +601,17 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
     weighting : {"bank", "textbook"}, default "bank"
         Particle weights of ``epf``/``upf``/``supf`` (ignored by the others).
     early_stopping : bool, default False
-        Hold out ``validation_fraction`` of the training rows (chosen with ``rng``, the
-        rest kept in order), stop after ``n_iter_no_change`` epochs without a lower
-        validation MSE and keep the best epoch's weights.
+        Hold out ``validation_fraction`` of the training rows (chosen with
+        ``random_state``, the rest kept in order), stop after ``n_iter_no_change`` epochs
+        without a lower validation MSE and keep the best epoch's weights.
     validation_fraction : float, default 0.1
-    rng : None, int, SeedSequence or Generator
-        Initial weights, validation split and particle draws. An int gives the same
-        ``theta_`` on every fit.
+    random_state : None, int, SeedSequence, BitGenerator or Generator, default None
+        Seeds the initial weights, the validation split and the particle draws
+        (normalised with :func:`numpy.random.default_rng` when ``fit`` starts; the
+        legacy ``RandomState`` is refused). An int gives the same ``theta_`` on every
+        fit; a ``Generator`` is drawn from, so each fit differs. scikit-learn's name
+        for the seed (``check_estimator`` and ``set_random_state`` set it); the rest of
+        the package calls it ``rng``.
     tempering : "auto" or float
         Exponent of the particle likelihood; ``"auto"`` is 0.01 for the bank weighting,
         1 otherwise.
@@ -554,9 +628,11 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
     warm_start : bool, default False
         Continue from the previous fit's filter state for another ``n_epochs`` (a long
         fit can be checkpointed by pickling the estimator between fits, and resumed).
-    progress : bool or "auto", default False
-        A tqdm bar over epochs; off by default (studies show their own), ``"auto"`` shows
-        it only when stderr is a terminal.
+    verbose : int, default 0
+        0: silent (the studies show their own bars). 1: a tqdm bar over the epochs of
+        ``fit`` (on stderr). 2 or more: also one line per iteration (epoch of ``fit``,
+        call of ``partial_fit``) on stdout with the training MSE (and the validation
+        MSE with ``early_stopping``).
 
     Attributes
     ----------
@@ -564,21 +640,26 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
         Learned weights (particle filters: the particle of largest weight; predictions
         average all particles).
     loss_curve_ : list of float
-        Training MSE after each epoch (on the rows used for training).
+        Training MSE after each iteration (an epoch of ``fit`` or a ``partial_fit``
+        call), on the rows that iteration trained on.
     validation_scores_ : list of float or None
         Validation MSE per epoch when ``early_stopping``.
     best_epoch_ : int
-        Epoch whose weights were kept (the last one without early stopping).
+        Iteration whose weights were kept (the last one without early stopping).
     n_features_in_ : int
-    n_epochs_ : int
-        Epochs run in total.
+    n_iter_ : int
+        Iterations run since the start was drawn: epochs of ``fit`` (summed over
+        warm starts) plus one per ``partial_fit`` call, as in ``MLPRegressor``.
+    t_ : int
+        Filter steps run (training rows seen, counted once per pass), as in
+        ``MLPRegressor``.
     fit_time_ : float
         Wall-clock seconds of the training epochs of the last ``fit`` (or accumulated over
         ``partial_fit`` calls).
     settings_ : dict
         The resolved Q, P0, R, tempering, ... actually used.
     diagnostics_ : dict
-        Per-epoch ``mean_ess`` and ``distinct`` particle counts (particle trainers).
+        Per-iteration ``mean_ess`` and ``distinct`` particle counts (particle trainers).
     """
 
     def __init__(
@@ -595,14 +676,14 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
         weighting="bank",
         early_stopping=False,
         validation_fraction=0.1,
-        rng=None,
+        random_state=None,
         tempering="auto",
         ess_threshold="auto",
         learning_rate="auto",
         ekf_backend="rank1",
         n_iter_no_change=10,
         warm_start=False,
-        progress=False,
+        verbose=0,
     ):
         self.n_hidden = n_hidden
         self.wavelet = wavelet
@@ -616,14 +697,14 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
         self.weighting = weighting
         self.early_stopping = early_stopping
         self.validation_fraction = validation_fraction
-        self.rng = rng
+        self.random_state = random_state
         self.tempering = tempering
         self.ess_threshold = ess_threshold
         self.learning_rate = learning_rate
         self.ekf_backend = ekf_backend
         self.n_iter_no_change = n_iter_no_change
         self.warm_start = warm_start
-        self.progress = progress
+        self.verbose = verbose
 
     # ------------------------------------------------------------------ helpers
     def _resolve(self):
@@ -687,11 +768,15 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
         val[rng.choice(n, n_val, replace=False)] = True
         return X[~val], y[~val], X[val], y[val]
 
-    def _initialize(self, X, y):
+    def _initialize(self, X, y, early_stopping):
         self._settings = self._resolve()
-        self._rng = check_rng(self.rng)
-        Xt, yt, Xv, yv = self._split(X, y, self._rng)
-        self._data = (Xt, yt, Xv, yv)
+        self._rng = check_rng(self.random_state, "random_state")
+        if early_stopping:
+            self._data = self._split(X, y, self._rng)
+            self._source = (X, y)
+        else:
+            self._data, self._source = (X, y, None, None), None
+        Xt = self._data[0]
         model = WNNWeightModel(
             X.shape[1], self.n_hidden, self.wavelet, Q=self._settings["Q"], R=self._settings["R"],
             P0=self._settings["P0"],
@@ -699,52 +784,88 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
         theta0 = self._start(Xt, X.shape[1], self._rng)
         self._trainer = make_trainer(self.trainer, model, theta0, self._settings, self._rng)
         self.loss_curve_ = []
-        self.validation_scores_ = [] if self.early_stopping else None
-        self.n_epochs_ = 0
+        self.validation_scores_ = [] if early_stopping else None
+        self.n_iter_ = 0
+        self.t_ = 0
         self.fit_time_ = 0.0
+        self._reset_best()
+        self.settings_ = dict(self._settings, init=self.init, trainer=self.trainer)
+
+    def _reset_best(self):
         self._best = None
         self._best_score = np.inf
         self._no_change = 0
-        self.settings_ = dict(self._settings, init=self.init, trainer=self.trainer)
 
-    def _run_epochs(self, n_epochs):
-        Xt, yt, Xv, yv = self._data
+    def _continue_on(self, X, y):
+        """A warm-started ``fit`` trains on the rows it is given (the first fit's split
+        is kept when they are the same rows, so that a resumed fit equals an
+        uninterrupted one)."""
+        if not self.early_stopping:
+            self._data, self._source = (X, y, None, None), None
+            return
+        src = self._source
+        if src is not None and np.array_equal(src[0], X) and np.array_equal(src[1], y):
+            return
+        self._data, self._source = self._split(X, y, self._rng), (X, y)
+        if self.validation_scores_ is None:
+            self.validation_scores_ = []
+        self._reset_best()  # scores on other validation rows do not compare
+
+    def _run_epochs(self, n_epochs, data, show_bar=True):
+        Xt, yt, Xv, yv = data
         tr = self._trainer
-        bar = _progress(self.progress, n_epochs, f"WNN/{self.trainer}")
+        verbose = _check_verbose(self.verbose)
+        bar = _progress(verbose, n_epochs, f"WNN/{self.trainer}") if show_bar else None
         t0 = time.perf_counter()
+        # one BLAS thread: the rank-1 and small dense products of a filter step run 3x
+        # faster on one thread than on several, and the numbers do not depend on the
+        # machine's thread count (the studies limit their workers the same way)
+        limits = _one_blas_thread()
         try:
             for _ in range(n_epochs):
                 tr.epoch(Xt, yt)
-                self.n_epochs_ += 1
-                tr._check_finite(self.n_epochs_, tr.theta)
-                self.loss_curve_.append(float(np.mean((tr.predict(Xt)[0] - yt) ** 2)))
+                self.n_iter_ += 1
+                self.t_ += len(Xt)
+                tr._check_finite(self.n_iter_, tr.theta)
+                self.loss_curve_.append(float(np.mean((tr.predict_mean(Xt) - yt) ** 2)))
                 if bar is not None:
                     bar.update(1)
                     bar.set_postfix(mse=f"{self.loss_curve_[-1]:.3g}")
                 if Xv is not None:
-                    score = float(np.mean((tr.predict(Xv)[0] - yv) ** 2))
+                    score = float(np.mean((tr.predict_mean(Xv) - yv) ** 2))
                     self.validation_scores_.append(score)
+                if verbose >= 2:
+                    line = f"iteration {self.n_iter_}: training MSE {self.loss_curve_[-1]:.6g}"
+                    if Xv is not None:
+                        line += f", validation MSE {score:.6g}"
+                    _write_line(line, bar)
+                if Xv is not None:
                     if score < self._best_score:
                         self._best_score, self._no_change = score, 0
-                        self._best = (self.n_epochs_, copy.deepcopy(tr))
+                        self._best = (self.n_iter_, copy.deepcopy(tr))
                     else:
                         self._no_change += 1
                         if self._no_change >= self.n_iter_no_change:
                             break
         finally:
+            limits.restore_original_limits()
             if bar is not None:
                 bar.close()
         self.fit_time_ += time.perf_counter() - t0
         if self._best is not None:
             self.best_epoch_, self._final = self._best[0], self._best[1]
         else:
-            self.best_epoch_, self._final = self.n_epochs_, tr
+            self.best_epoch_, self._final = self.n_iter_, tr
         self.theta_ = np.array(self._final.theta, dtype=float)
         self.diagnostics_ = {k: list(v) for k, v in self._final.diagnostics.items()}
 
     # ------------------------------------------------------------------ API
     def fit(self, X, y):
         """Train for ``n_epochs`` epochs (or continue, with ``warm_start``).
+
+        Each epoch is one filter step per row, in order. With ``warm_start`` and a
+        previous fit (or ``partial_fit``), the filter's state and covariance are kept
+        and ``n_epochs`` more epochs run on the rows given here.
 
         Parameters
         ----------
@@ -758,24 +879,66 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
         first = not (self.warm_start and hasattr(self, "_trainer"))
         X, y = validate_data(self, X, y, reset=first, y_numeric=True)
         if first:
-            self._initialize(X, y)
+            self._initialize(X, y, self.early_stopping)
         else:
+            self._continue_on(X, y)
             self.fit_time_ = 0.0
-        self._run_epochs(self.n_epochs)
+        self._run_epochs(self.n_epochs, self._data)
         return self
 
     def partial_fit(self, X, y):
-        """Run one more epoch (initialising on the first call); returns self.
+        """Online training: one filter pass over these rows, keeping the filter's state.
 
-        ``X, y`` must be the same training set on every call (the split and the filter
-        state are kept); ``fit_time_`` accumulates. Useful for convergence curves and for
-        checkpointing a long fit (pickle the estimator between calls).
+        A filter trainer is online by nature: each row is one predict/update step of
+        the filter whose state is the weight vector. ``partial_fit`` runs one step per
+        given row, in order, and keeps the state and covariance (the particles and
+        their weights, for the particle trainers) for the next call, so rows fed in
+        chunks give the same weights and covariance as one call over all of them, bit
+        for bit, for every trainer (the particle trainers make the same draws in the
+        same order; ``"bp"``'s reported std is the RMSE on the last call's rows). The
+        first call draws the start: ``init="scaled"`` places it on the first call's
+        rows, ``init="paper"`` does not look at the rows.
+
+        As in scikit-learn's ``MLPRegressor``, each call is one iteration:
+        ``n_iter_`` grows by one, ``t_`` by the number of rows, ``loss_curve_`` gains the
+        training MSE on these rows after the pass and ``fit_time_`` accumulates.
+        ``early_stopping`` and ``n_epochs`` are not used. After ``fit``, ``partial_fit``
+        continues from the weights the estimator predicts with (the best epoch's, with
+        early stopping). Pickling the estimator between calls checkpoints the filter.
+
+        Parameters
+        ----------
+        X : array-like of shape (n_samples, n_features)
+        y : array-like of shape (n_samples,)
+
+        Returns
+        -------
+        self
+
+        Examples
+        --------
+        Rows arriving in four chunks train the same network as one pass over all of
+        them:
+
+        >>> from filterwnn.datasets import make_siso_benchmark
+        >>> X, y, X_test, y_test = make_siso_benchmark(rng=0)
+        >>> online = WNNRegressor(init="paper", random_state=0)
+        >>> for rows in np.array_split(np.arange(len(X)), 4):
+        ...     online = online.partial_fit(X[rows], y[rows])
+        >>> batch = WNNRegressor(init="paper", random_state=0).partial_fit(X, y)
+        >>> bool(np.array_equal(online.theta_, batch.theta_))
+        True
+        >>> online.n_iter_, online.t_, len(online.loss_curve_)
+        (4, 100, 4)
         """
         first = not hasattr(self, "_trainer")
         X, y = validate_data(self, X, y, reset=first, y_numeric=True)
         if first:
-            self._initialize(X, y)
-        self._run_epochs(1)
+            self._initialize(X, y, early_stopping=False)
+        else:
+            self._trainer = self._final  # continue from the weights used to predict
+            self._reset_best()
+        self._run_epochs(1, (X, y, None, None), show_bar=False)
         return self
 
     def predict(self, X, return_std=False):

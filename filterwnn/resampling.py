@@ -23,8 +23,10 @@ they add (Douc, Cappe and Moulines 2005; Hol, Schon and Gustafsson 2006):
 
 Every scheme is a pure function ``scheme(weights, rng, n=None) -> indices`` that returns
 ``n`` (default ``len(weights)``) integer indices into the particle array; ``n`` may be
-larger (up-sampling) or smaller (down-sampling) than the cloud. :func:`resample` looks
-the scheme up by name. Weights are validated (finite, non-negative, positive sum) and
+larger (up-sampling) or smaller (down-sampling) than the cloud. Each scheme is registered
+where it is defined (:func:`register`, a decorator); :func:`resample` and the filters'
+``resampling=`` accept a registered name or a callable (filterpy's ``systematic_resample``
+included, see :func:`get_scheme`). Weights are validated (finite, non-negative, positive sum) and
 normalised internally.
 
 Weights are best kept on the log scale: :func:`normalize_log_weights` turns unnormalised
@@ -52,6 +54,8 @@ filters", NSSPW 2006.
 
 from __future__ import annotations
 
+import inspect
+
 import numpy as np
 from scipy.special import logsumexp
 
@@ -64,6 +68,8 @@ __all__ = [
     "residual",
     "resample",
     "SCHEMES",
+    "register",
+    "get_scheme",
     "effective_sample_size",
     "normalize_log_weights",
 ]
@@ -103,52 +109,11 @@ def _search(w, u):
     return np.searchsorted(c, u, side="right")
 
 
-# --- the schemes, unvalidated (the particle filter's hot path) -------------------------
+# --- the registry ----------------------------------------------------------------------
 
-
-def _multinomial(w, rng, n):
-    return np.sort(_search(w, rng.random(n)))
-
-
-def _stratified(w, rng, n):
-    return _search(w, (np.arange(n) + rng.random(n)) / n)
-
-
-def _systematic(w, rng, n):
-    return _search(w, (np.arange(n) + rng.random()) / n)
-
-
-def _residual(w, rng, n):
-    nw = n * w
-    counts = np.floor(nw).astype(np.intp)
-    n_rest = n - int(counts.sum())
-    if n_rest > 0:
-        rest = nw - counts
-        rest = np.clip(rest, 0.0, None)
-        counts += np.bincount(_search(rest, rng.random(n_rest)), minlength=w.size)
-    return np.repeat(np.arange(w.size), counts)
-
-
-_IMPL = {
-    "multinomial": _multinomial,
-    "stratified": _stratified,
-    "systematic": _systematic,
-    "residual": _residual,
-}
-
-
-# --- public functions ------------------------------------------------------------------
-
-
-def _public(impl, doc_name):
-    def scheme(weights, rng, n=None):
-        w = _check_weights(weights)
-        return impl(w, check_rng(rng), _check_n(n, w.size))
-
-    scheme.__name__ = doc_name
-    scheme.__qualname__ = doc_name
-    return scheme
-
+#: Registry of scheme names -> public (validating) functions, filled by :func:`register`.
+SCHEMES = {}
+_IMPL = {}
 
 _DOC = """{title} resampling.
 
@@ -169,35 +134,103 @@ _DOC = """{title} resampling.
     {extra}
     """
 
-multinomial = _public(_multinomial, "multinomial")
-multinomial.__doc__ = _DOC.format(title="Multinomial", extra="Indices come out sorted.")
-stratified = _public(_stratified, "stratified")
-stratified.__doc__ = _DOC.format(title="Stratified", extra="Indices come out sorted.")
-systematic = _public(_systematic, "systematic")
-systematic.__doc__ = _DOC.format(
-    title="Systematic", extra="Indices come out sorted; equal weights with ``n = n_particles`` keep every particle."
-)
-residual = _public(_residual, "residual")
-residual.__doc__ = _DOC.format(
-    title="Residual (correct, unlike filterpy's: its issue #290)",
-    extra="Indices come out sorted; particle ``i`` gets at least ``floor(n * w_i)`` copies.",
-)
-#: Registry of scheme names -> public functions.
-SCHEMES = {
-    "multinomial": multinomial,
-    "stratified": stratified,
-    "systematic": systematic,
-    "residual": residual,
-}
+
+def register(name, title, extra=""):
+    """Decorator: register the unvalidated scheme ``impl(w, rng, n)`` under ``name`` and
+    return its public, validating version ``scheme(weights, rng, n=None)``."""
+
+    def deco(impl):
+        def scheme(weights, rng, n=None):
+            w = _check_weights(weights)
+            return impl(w, check_rng(rng), _check_n(n, w.size))
+
+        scheme.__name__ = scheme.__qualname__ = name
+        scheme.__doc__ = _DOC.format(title=title, extra=extra)
+        _IMPL[name] = impl
+        SCHEMES[name] = scheme
+        return scheme
+
+    return deco
+
+
+# --- the schemes (registered where defined) ----------------------------------------------
+
+
+@register("multinomial", "Multinomial", "Indices come out sorted.")
+def multinomial(w, rng, n):
+    return np.sort(_search(w, rng.random(n)))
+
+
+@register("stratified", "Stratified", "Indices come out sorted.")
+def stratified(w, rng, n):
+    return _search(w, (np.arange(n) + rng.random(n)) / n)
+
+
+@register("systematic", "Systematic",
+          "Indices come out sorted; equal weights with ``n = n_particles`` keep every particle.")
+def systematic(w, rng, n):
+    # point k = (k + u) / n goes to the first i with k + u < n c_i, so the points below c_i
+    # number ceil(n c_i - u): counts are their differences (O(n), no binary search)
+    u = rng.random()
+    c = np.cumsum(w)
+    c *= n / c[-1]
+    c -= u
+    m = np.ceil(c, out=c)  # >= 0 (c >= 0, u < 1); the last is n up to rounding: pin it
+    m[-1] = n
+    counts = np.empty(m.size, dtype=np.intp)
+    counts[0] = m[0]
+    np.subtract(m[1:], m[:-1], out=counts[1:], casting="unsafe")
+    return np.repeat(np.arange(w.size), counts)
+
+
+@register("residual", "Residual (correct, unlike filterpy's: its issue #290)",
+          "Indices come out sorted; particle ``i`` gets at least ``floor(n * w_i)`` copies.")
+def residual(w, rng, n):
+    nw = n * w
+    counts = np.floor(nw).astype(np.intp)
+    n_rest = n - int(counts.sum())
+    if n_rest > 0:
+        rest = nw - counts
+        rest = np.clip(rest, 0.0, None)
+        counts += np.bincount(_search(rest, rng.random(n_rest)), minlength=w.size)
+    return np.repeat(np.arange(w.size), counts)
+
+
+def _from_callable(fn):
+    """A user scheme: ``fn(weights, rng, n)``, or filterpy's one-argument ``fn(weights)``
+    (which draws from numpy's *global* random state and returns ``len(weights)`` indices)."""
+    try:
+        params = [p for p in inspect.signature(fn).parameters.values()
+                  if p.default is p.empty and p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD)]
+    except (TypeError, ValueError):
+        params = [None, None, None]
+    if len(params) == 1:
+        def one_arg(w, rng, n):
+            if n != w.size:
+                raise ValueError(f"a one-argument resampling function draws len(weights) = {w.size} indices, not n = {n}")
+            return np.asarray(fn(w), dtype=np.intp)
+
+        return one_arg
+
+    def scheme(w, rng, n):
+        return np.asarray(fn(w, rng, n), dtype=np.intp)
+
+    return scheme
 
 
 def get_scheme(name):
-    """The unvalidated implementation of scheme ``name`` (for the particle filter's loop).
+    """The unvalidated implementation of scheme ``name`` (for the filters' loops).
 
-    Raises ``ValueError`` listing the valid names for an unknown one.
+    ``name`` is a registered name or a callable: ``fn(weights, rng, n) -> indices``, or a
+    one-argument ``fn(weights)`` such as filterpy's ``systematic_resample`` (note: filterpy's
+    functions draw from numpy's global random state, so ``rng`` no longer makes the run
+    reproducible; seed ``np.random`` yourself). Raises ``ValueError`` listing the valid
+    names for an unknown one.
     """
+    if callable(name):
+        return _from_callable(name)
     if not isinstance(name, str):
-        raise TypeError(f"resampling must be a scheme name (str), got {type(name).__name__}")
+        raise TypeError(f"resampling must be a scheme name (str) or a callable, got {type(name).__name__}")
     check_choice(name, "resampling scheme", _IMPL)
     return _IMPL[name]
 
@@ -209,8 +242,9 @@ def resample(weights, scheme="systematic", rng=None, n=None):
     ----------
     weights : array-like of shape (n_particles,)
         Non-negative weights with a positive sum.
-    scheme : {"systematic", "stratified", "residual", "multinomial"}
-        Name of the scheme; an unknown name raises ``ValueError`` listing the valid ones.
+    scheme : {"systematic", "stratified", "residual", "multinomial"} or callable
+        Name of the scheme (an unknown name raises ``ValueError`` listing the valid ones),
+        or a callable as :func:`get_scheme` accepts.
     rng : None, int, SeedSequence, BitGenerator or Generator
     n : int, optional
         Number of indices (default ``n_particles``).

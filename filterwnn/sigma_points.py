@@ -46,9 +46,19 @@ True
 
 Which to use
 ------------
-``n <= 20`` and you want the least skew: :class:`MinimalSkewSigmaPoints`. Anything
-larger, and every parameter-estimation problem: :class:`SphericalSimplexSigmaPoints`.
-Both save about half of the model evaluations of the symmetric set.
+Measured in ``notebooks/01_sigma_points.ipynb`` and ``benchmarks/bench_sigma_points.py``:
+
+* the most accurate transform, when model calls are cheap: filterpy's
+  :class:`~filterpy.kalman.MerweScaledSigmaPoints` (``2n + 1`` points);
+* fewer model calls and less time at any ``n``: :class:`SphericalSimplexSigmaPoints`.
+  With ``w0 = 0`` it is filterpy's :class:`~filterpy.kalman.SimplexSigmaPoints`
+  reflected through the mean, plus a centre of weight 0 (which filterpy's UKF still
+  evaluates; ``w0 > 0`` makes it count). Over many runs of a range-bearing tracker the
+  two, and Merwe's set, track equally well; a single run can favour either orientation.
+  Its points are built without a Python loop, so in filterpy's own UKF a step costs
+  less than with Merwe's set from ``n = 2``;
+* :class:`MinimalSkewSigmaPoints` for small ``n`` only (its accuracy falls with ``n``
+  and its points spread like ``2^{n/2}``; it warns above ``n = 20``).
 
 References
 ----------
@@ -60,13 +70,14 @@ S. J. Julier, "The spherical simplex unscented transformation", ACC 2003.
 
 from __future__ import annotations
 
+import math
 import warnings
 
 import numpy as np
 from filterpy.common import pretty_str
 from filterpy.kalman import JulierSigmaPoints, MerweScaledSigmaPoints
 
-from ._validation import NumericalError, as_state, check_positive_int, check_symmetric
+from ._validation import NumericalError, check_positive_int, check_symmetric
 
 __all__ = [
     "MinimalSkewSigmaPoints",
@@ -77,6 +88,19 @@ __all__ = [
 
 #: Above this size :class:`MinimalSkewSigmaPoints` warns that its points spread too far.
 MINIMAL_SKEW_WARN_N = 20
+
+#: Up to this size ``sigma_points`` forms ``Z @ U`` densely (fewer NumPy calls, faster at
+#: small n); above it the O(n^2) staircase recursion (benchmarks/bench_sigma_points.py).
+_DENSE_MAX_N = 32
+
+
+def _nearly_symmetric(P, tol=1e-8):
+    """A fast pre-check of the package's symmetry rule (``check_symmetric``).
+
+    For a covariance ``max|P|`` is on the diagonal, so the diagonal sets the scale; when
+    this says no (an asymmetric or an indefinite ``P``), ``check_symmetric`` decides.
+    """
+    return float(np.abs(P - P.T).max()) <= tol * float(P.diagonal().max())
 
 
 def _check_scaling(alpha, beta, w0):
@@ -116,6 +140,7 @@ class _StaircaseSimplex(MerweScaledSigmaPoints):
         # MerweScaledSigmaPoints.__init__ stores n, alpha, beta, kappa, sqrt and
         # subtract, then calls our _compute_weights.
         super().__init__(n, alpha, beta, 0.0, sqrt_method=sqrt_method, subtract=subtract)
+        self._default_sqrt = sqrt_method is None
 
     # -- the two subclasses define these -------------------------------------
     def _unscaled(self):  # pragma: no cover - abstract
@@ -153,30 +178,69 @@ class _StaircaseSimplex(MerweScaledSigmaPoints):
         -------
         sigmas : ndarray of shape (n + 2, n)
             Row 0 is ``x``; rows ``1 .. n+1`` the outer points.
+
+        Notes
+        -----
+        This is the hot path of filterpy's UKF (two calls per ``predict``), so it is
+        built for small ``n``: the unit points and weights are computed once, at
+        construction; with the default square root the factor is
+        ``numpy.linalg.cholesky(P).T`` (the same upper factor as filterpy's
+        ``scipy.linalg.cholesky(P)``, without its overhead); up to ``n = 32`` the
+        deviations are the dense product ``Z @ U``, above it the O(n^2) staircase.
+        Finiteness is checked once, on the result; a non-finite result is traced back
+        to ``x`` or ``P`` for the message.
         """
-        if self.n != np.size(x):
-            raise ValueError(f"x must have size n={self.n}, got size {np.size(x)}")
-        x = as_state(x, "x", self.n)
-        if np.isscalar(P):
-            P = np.eye(self.n) * P
+        n = self.n
+        x = np.asarray(x, dtype=float)
+        if x.shape != (n,):
+            if x.size != n:
+                raise ValueError(f"x must have size n={n}, got size {x.size}")
+            x = x.reshape(n)
+        if type(P) is not np.ndarray or P.dtype != float or P.shape != (n, n):
+            P = self._as_covariance(P)
+        # Cholesky reads one triangle only: an asymmetric P must not pass silently
+        if not _nearly_symmetric(P):
+            check_symmetric(P, "P")
+        try:
+            U = np.linalg.cholesky(P).T if self._default_sqrt else self.sqrt(P)
+        except np.linalg.LinAlgError as exc:
+            self._check_finite(x, P)
+            raise NumericalError(
+                f"P must be positive definite (its square root failed: {exc}); make P "
+                "symmetric positive definite, e.g. P = np.diag(variances)", matrix="P"
+            ) from exc
+        if n <= _DENSE_MAX_N:
+            D = self.Z @ U
         else:
-            P = np.atleast_2d(np.asarray(P, dtype=float))
-        if P.shape != (self.n, self.n):
-            raise ValueError(f"P must have shape ({self.n}, {self.n}), got {P.shape}")
+            D = _staircase_apply(self._a, self._b, U)
+        if self.subtract is np.subtract:
+            sigmas = x + D
+        else:  # a custom subtract (angles): x - (-d), as filterpy does
+            sigmas = np.array([self.subtract(x, -d) for d in D])
+        if not math.isfinite(sigmas.sum()):
+            self._check_finite(x, P)
+            if not np.all(np.isfinite(sigmas)):
+                raise NumericalError(
+                    "sigma points are not finite although x and P are (P's square root "
+                    "overflowed); rescale the state", matrix="P"
+                )
+        return sigmas
+
+    def _as_covariance(self, P):
+        """``P`` as a float ``(n, n)`` array; a scalar means ``P * eye(n)``."""
+        n = self.n
+        if np.isscalar(P):
+            return np.eye(n) * float(P)
+        P = np.atleast_2d(np.asarray(P, dtype=float))
+        if P.shape != (n, n):
+            raise ValueError(f"P must have shape ({n}, {n}), got {P.shape}")
+        return P
+
+    def _check_finite(self, x, P):
         if not np.all(np.isfinite(P)):
             raise ValueError("P must be finite, got non-finite entries")
-        check_symmetric(P, "P")
-        try:
-            U = self.sqrt(P)
-        except np.linalg.LinAlgError as exc:
-            raise NumericalError(
-                f"P must be positive definite (its square root failed: {exc})", matrix="P"
-            ) from exc
-        D = _staircase_apply(self._a, self._b, U)
-        if self.subtract is np.subtract:
-            return x + D
-        # a custom subtract (angles): x - (-d), as filterpy does
-        return np.array([self.subtract(x, -d) for d in D])
+        if not np.all(np.isfinite(x)):
+            raise ValueError(f"x must be finite, got {x}")
 
     def __repr__(self):
         return "\n".join(

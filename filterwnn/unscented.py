@@ -16,12 +16,26 @@ attributes and methods, and adds three things its users lack:
     ``predict`` is ``x_prior = x, P_prior = P + Q`` with no sigma points and no
     factorisation, so a step costs one Cholesky where filterpy's costs two.
 :class:`~filterwnn.NumericalError`
-    when ``P`` or ``S`` stops being positive definite, with the matrix name and the
-    step (the count of ``predict``/``update`` calls) in its message and attributes,
-    and the filter's state left as it was before the failing call. A ``z`` with NaN or
-    inf raises ``ValueError`` (``z=None`` skips the update, as in filterpy).
+    when ``P``, ``P_prior`` or ``S`` stops being positive definite, with the matrix
+    name and the time step in its message and attributes, and the filter's state left
+    as it was before the failing call. A ``z`` with NaN or inf raises ``ValueError``
+    (``z=None`` skips the update, as in filterpy); a column ``z`` of shape
+    ``(dim_z, 1)`` is flattened in both modes. Every covariance error says how to fix it
+    (a scalar ``Q`` is refused, as filterpy would add it to every entry: the message
+    says ``Q = q * np.eye(dim_x)``).
+
+``step`` is the time step, as in every filter of the package: ``predict`` advances it
+by one, ``update`` (and its errors) report the current one; a failing call leaves it
+unchanged.
 
 With ``vectorized=False`` and a given ``fx`` the numbers are filterpy's own.
+
+Angles: in vectorized mode the residual and mean functions receive all sigma points at
+once, so a filterpy-style ``y[1] = wrap(y[1])`` would wrap sigma point 1, not column 1.
+Each one is checked on its first call (its shape, and its result against a row-by-row
+call on the first sigma set), with a ``ValueError`` naming it; the ready-made
+:func:`filterwnn.angles.angle_residual` and :func:`filterwnn.angles.angle_mean` are right
+in both modes.
 
 The update with sigma points :math:`\chi_i = x^- + D_i` and weights ``Wm, Wc`` is
 
@@ -60,11 +74,48 @@ from filterpy.kalman import UnscentedKalmanFilter as _FilterpyUKF
 from filterpy.kalman import unscented_transform
 from scipy.linalg import cho_factor, cho_solve, cholesky
 
-from ._validation import NumericalError, check_positive, check_positive_int, check_symmetric
+from ._validation import (
+    NumericalError,
+    check_covariance,
+    check_positive,
+    check_positive_int,
+    check_symmetric,
+)
 from ._validation import cholesky_lower as cholesky_or_none
 from .sigma_points import _check_protocol, sigma_deviations
 
 __all__ = ["UnscentedKalmanFilter", "fast_unscented_transform"]
+
+# What each covariance error tells the user to do.
+_SHAPE_FIX = {
+    "P": "a scalar is not a covariance here (filterpy would add it to every entry): "
+         "use P = p * np.eye({n}) or np.diag(variances)",
+    "Q": "a scalar is not a covariance here (filterpy would add it to every entry): "
+         "use Q = q * np.eye({n}) or filterpy.common.Q_discrete_white_noise",
+    "R": "use R = np.diag(variances) (one per measurement entry)",
+}
+_PD_FIX = {
+    "P": "set P to a symmetric positive definite matrix, e.g. P = np.diag(variances)",
+    "P_prior": "the predicted covariance lost definiteness: make Q positive semi-definite "
+               "and, with a negative centre weight (Julier kappa < 0, alpha << 1), use w0 >= 0 "
+               "or a larger Q",
+    "S": "S = (transformed P) + R: make R positive definite, e.g. R = np.diag(variances)",
+}
+
+
+def _with_fix(check, M, name, *args, **kwargs):
+    """Run a ``_validation`` check, adding the remedy to its message."""
+    try:
+        return check(M, name, *args, **kwargs)
+    except ValueError as exc:
+        msg = str(exc)
+        if "symmetric" in msg and "semi" not in msg:
+            fix = f"symmetrise it: {name} = 0.5 * ({name} + {name}.T)"
+        elif "semi-definite" in msg:
+            fix = f"{name} must be a covariance, e.g. {name} = np.diag(variances)"
+        else:
+            fix = f"{name} must be a finite symmetric covariance, e.g. {name} = np.diag(variances)"
+        raise ValueError(f"{msg}; {fix}") from exc
 
 
 def fast_unscented_transform(sigmas, Wm, Wc, noise_cov=None):
@@ -113,14 +164,17 @@ class UnscentedKalmanFilter(_FilterpyUKF):
     sqrt_fn, x_mean_fn, z_mean_fn, residual_x, residual_z, state_add : callable, optional
         As in filterpy. In vectorized mode, ``residual_x``/``residual_z`` are called
         on whole arrays (``residual(sigmas, mean)`` broadcasting a row), so write them
-        with NumPy operations on the last axis.
+        with NumPy operations on the last axis (``y[..., 1]``, not ``y[1]``), or use
+        :func:`filterwnn.angles.angle_residual` and :func:`filterwnn.angles.angle_mean`;
+        each is checked on its first call (a ``ValueError`` names it).
     vectorized : bool, default False
         Evaluate ``fx``/``hx`` once per step on all sigma points.
 
     Attributes
     ----------
     step : int
-        Count of ``predict`` and ``update`` calls so far (used in error messages).
+        The time step: ``predict`` advances it by one; ``update`` and its errors
+        report the current step. A call that raises leaves it unchanged.
 
     Notes
     -----
@@ -174,6 +228,8 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         self._sigmas_stale = True  # sigmas_f must be drawn from (x, P) before update
         self._deviations = None
         self._trusted = {}  # the P and Q objects already checked (or produced) here
+        self._chol = None  # (P_prior object, its lower Cholesky factor), vectorized mode
+        self._checked = {}  # role -> the residual/mean callable already checked on arrays
 
     # ------------------------------------------------------------------ helpers
     def _fast_points(self):
@@ -184,36 +240,37 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             and getattr(pts, "subtract", np.subtract) is np.subtract
         )
 
-    def _check_state(self, check_Q=False):
+    def _check_state(self, when, check_Q=False):
+        """Shapes, finiteness and symmetry of ``x``, ``P`` (and ``Q``); ``when`` is for messages."""
         x, P, n = self.x, self.P, self._dim_x
         if np.shape(x) != (n,):
             raise ValueError(f"x must have shape ({n},), got {np.shape(x)}")
-        if np.shape(P) != (n, n):
-            raise ValueError(f"P must have shape ({n}, {n}), got {np.shape(P)}")
-        if np.shape(self.Q) != (n, n):
-            raise ValueError(f"Q must have shape ({n}, {n}), got {np.shape(self.Q)}")
+        for name, M in (("P", P), ("Q", self.Q)):
+            if np.shape(M) != (n, n):
+                raise ValueError(f"{name} must have shape ({n}, {n}), got {np.shape(M)}; "
+                                 + _SHAPE_FIX[name].format(n=n))
         if not (np.all(np.isfinite(x)) and np.all(np.isfinite(P))):
             raise NumericalError(
-                f"x and P must be finite before step {self.step + 1}", matrix="P", step=self.step + 1
-            )
+                f"x and P must be finite {when}; set them again (x_post and P_post hold the "
+                "last update's values)", matrix="P", step=self.step)
         # symmetry costs a full pass: check what the user set, not what we produced
         if P is not self._trusted.get("P"):
-            check_symmetric(P, "P")
+            _with_fix(check_symmetric, P, "P")
         if check_Q and self.Q is not self._trusted.get("Q"):
-            if not np.all(np.isfinite(self.Q)):
-                raise ValueError("Q must be finite, got non-finite entries")
-            check_symmetric(self.Q, "Q")
+            # once per Q object: finite, symmetric, positive semi-definite (a Cholesky
+            # settles the usual positive definite Q; eigenvalues only for a singular one)
+            _with_fix(check_symmetric, self.Q, "Q")
+            if cholesky_or_none(self.Q) is None:
+                _with_fix(check_covariance, self.Q, "Q", n, allow_scalar=False, require_pd=False)
             self._trusted["Q"] = self.Q
 
     def _sigmas(self, x, P, what):
         """Sigma points of N(x, P); NumericalError naming ``what`` if P is not PD."""
         if self.vectorized and self._fast_points():
-            try:
-                L = np.linalg.cholesky(P)
-            except np.linalg.LinAlgError:
-                L = None
-            if L is None or not np.all(np.isfinite(L)):
-                raise self._not_pd(what, P)
+            if self._chol is not None and self._chol[0] is P:
+                L = self._chol[1]  # factored at predict (P_prior's check)
+            else:
+                L = self._cholesky(P, what)
             D = sigma_deviations(self.points_fn, L.T)
             self._deviations = D
             return x + D
@@ -223,6 +280,13 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         except np.linalg.LinAlgError as exc:
             raise self._not_pd(what, P) from exc
 
+    def _cholesky(self, P, what):
+        """Lower Cholesky factor of ``P``; NumericalError naming ``what`` if it fails."""
+        L = cholesky_or_none(P)
+        if L is None:
+            raise self._not_pd(what, P)
+        return L
+
     def _not_pd(self, what, M):
         try:
             ev = np.linalg.eigvalsh(0.5 * (M + M.T)).min()
@@ -230,7 +294,8 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         except (np.linalg.LinAlgError, ValueError):
             detail = ""
         return NumericalError(
-            f"{what} is not positive definite at step {self.step}{detail}", matrix=what, step=self.step
+            f"{what} is not positive definite at step {self.step}{detail}; {_PD_FIX[what]}",
+            matrix=what, step=self.step,
         )
 
     def _snapshot(self):
@@ -239,7 +304,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         return {k: getattr(self, k) for k in (
             "x", "P", "x_prior", "P_prior", "x_post", "P_post", "sigmas_f", "sigmas_h",
             "K", "y", "z", "S", "SI", "_sigmas_stale", "_deviations",
-            "_log_likelihood", "_likelihood", "_mahalanobis", "step",
+            "_log_likelihood", "_likelihood", "_mahalanobis", "step", "_chol",
         )}
 
     def _restore(self, snap):
@@ -260,29 +325,98 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             return out
         return np.atleast_2d([fn(s, *args, **kwargs) for s in sigmas])
 
+    def _residual(self, role, fn, A, b):
+        """``fn(A, b)`` on all rows at once, checked against a row-by-row call the first time.
+
+        ``role`` is the constructor argument's name (``"residual_x"``, ``"residual_z"``).
+        """
+        if self._checked.get(role) is fn:
+            return fn(A, b)
+        out = np.asarray(fn(A.copy(), np.copy(b)), dtype=float)
+        fix = (f"write {role} on the last axis (y[..., 1] = ..., not y[1] = ...) or use "
+               "filterwnn.angles.angle_residual(columns)")
+        if out.shape != A.shape:
+            raise ValueError(
+                f"vectorized {role} must map sigma points of shape {A.shape} and a mean of "
+                f"shape {np.shape(b)} to shape {A.shape}, got {out.shape}; {fix}"
+            )
+        # A function written for one row (filterpy's y[1] = wrap(y[1])) wraps a sigma
+        # point instead of a column. Compare it with a row-by-row call on this first
+        # sigma set, and on a probe whose residuals all exceed pi (where a wrap of the
+        # wrong entries shows even if the sigma points are close together).
+        probe = np.asarray(b, dtype=float) + 4.0 * (1.0 + np.arange(A.size).reshape(A.shape))
+        for label, X in (("sigma point", A), ("probe row", probe)):
+            try:
+                vec = out if X is A else np.asarray(fn(X.copy(), np.copy(b)), dtype=float)
+                rows = np.array([fn(a.copy(), np.copy(b)) for a in X], dtype=float)
+            except (IndexError, ValueError, TypeError):  # written for arrays only: cannot compare
+                break
+            if rows.shape != vec.shape:
+                break
+            bad = ~np.isclose(vec, rows, rtol=1e-9, atol=1e-12, equal_nan=True)
+            if bad.any():
+                i, j = np.argwhere(bad)[0]
+                raise ValueError(
+                    f"vectorized {role} differs from {role} applied row by row ({label} {i}, "
+                    f"column {j}: {vec[i, j]:.6g} against {rows[i, j]:.6g}): in vectorized mode it "
+                    f"receives all {A.shape[0]} sigma points at once, so an index such as y[1] "
+                    f"selects a sigma point, not a column; {fix}"
+                )
+        self._checked[role] = fn
+        return out
+
+    def _mean(self, role, fn, sigmas):
+        """``fn(sigmas, Wm)`` (filterpy's mean signature), its shape checked the first time."""
+        if fn is None:
+            return self.Wm @ sigmas
+        m = np.asarray(fn(sigmas, self.Wm), dtype=float)
+        if self._checked.get(role) is not fn:
+            if m.shape != (sigmas.shape[1],):
+                raise ValueError(
+                    f"{role} must map sigma points of shape {sigmas.shape} and Wm of shape "
+                    f"{self.Wm.shape} to shape ({sigmas.shape[1]},), got {m.shape}; use "
+                    "filterwnn.angles.angle_mean(columns) for angles"
+                )
+            self._checked[role] = fn
+        return m
+
+    def _vectorized_ut(self, sigmas, mean_fn, residual_fn, noise_cov, roles):
+        """Unscented transform on all rows at once; returns ``(mean, cov, residuals)``."""
+        m = self._mean(roles[0], mean_fn, sigmas)
+        if residual_fn is np.subtract:
+            y = sigmas - m
+        else:
+            y = self._residual(roles[1], residual_fn, sigmas, m)
+        P = (y.T * self.Wc) @ y + noise_cov
+        return m, P, y
+
     # ------------------------------------------------------------------ predict
     def predict(self, dt=None, UT=None, fx=None, **fx_args):
         """Predict step; ``fx=None`` (here and at construction) is a random walk.
 
-        On return ``x``, ``P`` (and ``x_prior``, ``P_prior``) hold the prediction.
-        Raises :class:`~filterwnn.NumericalError` if ``P`` is not positive definite or
-        ``fx`` returns non-finite values, with the state left as it was.
+        Advances ``step`` by one. On return ``x``, ``P`` (and ``x_prior``, ``P_prior``)
+        hold the prediction, and ``P_prior`` is known to be positive definite (both
+        modes). Raises ``ValueError`` for a bad ``x``, ``P`` or ``Q`` (shape, symmetry,
+        a ``Q`` that is not positive semi-definite) and :class:`~filterwnn.NumericalError`
+        if ``P`` or ``P_prior`` is not positive definite or ``fx`` returns non-finite
+        values, with the state (and ``step``) left as they were.
         """
-        self._check_state(check_Q=True)
+        self._check_state(f"before step {self.step + 1}", check_Q=True)
         dt = self._dt if dt is None else check_positive(dt, "dt")
         fx = self.fx if fx is None else fx
         snap = self._snapshot()
         self.step += 1
         try:
-            if fx is None:  # random walk: no sigma points, no factorisation
+            if fx is None:  # random walk: no sigma points here
                 self.P = self.P + self.Q
                 self.x = self.x.copy()
-                self._sigmas_stale = True
             else:
                 sigmas = self._sigmas(self.x, self.P, "P")
                 self.sigmas_f = self._call(fx, sigmas, "fx", self._dim_x, dt, **fx_args)
-                if self.vectorized and UT is None and self.x_mean is None and self.residual_x is np.subtract:
-                    self.x, self.P = fast_unscented_transform(self.sigmas_f, self.Wm, self.Wc, self.Q)
+                if self.vectorized and UT is None:
+                    self.x, self.P, _ = self._vectorized_ut(
+                        self.sigmas_f, self.x_mean, self.residual_x, self.Q, ("x_mean_fn", "residual_x")
+                    )
                 else:  # filterpy's own arithmetic (bit-identical in loop mode)
                     UT = unscented_transform if UT is None else UT
                     self.x, self.P = UT(
@@ -290,15 +424,20 @@ class UnscentedKalmanFilter(_FilterpyUKF):
                     )
                 if not (np.all(np.isfinite(self.x)) and np.all(np.isfinite(self.P))):
                     raise NumericalError(
-                        f"fx produced a non-finite prediction (x_prior or P_prior) at step {self.step}",
+                        f"fx produced a non-finite prediction (x_prior or P_prior) at step {self.step}; "
+                        "check fx at the sigma points of (x, P)",
                         matrix="P_prior", step=self.step,
                     )
-                if self.vectorized:
+            if self.vectorized:
+                if fx is not None:  # P + Q is already symmetric
                     self.P = 0.5 * (self.P + self.P.T)
-                    self._sigmas_stale = True  # filterpy 2.0 re-draws sigmas from the prior
-                else:  # as filterpy 2.0: the update's sigma points are the prior's
-                    self.sigmas_f = self._sigmas(self.x, self.P, "P_prior")
-                    self._sigmas_stale = False
+                # P_prior must be positive definite, as loop mode checks by drawing the
+                # sigma points; the factor is kept for the update's sigma points
+                self._chol = (self.P, self._cholesky(self.P, "P_prior"))
+                self._sigmas_stale = True  # filterpy 2.0 re-draws sigmas from the prior
+            else:  # as filterpy 2.0: the update's sigma points are the prior's
+                self.sigmas_f = self._sigmas(self.x, self.P, "P_prior")
+                self._sigmas_stale = False
         except Exception:
             self._restore(snap)
             raise
@@ -317,12 +456,13 @@ class UnscentedKalmanFilter(_FilterpyUKF):
     def update(self, z, R=None, UT=None, hx=None, **hx_args):
         """Update with measurement ``z`` (``None`` skips the update, as in filterpy).
 
-        Raises ``ValueError`` for a non-finite ``z`` and
-        :class:`~filterwnn.NumericalError` when ``P`` or ``S`` is not positive definite;
-        either way the filter's state is left as it was.
+        ``z`` of shape ``(dim_z,)``, or ``(dim_z, 1)`` (flattened, in both modes). Does
+        not advance ``step``: errors report the current time step. Raises
+        ``ValueError`` for a non-finite ``z`` and :class:`~filterwnn.NumericalError`
+        when ``P`` or ``S`` is not positive definite; either way the filter's state is
+        left as it was.
         """
         if z is None:
-            self.step += 1
             self.z = np.array([[None] * self._dim_z]).T
             self.x_post = self.x.copy()
             self.P_post = self.P.copy()
@@ -335,17 +475,16 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             raise ValueError(
                 f"z must be finite (use z=None for a missing measurement), got {np.ravel(z_arr)}"
             )
-        self._check_state()
+        self._check_state(f"at step {self.step} (update)")
         z_arr, R = self._check_measurement(z_arr, R)
         snap = self._snapshot()
-        self.step += 1
         try:
             if self._sigmas_stale:
                 self.sigmas_f = self._sigmas(self.x, self.P, "P")
                 self._sigmas_stale = False
             if not self.vectorized:
-                try:
-                    super().update(z, R=R, UT=UT, hx=hx, **hx_args)
+                try:  # filterpy gets the checked z: a column z is flattened as in vectorized mode
+                    super().update(z_arr, R=R, UT=UT, hx=hx, **hx_args)
                 except np.linalg.LinAlgError as exc:
                     raise self._not_pd("S", self.S) from exc
                 # filterpy inverts S without asking whether it is positive definite
@@ -361,6 +500,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             self._restore(snap)
             raise
         self._sigmas_stale = True
+        self._chol = None
         self._trusted["P"] = self.P
 
     def _check_measurement(self, z, R):
@@ -384,10 +524,11 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         if z.ndim != 1:
             raise ValueError(f"z must be 1-D, got shape {z.shape}")
         if R.shape != (z.size, z.size):
-            raise ValueError(f"R must have shape ({z.size}, {z.size}), got shape {R.shape}")
+            raise ValueError(f"R must have shape ({z.size}, {z.size}), got shape {R.shape}; "
+                             + _SHAPE_FIX["R"].format(n=z.size))
         if not np.all(np.isfinite(R)):
-            raise ValueError("R must be finite, got non-finite entries")
-        check_symmetric(R, "R")
+            raise ValueError("R must be finite, got non-finite entries; use R = np.diag(variances)")
+        _with_fix(check_symmetric, R, "R")
         return z, R
 
     def _vectorized_update(self, z, R, UT, hx, **hx_args):
@@ -397,17 +538,17 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         # (R comes from _check_measurement: always square 2-D)
         dim_z = R.shape[0]
         self.sigmas_h = self._call(hx, sig, "hx", dim_z, **hx_args)
-        if UT is None and self.z_mean is None and self.residual_z is np.subtract:
-            zp, S = fast_unscented_transform(self.sigmas_h, self.Wm, self.Wc, R)
-            dz = self.sigmas_h - zp
+        if UT is None:
+            zp, S, dz = self._vectorized_ut(
+                self.sigmas_h, self.z_mean, self.residual_z, R, ("z_mean_fn", "residual_z")
+            )
         else:
-            UT = unscented_transform if UT is None else UT
             zp, S = UT(self.sigmas_h, self.Wm, self.Wc, R, self.z_mean, self.residual_z)
-            dz = self.residual_z(self.sigmas_h, zp)
+            dz = self._residual("residual_z", self.residual_z, self.sigmas_h, zp)
         if self._deviations is not None and self.residual_x is np.subtract:
             dx = self._deviations
         else:
-            dx = self.residual_x(sig, self.x)
+            dx = self._residual("residual_x", self.residual_x, sig, self.x)
         Pxz = dx.T @ (dz * self.Wc[:, None])
         S = 0.5 * (S + S.T)
         self.S = S
@@ -430,6 +571,14 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         self._log_likelihood = None
         self._likelihood = None
         self._mahalanobis = None
+
+    def _rows_residual(self, A, b):
+        """``residual_x`` of every row of ``A`` against ``b``, in either mode."""
+        if self.residual_x is np.subtract:
+            return A - b
+        if self.vectorized:
+            return self._residual("residual_x", self.residual_x, A, b)
+        return np.array([self.residual_x(a, b) for a in A], dtype=float)
 
     # ------------------------------------------------------------------ smoother
     def rts_smoother(self, Xs, Ps, Qs=None, dts=None, UT=None):
@@ -462,8 +611,8 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             else:
                 sigmas_f = self._call(self.fx, sigmas, "fx", dim_x, dts[k])
             xb, Pb = UT(sigmas_f, self.Wm, self.Wc, Qs[k], self.x_mean, self.residual_x)
-            dyf = self.residual_x(sigmas_f, xb)
-            dzs = self.residual_x(sigmas, Xs[k])
+            dyf = self._rows_residual(sigmas_f, xb)
+            dzs = self._rows_residual(sigmas, Xs[k])
             Pxb = (dzs.T * self.Wc) @ dyf
             try:
                 cf = cho_factor(0.5 * (Pb + Pb.T), lower=True)

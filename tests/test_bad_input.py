@@ -38,7 +38,7 @@ from filterwnn.studies import dr as dr_study
 from filterwnn.studies import wnn as wnn_study
 from filterwnn.weight_model import WNNWeightModel
 
-RNG_MSG = r"rng must be None, an int seed, a SeedSequence, a BitGenerator or a numpy\.random\.Generator, got "
+RNG_MSG = r"(rng|random_state) must be None, an int seed, a SeedSequence, a BitGenerator or a numpy\.random\.Generator, got "
 BAD_RNGS = [
     pytest.param("seed", "str", id="str"),
     pytest.param(1.5, "float", id="float"),
@@ -217,9 +217,9 @@ for _vec in (False, True):
         row(lambda v=_vec: _with(v, x=np.zeros((3, 1))).update(np.zeros(2)), ValueError, r"x must have shape \(3,\), got \(3, 1\)", f"ukf-{_v}-x-column"),
         row(lambda v=_vec: _with(v, P=I2).predict(), ValueError, r"P must have shape \(3, 3\), got \(2, 2\)", f"ukf-{_v}-P-shape"),
         row(lambda v=_vec: _with(v, Q=I2).predict(), ValueError, r"Q must have shape \(3, 3\), got \(2, 2\)", f"ukf-{_v}-Q-shape"),
-        row(lambda v=_vec: _with(v, x=np.array([0.0, np.nan, 0.0])).predict(), NumericalError, "x and P must be finite before step 4", f"ukf-{_v}-x-nan"),
-        row(lambda v=_vec: _with(v, P=np.full((3, 3), np.inf)).update(np.zeros(2)), NumericalError, "x and P must be finite before step 4", f"ukf-{_v}-P-inf"),
-        row(lambda v=_vec: _with(v, P=-I3).predict(), NumericalError, "P is not positive definite at step 4; smallest eigenvalue -1", f"ukf-{_v}-P-not-pd"),
+        row(lambda v=_vec: _with(v, x=np.array([0.0, np.nan, 0.0])).predict(), NumericalError, "x and P must be finite before step 3", f"ukf-{_v}-x-nan"),
+        row(lambda v=_vec: _with(v, P=np.full((3, 3), np.inf)).update(np.zeros(2)), NumericalError, r"x and P must be finite at step 2 \(update\)", f"ukf-{_v}-P-inf"),
+        row(lambda v=_vec: _with(v, P=-I3).predict(), NumericalError, r"P is not positive definite at step 3; smallest eigenvalue -1; set P to a symmetric positive definite matrix, e.g. P = np.diag\(variances\)", f"ukf-{_v}-P-not-pd"),
         row(lambda v=_vec: predicted_ukf(v).update(np.array([0.0, np.nan])), ValueError, r"z must be finite \(use z=None for a missing measurement\), got \[ 0. nan\]", f"ukf-{_v}-z-nan"),
         row(lambda v=_vec: predicted_ukf(v).update(np.array([np.inf, 0.0])), ValueError, "z must be finite", f"ukf-{_v}-z-inf"),
         row(lambda v=_vec: predicted_ukf(v).update("ab"), TypeError, "z must be array-like of numbers or None, got str", f"ukf-{_v}-z-type"),
@@ -232,11 +232,17 @@ for _vec in (False, True):
         row(lambda v=_vec: _with(v, P=NONSYM3).predict(), ValueError, "P must be symmetric", f"ukf-{_v}-P-nonsym"),
         row(lambda v=_vec: predicted_ukf(v).predict(dt=0.0), ValueError, r"dt must be finite and > 0, got 0.0", f"ukf-{_v}-predict-dt-zero"),
         row(lambda v=_vec: predicted_ukf(v).predict(dt=-1.0), ValueError, r"dt must be finite and > 0, got -1.0", f"ukf-{_v}-predict-dt-neg"),
+        # issue 15: the fix is in the message; Q is checked at predict in both modes
+        row(lambda v=_vec: _with(v, Q=0.1).predict(), ValueError, r"Q must have shape \(3, 3\), got \(\); .*use Q = q \* np.eye\(3\)", f"ukf-{_v}-Q-scalar"),
+        row(lambda v=_vec: _with(v, P=0.1).update(np.zeros(2)), ValueError, r"P must have shape \(3, 3\), got \(\); .*use P = p \* np.eye\(3\)", f"ukf-{_v}-P-scalar"),
+        row(lambda v=_vec: _with(v, Q=-I3).predict(), ValueError, r"Q must be positive semi-definite; smallest eigenvalue -1; Q must be a covariance", f"ukf-{_v}-Q-negative"),
+        row(lambda v=_vec: _with(v, Q=NONSYM3).predict(), ValueError, r"symmetrise it: Q = 0.5 \* \(Q \+ Q.T\)", f"ukf-{_v}-Q-nonsym-fix"),
+        row(lambda v=_vec: predicted_ukf(v).update(np.zeros(2), R=np.zeros(3)), ValueError, r"R must have shape \(2, 2\), got shape \(3,\); use R = np.diag\(variances\)", f"ukf-{_v}-R-vector"),
     ]
 UKF_ROWS += [
     row(lambda: predicted_ukf(False).update(np.zeros(1)), ValueError, r"z must have 2 entries, got shape \(1,\)", "ukf-loop-z-len1"),
     row(lambda: predicted_ukf(True).update(np.zeros(1)), ValueError, r"z must have 2 entries, got shape \(1,\)", "ukf-vec-z-len1"),
-    row(lambda: predicted_ukf(True).update(np.zeros(2), R=-100.0), NumericalError, "S is not positive definite at step 4", "ukf-vec-R-negative"),
+    row(lambda: predicted_ukf(True).update(np.zeros(2), R=-100.0), NumericalError, r"S is not positive definite at step 2; .*make R positive definite, e.g. R = np.diag\(variances\)", "ukf-vec-R-negative"),
     row(lambda: predicted_ukf(False).update(np.zeros(2), R=-100.0), ValueError, "(R must be positive definite|S is not positive definite)", "ukf-loop-R-negative"),
     row(lambda: _with(True, Q=np.full((3, 3), np.nan)).predict(), ValueError, "Q must be finite", "ukf-vec-Q-nan"),
     row(lambda: _with(False, Q=np.full((3, 3), np.nan)).predict(), ValueError, "must be finite", "ukf-loop-Q-nan"),
@@ -297,8 +303,9 @@ PF_ROWS = [
     row(lambda: make_pf(proposal="optimal"), ValueError, r"unknown proposal 'optimal'; valid: 'extended', 'prior', 'simplex', 'unscented'", "pf-proposal"),
     row(lambda: make_pf(proposal=3), TypeError, "proposal must be a name or a proposal object .*got int", "pf-proposal-type"),
     row(lambda: make_pf(resampling="foo"), ValueError, r"unknown resampling scheme 'foo'; valid: 'multinomial', 'residual', 'stratified', 'systematic'", "pf-resampling"),
-    row(lambda: make_pf(weighting="foo"), ValueError, r"unknown weighting 'foo'; valid: 'bank', 'textbook'", "pf-weighting"),
-    row(lambda: make_pf(weighting="bank"), ValueError, "weighting='bank' needs a Kalman proposal", "pf-bank-prior"),
+    row(lambda: make_pf(weighting="bank"), TypeError, "unexpected keyword argument 'weighting'", "pf-bank-gone"),
+    row(lambda: make_pf(proposal="simplex", points=SphericalSimplexSigmaPoints(2)), ValueError, r"points.n must equal dim_x=3, got 2", "pf-points-size"),
+    row(lambda: make_pf(move=3), TypeError, "move must be callable or None, got int", "pf-move"),
     row(lambda: make_pf(ess_threshold=2), ValueError, r"ess_threshold must be a number in \[0, 1\], got 2", "pf-ess"),
     row(lambda: make_pf(tempering=0.0), ValueError, r"tempering must be finite and > 0, got 0.0", "pf-tempering"),
     row(lambda: make_pf(hx=None), TypeError, "hx must be callable, got NoneType", "pf-hx"),
@@ -366,7 +373,9 @@ REGRESSOR_ROWS = [
     row(lambda: fit_reg(X=Y_REG, y=Y_REG), ValueError, "Expected 2D array, got 1D array", "reg-X-1d"),
     row(lambda: fit_reg().predict(np.zeros((3, 7))), ValueError, "X has 7 features, but WNNRegressor is expecting 5 features", "reg-predict-features"),
     row(lambda: fit_reg().predict(np.full((3, 5), np.nan)), ValueError, "Input X contains NaN", "reg-predict-nan"),
-    row(lambda: fit_reg(progress="yes"), ValueError, "progress", "reg-progress"),
+    row(lambda: fit_reg(verbose="yes"), TypeError, r"verbose must be an integer, got str 'yes'", "reg-verbose-str"),
+    row(lambda: fit_reg(verbose=-1), ValueError, r"verbose must be >= 0, got -1", "reg-verbose-neg"),
+    row(lambda: fit_reg(random_state=-1), ValueError, r"random_state seed must be >= 0, got -1", "reg-random-state-neg"),
 ]
 
 # --------------------------------------------------------------------------- dead reckoning and the neural filter
@@ -458,7 +467,7 @@ RNG_ENTRY_POINTS = {
     "datasets.make_siso_benchmark": lambda rng: datasets.make_siso_benchmark(rng=rng),
     "resampling.resample": lambda rng: resampling.resample([0.5, 0.5], "systematic", rng=rng),
     "ParticleFilter": lambda rng: make_pf(rng=rng),
-    "WNNRegressor.fit": lambda rng: fit_reg(rng=rng),
+    "WNNRegressor.fit": lambda rng: fit_reg(random_state=rng),  # scikit-learn's name
     "NeuralFilter": lambda rng: nfm.NeuralFilter(rng=rng),
     "neural_filter.make_training_set": lambda rng: nfm.make_training_set(nfm.paper_training_states(), rng=rng),
     "neural_filter.random_motion_states": lambda rng: nfm.random_motion_states(5, rng=rng),
@@ -527,7 +536,7 @@ def test_failed_ukf_predict_leaves_state_unchanged(vectorized):
     f.update(np.array([0.1, 0.2]))
     f.P = np.diag([1.0, -1.0, 1.0])
     before = _state(f)
-    with pytest.raises(NumericalError, match="P is not positive definite at step 5"):
+    with pytest.raises(NumericalError, match="P is not positive definite at step 3"):
         f.predict()
     _assert_same(f, before)
 

@@ -22,3 +22,144 @@ def test_unknown_command_exits_with_usage():
     with pytest.raises(SystemExit) as info:
         main(["nonsense"])
     assert info.value.code == 2
+
+
+# --- argument validation: exit 2, one argparse error line, no traceback ------------------
+
+import argparse  # noqa: E402
+import re  # noqa: E402
+import subprocess  # noqa: E402
+import sys  # noqa: E402
+import warnings  # noqa: E402
+
+from filterwnn.cli import _build_parser  # noqa: E402
+from filterwnn.studies import _args  # noqa: E402
+
+BAD = [
+    (["study", "wnn", "--runs", "0"], "--runs", ">= 1"),
+    (["study", "wnn", "--epochs", "-1"], "--epochs", ">= 1"),
+    (["study", "wnn", "--jobs", "0"], "--jobs", "negative"),
+    (["study", "wnn", "--trainers", "ekf,sukff"], "--trainers", "'sukff'; valid: bp, ekf"),
+    (["study", "wnn", "--trainers", ""], "--trainers", "at least one"),
+    (["study", "wnn", "--sweep-particles", "5,0"], "--sweep-particles", ">= 1"),
+    (["study", "wnn", "--backend", "lokky"], "--backend", "valid:"),
+    (["study", "wnn", "--seed", "-1"], "--seed", ">= 0"),
+    (["study", "wnn", "--tune-runs", "x"], "--tune-runs", "integer"),
+    (["study", "dr", "--runs", "0"], "--runs", ">= 1"),
+    (["study", "dr", "--jobs", "0"], "--jobs", ">= 1"),
+    (["study", "dr", "--factor", "-3"], "--factor", "> 0"),
+    (["study", "dr", "--factor", "inf"], "--factor", "finite"),
+    (["study", "dr", "--scenarios", "straight,turnz"], "--scenarios", "'turnz'; valid: straight"),
+    (["study", "dr", "--filters", "EKF,ukf"], "--filters", "'ukf'; valid: EKF"),
+    (["study", "dr", "--filters", "EKF,EKF"], "--filters", "repeat"),
+    (["demo", "--seed", "-2"], "--seed", ">= 0"),
+]
+
+
+@pytest.mark.parametrize("argv, option, rule", BAD, ids=[" ".join(a) for a, _, _ in BAD])
+def test_bad_value_exits_2_with_one_error_line(argv, option, rule, capsys):
+    with pytest.raises(SystemExit) as info:
+        main(argv)
+    assert info.value.code == 2
+    err = capsys.readouterr().err
+    errors = [line for line in err.splitlines() if "error:" in line]
+    assert len(errors) == 1, err
+    assert f"argument {option}:" in errors[0] and rule in errors[0], errors[0]
+    assert "Traceback" not in err
+
+
+def test_bad_value_in_a_subprocess_has_no_traceback():
+    proc = subprocess.run([sys.executable, "-m", "filterwnn.cli", "study", "dr", "--factor", "-3"],
+                          capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 2
+    assert "Traceback" not in proc.stderr
+    assert proc.stderr.strip().splitlines()[-1].startswith("filterwnn study dr: error: argument --factor:")
+    assert proc.stdout == ""
+
+
+def _subparsers(parser):
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            for name, sp in action.choices.items():
+                yield name, sp
+                yield from ((f"{name} {n}", p) for n, p in _subparsers(sp))
+
+
+def _commands():
+    return dict(_subparsers(_build_parser()))
+
+
+def test_every_option_has_help_and_one_progress_flag():
+    commands = _commands()
+    assert {"demo", "study wnn", "study dr"} <= set(commands)
+    for name, sp in commands.items():
+        for action in sp._actions:
+            if action.option_strings and action.help is not argparse.SUPPRESS:
+                assert action.help, f"{name} {action.option_strings} has no help"
+        visible = {s for a in sp._actions if a.help is not argparse.SUPPRESS for s in a.option_strings}
+        assert "--quiet" not in visible
+        if name.startswith("study "):
+            assert "--no-progress" in visible, name
+
+
+@pytest.mark.parametrize("command, option, names", [
+    ("study wnn", "--trainers", ("bp", "ekf", "sukf", "supf")),
+    ("study dr", "--filters", ("EKF-oracle", "AEKF", "SUKF-8", "DR-only", "UPF")),
+    ("study dr", "--scenarios", ("straight", "heading180", "gpsdr")),
+])
+def test_help_lists_valid_names(command, option, names):
+    text = _commands()[command].format_help()
+    flat = " ".join(text.split())
+    block = flat[flat.index(f"{option} {option.lstrip('-').upper()} ", flat.index("options:")):]
+    for n in names:
+        assert n in block[:400], (option, n)
+
+
+def test_help_shows_defaults(capsys):
+    with pytest.raises(SystemExit):
+        main(["study", "wnn", "--help"])
+    flat = " ".join(capsys.readouterr().out.split())
+    assert "(default: 3)" in flat  # --runs
+    assert "(default: 2026)" in flat  # --seed
+    assert "(default: False)" not in flat and "(default: None)" not in flat
+
+
+def test_top_level_help_has_no_rst_markup(capsys):
+    with pytest.raises(SystemExit) as info:
+        main(["--help"])
+    assert info.value.code == 0
+    out = capsys.readouterr().out
+    assert "``" not in out and not re.search(r":(func|class|data|mod):", out)
+    for command in ("demo", "study wnn", "study dr"):
+        assert f"filterwnn {command}" in out
+
+
+def test_quiet_is_a_deprecated_alias_of_no_progress():
+    parser = _build_parser()
+    assert parser.parse_args(["study", "dr"]).no_progress is False
+    assert parser.parse_args(["study", "dr", "--no-progress"]).no_progress is True
+    with pytest.warns(FutureWarning, match="--quiet is deprecated; use --no-progress"):
+        assert parser.parse_args(["study", "dr", "--quiet"]).no_progress is True
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        parser.parse_args(["study", "wnn", "--no-progress"])
+
+
+def test_list_options_parse_to_lists():
+    parser = _build_parser()
+    args = parser.parse_args(["study", "wnn", "--trainers", " ekf, ukf ", "--sweep-particles", ""])
+    assert args.trainers == ["ekf", "ukf"] and args.sweep_particles == []
+    assert parser.parse_args(["study", "wnn"]).sweep_particles == [5, 10, 20]
+    args = parser.parse_args(["study", "dr", "--scenarios", "turns", "--factor", "2.5", "--jobs", "1"])
+    assert args.scenarios == ["turns"] and args.factor == 2.5 and args.filters is None
+
+
+def test_argument_types_raise_argparse_errors():
+    with pytest.raises(argparse.ArgumentTypeError, match="must be an integer >= 1, got '0'"):
+        _args.positive_int("0")
+    assert _args.joblib_jobs("-2") == -2
+    with pytest.raises(argparse.ArgumentTypeError, match="valid: a, b"):
+        _args.name_list(("a", "b"))("a,c")
+    assert _args.name_list(("a", "b"), allow_empty=True)("") == []
+    with pytest.raises(argparse.ArgumentTypeError, match="finite"):
+        _args.positive_float("nan")

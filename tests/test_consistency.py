@@ -10,7 +10,7 @@ told a process noise 20 times too small must fail the same check, so the check h
 power.
 
 Particle filters: the bootstrap filter and the Kalman-proposal filters with
-``weighting="bank"`` are tested. (With ``weighting="textbook"`` the EPF/UPF/SUPF on this
+the Gaussian-sum filter (the former ``weighting="bank"``) are tested. (With ``weighting="textbook"`` the EPF/UPF/SUPF on this
 model degenerate -- effective sample size near 1 out of 100, a single distinct particle
 and a collapsed sample covariance at some steps -- a property of carrying each particle's
 posterior covariance into the next proposal, not of this package's arithmetic, which
@@ -32,6 +32,7 @@ from filterwnn import (
     UnscentedKalmanFilter,
 )
 from filterwnn import particle_filter as pf_module
+from filterwnn.gaussian_sum import GaussianSumFilter
 from filterwnn.metrics import chi2_bounds, nees, nis
 
 N_RUNS = 50
@@ -134,9 +135,9 @@ N_RUNS_PF = 30
 PF_CASES = {
     # name: (class, n_particles, keywords)
     "bootstrap-300": ("BootstrapParticleFilter", 300, {}),
-    "epf-bank-30": ("ExtendedKalmanParticleFilter", 30, {"weighting": "bank"}),
-    "upf-bank-30": ("UnscentedParticleFilter", 30, {"weighting": "bank"}),
-    "supf-bank-30": ("SimplexUnscentedParticleFilter", 30, {"weighting": "bank", "resampling": "stratified"}),
+    "gsf-ekf-30": ("ekf", 30, {}),
+    "gsf-ukf-30": ("ukf", 30, {}),
+    "gsf-sukf-30": ("sukf", 30, {"resampling": "stratified"}),
 }
 
 
@@ -152,10 +153,16 @@ def run_pf(case, q_scale=1.0):
     inn_cov = np.empty((N_RUNS_PF, N_STEPS, m.dim_z, m.dim_z))
     for r in range(N_RUNS_PF):
         _, zs = SCENARIOS[r]
-        pf = getattr(pf_module, name)(m.dim_x, m.dim_z, m.dt, m.hx, m.fx, n, FJacobian=m.FJacobian,
-                                      HJacobian=m.HJacobian, vectorized=True, rng=seeds[r], **kw)
+        if name in ("ekf", "ukf", "sukf"):  # the Gaussian-sum filter (the former bank), its old start
+            pf = GaussianSumFilter(m.dim_x, m.dim_z, m.dt, m.hx, m.fx, component=name, FJacobian=m.FJacobian,
+                                   HJacobian=m.HJacobian, vectorized=True, rng=seeds[r], ess_threshold=1.0, **kw)
+            L = np.linalg.cholesky(m.P0)
+            pf.initialize(m.x0 + pf.rng.standard_normal((n, m.dim_x)) @ L.T, m.P0)
+        else:
+            pf = getattr(pf_module, name)(m.dim_x, m.dim_z, m.dt, m.hx, m.fx, n, FJacobian=m.FJacobian,
+                                          HJacobian=m.HJacobian, vectorized=True, rng=seeds[r], **kw)
+            pf.x, pf.P = m.x0.copy(), m.P0.copy()
         pf.Q, pf.R = m.Q * q_scale, m.R.copy()
-        pf.x, pf.P = m.x0.copy(), m.P0.copy()
         for k in range(N_STEPS):
             pf.predict()
             inn[r, k] = zs[k] - m.H @ pf.x_prior
@@ -175,6 +182,6 @@ def test_particle_filters_are_nees_and_nis_consistent(case):
 
 
 def test_overconfident_particle_filter_fails_the_check():
-    ne, ni = run_pf("upf-bank-30", q_scale=0.05)
+    ne, ni = run_pf("gsf-ukf-30", q_scale=0.05)
     assert band_fraction(ne, MODEL.dim_x) < 0.3
     assert ne.mean() > 1.5 * MODEL.dim_x and ni.mean() > 1.2 * MODEL.dim_z

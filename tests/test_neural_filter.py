@@ -145,3 +145,17 @@ def test_same_seed_same_filter_output(model):
         nf = NeuralFilter(model, rng=6, epochs=30).fit(Xp, Z, X)
         outs.append(nf.reset(run.x0).batch_filter(run.z_dr))
     np.testing.assert_array_equal(outs[0], outs[1])
+
+
+def test_step_is_the_time_step(fitted, model):
+    """As in every filter (issue 15): predict advances step, update reports it."""
+    nf = fitted.reset()
+    assert nf.step == 0
+    nf.predict()
+    assert nf.step == 1
+    nf.update(model.hx(nf.x_prior))
+    nf.update(None)
+    assert nf.step == 1
+    nf.predict(); nf.update(None)
+    assert nf.step == 2
+    assert nf.reset().step == 0

@@ -1,7 +1,5 @@
 """Batched Kalman proposals: pinned to filterpy's UKF/EKF per particle, and their sampling."""
 
-from types import SimpleNamespace
-
 import numpy as np
 import pytest
 from filterpy.kalman import JulierSigmaPoints, MerweScaledSigmaPoints, UnscentedKalmanFilter
@@ -12,9 +10,9 @@ from filterwnn._validation import NumericalError
 from filterwnn.proposals import (
     ExtendedKalmanProposal,
     PriorProposal,
+    ProposalModel,
     UnscentedKalmanProposal,
     _unit_transpose_apply,
-    sample_transition,
 )
 from filterwnn.sigma_points import unit_sigma_points
 
@@ -46,7 +44,7 @@ def HJ1(x):
 
 
 def _model(dim_z=2, vectorized=True):
-    return SimpleNamespace(
+    return ProposalModel(
         dim_x=4,
         dim_z=dim_z,
         dt=0.5,
@@ -88,8 +86,8 @@ def test_unscented_proposal_equals_filterpy_ukf_per_particle(points, vectorized,
     x, P = _cloud(rng)
     prop = UnscentedKalmanProposal(points)
     z = np.array([0.3, -0.2])
-    pred = prop.predict(model, x, P, {})
-    upd = prop.update(model, pred, z, {})
+    pred = prop.kalman_predict(model, x, P, {})
+    upd = prop.kalman_update(model, pred, z, {})
     for i in range(x.shape[0]):
         ukf = UnscentedKalmanFilter(4, 2, 0.5, hx, fx, points)
         ukf.x, ukf.P, ukf.Q, ukf.R = x[i].copy(), P[i].copy(), model.Q, model.R
@@ -107,8 +105,8 @@ def test_extended_proposal_equals_ekf_equations(rng):
     x, P = _cloud(rng)
     prop = ExtendedKalmanProposal()
     model.vectorized = False
-    pred = prop.predict(model, x, P, {})
-    upd = prop.update(model, pred, np.array([0.4]), {})
+    pred = prop.kalman_predict(model, x, P, {})
+    upd = prop.kalman_update(model, pred, np.array([0.4]), {})
     for i in range(x.shape[0]):
         F = FJ(x[i], 0.5)
         xp, Pp = fx(x[i], 0.5), F @ P[i] @ F.T + model.Q
@@ -132,8 +130,8 @@ def test_sample_log_density_is_the_gaussian_proposal(dim_z, kind, rng):
     model.FJacobian = lambda X, dt: np.eye(4)
     x, P = _cloud(rng)
     prop = UnscentedKalmanProposal(SphericalSimplexSigmaPoints(4)) if kind == "unscented" else ExtendedKalmanProposal()
-    pred = prop.predict(model, x, P, {})
-    upd = prop.update(model, pred, np.full(dim_z, 0.3), {})
+    pred = prop.kalman_predict(model, x, P, {})
+    upd = prop.kalman_update(model, pred, np.full(dim_z, 0.3), {})
     s, log_q = prop.sample(upd, rng, P_prior=pred.P)
     for i in range(x.shape[0]):
         ref = multivariate_normal(upd.x[i], upd.P[i]).logpdf(s[i])
@@ -151,8 +149,8 @@ def test_rank1_samples_have_the_posterior_moments():
     model = _model(1)
     x, P = _cloud(gen, N=2)
     prop = UnscentedKalmanProposal(MerweScaledSigmaPoints(4, 1.0, 2.0, 0.0))
-    pred = prop.predict(model, x, P, {})
-    upd = prop.update(model, pred, np.array([0.4]), {})
+    pred = prop.kalman_predict(model, x, P, {})
+    upd = prop.kalman_update(model, pred, np.array([0.4]), {})
     n = 40000
     rep = upd._replace(
         x=np.repeat(upd.x[:1], n, 0),
@@ -178,17 +176,17 @@ def test_not_positive_definite_covariance_raises_numerical_error(rng):
     P[1] = -np.eye(4)
     prop = UnscentedKalmanProposal(SphericalSimplexSigmaPoints(4))
     with pytest.raises(NumericalError, match=r"P is not positive definite at step 7 \(particle 1\)"):
-        prop.predict(model, x, P, {}, step=7)
+        prop.kalman_predict(model, x, P, {}, step=7)
 
 
 def test_prior_proposal_uses_process_sampler(rng):
     model = _model(1)
     model.process_sampler = lambda X, g: X + 1.0
     x, _ = _cloud(rng)
-    np.testing.assert_allclose(PriorProposal().sample(model, x, {}, rng), x + 1.0)
+    np.testing.assert_allclose(PriorProposal().predict(model, x, None, {}, rng).particles, x + 1.0)
     model.process_sampler = None
     model.Q = np.zeros((4, 4))
-    np.testing.assert_allclose(sample_transition(model, x, {}, rng), fx(x, 0.5))
+    np.testing.assert_allclose(model.sample_transition(x, {}, rng), fx(x, 0.5))
 
 
 def test_points_protocol_checked():

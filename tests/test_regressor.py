@@ -1,5 +1,6 @@
 """Tests of filterwnn.regressor: trainer registry and the WNNRegressor estimator."""
 
+import copy
 import pickle
 
 import numpy as np
@@ -24,7 +25,7 @@ def data():
 
 def _mse_start(reg, X, y):
     """Training MSE of the estimator's own start (same rng, zero epochs of training)."""
-    rng = np.random.default_rng(reg.rng)
+    rng = np.random.default_rng(reg.random_state)
     theta0 = wnn.init_scaled(X, reg.n_hidden, rng=rng)
     return np.mean((wnn.forward(theta0, X) - y) ** 2)
 
@@ -32,7 +33,7 @@ def _mse_start(reg, X, y):
 @pytest.mark.parametrize("trainer", SINGLE)
 def test_single_filter_trainers_lower_training_mse(data, trainer):
     X, y, _, _ = data
-    reg = WNNRegressor(n_hidden=4, trainer=trainer, n_epochs=3, rng=0).fit(X, y)
+    reg = WNNRegressor(n_hidden=4, trainer=trainer, n_epochs=3, random_state=0).fit(X, y)
     factor = 0.9 if trainer == "bp" else 0.5  # plain gradient descent is slow from a small start
     assert reg.loss_curve_[-1] < factor * _mse_start(reg, X, y)
 
@@ -44,17 +45,17 @@ def test_particle_trainers_lower_training_mse(data):
     starts = np.stack([wnn.init_scaled(X, 3, rng=gen) for _ in range(5)])
     start = np.mean((wnn.forward(starts, X).mean(axis=0) - y) ** 2)
     for trainer in PARTICLE:
-        reg = WNNRegressor(n_hidden=3, trainer=trainer, n_epochs=2, n_particles=5, rng=0).fit(X, y)
+        reg = WNNRegressor(n_hidden=3, trainer=trainer, n_epochs=2, n_particles=5, random_state=0).fit(X, y)
         assert reg.loss_curve_[-1] < start, trainer
         assert len(reg.diagnostics_["mean_ess"]) == 2
 
 
 def test_fit_returns_self_and_attributes(data):
     X, y, X_test, _ = data
-    reg = WNNRegressor(n_hidden=4, n_epochs=3, rng=0)
+    reg = WNNRegressor(n_hidden=4, n_epochs=3, random_state=0)
     assert reg.fit(X, y) is reg
     assert reg.theta_.shape == (wnn.n_params(5, 4),)
-    assert len(reg.loss_curve_) == 3 and reg.n_epochs_ == 3
+    assert len(reg.loss_curve_) == 3 and reg.n_iter_ == 3
     assert reg.n_features_in_ == 5
     assert reg.fit_time_ > 0
     mean, std = reg.predict(X_test, return_std=True)
@@ -65,10 +66,10 @@ def test_fit_returns_self_and_attributes(data):
 
 def test_same_seed_same_theta_and_clone(data):
     X, y, _, _ = data
-    a = WNNRegressor(n_hidden=4, n_epochs=2, rng=3).fit(X, y)
+    a = WNNRegressor(n_hidden=4, n_epochs=2, random_state=3).fit(X, y)
     b = clone(a).fit(X, y)
     np.testing.assert_array_equal(a.theta_, b.theta_)
-    c = WNNRegressor(n_hidden=4, n_epochs=2, rng=4).fit(X, y)
+    c = WNNRegressor(n_hidden=4, n_epochs=2, random_state=4).fit(X, y)
     assert not np.array_equal(a.theta_, c.theta_)
     assert clone(a).get_params() == a.get_params()
 
@@ -76,7 +77,7 @@ def test_same_seed_same_theta_and_clone(data):
 def test_grid_search(data):
     X, y, _, _ = data
     gs = GridSearchCV(
-        WNNRegressor(n_hidden=3, n_epochs=2, rng=0), {"process_noise": [1e-4, 1e-3]}, cv=2
+        WNNRegressor(n_hidden=3, n_epochs=2, random_state=0), {"process_noise": [1e-4, 1e-3]}, cv=2
     ).fit(X, y)
     assert gs.best_params_["process_noise"] in (1e-4, 1e-3)
 
@@ -102,27 +103,27 @@ def test_bad_arguments(data):
 
 def test_rank1_ekf_equals_filterpy(data):
     X, y, _, _ = data
-    a = WNNRegressor(n_hidden=3, n_epochs=2, rng=1).fit(X, y)
-    b = WNNRegressor(n_hidden=3, n_epochs=2, rng=1, ekf_backend="filterpy").fit(X, y)
+    a = WNNRegressor(n_hidden=3, n_epochs=2, random_state=1).fit(X, y)
+    b = WNNRegressor(n_hidden=3, n_epochs=2, random_state=1, ekf_backend="filterpy").fit(X, y)
     np.testing.assert_allclose(a.theta_, b.theta_, rtol=1e-5, atol=1e-8)
     np.testing.assert_allclose(a._final.cov, b._final.cov, rtol=1e-5, atol=1e-8)
 
 
 def test_early_stopping_keeps_best_epoch(data):
     X, y, _, _ = data
-    reg = WNNRegressor(n_hidden=4, n_epochs=15, early_stopping=True, n_iter_no_change=3, rng=0).fit(X, y)
-    assert len(reg.validation_scores_) == reg.n_epochs_ <= 15
+    reg = WNNRegressor(n_hidden=4, n_epochs=15, early_stopping=True, n_iter_no_change=3, random_state=0).fit(X, y)
+    assert len(reg.validation_scores_) == reg.n_iter_ <= 15
     assert reg.validation_scores_[reg.best_epoch_ - 1] == min(reg.validation_scores_)
 
 
 def test_warm_start_and_partial_fit_resume(data):
     X, y, _, _ = data
-    full = WNNRegressor(n_hidden=3, n_epochs=4, rng=2).fit(X, y)
-    half = WNNRegressor(n_hidden=3, n_epochs=2, rng=2, warm_start=True).fit(X, y)
+    full = WNNRegressor(n_hidden=3, n_epochs=4, random_state=2).fit(X, y)
+    half = WNNRegressor(n_hidden=3, n_epochs=2, random_state=2, warm_start=True).fit(X, y)
     resumed = pickle.loads(pickle.dumps(half)).fit(X, y)  # checkpoint, then two more epochs
     np.testing.assert_allclose(resumed.theta_, full.theta_, rtol=1e-12)
-    assert resumed.n_epochs_ == 4
-    step = WNNRegressor(n_hidden=3, rng=2)
+    assert resumed.n_iter_ == 4
+    step = WNNRegressor(n_hidden=3, random_state=2)
     for _ in range(4):
         step.partial_fit(X, y)
     np.testing.assert_allclose(step.theta_, full.theta_, rtol=1e-12)
@@ -133,12 +134,12 @@ def test_warm_start_and_partial_fit_resume(data):
 def test_non_finite_weights_raise_numerical_error(data):
     X, y, _, _ = data
     with pytest.raises(NumericalError, match="non-finite"):
-        WNNRegressor(trainer="bp", learning_rate=1e200, n_hidden=3, n_epochs=2, rng=0).fit(X, y * 1e200)
+        WNNRegressor(trainer="bp", learning_rate=1e200, n_hidden=3, n_epochs=2, random_state=0).fit(X, y * 1e200)
 
 
 def test_paper_init_and_mexican_hat(data):
     X, y, _, _ = data
-    reg = WNNRegressor(n_hidden=4, init="paper", wavelet="mexican_hat", n_epochs=2, rng=0).fit(X, y)
+    reg = WNNRegressor(n_hidden=4, init="paper", wavelet="mexican_hat", n_epochs=2, random_state=0).fit(X, y)
     assert reg.settings_["Q"] == 1e-2 and reg.settings_["P0"] == 0.01
     assert np.all(np.isfinite(reg.theta_))
 
@@ -149,3 +150,112 @@ def test_make_trainer_runs_on_a_model():
     tr = make_trainer("ekf", model, wnn.init_scaled(X, 2, rng=0), {"ekf_backend": "rank1"}, rng=0)
     tr.epoch(X, np.sin(X[:, 0]))
     assert tr.theta.shape == (10,)
+
+
+def test_random_state_is_the_seed_scikit_learn_sets(data):
+    from sklearn.utils._testing import set_random_state
+
+    X, y, _, _ = data
+    params = WNNRegressor().get_params()
+    assert "random_state" in params and "rng" not in params and "progress" not in params
+    reg = WNNRegressor(n_hidden=3, n_epochs=1)
+    set_random_state(reg, 7)  # what check_estimator does
+    assert reg.random_state == 7
+    a = reg.fit(X, y).theta_.copy()
+    np.testing.assert_array_equal(a, WNNRegressor(n_hidden=3, n_epochs=1, random_state=7).fit(X, y).theta_)
+    with pytest.raises(TypeError, match="random_state must be None, an int seed"):
+        WNNRegressor(random_state=np.random.RandomState(0)).fit(X, y)
+
+
+def test_verbose_levels(data, capsys):
+    X, y, _, _ = data
+    WNNRegressor(n_hidden=3, n_epochs=2, random_state=0).fit(X, y)
+    assert capsys.readouterr().out == ""
+    reg = WNNRegressor(n_hidden=3, n_epochs=2, random_state=0, verbose=2, early_stopping=True).fit(X, y)
+    lines = capsys.readouterr().out.splitlines()
+    assert len(lines) == 2
+    assert lines[1] == (f"iteration 2: training MSE {reg.loss_curve_[1]:.6g}, "
+                        f"validation MSE {reg.validation_scores_[1]:.6g}")
+    WNNRegressor(n_hidden=3, n_epochs=2, random_state=0, verbose=True).fit(X, y)  # a bar, no lines
+    out = capsys.readouterr()
+    assert out.out == "" and "WNN/ekf" in out.err
+    reg.partial_fit(X[:5], y[:5])  # no bar for one pass, the line still
+    assert capsys.readouterr().out == f"iteration 3: training MSE {reg.loss_curve_[2]:.6g}\n"
+
+
+# ---------------------------------------------------------------------------- online training
+CHUNKS = [7, 20, 21]  # 40 rows as 7, 13, 1 and 19
+
+
+def _online(reg, X, y, cuts=CHUNKS):
+    for rows in np.split(np.arange(len(X)), cuts):
+        reg.partial_fit(X[rows], y[rows])
+    return reg
+
+
+@pytest.mark.parametrize("trainer, extra", [(t, {}) for t in SINGLE + PARTICLE]
+                         + [("ekf", {"ekf_backend": "filterpy"})])
+def test_partial_fit_in_chunks_equals_one_pass_bit_for_bit(data, trainer, extra):
+    X, y, X_test, _ = data
+    kw = dict(trainer=trainer, n_hidden=3, n_particles=5, init="paper", random_state=0, **extra)
+    whole = WNNRegressor(**kw).partial_fit(X, y)
+    chunked = _online(WNNRegressor(**kw), X, y)
+    np.testing.assert_array_equal(chunked.theta_, whole.theta_)
+    mean_w, std_w = whole.predict(X_test, return_std=True)
+    mean_c, std_c = chunked.predict(X_test, return_std=True)
+    np.testing.assert_array_equal(mean_c, mean_w)
+    if trainer != "bp":  # bp's std is the RMSE of the last call's rows
+        np.testing.assert_array_equal(std_c, std_w)  # the covariance (or particle bank) too
+    assert (whole.n_iter_, whole.t_) == (1, 40)
+    assert (chunked.n_iter_, chunked.t_, len(chunked.loss_curve_)) == (4, 40, 4)
+
+
+def test_partial_fit_learns_from_every_chunk(data):
+    """The issue's symptom: 5 disjoint chunks gave the weights of 5 epochs on the first."""
+    X, y, _, _ = data
+    kw = dict(n_hidden=3, init="paper", random_state=0)
+    online = _online(WNNRegressor(**kw), X, y, cuts=[8, 16, 24, 32])
+    first_chunk = WNNRegressor(n_epochs=5, **kw).fit(X[:8], y[:8])
+    assert not np.allclose(online.theta_, first_chunk.theta_)
+    np.testing.assert_array_equal(online.theta_, WNNRegressor(**kw).partial_fit(X, y).theta_)
+
+
+def test_partial_fit_loss_curve_is_the_mse_on_the_rows_of_each_call(data):
+    X, y, _, _ = data
+    reg = WNNRegressor(n_hidden=3, random_state=0).partial_fit(X[:10], y[:10])
+    assert reg.loss_curve_[-1] == pytest.approx(np.mean((reg.predict(X[:10]) - y[:10]) ** 2), rel=1e-12)
+    t0 = reg.fit_time_
+    reg.partial_fit(X[10:], y[10:])
+    assert reg.loss_curve_[-1] == pytest.approx(np.mean((reg.predict(X[10:]) - y[10:]) ** 2), rel=1e-12)
+    assert reg.fit_time_ > t0 and reg.best_epoch_ == reg.n_iter_ == 2
+
+
+def test_repeated_partial_fit_on_all_rows_equals_fit_epochs(data):
+    X, y, _, _ = data
+    full = WNNRegressor(n_hidden=3, n_epochs=3, random_state=2).fit(X, y)
+    step = WNNRegressor(n_hidden=3, random_state=2)
+    for _ in range(3):
+        step.partial_fit(X, y)
+    np.testing.assert_array_equal(step.theta_, full.theta_)
+    np.testing.assert_array_equal(step._final.cov, full._final.cov)
+    assert step.loss_curve_ == full.loss_curve_
+
+
+def test_partial_fit_after_fit_continues_from_the_kept_weights(data):
+    X, y, _, _ = data
+    reg = WNNRegressor(n_hidden=3, n_epochs=8, early_stopping=True, n_iter_no_change=2, random_state=0).fit(X, y)
+    assert reg.best_epoch_ < reg.n_iter_  # early stopping kept an earlier epoch's weights
+    kept = copy.deepcopy(reg._final)
+    kept.epoch(X[:5], y[:5])
+    reg.partial_fit(X[:5], y[:5])
+    np.testing.assert_array_equal(reg.theta_, kept.theta)
+    assert reg.best_epoch_ == reg.n_iter_ == len(reg.loss_curve_)
+
+
+def test_warm_start_fit_trains_on_the_rows_it_is_given(data):
+    X, y, _, _ = data
+    reg = WNNRegressor(n_hidden=3, n_epochs=2, warm_start=True, random_state=0).fit(X[:20], y[:20])
+    other = pickle.loads(pickle.dumps(reg)).fit(X[20:], y[20:])
+    same = pickle.loads(pickle.dumps(reg)).fit(X[:20], y[:20])
+    assert not np.allclose(other.theta_, same.theta_)
+    assert other.t_ == same.t_ == 80

@@ -183,3 +183,24 @@ def test_property_low_variance_counts_bounded(w, n, name, seed):
         assert np.all(counts >= np.floor(n * w * (1 - 1e-12)))
     else:
         assert np.all(np.abs(counts - n * w) <= slack + 1e-9)
+
+
+def test_a_callable_is_accepted_wherever_a_scheme_name_is():
+    from filterpy.monte_carlo import systematic_resample
+
+    from filterwnn import BootstrapParticleFilter
+    from filterwnn.resampling import SCHEMES, get_scheme
+
+    w = np.array([0.1, 0.2, 0.3, 0.4])
+    idx = resample(w, systematic_resample)
+    assert idx.shape == (4,) and set(idx) <= {0, 1, 2, 3}
+    mine = resample(w, lambda w, rng, n: np.repeat(np.argmax(w), n), rng=0, n=3)
+    np.testing.assert_array_equal(mine, [3, 3, 3])
+    with pytest.raises(ValueError, match="one-argument resampling function draws len"):
+        get_scheme(systematic_resample)(w, None, 5)
+    assert sorted(SCHEMES) == ["multinomial", "residual", "stratified", "systematic"]
+    pf = BootstrapParticleFilter(1, 1, 1.0, lambda x: x, None, 20, vectorized=True, rng=0,
+                                 resampling=systematic_resample)
+    pf.predict()
+    pf.update(np.array([0.3]))
+    assert pf.resampled_history == [True]

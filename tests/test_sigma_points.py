@@ -190,3 +190,30 @@ def test_minimal_skew_warns_above_20_and_refuses_overflow():
         MinimalSkewSigmaPoints(20)
     with pytest.raises(ValueError, match="n <= 1021"):
         MinimalSkewSigmaPoints(1100)
+
+
+@pytest.mark.parametrize("cls", CLASSES)
+@pytest.mark.parametrize("n", [2, 5, 32, 33, 40])
+def test_fast_sigma_points_equal_unit_points_times_cholesky(cls, n):
+    """The hot path (dense Z @ U up to n = 32, staircase above) is x + Z @ chol(P).T."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)
+        pts = cls(n, alpha=0.7, beta=2.0, w0=0.1)
+    rng = np.random.default_rng(n)
+    P, x = random_spd(rng, n), rng.standard_normal(n)
+    sig = pts.sigma_points(x, P)
+    np.testing.assert_allclose(sig, x + pts.Z @ cholesky(P), rtol=1e-10, atol=1e-10)
+    # filterpy's accepted inputs: a column x, a list, a scalar P
+    np.testing.assert_allclose(pts.sigma_points(x.reshape(-1, 1), P.tolist()), sig, rtol=0, atol=0)
+    np.testing.assert_allclose(pts.sigma_points(x, 2.0), x + pts.Z * np.sqrt(2.0), rtol=1e-12)
+
+
+@pytest.mark.parametrize("cls", CLASSES)
+def test_fast_path_still_refuses_asymmetric_and_custom_sqrt_is_used(cls):
+    P = np.array([[2.0, 0.5], [0.0, 1.0]])
+    with pytest.raises(ValueError, match="P must be symmetric"):
+        cls(2).sigma_points(np.zeros(2), P)
+    calls = []
+    pts = cls(2, sqrt_method=lambda M: calls.append(1) or cholesky(M))
+    pts.sigma_points(np.zeros(2), np.eye(2))
+    assert calls == [1]

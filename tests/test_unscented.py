@@ -67,7 +67,7 @@ def test_equals_filterpy_on_nonlinear_model_at_every_step(points, vectorized):
         np.testing.assert_allclose(ours.x, ref.x, atol=ATOL)
         np.testing.assert_allclose(ours.P, ref.P, atol=ATOL)
         np.testing.assert_allclose(ours.log_likelihood, ref.log_likelihood, rtol=1e-9)
-    assert ours.step == 60
+    assert ours.step == 30  # the time step: predict advances it, update does not
 
 
 def test_non_vectorized_is_bit_identical_to_filterpy():
@@ -91,15 +91,17 @@ def test_random_walk_equals_filterpy_with_identity_fx(vectorized):
         np.testing.assert_allclose(ours.P, ref.P, atol=ATOL)
 
 
-def test_random_walk_predict_needs_no_factorisation(monkeypatch):
+def test_random_walk_step_needs_one_factorisation(monkeypatch):
+    """predict factors P_prior once (its check), and update reuses the factor."""
     ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), True, f=None)
+    ukf.predict(); ukf.update(np.array([1.2, 0.1]))  # the first predict also checks Q, once
     calls = []
     real = np.linalg.cholesky
     monkeypatch.setattr(np.linalg, "cholesky", lambda a: calls.append(1) or real(a))
-    ukf.predict()
-    assert calls == []
-    ukf.update(np.array([1.2, 0.1]))
-    assert len(calls) == 1  # one Cholesky per step
+    for z in ([1.2, 0.1], [1.1, 0.0]):
+        ukf.predict()
+        ukf.update(np.array(z))
+    assert len(calls) == 2  # one Cholesky per step
 
 
 @pytest.mark.parametrize("vectorized", [False, True])
@@ -154,9 +156,9 @@ def test_not_positive_definite_P_raises_numerical_error_with_step(vectorized):
     ukf.predict(); ukf.update(np.array([1.2, 0.1]))
     ukf.P = -np.eye(3)
     x = ukf.x.copy()
-    with pytest.raises(NumericalError, match="P is not positive definite at step 3") as info:
+    with pytest.raises(NumericalError, match="P is not positive definite at step 2") as info:
         ukf.predict()
-    assert info.value.matrix == "P" and info.value.step == 3
+    assert info.value.matrix == "P" and info.value.step == 2 and ukf.step == 1
     assert isinstance(info.value, np.linalg.LinAlgError) and isinstance(info.value, ValueError)
     assert np.array_equal(ukf.x, x) and np.array_equal(ukf.P, -np.eye(3))
 
@@ -164,7 +166,7 @@ def test_not_positive_definite_P_raises_numerical_error_with_step(vectorized):
 def test_not_positive_definite_S_raises():
     ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), True)
     ukf.predict()
-    with pytest.raises(NumericalError, match="S is not positive definite at step 2") as info:
+    with pytest.raises(NumericalError, match="S is not positive definite at step 1") as info:
         ukf.update(np.array([1.0, 0.0]), R=-10 * np.eye(2))
     assert info.value.matrix == "S"
 
@@ -219,3 +221,112 @@ def test_vectorized_measurement_size_may_change_with_R():
     ukf.predict()
     ukf.update(np.array([0.4]), R=np.eye(1) * 0.1, hx=lambda X: X[:, :1])
     assert ukf.x.shape == (3,) and ukf.K.shape == (3, 1)
+
+
+# --------------------------------------------------------------------------- issue 15: drop-in
+def filterpy_style_residual_z(a, b):
+    """As filterpy's examples write it: for ONE row (wraps entry 1)."""
+    y = a - b
+    y[1] = (y[1] + np.pi) % (2 * np.pi) - np.pi
+    return y
+
+
+def test_vectorized_per_row_residual_is_detected_on_first_call():
+    ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), True)
+    ukf.residual_z = filterpy_style_residual_z
+    ukf.predict()
+    x, P = ukf.x.copy(), ukf.P.copy()
+    with pytest.raises(ValueError, match=r"vectorized residual_z differs from residual_z applied row by "
+                                         r"row .*y\[1\] selects a sigma point.*angle_residual"):
+        ukf.update(np.array([1.2, 0.1]))
+    assert np.array_equal(ukf.x, x) and np.array_equal(ukf.P, P) and ukf.step == 1
+
+
+def test_per_row_residual_is_fine_in_loop_mode():
+    ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), False)
+    ukf.residual_z = filterpy_style_residual_z
+    ukf.predict()
+    ukf.update(np.array([1.2, 0.1]))
+
+
+def test_vectorized_residual_x_and_shapes_are_checked():
+    ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), True)
+    ukf.residual_x = lambda a, b: (a - b)[..., :2]
+    with pytest.raises(ValueError, match=r"vectorized residual_x must map sigma points of shape \(5, 3\)"):
+        ukf.predict()
+    ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), True)
+    ukf.z_mean = lambda s, w: w @ s[:, :1]
+    ukf.predict()
+    with pytest.raises(ValueError, match=r"z_mean_fn must map sigma points of shape \(5, 2\).*got \(1,\)"):
+        ukf.update(np.array([1.2, 0.1]))
+
+
+def test_a_last_axis_residual_passes_and_equals_loop_mode():
+    def residual(a, b):
+        y = np.subtract(a, b)
+        y[..., 1] = (y[..., 1] + np.pi) % (2 * np.pi) - np.pi
+        return y
+
+    runs = []
+    for vectorized in (False, True):
+        ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), vectorized)
+        ukf.residual_z = residual
+        for z in simulate(5):
+            ukf.predict(); ukf.update(z)
+        runs.append(ukf)
+    np.testing.assert_allclose(runs[1].x, runs[0].x, atol=ATOL)
+
+
+@pytest.mark.parametrize("vectorized", [False, True])
+def test_column_z_is_flattened_in_both_modes(vectorized):
+    a = make(UnscentedKalmanFilter, POINTS["simplex"](), vectorized)
+    b = make(UnscentedKalmanFilter, POINTS["simplex"](), vectorized)
+    z = np.array([1.2, 0.1])
+    a.predict(); a.update(z)
+    b.predict(); b.update(z.reshape(2, 1))
+    np.testing.assert_array_equal(a.x, b.x)
+    np.testing.assert_array_equal(a.P, b.P)
+
+
+@pytest.mark.parametrize("vectorized", [False, True])
+def test_negative_Q_fails_at_predict_and_says_the_fix(vectorized):
+    ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), vectorized, f=None)
+    ukf.Q = -np.eye(3)
+    with pytest.raises(ValueError, match=r"Q must be positive semi-definite; smallest eigenvalue -1; "
+                                         r"Q must be a covariance, e.g. Q = np.diag\(variances\)"):
+        ukf.predict()
+    assert ukf.step == 0
+
+
+@pytest.mark.parametrize("vectorized", [False, True])
+def test_indefinite_P_prior_fails_at_predict_in_both_modes(vectorized):
+    ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), vectorized, f=lambda x, dt: 0.0 * x)
+    ukf.Q = np.zeros((3, 3))  # every sigma point maps to 0: P_prior = 0
+    x = ukf.x.copy()
+    with pytest.raises(NumericalError, match="P_prior is not positive definite at step 1") as info:
+        ukf.predict()
+    assert info.value.matrix == "P_prior" and ukf.step == 0 and np.array_equal(ukf.x, x)
+
+
+@pytest.mark.parametrize("name", ["P", "Q"])
+def test_scalar_covariance_message_says_eye(name):
+    ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), True)
+    setattr(ukf, name, 0.1)
+    with pytest.raises(ValueError, match=rf"{name} must have shape \(3, 3\), got \(\); .*"
+                                         rf"use {name} = {name.lower()} \* np.eye\(3\)"):
+        ukf.predict()
+
+
+@pytest.mark.parametrize("vectorized", [False, True])
+def test_step_is_the_time_step(vectorized):
+    ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), vectorized)
+    assert ukf.step == 0
+    ukf.predict()
+    assert ukf.step == 1
+    ukf.update(np.array([1.2, 0.1]))
+    assert ukf.step == 1
+    ukf.predict(); ukf.update(None)
+    assert ukf.step == 2
+    with pytest.raises(NumericalError, match="S is not positive definite at step 2") as info:
+        ukf.update(np.array([1.2, 0.1]), R=-10 * np.eye(2))
+    assert info.value.step == 2 and ukf.step == 2

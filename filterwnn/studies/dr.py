@@ -10,9 +10,11 @@ same drive, the same sensor noise and the same initial error, drawn from
 
 Filters (DR-only scenarios)
 
+===============  ===========
 ``EKF``          filterpy ``ExtendedKalmanFilter``, nominal ``R`` throughout (too small after the switch)
 ``EKF-oracle``   the same, told the true ``R`` at every step (the reference envelope)
-``AEKF``         innovation-adaptive ``R`` over a 3 s window (:class:`InnovationAdaptiveEKF`)
+``AEKF``         ``R`` matched to the innovations over 3 s, ``P`` inflated when it rises
+                 (:class:`~filterwnn.AdaptiveExtendedKalmanFilter`)
 ``UKF``          unscented, Merwe points (13), circular heading mean
 ``SUKF``         unscented, spherical-simplex points (8)
 ``NN``           :class:`~filterwnn.NeuralFilter`, position pass-through (the default form),
@@ -20,6 +22,7 @@ Filters (DR-only scenarios)
 ``NN-faithful``  the paper's absolute form, same training
 ``NN-gen``       pass-through form trained once on 1500 random motions (knows no route)
 ``UPF``          unscented particle filter (when :mod:`filterwnn.particle_filter` exists)
+===============  ===========
 
 Filters (GPS/DR): ``EKF`` (6 states), ``EKF-8`` (odometer scale and heading bias
 estimated; the oracle there), ``UKF-8``, ``SUKF-8``, ``DR-only`` (6-state EKF without GPS).
@@ -53,13 +56,13 @@ import copy
 import csv
 import os
 import time
-from collections import deque
 from typing import NamedTuple
 
 import numpy as np
 from filterpy.kalman import ExtendedKalmanFilter, MerweScaledSigmaPoints
 
 from .._validation import check_seed, check_positive_int, check_rng
+from ..adaptive import AdaptiveExtendedKalmanFilter
 from ..dead_reckoning import (
     SCENARIOS,
     DRRun,
@@ -78,6 +81,7 @@ from ..neural_filter import (
     random_motion_states,
 )
 from ..sigma_points import SphericalSimplexSigmaPoints
+from . import _args
 
 try:  # the package's vectorized UKF; filterpy's has the same API
     from ..unscented import UnscentedKalmanFilter as _UKF
@@ -89,7 +93,6 @@ except ImportError:  # pragma: no cover
     _VECTORIZED = False
 
 __all__ = [
-    "InnovationAdaptiveEKF",
     "DR_FILTERS",
     "GPSDR_FILTERS",
     "StudyResult",
@@ -136,43 +139,6 @@ def _has_upf():
         return False
 
 
-class InnovationAdaptiveEKF(ExtendedKalmanFilter):
-    """filterpy's EKF with a diagonal ``R`` learned from the innovations over a window.
-
-    Before each update, ``R_ii = max(R0_ii, mean(y_i^2) - mean((H P^- H^T)_ii))`` over
-    the last ``window`` updates (Mehra's innovation-based adaptive estimation), so the
-    filter follows a rise of the measurement noise within about one window. It
-    mistakes manoeuvre innovations for noise on a turning route.
-
-    Parameters
-    ----------
-    dim_x, dim_z : int
-    window : int
-        Innovations averaged (30 = 3 s at 10 Hz).
-    """
-
-    def __init__(self, dim_x, dim_z, window=30):
-        super().__init__(dim_x, dim_z)
-        self.window = check_positive_int(window, "window")
-        self._ys = deque(maxlen=self.window)
-        self._hph = deque(maxlen=self.window)
-        self.R0 = None
-
-    def update(self, z, HJacobian, Hx, R=None, args=(), hx_args=(), residual=np.subtract):
-        if z is None:
-            return super().update(None, HJacobian, Hx)
-        if self.R0 is None:
-            self.R0 = np.array(self.R, dtype=float)
-        H = HJacobian(self.x, *args)
-        hph = np.sum((H @ self.P) * H, axis=1)  # diag(H P H^T)
-        if len(self._ys) >= max(5, self.window // 3):
-            est = np.mean(np.square(self._ys), axis=0) - np.mean(self._hph, axis=0)
-            self.R = np.diag(np.maximum(np.diag(self.R0), est))
-        super().update(z, HJacobian, Hx, R=None, args=args, hx_args=hx_args, residual=residual)
-        self._ys.append(np.asarray(self.y, dtype=float).copy())
-        self._hph.append(hph)
-
-
 # ----------------------------------------------------------------------------- runners
 
 
@@ -198,7 +164,7 @@ def _dr_filter_run(name, run, x0, nn_cache, rng_nn):
     out = np.empty((n, 6))
     P0 = model.P0
     if name in ("EKF", "EKF-oracle", "AEKF"):
-        kf = InnovationAdaptiveEKF(6, 2) if name == "AEKF" else ExtendedKalmanFilter(6, 2)
+        kf = AdaptiveExtendedKalmanFilter(6, 2) if name == "AEKF" else ExtendedKalmanFilter(6, 2)
         kf.F, kf.Q, kf.R = model.F.copy(), model.Q.copy(), model.R.copy()
         kf.x, kf.P = x0.copy(), P0.copy()
         for k in range(n):
@@ -248,12 +214,14 @@ def _upf_run(run, model, x0, P0, rng, n_particles=UPF_PARTICLES):
     Bank weighting: with the textbook weight the carried covariances are far wider than
     ``Q`` and the weights collapse to one particle (ESS 1.0, a singular ``P``) at once.
     """
-    from ..particle_filter import UnscentedParticleFilter
+    from ..gaussian_sum import GaussianSumFilter
 
-    pf = UnscentedParticleFilter(6, 2, model.dt, model.hx, model.fx, n_particles=n_particles,
-                                 points=_points("merwe", 6), residual_z=dr_residual,
-                                 z_mean_fn=dr_z_mean, vectorized=True, weighting="bank", rng=rng)
-    pf.x, pf.P, pf.Q, pf.R = x0.copy(), P0.copy(), model.Q.copy(), model.R.copy()
+    pf = GaussianSumFilter(6, 2, model.dt, model.hx, model.fx, component="ukf", points=_points("merwe", 6),
+                           residual_z=dr_residual, z_mean_fn=dr_z_mean, vectorized=True,
+                           ess_threshold=1.0, rng=rng)
+    pf.Q, pf.R = model.Q.copy(), model.R.copy()
+    means = x0 + pf.rng.standard_normal((n_particles, 6)) @ np.linalg.cholesky(P0).T
+    pf.initialize(means, P0)  # components drawn from N(x0, P0), each with covariance P0
     out = np.empty((len(run.t), 6))
     for k, z in enumerate(run.z_dr):
         pf.predict()
@@ -791,25 +759,30 @@ def real_drive_table(res, min_moved=100.0):
 
 def add_arguments(parser):
     """Options of ``filterwnn study dr``."""
-    parser.add_argument("--runs", type=int, default=10, help="Monte-Carlo runs per scenario (default 10)")
-    parser.add_argument("--seed", type=int, default=0)
-    parser.add_argument("--jobs", type=int, default=2, help="worker processes (numbers do not depend on it)")
-    parser.add_argument("--scenarios", default=",".join(DEFAULT_SCENARIOS),
+    parser.add_argument("--runs", type=_args.positive_int, default=10, help="Monte-Carlo runs per scenario")
+    parser.add_argument("--seed", type=_args.seed, default=0,
+                        help="root seed, an integer >= 0 (run i uses SeedSequence(seed).spawn(runs)[i])")
+    parser.add_argument("--jobs", type=_args.positive_int, default=2,
+                        help="worker processes (the numbers do not depend on it)")
+    parser.add_argument("--scenarios", type=_args.name_list(SCENARIOS), default=",".join(DEFAULT_SCENARIOS),
                         help=f"comma-separated subset of {', '.join(SCENARIOS)}")
-    parser.add_argument("--filters", default=None, help="comma-separated subset of the filters (default all)")
-    parser.add_argument("--factor", type=float, default=None, help="override the DR noise factor at 150 s")
-    parser.add_argument("--out", default="results/dr", help="output folder (default results/dr)")
-    parser.add_argument("--no-figures", action="store_true")
-    parser.add_argument("--quiet", action="store_true", help="no progress bar")
+    parser.add_argument("--filters", type=_args.name_list(dict.fromkeys(_ALL_FILTERS)), default=None,
+                        help=f"comma-separated subset of {', '.join(dict.fromkeys(_ALL_FILTERS))} (default all "
+                             f"that apply to each scenario, but {', '.join(OPT_IN)})")
+    parser.add_argument("--factor", type=_args.positive_float, default=None,
+                        help="override the DR noise factor at 150 s of the DR-only scenarios (default each "
+                             "scenario's own)")
+    parser.add_argument("--out", default="results/dr", help="output folder")
+    parser.add_argument("--no-figures", action="store_true", help="write the tables only (no PNG figures)")
+    _args.add_progress_flag(parser, "--quiet")
     parser.add_argument("--real", action="store_true",
                         help=f"also run the GPS/DR filters on the real drive {CAR_DRIVE} (needs onavdata)")
 
 
 def run(args):
     """Entry point of ``filterwnn study dr``."""
-    filters = args.filters.split(",") if args.filters else None
-    res = run_study(scenarios=args.scenarios.split(","), n_runs=args.runs, filters=filters,
-                    seed=args.seed, jobs=args.jobs, factor=args.factor, progress=not args.quiet)
+    res = run_study(scenarios=args.scenarios, n_runs=args.runs, filters=args.filters,
+                    seed=args.seed, jobs=args.jobs, factor=args.factor, progress=not args.no_progress)
     paths = write_outputs(res, args.out, figures=not args.no_figures)
     print(markdown_table(res))
     if getattr(args, "real", False):

@@ -73,6 +73,7 @@ import numpy as np
 from .._validation import check_choice, check_positive_int, check_seed
 from ..datasets import make_siso_benchmark
 from ..regressor import AUTO_SETTINGS, PAPER_SETTINGS, TRAINERS, WNNRegressor
+from . import _args
 
 __all__ = [
     "ALL_TRAINERS",
@@ -239,7 +240,7 @@ def tune_run(trainer, tune_seed, n_epochs, n_particles=50, params=None, candidat
         n_val = int(round(VALIDATION_FRACTION * len(X)))
         Xt, yt, Xv, yv = X[:-n_val], y[:-n_val], X[-n_val:], y[-n_val:]
         reg = WNNRegressor(trainer=trainer, n_epochs=n_epochs, n_particles=n_particles, init="scaled",
-                           rng=_child(tune_seed, 1), **params)
+                           random_state=_child(tune_seed, 1), **params)
         curve, status = [], "ok"
         try:
             _train_tracked(reg, Xt, yt, Xv, yv, n_epochs, curve)
@@ -367,7 +368,7 @@ def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_
         X, y, X_test, y_test = make_siso_benchmark(rng=_child(run_seed, 0))
         kw = _params(table, trainer)
         kw.update(params or {})
-        reg = WNNRegressor(trainer=trainer, n_epochs=n_epochs, n_particles=n_particles, rng=_child(run_seed, 1), **kw)
+        reg = WNNRegressor(trainer=trainer, n_epochs=n_epochs, n_particles=n_particles, random_state=_child(run_seed, 1), **kw)
         curve_test = []
         status = "ok"
         try:
@@ -399,7 +400,7 @@ def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_
             "curve_test": curve_test,
             "settings": _settings_text(table, trainer, reg) if hasattr(reg, "settings_") else table,
             "n_particles": n_particles if trainer in PARTICLE_TRAINERS else 0,
-            "epochs": int(getattr(reg, "n_epochs_", 0)),
+            "epochs": int(getattr(reg, "n_iter_", 0)),
             "status": status,
         }
 
@@ -948,45 +949,49 @@ def write_outputs(result, out, figures=True):
 # ---------------------------------------------------------------------------- CLI
 def add_arguments(parser):
     """Options of ``filterwnn study wnn``."""
-    parser.add_argument("--runs", type=int, default=3, help="independent runs per trainer (paper: 50; default 3)")
-    parser.add_argument("--epochs", type=int, default=30, help="epochs of BP/EKF/UKF/SUKF (paper: 200; default 30)")
-    parser.add_argument("--pf-epochs", type=int, default=3,
-                        help="epochs of the particle filters (paper: 200; default 3)")
-    parser.add_argument("--particles", type=int, default=10, help="particles in the table (paper: 50; default 10)")
-    parser.add_argument("--sweep-particles", default="5,10,20",
+    parser.add_argument("--runs", type=_args.positive_int, default=3,
+                        help="independent runs per trainer (paper: 50)")
+    parser.add_argument("--epochs", type=_args.positive_int, default=30,
+                        help="epochs of BP/EKF/UKF/SUKF (paper: 200)")
+    parser.add_argument("--pf-epochs", type=_args.positive_int, default=3,
+                        help="epochs of the particle filters (paper: 200)")
+    parser.add_argument("--particles", type=_args.positive_int, default=10, help="particles in the table (paper: 50)")
+    parser.add_argument("--sweep-particles", type=_args.int_list(minimum=1), default="5,10,20",
                         help="comma-separated particle counts for Figs. 3-4 (paper: 50,100,150,200,250; '' skips)")
-    parser.add_argument("--sweep-runs", type=int, default=2, help="runs per sweep point (default 2)")
-    parser.add_argument("--paper-runs", type=int, default=None, help="runs at the paper's settings (default --runs)")
-    parser.add_argument("--paper-pf-epochs", type=int, default=None,
+    parser.add_argument("--sweep-runs", type=_args.positive_int, default=2, help="runs per sweep point")
+    parser.add_argument("--paper-runs", type=_args.nonnegative_int, default=None,
+                        help="runs at the paper's settings (default --runs)")
+    parser.add_argument("--paper-pf-epochs", type=_args.positive_int, default=None,
                         help="particle-filter epochs at the paper's settings (default --pf-epochs)")
     parser.add_argument("--no-paper-table", action="store_true", help="skip the paper-settings table")
-    parser.add_argument("--tune-runs", type=int, default=2,
+    parser.add_argument("--tune-runs", type=_args.nonnegative_int, default=2,
                         help="tuning runs of the settings search on a validation split (default 2; 0: use the "
                              "regressor's AUTO_SETTINGS and all epochs)")
-    parser.add_argument("--trainers", default=",".join(ALL_TRAINERS), help="comma-separated trainers")
-    parser.add_argument("--seed", type=int, default=2026, help="root seed (SeedSequence(seed).spawn(runs))")
-    parser.add_argument("--jobs", type=int, default=-1,
-                        help="joblib workers (default -1: all cores); same numbers for any value")
-    parser.add_argument("--backend", default=None,
+    parser.add_argument("--trainers", type=_args.name_list(ALL_TRAINERS), default=",".join(ALL_TRAINERS),
+                        help=f"comma-separated subset of {', '.join(ALL_TRAINERS)}")
+    parser.add_argument("--seed", type=_args.seed, default=2026,
+                        help="root seed, an integer >= 0 (run i uses SeedSequence(seed).spawn(runs)[i])")
+    parser.add_argument("--jobs", type=_args.joblib_jobs, default=-1,
+                        help="joblib workers (-1: all cores); the numbers do not depend on it")
+    parser.add_argument("--backend", type=_args.joblib_backend, default=None,
                         help="joblib backend name (loky, threading, dask, ...); default joblib's (loky)")
     parser.add_argument("--scheduler", default=None,
                         help="with --backend dask: a dask.distributed scheduler address (default: a local cluster)")
-    parser.add_argument("--out", default="wnn-study", help="output folder (default ./wnn-study)")
+    parser.add_argument("--out", default="wnn-study", help="output folder")
     parser.add_argument("--cache", default=None,
                         help="checkpoint folder (default OUT/cache): finished fits are saved there and reused, "
                              "so an interrupted study resumes; 'none' disables it")
     parser.add_argument("--cached-only", action="store_true",
                         help="only summarize the fits already in the cache (run nothing)")
-    parser.add_argument("--no-figures", action="store_true")
-    parser.add_argument("--no-progress", action="store_true", help="no progress bar")
+    parser.add_argument("--no-figures", action="store_true", help="write the tables only (no PNG figures)")
+    _args.add_progress_flag(parser)
 
 
 def run(args):
     """Run the study from parsed arguments; prints the table and the files written."""
     import sys
 
-    trainers = [t.strip() for t in args.trainers.split(",") if t.strip()]
-    sweep = [int(s) for s in args.sweep_particles.split(",") if s.strip()]
+    trainers, sweep = list(args.trainers), list(args.sweep_particles)
     client = None
     if args.backend == "dask":
         from dask.distributed import Client, LocalCluster

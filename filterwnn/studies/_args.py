@@ -1,0 +1,194 @@
+"""Argument types and shared options of the ``filterwnn`` command line.
+
+Each function here is an argparse ``type=`` (or builds one): it turns the option's text
+into a value or raises :class:`argparse.ArgumentTypeError`, which argparse prints as one
+usage line and exit status 2, with no traceback. The study modules' ``add_arguments`` use
+them so that a bad value (``--runs 0``, a misspelled ``--filters`` name) is refused
+before any work starts, with the rule and the valid names in the message.
+
+>>> positive_int("3")
+3
+>>> name_list(("ekf", "ukf"))("ukf, ekf")
+['ukf', 'ekf']
+>>> int_list()("")
+[]
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import warnings
+
+__all__ = [
+    "HelpFormatter",
+    "positive_int",
+    "nonnegative_int",
+    "seed",
+    "joblib_jobs",
+    "positive_float",
+    "joblib_backend",
+    "name_list",
+    "int_list",
+    "add_progress_flag",
+]
+
+
+class HelpFormatter(argparse.RawDescriptionHelpFormatter):
+    """Help that shows each option's default unless its text already says it.
+
+    Like :class:`argparse.ArgumentDefaultsHelpFormatter`, but it skips flags (default
+    ``False``), options without a default (``None``) and help texts that already name
+    their default, so no option shows two defaults; descriptions keep their line breaks.
+    """
+
+    def _get_help_string(self, action):
+        text = action.help or ""
+        default = action.default
+        if (
+            "default" in text
+            or default is None
+            or default is False
+            or default is argparse.SUPPRESS
+            or not action.option_strings
+        ):
+            return text
+        return f"{text} (default: %(default)s)" if text else "default: %(default)s"
+
+
+def _int(text):
+    try:
+        return int(text)
+    except (TypeError, ValueError):
+        raise argparse.ArgumentTypeError(f"must be an integer, got {text!r}") from None
+
+
+def positive_int(text):
+    """An integer ``>= 1``."""
+    value = _int(text)
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be an integer >= 1, got {text!r}")
+    return value
+
+
+def nonnegative_int(text):
+    """An integer ``>= 0``."""
+    value = _int(text)
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"must be an integer >= 0, got {text!r}")
+    return value
+
+
+def seed(text):
+    """A root seed for :class:`numpy.random.SeedSequence`: an integer ``>= 0``."""
+    return nonnegative_int(text)
+
+
+def joblib_jobs(text):
+    """A joblib ``n_jobs``: ``>= 1`` workers, or negative (``-1``: all cores, ``-2``: all but one)."""
+    value = _int(text)
+    if value == 0:
+        raise argparse.ArgumentTypeError(f"must be >= 1, or negative (-1: all cores), got {text!r}")
+    return value
+
+
+def positive_float(text):
+    """A finite number ``> 0``."""
+    try:
+        value = float(text)
+    except (TypeError, ValueError):
+        raise argparse.ArgumentTypeError(f"must be a number, got {text!r}") from None
+    if not (math.isfinite(value) and value > 0):
+        raise argparse.ArgumentTypeError(f"must be a finite number > 0, got {text!r}")
+    return value
+
+
+def joblib_backend(text):
+    """A joblib backend name registered with joblib (``loky``, ``threading``, ``dask``, ...)."""
+    from joblib import parallel
+
+    known = set(getattr(parallel, "BACKENDS", {})) | set(getattr(parallel, "EXTERNAL_BACKENDS", {}))
+    if known and text not in known:
+        raise argparse.ArgumentTypeError(f"unknown joblib backend {text!r}; valid: {', '.join(sorted(known))}")
+    return text
+
+
+def name_list(valid, allow_empty=False):
+    """An argparse type for a comma-separated subset of ``valid`` (a list, in the given order).
+
+    Parameters
+    ----------
+    valid : iterable of str
+        The names accepted; the error message lists them.
+    allow_empty : bool
+        Accept an empty list (``''``).
+
+    Returns
+    -------
+    callable
+        ``str -> list of str``; raises :class:`argparse.ArgumentTypeError` for an unknown
+        or repeated name.
+    """
+    valid = tuple(valid)
+
+    def parse(text):
+        names = [s.strip() for s in str(text).split(",") if s.strip()]
+        if not names and not allow_empty:
+            raise argparse.ArgumentTypeError(f"must name at least one of {', '.join(valid)}; got {text!r}")
+        bad = [n for n in names if n not in valid]
+        if bad:
+            raise argparse.ArgumentTypeError(
+                f"unknown name{'s' if len(bad) > 1 else ''} {', '.join(map(repr, bad))}; valid: {', '.join(valid)}")
+        dup = sorted({n for n in names if names.count(n) > 1})
+        if dup:
+            raise argparse.ArgumentTypeError(f"names must not repeat, got {', '.join(map(repr, dup))} twice")
+        return names
+
+    parse.__name__ = "name list"  # argparse names the type in "invalid ... value" messages
+    return parse
+
+
+def int_list(minimum=1):
+    """An argparse type for comma-separated integers ``>= minimum`` (``''``: an empty list)."""
+
+    def parse(text):
+        out = []
+        for s in str(text).split(","):
+            if not s.strip():
+                continue
+            try:
+                value = int(s)
+            except ValueError:
+                raise argparse.ArgumentTypeError(
+                    f"must be comma-separated integers, got {s.strip()!r} in {text!r}") from None
+            if value < minimum:
+                raise argparse.ArgumentTypeError(f"each value must be >= {minimum}, got {value} in {text!r}")
+            out.append(value)
+        return out
+
+    parse.__name__ = "integer list"
+    return parse
+
+
+class _DeprecatedFlag(argparse.Action):
+    """A hidden old spelling of a flag: sets the same destination and warns once."""
+
+    def __init__(self, option_strings, dest, new=None, **kwargs):
+        self.new = new
+        super().__init__(option_strings, dest, nargs=0, default=argparse.SUPPRESS, **kwargs)
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        warnings.warn(f"{option_string} is deprecated; use {self.new}", FutureWarning, stacklevel=2)
+        setattr(namespace, self.dest, True)
+
+
+def add_progress_flag(parser, *aliases):
+    """Add ``--no-progress`` (the one progress flag of every command) to ``parser``.
+
+    ``aliases`` are old spellings (``"--quiet"``) kept working but hidden from the help;
+    they warn with a :class:`FutureWarning`. The parsed value is ``args.no_progress``.
+    """
+    parser.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
+    for alias in aliases:
+        parser.add_argument(alias, dest="no_progress", action=_DeprecatedFlag, new="--no-progress",
+                            help=argparse.SUPPRESS)
