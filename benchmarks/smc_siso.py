@@ -14,7 +14,9 @@ Protocol, fixed before any test number:
 
 Candidates are written ``key=value,key=value`` over the ``("smc", "scaled")`` settings
 (``kernel``, ``n_moves``, ``n_leapfrog``, ``preconditioner``, ``output_scale``, ``ess_fraction``)
-plus ``N`` (particles) and ``R`` (``measurement_noise``, default 0.1); the spec ``ekf`` validates the default ``WNNRegressor()`` for reference.
+plus ``N`` (particles) and ``R`` (``measurement_noise``, default 0.1); the spec ``ekf``
+validates the default ``WNNRegressor()`` for reference. Outputs of the runs behind the
+numbers in the README: ``benchmarks/smc_siso_results.txt``.
 Run with one BLAS thread, e.g.::
 
     OPENBLAS_NUM_THREADS=1 python benchmarks/smc_siso.py --validate "N=50" "N=50,preconditioner=cov"
@@ -51,7 +53,8 @@ def fit_smc(spec, X, y, seed):
     regmod.AUTO_SETTINGS[key].update(cfg)
     try:
         t0, c0 = time.perf_counter(), time.process_time()
-        reg = WNNRegressor(trainer="smc", n_particles=n, n_epochs=1, measurement_noise=r, rng=seed).fit(X, y)
+        reg = WNNRegressor(trainer="smc", n_particles=n, n_epochs=1, measurement_noise=r, random_state=seed)
+        reg.fit(X, y)
         reg.cpu_seconds_ = time.process_time() - c0  # CPU time: robust to other jobs on the machine
         return reg, time.perf_counter() - t0
     finally:
@@ -67,7 +70,7 @@ def validate(specs, seeds):
             val[np.random.default_rng(1000 + seed).choice(len(X), 20, replace=False)] = True
             if spec == "ekf":  # the default regressor, for reference
                 t0 = time.perf_counter()
-                reg, extra = WNNRegressor(rng=seed).fit(X[~val], y[~val]), ""
+                reg, extra = WNNRegressor(random_state=seed).fit(X[~val], y[~val]), ""
                 dt = time.perf_counter() - t0
             else:
                 reg, dt = fit_smc(spec, X[~val], y[~val], seed)
@@ -89,7 +92,7 @@ def test(spec, seeds):
         reg, dt = fit_smc(spec, X, y, seed)
         mean, std = reg.predict(Xt, return_std=True)
         res = reg._final.result
-        ekf = WNNRegressor(rng=seed).fit(X, y)
+        ekf = WNNRegressor(random_state=seed).fit(X, y)
         row = dict(
             seed=seed,
             mse=float(np.mean((mean - yt) ** 2)),

@@ -73,7 +73,7 @@ import numpy as np
 from ._validation import NumericalError, check_choice, check_positive, check_positive_int, check_rng
 from .resampling import effective_sample_size, normalize_log_weights, resample
 
-__all__ = ["RowsTarget", "MALAMove", "HMCMove", "SMCResult", "smc_sampler", "make_weight_model_move"]
+__all__ = ["RowsTarget", "AddedRowsTarget", "MALAMove", "HMCMove", "SMCResult", "smc_sampler", "make_weight_model_move"]
 
 #: The acceptance rate of optimally scaled MALA in high dimension (Roberts and Rosenthal 1998).
 MALA_OPTIMAL_ACCEPTANCE = 0.574
@@ -154,6 +154,39 @@ class RowsTarget:
         if self.n_rows == 0:
             return np.zeros(len(thetas))
         return self.model.log_likelihood(thetas, self.X, self.y)
+
+
+class AddedRowsTarget:
+    """The posterior given a :class:`RowsTarget`'s rows, as the prior; new rows as the likelihood.
+
+    Tempering this target from 0 to 1 (:func:`smc_sampler` started from a sample of
+    ``base``'s posterior) carries the particles from ``p(theta | old rows)`` to
+    ``p(theta | old and new rows)``: iterated batch importance sampling (Chopin 2002) with a
+    tempered ladder per batch.
+
+    Parameters
+    ----------
+    base : RowsTarget
+    X : array-like of shape (n_new, n_inputs)
+    y : array-like of shape (n_new,)
+    """
+
+    def __init__(self, base, X, y):
+        self.base = base
+        self.new = RowsTarget(base.model, X, y)
+        self.dim = base.dim
+        self.prior_variance = base.prior_variance
+
+    def log_prior_and_grad(self, thetas):
+        lp, gp = self.base.log_prior_and_grad(thetas)
+        ll, gl = self.base.log_likelihood_and_grad(thetas)
+        return lp + ll, gp + gl
+
+    def log_likelihood_and_grad(self, thetas):
+        return self.new.log_likelihood_and_grad(thetas)
+
+    def log_likelihood(self, thetas):
+        return self.new.log_likelihood(thetas)
 
 
 class _State:

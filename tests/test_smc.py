@@ -194,7 +194,7 @@ def test_regressor_smc_trainer():
     rng = np.random.default_rng(2)
     X = rng.uniform(-1, 1, (30, 2))
     y = np.sin(2 * X[:, 0]) + 0.1 * rng.normal(size=30)
-    reg = WNNRegressor(trainer="smc", n_hidden=2, n_particles=12, n_epochs=2, rng=0).fit(X, y)
+    reg = WNNRegressor(trainer="smc", n_hidden=2, n_particles=12, n_epochs=2, random_state=0).fit(X, y)
     assert reg.settings_["Q"] == 0.0 and reg.settings_["n_particles"] == 12
     d = reg.diagnostics_
     assert len(d["mean_ess"]) == 1 and d["mean_ess"][0] >= 12 / 2 - 1e-6
@@ -208,7 +208,7 @@ def test_regressor_smc_trainer():
     Y = wnn.forward(P, X[:5])
     np.testing.assert_allclose(mean, Y.mean(axis=0))
     np.testing.assert_allclose(std**2, Y.var(axis=0) + 0.1)
-    again = WNNRegressor(trainer="smc", n_hidden=2, n_particles=12, n_epochs=2, rng=0).fit(X, y)
+    again = WNNRegressor(trainer="smc", n_hidden=2, n_particles=12, n_epochs=2, random_state=0).fit(X, y)
     np.testing.assert_array_equal(again.predict(X[:5]), mean)
     # the SMC fit beats the mean predictor on its training rows
     assert np.mean((reg.predict(X) - y) ** 2) < np.var(y)
@@ -222,6 +222,7 @@ def test_cov_preconditioner_with_few_particles(blr, rng):
     assert out.shape == (2, 3) and np.all(np.isfinite(out))
 
 
+@pytest.mark.filterwarnings("ignore::RuntimeWarning")
 def test_zero_likelihood_raises_numerical_error(blr):
     from filterwnn import NumericalError
 
@@ -229,3 +230,30 @@ def test_zero_likelihood_raises_numerical_error(blr):
     with pytest.raises(NumericalError, match="rung 1") as info:
         smc_sampler(RowsTarget(model, X, y * np.inf), n_particles=10, rng=0)
     assert info.value.step == 1
+
+
+def test_added_rows_reach_the_posterior_of_all_rows(blr):
+    """Sampling old rows, then tempering new rows in, matches the closed form on all rows."""
+    from filterwnn.smc import AddedRowsTarget
+
+    model, X, y = blr
+    mu, S, _ = model.posterior(X, y)
+    base = RowsTarget(model, X[:10], y[:10])
+    first = smc_sampler(base, n_particles=500, rng=0, n_moves=10)
+    added = AddedRowsTarget(base, X[10:], y[10:])
+    res = smc_sampler(added, n_particles=500, rng=1, n_moves=10, particles=first.particles)
+    z = (res.particles.mean(axis=0) - mu) / np.sqrt(np.diag(S) / 500)
+    assert np.all(np.abs(z) < Z_TOL), z
+    np.testing.assert_allclose(np.cov(res.particles, rowvar=False).diagonal(), S.diagonal(), rtol=VAR_RTOL)
+
+
+def test_regressor_smc_partial_fit_learns_new_rows():
+    from filterwnn import WNNRegressor
+
+    rng = np.random.default_rng(2)
+    X = rng.uniform(-1, 1, (30, 2))
+    y = np.sin(2 * X[:, 0])
+    reg = WNNRegressor(trainer="smc", n_hidden=2, n_particles=12, random_state=0)
+    reg.partial_fit(X[:15], y[:15]).partial_fit(X[15:], y[15:])
+    target = reg._trainer.move.target
+    assert target.n_rows == 30 and len(reg.diagnostics_["mean_ess"]) == 2
