@@ -1,4 +1,4 @@
-r"""Vehicle dead reckoning (DR) and GPS/DR navigation models, and their simulation.
+r"""Vehicle dead reckoning (DR) and GPS/DR navigation models (the simulation is in :mod:`filterwnn.scenarios`).
 
 The model of Zhang, Ma, Chen and Mastorakis (the second paper, eqs. 1-3). The state is
 
@@ -40,8 +40,10 @@ Choices and their reasons:
   odometer scale ``zeta`` and a heading bias ``b`` (real sensors have both; a 6-state
   filter is tens of metres off with a 2 % scale error).
 
-Missing GPS is said explicitly, never with NaN: :meth:`GPSDRModel.update` takes
-``z_gps=None`` and then uses the DR-only ``hx``/``HJacobian``/``R``.
+Missing GPS is said explicitly, never with NaN: :meth:`GPSDRModel.measurement_for` takes
+``z_gps=None`` and then gives the DR-only measurement, ``hx`` arguments and ``R``. The
+models only describe (``fx``, ``hx``, Jacobians, noise); the filter that drives them
+through starts, stops and GPS outages is :class:`filterwnn.gpsdr.GPSDRFilter`.
 
 Every function is written on the last axis, so it accepts one state ``(dim_x,)`` or a
 stack of points ``(n_points, dim_x)`` (what ``vectorized=True`` unscented filters pass).
@@ -55,9 +57,6 @@ array([0.7854, 1.4142])
 (2, 6)
 >>> float(dr_residual(np.array([np.pi - 0.01, 1.0]), np.array([-np.pi + 0.01, 1.0]))[0])
 -0.02
->>> run = simulate_scenario(SCENARIOS["straight"](), rng=0)
->>> run.x_true.shape, run.z_dr.shape
-((2000, 6), (2000, 2))
 
 References
 ----------
@@ -67,9 +66,6 @@ nonlinear filters of navigation systems".
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
-from typing import NamedTuple
-
 import numpy as np
 from filterpy.common import Q_continuous_white_noise
 
@@ -78,7 +74,6 @@ from ._validation import (
     check_choice,
     check_covariance,
     check_positive,
-    check_rng,
 )
 from .models import StateSpaceModel
 
@@ -93,10 +88,6 @@ __all__ = [
     "gps_hx",
     "DRModel",
     "GPSDRModel",
-    "Scenario",
-    "DRRun",
-    "SCENARIOS",
-    "simulate_scenario",
 ]
 
 #: Indices of the position, velocity and acceleration states.
@@ -366,7 +357,7 @@ class GPSDRModel(StateSpaceModel):
 
     The full measurement is ``[theta, s, e, n]`` (``dim_z = 4``) when a GPS fix is there,
     and the DR-only ``[theta, s]`` when it is not: :meth:`hx`, :meth:`HJacobian` and
-    :meth:`R_for` take ``gps=True/False``, and :meth:`update` picks them from
+    :meth:`R_for` take ``gps=True/False``, and :meth:`measurement_for` picks them from
     ``z_gps=None``. NaN never enters (a missing fix is ``None``).
 
     With ``augmented=True`` the state is 8-dimensional,
@@ -394,9 +385,9 @@ class GPSDRModel(StateSpaceModel):
     stationary_inflation : float
         Factor on the heading variance used by ``R_for(stationary=True)``.
     sigma_zupt : float
-        Standard deviation (m/s) of the zero-velocity update (``update(zupt=True)``).
+        Standard deviation (m/s) of the zero-velocity update (``measurement_for(zupt=True)``).
     sigma_low_speed : float
-        Extra velocity noise (m/s, per axis) of the low-speed form (``update(low_speed=True)``):
+        Extra velocity noise (m/s, per axis) of the low-speed form (``measurement_for(low_speed=True)``):
         pulling away, a car's track and its gyro heading differ by tens of degrees.
     x0, P0 : array-like, optional
         Prior (default as :class:`DRModel`, extended by ``zeta`` and ``b = 0``).
@@ -471,7 +462,7 @@ class GPSDRModel(StateSpaceModel):
 
         ``velocity=True``: the DR part is the velocity vector the sensors measure,
         ``zeta R(b) [v_e, v_n]`` (``R(b)`` rotates by the heading bias; the zero-velocity
-        and low-speed forms of :meth:`update`).
+        and low-speed forms of :meth:`measurement_for`).
         """
         if velocity:
             z = self._velocity_hx(x)
@@ -560,44 +551,43 @@ class GPSDRModel(StateSpaceModel):
         Rw = J @ np.diag([(self.sigma_odometer / self.dt) ** 2, self.sigma_heading**2]) @ J.T
         return w * np.array([np.sin(th), np.cos(th)]), Rw + 1e-12 * np.eye(2)
 
-    def update(self, kf, z_dr, z_gps=None, *, stationary=False, zupt=False, low_speed=False, R=None):
-        """Update a filterpy-style filter with a DR measurement and an optional GPS fix.
-
-        Works with filterpy's ``ExtendedKalmanFilter`` (analytic Jacobian, wrapped
-        residual) and with any unscented filter whose ``hx`` is this model's ``hx`` and
-        whose ``update(z, R=..., **hx_args)`` follows filterpy (``gps`` is passed as an
-        ``hx`` argument, so the measurement size follows the fix). ``z_gps=None`` means
-        no fix (a tunnel): the DR-only measurement, ``hx`` and ``R`` are used.
+    def measurement_for(self, z_dr, z_gps=None, *, stationary=False, zupt=False, low_speed=False,
+                        gps_sigma=None, R=None):
+        """The measurement a filter update uses, for a DR sample and an optional GPS fix.
 
         Parameters
         ----------
-        kf : filter
-            The filter to update in place.
         z_dr : array-like of shape (2,)
             ``[heading (rad), odometer distance (m)]``, finite.
         z_gps : array-like of shape (2,) or None
-            ``[e, n]`` fix (m), or ``None`` when there is none.
+            ``[e, n]`` fix (m), or ``None`` when there is none (a tunnel).
         stationary : bool
             (Nearly) zero speed: heading variance inflated (see :meth:`R_for`).
         zupt : bool
-            The odometer says the vehicle stands still: the DR measurement is replaced by
-            the zero-velocity update ``[v_e, v_n] = 0`` (a range-only odometer cannot hold
-            the velocity at zero: its Jacobian vanishes there). For unscented filters
-            the filter's ``residual_z`` still wraps entry 0, which matters only if the
-            predicted east velocity of a standing vehicle exceeds pi m/s.
+            The vehicle stands still: the DR measurement is replaced by the zero-velocity
+            update ``[v_e, v_n] = 0`` (a range-only odometer cannot hold the velocity at
+            zero: its Jacobian vanishes there).
         low_speed : bool
             Moving slowly (e.g. pulling away): the DR measurement enters as the measured
             velocity vector of :meth:`velocity_measurement`, modelled as
             ``zeta R(b) [v_e, v_n]`` (smooth, no singularity at zero speed), because the
-            odometer's Jacobian vanishes at zero estimated speed and the filter could
-            never pick up speed from rest.
+            odometer's Jacobian vanishes at zero estimated speed.
+        gps_sigma : float, optional
+            This fix's standard deviation per axis (m), e.g. the receiver's reported
+            horizontal accuracy; replaces ``sigma_gps`` in ``R`` for this fix.
         R : ndarray, optional
-            Override of the measurement noise for this call (shape to match).
-        """
-        from filterpy.kalman import ExtendedKalmanFilter
+            Override of the whole measurement noise (shape to match).
 
+        Returns
+        -------
+        z : ndarray of shape (4,) or (2,)
+        R : ndarray of shape (4, 4) or (2, 2)
+        hx_args : dict
+            ``{"gps": bool, "velocity": bool}``, the keyword arguments of :meth:`hx` and
+            :meth:`HJacobian` for this measurement.
+        """
         z, gps = self.measurement(z_dr, z_gps)
-        velocity = zupt or low_speed
+        velocity = bool(zupt or low_speed)
         if zupt:
             z = z.copy()
             z[:2] = 0.0
@@ -609,17 +599,38 @@ class GPSDRModel(StateSpaceModel):
             if low_speed and not zupt:
                 R = R.copy()
                 R[:2, :2] = Rv + self.sigma_low_speed**2 * np.eye(2)
+            if gps and gps_sigma is not None:
+                R = R.copy()
+                R[2:, 2:] = check_positive(gps_sigma, "gps_sigma") ** 2 * np.eye(2)
+        return z, R, {"gps": gps, "velocity": velocity}
+
+    def update(self, kf, z_dr, z_gps=None, *, stationary=False, zupt=False, low_speed=False, R=None):
+        """Deprecated: use :class:`filterwnn.gpsdr.GPSDRFilter` (it decides starts and stops itself).
+
+        Updates a filterpy EKF or an unscented filter with :meth:`measurement_for`'s
+        measurement; kept so that existing code keeps running.
+        """
+        import warnings
+
+        from filterpy.kalman import ExtendedKalmanFilter
+
+        warnings.warn("GPSDRModel.update is deprecated: use filterwnn.gpsdr.GPSDRFilter, which "
+                      "handles standstill, low speed and per-fix GPS accuracy by itself",
+                      DeprecationWarning, stacklevel=2)
+        z, R, kw = self.measurement_for(z_dr, z_gps, stationary=stationary, zupt=zupt,
+                                        low_speed=low_speed, R=R)
         if isinstance(kf, ExtendedKalmanFilter):
-            kf.update(z, self.HJacobian, self.hx, R=R, args=(gps, velocity), hx_args=(gps, velocity),
-                      residual=np.subtract if velocity else dr_residual)
-        elif velocity:
-            kf.update(z, R=R, gps=gps, velocity=True)
+            args = (kw["gps"], kw["velocity"])
+            kf.update(z, self.HJacobian, self.hx, R=R, args=args, hx_args=args,
+                      residual=np.subtract if kw["velocity"] else dr_residual)
+        elif kw["velocity"]:
+            kf.update(z, R=R, gps=kw["gps"], velocity=True)
         else:
-            kf.update(z, R=R, gps=gps)
+            kf.update(z, R=R, gps=kw["gps"])
         return kf
 
     def ekf(self, x0=None, P0=None):
-        """A filterpy ``ExtendedKalmanFilter`` on this model (update it with :meth:`update`)."""
+        """A filterpy ``ExtendedKalmanFilter`` on this model (or use :class:`filterwnn.gpsdr.GPSDRFilter`)."""
         from filterpy.kalman import ExtendedKalmanFilter
 
         kf = ExtendedKalmanFilter(dim_x=self.dim_x, dim_z=4)
@@ -629,242 +640,16 @@ class GPSDRModel(StateSpaceModel):
         return kf
 
 
-# --------------------------------------------------------------------------- simulation
+# --------------------------------------------------------------------------- re-exports
+
+# The scenarios and the simulation moved to :mod:`filterwnn.scenarios`; these names stay
+# importable from here (lazily: scenarios.py imports this module) so existing code keeps working.
+_MOVED = ("SCENARIOS", "DRRun", "Scenario", "simulate_scenario", "true_trajectory")
 
 
-@dataclass(frozen=True)
-class Scenario:
-    """A simulated drive and its sensors (all times in s, angles in degrees).
+def __getattr__(name):
+    if name in _MOVED:
+        from . import scenarios
 
-    The truth has no process noise: its acceleration follows the speed and turn
-    profile (piecewise constant over each sample), integrated by the kinematic
-    transition, so the truth is exactly what the model with ``T^2/2`` describes.
-
-    Attributes
-    ----------
-    name : str
-    duration, dt : float
-        Length of the run and DR sample interval.
-    speed, heading : float
-        Initial speed (m/s) and heading (deg from north, clockwise).
-    turns : tuple of (t_start, t_end, angle_deg)
-        Constant-rate turns (positive clockwise).
-    speed_changes : tuple of (t_start, t_end, delta_speed)
-        Constant-rate speed changes (m/s).
-    sigma_heading, sigma_odometer : float
-        Nominal DR noise (deg, m per sample).
-    t_switch, factor : float
-        From ``t_switch`` on, both DR noise levels are multiplied by ``factor``.
-    outlier_prob, outlier_deg : float
-        After ``t_switch``, each heading has this chance of a +-``outlier_deg`` error.
-    odometer_scale, heading_bias : float
-        True odometer scale ``zeta`` and heading bias (deg).
-    gps_rate, sigma_gps : float
-        GPS fix rate (Hz; 0 for none) and noise per axis (m).
-    outages : tuple of (t_start, t_end)
-        Intervals without GPS.
-    """
-
-    name: str = "straight"
-    duration: float = 200.0
-    dt: float = 0.1
-    speed: float = 10.0 * np.sqrt(2.0)
-    heading: float = 45.0
-    turns: tuple = ()
-    speed_changes: tuple = ()
-    sigma_heading: float = 1.0
-    sigma_odometer: float = 0.02
-    t_switch: float = 150.0
-    factor: float = 1.0
-    outlier_prob: float = 0.0
-    outlier_deg: float = 30.0
-    odometer_scale: float = 1.0
-    heading_bias: float = 0.0
-    gps_rate: float = 0.0
-    sigma_gps: float = 3.0
-    outages: tuple = field(default=())
-
-    def __post_init__(self):
-        for name in ("duration", "dt", "factor"):
-            check_positive(getattr(self, name), name)
-        for name in ("speed", "sigma_heading", "sigma_odometer", "outlier_deg", "gps_rate",
-                     "sigma_gps", "odometer_scale"):
-            check_positive(getattr(self, name), name, strict=False)
-        if not self.t_switch >= 0:  # inf means never
-            raise ValueError(f"t_switch must be >= 0 (inf: never), got {self.t_switch}")
-        if not 0 <= self.outlier_prob <= 1:
-            raise ValueError(f"outlier_prob must satisfy 0 <= outlier_prob <= 1, got {self.outlier_prob}")
-
-    @property
-    def n_steps(self):
-        return int(round(self.duration / self.dt))
-
-    @property
-    def x0(self):
-        """True initial state ``(6,)``."""
-        h = np.deg2rad(self.heading)
-        return np.array([0.0, self.speed * np.sin(h), 0.0, 0.0, self.speed * np.cos(h), 0.0])
-
-    def with_(self, **changes):
-        """A copy with some fields changed."""
-        return replace(self, **changes)
-
-
-_TURNING = dict(
-    turns=((20.0, 30.0, 90.0), (60.0, 75.0, -135.0), (100.0, 110.0, 60.0), (160.0, 175.0, -90.0)),
-    speed_changes=((40.0, 50.0, -6.0), (85.0, 95.0, 8.0), (130.0, 140.0, -4.0)),
-)
-
-#: Named scenario factories; each accepts keyword overrides of :class:`Scenario` fields.
-SCENARIOS = {
-    # the paper: straight road, 10*sqrt(2) m/s at 45 deg, noise x20 at 150 s
-    "straight": lambda **kw: Scenario(**{"name": "straight", "factor": 20.0, **kw}),
-    # turns and speed changes, noise x5 at 150 s
-    "turns": lambda **kw: Scenario(**{"name": "turns", "factor": 5.0, **_TURNING, **kw}),
-    # heading near 180 deg: west-south-west... through south (180) and back, noise x5
-    "heading180": lambda **kw: Scenario(
-        **{
-            "name": "heading180",
-            "heading": 170.0,
-            "turns": ((20.0, 40.0, 20.0), (90.0, 110.0, -25.0), (160.0, 180.0, 30.0)),
-            "factor": 5.0,
-            **kw,
-        }
-    ),
-    # noise x5 plus 10 % heading outliers of +-30 deg after 150 s
-    "outliers": lambda **kw: Scenario(
-        **{"name": "outliers", "factor": 5.0, "outlier_prob": 0.1, **kw}
-    ),
-    # GPS/DR: turning route, 1 Hz GPS (3 m) with outages, 2 % odometer scale, 2 deg bias
-    "gpsdr": lambda **kw: Scenario(
-        **{
-            "name": "gpsdr",
-            "factor": 1.0,
-            "odometer_scale": 1.02,
-            "heading_bias": 2.0,
-            "gps_rate": 1.0,
-            "outages": ((50.0, 80.0), (120.0, 170.0)),
-            **_TURNING,
-            **kw,
-        }
-    ),
-}
-
-
-class DRRun(NamedTuple):
-    """One simulated drive.
-
-    Attributes
-    ----------
-    t : ndarray of shape (n_steps,)
-        Sample times ``dt, 2 dt, ...`` (s).
-    x0 : ndarray of shape (6,)
-        True state at ``t = 0``.
-    x_true : ndarray of shape (n_steps, 6)
-        True states at ``t``.
-    z_dr : ndarray of shape (n_steps, 2)
-        ``[heading (rad, wrapped), odometer distance (m)]``.
-    gps_steps : ndarray of shape (n_fixes,)
-        Indices into ``t`` of the steps with a GPS fix.
-    z_gps : ndarray of shape (n_fixes, 2)
-        The fixes ``[e, n]`` (m).
-    R_true : ndarray of shape (n_steps, 2)
-        True DR noise variances ``[heading, odometer]`` at each step (for oracle filters).
-    scenario : Scenario
-    """
-
-    t: np.ndarray
-    x0: np.ndarray
-    x_true: np.ndarray
-    z_dr: np.ndarray
-    gps_steps: np.ndarray
-    z_gps: np.ndarray
-    R_true: np.ndarray
-    scenario: Scenario
-
-    def gps_list(self):
-        """Per-step list: the fix ``(2,)`` or ``None`` (missing GPS is ``None``, never NaN)."""
-        out = [None] * len(self.t)
-        for k, z in zip(self.gps_steps, self.z_gps):
-            out[int(k)] = z
-        return out
-
-
-def _profile_rate(windows, t):
-    rate = 0.0
-    for t0, t1, amount in windows:
-        if t0 <= t < t1:
-            rate += amount / (t1 - t0)
-    return rate
-
-
-def true_trajectory(scenario):
-    """Noise-free truth of a scenario: ``(t (n,), x0 (6,), x_true (n, 6))``."""
-    sc = scenario
-    n = sc.n_steps
-    dt = sc.dt
-    x = sc.x0.copy()
-    xs = np.empty((n, 6))
-
-    def accel(x, t):
-        ve, vn = x[1], x[4]
-        v = np.hypot(ve, vn)
-        dv = _profile_rate(sc.speed_changes, t)
-        om = np.deg2rad(_profile_rate(sc.turns, t))
-        ue, un = (ve / v, vn / v) if v > 0 else (0.0, 0.0)
-        return dv * ue + om * vn, dv * un - om * ve
-
-    x[2], x[5] = accel(x, 0.0)
-    for k in range(n):
-        x = dr_fx(x, dt)
-        t = (k + 1) * dt
-        x[2], x[5] = accel(x, t)
-        xs[k] = x
-    return dt * np.arange(1, n + 1), sc.x0.copy(), xs
-
-
-def simulate_scenario(scenario, rng=None):
-    """Simulate the truth and the sensors of a :class:`Scenario`.
-
-    Random numbers are drawn in a fixed order (heading noise, odometer noise, outlier
-    draws, GPS noise), always for every step, so two scenarios differing only in noise
-    levels share their random numbers.
-
-    Returns
-    -------
-    DRRun
-    """
-    if not isinstance(scenario, Scenario):
-        raise TypeError(f"scenario must be a Scenario, got {type(scenario).__name__}")
-    rng = check_rng(rng)
-    sc = scenario
-    t, x0, xs = true_trajectory(sc)
-    n = len(t)
-    f = np.where(t >= sc.t_switch, sc.factor, 1.0)
-    sh = np.deg2rad(sc.sigma_heading) * f
-    so = sc.sigma_odometer * f
-    e_h = rng.standard_normal(n)
-    e_s = rng.standard_normal(n)
-    u_out = rng.random(n)
-    sign_out = np.where(rng.random(n) < 0.5, -1.0, 1.0)
-    e_g = rng.standard_normal((n, 2))
-    heading = np.arctan2(xs[:, 1], xs[:, 4]) + np.deg2rad(sc.heading_bias) + sh * e_h
-    outlier = (t >= sc.t_switch) & (u_out < sc.outlier_prob)
-    heading = heading + outlier * sign_out * np.deg2rad(sc.outlier_deg)
-    speed = np.hypot(xs[:, 1], xs[:, 4])
-    # an odometer never reads negative, and reads exactly 0 at standstill
-    dist = np.where(speed > 0, np.maximum(sc.dt * sc.odometer_scale * speed + so * e_s, 0.0), 0.0)
-    z_dr = np.stack([wrap_angle(heading), dist], axis=1)
-    if sc.gps_rate > 0:
-        every = max(int(round(1.0 / (sc.gps_rate * sc.dt))), 1)
-        steps = np.arange(every - 1, n, every)
-        ok = np.ones(len(steps), dtype=bool)
-        for a, b in sc.outages:
-            ok &= ~((t[steps] >= a) & (t[steps] < b))
-        steps = steps[ok]
-        z_gps = xs[steps][:, [0, 3]] + sc.sigma_gps * e_g[steps]
-    else:
-        steps = np.zeros(0, dtype=int)
-        z_gps = np.zeros((0, 2))
-    R_true = np.stack([sh**2, so**2], axis=1)
-    return DRRun(t, x0, xs, z_dr, steps, z_gps, R_true, sc)
+        return getattr(scenarios, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

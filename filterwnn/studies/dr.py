@@ -60,16 +60,21 @@ import numpy as np
 from filterpy.kalman import ExtendedKalmanFilter, MerweScaledSigmaPoints
 
 from .._validation import check_seed, check_positive_int, check_rng
-from ..dead_reckoning import (
+from ..dead_reckoning import DRModel, GPSDRModel, dr_residual, dr_z_mean
+from ..gpsdr import GPSDRFilter
+from ..scenarios import (
+    CAR_DRIVE,
+    CAR_DRIVES,
+    MIN_ODOMETER_SPEED,
     SCENARIOS,
     DRRun,
     Scenario,
-    DRModel,
-    GPSDRModel,
-    dr_residual,
-    dr_z_mean,
+    _onav_dir,
+    load_car_drive,
+    outage_starts,
+    read_drive_csv,
     simulate_scenario,
-    wrap_angle,
+    with_outage,
 )
 from ..neural_filter import (
     NeuralFilter,
@@ -111,16 +116,9 @@ UPF_PARTICLES = 50
 #: Filters run only when asked for (``--filters``): the UPF costs about 100x the EKF.
 OPT_IN = ("UPF",)
 #: Below this odometer speed (m/s) the GPS/DR filters take the DR measurement as a velocity
-#: vector (``GPSDRModel.update(low_speed=True)``); an odometer reading of exactly 0 triggers a
-#: zero-velocity update.
-STANDSTILL_SPEED = 5.0
-
-
-def _motion_flags(run, slow_speed=None):
-    """``(slow, still)`` per step from the odometer: heading ignored / zero-velocity update."""
-    s = run.z_dr[:, 1]
-    v = STANDSTILL_SPEED if slow_speed is None else slow_speed
-    return s < v * run.scenario.dt, s <= 0.0
+#: vector; below :data:`filterwnn.gpsdr.STANDSTILL_SPEED` they make a zero-velocity update
+#: (both decided by :class:`~filterwnn.gpsdr.GPSDRFilter` itself).
+from ..gpsdr import LOW_SPEED as STANDSTILL_SPEED  # noqa: E402  (the old name of the low-speed threshold)
 ORACLE = {"dr": "EKF-oracle", "gpsdr": "EKF-8"}
 DEFAULT_SCENARIOS = ("straight", "turns", "heading180", "outliers", "gpsdr")
 DIV_FACTOR = 3.0
@@ -262,29 +260,19 @@ def _upf_run(run, model, x0, P0, rng, n_particles=UPF_PARTICLES):
     return out
 
 
+_KIND = {"EKF": "ekf", "EKF-8": "ekf", "DR-only": "ekf", "UKF-8": "ukf", "SUKF-8": "sukf"}
+
+
 def _gpsdr_filter_run(name, run, x0, rng):
     sc = run.scenario
+    if name not in _KIND:
+        raise ValueError(f"unknown filter {name!r}; valid: {', '.join(GPSDR_FILTERS)}")
     aug = name.endswith("-8")
     model = GPSDRModel(dt=sc.dt, augmented=aug, sigma_gps=sc.sigma_gps)
     x0m = np.concatenate([x0, [1.0, 0.0]]) if aug else x0
-    P0 = model.P0
-    n = len(run.t)
-    out = np.empty((n, 6))
-    gps_z = run.gps_list()
-    if name == "DR-only":
-        gps_z = [None] * n
-    if name in ("EKF", "EKF-8", "DR-only"):
-        kf = model.ekf(x0=x0m, P0=P0)
-    elif name in ("UKF-8", "SUKF-8"):
-        kf = _ukf(model, _points("merwe" if name == "UKF-8" else "simplex", 8), x0m, P0, True)
-    else:
-        raise ValueError(f"unknown filter {name!r}; valid: {', '.join(GPSDR_FILTERS)}")
-    slow, still = _motion_flags(run)
-    for k in range(n):
-        kf.predict()
-        model.update(kf, run.z_dr[k], gps_z[k], low_speed=bool(slow[k]), zupt=bool(still[k]))
-        out[k] = kf.x[:6]
-    return out
+    f = GPSDRFilter(model, _KIND[name], x0=x0m)
+    gps = None if name == "DR-only" else run.gps_list()
+    return f.batch_filter(run.z_dr, gps, None if gps is None else run.gps_sigma_list())[:, :6]
 
 
 _ALL_FILTERS = DR_FILTERS + GPSDR_FILTERS
@@ -570,131 +558,6 @@ def write_outputs(result, out_dir, figures=True):
 
 
 # ----------------------------------------------------------------------------- real drive
-
-CAR_DRIVE = "2021-04-27C-car-hill-drive"
-#: Reference speeds below this (m/s) give an odometer reading of 0 (standstill).
-MIN_ODOMETER_SPEED = 0.05
-_WGS84_A, _WGS84_E2 = 6378137.0, 6.69437999014e-3
-
-
-def _onav_dir(drive):
-    try:
-        import importlib.resources as resources
-
-        root = resources.files("onavdata")
-    except (ImportError, ModuleNotFoundError) as exc:
-        raise ImportError(
-            "the real-drive part needs the optional 'onavdata' package: pip install 'filterwnn[data]' "
-            "(or pip install onavdata)"
-        ) from exc
-    d = root / "data" / "HGuide n380" / drive
-    if not d.is_dir():
-        raise ValueError(f"drive {drive!r} not found in onavdata (looked in {d})")
-    return d
-
-
-def _read_zipped_csv(folder, name):
-    import io
-    import zipfile
-
-    with (folder / f"{name}.csv.zip").open("rb") as fh:
-        zf = zipfile.ZipFile(io.BytesIO(fh.read()))
-        with zf.open(zf.namelist()[0]) as f:
-            header = [h.strip() for h in f.readline().decode().strip().split(",")]
-            data = np.loadtxt(io.TextIOWrapper(f), delimiter=",", usecols=range(len(header)), ndmin=2)
-    return {h: data[:, i] for i, h in enumerate(header)}
-
-
-def load_car_drive(drive=CAR_DRIVE, dt=0.1, odometer_scale=1.02, odometer_noise=0.02, rng=0):
-    """A real car drive from ``onavdata`` as a :class:`~filterwnn.dead_reckoning.DRRun`.
-
-    The HGuide n380 drives ship 100 Hz IMU increments, 1 Hz GNSS fixes and the
-    INS/GNSS reference solution, as zipped CSV files read here through
-    :mod:`importlib.resources` (``pip install onavdata``, the ``data`` extra).
-
-    * truth: the reference INS position (latitude/longitude to local east/north metres
-      about the first valid sample) and velocity, on a ``dt`` grid, rows with
-      ``InsMode == 4`` only;
-    * heading: the gyro's yaw, ``DeltaTheta[0]`` (the body down axis per the package's
-      meta file; an angle increment per 100 Hz sample), integrated from the reference
-      heading at the start -- so it drifts like a real DR gyro;
-    * odometer: the car has none, so ``dt * odometer_scale * |v_ref| + noise`` (clipped
-      at 0), a stated 2 % scale error by default -- never the GNSS speed, which an
-      outage would take away too;
-    * GPS: the receiver's 1 Hz fixes, each on its nearest grid step.
-
-    Returns
-    -------
-    DRRun
-        ``scenario`` describes the drive (``gps_rate=1``, no outages: cut them in with
-        :func:`with_outage`).
-    """
-    rng = check_rng(rng)
-    folder = _onav_dir(drive)
-    pos = _read_zipped_csv(folder, "n380-position")
-    vel = _read_zipped_csv(folder, "n380-velocity")
-    att = _read_zipped_csv(folder, "n380-attitude")
-    imu = _read_zipped_csv(folder, "n380-imu-nav")
-    gnss = _read_zipped_csv(folder, "n380-gnss-pvt")
-    ok = (pos["SystemTov"] > 0) & (pos["InsGnssBIT.InsMode"] == 4)
-    tp = pos["SystemTov"][ok]
-    lat, lon, h = pos["Latitude"][ok], pos["Longitude"][ok], pos["AltitudeAboveEllipsoid"][ok]
-    lat0, lon0, h0 = lat[0], lon[0], h[0]
-    sl = np.sin(lat0)
-    rn = _WGS84_A / np.sqrt(1 - _WGS84_E2 * sl * sl)
-    rm = _WGS84_A * (1 - _WGS84_E2) / (1 - _WGS84_E2 * sl * sl) ** 1.5
-
-    def en(la, lo):
-        return (lo - lon0) * (rn + h0) * np.cos(lat0), (la - lat0) * (rm + h0)
-
-    t0 = tp[0]
-    n = int((tp[-1] - t0) / dt) - 1
-    t = t0 + dt * np.arange(1, n + 1)
-    e_ref, n_ref = en(lat, lon)
-    okv = (vel["SystemTov"] > 0) & (vel["InsGnssBIT.InsMode"] == 4)
-    tv = vel["SystemTov"][okv]
-    ve = np.interp(t, tv, vel["VelocityNED[1]"][okv])
-    vn = np.interp(t, tv, vel["VelocityNED[0]"][okv])
-    x_true = np.zeros((n, 6))
-    x_true[:, 0] = np.interp(t, tp, e_ref)
-    x_true[:, 3] = np.interp(t, tp, n_ref)
-    x_true[:, 1], x_true[:, 4] = ve, vn
-    x_true[:, 2] = np.gradient(ve, dt)
-    x_true[:, 5] = np.gradient(vn, dt)
-    x0 = np.array([np.interp(t0, tp, e_ref), np.interp(t0, tv, vel["VelocityNED[1]"][okv]), 0.0,
-                   np.interp(t0, tp, n_ref), np.interp(t0, tv, vel["VelocityNED[0]"][okv]), 0.0])
-    # gyro heading: integrate the yaw increments from the reference heading at t0
-    oka = (att["SystemTov"] > 0) & (att["InsGnssBIT.InsMode"] == 4)
-    heading0 = np.interp(t0, att["SystemTov"][oka], np.unwrap(att["EulerAttitude[2]"][oka]))
-    ti = imu["SystemTov"]
-    cum = np.cumsum(imu["DeltaTheta[0]"])
-    theta = heading0 + np.interp(t, ti, cum) - np.interp(t0, ti, cum)
-    speed = np.hypot(ve, vn)
-    moving = speed > MIN_ODOMETER_SPEED  # a wheel odometer reads exactly 0 at standstill
-    dist = np.where(moving, np.maximum(dt * odometer_scale * speed + odometer_noise * rng.standard_normal(n), 0.0), 0.0)
-    z_dr = np.stack([wrap_angle(theta), dist], axis=1)
-    okg = (gnss["SystemTov"] > t0) & (gnss["InsGnssBIT.GpsMode"] > 0)
-    tg = gnss["SystemTov"][okg]
-    steps = np.round((tg - t0) / dt).astype(int) - 1
-    keep = (steps >= 0) & (steps < n)
-    steps, idx = np.unique(steps[keep], return_index=True)
-    ge, gn = en(gnss["GnssLatitude"][okg][keep][idx], gnss["GnssLongitude"][okg][keep][idx])
-    z_gps = np.stack([ge, gn], axis=1)
-    sc = Scenario(name=drive, duration=n * dt, dt=dt, speed=float(np.hypot(x0[1], x0[4])),
-                  heading=float(np.degrees(heading0)), t_switch=np.inf, factor=1.0,
-                  odometer_scale=odometer_scale, sigma_odometer=odometer_noise, gps_rate=1.0,
-                  sigma_gps=1.0)
-    R_true = np.tile([np.deg2rad(1.0) ** 2, odometer_noise**2], (n, 1))
-    return DRRun(t - t0, x0, x_true, z_dr, steps, z_gps, R_true, sc)
-
-
-def with_outage(run, start, length):
-    """A copy of ``run`` without GPS fixes in ``[start, start + length)`` (times of ``run.t``)."""
-    tf = run.t[run.gps_steps]
-    keep = ~((tf >= start) & (tf < start + length))
-    sc = run.scenario.with_(outages=((float(start), float(start + length)),))
-    return run._replace(gps_steps=run.gps_steps[keep], z_gps=run.z_gps[keep], scenario=sc)
-
 
 #: GPS/DR model settings for the real drive (a car's manoeuvres need a larger jerk PSD,
 #: the receiver's fixes are about 1 m, and the gyro's heading drifts: a random-walk bias).
