@@ -44,6 +44,10 @@ from .dead_reckoning import (
 )
 from .neural_filter import NeuralFilter
 
+# --- GPS/DR on one's own drive (issue 14) ---
+from .gpsdr import GPSDRFilter
+from .scenarios import DRRun, read_drive_csv
+
 __all__ = [
     "__version__",
     "NumericalError",
@@ -79,4 +83,8 @@ __all__ = [
     "simulate_scenario",
     "wrap_angle",
     "NeuralFilter",
+    # --- issue 14 ---
+    "GPSDRFilter",
+    "DRRun",
+    "read_drive_csv",
 ]

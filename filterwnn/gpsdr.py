@@ -77,6 +77,13 @@ class GPSDRFilter:
     low_speed : float
         Odometer speed (m/s) below which the DR sample enters as a velocity vector
         (default :data:`LOW_SPEED`; 0 switches it off).
+    hold_calibration : bool
+        8-state model: without a GPS fix, hold the odometer scale and the heading bias
+        (Schmidt-Kalman "consider" states: zero gain, their uncertainty still counts);
+        without GPS they are not observable. Off by default: measured, it lowered the
+        worst 30 s outage on the shipped sample drive (an outage from the first second,
+        before the calibration converged) from 85 m to 51 m but raised the simulated
+        ``gpsdr`` scenario's outage-end medians from 1.46/2.33 m to 1.73/2.57 m (2 runs).
     points : sigma points, optional
         Override the unscented kinds' points (filterpy protocol).
 
@@ -89,13 +96,14 @@ class GPSDRFilter:
     """
 
     def __init__(self, model, kind="ekf", *, x0=None, P0=None, standstill_speed=STANDSTILL_SPEED,
-                 low_speed=LOW_SPEED, points=None):
+                 low_speed=LOW_SPEED, hold_calibration=False, points=None):
         if not isinstance(model, GPSDRModel):
             raise TypeError(f"model must be a GPSDRModel, got {type(model).__name__}")
         self.model = model
         self.kind = check_choice(kind, "kind", KINDS)
         self.standstill_speed = check_positive(standstill_speed, "standstill_speed", strict=False)
         self.low_speed = check_positive(low_speed, "low_speed", strict=False)
+        self.hold_calibration = bool(hold_calibration)
         n = model.dim_x
         x0 = (model.x0 if x0 is None else as_state(x0, "x0", n)).copy()
         P0 = (model.P0 if P0 is None else check_covariance(P0, "P0", n)).copy()
@@ -162,6 +170,32 @@ class GPSDRFilter:
         self.motion = self.classify(z_dr)
         z, R, kw = self.model.measurement_for(z_dr, z_gps, zupt=self.motion == "still",
                                               low_speed=self.motion == "slow", gps_sigma=gps_sigma)
+        consider = self.hold_calibration and self.model.augmented and not kw["gps"]
+        if consider:
+            x_pre, P_pre = self.kf.x.copy(), self.kf.P.copy()
+        self._update(z, R, kw)
+        if consider:
+            self._schmidt(x_pre, P_pre)
+        return self
+
+    def _schmidt(self, x_pre, P_pre):
+        """Redo the last update with zero gain on the calibration states (Schmidt-Kalman).
+
+        With gain ``K`` (rows 6, 7 zeroed: ``K'``), innovation ``y`` and its covariance
+        ``S``, the cross-covariance is ``C = K S`` and, for any gain,
+        ``P = P^- - K' C^T - C K'^T + K' S K'^T``.
+        """
+        kf = self.kf
+        K = np.asarray(kf.K, dtype=float)
+        S = np.asarray(kf.S, dtype=float)
+        C = K @ S
+        Kc = K.copy()
+        Kc[6:] = 0.0
+        kf.x = x_pre + Kc @ np.asarray(kf.y, dtype=float)
+        P = P_pre - Kc @ C.T - C @ Kc.T + Kc @ S @ Kc.T
+        kf.P = 0.5 * (P + P.T)
+
+    def _update(self, z, R, kw):
         m = self.model
         if self.kind == "ekf":
             args = (kw["gps"], kw["velocity"])
@@ -171,7 +205,6 @@ class GPSDRFilter:
             self.kf.update(z, R=R, gps=kw["gps"], velocity=True)
         else:
             self.kf.update(z, R=R, gps=kw["gps"])
-        return self
 
     def batch_filter(self, z_dr, z_gps=None, gps_sigma=None):
         """Run over a drive: ``predict`` then ``update`` at every DR sample.

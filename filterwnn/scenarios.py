@@ -302,7 +302,7 @@ class DRRun(NamedTuple):
         if np.any(dts <= 0):
             k = int(np.argmax(dts <= 0)) + 1
             raise ValueError(f"t must be strictly increasing; t[{k}] = {t[k]!r} <= t[{k - 1}] = {t[k - 1]!r}")
-        dt = float(np.median(dts))
+        dt = float(f"{np.median(dts):.9g}")  # 0.1, not 0.09999999999999787
         jit = np.abs(dts / dt - 1.0)
         if np.any(jit > max_jitter):
             k = int(np.argmax(jit)) + 1
@@ -384,7 +384,7 @@ class DRRun(NamedTuple):
         rate = 0.0
         if len(steps) > 1:
             rate = 1.0 / (float(np.median(np.diff(steps))) * dt)
-        sc = Scenario(name=str(name), duration=(n - 1) * dt, dt=dt, speed=float(abs(v0)),
+        sc = Scenario(name=str(name), duration=float(f"{(n - 1) * dt:.9g}"), dt=dt, speed=float(abs(v0)),
                       heading=float(np.degrees(heading[0])), t_switch=np.inf, factor=1.0, gps_rate=rate,
                       sigma_gps=float(np.median(sig)) if sig is not None and len(sig) else 3.0)
         R_true = np.tile([np.deg2rad(1.0) ** 2, 0.02**2], (n - 1, 1))

@@ -515,10 +515,20 @@ def markdown_table(result):
     return "\n".join(lines)
 
 
-def write_outputs(result, out_dir, figures=True):
-    """Write ``dr_table.md``, ``dr_table.csv`` and the figures to ``out_dir``; returns the paths."""
+def write_outputs(result, out_dir, figures=True, real_drives=()):
+    """Write the tables and figures to ``out_dir``; returns the paths.
+
+    ``result`` (a :class:`StudyResult`, or ``None`` for real drives only) gives
+    ``dr_table.md``, ``dr_table.csv`` and a figure per scenario; each of ``real_drives``
+    (results of :func:`real_drive_outages`) gives ``real_drive_<name>_outage_errors.md``
+    and ``real_drive_<name>_track_and_outage_end_errors.png`` (:func:`write_real_drive`).
+    """
     os.makedirs(out_dir, exist_ok=True)
     paths = []
+    for res in real_drives:
+        paths += write_real_drive(res, out_dir, figures)
+    if result is None:
+        return paths
     md = os.path.join(out_dir, "dr_table.md")
     with open(md, "w") as fh:
         s = result.settings
@@ -565,84 +575,134 @@ REAL_MODEL = dict(q=2.0, sigma_heading=np.deg2rad(1.0), sigma_odometer=0.02, sig
                   q_scale=1e-6, q_bias=1e-6)
 
 
-def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "EKF", "EKF-8"),
-                       model_kwargs=None, slow_speed=None):
-    """Cut ``n_placements`` GPS outages of ``length`` s into a drive; error at each outage end.
+REAL_FILTERS = ("DR-mech", "EKF", "EKF-8", "UKF-8", "SUKF-8")
 
-    Placements are spread evenly from the first step to ``length`` s before the end
-    (the first one starts before the car moves). ``EKF``/``EKF-8`` are the 6- and
-    8-state GPS/DR EKFs (heading treated as uninformative below
-    :data:`STANDSTILL_SPEED`); ``DR-mech`` integrates ``s [sin theta, cos theta]`` from
-    the true position at the outage start (dead reckoning without a filter).
+
+def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "EKF", "EKF-8"),
+                       model_kwargs=None, slow_speed=None, starts=None, min_speed=0.0,
+                       use_gps_sigma=False):
+    """Cut GPS outages of ``length`` s into a drive and score each filter at each outage end.
+
+    Placements: ``starts`` as given, or ``n_placements`` spread evenly over the windows
+    whose mean odometer speed is at least ``min_speed`` (:func:`~filterwnn.scenarios.outage_starts`;
+    with the default 0 the first one starts before the car moves). ``EKF``/``EKF-8``/
+    ``UKF-8``/``SUKF-8`` are :class:`~filterwnn.gpsdr.GPSDRFilter` s (6 or 8 states; the filter
+    decides standstill and low speed itself); ``DR-mech`` integrates
+    ``s [sin theta, cos theta]`` from the reference position at the outage start (dead
+    reckoning without a filter).
+
+    The reference is the truth when the drive has one (``run.x_true``); otherwise the
+    GPS fix withheld last in the outage, so the score then includes that fix's own error.
+
+    Parameters
+    ----------
+    run : DRRun
+    n_placements, length, starts, min_speed
+        Where the outages go (see above).
+    filters : sequence of str
+        Subset of :data:`REAL_FILTERS`.
+    model_kwargs : dict, optional
+        :class:`~filterwnn.dead_reckoning.GPSDRModel` settings over :data:`REAL_MODEL`.
+    slow_speed : float, optional
+        The filters' low-speed threshold (m/s; default :data:`filterwnn.gpsdr.LOW_SPEED`).
+    use_gps_sigma : bool
+        Use each fix's reported accuracy (``run.gps_sigma``) as its noise.
 
     Returns
     -------
     dict
-        ``starts (n_placements,)``, ``moved (n_placements,)`` (distance driven during
-        each outage, m), and per filter ``(n_placements,)`` end-of-outage horizontal
-        errors (m); NaN never appears (a non-finite estimate raises).
+        ``starts (n,)``, ``length``, ``moved (n,)`` (distance driven during each outage, m),
+        ``end_steps (n,)`` (the scored step of each outage), ``reference`` ("truth" or
+        "withheld GPS"), ``name``, ``track (n_steps, 2)`` (truth, else the fixes
+        interpolated), ``end_xy {filter: (n, 2)}``, and per filter ``(n,)`` end-of-outage
+        horizontal errors (m); NaN never appears (a non-finite estimate raises).
     """
+    bad = [f for f in filters if f not in REAL_FILTERS]
+    if bad:
+        raise ValueError(f"unknown real-drive filters {bad}; valid: {', '.join(REAL_FILTERS)}")
     kw = dict(REAL_MODEL, **(model_kwargs or {}))
     dt = run.scenario.dt
-    t_end = run.t[-1]
-    starts = np.linspace(0.0, t_end - length - 1.0, n_placements)
-    out = {"starts": starts, "length": length}
-    moved = []
+    t_end = float(run.t[-1])
+    if starts is None and min_speed == 0.0:
+        starts = np.linspace(0.0, t_end - length - 1.0, n_placements)
+    starts = outage_starts(run, length, starts=starts, n=n_placements, min_speed=min_speed)
+    truth = run.x_true is not None
+    cum = np.concatenate([[0.0], np.cumsum(run.z_dr[:, 1])])
+    k0s, k1s, refs, moved = [], [], [], []
+    gps_t = run.t[run.gps_steps]
     for a in starts:
         k0 = int(np.searchsorted(run.t, a))
         k1 = int(np.searchsorted(run.t, a + length)) - 1
-        moved.append(float(np.sum(np.hypot(*np.diff(run.x_true[k0:k1 + 1][:, [0, 3]], axis=0).T))))
-    out["moved"] = np.array(moved)
-    slow, still = _motion_flags(run, slow_speed)
+        if truth:
+            ref = run.x_true[k1, [0, 3]]
+        else:
+            inside = np.flatnonzero((gps_t >= a) & (gps_t < a + length))
+            if len(inside) == 0:
+                raise ValueError(f"the drive has no truth and no GPS fix in the outage at {a:.1f} s to score against")
+            k1 = int(run.gps_steps[inside[-1]])
+            ref = run.z_gps[inside[-1]]
+        k0s.append(k0)
+        k1s.append(k1)
+        refs.append(ref)
+        moved.append(float(cum[k1 + 1] - cum[k0]) if not truth else float(np.sum(np.hypot(
+            *np.diff(run.x_true[k0:k1 + 1][:, [0, 3]], axis=0).T))))
+    refs = np.array(refs)
+    if truth:
+        track = run.x_true[:, [0, 3]]
+    else:
+        track = np.stack([np.interp(run.t, gps_t, run.z_gps[:, i]) for i in (0, 1)], axis=1)
+    out = {"starts": starts, "length": length, "moved": np.array(moved), "end_steps": np.array(k1s),
+           "reference": "truth" if truth else "withheld GPS", "name": run.scenario.name,
+           "track": track, "t": run.t, "end_xy": {}}
     gps = run.gps_list()
+    sig = run.gps_sigma_list() if use_gps_sigma else [None] * len(run.t)
+    low = {} if slow_speed is None else {"low_speed": slow_speed}
     for name in filters:
-        errs = []
-        for a in starts:
-            k0 = int(np.searchsorted(run.t, a))
-            k1 = int(np.searchsorted(run.t, a + length)) - 1
-            if name == "DR-mech":
-                p = run.x_true[k0 - 1, [0, 3]] if k0 > 0 else run.x0[[0, 3]]
-                z = run.z_dr[k0:k1 + 1]
-                p = p + np.sum(z[:, 1:2] * np.stack([np.sin(z[:, 0]), np.cos(z[:, 0])], axis=1), axis=0)
-                errs.append(float(np.hypot(*(p - run.x_true[k1, [0, 3]]))))
-                continue
-            errs.append(None)
+        ends = np.empty((len(starts), 2))
         if name == "DR-mech":
-            out[name] = np.array(errs)
-            continue
-        # one pass with GPS, a snapshot at each outage start, then the outage alone
-        model = GPSDRModel(dt=dt, augmented=name == "EKF-8", **kw)
-        x0 = np.concatenate([run.x0, [1.0, 0.0]]) if model.augmented else run.x0.copy()
-        P0 = model.P0.copy()
-        P0[0, 0] = P0[3, 3] = 1.0
-        kf = model.ekf(x0=x0, P0=P0)
-        k0s = [int(np.searchsorted(run.t, a)) for a in starts]
-        snaps = {}
-        for k in range(max(k0s) + 1):
-            if k in k0s:
-                snaps[k] = copy.deepcopy(kf)
-            kf.predict()
-            model.update(kf, run.z_dr[k], gps[k], low_speed=bool(slow[k]), zupt=bool(still[k]))
-        for j, a in enumerate(starts):
-            k0 = k0s[j]
-            k1 = int(np.searchsorted(run.t, a + length)) - 1
-            f = copy.deepcopy(snaps[k0])
-            for k in range(k0, k1 + 1):
+            for j, (k0, k1) in enumerate(zip(k0s, k1s)):
+                if truth:
+                    p = run.x_true[k0 - 1, [0, 3]] if k0 > 0 else run.x0[[0, 3]]
+                else:
+                    p = track[k0 - 1] if k0 > 0 else run.x0[[0, 3]]
+                z = run.z_dr[k0:k1 + 1]
+                ends[j] = p + np.sum(z[:, 1:2] * np.stack([np.sin(z[:, 0]), np.cos(z[:, 0])], axis=1), axis=0)
+        else:
+            # one pass with GPS, a snapshot at each outage start, then the outage alone
+            model = GPSDRModel(dt=dt, augmented=name.endswith("-8"), **kw)
+            x0 = np.concatenate([run.x0, [1.0, 0.0]]) if model.augmented else run.x0.copy()
+            P0 = model.P0.copy()
+            P0[0, 0] = P0[3, 3] = 1.0
+            f = GPSDRFilter(model, _KIND[name], x0=x0, P0=P0, **low)
+            snaps = {}
+            for k in range(max(k0s) + 1):
+                if k in k0s:
+                    snaps[k] = copy.deepcopy(f)
                 f.predict()
-                model.update(f, run.z_dr[k], None, low_speed=bool(slow[k]), zupt=bool(still[k]))
-            if not np.all(np.isfinite(f.x)):
-                raise FloatingPointError(f"{name}: non-finite state at step {k1} (outage at {a:.1f} s)")
-            errs[j] = float(np.hypot(f.x[0] - run.x_true[k1, 0], f.x[3] - run.x_true[k1, 3]))
-        out[name] = np.array(errs)
+                f.update(run.z_dr[k], gps[k], sig[k])
+            for j, (k0, k1) in enumerate(zip(k0s, k1s)):
+                g = copy.deepcopy(snaps[k0])
+                for k in range(k0, k1 + 1):
+                    g.predict()
+                    g.update(run.z_dr[k], None)
+                if not np.all(np.isfinite(g.x)):
+                    raise FloatingPointError(f"{name}: non-finite state at step {k1} (outage at {starts[j]:.1f} s)")
+                ends[j] = g.x[[0, 3]]
+        out["end_xy"][name] = ends
+        out[name] = np.hypot(*(ends - refs).T)
     return out
+
+
+_REAL_META = ("starts", "moved", "length", "end_steps", "reference", "name", "track", "t", "end_xy")
 
 
 def real_drive_table(res, min_moved=100.0):
     """Markdown: median/p90/max end-of-outage error over all placements and moving ones."""
     mv = res["moved"] >= min_moved
-    names = [k for k in res if k not in ("starts", "moved", "length")]
-    lines = [f"### real drive {CAR_DRIVE}: {len(res['starts'])} GPS outages of {res['length']:g} s "
-             f"({int(mv.sum())} with >= {min_moved:g} m driven)", "",
+    names = [k for k in res if k not in _REAL_META]
+    lines = [f"### real drive {res.get('name', CAR_DRIVE)}: {len(res['starts'])} GPS outages of {res['length']:g} s "
+             f"({int(mv.sum())} with >= {min_moved:g} m driven), error at the outage ends against the "
+             f"{res.get('reference', 'truth')} (m)", "",
              "| filter | median all | p90 all | max all | median moving | max moving |", "|---|---|---|---|---|---|"]
     for n in names:
         e = res[n]
@@ -650,6 +710,34 @@ def real_drive_table(res, min_moved=100.0):
         lines.append(f"| {n} | {np.median(e):.2f} | {np.percentile(e, 90):.2f} | {e.max():.2f} | "
                      f"{np.median(em):.2f} | {em.max():.2f} |")
     return "\n".join(lines) + "\n"
+
+
+def _slug(text):
+    return "".join(c if c.isalnum() else "_" for c in str(text)).strip("_").lower()
+
+
+def write_real_drive(res, out_dir, figures=True):
+    """Write one real drive's table (``real_drive_<name>.md``) and figure; returns the paths."""
+    os.makedirs(out_dir, exist_ok=True)
+    slug = _slug(res["name"])
+    p = os.path.join(out_dir, f"real_drive_{slug}_outage_errors.md")
+    with open(p, "w") as fh:
+        fh.write(real_drive_table(res))
+    paths = [p]
+    if figures:
+        import matplotlib
+
+        matplotlib.use("Agg", force=False)
+        import matplotlib.pyplot as plt
+
+        from .. import plotting
+
+        fig = plotting.dr_real_drive(res)
+        p = os.path.join(out_dir, f"real_drive_{slug}_track_and_outage_end_errors.png")
+        fig.savefig(p, dpi=110)
+        plt.close(fig)
+        paths.append(p)
+    return paths
 
 
 def add_arguments(parser):
@@ -666,11 +754,24 @@ def add_arguments(parser):
     parser.add_argument("--quiet", action="store_true", help="no progress bar")
     parser.add_argument("--real", action="store_true",
                         help=f"also run the GPS/DR filters on the real drive {CAR_DRIVE} (needs onavdata)")
+    parser.add_argument("--drive", action="append", default=None, metavar="CSV",
+                        help="run the GPS/DR filters on one's own drive, a CSV with the columns of "
+                             "filterwnn.scenarios.DRIVE_CSV_COLUMNS ('sample' for the shipped sample drive); "
+                             "repeatable; with --drive only the drives run, not the simulated scenarios")
+    parser.add_argument("--outage-length", type=float, default=30.0, help="GPS outage length on drives (s)")
+    parser.add_argument("--outages", type=int, default=20, help="number of outages spread over each drive")
+    parser.add_argument("--outage-starts", default=None,
+                        help="comma-separated outage start times (s) on --drive drives, instead of spreading them")
+    parser.add_argument("--min-speed", type=float, default=0.0,
+                        help="spread outages only over windows with at least this mean speed (m/s)")
 
 
 def run(args):
     """Entry point of ``filterwnn study dr``."""
     filters = args.filters.split(",") if args.filters else None
+    drives = getattr(args, "drive", None)
+    if drives:
+        return _run_drives(args, drives, filters)
     res = run_study(scenarios=args.scenarios.split(","), n_runs=args.runs, filters=filters,
                     seed=args.seed, jobs=args.jobs, factor=args.factor, progress=not args.quiet)
     paths = write_outputs(res, args.out, figures=not args.no_figures)
@@ -681,12 +782,35 @@ def run(args):
         except ImportError as exc:
             print(f"skipping the real drive: {exc}")
         else:
-            text = real_drive_table(real_drive_outages(drive))
+            rd = real_drive_outages(drive)
+            text = real_drive_table(rd)
             p = os.path.join(args.out, "dr_real_drive.md")
             with open(p, "w") as fh:
                 fh.write(text)
             paths.append(p)
+            paths += write_outputs(None, args.out, figures=not args.no_figures, real_drives=[rd])
             print(text)
+    print("wrote:", ", ".join(paths))
+    return 0
+
+
+def _run_drives(args, drives, filters):
+    """``--drive``: the GPS/DR filters on one's own drives, with each fix's accuracy when given."""
+    from ..scenarios import sample_drive_path
+
+    starts = None
+    if getattr(args, "outage_starts", None):
+        starts = [float(v) for v in args.outage_starts.split(",")]
+    fl = tuple(filters) if filters else REAL_FILTERS
+    results = []
+    for path in drives:
+        run = read_drive_csv(sample_drive_path() if path == "sample" else path)
+        res = real_drive_outages(run, n_placements=args.outages, length=args.outage_length, filters=fl,
+                                 starts=starts, min_speed=args.min_speed,
+                                 use_gps_sigma=run.gps_sigma is not None)
+        results.append(res)
+        print(real_drive_table(res))
+    paths = write_outputs(None, args.out, figures=not args.no_figures, real_drives=results)
     print("wrote:", ", ".join(paths))
     return 0
 
