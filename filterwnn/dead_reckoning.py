@@ -88,6 +88,7 @@ __all__ = [
     "gps_hx",
     "DRModel",
     "GPSDRModel",
+    "SENSOR_GRADES",
 ]
 
 #: Indices of the position, velocity and acceleration states.
@@ -110,7 +111,8 @@ def transition_matrix(dt, accel_term="kinematic", dim_x=6):
     r"""The transition matrix :math:`\Phi` of shape ``(dim_x, dim_x)``.
 
     ``dim_x = 6`` is the kinematic state; ``dim_x = 8`` appends the odometer scale and
-    the heading bias, both constant (random walks through ``Q``).
+    the heading bias, both constant (random walks through ``Q``); ``dim_x = 9`` also a
+    gyro rate bias ``r`` that the heading bias integrates (``b_k = b_{k-1} + T r``).
     ``accel_term="kinematic"`` puts ``T^2/2`` in the position-acceleration entries (exact
     constant-acceleration kinematics); ``"paper"`` puts the paper's printed ``T^2``.
     """
@@ -121,6 +123,8 @@ def transition_matrix(dt, accel_term="kinematic", dim_x=6):
     F = np.eye(dim_x)
     F[0:3, 0:3] = A
     F[3:6, 3:6] = A
+    if dim_x >= 9:
+        F[7, 8] = dt
     return F
 
 
@@ -136,6 +140,8 @@ def dr_fx(x, dt, accel_term="kinematic"):
     out[..., 1] = x[..., 1] + dt * x[..., 2]
     out[..., 3] = x[..., 3] + dt * x[..., 4] + c * x[..., 5]
     out[..., 4] = x[..., 4] + dt * x[..., 5]
+    if x.shape[-1] >= 9:  # the heading bias integrates the gyro rate bias
+        out[..., 7] = x[..., 7] + dt * x[..., 8]
     return out
 
 
@@ -238,6 +244,46 @@ def gps_hx(x):
 
 
 # --------------------------------------------------------------------------- models
+
+
+#: Sensor grades, each number a data-sheet-style specification (see :meth:`GPSDRModel.from_grade`
+#: for how each becomes a model setting). Class figures, not one product's data sheet:
+#:
+#: ``survey``: a survey-grade GNSS/INS in a car (an HGuide n380-class unit, as in onavdata's drives):
+#: GNSS about 1.5 m (the receiver reports each fix's accuracy), a tactical-grade gyro (angle random walk
+#: about 0.1 deg/sqrt(h), bias instability about 1 deg/h, residual bias negligible), an odometer of
+#: 2 cm per 0.1 s sample and a few per cent scale uncertainty.
+#: ``phone``: a phone's 1 Hz GPS of about 5 m, a MEMS gyro (angle random walk about 0.3 deg/sqrt(h),
+#: bias instability about 10 deg/h, a residual turn-on bias of up to about 0.05 deg/s after the phone's
+#: own calibration), a CAN odometer (1 cm per 0.1 s sample, a few per cent scale from tyres).
+#: Both: a passenger car's manoeuvres as white jerk of about 1.4 m/s^3 (comfortable driving stays
+#: under about 2 m/s^3).
+SENSOR_GRADES = {
+    "survey": dict(gps_sigma_m=1.5, heading_noise_deg=0.2, gyro_arw_deg_rt_h=0.1, gyro_bias_deg_s=0.0,
+                   gyro_bias_instability_deg_h=1.0, odometer_noise_m=0.02, odometer_scale_sd=0.03,
+                   odometer_scale_drift=1e-8, heading_bias_sd_deg=2.0, vehicle_jerk_sd=1.4, rate_bias=False),
+    "phone": dict(gps_sigma_m=5.0, heading_noise_deg=0.5, gyro_arw_deg_rt_h=0.3, gyro_bias_deg_s=0.05,
+                  gyro_bias_instability_deg_h=10.0, odometer_noise_m=0.01, odometer_scale_sd=0.03,
+                  odometer_scale_drift=1e-8, heading_bias_sd_deg=5.0, vehicle_jerk_sd=1.4, rate_bias=True),
+}
+
+
+def _grade(grade):
+    if isinstance(grade, str):
+        if grade not in SENSOR_GRADES:
+            raise ValueError(f"grade must be one of {sorted(SENSOR_GRADES)} or a dict of specifications, "
+                             f"got {grade!r}")
+        return dict(SENSOR_GRADES[grade])
+    if not isinstance(grade, dict):
+        raise TypeError(f"grade must be a str or a dict, got {type(grade).__name__}")
+    unknown = set(grade) - set(SENSOR_GRADES["phone"])
+    if unknown:
+        raise ValueError(f"grade has unknown keys {sorted(unknown)}; valid: {sorted(SENSOR_GRADES['phone'])}")
+    spec = dict(SENSOR_GRADES["phone"], **grade)
+    for k, v in spec.items():
+        if k != "rate_bias":
+            check_positive(v, f"grade[{k!r}]", strict=False)
+    return spec
 
 
 def _kinematic_Q(dt, q):
@@ -372,6 +418,10 @@ class GPSDRModel(StateSpaceModel):
         DR sample interval (s).
     augmented : bool
         Estimate ``zeta`` and ``b`` (8 states) or not (6 states, ``zeta`` known).
+    rate_bias : bool
+        With ``augmented``: a ninth state, the gyro rate bias ``r`` (rad/s), integrated by
+        the heading bias (``b_k = b_{k-1} + T r_{k-1}``). For MEMS gyros, whose residual
+        rate bias makes the heading error grow linearly; a random-walk ``b`` cannot follow it.
     zeta : float
         Odometer scale assumed by the 6-state model, and the prior mean of the 8-state one.
     q, sigma_heading, sigma_odometer, accel_term, min_speed
@@ -382,6 +432,8 @@ class GPSDRModel(StateSpaceModel):
         Random-walk spectral densities of ``zeta`` (1/s) and ``b`` (rad^2/s).
     sd_scale, sd_bias : float
         Prior standard deviations of ``zeta`` and ``b``.
+    q_rate, sd_rate : float
+        Random-walk spectral density (rad^2/s^3) and prior standard deviation (rad/s) of ``r``.
     stationary_inflation : float
         Factor on the heading variance used by ``R_for(stationary=True)``.
     sigma_zupt : float
@@ -390,7 +442,11 @@ class GPSDRModel(StateSpaceModel):
         Extra velocity noise (m/s, per axis) of the low-speed form (``measurement_for(low_speed=True)``):
         pulling away, a car's track and its gyro heading differ by tens of degrees.
     x0, P0 : array-like, optional
-        Prior (default as :class:`DRModel`, extended by ``zeta`` and ``b = 0``).
+        Prior (default as :class:`DRModel`, extended by ``zeta``, ``b = 0`` and ``r = 0``).
+
+    See Also
+    --------
+    GPSDRModel.from_grade : the settings from a sensor grade or one's own sensor specification.
     """
 
     def __init__(
@@ -398,6 +454,7 @@ class GPSDRModel(StateSpaceModel):
         dt=0.1,
         *,
         augmented=False,
+        rate_bias=False,
         zeta=1.0,
         q=0.1,
         sigma_heading=np.deg2rad(1.0),
@@ -407,6 +464,8 @@ class GPSDRModel(StateSpaceModel):
         q_bias=1e-7,
         sd_scale=0.05,
         sd_bias=np.deg2rad(5.0),
+        q_rate=1e-10,
+        sd_rate=np.deg2rad(0.1),
         stationary_inflation=1e6,
         sigma_zupt=0.01,
         sigma_low_speed=0.5,
@@ -417,7 +476,11 @@ class GPSDRModel(StateSpaceModel):
     ):
         self.dt = check_positive(dt, "dt")
         self.augmented = bool(augmented)
-        self.dim_x = 8 if self.augmented else 6
+        self.rate_bias = bool(rate_bias)
+        if self.rate_bias and not self.augmented:
+            raise ValueError("rate_bias=True needs augmented=True (the rate bias drives the heading bias state)")
+        self.dim_x = 9 if self.rate_bias else 8 if self.augmented else 6
+        self.q_rate = check_positive(q_rate, "q_rate", strict=False)
         self.dim_z = 4
         self.zeta = check_positive(zeta, "zeta")
         self.q = check_positive(q, "q", strict=False)
@@ -438,16 +501,88 @@ class GPSDRModel(StateSpaceModel):
         if self.augmented:
             Q[6, 6] = self.q_scale * self.dt
             Q[7, 7] = self.q_bias * self.dt
+        if self.rate_bias:
+            Q[8, 8] = self.q_rate * self.dt
         self.Q = Q
         self.R = np.diag(
             [self.sigma_heading**2, self.sigma_odometer**2, self.sigma_gps**2, self.sigma_gps**2]
         )
-        x0_default = [0.0, 10.0, 0.0, 0.0, 10.0, 0.0] + ([self.zeta, 0.0] if self.augmented else [])
+        x0_default = ([0.0, 10.0, 0.0, 0.0, 10.0, 0.0] + ([self.zeta, 0.0] if self.augmented else [])
+                      + ([0.0] if self.rate_bias else []))
         self.x0 = np.array(x0_default) if x0 is None else as_state(x0, "x0", n)
         p0 = [1e-4, 0.25, 0.01, 1e-4, 0.25, 0.01]
         if self.augmented:
             p0 += [check_positive(sd_scale, "sd_scale") ** 2, check_positive(sd_bias, "sd_bias") ** 2]
+        if self.rate_bias:
+            p0 += [check_positive(sd_rate, "sd_rate") ** 2]
         self.P0 = np.diag(p0) if P0 is None else check_covariance(P0, "P0", n)
+
+    @classmethod
+    def from_grade(cls, grade, dt=0.1, *, augmented=True, rate_bias=None, **overrides):
+        """Model settings from a sensor grade or a specification, not from a drive.
+
+        Parameters
+        ----------
+        grade : str or dict
+            A key of :data:`SENSOR_GRADES` or a dict with the same keys (one's own
+            sensors' data-sheet numbers; missing keys come from ``"phone"``).
+        dt : float
+            DR sample interval (s).
+        augmented : bool
+            Estimate the odometer scale and the heading bias online (8 states).
+        rate_bias : bool, optional
+            Estimate the gyro rate bias too (9 states); default the grade's ``rate_bias``.
+        **overrides
+            :class:`GPSDRModel` keyword arguments that win over the derived ones.
+
+        Returns
+        -------
+        GPSDRModel
+
+        Notes
+        -----
+        The mapping, each line from one specification number:
+
+        * ``sigma_gps = gps_sigma_m`` (used for fixes that carry no accuracy of their own);
+        * ``sigma_heading = heading_noise_deg`` (the white part of the heading);
+        * ``q_bias = (gyro_arw_deg_rt_h * pi/180 / 60)^2`` (angle random walk, rad^2/s), plus,
+          without a rate-bias state, ``(gyro_bias_deg_s * pi/180)^2 * 30 s``: a constant rate
+          bias ``w`` gives a heading error ``w L`` after ``L`` s, and a random walk of that
+          density gives the same spread at ``L = 30`` s (the outage length scored);
+        * with a rate-bias state: ``sd_rate = gyro_bias_deg_s`` (prior), ``q_rate =
+          (gyro_bias_instability_deg_h * pi/180 / 3600)^2 / 100 s`` (its drift);
+        * ``sigma_odometer = odometer_noise_m``, ``sd_scale = odometer_scale_sd``;
+        * ``q = vehicle_jerk_sd^2 * 1 s`` (white jerk of the vehicle class, m^2/s^5).
+
+        What no specification gives, the 8-state filter estimates online: the odometer
+        scale and the heading bias (from GPS), and each fix's noise when the receiver
+        reports its accuracy (``GPSDRFilter.update(gps_sigma=...)``).
+
+        >>> m = GPSDRModel.from_grade("phone")
+        >>> m.dim_x, m.sigma_gps
+        (9, 5.0)
+        >>> GPSDRModel.from_grade("survey").dim_x
+        8
+        """
+        spec = _grade(grade)
+        rate = bool(spec["rate_bias"]) if rate_bias is None else bool(rate_bias)
+        arw = np.deg2rad(spec["gyro_arw_deg_rt_h"]) / 60.0
+        w = np.deg2rad(spec["gyro_bias_deg_s"])
+        kw = dict(
+            q=spec["vehicle_jerk_sd"] ** 2,
+            sigma_heading=np.deg2rad(spec["heading_noise_deg"]),
+            sigma_odometer=spec["odometer_noise_m"],
+            sigma_gps=spec["gps_sigma_m"],
+            sd_scale=spec["odometer_scale_sd"],
+            q_scale=spec["odometer_scale_drift"],
+            sd_bias=np.deg2rad(spec["heading_bias_sd_deg"]),
+            q_bias=arw**2 + (0.0 if rate else w**2 * 30.0),
+        )
+        if rate:
+            kw.update(sd_rate=max(w, 1e-9),
+                      q_rate=(np.deg2rad(spec["gyro_bias_instability_deg_h"]) / 3600.0) ** 2 / 100.0)
+        kw.update(overrides)
+        return cls(dt, augmented=augmented or rate, rate_bias=rate, **kw)
 
     def fx(self, x, dt=None, **fx_args):
         """``Phi x`` for ``(dim_x,)`` or ``(n_points, dim_x)``."""

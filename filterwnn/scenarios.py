@@ -97,6 +97,9 @@ class Scenario:
         GPS fix rate (Hz; 0 for none) and noise per axis (m).
     outages : tuple of (t_start, t_end)
         Intervals without GPS.
+    heading_drift : float
+        Gyro rate bias (deg/s): the heading bias grows as ``heading_bias + heading_drift * t``
+        (a MEMS gyro's residual bias, integrated).
     """
 
     name: str = "straight"
@@ -117,6 +120,7 @@ class Scenario:
     gps_rate: float = 0.0
     sigma_gps: float = 3.0
     outages: tuple = field(default=())
+    heading_drift: float = 0.0
 
     def __post_init__(self):
         for name in ("duration", "dt", "factor"):
@@ -658,7 +662,7 @@ def simulate_scenario(scenario, rng=None):
     u_out = rng.random(n)
     sign_out = np.where(rng.random(n) < 0.5, -1.0, 1.0)
     e_g = rng.standard_normal((n, 2))
-    heading = _true_heading(xs, sc.heading) + np.deg2rad(sc.heading_bias) + sh * e_h
+    heading = _true_heading(xs, sc.heading) + np.deg2rad(sc.heading_bias + sc.heading_drift * t) + sh * e_h
     outlier = (t >= sc.t_switch) & (u_out < sc.outlier_prob)
     heading = heading + outlier * sign_out * np.deg2rad(sc.outlier_deg)
     speed = np.hypot(xs[:, 1], xs[:, 4])

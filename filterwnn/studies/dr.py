@@ -580,7 +580,7 @@ REAL_FILTERS = ("DR-mech", "EKF", "EKF-8", "UKF-8", "SUKF-8")
 
 def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "EKF", "EKF-8"),
                        model_kwargs=None, slow_speed=None, starts=None, min_speed=0.0,
-                       use_gps_sigma=False):
+                       use_gps_sigma=False, grade=None):
     """Cut GPS outages of ``length`` s into a drive and score each filter at each outage end.
 
     Placements: ``starts`` as given, or ``n_placements`` spread evenly over the windows
@@ -602,7 +602,13 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
     filters : sequence of str
         Subset of :data:`REAL_FILTERS`.
     model_kwargs : dict, optional
-        :class:`~filterwnn.dead_reckoning.GPSDRModel` settings over :data:`REAL_MODEL`.
+        :class:`~filterwnn.dead_reckoning.GPSDRModel` settings over :data:`REAL_MODEL`, or
+        over the grade's settings.
+    grade : str or dict, optional
+        Settings from a sensor grade or specification
+        (:meth:`~filterwnn.dead_reckoning.GPSDRModel.from_grade`; ``"phone"`` adds the gyro
+        rate-bias state to the 8-state filters) instead of :data:`REAL_MODEL`, which was
+        tuned on the onavdata drive.
     slow_speed : float, optional
         The filters' low-speed threshold (m/s; default :data:`filterwnn.gpsdr.LOW_SPEED`).
     use_gps_sigma : bool
@@ -669,8 +675,13 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
                 ends[j] = p + np.sum(z[:, 1:2] * np.stack([np.sin(z[:, 0]), np.cos(z[:, 0])], axis=1), axis=0)
         else:
             # one pass with GPS, a snapshot at each outage start, then the outage alone
-            model = GPSDRModel(dt=dt, augmented=name.endswith("-8"), **kw)
-            x0 = np.concatenate([run.x0, [1.0, 0.0]]) if model.augmented else run.x0.copy()
+            aug = name.endswith("-8")
+            if grade is not None:
+                model = GPSDRModel.from_grade(grade, dt, augmented=aug, **({} if aug else {"rate_bias": False}),
+                                              **(model_kwargs or {}))
+            else:
+                model = GPSDRModel(dt=dt, augmented=aug, **kw)
+            x0 = np.concatenate([run.x0, model.x0[6:]])
             P0 = model.P0.copy()
             P0[0, 0] = P0[3, 3] = 1.0
             f = GPSDRFilter(model, _KIND[name], x0=x0, P0=P0, **low)
@@ -764,6 +775,10 @@ def add_arguments(parser):
                         help="comma-separated outage start times (s) on --drive drives, instead of spreading them")
     parser.add_argument("--min-speed", type=float, default=0.0,
                         help="spread outages only over windows with at least this mean speed (m/s)")
+    parser.add_argument("--grade", default=None,
+                        help="sensor grade for the GPS/DR settings (survey, phone; see "
+                             "filterwnn.dead_reckoning.SENSOR_GRADES); default phone for --drive, the "
+                             "onavdata-tuned REAL_MODEL for --real")
 
 
 def run(args):
@@ -782,7 +797,8 @@ def run(args):
         except ImportError as exc:
             print(f"skipping the real drive: {exc}")
         else:
-            rd = real_drive_outages(drive)
+            grade = getattr(args, "grade", None)
+            rd = real_drive_outages(drive, grade=grade, use_gps_sigma=grade is not None)
             text = real_drive_table(rd)
             p = os.path.join(args.out, "dr_real_drive.md")
             with open(p, "w") as fh:
@@ -807,7 +823,8 @@ def _run_drives(args, drives, filters):
         run = read_drive_csv(sample_drive_path() if path == "sample" else path)
         res = real_drive_outages(run, n_placements=args.outages, length=args.outage_length, filters=fl,
                                  starts=starts, min_speed=args.min_speed,
-                                 use_gps_sigma=run.gps_sigma is not None)
+                                 use_gps_sigma=run.gps_sigma is not None,
+                                 grade=getattr(args, "grade", None) or "phone")
         results.append(res)
         print(real_drive_table(res))
     paths = write_outputs(None, args.out, figures=not args.no_figures, real_drives=results)
