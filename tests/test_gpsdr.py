@@ -91,11 +91,11 @@ def test_per_fix_gps_sigma_is_the_noise():
 
 
 def test_study_numbers_are_the_old_update_path():
-    """GPSDRFilter on the simulated gpsdr scenario equals the deprecated model.update with the old flags."""
+    """With the full update, GPSDRFilter equals the deprecated model.update with the study's old flags."""
     run = simulate_scenario(SCENARIOS["gpsdr"](duration=30.0), rng=3)
     m = GPSDRModel(augmented=True)
     x0 = np.r_[run.x0, 1.0, 0.0]
-    new = GPSDRFilter(m, "ekf", x0=x0).batch_filter(run.z_dr, run.gps_list())
+    new = GPSDRFilter(m, "ekf", x0=x0, hold_without_gps=False).batch_filter(run.z_dr, run.gps_list())
     kf = m.ekf(x0=x0)
     old = []
     with pytest.warns(DeprecationWarning, match="GPSDRFilter"):
@@ -128,13 +128,41 @@ def test_filter_api_and_bad_arguments():
         GPSDRFilter(m, x0=np.zeros(6))
 
 
-def test_hold_calibration_keeps_the_scale_without_gps(rest_run):
-    m = GPSDRModel(augmented=True)
-    f = GPSDRFilter(m, x0=np.r_[rest_run.x0, 1.0, 0.0], hold_calibration=True)
-    est = f.batch_filter(rest_run.z_dr[:300], None)
-    np.testing.assert_array_equal(est[:, 6], 1.0)
-    assert np.ptp(est[:, 7]) > 0  # the heading bias stays free
+@pytest.mark.parametrize("kind", KINDS)
+def test_without_gps_only_velocity_and_acceleration_move(rest_run, kind):
+    """Position and calibration are consider states between fixes; a fix updates everything."""
+    run = rest_run
+    m = GPSDRModel(augmented=True, rate_bias=True)
+    f = GPSDRFilter(m, kind, x0=np.r_[run.x0, m.x0[6:]])
+    for k in range(150):
+        f.predict()
+        before = f.x.copy()
+        f.update(run.z_dr[k], None)
+        np.testing.assert_array_equal(f.x[f.held_states], before[f.held_states])
     assert np.all(np.linalg.eigvalsh(f.P) > 0)
+    before = f.x.copy()
+    f.predict()
+    f.update(run.z_dr[150], run.x_true[150, [0, 3]] + 2.0)
+    assert np.all(f.x[[0, 3]] != before[[0, 3]])
+
+
+def test_an_outage_from_the_first_second():
+    """The sample drive with 30 s without GPS from the start (a garage): the full update trades speed
+    against scale and track against heading bias and ends far off; the held update stays near the raw DR."""
+    from filterwnn.scenarios import read_drive_csv, sample_drive_path
+
+    run = read_drive_csv(sample_drive_path())
+    m = GPSDRModel(augmented=True, q=2.0, sigma_gps=1.0, q_scale=1e-6, q_bias=1e-6)
+    cut = run.gps_list()
+    cut[:300] = [None] * 300
+    ends = {}
+    for hold in (True, False):
+        est = GPSDRFilter(m, x0=np.r_[run.x0, 1.0, 0.0], hold_without_gps=hold).batch_filter(run.z_dr[:300], cut[:300])
+        ends[hold] = float(np.hypot(*(est[-1, [0, 3]] - run.x_true[299, [0, 3]])))
+    z = run.z_dr[:300]
+    p = run.x0[[0, 3]] + np.sum(z[:, 1:] * np.stack([np.sin(z[:, 0]), np.cos(z[:, 0])], 1), axis=0)
+    raw = float(np.hypot(*(p - run.x_true[299, [0, 3]])))
+    assert ends[True] < raw + 3.0 and ends[False] > 5 * ends[True], (ends, raw)
 
 
 def test_grades_map_specifications_to_settings():
@@ -161,7 +189,7 @@ def test_grades_map_specifications_to_settings():
         GPSDRModel(rate_bias=True)
 
 
-def test_rate_bias_state_jacobians_and_transition(rng=np.random.default_rng(0)):
+def test_rate_bias_state_jacobians_and_transition():
     m = GPSDRModel(augmented=True, rate_bias=True, dt=0.1)
     x = np.array([1.0, 5.0, 0.1, 2.0, 7.0, -0.1, 1.02, 0.03, 0.001])
     np.testing.assert_allclose(m.fx(x), m.F @ x, atol=1e-12)
