@@ -229,20 +229,23 @@ def dr_real_drive(res, ax=None):
     ax1.plot(tr[:, 0], tr[:, 1], color="0.6", lw=1.0, label=f"track ({'truth' if res['reference'] == 'truth' else 'GPS'})")
     for j, (a, k1) in enumerate(zip(res["starts"], res["end_steps"])):
         k0 = int(np.searchsorted(t, a))
-        ax1.plot(tr[k0:k1 + 1, 0], tr[k0:k1 + 1, 1], color="tab:red", lw=2.2, alpha=0.5,
-                 label="GPS outage" if j == 0 else None)
-        ax1.annotate(str(j + 1), tr[k0], fontsize=7, color="tab:red")
+        ax1.plot(tr[k0:k1 + 1, 0], tr[k0:k1 + 1, 1], color="tab:red", lw=4, alpha=0.12, solid_capstyle="butt",
+                 label="GPS outage (overlaps darker)" if j == 0 else None)
+        ax1.plot(*tr[k1], "kx", ms=5, label="outage end (scored)" if j == 0 else None)
+        ax1.annotate(str(j + 1), tr[k1], xytext=(3, 3), textcoords="offset points", fontsize=7)
     ax1.set_aspect("equal", adjustable="datalim")
     ax1.set_xlabel("east [m]")
     ax1.set_ylabel("north [m]")
-    ax1.set_title("track with the GPS outages (numbered at their start)")
+    ax1.set_title("track with the GPS outages (numbered at their end)")
     ax1.legend(fontsize=8)
     ax1.grid(alpha=0.3)
+    num = np.arange(1, len(res["starts"]) + 1)
     for n in names:
-        ax2.plot(res["starts"], np.maximum(res[n], 1e-2), "o-", color=col[n], ms=4, lw=1, label=
+        ax2.plot(num, np.maximum(res[n], 1e-2), "o-", color=col[n], ms=4, lw=1, label=
                  f"{n} (median {np.median(res[n]):.2f} m)")
     ax2.set_yscale("log")
-    ax2.set_xlabel("outage start [s]")
+    ax2.set_xticks(num)
+    ax2.set_xlabel("outage number (as on the track)")
     ax2.set_ylabel(f"horizontal error at the outage end [m] (vs {res['reference']})")
     ax2.set_title(f"error at the end of each {res['length']:g} s GPS outage")
     ax2.legend(fontsize=8)

@@ -28,9 +28,19 @@ Real drive (``--real``, needs the ``data`` extra): :func:`load_car_drive` reads 
 onavdata drive ``2021-04-27C-car-hill-drive`` (gyro yaw integrated for the heading, the
 reference speed with a 2 % scale error and noise as the odometer, 1 Hz GNSS fixes, the
 INS solution as truth) and :func:`real_drive_outages` cuts 30 s GPS outages into it at
-20 placements and scores the error at the end of each. The GPS/DR filters use a
-zero-velocity update when the odometer reads 0 and the velocity-vector form of the DR
-measurement below :data:`STANDSTILL_SPEED` (see ``GPSDRModel.update``).
+20 placements and scores the error at the end of each (both onavdata car drives:
+:data:`~filterwnn.scenarios.CAR_DRIVES`; the second was kept back as the held-out drive).
+
+One's own drive (``--drive my.csv``, ``--drive sample`` for the shipped one): read by
+:func:`~filterwnn.scenarios.read_drive_csv`, the filters set from a sensor grade
+(``--grade``, default ``phone``; :meth:`~filterwnn.dead_reckoning.GPSDRModel.from_grade`),
+each fix's reported accuracy as its noise, outages at ``--outage-starts`` or spread over
+the drive (``--outages``, ``--min-speed``); a table and a figure (the track with the
+outages, each filter's error at the outage ends) per drive.
+
+The GPS/DR filters are :class:`~filterwnn.gpsdr.GPSDRFilter` s: they decide standstill
+(zero-velocity update) and low speed (velocity-vector form) from the odometer themselves,
+and without a fix update only velocity and acceleration.
 
 Scores: east/north RMSE before and after the noise switch (pooled over runs and
 steps), the median and 95th percentile of the final horizontal error, the velocity
@@ -115,10 +125,6 @@ GPSDR_FILTERS = ("EKF", "EKF-8", "UKF-8", "SUKF-8", "DR-only")
 UPF_PARTICLES = 50
 #: Filters run only when asked for (``--filters``): the UPF costs about 100x the EKF.
 OPT_IN = ("UPF",)
-#: Below this odometer speed (m/s) the GPS/DR filters take the DR measurement as a velocity
-#: vector; below :data:`filterwnn.gpsdr.STANDSTILL_SPEED` they make a zero-velocity update
-#: (both decided by :class:`~filterwnn.gpsdr.GPSDRFilter` itself).
-from ..gpsdr import LOW_SPEED as STANDSTILL_SPEED  # noqa: E402  (the old name of the low-speed threshold)
 ORACLE = {"dr": "EKF-oracle", "gpsdr": "EKF-8"}
 DEFAULT_SCENARIOS = ("straight", "turns", "heading180", "outliers", "gpsdr")
 DIV_FACTOR = 3.0
