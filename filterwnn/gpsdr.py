@@ -35,6 +35,8 @@ True
 
 from __future__ import annotations
 
+from collections import deque
+
 import numpy as np
 from filterpy.kalman import ExtendedKalmanFilter, MerweScaledSigmaPoints
 
@@ -87,6 +89,12 @@ class GPSDRFilter:
         outages that start before the calibration has converged ended 58-85 m off with the
         full update against 7-19 m held (the raw dead reckoning: 7-9 m). On by default;
         ``False`` gives the full EKF/UKF update.
+    gps_window : int
+        When > 0: fixes that carry no accuracy of their own get a GPS noise estimated
+        from the last ``gps_window`` GPS innovations (covariance matching,
+        ``sigma^2 = mean(y_e^2 + y_n^2)/2 - mean(HPH^T)``, floored at 0.1 m, used once 10
+        fixes are in), instead of the model's ``sigma_gps``; the estimate is
+        :attr:`gps_sigma_est`. 0 (default): the model's ``sigma_gps``.
     points : sigma points, optional
         Override the unscented kinds' points (filterpy protocol).
 
@@ -99,7 +107,7 @@ class GPSDRFilter:
     """
 
     def __init__(self, model, kind="ekf", *, x0=None, P0=None, standstill_speed=STANDSTILL_SPEED,
-                 low_speed=LOW_SPEED, hold_without_gps=True, points=None):
+                 low_speed=LOW_SPEED, hold_without_gps=True, gps_window=0, points=None):
         if not isinstance(model, GPSDRModel):
             raise TypeError(f"model must be a GPSDRModel, got {type(model).__name__}")
         self.model = model
@@ -107,6 +115,13 @@ class GPSDRFilter:
         self.standstill_speed = check_positive(standstill_speed, "standstill_speed", strict=False)
         self.low_speed = check_positive(low_speed, "low_speed", strict=False)
         self.hold_without_gps = bool(hold_without_gps)
+        self.gps_window = int(gps_window)
+        if self.gps_window < 0:
+            raise ValueError(f"gps_window must be >= 0, got {gps_window}")
+        self._gps_y = deque(maxlen=max(self.gps_window, 1))
+        self._gps_hph = deque(maxlen=max(self.gps_window, 1))
+        #: the innovation-based GPS sigma (m) when ``gps_window > 0`` and enough fixes came in, else None
+        self.gps_sigma_est = None
         #: state rows held without GPS: position and the calibration states
         self.held_states = np.array([0, 3] + list(range(6, model.dim_x)))
         n = model.dim_x
@@ -173,6 +188,13 @@ class GPSDRFilter:
         """
         z_dr = as_state(z_dr, "z_dr", 2)
         self.motion = self.classify(z_dr)
+        adapt = self.gps_window > 0 and z_gps is not None and gps_sigma is None
+        if adapt:
+            # the fix's innovation and its predicted-state part, before the update
+            hph = np.trace(self.kf.P[np.ix_([0, 3], [0, 3])]) / 2.0
+            y = np.asarray(z_gps, dtype=float) - self.kf.x[[0, 3]]
+            if self.gps_sigma_est is not None:
+                gps_sigma = self.gps_sigma_est
         z, R, kw = self.model.measurement_for(z_dr, z_gps, zupt=self.motion == "still",
                                               low_speed=self.motion == "slow", gps_sigma=gps_sigma)
         consider = self.hold_without_gps and not kw["gps"]
@@ -181,6 +203,11 @@ class GPSDRFilter:
         self._update(z, R, kw)
         if consider:
             self._schmidt(x_pre, P_pre)
+        if adapt:
+            self._gps_y.append(float(np.mean(y * y)))
+            self._gps_hph.append(hph)
+            if len(self._gps_y) >= 10:
+                self.gps_sigma_est = float(np.sqrt(max(np.mean(self._gps_y) - np.mean(self._gps_hph), 0.01)))
         return self
 
     def _schmidt(self, x_pre, P_pre):

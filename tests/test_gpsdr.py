@@ -215,3 +215,16 @@ def test_rate_bias_state_follows_a_drifting_gyro():
             if rate:
                 assert abs(np.degrees(est[-1, 8]) - 0.05) < 0.01
     assert np.mean(errs[True]) < 0.5 * np.mean(errs[False])
+
+
+@pytest.mark.parametrize("true_sigma", [1.0, 8.0])
+def test_gps_noise_estimated_from_innovations(true_sigma):
+    """Fixes without an accuracy of their own: the filter learns their noise (the model says 3 m)."""
+    sc = SCENARIOS["gpsdr"](sigma_gps=true_sigma, outages=(), duration=150.0)
+    run = simulate_scenario(sc, rng=0)
+    f = GPSDRFilter(GPSDRModel(augmented=True, sigma_gps=3.0), x0=np.r_[run.x0, 1.0, 0.0], gps_window=60)
+    f.batch_filter(run.z_dr, run.gps_list())
+    assert abs(f.gps_sigma_est / true_sigma - 1.0) < 0.25
+    assert GPSDRFilter(GPSDRModel()).gps_sigma_est is None
+    with pytest.raises(ValueError, match="gps_window must be >= 0"):
+        GPSDRFilter(GPSDRModel(), gps_window=-1)

@@ -34,7 +34,8 @@ INS solution as truth) and :func:`real_drive_outages` cuts 30 s GPS outages into
 One's own drive (``--drive my.csv``, ``--drive sample`` for the shipped one): read by
 :func:`~filterwnn.scenarios.read_drive_csv`, the filters set from a sensor grade
 (``--grade``, default ``phone``; :meth:`~filterwnn.dead_reckoning.GPSDRModel.from_grade`),
-each fix's reported accuracy as its noise, outages at ``--outage-starts`` or spread over
+each fix's reported accuracy as its noise (without one, the noise estimated from the
+GPS innovations over 60 fixes), outages at ``--outage-starts`` or spread over
 the drive (``--outages``, ``--min-speed``); a table and a figure (the track with the
 outages, each filter's error at the outage ends) per drive.
 
@@ -586,7 +587,7 @@ REAL_FILTERS = ("DR-mech", "EKF", "EKF-8", "UKF-8", "SUKF-8")
 
 def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "EKF", "EKF-8"),
                        model_kwargs=None, slow_speed=None, starts=None, min_speed=0.0,
-                       use_gps_sigma=False, grade=None):
+                       use_gps_sigma=False, grade=None, gps_window=0):
     """Cut GPS outages of ``length`` s into a drive and score each filter at each outage end.
 
     Placements: ``starts`` as given, or ``n_placements`` spread evenly over the windows
@@ -619,6 +620,9 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         The filters' low-speed threshold (m/s; default :data:`filterwnn.gpsdr.LOW_SPEED`).
     use_gps_sigma : bool
         Use each fix's reported accuracy (``run.gps_sigma``) as its noise.
+    gps_window : int
+        Estimate the noise of fixes without an accuracy from the GPS innovations over
+        this many fixes (:class:`~filterwnn.gpsdr.GPSDRFilter`; 0: the model's ``sigma_gps``).
 
     Returns
     -------
@@ -690,7 +694,7 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
             x0 = np.concatenate([run.x0, model.x0[6:]])
             P0 = model.P0.copy()
             P0[0, 0] = P0[3, 3] = 1.0
-            f = GPSDRFilter(model, _KIND[name], x0=x0, P0=P0, **low)
+            f = GPSDRFilter(model, _KIND[name], x0=x0, P0=P0, gps_window=gps_window, **low)
             snaps = {}
             for k in range(max(k0s) + 1):
                 if k in k0s:
@@ -830,7 +834,8 @@ def _run_drives(args, drives, filters):
         res = real_drive_outages(run, n_placements=args.outages, length=args.outage_length, filters=fl,
                                  starts=starts, min_speed=args.min_speed,
                                  use_gps_sigma=run.gps_sigma is not None,
-                                 grade=getattr(args, "grade", None) or "phone")
+                                 grade=getattr(args, "grade", None) or "phone",
+                                 gps_window=0 if run.gps_sigma is not None else 60)
         results.append(res)
         print(real_drive_table(res))
     paths = write_outputs(None, args.out, figures=not args.no_figures, real_drives=results)
