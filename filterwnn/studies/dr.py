@@ -34,8 +34,7 @@ INS solution as truth) and :func:`real_drive_outages` cuts 30 s GPS outages into
 One's own drive (``--drive my.csv``, ``--drive sample`` for the shipped one): read by
 :func:`~filterwnn.scenarios.read_drive_csv`, the filters set from a sensor grade
 (``--grade``, default ``phone``; :meth:`~filterwnn.dead_reckoning.GPSDRModel.from_grade`),
-each fix's reported accuracy as its noise (without one, the noise estimated from the
-GPS innovations over 60 fixes), outages at ``--outage-starts`` or spread over
+each fix's reported accuracy as its noise (without one, the grade's), outages at ``--outage-starts`` or spread over
 the drive (``--outages``, ``--min-speed``); a table and a figure (the track with the
 outages, each filter's error at the outage ends) per drive.
 
@@ -834,8 +833,7 @@ def _run_drives(args, drives, filters):
         res = real_drive_outages(run, n_placements=args.outages, length=args.outage_length, filters=fl,
                                  starts=starts, min_speed=args.min_speed,
                                  use_gps_sigma=run.gps_sigma is not None,
-                                 grade=getattr(args, "grade", None) or "phone",
-                                 gps_window=0 if run.gps_sigma is not None else 60)
+                                 grade=getattr(args, "grade", None) or "phone")
         results.append(res)
         print(real_drive_table(res))
     paths = write_outputs(None, args.out, figures=not args.no_figures, real_drives=results)
