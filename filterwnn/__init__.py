@@ -54,6 +54,9 @@ from .neural_filter import NeuralFilter
 
 # --- adaptive EKF (issue 14) ---
 from .adaptive import AdaptiveExtendedKalmanFilter
+# --- GPS/DR on one's own drive (issue 14) ---
+from .gpsdr import GPSDRFilter
+from .scenarios import DRRun, read_drive_csv
 
 __all__ = [
     "__version__",
@@ -103,4 +106,7 @@ __all__ = [
     "NeuralFilter",
     # --- issue 14 ---
     "AdaptiveExtendedKalmanFilter",
+    "GPSDRFilter",
+    "DRRun",
+    "read_drive_csv",
 ]

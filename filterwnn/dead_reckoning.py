@@ -1,4 +1,4 @@
-r"""Vehicle dead reckoning (DR) and GPS/DR navigation models, and their simulation.
+r"""Vehicle dead reckoning (DR) and GPS/DR navigation models (the simulation is in :mod:`filterwnn.scenarios`).
 
 The model of Zhang, Ma, Chen and Mastorakis (the second paper, eqs. 1-3). The state is
 
@@ -40,8 +40,10 @@ Choices and their reasons:
   odometer scale ``zeta`` and a heading bias ``b`` (real sensors have both; a 6-state
   filter is tens of metres off with a 2 % scale error).
 
-Missing GPS is said explicitly, never with NaN: :meth:`GPSDRModel.update` takes
-``z_gps=None`` and then uses the DR-only ``hx``/``HJacobian``/``R``.
+Missing GPS is said explicitly, never with NaN: :meth:`GPSDRModel.measurement_for` takes
+``z_gps=None`` and then gives the DR-only measurement, ``hx`` arguments and ``R``. The
+models only describe (``fx``, ``hx``, Jacobians, noise); the filter that drives them
+through starts, stops and GPS outages is :class:`filterwnn.gpsdr.GPSDRFilter`.
 
 Every function is written on the last axis, so it accepts one state ``(dim_x,)`` or a
 stack of points ``(n_points, dim_x)`` (what ``vectorized=True`` unscented filters pass).
@@ -55,9 +57,6 @@ array([0.7854, 1.4142])
 (2, 6)
 >>> float(dr_residual(np.array([np.pi - 0.01, 1.0]), np.array([-np.pi + 0.01, 1.0]))[0])
 -0.02
->>> run = simulate_scenario(SCENARIOS["straight"](), rng=0)
->>> run.x_true.shape, run.z_dr.shape
-((2000, 6), (2000, 2))
 
 References
 ----------
@@ -67,9 +66,6 @@ nonlinear filters of navigation systems".
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
-from typing import NamedTuple
-
 import numpy as np
 from filterpy.common import Q_continuous_white_noise
 
@@ -78,7 +74,6 @@ from ._validation import (
     check_choice,
     check_covariance,
     check_positive,
-    check_rng,
 )
 from .models import StateSpaceModel
 
@@ -93,10 +88,7 @@ __all__ = [
     "gps_hx",
     "DRModel",
     "GPSDRModel",
-    "Scenario",
-    "DRRun",
-    "SCENARIOS",
-    "simulate_scenario",
+    "SENSOR_GRADES",
 ]
 
 #: Indices of the position, velocity and acceleration states.
@@ -119,7 +111,8 @@ def transition_matrix(dt, accel_term="kinematic", dim_x=6):
     r"""The transition matrix :math:`\Phi` of shape ``(dim_x, dim_x)``.
 
     ``dim_x = 6`` is the kinematic state; ``dim_x = 8`` appends the odometer scale and
-    the heading bias, both constant (random walks through ``Q``).
+    the heading bias, both constant (random walks through ``Q``); ``dim_x = 9`` also a
+    gyro rate bias ``r`` that the heading bias integrates (``b_k = b_{k-1} + T r``).
     ``accel_term="kinematic"`` puts ``T^2/2`` in the position-acceleration entries (exact
     constant-acceleration kinematics); ``"paper"`` puts the paper's printed ``T^2``.
     """
@@ -130,6 +123,8 @@ def transition_matrix(dt, accel_term="kinematic", dim_x=6):
     F = np.eye(dim_x)
     F[0:3, 0:3] = A
     F[3:6, 3:6] = A
+    if dim_x >= 9:
+        F[7, 8] = dt
     return F
 
 
@@ -145,6 +140,8 @@ def dr_fx(x, dt, accel_term="kinematic"):
     out[..., 1] = x[..., 1] + dt * x[..., 2]
     out[..., 3] = x[..., 3] + dt * x[..., 4] + c * x[..., 5]
     out[..., 4] = x[..., 4] + dt * x[..., 5]
+    if x.shape[-1] >= 9:  # the heading bias integrates the gyro rate bias
+        out[..., 7] = x[..., 7] + dt * x[..., 8]
     return out
 
 
@@ -247,6 +244,46 @@ def gps_hx(x):
 
 
 # --------------------------------------------------------------------------- models
+
+
+#: Sensor grades, each number a data-sheet-style specification (see :meth:`GPSDRModel.from_grade`
+#: for how each becomes a model setting). Class figures, not one product's data sheet:
+#:
+#: ``survey``: a survey-grade GNSS/INS in a car (an HGuide n380-class unit, as in onavdata's drives):
+#: GNSS about 1.5 m (the receiver reports each fix's accuracy), a tactical-grade gyro (angle random walk
+#: about 0.1 deg/sqrt(h), bias instability about 1 deg/h, residual bias negligible), an odometer of
+#: 2 cm per 0.1 s sample and a few per cent scale uncertainty.
+#: ``phone``: a phone's 1 Hz GPS of about 5 m, a MEMS gyro (angle random walk about 0.3 deg/sqrt(h),
+#: bias instability about 10 deg/h, a residual turn-on bias of up to about 0.05 deg/s after the phone's
+#: own calibration), a CAN odometer (1 cm per 0.1 s sample, a few per cent scale from tyres).
+#: Both: a passenger car's manoeuvres as white jerk of about 1.4 m/s^3 (comfortable driving stays
+#: under about 2 m/s^3).
+SENSOR_GRADES = {
+    "survey": dict(gps_sigma_m=1.5, heading_noise_deg=0.2, gyro_arw_deg_rt_h=0.1, gyro_bias_deg_s=0.0,
+                   gyro_bias_instability_deg_h=1.0, odometer_noise_m=0.02, odometer_scale_sd=0.03,
+                   odometer_scale_drift=1e-8, heading_bias_sd_deg=2.0, vehicle_jerk_sd=1.4, rate_bias=False),
+    "phone": dict(gps_sigma_m=5.0, heading_noise_deg=0.5, gyro_arw_deg_rt_h=0.3, gyro_bias_deg_s=0.05,
+                  gyro_bias_instability_deg_h=10.0, odometer_noise_m=0.01, odometer_scale_sd=0.03,
+                  odometer_scale_drift=1e-8, heading_bias_sd_deg=5.0, vehicle_jerk_sd=1.4, rate_bias=True),
+}
+
+
+def _grade(grade):
+    if isinstance(grade, str):
+        if grade not in SENSOR_GRADES:
+            raise ValueError(f"grade must be one of {sorted(SENSOR_GRADES)} or a dict of specifications, "
+                             f"got {grade!r}")
+        return dict(SENSOR_GRADES[grade])
+    if not isinstance(grade, dict):
+        raise TypeError(f"grade must be a str or a dict, got {type(grade).__name__}")
+    unknown = set(grade) - set(SENSOR_GRADES["phone"])
+    if unknown:
+        raise ValueError(f"grade has unknown keys {sorted(unknown)}; valid: {sorted(SENSOR_GRADES['phone'])}")
+    spec = dict(SENSOR_GRADES["phone"], **grade)
+    for k, v in spec.items():
+        if k != "rate_bias":
+            check_positive(v, f"grade[{k!r}]", strict=False)
+    return spec
 
 
 def _kinematic_Q(dt, q):
@@ -366,7 +403,7 @@ class GPSDRModel(StateSpaceModel):
 
     The full measurement is ``[theta, s, e, n]`` (``dim_z = 4``) when a GPS fix is there,
     and the DR-only ``[theta, s]`` when it is not: :meth:`hx`, :meth:`HJacobian` and
-    :meth:`R_for` take ``gps=True/False``, and :meth:`update` picks them from
+    :meth:`R_for` take ``gps=True/False``, and :meth:`measurement_for` picks them from
     ``z_gps=None``. NaN never enters (a missing fix is ``None``).
 
     With ``augmented=True`` the state is 8-dimensional,
@@ -381,6 +418,10 @@ class GPSDRModel(StateSpaceModel):
         DR sample interval (s).
     augmented : bool
         Estimate ``zeta`` and ``b`` (8 states) or not (6 states, ``zeta`` known).
+    rate_bias : bool
+        With ``augmented``: a ninth state, the gyro rate bias ``r`` (rad/s), integrated by
+        the heading bias (``b_k = b_{k-1} + T r_{k-1}``). For MEMS gyros, whose residual
+        rate bias makes the heading error grow linearly; a random-walk ``b`` cannot follow it.
     zeta : float
         Odometer scale assumed by the 6-state model, and the prior mean of the 8-state one.
     q, sigma_heading, sigma_odometer, accel_term, min_speed
@@ -391,15 +432,21 @@ class GPSDRModel(StateSpaceModel):
         Random-walk spectral densities of ``zeta`` (1/s) and ``b`` (rad^2/s).
     sd_scale, sd_bias : float
         Prior standard deviations of ``zeta`` and ``b``.
+    q_rate, sd_rate : float
+        Random-walk spectral density (rad^2/s^3) and prior standard deviation (rad/s) of ``r``.
     stationary_inflation : float
         Factor on the heading variance used by ``R_for(stationary=True)``.
     sigma_zupt : float
-        Standard deviation (m/s) of the zero-velocity update (``update(zupt=True)``).
+        Standard deviation (m/s) of the zero-velocity update (``measurement_for(zupt=True)``).
     sigma_low_speed : float
-        Extra velocity noise (m/s, per axis) of the low-speed form (``update(low_speed=True)``):
+        Extra velocity noise (m/s, per axis) of the low-speed form (``measurement_for(low_speed=True)``):
         pulling away, a car's track and its gyro heading differ by tens of degrees.
     x0, P0 : array-like, optional
-        Prior (default as :class:`DRModel`, extended by ``zeta`` and ``b = 0``).
+        Prior (default as :class:`DRModel`, extended by ``zeta``, ``b = 0`` and ``r = 0``).
+
+    See Also
+    --------
+    GPSDRModel.from_grade : the settings from a sensor grade or one's own sensor specification.
     """
 
     def __init__(
@@ -407,6 +454,7 @@ class GPSDRModel(StateSpaceModel):
         dt=0.1,
         *,
         augmented=False,
+        rate_bias=False,
         zeta=1.0,
         q=0.1,
         sigma_heading=np.deg2rad(1.0),
@@ -416,6 +464,8 @@ class GPSDRModel(StateSpaceModel):
         q_bias=1e-7,
         sd_scale=0.05,
         sd_bias=np.deg2rad(5.0),
+        q_rate=1e-10,
+        sd_rate=np.deg2rad(0.1),
         stationary_inflation=1e6,
         sigma_zupt=0.01,
         sigma_low_speed=0.5,
@@ -426,7 +476,11 @@ class GPSDRModel(StateSpaceModel):
     ):
         self.dt = check_positive(dt, "dt")
         self.augmented = bool(augmented)
-        self.dim_x = 8 if self.augmented else 6
+        self.rate_bias = bool(rate_bias)
+        if self.rate_bias and not self.augmented:
+            raise ValueError("rate_bias=True needs augmented=True (the rate bias drives the heading bias state)")
+        self.dim_x = 9 if self.rate_bias else 8 if self.augmented else 6
+        self.q_rate = check_positive(q_rate, "q_rate", strict=False)
         self.dim_z = 4
         self.zeta = check_positive(zeta, "zeta")
         self.q = check_positive(q, "q", strict=False)
@@ -447,16 +501,88 @@ class GPSDRModel(StateSpaceModel):
         if self.augmented:
             Q[6, 6] = self.q_scale * self.dt
             Q[7, 7] = self.q_bias * self.dt
+        if self.rate_bias:
+            Q[8, 8] = self.q_rate * self.dt
         self.Q = Q
         self.R = np.diag(
             [self.sigma_heading**2, self.sigma_odometer**2, self.sigma_gps**2, self.sigma_gps**2]
         )
-        x0_default = [0.0, 10.0, 0.0, 0.0, 10.0, 0.0] + ([self.zeta, 0.0] if self.augmented else [])
+        x0_default = ([0.0, 10.0, 0.0, 0.0, 10.0, 0.0] + ([self.zeta, 0.0] if self.augmented else [])
+                      + ([0.0] if self.rate_bias else []))
         self.x0 = np.array(x0_default) if x0 is None else as_state(x0, "x0", n)
         p0 = [1e-4, 0.25, 0.01, 1e-4, 0.25, 0.01]
         if self.augmented:
             p0 += [check_positive(sd_scale, "sd_scale") ** 2, check_positive(sd_bias, "sd_bias") ** 2]
+        if self.rate_bias:
+            p0 += [check_positive(sd_rate, "sd_rate") ** 2]
         self.P0 = np.diag(p0) if P0 is None else check_covariance(P0, "P0", n)
+
+    @classmethod
+    def from_grade(cls, grade, dt=0.1, *, augmented=True, rate_bias=None, **overrides):
+        """Model settings from a sensor grade or a specification, not from a drive.
+
+        Parameters
+        ----------
+        grade : str or dict
+            A key of :data:`SENSOR_GRADES` or a dict with the same keys (one's own
+            sensors' data-sheet numbers; missing keys come from ``"phone"``).
+        dt : float
+            DR sample interval (s).
+        augmented : bool
+            Estimate the odometer scale and the heading bias online (8 states).
+        rate_bias : bool, optional
+            Estimate the gyro rate bias too (9 states); default the grade's ``rate_bias``.
+        **overrides
+            :class:`GPSDRModel` keyword arguments that win over the derived ones.
+
+        Returns
+        -------
+        GPSDRModel
+
+        Notes
+        -----
+        The mapping, each line from one specification number:
+
+        * ``sigma_gps = gps_sigma_m`` (used for fixes that carry no accuracy of their own);
+        * ``sigma_heading = heading_noise_deg`` (the white part of the heading);
+        * ``q_bias = (gyro_arw_deg_rt_h * pi/180 / 60)^2`` (angle random walk, rad^2/s), plus,
+          without a rate-bias state, ``(gyro_bias_deg_s * pi/180)^2 * 30 s``: a constant rate
+          bias ``w`` gives a heading error ``w L`` after ``L`` s, and a random walk of that
+          density gives the same spread at ``L = 30`` s (the outage length scored);
+        * with a rate-bias state: ``sd_rate = gyro_bias_deg_s`` (prior), ``q_rate =
+          (gyro_bias_instability_deg_h * pi/180 / 3600)^2 / 100 s`` (its drift);
+        * ``sigma_odometer = odometer_noise_m``, ``sd_scale = odometer_scale_sd``;
+        * ``q = vehicle_jerk_sd^2 * 1 s`` (white jerk of the vehicle class, m^2/s^5).
+
+        What no specification gives, the 8-state filter estimates online: the odometer
+        scale and the heading bias (from GPS), and each fix's noise when the receiver
+        reports its accuracy (``GPSDRFilter.update(gps_sigma=...)``).
+
+        >>> m = GPSDRModel.from_grade("phone")
+        >>> m.dim_x, m.sigma_gps
+        (9, 5.0)
+        >>> GPSDRModel.from_grade("survey").dim_x
+        8
+        """
+        spec = _grade(grade)
+        rate = bool(spec["rate_bias"]) if rate_bias is None else bool(rate_bias)
+        arw = np.deg2rad(spec["gyro_arw_deg_rt_h"]) / 60.0
+        w = np.deg2rad(spec["gyro_bias_deg_s"])
+        kw = dict(
+            q=spec["vehicle_jerk_sd"] ** 2,
+            sigma_heading=np.deg2rad(spec["heading_noise_deg"]),
+            sigma_odometer=spec["odometer_noise_m"],
+            sigma_gps=spec["gps_sigma_m"],
+            sd_scale=spec["odometer_scale_sd"],
+            q_scale=spec["odometer_scale_drift"],
+            sd_bias=np.deg2rad(spec["heading_bias_sd_deg"]),
+            q_bias=arw**2 + (0.0 if rate else w**2 * 30.0),
+        )
+        if rate:
+            kw.update(sd_rate=max(w, 1e-9),
+                      q_rate=(np.deg2rad(spec["gyro_bias_instability_deg_h"]) / 3600.0) ** 2 / 100.0)
+        kw.update(overrides)
+        return cls(dt, augmented=augmented or rate, rate_bias=rate, **kw)
 
     def fx(self, x, dt=None, **fx_args):
         """``Phi x`` for ``(dim_x,)`` or ``(n_points, dim_x)``."""
@@ -471,7 +597,7 @@ class GPSDRModel(StateSpaceModel):
 
         ``velocity=True``: the DR part is the velocity vector the sensors measure,
         ``zeta R(b) [v_e, v_n]`` (``R(b)`` rotates by the heading bias; the zero-velocity
-        and low-speed forms of :meth:`update`).
+        and low-speed forms of :meth:`measurement_for`).
         """
         if velocity:
             z = self._velocity_hx(x)
@@ -560,44 +686,43 @@ class GPSDRModel(StateSpaceModel):
         Rw = J @ np.diag([(self.sigma_odometer / self.dt) ** 2, self.sigma_heading**2]) @ J.T
         return w * np.array([np.sin(th), np.cos(th)]), Rw + 1e-12 * np.eye(2)
 
-    def update(self, kf, z_dr, z_gps=None, *, stationary=False, zupt=False, low_speed=False, R=None):
-        """Update a filterpy-style filter with a DR measurement and an optional GPS fix.
-
-        Works with filterpy's ``ExtendedKalmanFilter`` (analytic Jacobian, wrapped
-        residual) and with any unscented filter whose ``hx`` is this model's ``hx`` and
-        whose ``update(z, R=..., **hx_args)`` follows filterpy (``gps`` is passed as an
-        ``hx`` argument, so the measurement size follows the fix). ``z_gps=None`` means
-        no fix (a tunnel): the DR-only measurement, ``hx`` and ``R`` are used.
+    def measurement_for(self, z_dr, z_gps=None, *, stationary=False, zupt=False, low_speed=False,
+                        gps_sigma=None, R=None):
+        """The measurement a filter update uses, for a DR sample and an optional GPS fix.
 
         Parameters
         ----------
-        kf : filter
-            The filter to update in place.
         z_dr : array-like of shape (2,)
             ``[heading (rad), odometer distance (m)]``, finite.
         z_gps : array-like of shape (2,) or None
-            ``[e, n]`` fix (m), or ``None`` when there is none.
+            ``[e, n]`` fix (m), or ``None`` when there is none (a tunnel).
         stationary : bool
             (Nearly) zero speed: heading variance inflated (see :meth:`R_for`).
         zupt : bool
-            The odometer says the vehicle stands still: the DR measurement is replaced by
-            the zero-velocity update ``[v_e, v_n] = 0`` (a range-only odometer cannot hold
-            the velocity at zero: its Jacobian vanishes there). For unscented filters
-            the filter's ``residual_z`` still wraps entry 0, which matters only if the
-            predicted east velocity of a standing vehicle exceeds pi m/s.
+            The vehicle stands still: the DR measurement is replaced by the zero-velocity
+            update ``[v_e, v_n] = 0`` (a range-only odometer cannot hold the velocity at
+            zero: its Jacobian vanishes there).
         low_speed : bool
             Moving slowly (e.g. pulling away): the DR measurement enters as the measured
             velocity vector of :meth:`velocity_measurement`, modelled as
             ``zeta R(b) [v_e, v_n]`` (smooth, no singularity at zero speed), because the
-            odometer's Jacobian vanishes at zero estimated speed and the filter could
-            never pick up speed from rest.
+            odometer's Jacobian vanishes at zero estimated speed.
+        gps_sigma : float, optional
+            This fix's standard deviation per axis (m), e.g. the receiver's reported
+            horizontal accuracy; replaces ``sigma_gps`` in ``R`` for this fix.
         R : ndarray, optional
-            Override of the measurement noise for this call (shape to match).
-        """
-        from filterpy.kalman import ExtendedKalmanFilter
+            Override of the whole measurement noise (shape to match).
 
+        Returns
+        -------
+        z : ndarray of shape (4,) or (2,)
+        R : ndarray of shape (4, 4) or (2, 2)
+        hx_args : dict
+            ``{"gps": bool, "velocity": bool}``, the keyword arguments of :meth:`hx` and
+            :meth:`HJacobian` for this measurement.
+        """
         z, gps = self.measurement(z_dr, z_gps)
-        velocity = zupt or low_speed
+        velocity = bool(zupt or low_speed)
         if zupt:
             z = z.copy()
             z[:2] = 0.0
@@ -609,17 +734,38 @@ class GPSDRModel(StateSpaceModel):
             if low_speed and not zupt:
                 R = R.copy()
                 R[:2, :2] = Rv + self.sigma_low_speed**2 * np.eye(2)
+            if gps and gps_sigma is not None:
+                R = R.copy()
+                R[2:, 2:] = check_positive(gps_sigma, "gps_sigma") ** 2 * np.eye(2)
+        return z, R, {"gps": gps, "velocity": velocity}
+
+    def update(self, kf, z_dr, z_gps=None, *, stationary=False, zupt=False, low_speed=False, R=None):
+        """Deprecated: use :class:`filterwnn.gpsdr.GPSDRFilter` (it decides starts and stops itself).
+
+        Updates a filterpy EKF or an unscented filter with :meth:`measurement_for`'s
+        measurement; kept so that existing code keeps running.
+        """
+        import warnings
+
+        from filterpy.kalman import ExtendedKalmanFilter
+
+        warnings.warn("GPSDRModel.update is deprecated: use filterwnn.gpsdr.GPSDRFilter, which "
+                      "handles standstill, low speed and per-fix GPS accuracy by itself",
+                      DeprecationWarning, stacklevel=2)
+        z, R, kw = self.measurement_for(z_dr, z_gps, stationary=stationary, zupt=zupt,
+                                        low_speed=low_speed, R=R)
         if isinstance(kf, ExtendedKalmanFilter):
-            kf.update(z, self.HJacobian, self.hx, R=R, args=(gps, velocity), hx_args=(gps, velocity),
-                      residual=np.subtract if velocity else dr_residual)
-        elif velocity:
-            kf.update(z, R=R, gps=gps, velocity=True)
+            args = (kw["gps"], kw["velocity"])
+            kf.update(z, self.HJacobian, self.hx, R=R, args=args, hx_args=args,
+                      residual=np.subtract if kw["velocity"] else dr_residual)
+        elif kw["velocity"]:
+            kf.update(z, R=R, gps=kw["gps"], velocity=True)
         else:
-            kf.update(z, R=R, gps=gps)
+            kf.update(z, R=R, gps=kw["gps"])
         return kf
 
     def ekf(self, x0=None, P0=None):
-        """A filterpy ``ExtendedKalmanFilter`` on this model (update it with :meth:`update`)."""
+        """A filterpy ``ExtendedKalmanFilter`` on this model (or use :class:`filterwnn.gpsdr.GPSDRFilter`)."""
         from filterpy.kalman import ExtendedKalmanFilter
 
         kf = ExtendedKalmanFilter(dim_x=self.dim_x, dim_z=4)
@@ -629,242 +775,16 @@ class GPSDRModel(StateSpaceModel):
         return kf
 
 
-# --------------------------------------------------------------------------- simulation
+# --------------------------------------------------------------------------- re-exports
+
+# The scenarios and the simulation moved to :mod:`filterwnn.scenarios`; these names stay
+# importable from here (lazily: scenarios.py imports this module) so existing code keeps working.
+_MOVED = ("SCENARIOS", "DRRun", "Scenario", "simulate_scenario", "true_trajectory")
 
 
-@dataclass(frozen=True)
-class Scenario:
-    """A simulated drive and its sensors (all times in s, angles in degrees).
+def __getattr__(name):
+    if name in _MOVED:
+        from . import scenarios
 
-    The truth has no process noise: its acceleration follows the speed and turn
-    profile (piecewise constant over each sample), integrated by the kinematic
-    transition, so the truth is exactly what the model with ``T^2/2`` describes.
-
-    Attributes
-    ----------
-    name : str
-    duration, dt : float
-        Length of the run and DR sample interval.
-    speed, heading : float
-        Initial speed (m/s) and heading (deg from north, clockwise).
-    turns : tuple of (t_start, t_end, angle_deg)
-        Constant-rate turns (positive clockwise).
-    speed_changes : tuple of (t_start, t_end, delta_speed)
-        Constant-rate speed changes (m/s).
-    sigma_heading, sigma_odometer : float
-        Nominal DR noise (deg, m per sample).
-    t_switch, factor : float
-        From ``t_switch`` on, both DR noise levels are multiplied by ``factor``.
-    outlier_prob, outlier_deg : float
-        After ``t_switch``, each heading has this chance of a +-``outlier_deg`` error.
-    odometer_scale, heading_bias : float
-        True odometer scale ``zeta`` and heading bias (deg).
-    gps_rate, sigma_gps : float
-        GPS fix rate (Hz; 0 for none) and noise per axis (m).
-    outages : tuple of (t_start, t_end)
-        Intervals without GPS.
-    """
-
-    name: str = "straight"
-    duration: float = 200.0
-    dt: float = 0.1
-    speed: float = 10.0 * np.sqrt(2.0)
-    heading: float = 45.0
-    turns: tuple = ()
-    speed_changes: tuple = ()
-    sigma_heading: float = 1.0
-    sigma_odometer: float = 0.02
-    t_switch: float = 150.0
-    factor: float = 1.0
-    outlier_prob: float = 0.0
-    outlier_deg: float = 30.0
-    odometer_scale: float = 1.0
-    heading_bias: float = 0.0
-    gps_rate: float = 0.0
-    sigma_gps: float = 3.0
-    outages: tuple = field(default=())
-
-    def __post_init__(self):
-        for name in ("duration", "dt", "factor"):
-            check_positive(getattr(self, name), name)
-        for name in ("speed", "sigma_heading", "sigma_odometer", "outlier_deg", "gps_rate",
-                     "sigma_gps", "odometer_scale"):
-            check_positive(getattr(self, name), name, strict=False)
-        if not self.t_switch >= 0:  # inf means never
-            raise ValueError(f"t_switch must be >= 0 (inf: never), got {self.t_switch}")
-        if not 0 <= self.outlier_prob <= 1:
-            raise ValueError(f"outlier_prob must satisfy 0 <= outlier_prob <= 1, got {self.outlier_prob}")
-
-    @property
-    def n_steps(self):
-        return int(round(self.duration / self.dt))
-
-    @property
-    def x0(self):
-        """True initial state ``(6,)``."""
-        h = np.deg2rad(self.heading)
-        return np.array([0.0, self.speed * np.sin(h), 0.0, 0.0, self.speed * np.cos(h), 0.0])
-
-    def with_(self, **changes):
-        """A copy with some fields changed."""
-        return replace(self, **changes)
-
-
-_TURNING = dict(
-    turns=((20.0, 30.0, 90.0), (60.0, 75.0, -135.0), (100.0, 110.0, 60.0), (160.0, 175.0, -90.0)),
-    speed_changes=((40.0, 50.0, -6.0), (85.0, 95.0, 8.0), (130.0, 140.0, -4.0)),
-)
-
-#: Named scenario factories; each accepts keyword overrides of :class:`Scenario` fields.
-SCENARIOS = {
-    # the paper: straight road, 10*sqrt(2) m/s at 45 deg, noise x20 at 150 s
-    "straight": lambda **kw: Scenario(**{"name": "straight", "factor": 20.0, **kw}),
-    # turns and speed changes, noise x5 at 150 s
-    "turns": lambda **kw: Scenario(**{"name": "turns", "factor": 5.0, **_TURNING, **kw}),
-    # heading near 180 deg: west-south-west... through south (180) and back, noise x5
-    "heading180": lambda **kw: Scenario(
-        **{
-            "name": "heading180",
-            "heading": 170.0,
-            "turns": ((20.0, 40.0, 20.0), (90.0, 110.0, -25.0), (160.0, 180.0, 30.0)),
-            "factor": 5.0,
-            **kw,
-        }
-    ),
-    # noise x5 plus 10 % heading outliers of +-30 deg after 150 s
-    "outliers": lambda **kw: Scenario(
-        **{"name": "outliers", "factor": 5.0, "outlier_prob": 0.1, **kw}
-    ),
-    # GPS/DR: turning route, 1 Hz GPS (3 m) with outages, 2 % odometer scale, 2 deg bias
-    "gpsdr": lambda **kw: Scenario(
-        **{
-            "name": "gpsdr",
-            "factor": 1.0,
-            "odometer_scale": 1.02,
-            "heading_bias": 2.0,
-            "gps_rate": 1.0,
-            "outages": ((50.0, 80.0), (120.0, 170.0)),
-            **_TURNING,
-            **kw,
-        }
-    ),
-}
-
-
-class DRRun(NamedTuple):
-    """One simulated drive.
-
-    Attributes
-    ----------
-    t : ndarray of shape (n_steps,)
-        Sample times ``dt, 2 dt, ...`` (s).
-    x0 : ndarray of shape (6,)
-        True state at ``t = 0``.
-    x_true : ndarray of shape (n_steps, 6)
-        True states at ``t``.
-    z_dr : ndarray of shape (n_steps, 2)
-        ``[heading (rad, wrapped), odometer distance (m)]``.
-    gps_steps : ndarray of shape (n_fixes,)
-        Indices into ``t`` of the steps with a GPS fix.
-    z_gps : ndarray of shape (n_fixes, 2)
-        The fixes ``[e, n]`` (m).
-    R_true : ndarray of shape (n_steps, 2)
-        True DR noise variances ``[heading, odometer]`` at each step (for oracle filters).
-    scenario : Scenario
-    """
-
-    t: np.ndarray
-    x0: np.ndarray
-    x_true: np.ndarray
-    z_dr: np.ndarray
-    gps_steps: np.ndarray
-    z_gps: np.ndarray
-    R_true: np.ndarray
-    scenario: Scenario
-
-    def gps_list(self):
-        """Per-step list: the fix ``(2,)`` or ``None`` (missing GPS is ``None``, never NaN)."""
-        out = [None] * len(self.t)
-        for k, z in zip(self.gps_steps, self.z_gps):
-            out[int(k)] = z
-        return out
-
-
-def _profile_rate(windows, t):
-    rate = 0.0
-    for t0, t1, amount in windows:
-        if t0 <= t < t1:
-            rate += amount / (t1 - t0)
-    return rate
-
-
-def true_trajectory(scenario):
-    """Noise-free truth of a scenario: ``(t (n,), x0 (6,), x_true (n, 6))``."""
-    sc = scenario
-    n = sc.n_steps
-    dt = sc.dt
-    x = sc.x0.copy()
-    xs = np.empty((n, 6))
-
-    def accel(x, t):
-        ve, vn = x[1], x[4]
-        v = np.hypot(ve, vn)
-        dv = _profile_rate(sc.speed_changes, t)
-        om = np.deg2rad(_profile_rate(sc.turns, t))
-        ue, un = (ve / v, vn / v) if v > 0 else (0.0, 0.0)
-        return dv * ue + om * vn, dv * un - om * ve
-
-    x[2], x[5] = accel(x, 0.0)
-    for k in range(n):
-        x = dr_fx(x, dt)
-        t = (k + 1) * dt
-        x[2], x[5] = accel(x, t)
-        xs[k] = x
-    return dt * np.arange(1, n + 1), sc.x0.copy(), xs
-
-
-def simulate_scenario(scenario, rng=None):
-    """Simulate the truth and the sensors of a :class:`Scenario`.
-
-    Random numbers are drawn in a fixed order (heading noise, odometer noise, outlier
-    draws, GPS noise), always for every step, so two scenarios differing only in noise
-    levels share their random numbers.
-
-    Returns
-    -------
-    DRRun
-    """
-    if not isinstance(scenario, Scenario):
-        raise TypeError(f"scenario must be a Scenario, got {type(scenario).__name__}")
-    rng = check_rng(rng)
-    sc = scenario
-    t, x0, xs = true_trajectory(sc)
-    n = len(t)
-    f = np.where(t >= sc.t_switch, sc.factor, 1.0)
-    sh = np.deg2rad(sc.sigma_heading) * f
-    so = sc.sigma_odometer * f
-    e_h = rng.standard_normal(n)
-    e_s = rng.standard_normal(n)
-    u_out = rng.random(n)
-    sign_out = np.where(rng.random(n) < 0.5, -1.0, 1.0)
-    e_g = rng.standard_normal((n, 2))
-    heading = np.arctan2(xs[:, 1], xs[:, 4]) + np.deg2rad(sc.heading_bias) + sh * e_h
-    outlier = (t >= sc.t_switch) & (u_out < sc.outlier_prob)
-    heading = heading + outlier * sign_out * np.deg2rad(sc.outlier_deg)
-    speed = np.hypot(xs[:, 1], xs[:, 4])
-    # an odometer never reads negative, and reads exactly 0 at standstill
-    dist = np.where(speed > 0, np.maximum(sc.dt * sc.odometer_scale * speed + so * e_s, 0.0), 0.0)
-    z_dr = np.stack([wrap_angle(heading), dist], axis=1)
-    if sc.gps_rate > 0:
-        every = max(int(round(1.0 / (sc.gps_rate * sc.dt))), 1)
-        steps = np.arange(every - 1, n, every)
-        ok = np.ones(len(steps), dtype=bool)
-        for a, b in sc.outages:
-            ok &= ~((t[steps] >= a) & (t[steps] < b))
-        steps = steps[ok]
-        z_gps = xs[steps][:, [0, 3]] + sc.sigma_gps * e_g[steps]
-    else:
-        steps = np.zeros(0, dtype=int)
-        z_gps = np.zeros((0, 2))
-    R_true = np.stack([sh**2, so**2], axis=1)
-    return DRRun(t, x0, xs, z_dr, steps, z_gps, R_true, sc)
+        return getattr(scenarios, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -199,3 +199,57 @@ def dr_outage_errors(t, errors, outages=(), title=""):
     ax.legend(fontsize=8, ncol=2)
     fig.tight_layout()
     return fig
+
+
+__all__ += ["dr_real_drive"]
+
+
+def dr_real_drive(res, ax=None):
+    """A real drive: its track with the GPS outages marked, and each filter's error at the outage ends.
+
+    Parameters
+    ----------
+    res : dict
+        What :func:`filterwnn.studies.dr.real_drive_outages` returns.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Left: the track (east/north, m), each outage drawn over it with its start marked
+        and numbered. Right: the horizontal error at the end of each outage per filter
+        (log scale) against the outage's start time.
+    """
+    import matplotlib.pyplot as plt
+
+    names = [k for k in res["end_xy"]]
+    col = _dr_colors(names)
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(13, 5.2))
+    tr = res["track"]
+    t = res["t"]
+    ax1.plot(tr[:, 0], tr[:, 1], color="0.6", lw=1.0, label=f"track ({'truth' if res['reference'] == 'truth' else 'GPS'})")
+    for j, (a, k1) in enumerate(zip(res["starts"], res["end_steps"])):
+        k0 = int(np.searchsorted(t, a))
+        ax1.plot(tr[k0:k1 + 1, 0], tr[k0:k1 + 1, 1], color="tab:red", lw=4, alpha=0.12, solid_capstyle="butt",
+                 label="GPS outage (overlaps darker)" if j == 0 else None)
+        ax1.plot(*tr[k1], "kx", ms=5, label="outage end (scored)" if j == 0 else None)
+        ax1.annotate(str(j + 1), tr[k1], xytext=(3, 3), textcoords="offset points", fontsize=7)
+    ax1.set_aspect("equal", adjustable="datalim")
+    ax1.set_xlabel("east [m]")
+    ax1.set_ylabel("north [m]")
+    ax1.set_title("track with the GPS outages (numbered at their end)")
+    ax1.legend(fontsize=8)
+    ax1.grid(alpha=0.3)
+    num = np.arange(1, len(res["starts"]) + 1)
+    for n in names:
+        ax2.plot(num, np.maximum(res[n], 1e-2), "o-", color=col[n], ms=4, lw=1, label=
+                 f"{n} (median {np.median(res[n]):.2f} m)")
+    ax2.set_yscale("log")
+    ax2.set_xticks(num)
+    ax2.set_xlabel("outage number (as on the track)")
+    ax2.set_ylabel(f"horizontal error at the outage end [m] (vs {res['reference']})")
+    ax2.set_title(f"error at the end of each {res['length']:g} s GPS outage")
+    ax2.legend(fontsize=8)
+    ax2.grid(alpha=0.3, which="both")
+    fig.suptitle(f"GPS/DR on the drive {res['name']}: {len(res['starts'])} outages of {res['length']:g} s")
+    fig.tight_layout()
+    return fig

@@ -22,6 +22,9 @@ from filterwnn.sigma_points import SphericalSimplexSigmaPoints
 from filterwnn.unscented import UnscentedKalmanFilter
 
 ATOL = 1e-7
+# the GPS/DR tests here drive the deprecated GPSDRModel.update on purpose (it must keep working);
+# tests/test_gpsdr.py covers GPSDRFilter, which replaces it
+pytestmark = pytest.mark.filterwarnings("ignore:GPSDRModel.update is deprecated:DeprecationWarning")
 
 
 def _fd_jacobian(f, x, eps=1e-6):

@@ -63,7 +63,7 @@ def test_write_outputs_and_cli(small_result, tmp_path):
     parser = argparse.ArgumentParser()
     dr.add_arguments(parser)
     args = parser.parse_args(["--runs", "1", "--scenarios", "straight", "--filters", "EKF",
-                              "--out", str(tmp_path / "cli"), "--no-figures", "--quiet", "--jobs", "1"])
+                              "--out", str(tmp_path / "cli"), "--no-figures", "--no-progress", "--jobs", "1"])
     assert dr.run(args) == 0
     assert (tmp_path / "cli" / "dr_table.csv").exists()
 

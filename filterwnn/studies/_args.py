@@ -27,6 +27,8 @@ __all__ = [
     "seed",
     "joblib_jobs",
     "positive_float",
+    "nonnegative_float",
+    "float_list",
     "joblib_backend",
     "name_list",
     "int_list",
@@ -101,6 +103,26 @@ def positive_float(text):
     if not (math.isfinite(value) and value > 0):
         raise argparse.ArgumentTypeError(f"must be a finite number > 0, got {text!r}")
     return value
+
+
+def nonnegative_float(text):
+    """A finite number ``>= 0``."""
+    try:
+        value = float(text)
+    except (TypeError, ValueError):
+        raise argparse.ArgumentTypeError(f"must be a number, got {text!r}") from None
+    if not (math.isfinite(value) and value >= 0):
+        raise argparse.ArgumentTypeError(f"must be a finite number >= 0, got {text!r}")
+    return value
+
+
+def float_list(text):
+    """Comma-separated finite numbers ``>= 0`` (``''``: an empty list).
+
+    >>> float_list("40, 120.5")
+    [40.0, 120.5]
+    """
+    return [nonnegative_float(s.strip()) for s in str(text).split(",") if s.strip()]
 
 
 def joblib_backend(text):

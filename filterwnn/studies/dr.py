@@ -1,7 +1,7 @@
 """The second paper's dead-reckoning study: EKF, adaptive EKF, UKF/SUKF and the neural filter.
 
 ``filterwnn study dr`` runs seeded Monte-Carlo runs of every scenario in
-:data:`filterwnn.dead_reckoning.SCENARIOS` (the paper's straight road with the noise
+:data:`filterwnn.scenarios.SCENARIOS` (the paper's straight road with the noise
 raised x20 at 150 s, a turning route, a run through heading 180 degrees, heading
 outliers, and GPS/DR with 1 Hz fixes, outages, a 2 % odometer-scale error and a
 2-degree heading bias), with common random numbers: run ``i`` of every filter sees the
@@ -31,9 +31,19 @@ Real drive (``--real``, needs the ``data`` extra): :func:`load_car_drive` reads 
 onavdata drive ``2021-04-27C-car-hill-drive`` (gyro yaw integrated for the heading, the
 reference speed with a 2 % scale error and noise as the odometer, 1 Hz GNSS fixes, the
 INS solution as truth) and :func:`real_drive_outages` cuts 30 s GPS outages into it at
-20 placements and scores the error at the end of each. The GPS/DR filters use a
-zero-velocity update when the odometer reads 0 and the velocity-vector form of the DR
-measurement below :data:`STANDSTILL_SPEED` (see ``GPSDRModel.update``).
+20 placements and scores the error at the end of each (both onavdata car drives:
+:data:`~filterwnn.scenarios.CAR_DRIVES`; the second was kept back as the held-out drive).
+
+One's own drive (``--drive my.csv``, ``--drive sample`` for the shipped one): read by
+:func:`~filterwnn.scenarios.read_drive_csv`, the filters set from a sensor grade
+(``--grade``, default ``phone``; :meth:`~filterwnn.dead_reckoning.GPSDRModel.from_grade`),
+each fix's reported accuracy as its noise (without one, the grade's), outages at ``--outage-starts`` or spread over
+the drive (``--outages``, ``--min-speed``); a table and a figure (the track with the
+outages, each filter's error at the outage ends) per drive.
+
+The GPS/DR filters are :class:`~filterwnn.gpsdr.GPSDRFilter` s: they decide standstill
+(zero-velocity update) and low speed (velocity-vector form) from the odometer themselves,
+and without a fix update only velocity and acceleration.
 
 Scores: east/north RMSE before and after the noise switch (pooled over runs and
 steps), the median and 95th percentile of the final horizontal error, the velocity
@@ -63,16 +73,21 @@ from filterpy.kalman import ExtendedKalmanFilter, MerweScaledSigmaPoints
 
 from .._validation import check_seed, check_positive_int, check_rng
 from ..adaptive import AdaptiveExtendedKalmanFilter
-from ..dead_reckoning import (
+from ..dead_reckoning import SENSOR_GRADES, DRModel, GPSDRModel, dr_residual, dr_z_mean
+from ..gpsdr import GPSDRFilter
+from ..scenarios import (
+    CAR_DRIVE,
+    CAR_DRIVES,
+    MIN_ODOMETER_SPEED,
     SCENARIOS,
     DRRun,
     Scenario,
-    DRModel,
-    GPSDRModel,
-    dr_residual,
-    dr_z_mean,
+    _onav_dir,
+    load_car_drive,
+    outage_starts,
+    read_drive_csv,
     simulate_scenario,
-    wrap_angle,
+    with_outage,
 )
 from ..neural_filter import (
     NeuralFilter,
@@ -106,6 +121,9 @@ __all__ = [
     "with_outage",
     "real_drive_outages",
     "real_drive_table",
+    "write_real_drive",
+    "REAL_FILTERS",
+    "REAL_MODEL",
 ]
 
 DR_FILTERS = ("EKF", "EKF-oracle", "AEKF", "UKF", "SUKF", "NN", "NN-faithful", "NN-gen", "UPF")
@@ -113,17 +131,6 @@ GPSDR_FILTERS = ("EKF", "EKF-8", "UKF-8", "SUKF-8", "DR-only")
 UPF_PARTICLES = 50
 #: Filters run only when asked for (``--filters``): the UPF costs about 100x the EKF.
 OPT_IN = ("UPF",)
-#: Below this odometer speed (m/s) the GPS/DR filters take the DR measurement as a velocity
-#: vector (``GPSDRModel.update(low_speed=True)``); an odometer reading of exactly 0 triggers a
-#: zero-velocity update.
-STANDSTILL_SPEED = 5.0
-
-
-def _motion_flags(run, slow_speed=None):
-    """``(slow, still)`` per step from the odometer: heading ignored / zero-velocity update."""
-    s = run.z_dr[:, 1]
-    v = STANDSTILL_SPEED if slow_speed is None else slow_speed
-    return s < v * run.scenario.dt, s <= 0.0
 ORACLE = {"dr": "EKF-oracle", "gpsdr": "EKF-8"}
 DEFAULT_SCENARIOS = ("straight", "turns", "heading180", "outliers", "gpsdr")
 DIV_FACTOR = 3.0
@@ -230,29 +237,19 @@ def _upf_run(run, model, x0, P0, rng, n_particles=UPF_PARTICLES):
     return out
 
 
+_KIND = {"EKF": "ekf", "EKF-8": "ekf", "DR-only": "ekf", "UKF-8": "ukf", "SUKF-8": "sukf"}
+
+
 def _gpsdr_filter_run(name, run, x0, rng):
     sc = run.scenario
+    if name not in _KIND:
+        raise ValueError(f"unknown filter {name!r}; valid: {', '.join(GPSDR_FILTERS)}")
     aug = name.endswith("-8")
     model = GPSDRModel(dt=sc.dt, augmented=aug, sigma_gps=sc.sigma_gps)
     x0m = np.concatenate([x0, [1.0, 0.0]]) if aug else x0
-    P0 = model.P0
-    n = len(run.t)
-    out = np.empty((n, 6))
-    gps_z = run.gps_list()
-    if name == "DR-only":
-        gps_z = [None] * n
-    if name in ("EKF", "EKF-8", "DR-only"):
-        kf = model.ekf(x0=x0m, P0=P0)
-    elif name in ("UKF-8", "SUKF-8"):
-        kf = _ukf(model, _points("merwe" if name == "UKF-8" else "simplex", 8), x0m, P0, True)
-    else:
-        raise ValueError(f"unknown filter {name!r}; valid: {', '.join(GPSDR_FILTERS)}")
-    slow, still = _motion_flags(run)
-    for k in range(n):
-        kf.predict()
-        model.update(kf, run.z_dr[k], gps_z[k], low_speed=bool(slow[k]), zupt=bool(still[k]))
-        out[k] = kf.x[:6]
-    return out
+    f = GPSDRFilter(model, _KIND[name], x0=x0m)
+    gps = None if name == "DR-only" else run.gps_list()
+    return f.batch_filter(run.z_dr, gps, None if gps is None else run.gps_sigma_list())[:, :6]
 
 
 _ALL_FILTERS = DR_FILTERS + GPSDR_FILTERS
@@ -369,7 +366,7 @@ def run_study(scenarios=DEFAULT_SCENARIOS, n_runs=10, filters=None, seed=0, jobs
     Parameters
     ----------
     scenarios : sequence of str
-        Keys of :data:`~filterwnn.dead_reckoning.SCENARIOS`.
+        Keys of :data:`~filterwnn.scenarios.SCENARIOS`.
     n_runs : int
         Monte-Carlo runs per scenario.
     filters : sequence of str, optional
@@ -495,10 +492,20 @@ def markdown_table(result):
     return "\n".join(lines)
 
 
-def write_outputs(result, out_dir, figures=True):
-    """Write ``dr_table.md``, ``dr_table.csv`` and the figures to ``out_dir``; returns the paths."""
+def write_outputs(result, out_dir, figures=True, real_drives=()):
+    """Write the tables and figures to ``out_dir``; returns the paths.
+
+    ``result`` (a :class:`StudyResult`, or ``None`` for real drives only) gives
+    ``dr_table.md``, ``dr_table.csv`` and a figure per scenario; each of ``real_drives``
+    (results of :func:`real_drive_outages`) gives ``real_drive_<name>_outage_errors.md``
+    and ``real_drive_<name>_track_and_outage_end_errors.png`` (:func:`write_real_drive`).
+    """
     os.makedirs(out_dir, exist_ok=True)
     paths = []
+    for res in real_drives:
+        paths += write_real_drive(res, out_dir, figures)
+    if result is None:
+        return paths
     md = os.path.join(out_dir, "dr_table.md")
     with open(md, "w") as fh:
         s = result.settings
@@ -539,215 +546,155 @@ def write_outputs(result, out_dir, figures=True):
 
 # ----------------------------------------------------------------------------- real drive
 
-CAR_DRIVE = "2021-04-27C-car-hill-drive"
-#: Reference speeds below this (m/s) give an odometer reading of 0 (standstill).
-MIN_ODOMETER_SPEED = 0.05
-_WGS84_A, _WGS84_E2 = 6378137.0, 6.69437999014e-3
-
-
-def _onav_dir(drive):
-    try:
-        import importlib.resources as resources
-
-        root = resources.files("onavdata")
-    except (ImportError, ModuleNotFoundError) as exc:
-        raise ImportError(
-            "the real-drive part needs the optional 'onavdata' package: pip install 'filterwnn[data]' "
-            "(or pip install onavdata)"
-        ) from exc
-    d = root / "data" / "HGuide n380" / drive
-    if not d.is_dir():
-        raise ValueError(f"drive {drive!r} not found in onavdata (looked in {d})")
-    return d
-
-
-def _read_zipped_csv(folder, name):
-    import io
-    import zipfile
-
-    with (folder / f"{name}.csv.zip").open("rb") as fh:
-        zf = zipfile.ZipFile(io.BytesIO(fh.read()))
-        with zf.open(zf.namelist()[0]) as f:
-            header = [h.strip() for h in f.readline().decode().strip().split(",")]
-            data = np.loadtxt(io.TextIOWrapper(f), delimiter=",", usecols=range(len(header)), ndmin=2)
-    return {h: data[:, i] for i, h in enumerate(header)}
-
-
-def load_car_drive(drive=CAR_DRIVE, dt=0.1, odometer_scale=1.02, odometer_noise=0.02, rng=0):
-    """A real car drive from ``onavdata`` as a :class:`~filterwnn.dead_reckoning.DRRun`.
-
-    The HGuide n380 drives ship 100 Hz IMU increments, 1 Hz GNSS fixes and the
-    INS/GNSS reference solution, as zipped CSV files read here through
-    :mod:`importlib.resources` (``pip install onavdata``, the ``data`` extra).
-
-    * truth: the reference INS position (latitude/longitude to local east/north metres
-      about the first valid sample) and velocity, on a ``dt`` grid, rows with
-      ``InsMode == 4`` only;
-    * heading: the gyro's yaw, ``DeltaTheta[0]`` (the body down axis per the package's
-      meta file; an angle increment per 100 Hz sample), integrated from the reference
-      heading at the start -- so it drifts like a real DR gyro;
-    * odometer: the car has none, so ``dt * odometer_scale * |v_ref| + noise`` (clipped
-      at 0), a stated 2 % scale error by default -- never the GNSS speed, which an
-      outage would take away too;
-    * GPS: the receiver's 1 Hz fixes, each on its nearest grid step.
-
-    Returns
-    -------
-    DRRun
-        ``scenario`` describes the drive (``gps_rate=1``, no outages: cut them in with
-        :func:`with_outage`).
-    """
-    rng = check_rng(rng)
-    folder = _onav_dir(drive)
-    pos = _read_zipped_csv(folder, "n380-position")
-    vel = _read_zipped_csv(folder, "n380-velocity")
-    att = _read_zipped_csv(folder, "n380-attitude")
-    imu = _read_zipped_csv(folder, "n380-imu-nav")
-    gnss = _read_zipped_csv(folder, "n380-gnss-pvt")
-    ok = (pos["SystemTov"] > 0) & (pos["InsGnssBIT.InsMode"] == 4)
-    tp = pos["SystemTov"][ok]
-    lat, lon, h = pos["Latitude"][ok], pos["Longitude"][ok], pos["AltitudeAboveEllipsoid"][ok]
-    lat0, lon0, h0 = lat[0], lon[0], h[0]
-    sl = np.sin(lat0)
-    rn = _WGS84_A / np.sqrt(1 - _WGS84_E2 * sl * sl)
-    rm = _WGS84_A * (1 - _WGS84_E2) / (1 - _WGS84_E2 * sl * sl) ** 1.5
-
-    def en(la, lo):
-        return (lo - lon0) * (rn + h0) * np.cos(lat0), (la - lat0) * (rm + h0)
-
-    t0 = tp[0]
-    n = int((tp[-1] - t0) / dt) - 1
-    t = t0 + dt * np.arange(1, n + 1)
-    e_ref, n_ref = en(lat, lon)
-    okv = (vel["SystemTov"] > 0) & (vel["InsGnssBIT.InsMode"] == 4)
-    tv = vel["SystemTov"][okv]
-    ve = np.interp(t, tv, vel["VelocityNED[1]"][okv])
-    vn = np.interp(t, tv, vel["VelocityNED[0]"][okv])
-    x_true = np.zeros((n, 6))
-    x_true[:, 0] = np.interp(t, tp, e_ref)
-    x_true[:, 3] = np.interp(t, tp, n_ref)
-    x_true[:, 1], x_true[:, 4] = ve, vn
-    x_true[:, 2] = np.gradient(ve, dt)
-    x_true[:, 5] = np.gradient(vn, dt)
-    x0 = np.array([np.interp(t0, tp, e_ref), np.interp(t0, tv, vel["VelocityNED[1]"][okv]), 0.0,
-                   np.interp(t0, tp, n_ref), np.interp(t0, tv, vel["VelocityNED[0]"][okv]), 0.0])
-    # gyro heading: integrate the yaw increments from the reference heading at t0
-    oka = (att["SystemTov"] > 0) & (att["InsGnssBIT.InsMode"] == 4)
-    heading0 = np.interp(t0, att["SystemTov"][oka], np.unwrap(att["EulerAttitude[2]"][oka]))
-    ti = imu["SystemTov"]
-    cum = np.cumsum(imu["DeltaTheta[0]"])
-    theta = heading0 + np.interp(t, ti, cum) - np.interp(t0, ti, cum)
-    speed = np.hypot(ve, vn)
-    moving = speed > MIN_ODOMETER_SPEED  # a wheel odometer reads exactly 0 at standstill
-    dist = np.where(moving, np.maximum(dt * odometer_scale * speed + odometer_noise * rng.standard_normal(n), 0.0), 0.0)
-    z_dr = np.stack([wrap_angle(theta), dist], axis=1)
-    okg = (gnss["SystemTov"] > t0) & (gnss["InsGnssBIT.GpsMode"] > 0)
-    tg = gnss["SystemTov"][okg]
-    steps = np.round((tg - t0) / dt).astype(int) - 1
-    keep = (steps >= 0) & (steps < n)
-    steps, idx = np.unique(steps[keep], return_index=True)
-    ge, gn = en(gnss["GnssLatitude"][okg][keep][idx], gnss["GnssLongitude"][okg][keep][idx])
-    z_gps = np.stack([ge, gn], axis=1)
-    sc = Scenario(name=drive, duration=n * dt, dt=dt, speed=float(np.hypot(x0[1], x0[4])),
-                  heading=float(np.degrees(heading0)), t_switch=np.inf, factor=1.0,
-                  odometer_scale=odometer_scale, sigma_odometer=odometer_noise, gps_rate=1.0,
-                  sigma_gps=1.0)
-    R_true = np.tile([np.deg2rad(1.0) ** 2, odometer_noise**2], (n, 1))
-    return DRRun(t - t0, x0, x_true, z_dr, steps, z_gps, R_true, sc)
-
-
-def with_outage(run, start, length):
-    """A copy of ``run`` without GPS fixes in ``[start, start + length)`` (times of ``run.t``)."""
-    tf = run.t[run.gps_steps]
-    keep = ~((tf >= start) & (tf < start + length))
-    sc = run.scenario.with_(outages=((float(start), float(start + length)),))
-    return run._replace(gps_steps=run.gps_steps[keep], z_gps=run.z_gps[keep], scenario=sc)
-
-
 #: GPS/DR model settings for the real drive (a car's manoeuvres need a larger jerk PSD,
 #: the receiver's fixes are about 1 m, and the gyro's heading drifts: a random-walk bias).
 REAL_MODEL = dict(q=2.0, sigma_heading=np.deg2rad(1.0), sigma_odometer=0.02, sigma_gps=1.0,
                   q_scale=1e-6, q_bias=1e-6)
 
 
-def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "EKF", "EKF-8"),
-                       model_kwargs=None, slow_speed=None):
-    """Cut ``n_placements`` GPS outages of ``length`` s into a drive; error at each outage end.
+#: The filters run on a real drive (raw dead reckoning, the 6-state EKF and the 8-state filters).
+REAL_FILTERS = ("DR-mech", "EKF", "EKF-8", "UKF-8", "SUKF-8")
 
-    Placements are spread evenly from the first step to ``length`` s before the end
-    (the first one starts before the car moves). ``EKF``/``EKF-8`` are the 6- and
-    8-state GPS/DR EKFs (heading treated as uninformative below
-    :data:`STANDSTILL_SPEED`); ``DR-mech`` integrates ``s [sin theta, cos theta]`` from
-    the true position at the outage start (dead reckoning without a filter).
+
+def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "EKF", "EKF-8"),
+                       model_kwargs=None, slow_speed=None, starts=None, min_speed=0.0,
+                       use_gps_sigma=False, grade=None, gps_window=0):
+    """Cut GPS outages of ``length`` s into a drive and score each filter at each outage end.
+
+    Placements: ``starts`` as given, or ``n_placements`` spread evenly over the windows
+    whose mean odometer speed is at least ``min_speed`` (:func:`~filterwnn.scenarios.outage_starts`;
+    with the default 0 the first one starts before the car moves). ``EKF``/``EKF-8``/
+    ``UKF-8``/``SUKF-8`` are :class:`~filterwnn.gpsdr.GPSDRFilter` s (6 or 8 states; the filter
+    decides standstill and low speed itself); ``DR-mech`` integrates
+    ``s [sin theta, cos theta]`` from the reference position at the outage start (dead
+    reckoning without a filter).
+
+    The reference is the truth when the drive has one (``run.x_true``); otherwise the
+    GPS fix withheld last in the outage, so the score then includes that fix's own error.
+
+    Parameters
+    ----------
+    run : DRRun
+    n_placements, length, starts, min_speed
+        Where the outages go (see above).
+    filters : sequence of str
+        Subset of :data:`REAL_FILTERS`.
+    model_kwargs : dict, optional
+        :class:`~filterwnn.dead_reckoning.GPSDRModel` settings over :data:`REAL_MODEL`, or
+        over the grade's settings.
+    grade : str or dict, optional
+        Settings from a sensor grade or specification
+        (:meth:`~filterwnn.dead_reckoning.GPSDRModel.from_grade`; ``"phone"`` adds the gyro
+        rate-bias state to the 8-state filters) instead of :data:`REAL_MODEL`, which was
+        tuned on the onavdata drive.
+    slow_speed : float, optional
+        The filters' low-speed threshold (m/s; default :data:`filterwnn.gpsdr.LOW_SPEED`).
+    use_gps_sigma : bool
+        Use each fix's reported accuracy (``run.gps_sigma``) as its noise.
+    gps_window : int
+        Estimate the noise of fixes without an accuracy from the GPS innovations over
+        this many fixes (:class:`~filterwnn.gpsdr.GPSDRFilter`; 0: the model's ``sigma_gps``).
 
     Returns
     -------
     dict
-        ``starts (n_placements,)``, ``moved (n_placements,)`` (distance driven during
-        each outage, m), and per filter ``(n_placements,)`` end-of-outage horizontal
-        errors (m); NaN never appears (a non-finite estimate raises).
+        ``starts (n,)``, ``length``, ``moved (n,)`` (distance driven during each outage, m),
+        ``end_steps (n,)`` (the scored step of each outage), ``reference`` ("truth" or
+        "withheld GPS"), ``name``, ``track (n_steps, 2)`` (truth, else the fixes
+        interpolated), ``end_xy {filter: (n, 2)}``, and per filter ``(n,)`` end-of-outage
+        horizontal errors (m); NaN never appears (a non-finite estimate raises).
     """
+    bad = [f for f in filters if f not in REAL_FILTERS]
+    if bad:
+        raise ValueError(f"unknown real-drive filters {bad}; valid: {', '.join(REAL_FILTERS)}")
     kw = dict(REAL_MODEL, **(model_kwargs or {}))
     dt = run.scenario.dt
-    t_end = run.t[-1]
-    starts = np.linspace(0.0, t_end - length - 1.0, n_placements)
-    out = {"starts": starts, "length": length}
-    moved = []
+    t_end = float(run.t[-1])
+    if starts is None and min_speed == 0.0:
+        starts = np.linspace(0.0, t_end - length - 1.0, n_placements)
+    starts = outage_starts(run, length, starts=starts, n=n_placements, min_speed=min_speed)
+    truth = run.x_true is not None
+    cum = np.concatenate([[0.0], np.cumsum(run.z_dr[:, 1])])
+    k0s, k1s, refs, moved = [], [], [], []
+    gps_t = run.t[run.gps_steps]
     for a in starts:
         k0 = int(np.searchsorted(run.t, a))
         k1 = int(np.searchsorted(run.t, a + length)) - 1
-        moved.append(float(np.sum(np.hypot(*np.diff(run.x_true[k0:k1 + 1][:, [0, 3]], axis=0).T))))
-    out["moved"] = np.array(moved)
-    slow, still = _motion_flags(run, slow_speed)
+        if truth:
+            ref = run.x_true[k1, [0, 3]]
+        else:
+            inside = np.flatnonzero((gps_t >= a) & (gps_t < a + length))
+            if len(inside) == 0:
+                raise ValueError(f"the drive has no truth and no GPS fix in the outage at {a:.1f} s to score against")
+            k1 = int(run.gps_steps[inside[-1]])
+            ref = run.z_gps[inside[-1]]
+        k0s.append(k0)
+        k1s.append(k1)
+        refs.append(ref)
+        moved.append(float(cum[k1 + 1] - cum[k0]) if not truth else float(np.sum(np.hypot(
+            *np.diff(run.x_true[k0:k1 + 1][:, [0, 3]], axis=0).T))))
+    refs = np.array(refs)
+    if truth:
+        track = run.x_true[:, [0, 3]]
+    else:
+        track = np.stack([np.interp(run.t, gps_t, run.z_gps[:, i]) for i in (0, 1)], axis=1)
+    out = {"starts": starts, "length": length, "moved": np.array(moved), "end_steps": np.array(k1s),
+           "reference": "truth" if truth else "withheld GPS", "name": run.scenario.name,
+           "track": track, "t": run.t, "end_xy": {}}
     gps = run.gps_list()
+    sig = run.gps_sigma_list() if use_gps_sigma else [None] * len(run.t)
+    low = {} if slow_speed is None else {"low_speed": slow_speed}
     for name in filters:
-        errs = []
-        for a in starts:
-            k0 = int(np.searchsorted(run.t, a))
-            k1 = int(np.searchsorted(run.t, a + length)) - 1
-            if name == "DR-mech":
-                p = run.x_true[k0 - 1, [0, 3]] if k0 > 0 else run.x0[[0, 3]]
-                z = run.z_dr[k0:k1 + 1]
-                p = p + np.sum(z[:, 1:2] * np.stack([np.sin(z[:, 0]), np.cos(z[:, 0])], axis=1), axis=0)
-                errs.append(float(np.hypot(*(p - run.x_true[k1, [0, 3]]))))
-                continue
-            errs.append(None)
+        ends = np.empty((len(starts), 2))
         if name == "DR-mech":
-            out[name] = np.array(errs)
-            continue
-        # one pass with GPS, a snapshot at each outage start, then the outage alone
-        model = GPSDRModel(dt=dt, augmented=name == "EKF-8", **kw)
-        x0 = np.concatenate([run.x0, [1.0, 0.0]]) if model.augmented else run.x0.copy()
-        P0 = model.P0.copy()
-        P0[0, 0] = P0[3, 3] = 1.0
-        kf = model.ekf(x0=x0, P0=P0)
-        k0s = [int(np.searchsorted(run.t, a)) for a in starts]
-        snaps = {}
-        for k in range(max(k0s) + 1):
-            if k in k0s:
-                snaps[k] = copy.deepcopy(kf)
-            kf.predict()
-            model.update(kf, run.z_dr[k], gps[k], low_speed=bool(slow[k]), zupt=bool(still[k]))
-        for j, a in enumerate(starts):
-            k0 = k0s[j]
-            k1 = int(np.searchsorted(run.t, a + length)) - 1
-            f = copy.deepcopy(snaps[k0])
-            for k in range(k0, k1 + 1):
+            for j, (k0, k1) in enumerate(zip(k0s, k1s)):
+                if truth:
+                    p = run.x_true[k0 - 1, [0, 3]] if k0 > 0 else run.x0[[0, 3]]
+                else:
+                    p = track[k0 - 1] if k0 > 0 else run.x0[[0, 3]]
+                z = run.z_dr[k0:k1 + 1]
+                ends[j] = p + np.sum(z[:, 1:2] * np.stack([np.sin(z[:, 0]), np.cos(z[:, 0])], axis=1), axis=0)
+        else:
+            # one pass with GPS, a snapshot at each outage start, then the outage alone
+            aug = name.endswith("-8")
+            if grade is not None:
+                model = GPSDRModel.from_grade(grade, dt, augmented=aug, **({} if aug else {"rate_bias": False}),
+                                              **(model_kwargs or {}))
+            else:
+                model = GPSDRModel(dt=dt, augmented=aug, **kw)
+            x0 = np.concatenate([run.x0, model.x0[6:]])
+            P0 = model.P0.copy()
+            P0[0, 0] = P0[3, 3] = 1.0
+            f = GPSDRFilter(model, _KIND[name], x0=x0, P0=P0, gps_window=gps_window, **low)
+            snaps = {}
+            for k in range(max(k0s) + 1):
+                if k in k0s:
+                    snaps[k] = copy.deepcopy(f)
                 f.predict()
-                model.update(f, run.z_dr[k], None, low_speed=bool(slow[k]), zupt=bool(still[k]))
-            if not np.all(np.isfinite(f.x)):
-                raise FloatingPointError(f"{name}: non-finite state at step {k1} (outage at {a:.1f} s)")
-            errs[j] = float(np.hypot(f.x[0] - run.x_true[k1, 0], f.x[3] - run.x_true[k1, 3]))
-        out[name] = np.array(errs)
+                f.update(run.z_dr[k], gps[k], sig[k])
+            for j, (k0, k1) in enumerate(zip(k0s, k1s)):
+                g = copy.deepcopy(snaps[k0])
+                for k in range(k0, k1 + 1):
+                    g.predict()
+                    g.update(run.z_dr[k], None)
+                if not np.all(np.isfinite(g.x)):
+                    raise FloatingPointError(f"{name}: non-finite state at step {k1} (outage at {starts[j]:.1f} s)")
+                ends[j] = g.x[[0, 3]]
+        out["end_xy"][name] = ends
+        out[name] = np.hypot(*(ends - refs).T)
     return out
+
+
+_REAL_META = ("starts", "moved", "length", "end_steps", "reference", "name", "track", "t", "end_xy")
 
 
 def real_drive_table(res, min_moved=100.0):
     """Markdown: median/p90/max end-of-outage error over all placements and moving ones."""
     mv = res["moved"] >= min_moved
-    names = [k for k in res if k not in ("starts", "moved", "length")]
-    lines = [f"### real drive {CAR_DRIVE}: {len(res['starts'])} GPS outages of {res['length']:g} s "
-             f"({int(mv.sum())} with >= {min_moved:g} m driven)", "",
+    names = [k for k in res if k not in _REAL_META]
+    lines = [f"### real drive {res.get('name', CAR_DRIVE)}: {len(res['starts'])} GPS outages of {res['length']:g} s "
+             f"({int(mv.sum())} with >= {min_moved:g} m driven), error at the outage ends against the "
+             f"{res.get('reference', 'truth')} (m)", "",
              "| filter | median all | p90 all | max all | median moving | max moving |", "|---|---|---|---|---|---|"]
     for n in names:
         e = res[n]
@@ -755,6 +702,34 @@ def real_drive_table(res, min_moved=100.0):
         lines.append(f"| {n} | {np.median(e):.2f} | {np.percentile(e, 90):.2f} | {e.max():.2f} | "
                      f"{np.median(em):.2f} | {em.max():.2f} |")
     return "\n".join(lines) + "\n"
+
+
+def _slug(text):
+    return "".join(c if c.isalnum() else "_" for c in str(text)).strip("_").lower()
+
+
+def write_real_drive(res, out_dir, figures=True):
+    """Write one real drive's table (``real_drive_<name>.md``) and figure; returns the paths."""
+    os.makedirs(out_dir, exist_ok=True)
+    slug = _slug(res["name"])
+    p = os.path.join(out_dir, f"real_drive_{slug}_outage_errors.md")
+    with open(p, "w") as fh:
+        fh.write(real_drive_table(res))
+    paths = [p]
+    if figures:
+        import matplotlib
+
+        matplotlib.use("Agg", force=False)
+        import matplotlib.pyplot as plt
+
+        from .. import plotting
+
+        fig = plotting.dr_real_drive(res)
+        p = os.path.join(out_dir, f"real_drive_{slug}_track_and_outage_end_errors.png")
+        fig.savefig(p, dpi=110)
+        plt.close(fig)
+        paths.append(p)
+    return paths
 
 
 def add_arguments(parser):
@@ -766,8 +741,9 @@ def add_arguments(parser):
                         help="worker processes (the numbers do not depend on it)")
     parser.add_argument("--scenarios", type=_args.name_list(SCENARIOS), default=",".join(DEFAULT_SCENARIOS),
                         help=f"comma-separated subset of {', '.join(SCENARIOS)}")
-    parser.add_argument("--filters", type=_args.name_list(dict.fromkeys(_ALL_FILTERS)), default=None,
-                        help=f"comma-separated subset of {', '.join(dict.fromkeys(_ALL_FILTERS))} (default all "
+    names = tuple(dict.fromkeys(_ALL_FILTERS + REAL_FILTERS))
+    parser.add_argument("--filters", type=_args.name_list(names), default=None,
+                        help=f"comma-separated subset of {', '.join(names)} (default all "
                              f"that apply to each scenario, but {', '.join(OPT_IN)})")
     parser.add_argument("--factor", type=_args.positive_float, default=None,
                         help="override the DR noise factor at 150 s of the DR-only scenarios (default each "
@@ -777,10 +753,27 @@ def add_arguments(parser):
     _args.add_progress_flag(parser, "--quiet")
     parser.add_argument("--real", action="store_true",
                         help=f"also run the GPS/DR filters on the real drive {CAR_DRIVE} (needs onavdata)")
+    parser.add_argument("--drive", action="append", default=None, metavar="CSV",
+                        help="run the GPS/DR filters on one's own drive, a CSV with the columns of "
+                             "filterwnn.scenarios.DRIVE_CSV_COLUMNS ('sample' for the shipped sample drive); "
+                             "repeatable; with --drive only the drives run, not the simulated scenarios")
+    parser.add_argument("--outage-length", type=_args.positive_float, default=30.0, help="GPS outage length on drives (s)")
+    parser.add_argument("--outages", type=_args.positive_int, default=20, help="number of outages spread over each drive")
+    parser.add_argument("--outage-starts", type=_args.float_list, default=None,
+                        help="comma-separated outage start times (s) on --drive drives, instead of spreading them")
+    parser.add_argument("--min-speed", type=_args.nonnegative_float, default=0.0,
+                        help="spread outages only over windows with at least this mean speed (m/s)")
+    parser.add_argument("--grade", choices=sorted(SENSOR_GRADES), default=None,
+                        help="sensor grade for the GPS/DR settings (survey, phone; see "
+                             "filterwnn.dead_reckoning.SENSOR_GRADES); default phone for --drive, the "
+                             "onavdata-tuned REAL_MODEL for --real")
 
 
 def run(args):
     """Entry point of ``filterwnn study dr``."""
+    drives = getattr(args, "drive", None)
+    if drives:
+        return _run_drives(args, drives, args.filters)
     res = run_study(scenarios=args.scenarios, n_runs=args.runs, filters=args.filters,
                     seed=args.seed, jobs=args.jobs, factor=args.factor, progress=not args.no_progress)
     paths = write_outputs(res, args.out, figures=not args.no_figures)
@@ -791,12 +784,35 @@ def run(args):
         except ImportError as exc:
             print(f"skipping the real drive: {exc}")
         else:
-            text = real_drive_table(real_drive_outages(drive))
+            grade = getattr(args, "grade", None)
+            rd = real_drive_outages(drive, grade=grade, use_gps_sigma=grade is not None)
+            text = real_drive_table(rd)
             p = os.path.join(args.out, "dr_real_drive.md")
             with open(p, "w") as fh:
                 fh.write(text)
             paths.append(p)
+            paths += write_outputs(None, args.out, figures=not args.no_figures, real_drives=[rd])
             print(text)
+    print("wrote:", ", ".join(paths))
+    return 0
+
+
+def _run_drives(args, drives, filters):
+    """``--drive``: the GPS/DR filters on one's own drives, with each fix's accuracy when given."""
+    from ..scenarios import sample_drive_path
+
+    starts = args.outage_starts or None
+    fl = tuple(filters) if filters else REAL_FILTERS
+    results = []
+    for path in drives:
+        run = read_drive_csv(sample_drive_path() if path == "sample" else path)
+        res = real_drive_outages(run, n_placements=args.outages, length=args.outage_length, filters=fl,
+                                 starts=starts, min_speed=args.min_speed,
+                                 use_gps_sigma=run.gps_sigma is not None,
+                                 grade=getattr(args, "grade", None) or "phone")
+        results.append(res)
+        print(real_drive_table(res))
+    paths = write_outputs(None, args.out, figures=not args.no_figures, real_drives=results)
     print("wrote:", ", ".join(paths))
     return 0
 
