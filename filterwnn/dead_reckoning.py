@@ -739,31 +739,6 @@ class GPSDRModel(StateSpaceModel):
                 R[2:, 2:] = check_positive(gps_sigma, "gps_sigma") ** 2 * np.eye(2)
         return z, R, {"gps": gps, "velocity": velocity}
 
-    def update(self, kf, z_dr, z_gps=None, *, stationary=False, zupt=False, low_speed=False, R=None):
-        """Deprecated: use :class:`filterwnn.gpsdr.GPSDRFilter` (it decides starts and stops itself).
-
-        Updates a filterpy EKF or an unscented filter with :meth:`measurement_for`'s
-        measurement; kept so that existing code keeps running.
-        """
-        import warnings
-
-        from filterpy.kalman import ExtendedKalmanFilter
-
-        warnings.warn("GPSDRModel.update is deprecated: use filterwnn.gpsdr.GPSDRFilter, which "
-                      "handles standstill, low speed and per-fix GPS accuracy by itself",
-                      DeprecationWarning, stacklevel=2)
-        z, R, kw = self.measurement_for(z_dr, z_gps, stationary=stationary, zupt=zupt,
-                                        low_speed=low_speed, R=R)
-        if isinstance(kf, ExtendedKalmanFilter):
-            args = (kw["gps"], kw["velocity"])
-            kf.update(z, self.HJacobian, self.hx, R=R, args=args, hx_args=args,
-                      residual=np.subtract if kw["velocity"] else dr_residual)
-        elif kw["velocity"]:
-            kf.update(z, R=R, gps=kw["gps"], velocity=True)
-        else:
-            kf.update(z, R=R, gps=kw["gps"])
-        return kf
-
     def ekf(self, x0=None, P0=None):
         """A filterpy ``ExtendedKalmanFilter`` on this model (or use :class:`filterwnn.gpsdr.GPSDRFilter`)."""
         from filterpy.kalman import ExtendedKalmanFilter

@@ -30,6 +30,7 @@ from filterwnn import (
 from filterwnn import _validation as val
 from filterwnn.sigma_points import sigma_deviations, unit_sigma_points
 from filterwnn import dead_reckoning as dr
+from filterwnn.gpsdr import GPSDRFilter
 from filterwnn import neural_filter as nfm
 from filterwnn import particle_filter as pfm
 from filterwnn import resampling
@@ -395,10 +396,10 @@ DR_ROWS = [
     row(lambda: dr.GPSDRModel(sigma_gps=0.0), ValueError, r"sigma_gps must be finite and > 0, got 0.0", "gps-sigma"),
     row(lambda: dr.GPSDRModel(dt=-1.0), ValueError, r"dt must be finite and > 0, got -1.0", "gps-dt"),
     row(lambda: dr.GPSDRModel(augmented=True, x0=np.zeros(6)), ValueError, r"x0 must have length 8, got shape \(6,\)", "gps-x0"),
-    row(lambda: GPS.update(GPS.ekf(), np.zeros(3)), ValueError, r"z_dr must have length 2, got shape \(3,\)", "gps-update-zdr-len"),
-    row(lambda: GPS.update(GPS.ekf(), [np.nan, 1.0]), ValueError, r"z_dr must be finite, got \[nan  1.\]", "gps-update-zdr-nan"),
-    row(lambda: GPS.update(GPS.ekf(), [0.0, 1.0], [np.nan, 0.0]), ValueError, "z_gps must be finite", "gps-update-zgps-nan"),
-    row(lambda: GPS.update(GPS.ekf(), [0.0, 1.0], [0.0, 0.0, 0.0]), ValueError, r"z_gps must have length 2, got shape \(3,\)", "gps-update-zgps-len"),
+    row(lambda: GPSDRFilter(GPS).update(np.zeros(3)), ValueError, r"z_dr must have length 2, got shape \(3,\)", "gps-update-zdr-len"),
+    row(lambda: GPSDRFilter(GPS).update([np.nan, 1.0]), ValueError, r"z_dr must be finite, got \[nan  1.\]", "gps-update-zdr-nan"),
+    row(lambda: GPSDRFilter(GPS).update([0.0, 1.0], [np.nan, 0.0]), ValueError, "z_gps must be finite", "gps-update-zgps-nan"),
+    row(lambda: GPSDRFilter(GPS).update([0.0, 1.0], [0.0, 0.0, 0.0]), ValueError, r"z_gps must have length 2, got shape \(3,\)", "gps-update-zgps-len"),
     row(lambda: dr.transition_matrix(0.0), ValueError, r"dt must be finite and > 0, got 0.0", "transition-dt"),
     row(lambda: dr.simulate_scenario("straight"), TypeError, "scenario must be a Scenario, got str", "scenario-type"),
     row(lambda: dr.simulate_scenario(dr.SCENARIOS["straight"](dt=0.0)), ValueError, r"dt must be finite and > 0, got 0.0", "scenario-dt"),

@@ -18,6 +18,7 @@ from filterwnn.dead_reckoning import (
     transition_matrix,
     wrap_angle,
 )
+from filterwnn.gpsdr import GPSDRFilter
 from filterwnn.sigma_points import SphericalSimplexSigmaPoints
 from filterwnn.unscented import UnscentedKalmanFilter
 
@@ -189,11 +190,11 @@ def test_noise_rises_at_switch():
     np.testing.assert_allclose(np.sqrt(run.R_true[~before, 0] / run.R_true[before, 0][0]), 20.0)
 
 
-def _gpsdr_run(model, filt, run, gps_list):
+def _gpsdr_run(filt, run, gps_list):
     out = []
     for k in range(len(run.t)):
         filt.predict()
-        model.update(filt, run.z_dr[k], gps_list[k])
+        filt.update(run.z_dr[k], gps_list[k])
         out.append(filt.x.copy())
     return np.array(out)
 
@@ -206,33 +207,25 @@ def test_missing_gps_never_nan(kind):
     run = simulate_scenario(sc, rng=2)
     m = GPSDRModel(augmented=True)
     x0 = np.r_[run.x0, 1.0, 0.0]
-    if kind == "ekf":
-        f = m.ekf(x0=x0)
-    else:
-        f = UnscentedKalmanFilter(8, 4, m.dt, m.hx, m.fx, SphericalSimplexSigmaPoints(8, w0=0.2),
-                                  z_mean_fn=dr_z_mean, residual_z=dr_residual)
-        f.x, f.P, f.Q, f.R = x0, m.P0.copy(), m.Q, m.R
-    est = _gpsdr_run(m, f, run, run.gps_list())
+    f = GPSDRFilter(m, "ekf" if kind == "ekf" else "sukf", x0=x0)
+    est = _gpsdr_run(f, run, run.gps_list())
     assert np.all(np.isfinite(est)) and np.all(np.isfinite(f.P))
     with pytest.raises(ValueError, match="finite"):
-        m.update(f, [np.nan, 1.0], None)
+        f.update([np.nan, 1.0], None)
     with pytest.raises(ValueError, match="finite"):
-        m.update(f, [0.1, 1.0], [np.nan, 0.0])
+        f.update([0.1, 1.0], [np.nan, 0.0])
 
 
 def test_eight_state_filter_recovers_scale_and_bias():
     sc = SCENARIOS["gpsdr"](outages=())
     run = simulate_scenario(sc, rng=11)
     m = GPSDRModel(augmented=True)
-    f = m.ekf(x0=np.r_[run.x0, 1.0, 0.0])
-    _gpsdr_run(m, f, run, run.gps_list())
+    f = GPSDRFilter(m, x0=np.r_[run.x0, 1.0, 0.0])
+    est8 = _gpsdr_run(f, run, run.gps_list())
     assert abs(f.x[6] - 1.02) < 0.005
     assert abs(np.degrees(f.x[7]) - 2.0) < 0.3
     # the 6-state filter cannot: it stays metres off even with GPS
-    m6 = GPSDRModel()
-    f6 = m6.ekf(x0=run.x0)
-    est6 = _gpsdr_run(m6, f6, run, run.gps_list())
-    est8 = _gpsdr_run(m, m.ekf(x0=np.r_[run.x0, 1.0, 0.0]), run, run.gps_list())
+    est6 = _gpsdr_run(GPSDRFilter(GPSDRModel(), x0=run.x0), run, run.gps_list())
     e6 = np.hypot(*(est6[-500:, [0, 3]] - run.x_true[-500:, [0, 3]]).T).mean()
     e8 = np.hypot(*(est8[-500:, [0, 3]] - run.x_true[-500:, [0, 3]]).T).mean()
     assert e8 < 0.5 * e6
@@ -256,17 +249,13 @@ def test_pulling_away_from_rest_needs_the_low_speed_update():
     run = simulate_scenario(sc, rng=4)
     assert np.all(run.z_dr[run.t < 5.0, 1] == 0.0)          # odometer reads 0 at rest
     m = GPSDRModel(augmented=True)
-    still = run.z_dr[:, 1] <= 0.0
-    slow = run.z_dr[:, 1] < 0.1 * 1.0
 
-    def go(use_flags):
-        f = m.ekf(x0=np.r_[run.x0, 1.0, 0.0])
+    def go(use_flags):  # standstill below 1e-9 m/s, the velocity form below 1 m/s; or neither
+        f = GPSDRFilter(m, x0=np.r_[run.x0, 1.0, 0.0], hold_without_gps=False,
+                        standstill_speed=1e-9 if use_flags else 0.0, low_speed=1.0 if use_flags else 0.0)
         for k in range(len(run.t)):
             f.predict()
-            if use_flags:
-                m.update(f, run.z_dr[k], None, zupt=bool(still[k]), low_speed=bool(slow[k]))
-            else:
-                m.update(f, run.z_dr[k], None)
+            f.update(run.z_dr[k], None)
         return f.x
 
     x = go(True)

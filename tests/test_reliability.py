@@ -37,6 +37,7 @@ from filterwnn import dead_reckoning as dr
 from filterwnn import neural_filter as nfm
 from filterwnn import particle_filter as pfm
 from filterwnn.gaussian_sum import GaussianSumFilter
+from filterwnn.gpsdr import GPSDRFilter
 from filterwnn.regressor import TRAINERS, WNNRegressor
 from filterwnn.weight_model import WNNWeightModel
 
@@ -300,13 +301,13 @@ def test_gpsdr_ekf_pickled_mid_run_with_gps_outage_continues_bit_identically():
     m = dr.GPSDRModel(augmented=True)
     run = dr.simulate_scenario(dr.SCENARIOS["gpsdr"](duration=60.0, outages=((20.0, 40.0),)), rng=3)
     gps = run.gps_list()
-    kf = m.ekf(x0=np.concatenate([run.x0, [1.0, 0.0]]))
+    kf = GPSDRFilter(m, "ekf", x0=np.concatenate([run.x0, [1.0, 0.0]]))
 
     def go(f, ks):
         out = []
         for k in ks:
             f.predict()
-            m.update(f, run.z_dr[k], gps[k])
+            f.update(run.z_dr[k], gps[k])
             out.append(f.x.copy())
         return np.array(out)
 
@@ -364,12 +365,12 @@ def test_gpsdr_ekf_100k_steps_with_outages(augmented):
     assert len(run.t) == 100_000 and len(run.gps_steps) < 10_000 - 500
     m = dr.GPSDRModel(augmented=augmented)
     x0 = np.concatenate([run.x0, [1.0, 0.0]]) if augmented else run.x0
-    kf = m.ekf(x0=x0)
+    kf = GPSDRFilter(m, "ekf", x0=x0)
     gps = run.gps_list()
     err = np.empty(len(run.t))
     for k in range(len(run.t)):
         kf.predict()
-        m.update(kf, run.z_dr[k], gps[k])
+        kf.update(run.z_dr[k], gps[k])
         _assert_covariance_ok(kf.P, k)
         err[k] = np.hypot(kf.x[0] - run.x_true[k, 0], kf.x[3] - run.x_true[k, 3])
     assert np.all(np.isfinite(err))
@@ -384,13 +385,11 @@ def test_gpsdr_sukf_8_state_100k_steps_with_outages():
 
     run = dr.simulate_scenario(long_gpsdr_scenario(10_000.0), rng=1)
     m = dr.GPSDRModel(augmented=True)
-    f = UnscentedKalmanFilter(8, 4, m.dt, m.hx, m.fx, Simplex(8, w0=0.2), z_mean_fn=dr.dr_z_mean,
-                              residual_z=dr.dr_residual)
-    f.x, f.P, f.Q, f.R = np.concatenate([run.x0, [1.0, 0.0]]), m.P0.copy(), m.Q.copy(), m.R.copy()
+    f = GPSDRFilter(m, "sukf", x0=np.concatenate([run.x0, [1.0, 0.0]]), points=Simplex(8, w0=0.2))
     gps = run.gps_list()
     for k in range(len(run.t)):
         f.predict()
-        m.update(f, run.z_dr[k], gps[k])
+        f.update(run.z_dr[k], gps[k])
         if k % 10 == 0:
             _assert_covariance_ok(f.P, k)
     assert np.all(np.isfinite(f.x))
