@@ -188,6 +188,15 @@ class ParticleFilter:
         2001), e.g. MCMC steps. It **must leave the current posterior invariant** (e.g. a
         Metropolis-Hastings kernel targeting :math:`p(x_k \\mid z_{1:k})`); the filter
         cannot check that. The particle covariances (Kalman proposals) are kept.
+    carry_covariance : bool, default True
+        For a Kalman proposal given by name (``"extended"``, ``"unscented"``, ``"simplex"``):
+        each particle carries its own covariance from step to step (van der Merwe et al.
+        2000), or, with ``False``, its Kalman step starts from the transition noise ``Q``
+        alone (the one-step approximation of the optimal proposal, Doucet, Godsill and
+        Andrieu 2000). The carried covariance can grow much wider than ``Q``, so the
+        textbook weight ``p(x|x') / q(x)`` collapses (a :class:`DegeneracyWarning` says
+        so); ``False`` is the remedy on an ordinary tracker. A proposal object brings its
+        own setting, so ``False`` with one is an error.
 
     Attributes
     ----------
@@ -252,6 +261,7 @@ class ParticleFilter:
         measurement_logpdf=None,
         recover=False,
         move=None,
+        carry_covariance=True,
     ):
         self.dim_x = check_positive_int(dim_x, "dim_x")
         self.dim_z = check_positive_int(dim_z, "dim_z")
@@ -282,7 +292,7 @@ class ParticleFilter:
             raise TypeError(f"vectorized must be a bool, got {type(vectorized).__name__}")
         self.vectorized = bool(vectorized)
         self.rng = check_rng(rng)
-        self.proposal = self._make_proposal(proposal, points)
+        self.proposal = self._make_proposal(proposal, points, bool(carry_covariance))
         if isinstance(self.proposal, ExtendedKalmanProposal):
             if self.HJacobian is None:
                 raise ValueError("the extended Kalman proposal needs HJacobian, got None")
@@ -314,13 +324,13 @@ class ParticleFilter:
         self._warned_degenerate = False
 
     # ------------------------------------------------------------------ set-up
-    def _make_proposal(self, proposal, points):
+    def _make_proposal(self, proposal, points, carry_covariance=True):
         if isinstance(proposal, str):
             check_choice(proposal, "proposal", PROPOSALS)
             if proposal == "prior":
                 return PriorProposal()
             if proposal == "extended":
-                return ExtendedKalmanProposal()
+                return ExtendedKalmanProposal(carry_covariance=carry_covariance)
             if points is None:
                 if proposal == "unscented":
                     points = MerweScaledSigmaPoints(self.dim_x, alpha=1.0, beta=2.0, kappa=0.0)
@@ -329,7 +339,10 @@ class ParticleFilter:
             n = getattr(points, "n", None)
             if n != self.dim_x:
                 raise ValueError(f"points.n must equal dim_x={self.dim_x}, got {n}")
-            return UnscentedKalmanProposal(points)
+            return UnscentedKalmanProposal(points, carry_covariance=carry_covariance)
+        if not carry_covariance:
+            raise ValueError("carry_covariance=False applies to a proposal given by name; a proposal object "
+                             "brings its own (e.g. UnscentedKalmanProposal(points, carry_covariance=False))")
         missing = [a for a in ("carries_covariance", "predict", "propose") if not hasattr(proposal, a)]
         if missing:
             raise TypeError(
@@ -437,6 +450,16 @@ class ParticleFilter:
         self.n_distinct_history.append(self.n_distinct)
         self.resampled_history.append(bool(resampled))
 
+    def _degeneracy_remedy(self):
+        if isinstance(self.proposal, PriorProposal):
+            return ("more particles, or a Kalman proposal that looks at the measurement "
+                    "(ExtendedKalmanParticleFilter or UnscentedParticleFilter with carry_covariance=False), or "
+                    "filterwnn.GaussianSumFilter")
+        if getattr(self.proposal, "carries_covariance", False):
+            return ("carry_covariance=False (each particle's Kalman step from Q: the one-step optimal "
+                    "proposal), more particles, or filterwnn.GaussianSumFilter")
+        return "more particles, a wider proposal (a larger Q in the proposal), or filterwnn.GaussianSumFilter"
+
     def _watch_degeneracy(self, ess):
         self._low_ess_run = self._low_ess_run + 1 if ess < _DEGENERATE_ESS else 0
         if self._low_ess_run >= _DEGENERATE_RUN and not self._warned_degenerate:
@@ -444,9 +467,8 @@ class ParticleFilter:
             warnings.warn(
                 f"{type(self).__name__}: the particle weights collapsed: the effective sample size "
                 f"stayed below {_DEGENERATE_ESS:g} for {_DEGENERATE_RUN} consecutive updates (step "
-                f"{self.step}: ESS {ess:.3g} of {self.n_particles} particles). Try more particles, a "
-                f"wider proposal (e.g. carry_covariance=False, or a larger Q in the proposal), or "
-                f"filterwnn.GaussianSumFilter",
+                f"{self.step}: ESS {ess:.3g} of {self.n_particles} particles). Try "
+                f"{self._degeneracy_remedy()}",
                 DegeneracyWarning,
                 stacklevel=3,
             )
@@ -692,6 +714,7 @@ class _Preset(ParticleFilter):
         measurement_logpdf=None,
         recover=False,
         move=None,
+        carry_covariance=True,
     ):
         super().__init__(
             dim_x,
@@ -718,6 +741,7 @@ class _Preset(ParticleFilter):
             measurement_logpdf=measurement_logpdf,
             recover=recover,
             move=move,
+            carry_covariance=carry_covariance,
         )
 
 
@@ -727,8 +751,8 @@ _PRESET_DOC = """{what}
     n_particles, *, points=None, FJacobian=None, HJacobian=None, x_mean_fn=None,
     z_mean_fn=None, residual_x=None, residual_z=None, resampling="systematic",
     ess_threshold=1.0, vectorized=False, rng=None)`` plus the keyword-only ``tempering``,
-    ``transition_logpdf``, ``process_sampler``, ``measurement_logpdf``, ``recover`` and
-    ``move``; see :class:`ParticleFilter` for their meaning. {extra}
+    ``transition_logpdf``, ``process_sampler``, ``measurement_logpdf``, ``recover``,
+    ``move`` and ``carry_covariance`` (Kalman proposals only); see :class:`ParticleFilter` for their meaning. {extra}
     """
 
 
