@@ -172,16 +172,42 @@ def _plain_log_ticks(ax):
     ax.yaxis.set_minor_formatter(NullFormatter())
 
 
-def _draw_groups(ax, t, curves, groups, style, bands=None):
-    """One line per group (colour, style and marker fixed per group by ``style``)."""
+def _log_limits(t, curves):
+    """y limits of a log panel: the curves after their first 2 % of steps, with a margin."""
+    k = max(len(t) // 50, 1)
+    vals = np.concatenate([np.asarray(c, dtype=float)[k:] for c in curves.values()])
+    vals = vals[np.isfinite(vals) & (vals > 0)]
+    if vals.size == 0:
+        return 1e-2, 1.0
+    return vals.min() / 1.6, vals.max() * 1.6
+
+
+def _line_rtol(ax, lo, hi, lw=1.6):
+    """Relative difference that a line of width ``lw`` (points) covers on a log axis ``lo..hi``."""
+    fig = ax.figure
+    height_pt = ax.get_position().height * fig.get_figheight() * 72.0
+    return 10 ** (lw / height_pt * np.log10(hi / lo)) - 1.0
+
+
+def _draw_groups(ax, t, curves, style, bands=None, rtol=None):
+    """Log panel, one line per group of coinciding curves (colour, style, marker by ``style``).
+
+    ``rtol`` None: the width of a line on this panel (:func:`_line_rtol`). Returns the groups.
+    """
+    lo, hi = _log_limits(t, curves)
+    _plain_log_ticks(ax)
+    ax.set_ylim(lo, hi)
+    groups = coincide_groups(curves, _line_rtol(ax, lo, hi) if rtol is None else rtol)
     n = len(t)
+    every = max(n // 8, 1)
     for g in groups:
         c, ls, mk, k = style[g[0]]
         ax.plot(t, curves[g[0]], color=c, ls=ls, lw=1.6 if len(g) > 1 else 1.3, marker=mk, ms=4.5,
-                markevery=(int(k * n / 53) % max(n // 8, 1), max(n // 8, 1)), label=_group_label(g))
+                markevery=(int(k * n / 53) % every, every), label=_group_label(g))
         if bands is not None and g[0] in bands:
-            lo, hi = bands[g[0]]
-            ax.fill_between(t, lo, hi, color=c, alpha=0.15, lw=0)
+            b_lo, b_hi = bands[g[0]]
+            ax.fill_between(t, np.maximum(b_lo, lo), np.minimum(b_hi, hi), color=c, alpha=0.15, lw=0)
+    return groups
 
 
 def _styles(names):
@@ -208,7 +234,7 @@ def split_outliers(curves, factor=10.0):
 
 
 def dr_position_errors(t, errors, t_switch=None, title="", single=_DR_PAPER_PAIR, run=0, bands=None,
-                       rtol=0.02):
+                       rtol=None):
     """The second paper's Figs. 4-5: east and north position error against time.
 
     Parameters
@@ -226,10 +252,12 @@ def dr_position_errors(t, errors, t_switch=None, title="", single=_DR_PAPER_PAIR
         The run shown in the top row.
     bands : sequence of str, optional
         Filters (two or three) drawn with the 10-90 % band of the absolute error over runs;
-        default the first two of ``single`` that ran. Needs more than one run.
-    rtol : float
+        default the first two of ``single`` when both are in range, else the first (two
+        bands of similar filters smear into one colour). Needs more than one run.
+    rtol : float, optional
         Series whose RMS agree to within ``rtol`` at every step are drawn as one line labelled
-        "A, B (coincide)" (:func:`coincide_groups`).
+        "A, B (coincide)" (:func:`coincide_groups`); default the relative width of a line on
+        the panel, so series a reader could not tell apart are named together.
 
     Returns
     -------
@@ -246,8 +274,9 @@ def dr_position_errors(t, errors, t_switch=None, title="", single=_DR_PAPER_PAIR
     rms = {j: {n: np.sqrt(np.mean(errors[n][:, :, j] ** 2, axis=0)) for n in names} for j in (0, 1)}
     out = sorted(set(split_outliers(rms[0])) | set(split_outliers(rms[1])), key=names.index)
     main = [n for n in names if n not in out]
-    if bands is None:
-        bands = [n for n in single if n in main][:2]
+    if bands is None:   # the paper's pair when both are in range, else the EKF alone (no smear)
+        bands = [n for n in single[:2] if n in main]
+        bands = bands if len(bands) == 2 else bands[:1]
     bands = [n for n in bands if n in names][:3] if n_runs > 1 else []
     n_rows = 3 if out else 2
     fig, axes = plt.subplots(n_rows, 2, figsize=(13.5, 3.3 * n_rows + 0.6), sharex=True, squeeze=False)
@@ -270,8 +299,7 @@ def dr_position_errors(t, errors, t_switch=None, title="", single=_DR_PAPER_PAIR
                 continue
             ax = axes[row, j]
             cur = {n: rms[j][n] for n in members}
-            _draw_groups(ax, t, cur, coincide_groups(cur, rtol), style, band)
-            _plain_log_ticks(ax)
+            _draw_groups(ax, t, cur, style, band, rtol)
             ax.set_ylabel("RMS |error| [m]")
             what = "filters far off the scale above" if row == 2 else "RMS over runs"
             ax.set_title(f"{axis}: {what} ({n_runs} runs)")
@@ -279,7 +307,7 @@ def dr_position_errors(t, errors, t_switch=None, title="", single=_DR_PAPER_PAIR
         for ax in axes[:, j]:
             if t_switch is not None:
                 ax.axvline(t_switch, color="k", ls=":", lw=1)
-            ax.grid(alpha=0.3, which="both" if ax is not axes[0, j] else "major")
+            ax.grid(alpha=0.3)
     kw = dict(fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0)
     axes[0, 1].legend(**kw)
     h, lab = axes[1, 1].get_legend_handles_labels()
@@ -299,7 +327,7 @@ def dr_position_errors(t, errors, t_switch=None, title="", single=_DR_PAPER_PAIR
     return fig
 
 
-def dr_outage_errors(t, errors, outages=(), title="", bands=None, rtol=0.02):
+def dr_outage_errors(t, errors, outages=(), title="", bands=None, rtol=None):
     """GPS/DR horizontal position error against time with the GPS outages shaded.
 
     Parameters
@@ -312,9 +340,9 @@ def dr_outage_errors(t, errors, outages=(), title="", bands=None, rtol=0.02):
     bands : sequence of str, optional
         Filters (two or three) drawn with the 10-90 % band over runs; default the first
         filter and the first filter with a different RMS curve.
-    rtol : float
-        Series that agree to within ``rtol`` share one line labelled "(coincide)"
-        (:func:`coincide_groups`).
+    rtol : float, optional
+        Series that agree to within ``rtol`` at every step share one line labelled
+        "(coincide)" (:func:`coincide_groups`); default the relative width of a line on the panel.
 
     Returns
     -------
@@ -327,9 +355,8 @@ def dr_outage_errors(t, errors, outages=(), title="", bands=None, rtol=0.02):
     style = _styles(names)
     h = {n: np.hypot(errors[n][..., 0], errors[n][..., 1]) for n in names}
     rms = {n: np.sqrt(np.mean(h[n] ** 2, axis=0)) for n in names}
-    groups = coincide_groups(rms, rtol)
     if bands is None:
-        bands = [g[0] for g in groups if not any(n.startswith("DR") for n in g)][:2]
+        bands = [g[0] for g in coincide_groups(rms, 0.05) if not any(n.startswith("DR") for n in g)][:2]
     bands = [n for n in bands if n in names][:3] if n_runs > 1 else []
     band = {}
     for n in bands:
@@ -338,12 +365,11 @@ def dr_outage_errors(t, errors, outages=(), title="", bands=None, rtol=0.02):
     fig, ax = plt.subplots(figsize=(12, 4.8))
     for i, (a, b) in enumerate(outages):
         ax.axvspan(a, b, color="0.88", zorder=0, label="GPS outage" if i == 0 else None)
-    _draw_groups(ax, t, rms, groups, style, band)
-    _plain_log_ticks(ax)
+    _draw_groups(ax, t, rms, style, band, rtol)
     ax.set_xlabel("time [s]")
     ax.set_ylabel("horizontal RMS error [m]")
     ax.set_title(f"{title}: horizontal error, RMS over {n_runs} runs")
-    ax.grid(alpha=0.3, which="both")
+    ax.grid(alpha=0.3)
     hs, lab = ax.get_legend_handles_labels()
     if bands:
         from matplotlib.patches import Patch
@@ -391,19 +417,20 @@ def dr_real_drive(res, ax=None):
     ax1.set_xlabel("east [m]")
     ax1.set_ylabel("north [m]")
     ax1.set_title("track with the GPS outages (numbered at their end)")
-    ax1.legend(fontsize=8)
+    ax1.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=3)
     ax1.grid(alpha=0.3)
     num = np.arange(1, len(res["starts"]) + 1)
-    for n in names:
-        ax2.plot(num, np.maximum(res[n], 1e-2), "o-", color=col[n], ms=4, lw=1, label=
+    for i, n in enumerate(names):   # a marker per filter: equal errors stay visible
+        ax2.plot(num, np.maximum(res[n], 1e-2), marker=_DR_MARKERS[i % len(_DR_MARKERS)], ls="-",
+                 color=col[n], ms=6 - 1.2 * (i % 3), lw=1, label=
                  f"{n} (median {np.median(res[n]):.2f} m)")
-    ax2.set_yscale("log")
+    _plain_log_ticks(ax2)
     ax2.set_xticks(num)
     ax2.set_xlabel("outage number (as on the track)")
     ax2.set_ylabel(f"horizontal error at the outage end [m] (vs {res['reference']})")
     ax2.set_title(f"error at the end of each {res['length']:g} s GPS outage")
-    ax2.legend(fontsize=8)
-    ax2.grid(alpha=0.3, which="both")
+    ax2.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=3)
+    ax2.grid(alpha=0.3)
     fig.suptitle(f"GPS/DR on the drive {res['name']}: {len(res['starts'])} outages of {res['length']:g} s")
     fig.tight_layout()
     return fig
