@@ -173,13 +173,15 @@ def _plain_log_ticks(ax):
 
 
 def _log_limits(t, curves):
-    """y limits of a log panel: the curves after their first 2 % of steps, with a margin."""
+    """y limits of a log panel: the curves after their first 2 % of steps, with a margin, at most
+    three decades deep (a single run's |error| dips towards zero where the signed error crosses it)."""
     k = max(len(t) // 50, 1)
     vals = np.concatenate([np.asarray(c, dtype=float)[k:] for c in curves.values()])
     vals = vals[np.isfinite(vals) & (vals > 0)]
     if vals.size == 0:
         return 1e-2, 1.0
-    return vals.min() / 1.6, vals.max() * 1.6
+    hi = vals.max() * 1.6
+    return max(vals.min() / 1.6, hi * 1e-3), hi
 
 
 def _line_rtol(ax, lo, hi, lw=1.6):
@@ -300,9 +302,10 @@ def dr_position_errors(t, errors, t_switch=None, title="", single=_DR_PAPER_PAIR
             ax = axes[row, j]
             cur = {n: rms[j][n] for n in members}
             _draw_groups(ax, t, cur, style, band, rtol)
-            ax.set_ylabel("RMS |error| [m]")
-            what = "filters far off the scale above" if row == 2 else "RMS over runs"
-            ax.set_title(f"{axis}: {what} ({n_runs} runs)")
+            ax.set_ylabel("RMS |error| [m]" if n_runs > 1 else "|error| [m]")
+            what = "filters far off the scale above" if row == 2 else (
+                "RMS over runs" if n_runs > 1 else "|error|")
+            ax.set_title(f"{axis}: {what} ({n_runs} run{'s' * (n_runs > 1)})")
         axes[-1, j].set_xlabel("time [s]")
         for ax in axes[:, j]:
             if t_switch is not None:
@@ -368,7 +371,8 @@ def dr_outage_errors(t, errors, outages=(), title="", bands=None, rtol=None):
     _draw_groups(ax, t, rms, style, band, rtol)
     ax.set_xlabel("time [s]")
     ax.set_ylabel("horizontal RMS error [m]")
-    ax.set_title(f"{title}: horizontal error, RMS over {n_runs} runs")
+    ax.set_title(f"{title}: horizontal error, RMS over {n_runs} runs" if n_runs > 1
+                 else f"{title}: horizontal error (1 run)")
     ax.grid(alpha=0.3)
     hs, lab = ax.get_legend_handles_labels()
     if bands:
