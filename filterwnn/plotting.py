@@ -97,9 +97,11 @@ def wnn_convergence(runs, ax=None):
 
 import numpy as np  # noqa: E402  (issue 6 section)
 
-__all__ += ["dr_position_errors", "dr_outage_errors"]
+__all__ += ["dr_position_errors", "dr_outage_errors", "coincide_groups", "split_outliers"]
 
 _DR_PAPER_PAIR = ("EKF", "NN", "EKF-oracle")
+_DR_STYLES = ("-", "--", "-.", ":")
+_DR_MARKERS = ("o", "s", "^", "v", "D", "P", "X", "*")
 
 
 def _dr_colors(names):
@@ -109,7 +111,132 @@ def _dr_colors(names):
     return {n: cyc[i % len(cyc)] for i, n in enumerate(names)}
 
 
-def dr_position_errors(t, errors, t_switch=None, title="", single=_DR_PAPER_PAIR, run=0):
+def coincide_groups(curves, rtol=0.02):
+    """Group series that agree to within the line width.
+
+    Parameters
+    ----------
+    curves : dict of {str: ndarray of shape (n_steps,)}
+        Positive series (RMS errors), in the order to keep.
+    rtol : float
+        Largest relative difference, ``|a - b| / max(|a|, |b|)`` at every step, for two series
+        to count as one line (2 %: about the width of a line on a log axis that spans two
+        decades of a 3-inch panel).
+
+    Returns
+    -------
+    list of list of str
+        Each group in order of its first member; a series joins the first group whose first
+        member it matches everywhere (non-finite steps must be non-finite in both).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.linspace(1.0, 2.0, 5)
+    >>> coincide_groups({"EKF": t, "UKF": t * 1.001, "NN": 3 * t})
+    [['EKF', 'UKF'], ['NN']]
+    """
+    if not (np.isfinite(rtol) and rtol >= 0):
+        raise ValueError(f"rtol must be a finite number >= 0, got {rtol!r}")
+    groups = []
+    for name, c in curves.items():
+        c = np.asarray(c, dtype=float)
+        for g in groups:
+            r = np.asarray(curves[g[0]], dtype=float)
+            if r.shape != c.shape:
+                continue
+            fin = np.isfinite(r) & np.isfinite(c)
+            if not np.array_equal(fin, np.isfinite(r) | np.isfinite(c)):
+                continue
+            scale = np.maximum(np.abs(r[fin]), np.abs(c[fin]))
+            diff = np.abs(r[fin] - c[fin])
+            if np.all(diff <= rtol * np.where(scale > 0, scale, 1.0)):
+                g.append(name)
+                break
+        else:
+            groups.append([name])
+    return groups
+
+
+def _group_label(g):
+    return g[0] if len(g) == 1 else f"{', '.join(g)} (coincide)"
+
+
+def _plain_log_ticks(ax):
+    """Log y axis with plain numbers (0.1, 1, 10) instead of powers of ten."""
+    from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
+
+    ax.set_yscale("log")
+    ax.yaxis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
+    ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+    ax.yaxis.set_minor_formatter(NullFormatter())
+
+
+def _log_limits(t, curves):
+    """y limits of a log panel: the curves after their first 2 % of steps, with a margin, at most
+    three decades deep (a single run's |error| dips towards zero where the signed error crosses it)."""
+    k = max(len(t) // 50, 1)
+    vals = np.concatenate([np.asarray(c, dtype=float)[k:] for c in curves.values()])
+    vals = vals[np.isfinite(vals) & (vals > 0)]
+    if vals.size == 0:
+        return 1e-2, 1.0
+    hi = vals.max() * 1.6
+    return max(vals.min() / 1.6, hi * 1e-3), hi
+
+
+def _line_rtol(ax, lo, hi, lw=1.6):
+    """Relative difference that a line of width ``lw`` (points) covers on a log axis ``lo..hi``."""
+    fig = ax.figure
+    height_pt = ax.get_position().height * fig.get_figheight() * 72.0
+    return 10 ** (lw / height_pt * np.log10(hi / lo)) - 1.0
+
+
+def _draw_groups(ax, t, curves, style, bands=None, rtol=None):
+    """Log panel, one line per group of coinciding curves (colour, style, marker by ``style``).
+
+    ``rtol`` None: the width of a line on this panel (:func:`_line_rtol`). Returns the groups.
+    """
+    lo, hi = _log_limits(t, curves)
+    _plain_log_ticks(ax)
+    ax.set_ylim(lo, hi)
+    groups = coincide_groups(curves, _line_rtol(ax, lo, hi) if rtol is None else rtol)
+    n = len(t)
+    every = max(n // 8, 1)
+    for g in groups:
+        c, ls, mk, k = style[g[0]]
+        ax.plot(t, curves[g[0]], color=c, ls=ls, lw=1.6 if len(g) > 1 else 1.3, marker=mk, ms=4.5,
+                markevery=(int(k * n / 53) % every, every), label=_group_label(g))
+        if bands is not None and g[0] in bands:
+            b_lo, b_hi = bands[g[0]]
+            ax.fill_between(t, np.maximum(b_lo, lo), np.minimum(b_hi, hi), color=c, alpha=0.15, lw=0)
+    return groups
+
+
+def _styles(names):
+    col = _dr_colors(names)
+    return {n: (col[n], _DR_STYLES[i % len(_DR_STYLES)], _DR_MARKERS[i % len(_DR_MARKERS)], i)
+            for i, n in enumerate(names)}
+
+
+def split_outliers(curves, factor=10.0):
+    """Names of the series whose largest value is ``factor`` times the median of the largest values.
+
+    Such series (the paper's absolute-form NN at ~1e3 m) are drawn in their own panel so the
+    range where the other filters differ stays readable.
+
+    >>> import numpy as np
+    >>> split_outliers({"EKF": np.ones(3), "UKF": 2 * np.ones(3), "NN-faithful": 1e3 * np.ones(3)})
+    ['NN-faithful']
+    """
+    peaks = {n: np.nanmax(c) if np.isfinite(c).any() else np.inf for n, c in curves.items()}
+    if len(peaks) < 3:
+        return []
+    ref = np.median(list(peaks.values()))
+    return [n for n, v in peaks.items() if v > factor * ref]
+
+
+def dr_position_errors(t, errors, t_switch=None, title="", single=_DR_PAPER_PAIR, run=0, bands=None,
+                       rtol=None):
     """The second paper's Figs. 4-5: east and north position error against time.
 
     Parameters
@@ -118,55 +245,92 @@ def dr_position_errors(t, errors, t_switch=None, title="", single=_DR_PAPER_PAIR
     errors : dict of {str: ndarray of shape (n_runs, n_steps, 2)}
         Signed east/north errors per filter (``StudyResult.errors[s]["filters"]``).
     t_switch : float, optional
-        Time of the noise increase (a dashed line).
+        Time of the noise increase (a dotted line).
+    title : str
+        The scenario in words.
     single : sequence of str
         Filters drawn in the top row (one run, signed error, as in the paper).
     run : int
         The run shown in the top row.
+    bands : sequence of str, optional
+        Filters (two or three) drawn with the 10-90 % band of the absolute error over runs;
+        default the first two of ``single`` when both are in range, else the first (two
+        bands of similar filters smear into one colour). Needs more than one run.
+    rtol : float, optional
+        Series whose RMS agree to within ``rtol`` at every step are drawn as one line labelled
+        "A, B (coincide)" (:func:`coincide_groups`); default the relative width of a line on
+        the panel, so series a reader could not tell apart are named together.
 
     Returns
     -------
     matplotlib.figure.Figure
-        Top row: one run; bottom row: RMS over runs (log scale) with the 10-90 %
-        band of the absolute error over runs.
+        Top row: one run. Middle row: RMS over runs (log scale), every filter in the range
+        where they differ. Bottom row (only when some filter is far off that range,
+        :func:`split_outliers`): those filters alone. Legends sit right of the panels.
     """
     import matplotlib.pyplot as plt
 
     names = list(errors)
-    col = _dr_colors(names)
-    fig, axes = plt.subplots(2, 2, figsize=(12, 7.5), sharex=True)
+    n_runs = errors[names[0]].shape[0]
+    style = _styles(names)
+    rms = {j: {n: np.sqrt(np.mean(errors[n][:, :, j] ** 2, axis=0)) for n in names} for j in (0, 1)}
+    out = sorted(set(split_outliers(rms[0])) | set(split_outliers(rms[1])), key=names.index)
+    main = [n for n in names if n not in out]
+    if bands is None:   # the paper's pair when both are in range, else the EKF alone (no smear)
+        bands = [n for n in single[:2] if n in main]
+        bands = bands if len(bands) == 2 else bands[:1]
+    bands = [n for n in bands if n in names][:3] if n_runs > 1 else []
+    n_rows = 3 if out else 2
+    fig, axes = plt.subplots(n_rows, 2, figsize=(13.5, 3.3 * n_rows + 0.6), sharex=True, squeeze=False)
     for j, axis in enumerate(("east", "north")):
         ax = axes[0, j]
         for n in single:
             if n in errors:
-                ax.plot(t, errors[n][run, :, j], color=col[n], lw=1.2,
-                        ls="-" if n.startswith("NN") else "--", label=n)
-        ax.set_title(f"{axis} position error, run {run}")
+                c, ls, mk, _ = style[n]
+                ax.plot(t, errors[n][run, :, j], color=c, lw=1.3, ls=ls, label=n)
+        ax.axhline(0, color="0.5", lw=0.8)
+        ax.set_title(f"{axis} error, one run (run {run}), signed")
         ax.set_ylabel("error [m]")
-        ax = axes[1, j]
-        for n in names:
+        band = {}
+        for n in bands:
             e = np.abs(errors[n][:, :, j])
-            rms = np.sqrt(np.mean(e**2, axis=0))
-            ax.plot(t, rms, color=col[n], lw=1.3, label=n)
             lo, hi = np.percentile(e, [10, 90], axis=0)
-            ax.fill_between(t, np.maximum(lo, 1e-3), hi, color=col[n], alpha=0.08)
-        ax.set_yscale("log")
-        ax.set_ylim(1e-2, None)
-        ax.set_title(f"{axis}: RMS over {errors[names[0]].shape[0]} runs (band: 10-90 % of |error|)")
-        ax.set_xlabel("time [s]")
-        ax.set_ylabel("|error| [m]")
+            band[n] = (np.maximum(lo, 1e-3), hi)
+        for row, members in ((1, main), (2, out)):
+            if not members:
+                continue
+            ax = axes[row, j]
+            cur = {n: rms[j][n] for n in members}
+            _draw_groups(ax, t, cur, style, band, rtol)
+            ax.set_ylabel("RMS |error| [m]" if n_runs > 1 else "|error| [m]")
+            what = "filters far off the scale above" if row == 2 else (
+                "RMS over runs" if n_runs > 1 else "|error|")
+            ax.set_title(f"{axis}: {what} ({n_runs} run{'s' * (n_runs > 1)})")
+        axes[-1, j].set_xlabel("time [s]")
         for ax in axes[:, j]:
             if t_switch is not None:
                 ax.axvline(t_switch, color="k", ls=":", lw=1)
             ax.grid(alpha=0.3)
-    axes[0, 0].legend(fontsize=8)
-    axes[1, 1].legend(fontsize=7, ncol=2)
-    fig.suptitle(f"DR position error: {title}")
+    kw = dict(fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0)
+    axes[0, 1].legend(**kw)
+    h, lab = axes[1, 1].get_legend_handles_labels()
+    if bands:
+        from matplotlib.patches import Patch
+
+        h.append(Patch(color="0.6", alpha=0.4))
+        lab.append(f"shaded: 10-90 % of |error| over runs\n({', '.join(bands)})")
+    if t_switch is not None:
+        h.append(plt.Line2D([], [], color="k", ls=":", lw=1))
+        lab.append(f"noise switch ({t_switch:g} s)")
+    axes[1, 1].legend(h, lab, **kw)
+    if out:
+        axes[2, 1].legend(**kw)
+    fig.suptitle(f"Dead-reckoning position error: {title}")
     fig.tight_layout()
     return fig
 
 
-def dr_outage_errors(t, errors, outages=(), title=""):
+def dr_outage_errors(t, errors, outages=(), title="", bands=None, rtol=None):
     """GPS/DR horizontal position error against time with the GPS outages shaded.
 
     Parameters
@@ -174,6 +338,14 @@ def dr_outage_errors(t, errors, outages=(), title=""):
     t : ndarray of shape (n_steps,)
     errors : dict of {str: ndarray of shape (n_runs, n_steps, 2)}
     outages : sequence of (t_start, t_end)
+    title : str
+        The scenario in words.
+    bands : sequence of str, optional
+        Filters (two or three) drawn with the 10-90 % band over runs; default the first
+        filter and the first filter with a different RMS curve.
+    rtol : float, optional
+        Series that agree to within ``rtol`` at every step share one line labelled
+        "(coincide)" (:func:`coincide_groups`); default the relative width of a line on the panel.
 
     Returns
     -------
@@ -182,21 +354,33 @@ def dr_outage_errors(t, errors, outages=(), title=""):
     import matplotlib.pyplot as plt
 
     names = list(errors)
-    col = _dr_colors(names)
-    fig, ax = plt.subplots(figsize=(10, 4.8))
-    for n in names:
-        h = np.hypot(errors[n][..., 0], errors[n][..., 1])
-        ax.plot(t, np.sqrt(np.mean(h**2, axis=0)), color=col[n], lw=1.3, label=n)
-        lo, hi = np.percentile(h, [10, 90], axis=0)
-        ax.fill_between(t, np.maximum(lo, 1e-3), hi, color=col[n], alpha=0.08)
+    n_runs = errors[names[0]].shape[0]
+    style = _styles(names)
+    h = {n: np.hypot(errors[n][..., 0], errors[n][..., 1]) for n in names}
+    rms = {n: np.sqrt(np.mean(h[n] ** 2, axis=0)) for n in names}
+    if bands is None:
+        bands = [g[0] for g in coincide_groups(rms, 0.05) if not any(n.startswith("DR") for n in g)][:2]
+    bands = [n for n in bands if n in names][:3] if n_runs > 1 else []
+    band = {}
+    for n in bands:
+        lo, hi = np.percentile(h[n], [10, 90], axis=0)
+        band[n] = (np.maximum(lo, 1e-3), hi)
+    fig, ax = plt.subplots(figsize=(12, 4.8))
     for i, (a, b) in enumerate(outages):
-        ax.axvspan(a, b, color="0.85", zorder=0, label="GPS outage" if i == 0 else None)
-    ax.set_yscale("log")
+        ax.axvspan(a, b, color="0.88", zorder=0, label="GPS outage" if i == 0 else None)
+    _draw_groups(ax, t, rms, style, band, rtol)
     ax.set_xlabel("time [s]")
-    ax.set_ylabel("horizontal error [m]")
-    ax.set_title(f"GPS/DR horizontal error, RMS over runs (band 10-90 %): {title}")
+    ax.set_ylabel("horizontal RMS error [m]")
+    ax.set_title(f"{title}: horizontal error, RMS over {n_runs} runs" if n_runs > 1
+                 else f"{title}: horizontal error (1 run)")
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, ncol=2)
+    hs, lab = ax.get_legend_handles_labels()
+    if bands:
+        from matplotlib.patches import Patch
+
+        hs.append(Patch(color="0.6", alpha=0.4))
+        lab.append(f"shaded: 10-90 % over runs\n({', '.join(bands)})")
+    ax.legend(hs, lab, fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0)
     fig.tight_layout()
     return fig
 
@@ -237,19 +421,20 @@ def dr_real_drive(res, ax=None):
     ax1.set_xlabel("east [m]")
     ax1.set_ylabel("north [m]")
     ax1.set_title("track with the GPS outages (numbered at their end)")
-    ax1.legend(fontsize=8)
+    ax1.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=3)
     ax1.grid(alpha=0.3)
     num = np.arange(1, len(res["starts"]) + 1)
-    for n in names:
-        ax2.plot(num, np.maximum(res[n], 1e-2), "o-", color=col[n], ms=4, lw=1, label=
+    for i, n in enumerate(names):   # a marker per filter: equal errors stay visible
+        ax2.plot(num, np.maximum(res[n], 1e-2), marker=_DR_MARKERS[i % len(_DR_MARKERS)], ls="-",
+                 color=col[n], ms=6 - 1.2 * (i % 3), lw=1, label=
                  f"{n} (median {np.median(res[n]):.2f} m)")
-    ax2.set_yscale("log")
+    _plain_log_ticks(ax2)
     ax2.set_xticks(num)
     ax2.set_xlabel("outage number (as on the track)")
     ax2.set_ylabel(f"horizontal error at the outage end [m] (vs {res['reference']})")
     ax2.set_title(f"error at the end of each {res['length']:g} s GPS outage")
-    ax2.legend(fontsize=8)
-    ax2.grid(alpha=0.3, which="both")
+    ax2.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=3)
+    ax2.grid(alpha=0.3)
     fig.suptitle(f"GPS/DR on the drive {res['name']}: {len(res['starts'])} outages of {res['length']:g} s")
     fig.tight_layout()
     return fig

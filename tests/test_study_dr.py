@@ -57,7 +57,7 @@ def test_common_random_numbers_across_filters():
 def test_write_outputs_and_cli(small_result, tmp_path):
     paths = dr.write_outputs(small_result, str(tmp_path))
     names = {os.path.basename(p) for p in paths}
-    assert {"dr_table.md", "dr_table.csv", "dr_errors_straight.png", "dr_gpsdr_gpsdr.png"} <= names
+    assert {"dr_table.md", "dr_table.csv", "dr_straight_road.png", "gps_dr_with_outages.png"} <= names
     text = (tmp_path / "dr_table.md").read_text()
     assert "| EKF-oracle |" in text and "EKF-8" in text
     parser = argparse.ArgumentParser()

@@ -112,6 +112,8 @@ __all__ = [
     "GPSDR_FILTERS",
     "StudyResult",
     "run_study",
+    "scenario_figure",
+    "SCENARIO_WORDS",
     "run_one",
     "summarize",
     "write_outputs",
@@ -496,7 +498,8 @@ def write_outputs(result, out_dir, figures=True, real_drives=()):
     """Write the tables and figures to ``out_dir``; returns the paths.
 
     ``result`` (a :class:`StudyResult`, or ``None`` for real drives only) gives
-    ``dr_table.md``, ``dr_table.csv`` and a figure per scenario; each of ``real_drives``
+    ``dr_table.md``, ``dr_table.csv`` and a figure per scenario, named in words by
+    :func:`scenario_figure` (``dr_straight_road.png``, ``gps_dr_with_outages.png``); each of ``real_drives``
     (results of :func:`real_drive_outages`) gives ``real_drive_<name>_outage_errors.md``
     and ``real_drive_<name>_track_and_outage_end_errors.png`` (:func:`write_real_drive`).
     """
@@ -526,22 +529,64 @@ def write_outputs(result, out_dir, figures=True, real_drives=()):
         import matplotlib
 
         matplotlib.use("Agg", force=False)
+        import matplotlib.pyplot as plt
+
         from .. import plotting
 
         for name, sc in result.scenarios.items():
             e = result.errors[name]
+            title, fname = scenario_figure(name, sc)
             if sc.gps_rate > 0:
-                fig = plotting.dr_outage_errors(e["t"], e["filters"], outages=sc.outages, title=name)
-                p = os.path.join(out_dir, f"dr_gpsdr_{name}.png")
+                fig = plotting.dr_outage_errors(e["t"], e["filters"], outages=sc.outages, title=title)
             else:
-                fig = plotting.dr_position_errors(e["t"], e["filters"], t_switch=sc.t_switch, title=name)
-                p = os.path.join(out_dir, f"dr_errors_{name}.png")
-            fig.savefig(p, dpi=110)
+                fig = plotting.dr_position_errors(e["t"], e["filters"], t_switch=sc.t_switch, title=title)
+            p = os.path.join(out_dir, fname)
+            fig.savefig(p, dpi=110, bbox_inches="tight")
             paths.append(p)
-            import matplotlib.pyplot as plt
-
             plt.close(fig)
     return paths
+
+
+#: Each scenario in words and the stem of its figure's file name (``write_outputs``).
+SCENARIO_WORDS = {
+    "straight": ("straight road", "dr_straight_road"),
+    "turns": ("turning route", "dr_turning_route"),
+    "heading180": ("drive through heading 180 deg", "dr_through_heading_180_deg"),
+    "outliers": ("heading outliers", "dr_heading_outliers"),
+    "gpsdr": ("GPS/DR", "gps_dr"),
+}
+_COUNT_WORDS = ("no", "one", "two", "three", "four", "five", "six", "seven", "eight", "nine")
+
+
+def scenario_figure(name, sc):
+    """``(title, file name)`` of a scenario's figure, in words, from its settings.
+
+    >>> from filterwnn.scenarios import SCENARIOS
+    >>> scenario_figure("straight", SCENARIOS["straight"]())
+    ('straight road, sensor noise x20 from 150 s', 'dr_straight_road.png')
+    >>> scenario_figure("gpsdr", SCENARIOS["gpsdr"]())[1]
+    'gps_dr_with_outages.png'
+    """
+    words, stem = SCENARIO_WORDS.get(name, (str(name), "dr_" + _slug(name)))
+    if sc.gps_rate > 0:
+        k = len(sc.outages)
+        if k:
+            words += f" with {_COUNT_WORDS[k] if k < len(_COUNT_WORDS) else k} GPS outage{'s' if k > 1 else ''}"
+            stem += "_with_outages"
+        extra = []
+        if sc.odometer_scale != 1:
+            extra.append(f"odometer scale {sc.odometer_scale:g}")
+        if sc.heading_bias:
+            extra.append(f"heading bias {sc.heading_bias:g} deg")
+        if extra:
+            words += " (" + ", ".join(extra) + ")"
+    else:
+        if sc.outlier_prob:
+            words += (f" ({sc.outlier_prob:.0%} of {sc.outlier_deg:g} deg)" if name == "outliers"
+                      else f", {sc.outlier_prob:.0%} heading outliers of {sc.outlier_deg:g} deg")
+        if sc.factor != 1:
+            words += f", sensor noise x{sc.factor:g} from {sc.t_switch:g} s"
+    return words, stem + ".png"
 
 
 # ----------------------------------------------------------------------------- real drive
@@ -726,7 +771,7 @@ def write_real_drive(res, out_dir, figures=True):
 
         fig = plotting.dr_real_drive(res)
         p = os.path.join(out_dir, f"real_drive_{slug}_track_and_outage_end_errors.png")
-        fig.savefig(p, dpi=110)
+        fig.savefig(p, dpi=110, bbox_inches="tight")
         plt.close(fig)
         paths.append(p)
     return paths
