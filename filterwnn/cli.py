@@ -2,7 +2,7 @@
 
 ``filterwnn study wnn``  reproduces the first paper's WNN study (Table 1, Figs. 3-5).
 ``filterwnn study dr``   reproduces the second paper's dead-reckoning study (Figs. 4-5).
-``filterwnn demo``       a ten-second tour: reduced sigma points in filterpy's UKF.
+``filterwnn demo``       a ten-second tour: sigma points, a filter-trained network, GPS/DR.
 
 Each study module registers its own options (``filterwnn study wnn --help``).
 """
@@ -23,7 +23,7 @@ _DESCRIPTION = """\
 Reduced sigma points, particle filters, filter-trained wavelet networks and GPS/DR navigation.
 
 commands:
-  filterwnn demo            a ten-second tour: reduced sigma points in filterpy's UKF
+  filterwnn demo            a ten-second tour: sigma points, a filter-trained network, GPS/DR
   filterwnn study wnn       the first paper's WNN study (Table 1, Figs. 3-5)
   filterwnn study dr        the second paper's dead-reckoning study (Figs. 4-5)
 
@@ -31,19 +31,28 @@ Each command has its own options: filterwnn study wnn --help."""
 
 
 def _demo(args):
+    import time
+    import warnings
+
     import numpy as np
     from filterpy.kalman import MerweScaledSigmaPoints
     from filterpy.kalman import UnscentedKalmanFilter as FilterpyUKF
 
+    from .datasets import make_siso_benchmark
     from .models import LinearGaussianModel
+    from .regressor import WNNRegressor
+    from .scenarios import read_drive_csv, sample_drive_path
     from .sigma_points import MinimalSkewSigmaPoints, SphericalSimplexSigmaPoints
+    from .studies.dr import real_drive_outages
 
+    t0 = time.perf_counter()
     model = LinearGaussianModel.random(dim_x=4, dim_z=2, rng=args.seed)
     xs, zs = model.simulate(50, rng=args.seed + 1)
     kf = model.kalman_filter()
     ref, _, _, _ = kf.batch_filter(zs)
-    print(f"filterwnn {__version__}: filterpy's UnscentedKalmanFilter with three point sets")
-    print("on a random 4-state linear model, 50 steps (max |x - x_KF| over the run):")
+    print(f"filterwnn {__version__}: a tour in three parts\n")
+    print("1. Reduced sigma points in filterpy's own UnscentedKalmanFilter, on a random 4-state")
+    print("   linear model (50 steps; every set must give the Kalman filter's answer):")
     for points in (
         MerweScaledSigmaPoints(4, alpha=0.5, beta=2.0, kappa=-1.0),
         MinimalSkewSigmaPoints(4),
@@ -53,7 +62,27 @@ def _demo(args):
         ukf.x, ukf.P, ukf.Q, ukf.R = model.x0.copy(), model.P0.copy(), model.Q, model.R
         means, _ = ukf.batch_filter(zs)
         err = np.max(np.abs(means - np.asarray(ref).reshape(means.shape)))
-        print(f"  {type(points).__name__:28s} {points.num_sigmas():3d} points   {err:.1e}")
+        print(f"   {type(points).__name__:28s} {points.num_sigmas():3d} points   max |x - x_KF| {err:.1e}")
+
+    X, y, X_test, y_test = make_siso_benchmark(rng=args.seed)
+    print("\n2. A 5-20-1 wavelet network trained by an extended Kalman filter (WNNRegressor), on the")
+    print("   first paper's SISO plant (100 training rows, 10 epochs):")
+    reg = WNNRegressor(n_epochs=10, random_state=args.seed).fit(X, y)
+    mean, std = reg.predict(X_test, return_std=True)
+    inside = np.mean(np.abs(mean - y_test) <= 1.645 * std)
+    print(f"   test MSE {np.mean((mean - y_test) ** 2):.3f} (predicting the mean: {np.var(y_test):.2f}); "
+          f"{100 * inside:.0f} % of test targets inside the 90 % interval")
+
+    run = read_drive_csv(sample_drive_path())
+    print("\n3. GPS/DR on the shipped sample drive (phone-grade sensors, a 30 s GPS outage at 100 s):")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        res = real_drive_outages(run, starts=[100.0], filters=("DR-mech", "EKF-8"), grade="phone",
+                                 use_gps_sigma=True)
+    print(f"   error at the end of the outage: raw dead reckoning {res['DR-mech'][0]:.1f} m, "
+          f"8-state GPS/DR EKF {res['EKF-8'][0]:.1f} m")
+    print(f"\n({time.perf_counter() - t0:.1f} s. Next: the notebooks in notebooks/, "
+          "`filterwnn study wnn --help`, `filterwnn study dr --help`.)")
     return 0
 
 
@@ -63,7 +92,7 @@ def _build_parser():
     parser = argparse.ArgumentParser(prog="filterwnn", description=_DESCRIPTION, formatter_class=fmt)
     parser.add_argument("--version", action="version", version=f"filterwnn {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, metavar="{demo,study}")
-    demo = sub.add_parser("demo", help="a ten-second tour of the reduced sigma points", formatter_class=fmt,
+    demo = sub.add_parser("demo", help="a ten-second tour: sigma points, a filter-trained network, GPS/DR", formatter_class=fmt,
                           description="filterpy's UnscentedKalmanFilter with Merwe's, the minimal-skew and the\n"
                                       "spherical-simplex points on a random 4-state linear model.")
     demo.add_argument("--seed", type=_args.seed, default=0, help="seed of the model and the simulated run (>= 0)")
