@@ -1,4 +1,4 @@
-"""The README's Python examples run as written, and its first block holds two commands."""
+"""The README's Python examples run and print what it shows, the demo too, and its first block holds two commands."""
 
 import pathlib
 import re
@@ -22,9 +22,27 @@ def test_first_block_has_exactly_the_two_commands():
     assert lines[1] == 'pip install ".[test]" && python -m pytest'
 
 
-@pytest.mark.parametrize("code", blocks("python"))
-def test_python_examples_run(code, capsys):
+def examples():
+    """Each ```python block, with the ```text block that follows it (its printed output), if any."""
+    text = README.read_text()
+    return [(m.group(1), m.group(2)) for m in re.finditer(r"```python\n(.*?)```\s*(?:```text\n(.*?)```)?", text, flags=re.S)]
+
+
+@pytest.mark.parametrize("code, expected", examples())
+def test_python_examples_run_and_print_what_the_readme_shows(code, expected, capsys):
     exec(compile(code, str(README), "exec"), {"__name__": "__readme__"})
+    if expected is not None:
+        assert capsys.readouterr().out.strip() == expected.strip()
+
+
+def test_the_demo_prints_what_the_readme_shows(capsys):
+    from filterwnn.cli import main
+
+    shown = re.search(r"```text\n\$ filterwnn demo\n(.*?)```", README.read_text(), flags=re.S).group(1)
+    main(["demo"])
+    out = capsys.readouterr().out
+    printed = out[: out.rindex("\n(")]  # the last line is the elapsed time
+    assert printed.strip() == shown.strip()
 
 
 def test_ci_runs_the_readme_test_command():
