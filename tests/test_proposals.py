@@ -12,9 +12,8 @@ from filterwnn.proposals import (
     PriorProposal,
     ProposalModel,
     UnscentedKalmanProposal,
-    _unit_transpose_apply,
 )
-from filterwnn.sigma_points import unit_sigma_points
+from filterwnn.sigma_points import unit_sigma_points, unit_transpose_apply
 
 ATOL = 1e-10
 
@@ -76,7 +75,7 @@ POINTS = [
 def test_unit_transpose_apply_equals_dense_product(points, rng):
     Z = unit_sigma_points(points)
     B = rng.standard_normal((3, Z.shape[0], 2))
-    np.testing.assert_allclose(_unit_transpose_apply(points, Z, B), np.matmul(Z.T, B), atol=1e-12)
+    np.testing.assert_allclose(unit_transpose_apply(points, Z, B), np.matmul(Z.T, B), atol=1e-12)
 
 
 @pytest.mark.parametrize("points", POINTS[:2], ids=lambda p: type(p).__name__)
