@@ -374,7 +374,7 @@ class DRModel(StateSpaceModel):
         return dr_HJacobian(x, self.dt, self.zeta, min_speed=self.min_speed)
 
     residual_z = staticmethod(dr_residual)
-    z_mean = staticmethod(dr_z_mean)
+    z_mean_fn = staticmethod(dr_z_mean)
 
     def simulate(self, n_steps, rng=None, x0=None):
         """Simulate with process noise from ``Q`` and wrapped headings (see base class)."""
@@ -638,7 +638,7 @@ class GPSDRModel(StateSpaceModel):
         return R
 
     residual_z = staticmethod(dr_residual)
-    z_mean = staticmethod(dr_z_mean)
+    z_mean_fn = staticmethod(dr_z_mean)
 
     @staticmethod
     def measurement(z_dr, z_gps=None):

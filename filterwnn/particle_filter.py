@@ -84,7 +84,7 @@ __all__ = [
     "SimplexUnscentedParticleFilter",
 ]
 
-PROPOSALS = ("prior", "extended", "unscented", "simplex")
+PROPOSALS = ("prior", "extended", "unscented")
 
 #: ESS below this for ``_DEGENERATE_RUN`` consecutive updates triggers the warning.
 _DEGENERATE_ESS = 2.0
@@ -136,13 +136,14 @@ class ParticleFilter:
         ``None`` is a random walk, ``x_k = x_{k-1} + w_k``.
     n_particles : int
         Number of particles.
-    proposal : {"prior", "extended", "unscented", "simplex"} or proposal object
+    proposal : {"prior", "extended", "unscented"} or proposal object
         The importance proposal: a name, or any object with the protocol of
         :mod:`filterwnn.proposals` (``carries_covariance``, ``predict``, ``propose``),
         e.g. :class:`~filterwnn.PriorProposal`, :class:`~filterwnn.ExtendedKalmanProposal`,
         :class:`~filterwnn.UnscentedKalmanProposal` or your own. ``"unscented"`` uses
-        ``points`` (default Merwe, alpha=1, beta=2, kappa=0); ``"simplex"`` uses ``points``
-        (default ``SphericalSimplexSigmaPoints(dim_x, beta=2)``).
+        ``points`` (default Merwe, alpha=1, beta=2, kappa=0); pass
+        ``SphericalSimplexSigmaPoints(dim_x, beta=2)`` for the reduced-point SUPF (the
+        default of :class:`SimplexUnscentedParticleFilter`).
     points : sigma-point object, optional
         For the unscented proposals; ``points.n`` must equal ``dim_x`` (checked here).
     FJacobian, HJacobian : callable, optional
@@ -322,10 +323,7 @@ class ParticleFilter:
             if proposal == "extended":
                 return ExtendedKalmanProposal()
             if points is None:
-                if proposal == "unscented":
-                    points = MerweScaledSigmaPoints(self.dim_x, alpha=1.0, beta=2.0, kappa=0.0)
-                else:
-                    points = SphericalSimplexSigmaPoints(self.dim_x, beta=2.0)
+                points = MerweScaledSigmaPoints(self.dim_x, alpha=1.0, beta=2.0, kappa=0.0)
             n = getattr(points, "n", None)
             if n != self.dim_x:
                 raise ValueError(f"points.n must equal dim_x={self.dim_x}, got {n}")
@@ -665,6 +663,8 @@ class _Preset(ParticleFilter):
     """A named particle filter: the issue's constructor, proposal fixed by the class."""
 
     _proposal_name = "prior"
+    #: ``points`` when the caller passes None (the point set of the preset), or None.
+    _default_points = None
 
     def __init__(
         self,
@@ -693,6 +693,8 @@ class _Preset(ParticleFilter):
         recover=False,
         move=None,
     ):
+        if points is None and self._default_points is not None:
+            points = self._default_points(check_positive_int(dim_x, "dim_x"))
         super().__init__(
             dim_x,
             dim_z,
@@ -770,4 +772,8 @@ class SimplexUnscentedParticleFilter(_Preset):
             "``MinimalSkewSigmaPoints`` suits small states."
         ),
     )
-    _proposal_name = "simplex"
+    _proposal_name = "unscented"
+
+    @staticmethod
+    def _default_points(dim_x):
+        return SphericalSimplexSigmaPoints(dim_x, beta=2.0)

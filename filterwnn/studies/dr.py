@@ -206,12 +206,12 @@ def _neural_filter(name, run, model, nn_cache, rng_nn):
     return NeuralFilter(model, form=form, features=feat, rng=rng_nn).fit(Xp, Z, X)
 
 
-def train_general_nn(seed=0, n_states=1500, epochs=60, dt=0.1):
+def train_general_nn(seed=0, n_states=1500, n_epochs=60, dt=0.1):
     """``NN-gen``: the pass-through network trained on random motions (no route knowledge)."""
     model = DRModel(dt=dt)
     rng = np.random.default_rng(np.random.SeedSequence([seed, 6060]))
     Xp, Z, X = make_training_set(random_motion_states(n_states, rng), model, rng=rng)
-    return NeuralFilter(model, form="passthrough", features="velocity", epochs=epochs,
+    return NeuralFilter(model, form="passthrough", features="velocity", n_epochs=n_epochs,
                         batch_size=10, rng=rng).fit(Xp, Z, X)
 
 
