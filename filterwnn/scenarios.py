@@ -35,7 +35,6 @@ Outages are cut in with :func:`with_outage` (one) or placed by :func:`outage_sta
 from __future__ import annotations
 
 import csv
-import warnings
 from dataclasses import dataclass, field, replace
 from typing import NamedTuple, Optional
 

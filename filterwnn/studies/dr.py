@@ -61,7 +61,6 @@ outages and at the end of each outage.
 
 from __future__ import annotations
 
-import argparse
 import copy
 import csv
 import os
@@ -71,18 +70,13 @@ from typing import NamedTuple
 import numpy as np
 from filterpy.kalman import ExtendedKalmanFilter, MerweScaledSigmaPoints
 
-from .._validation import check_seed, check_positive_int, check_rng
+from .._validation import check_seed, check_positive_int
 from ..adaptive import AdaptiveExtendedKalmanFilter
 from ..dead_reckoning import SENSOR_GRADES, DRModel, GPSDRModel, dr_residual, dr_z_mean
 from ..gpsdr import GPSDRFilter
 from ..scenarios import (
     CAR_DRIVE,
-    CAR_DRIVES,
-    MIN_ODOMETER_SPEED,
     SCENARIOS,
-    DRRun,
-    Scenario,
-    _onav_dir,
     load_car_drive,
     outage_starts,
     read_drive_csv,
@@ -96,16 +90,8 @@ from ..neural_filter import (
     random_motion_states,
 )
 from ..sigma_points import SphericalSimplexSigmaPoints
+from ..unscented import UnscentedKalmanFilter
 from . import _args
-
-try:  # the package's vectorized UKF; filterpy's has the same API
-    from ..unscented import UnscentedKalmanFilter as _UKF
-
-    _VECTORIZED = True
-except ImportError:  # pragma: no cover
-    from filterpy.kalman import UnscentedKalmanFilter as _UKF
-
-    _VECTORIZED = False
 
 __all__ = [
     "DR_FILTERS",
@@ -137,22 +123,13 @@ DIV_FACTOR = 3.0
 DIV_FLOOR = 1.0
 
 
-def _has_upf():
-    try:
-        from .. import particle_filter  # noqa: F401
-
-        return hasattr(particle_filter, "UnscentedParticleFilter")
-    except ImportError:
-        return False
-
-
 # ----------------------------------------------------------------------------- runners
 
 
 def _ukf(model, points, x0, P0, gps):
-    f = _UKF(model.dim_x, 4 if gps else 2, model.dt, hx=model.hx, fx=model.fx, points=points,
-             z_mean_fn=dr_z_mean, residual_z=dr_residual,
-             **({"vectorized": not gps} if _VECTORIZED else {}))  # dim_z varies with GPS
+    f = UnscentedKalmanFilter(model.dim_x, 4 if gps else 2, model.dt, hx=model.hx, fx=model.fx, points=points,
+                              z_mean_fn=dr_z_mean, residual_z=dr_residual,
+                              vectorized=not gps)  # dim_z varies with GPS
     f.x, f.P, f.Q = x0.copy(), P0.copy(), model.Q.copy()
     f.R = model.R.copy()
     return f
@@ -398,7 +375,6 @@ def run_study(scenarios=DEFAULT_SCENARIOS, n_runs=10, filters=None, seed=0, jobs
     for s in scenarios:
         if s not in SCENARIOS:
             raise ValueError(f"unknown scenario {s!r}; valid: {', '.join(SCENARIOS)}")
-    upf = _has_upf()
     want = set(filters) if filters is not None else None
     if want is not None:
         bad = want - set(DR_FILTERS) - set(GPSDR_FILTERS)
@@ -415,8 +391,7 @@ def run_study(scenarios=DEFAULT_SCENARIOS, n_runs=10, filters=None, seed=0, jobs
         scs[name] = sc
         pool = GPSDR_FILTERS if sc.gps_rate > 0 else DR_FILTERS
         default = [f for f in pool if f not in OPT_IN]
-        fl = [f for f in pool if (f in want if want is not None else f in default)
-              and (upf or not f.startswith("UPF"))]
+        fl = [f for f in pool if (f in want if want is not None else f in default)]
         flist[name] = fl
         tasks += [(name, i) for i in range(n_runs)]
     nn_cache = {}
@@ -816,8 +791,3 @@ def _run_drives(args, drives, filters):
     print("wrote:", ", ".join(paths))
     return 0
 
-
-if __name__ == "__main__":  # pragma: no cover
-    p = argparse.ArgumentParser()
-    add_arguments(p)
-    run(p.parse_args())
