@@ -56,6 +56,7 @@ dynamic Bayesian models", JRSS B 63, 2001.
 
 from __future__ import annotations
 
+import inspect
 import warnings
 
 import numpy as np
@@ -72,6 +73,7 @@ from ._validation import (
     check_rng,
 )
 from .proposals import ExtendedKalmanProposal, PriorProposal, ProposalModel, UnscentedKalmanProposal
+from ._weighted import WeightedMixtureFilter, logsumexp
 from .resampling import get_scheme
 from .sigma_points import SphericalSimplexSigmaPoints
 
@@ -97,14 +99,6 @@ class DegeneracyWarning(RuntimeWarning):
     what to try."""
 
 
-def _logsumexp(a):
-    """``log(sum(exp(a)))`` of a 1-D array (``-inf`` if every entry is ``-inf``)."""
-    m = np.max(a)
-    if not np.isfinite(m):
-        return float(m)
-    return float(m + np.log(np.sum(np.exp(a - m))))
-
-
 def _check_callable(f, name, allow_none=True):
     if f is None and allow_none:
         return None
@@ -118,7 +112,7 @@ _MODEL_FIELDS = ("dim_x", "dim_z", "dt", "fx", "hx", "Q", "R", "vectorized", "FJ
                  "transition_logpdf", "measurement_logpdf", "recover")
 
 
-class ParticleFilter:
+class ParticleFilter(WeightedMixtureFilter):
     """A particle filter with a pluggable proposal and resampling, filterpy-style.
 
     Parameters
@@ -226,6 +220,10 @@ class ParticleFilter:
         errors and warnings name) the current step. 0 before the first ``predict``.
     """
 
+    _members_attr = "particles"
+    _members_word = "particles"
+    _restart_hint = "call initialize(particles) to restart the cloud, or set x and P before the first predict"
+
     def __init__(
         self,
         dim_x,
@@ -245,9 +243,9 @@ class ParticleFilter:
         residual_z=None,
         resampling="systematic",
         ess_threshold=1.0,
-        tempering=1.0,
         vectorized=False,
         rng=None,
+        tempering=1.0,
         transition_logpdf=None,
         process_sampler=None,
         measurement_logpdf=None,
@@ -340,34 +338,6 @@ class ParticleFilter:
         return proposal
 
     @property
-    def x(self):
-        """State estimate, shape ``(dim_x,)``."""
-        return self._x
-
-    @x.setter
-    def x(self, value):
-        self._refuse_mid_run("x")
-        self._x = value
-
-    @property
-    def P(self):
-        """State covariance, shape ``(dim_x, dim_x)``."""
-        return self._P
-
-    @P.setter
-    def P(self, value):
-        self._refuse_mid_run("P")
-        self._P = value
-
-    def _refuse_mid_run(self, name):
-        if self.particles is not None:
-            raise ValueError(
-                f"{name} cannot be set once the particles exist (step {self.step}): it would be "
-                f"ignored; call initialize(particles) to restart the cloud, or set x and P "
-                f"before the first predict"
-            )
-
-    @property
     def weights(self):
         """Normalised weights, ``exp(log_weights)``, shape ``(n_particles,)``."""
         return np.exp(self.log_weights)
@@ -428,12 +398,6 @@ class ParticleFilter:
         d = model.residual_x_rows(X, x[None, :])
         P = (d.T * w) @ d
         return x, 0.5 * (P + P.T)
-
-    def _record(self, ess, n_distinct, resampled):
-        self.ess, self.n_distinct = float(ess), int(n_distinct)
-        self.ess_history.append(self.ess)
-        self.n_distinct_history.append(self.n_distinct)
-        self.resampled_history.append(bool(resampled))
 
     def _watch_degeneracy(self, ess):
         self._low_ess_run = self._low_ess_run + 1 if ess < _DEGENERATE_ESS else 0
@@ -578,7 +542,7 @@ class ParticleFilter:
             )
         lw_prev = self.log_weights
         new_lw = lw_prev + log_alpha if self.tempering == 1.0 else lw_prev + self.tempering * log_alpha
-        lse = _logsumexp(new_lw)
+        lse = logsumexp(new_lw)
         if not np.isfinite(lse):
             lmax = np.max(log_alpha if log_lik is None else log_lik)
             if log_lik is None or not np.isfinite(lmax):
@@ -589,7 +553,7 @@ class ParticleFilter:
                     f"at every sample (largest log-weight increment {np.max(log_alpha):.6g})"
                 )
             raise NumericalError(f"all particle weights underflowed at step {step}: {detail}", matrix="weights", step=step)
-        log_lik_step = lse if self.tempering == 1.0 else _logsumexp(lw_prev + log_alpha)
+        log_lik_step = lse if self.tempering == 1.0 else logsumexp(lw_prev + log_alpha)
         self.log_likelihood = float(log_lik_step)
         self.log_marginal_likelihood += float(log_lik_step)
         return new_lw - lse
@@ -603,41 +567,6 @@ class ParticleFilter:
                 step=step,
             )
         return Y
-
-    def __getstate__(self):
-        state = self.__dict__.copy()
-        del state["_resample"]  # a scheme's raw implementation (or a wrapped callable): looked up again
-        return state
-
-    def __setstate__(self, state):
-        self.__dict__.update(state)
-        self._resample = get_scheme(self.resampling)
-
-    def batch_filter(self, zs, fx_args=None, hx_args=None):
-        """Run ``predict``/``update`` over a sequence of measurements.
-
-        Parameters
-        ----------
-        zs : sequence of length n_steps of array-like of shape (dim_z,) or None
-            ``None`` entries skip the update.
-        fx_args, hx_args : dict, optional
-            Keywords for every ``predict``/``update`` call.
-
-        Returns
-        -------
-        means : ndarray of shape (n_steps, dim_x)
-        covariances : ndarray of shape (n_steps, dim_x, dim_x)
-        """
-        fx_args = {} if fx_args is None else dict(fx_args)
-        hx_args = {} if hx_args is None else dict(hx_args)
-        n = len(zs)
-        means = np.empty((n, self.dim_x))
-        covs = np.empty((n, self.dim_x, self.dim_x))
-        for k, z in enumerate(zs):
-            self.predict(**fx_args)
-            self.update(z, **hx_args)
-            means[k], covs[k] = self._x, self._P
-        return means, covs
 
     def __repr__(self):
         return (
@@ -666,61 +595,17 @@ class _Preset(ParticleFilter):
     #: ``points`` when the caller passes None (the point set of the preset), or None.
     _default_points = None
 
-    def __init__(
-        self,
-        dim_x,
-        dim_z,
-        dt,
-        hx,
-        fx,
-        n_particles,
-        *,
-        points=None,
-        FJacobian=None,
-        HJacobian=None,
-        x_mean_fn=None,
-        z_mean_fn=None,
-        residual_x=None,
-        residual_z=None,
-        resampling="systematic",
-        ess_threshold=1.0,
-        vectorized=False,
-        rng=None,
-        tempering=1.0,
-        transition_logpdf=None,
-        process_sampler=None,
-        measurement_logpdf=None,
-        recover=False,
-        move=None,
-    ):
+    def __init__(self, dim_x, dim_z, dt, hx, fx, n_particles, *, points=None, **kwargs):
         if points is None and self._default_points is not None:
             points = self._default_points(check_positive_int(dim_x, "dim_x"))
-        super().__init__(
-            dim_x,
-            dim_z,
-            dt,
-            hx,
-            fx,
-            n_particles,
-            proposal=self._proposal_name,
-            points=points,
-            FJacobian=FJacobian,
-            HJacobian=HJacobian,
-            x_mean_fn=x_mean_fn,
-            z_mean_fn=z_mean_fn,
-            residual_x=residual_x,
-            residual_z=residual_z,
-            resampling=resampling,
-            ess_threshold=ess_threshold,
-            tempering=tempering,
-            vectorized=vectorized,
-            rng=rng,
-            transition_logpdf=transition_logpdf,
-            process_sampler=process_sampler,
-            measurement_logpdf=measurement_logpdf,
-            recover=recover,
-            move=move,
-        )
+        super().__init__(dim_x, dim_z, dt, hx, fx, n_particles, proposal=self._proposal_name, points=points,
+                         **kwargs)
+
+
+# the presets' signature is ParticleFilter's without ``proposal`` (fixed by the class)
+_Preset.__signature__ = inspect.signature(ParticleFilter).replace(
+    parameters=[p for p in inspect.signature(ParticleFilter).parameters.values() if p.name != "proposal"]
+)
 
 
 _PRESET_DOC = """{what}
