@@ -41,6 +41,15 @@ class WeightedMixtureFilter:
     _members_word = "particles"
     _restart_hint = "call initialize(...) to restart"
 
+    def _filterpy_defaults(self):
+        """filterpy's starting values: ``x = 0``, ``P = Q = I``, ``R = I``; prior and posterior alike."""
+        self._x = np.zeros(self.dim_x)
+        self._P = np.eye(self.dim_x)
+        self.Q = np.eye(self.dim_x)
+        self.R = np.eye(self.dim_z)
+        self.x_prior, self.P_prior = self._x.copy(), self._P.copy()
+        self.x_post, self.P_post = self._x.copy(), self._P.copy()
+
     @property
     def x(self):
         """State estimate, shape ``(dim_x,)``; set it with ``P`` before the first ``predict``

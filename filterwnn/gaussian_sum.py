@@ -50,18 +50,10 @@ from __future__ import annotations
 import numpy as np
 from filterpy.kalman import MerweScaledSigmaPoints
 
-from ._validation import (
-    NumericalError,
-    as_measurement,
-    as_state,
-    check_choice,
-    check_covariance,
-    check_positive,
-    check_positive_int,
-    check_rng,
-)
-from .proposals import ExtendedKalmanProposal, KalmanPrediction, ProposalModel, UnscentedKalmanProposal
+from ._validation import (NumericalError, as_measurement, as_state, check_choice, check_covariance,
+                          check_positive, check_positive_int, check_rng)
 from ._weighted import WeightedMixtureFilter, logsumexp
+from .proposals import ExtendedKalmanProposal, KalmanPrediction, ProposalModel, UnscentedKalmanProposal
 from .resampling import get_scheme
 from .sigma_points import SphericalSimplexSigmaPoints
 
@@ -171,12 +163,7 @@ class GaussianSumFilter(WeightedMixtureFilter):
             residual_z=residual_z, recover=bool(recover),
         )
         self.means = None
-        self._x = np.zeros(self.dim_x)
-        self._P = np.eye(self.dim_x)
-        self.Q = np.eye(self.dim_x)
-        self.R = np.eye(self.dim_z)
-        self.x_prior, self.P_prior = self._x.copy(), self._P.copy()
-        self.x_post, self.P_post = self._x.copy(), self._P.copy()
+        self._filterpy_defaults()
         self.covariances = None
         self.log_weights = None
         self._predicted = False

@@ -72,8 +72,8 @@ from ._validation import (
     check_positive_int,
     check_rng,
 )
-from .proposals import ExtendedKalmanProposal, PriorProposal, ProposalModel, UnscentedKalmanProposal
 from ._weighted import WeightedMixtureFilter, logsumexp
+from .proposals import ExtendedKalmanProposal, PriorProposal, ProposalModel, UnscentedKalmanProposal
 from .resampling import get_scheme
 from .sigma_points import SphericalSimplexSigmaPoints
 
@@ -224,50 +224,22 @@ class ParticleFilter(WeightedMixtureFilter):
     _members_word = "particles"
     _restart_hint = "call initialize(particles) to restart the cloud, or set x and P before the first predict"
 
-    def __init__(
-        self,
-        dim_x,
-        dim_z,
-        dt,
-        hx,
-        fx,
-        n_particles,
-        proposal="prior",
-        *,
-        points=None,
-        FJacobian=None,
-        HJacobian=None,
-        x_mean_fn=None,
-        z_mean_fn=None,
-        residual_x=None,
-        residual_z=None,
-        resampling="systematic",
-        ess_threshold=1.0,
-        vectorized=False,
-        rng=None,
-        tempering=1.0,
-        transition_logpdf=None,
-        process_sampler=None,
-        measurement_logpdf=None,
-        recover=False,
-        move=None,
-    ):
+    def __init__(self, dim_x, dim_z, dt, hx, fx, n_particles, proposal="prior", *, points=None,
+                 FJacobian=None, HJacobian=None, x_mean_fn=None, z_mean_fn=None, residual_x=None,
+                 residual_z=None, resampling="systematic", ess_threshold=1.0, vectorized=False, rng=None,
+                 tempering=1.0, transition_logpdf=None, process_sampler=None, measurement_logpdf=None,
+                 recover=False, move=None):
         self.dim_x = check_positive_int(dim_x, "dim_x")
         self.dim_z = check_positive_int(dim_z, "dim_z")
         self.dt = check_positive(dt, "dt")
         self.hx = _check_callable(hx, "hx", allow_none=False)
         self.fx = _check_callable(fx, "fx")
         self.n_particles = check_positive_int(n_particles, "n_particles")
-        self.FJacobian = _check_callable(FJacobian, "FJacobian")
-        self.HJacobian = _check_callable(HJacobian, "HJacobian")
-        self.x_mean_fn = _check_callable(x_mean_fn, "x_mean_fn")
-        self.z_mean_fn = _check_callable(z_mean_fn, "z_mean_fn")
-        self.residual_x = _check_callable(residual_x, "residual_x")
-        self.residual_z = _check_callable(residual_z, "residual_z")
-        self.transition_logpdf = _check_callable(transition_logpdf, "transition_logpdf")
-        self.process_sampler = _check_callable(process_sampler, "process_sampler")
-        self.measurement_logpdf = _check_callable(measurement_logpdf, "measurement_logpdf")
-        self.move = _check_callable(move, "move")
+        optional = dict(FJacobian=FJacobian, HJacobian=HJacobian, x_mean_fn=x_mean_fn, z_mean_fn=z_mean_fn,
+                        residual_x=residual_x, residual_z=residual_z, transition_logpdf=transition_logpdf,
+                        process_sampler=process_sampler, measurement_logpdf=measurement_logpdf, move=move)
+        for name, f in optional.items():  # None or callable
+            setattr(self, name, _check_callable(f, name))
         if not isinstance(recover, (bool, np.bool_)):
             raise TypeError(f"recover must be a bool, got {type(recover).__name__}")
         self.recover = bool(recover)
@@ -288,13 +260,7 @@ class ParticleFilter(WeightedMixtureFilter):
             if self.fx is not None and self.FJacobian is None and self.proposal.carries_covariance:
                 raise ValueError("the extended Kalman proposal needs FJacobian when fx is given, got None")
 
-        # filterpy's defaults
-        self._x = np.zeros(self.dim_x)
-        self._P = np.eye(self.dim_x)
-        self.Q = np.eye(self.dim_x)
-        self.R = np.eye(self.dim_z)
-        self.x_prior, self.P_prior = self._x.copy(), self._P.copy()
-        self.x_post, self.P_post = self._x.copy(), self._P.copy()
+        self._filterpy_defaults()
 
         self._model = ProposalModel(self.dim_x, self.dim_z)
         self.particles = None

@@ -185,22 +185,8 @@ class UnscentedKalmanFilter(_FilterpyUKF):
     numbers agree with filterpy's at every step.
     """
 
-    def __init__(
-        self,
-        dim_x,
-        dim_z,
-        dt,
-        hx,
-        fx,
-        points,
-        sqrt_fn=None,
-        x_mean_fn=None,
-        z_mean_fn=None,
-        residual_x=None,
-        residual_z=None,
-        state_add=None,
-        vectorized=False,
-    ):
+    def __init__(self, dim_x, dim_z, dt, hx, fx, points, sqrt_fn=None, x_mean_fn=None, z_mean_fn=None,
+                 residual_x=None, residual_z=None, state_add=None, vectorized=False):
         dim_x = check_positive_int(dim_x, "dim_x")
         dim_z = check_positive_int(dim_z, "dim_z")
         dt = check_positive(dt, "dt")
@@ -211,20 +197,8 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         check_points_protocol(points, ("num_sigmas", "sigma_points", "Wm", "Wc"))  # n is optional here
         if getattr(points, "n", dim_x) != dim_x:
             raise ValueError(f"points.n must equal dim_x={dim_x}, got {points.n}")
-        super().__init__(
-            dim_x,
-            dim_z,
-            dt,
-            hx,
-            fx,
-            points,
-            sqrt_fn=sqrt_fn,
-            x_mean_fn=x_mean_fn,
-            z_mean_fn=z_mean_fn,
-            residual_x=residual_x,
-            residual_z=residual_z,
-            state_add=state_add,
-        )
+        super().__init__(dim_x, dim_z, dt, hx, fx, points, sqrt_fn=sqrt_fn, x_mean_fn=x_mean_fn,
+                         z_mean_fn=z_mean_fn, residual_x=residual_x, residual_z=residual_z, state_add=state_add)
         self.vectorized = bool(vectorized)
         self.step = 0
         self._sigmas_stale = True  # sigmas_f must be drawn from (x, P) before update

@@ -94,12 +94,16 @@ def joblib_jobs(text):
     return value
 
 
-def positive_float(text):
-    """A finite number ``> 0``."""
+def _float(text):
     try:
-        value = float(text)
+        return float(text)
     except (TypeError, ValueError):
         raise argparse.ArgumentTypeError(f"must be a number, got {text!r}") from None
+
+
+def positive_float(text):
+    """A finite number ``> 0``."""
+    value = _float(text)
     if not (math.isfinite(value) and value > 0):
         raise argparse.ArgumentTypeError(f"must be a finite number > 0, got {text!r}")
     return value
@@ -107,10 +111,7 @@ def positive_float(text):
 
 def nonnegative_float(text):
     """A finite number ``>= 0``."""
-    try:
-        value = float(text)
-    except (TypeError, ValueError):
-        raise argparse.ArgumentTypeError(f"must be a number, got {text!r}") from None
+    value = _float(text)
     if not (math.isfinite(value) and value >= 0):
         raise argparse.ArgumentTypeError(f"must be a finite number >= 0, got {text!r}")
     return value
