@@ -620,17 +620,9 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
     sig = run.gps_sigma_list() if use_gps_sigma else [None] * len(run.t)
     low = {} if slow_speed is None else {"low_speed": slow_speed}
     for name in filters:
-        ends = np.empty((len(starts), 2))
         if name == "DR-mech":
-            for j, (k0, k1) in enumerate(zip(k0s, k1s)):
-                if truth:
-                    p = run.x_true[k0 - 1, [0, 3]] if k0 > 0 else run.x0[[0, 3]]
-                else:
-                    p = track[k0 - 1] if k0 > 0 else run.x0[[0, 3]]
-                z = run.z_dr[k0:k1 + 1]
-                ends[j] = p + np.sum(z[:, 1:2] * np.stack([np.sin(z[:, 0]), np.cos(z[:, 0])], axis=1), axis=0)
+            ends = _dr_mech_ends(run, k0s, k1s, track if not truth else None)
         else:
-            # one pass with GPS, a snapshot at each outage start, then the outage alone
             aug = name.endswith("-8")
             if grade is not None:
                 model = GPSDRModel.from_grade(grade, dt, augmented=aug, **({} if aug else {"rate_bias": False}),
@@ -641,26 +633,48 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
             P0 = model.P0.copy()
             P0[0, 0] = P0[3, 3] = 1.0
             f = GPSDRFilter(model, _KIND[name], x0=x0, P0=P0, gps_window=gps_window, **low)
-            snaps = {}
-            for k in range(max(k0s) + 1):
-                if k in k0s:
-                    snaps[k] = copy.deepcopy(f)
-                f.predict()
-                f.update(run.z_dr[k], gps[k], sig[k])
-            for j, (k0, k1) in enumerate(zip(k0s, k1s)):
-                g = copy.deepcopy(snaps[k0])
-                for k in range(k0, k1 + 1):
-                    g.predict()
-                    g.update(run.z_dr[k], None)
-                if not np.all(np.isfinite(g.x)):
-                    raise FloatingPointError(f"{name}: non-finite state at step {k1} (outage at {starts[j]:.1f} s)")
-                ends[j] = g.x[[0, 3]]
+            ends = _outage_ends(f, name, run, k0s, k1s, starts, gps, sig)
         out["end_xy"][name] = ends
         out[name] = np.hypot(*(ends - refs).T)
     return out
 
 
 _REAL_META = ("starts", "moved", "length", "end_steps", "reference", "name", "track", "t", "end_xy")
+
+
+def _dr_mech_ends(run, k0s, k1s, track=None):
+    """Mechanised dead reckoning over each outage ``k0..k1``: ``s [sin theta, cos theta]``
+    summed from the reference position before it (the truth, else ``track``)."""
+    ends = np.empty((len(k0s), 2))
+    for j, (k0, k1) in enumerate(zip(k0s, k1s)):
+        if track is None:
+            p = run.x_true[k0 - 1, [0, 3]] if k0 > 0 else run.x0[[0, 3]]
+        else:
+            p = track[k0 - 1] if k0 > 0 else run.x0[[0, 3]]
+        z = run.z_dr[k0:k1 + 1]
+        ends[j] = p + np.sum(z[:, 1:2] * np.stack([np.sin(z[:, 0]), np.cos(z[:, 0])], axis=1), axis=0)
+    return ends
+
+
+def _outage_ends(f, name, run, k0s, k1s, starts, gps, sig):
+    """The east/north of filter ``f`` at the end of each outage: one pass with GPS, a
+    snapshot at each outage start, then each outage alone (DR only)."""
+    ends = np.empty((len(k0s), 2))
+    snaps = {}
+    for k in range(max(k0s) + 1):
+        if k in k0s:
+            snaps[k] = copy.deepcopy(f)
+        f.predict()
+        f.update(run.z_dr[k], gps[k], sig[k])
+    for j, (k0, k1) in enumerate(zip(k0s, k1s)):
+        g = copy.deepcopy(snaps[k0])
+        for k in range(k0, k1 + 1):
+            g.predict()
+            g.update(run.z_dr[k], None)
+        if not np.all(np.isfinite(g.x)):
+            raise FloatingPointError(f"{name}: non-finite state at step {k1} (outage at {starts[j]:.1f} s)")
+        ends[j] = g.x[[0, 3]]
+    return ends
 
 
 def real_drive_table(res, min_moved=100.0):
