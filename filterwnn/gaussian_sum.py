@@ -121,6 +121,8 @@ class GaussianSumFilter(WeightedMixtureFilter):
     _members_attr = "means"
     _members_word = "components"
     _restart_hint = "call initialize(means, covariances) to restart the mixture"
+    x = WeightedMixtureFilter.x  # (in this class's namespace, so that its page documents them)
+    P = WeightedMixtureFilter.P
 
     def __init__(self, dim_x, dim_z, dt, hx, fx, *, component="ukf", points=None, FJacobian=None,
                  HJacobian=None, x_mean_fn=None, z_mean_fn=None, residual_x=None, residual_z=None,

@@ -223,6 +223,8 @@ class ParticleFilter(WeightedMixtureFilter):
     _members_attr = "particles"
     _members_word = "particles"
     _restart_hint = "call initialize(particles) to restart the cloud, or set x and P before the first predict"
+    x = WeightedMixtureFilter.x  # (in this class's namespace, so that its page documents them)
+    P = WeightedMixtureFilter.P
 
     def __init__(self, dim_x, dim_z, dt, hx, fx, n_particles, proposal="prior", *, points=None,
                  FJacobian=None, HJacobian=None, x_mean_fn=None, z_mean_fn=None, residual_x=None,

@@ -48,7 +48,7 @@ off it.
 
 **Batched over particles.** A Kalman proposal works on the stacks ``x (N, n)`` and
 ``P (N, n, n)`` at once: one stacked :func:`numpy.linalg.cholesky` factors every
-particle's covariance, :func:`batched_sigma_points` builds all sigma points in O(n^2)
+particle's covariance, :func:`filterwnn.sigma_points.batched_sigma_points` builds all sigma points in O(n^2)
 per particle from the set's structure, and with ``vectorized=True`` the model is called
 *once* on all ``N * n_sigmas`` points (one row per point). With ``dim_z == 1`` the
 innovation covariance is a scalar, the gain needs no solve and the covariance update is
@@ -104,7 +104,6 @@ __all__ = [
     "ProposalModel",
     "Prediction",
     "Proposed",
-    "batched_sigma_points",
     "PriorProposal",
     "ExtendedKalmanProposal",
     "UnscentedKalmanProposal",

@@ -497,7 +497,7 @@ def unit_transpose_apply(points, Z, B):
     """``Z^T B`` for unit points ``Z (S, n)`` and ``B (N, S, m)`` -> ``(N, n, m)``, O(S n m).
 
     Symmetric sets ``[0, c I, -c I]``: ``c (B[1:n+1] - B[n+1:])``. Staircase sets: a
-    prefix sum above :data:`filterwnn._linalg.STAIRCASE_LOOP_ABOVE_N` dimensions. Others:
+    prefix sum above ``filterwnn._linalg.STAIRCASE_LOOP_ABOVE_N`` (16) dimensions. Others:
     the dense product.
     """
     n = Z.shape[1]

@@ -195,7 +195,7 @@ def test_points_protocol_checked():
 
 @pytest.mark.parametrize("points", POINTS + [SphericalSimplexSigmaPoints(4, alpha=0.5, w0=0.3)], ids=lambda p: type(p).__name__)
 def test_batched_sigma_points_equal_the_sigma_point_sets(points, rng):
-    from filterwnn.proposals import batched_sigma_points
+    from filterwnn.sigma_points import batched_sigma_points
 
     x, P = _cloud(rng, N=3)
     sig = batched_sigma_points(points, x, np.linalg.cholesky(P))
@@ -204,7 +204,7 @@ def test_batched_sigma_points_equal_the_sigma_point_sets(points, rng):
 
 
 def test_batched_sigma_points_large_staircase_path(rng):
-    from filterwnn.proposals import batched_sigma_points
+    from filterwnn.sigma_points import batched_sigma_points
 
     pts = SphericalSimplexSigmaPoints(24, alpha=0.7)
     x = rng.standard_normal((2, 24))
