@@ -41,7 +41,7 @@ nitpicky = True
 nitpick_ignore_regex = [
     (r"py:.*", r"(?!filterwnn\b)\w+\..*"),  # numpy.ndarray, filterpy.kalman..., importlib.resources
     (r"py:.*", r"(int|float|str|bool|callable|object|tuple|list|dict|None|optional)"),
-    (r"py:class", r"filterwnn\.(\w+\.)*_\w+"),  # private base classes named by show-inheritance
+    (r"py:class", r"filterwnn\.(\w+\.)*_\w+(\.\w+)?"),  # private base classes (or in private modules)
 ]
 
 # autodoc: members come from each module's __all__.

@@ -7,39 +7,15 @@ module (``filterwnn.sigma_points``, ``filterwnn.particle_filter``, ...).
 
 __version__ = "0.1.0"
 
+# Primitives: errors, angles, sigma points, resampling, the wavelet network.
+from . import angles, wnn
 from ._validation import NumericalError
-from .models import GammaNoiseModel, LinearGaussianModel, StateSpaceModel
-
-# --- sigma points and the unscented filter (issue 3) ---
-from . import angles
 from .angles import angle_mean, angle_residual
-from .sigma_points import MinimalSkewSigmaPoints, SphericalSimplexSigmaPoints
-from .unscented import UnscentedKalmanFilter
-
-# --- particle filters (issue 4) ---
-from .gaussian_sum import GaussianSumFilter
-from .particle_filter import (
-    BootstrapParticleFilter,
-    DegeneracyWarning,
-    ExtendedKalmanParticleFilter,
-    ParticleFilter,
-    SimplexUnscentedParticleFilter,
-    UnscentedParticleFilter,
-)
-from .proposals import ExtendedKalmanProposal, PriorProposal, UnscentedKalmanProposal
 from .resampling import resample
+from .sigma_points import MinimalSkewSigmaPoints, SphericalSimplexSigmaPoints
 
-# --- wavelet networks (issue 5) ---
-from . import wnn
-from .datasets import make_siso_benchmark
-from .regressor import WNNRegressor
-from .weight_model import WNNWeightModel
-
-# --- posterior samples of static weights (issue 13) ---
-from . import smc
-from .smc import HMCMove, MALAMove, RowsTarget, smc_sampler
-
-# --- dead reckoning (issue 6) ---
+# Models: the state-space protocol, the benchmarks, dead reckoning and its scenarios,
+# the WNN weights as a state.
 from .dead_reckoning import (
     SCENARIOS as DR_SCENARIOS,
     DRModel,
@@ -50,28 +26,61 @@ from .dead_reckoning import (
     simulate_scenario,
     wrap_angle,
 )
-from .neural_filter import NeuralFilter
-
-# --- adaptive EKF (issue 14) ---
-from .adaptive import AdaptiveExtendedKalmanFilter
-# --- GPS/DR on one's own drive (issue 14) ---
-from .gpsdr import GPSDRFilter
+from .models import GammaNoiseModel, LinearGaussianModel, StateSpaceModel
 from .scenarios import DRRun, read_drive_csv
+from .weight_model import WNNWeightModel
+
+# Algorithms: Kalman-type filters, particle filters and their proposals, SMC samplers
+# of static weights, the trained filters and the WNN estimator.
+from . import smc
+from .adaptive import AdaptiveExtendedKalmanFilter
+from .gaussian_sum import GaussianSumFilter
+from .gpsdr import GPSDRFilter
+from .neural_filter import NeuralFilter
+from .particle_filter import (
+    BootstrapParticleFilter,
+    DegeneracyWarning,
+    ExtendedKalmanParticleFilter,
+    ParticleFilter,
+    SimplexUnscentedParticleFilter,
+    UnscentedParticleFilter,
+)
+from .proposals import ExtendedKalmanProposal, PriorProposal, UnscentedKalmanProposal
+from .regressor import WNNRegressor
+from .smc import HMCMove, MALAMove, RowsTarget, smc_sampler
+from .unscented import UnscentedKalmanFilter
+
+# Data for the studies.
+from .datasets import make_siso_benchmark
 
 __all__ = [
     "__version__",
+    # primitives
     "NumericalError",
-    "StateSpaceModel",
-    "GammaNoiseModel",
-    "LinearGaussianModel",
-    # --- issue 3 ---
-    "MinimalSkewSigmaPoints",
-    "SphericalSimplexSigmaPoints",
-    "UnscentedKalmanFilter",
     "angles",
     "angle_residual",
     "angle_mean",
-    # --- issue 4 ---
+    "MinimalSkewSigmaPoints",
+    "SphericalSimplexSigmaPoints",
+    "resample",
+    "wnn",
+    # models
+    "StateSpaceModel",
+    "GammaNoiseModel",
+    "LinearGaussianModel",
+    "DR_SCENARIOS",
+    "DRModel",
+    "GPSDRModel",
+    "Scenario",
+    "dr_residual",
+    "dr_z_mean",
+    "simulate_scenario",
+    "wrap_angle",
+    "DRRun",
+    "read_drive_csv",
+    "WNNWeightModel",
+    # algorithms
+    "UnscentedKalmanFilter",
     "ParticleFilter",
     "DegeneracyWarning",
     "GaussianSumFilter",
@@ -82,31 +91,15 @@ __all__ = [
     "PriorProposal",
     "ExtendedKalmanProposal",
     "UnscentedKalmanProposal",
-    "resample",
-    # --- issue 5 ---
-    "wnn",
-    "make_siso_benchmark",
-    "WNNRegressor",
-    "WNNWeightModel",
-    # --- issue 13 ---
     "smc",
     "RowsTarget",
     "MALAMove",
     "HMCMove",
     "smc_sampler",
-    # --- issue 6 ---
-    "DR_SCENARIOS",
-    "DRModel",
-    "GPSDRModel",
-    "Scenario",
-    "dr_residual",
-    "dr_z_mean",
-    "simulate_scenario",
-    "wrap_angle",
+    "WNNRegressor",
     "NeuralFilter",
-    # --- issue 14 ---
     "AdaptiveExtendedKalmanFilter",
     "GPSDRFilter",
-    "DRRun",
-    "read_drive_csv",
+    # data
+    "make_siso_benchmark",
 ]

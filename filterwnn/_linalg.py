@@ -32,9 +32,30 @@ from __future__ import annotations
 import numpy as np
 from scipy.linalg import solve_triangular
 
-from ._validation import NumericalError
+from ._validation import NumericalError, cholesky_lower
 
-__all__ = ["LOG_2PI", "cholesky", "first_not_pd", "repair_pd", "gaussian_logpdf_chol", "NoiseFactor"]
+__all__ = [
+    "LOG_2PI",
+    "STAIRCASE_LOOP_ABOVE_N",
+    "cholesky",
+    "cholesky_lower",
+    "first_not_pd",
+    "not_pd_error",
+    "smallest_eigenvalue",
+    "repair_pd",
+    "gaussian_logpdf_chol",
+    "NoiseFactor",
+    "staircase_apply",
+    "staircase_sigma_points",
+    "staircase_transpose_apply",
+    "symmetric_sigma_points",
+]
+
+#: Stacked staircase products (minimal skew, spherical simplex points) switch from one
+#: vectorised NumPy expression (less Python overhead) to an O(n^2) row recursion above
+#: this state size (the one gate for :func:`staircase_sigma_points` and
+#: :func:`staircase_transpose_apply`).
+STAIRCASE_LOOP_ABOVE_N = 16
 
 LOG_2PI = float(np.log(2.0 * np.pi))
 
@@ -44,35 +65,60 @@ def first_not_pd(P):
     if P.ndim < 3:
         return None
     for i in range(P.shape[0]):
-        try:
-            Li = np.linalg.cholesky(P[i])
-        except np.linalg.LinAlgError:
-            return i
-        if not np.all(np.isfinite(Li)):
+        if cholesky_lower(P[i]) is None:
             return i
     return None
 
 
-def cholesky(P, name, step=None):
+def smallest_eigenvalue(M):
+    """Smallest eigenvalue of the symmetric part of the square matrix ``M`` (None if it fails)."""
+    try:
+        return float(np.linalg.eigvalsh(0.5 * (M + np.swapaxes(M, -1, -2))).min())
+    except (np.linalg.LinAlgError, ValueError):
+        return None
+
+
+def not_pd_error(name, P, step=None, remedy=None):
+    """The :class:`NumericalError` for a matrix ``P`` (or stack) that is not positive definite.
+
+    The message names the matrix, the step, the first failing particle of a stack, the
+    smallest eigenvalue of a single matrix, and the remedy when one is given.
+    """
+    msg = f"{name} is not positive definite"
+    if step is not None:
+        msg += f" at step {step}"
+    bad = first_not_pd(P)
+    if bad is not None:
+        msg += f" (particle {bad})"
+    if P.ndim == 2:
+        ev = smallest_eigenvalue(P)
+        if ev is not None:
+            msg += f"; smallest eigenvalue {ev:.3g}"
+    if remedy:
+        msg += f"; {remedy}"
+    return NumericalError(msg, matrix=name, step=step)
+
+
+def cholesky(P, name, step=None, remedy=None):
     """Stacked lower Cholesky factors of ``P (..., n, n)``, or :class:`NumericalError`.
 
-    The error names the matrix, the step and the first failing particle. A broadcast
-    stack (one matrix repeated, stride 0) is factored once.
+    The error (:func:`not_pd_error`) names the matrix, the step, the first failing
+    particle and the ``remedy``. A broadcast stack (one matrix repeated, stride 0) is
+    factored once.
+
+    >>> cholesky(np.diag([4.0, 9.0]), "P")
+    array([[2., 0.],
+           [0., 3.]])
+    >>> cholesky(np.diag([1.0, -1.0]), "P", step=2, remedy="make P positive definite")
+    Traceback (most recent call last):
+    ...
+    filterwnn._validation.NumericalError: P is not positive definite at step 2; smallest eigenvalue -1; make P positive definite
     """
     if P.ndim == 3 and P.shape[0] > 1 and P.strides[0] == 0:
-        return np.broadcast_to(cholesky(P[:1], name, step), P.shape)
-    try:
-        L = np.linalg.cholesky(P)
-    except np.linalg.LinAlgError:
-        L = None
-    if L is None or not np.all(np.isfinite(L)):
-        bad = first_not_pd(P)
-        where = f" at step {step}" if step is not None else ""
-        raise NumericalError(
-            f"{name} is not positive definite{where}" + (f" (particle {bad})" if bad is not None else ""),
-            matrix=name,
-            step=step,
-        )
+        return np.broadcast_to(cholesky(P[:1], name, step, remedy), P.shape)
+    L = cholesky_lower(P)
+    if L is None:
+        raise not_pd_error(name, P, step, remedy)
     return L
 
 
@@ -137,12 +183,7 @@ class NoiseFactor:
         M = np.array(M, dtype=float)
         self.matrix, self.name = M, name
         n = M.shape[0]
-        try:
-            self.L = np.linalg.cholesky(M)
-            if not np.all(np.isfinite(self.L)):
-                raise np.linalg.LinAlgError
-        except np.linalg.LinAlgError:
-            self.L = None
+        self.L = cholesky_lower(M)
         if self.L is not None:
             self.rank, self.full_rank, self.sqrt, self.G = n, True, self.L, self.L
             return
@@ -184,3 +225,84 @@ class NoiseFactor:
             )
         e = c / self._sd
         return -0.5 * np.sum(e * e, axis=1) - np.sum(np.log(self._sd)) - 0.5 * self.rank * LOG_2PI
+
+
+# ---------------------------------------------------------------------------
+# Structured sigma-point products: Z @ U and Z^T B in O(n^2), never a dense product
+# ---------------------------------------------------------------------------
+
+
+def staircase_apply(a, b, U):
+    """``Z @ U`` for a staircase set, in O(n^2), stacked over leading axes of ``U``.
+
+    The staircase unit points ``Z`` (``(n + 2, n)``: row 0 zero, ``Z[1:j+1, j-1] = a[j-1]``,
+    ``Z[j+1, j-1] = b[j-1]``) are never formed: row ``i >= 1`` of ``Z @ U`` is
+    ``b[i-2] U[i-2] + sum_{j >= i} a[j-1] U[j-1]``.
+    """
+    n = a.size
+    V = a[:, None] * U  # (..., n, n): a_j * row j of U
+    # suffix sums S[k] = sum_{m >= k} V[m], k = 0..n-1
+    S = np.flip(np.cumsum(np.flip(V, axis=-2), axis=-2), axis=-2)
+    D = np.zeros(U.shape[:-2] + (n + 2, n))
+    D[..., 1 : n + 1, :] = S
+    D[..., 2:, :] += b[:, None] * U
+    return D
+
+
+def staircase_sigma_points(a, b, x, U):
+    """``x_i + Z @ U_i`` for a staircase set, ``x (N, n)``, ``U (N, n, n)`` -> ``(N, n + 2, n)``.
+
+    Up to :data:`STAIRCASE_LOOP_ABOVE_N` dimensions the stacked reverse ``cumsum`` of
+    :func:`staircase_apply`; above, the suffix sums accumulated row by row in an
+    ``(N, n)`` buffer (about half the time of the stacked ``cumsum`` there).
+    """
+    N, n = x.shape
+    if n <= STAIRCASE_LOOP_ABOVE_N:
+        sig = staircase_apply(a, b, U)
+        sig += x[:, None, :]
+        return sig
+    U = np.ascontiguousarray(U)  # rows of U are read one by one below
+    sig = np.empty((N, n + 2, n))
+    sig[:, 0] = x
+    acc = np.zeros((N, n))
+    tmp = np.empty((N, n))
+    for i in range(n, 0, -1):
+        # row i: sum_{m >= i-1} a_m U_m  (+ b_{i-2} U_{i-2} for i >= 2)
+        np.multiply(U[:, i - 1], a[i - 1], out=tmp)
+        acc += tmp
+        np.add(x, acc, out=sig[:, i])
+        if i >= 2:
+            np.multiply(U[:, i - 2], b[i - 2], out=tmp)
+            sig[:, i] += tmp
+    np.multiply(U[:, n - 1], b[n - 1], out=tmp)
+    np.add(x, tmp, out=sig[:, n + 1])
+    return sig
+
+
+def staircase_transpose_apply(a, b, Z, B):
+    """``Z^T B`` for staircase unit points ``Z (n + 2, n)`` and ``B (N, n + 2, m)`` -> ``(N, n, m)``.
+
+    Above :data:`STAIRCASE_LOOP_ABOVE_N` dimensions a prefix sum in O(n m) per particle,
+    ``(Z^T B)_j = a_j sum_{i=1..j+1} B_i + b_j B_{j+2}``; up to it the dense product
+    (within about 20 % of the prefix sum there, with less Python overhead).
+    """
+    n = a.size
+    if n <= STAIRCASE_LOOP_ABOVE_N:
+        return np.matmul(Z.T, B)
+    C = np.cumsum(B[:, 1 : n + 1, :], axis=1)
+    return a[:, None] * C + b[:, None] * B[:, 2 : n + 2, :]
+
+
+def symmetric_sigma_points(c, x, U):
+    """``x_i + [0, c U_i, -c U_i]`` for ``x (N, n)``, ``U (N, n, n)`` -> ``(N, 2n + 1, n)``.
+
+    Three passes over the output (filterpy's Merwe and Julier sets, ``Z = [0, c I, -c I]``).
+    """
+    N, n = x.shape
+    sig = np.empty((N, 2 * n + 1, n))
+    sig[:, 0] = x
+    plus = sig[:, 1 : n + 1]
+    np.multiply(U, c, out=plus)
+    np.subtract(x[:, None, :], plus, out=sig[:, n + 1 :])
+    plus += x[:, None, :]
+    return sig

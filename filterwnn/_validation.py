@@ -32,6 +32,7 @@ __all__ = [
     "check_positive",
     "check_choice",
     "cholesky_lower",
+    "check_points_protocol",
 ]
 
 
@@ -108,6 +109,16 @@ def cholesky_lower(P):
     if not np.all(np.isfinite(L)):
         return None
     return L
+
+
+def check_points_protocol(points, attrs=("n", "num_sigmas", "sigma_points", "Wm", "Wc")):
+    """TypeError unless ``points`` has filterpy's sigma-point attributes ``attrs``."""
+    for attr in attrs:
+        if not hasattr(points, attr):
+            raise TypeError(
+                f"points must follow filterpy's sigma-point protocol (missing {attr!r}), "
+                f"got {type(points).__name__}"
+            )
 
 
 def check_covariance(P, name="P", dim=None, *, allow_scalar=True, require_pd=True, sym_tol=1e-8):

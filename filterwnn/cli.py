@@ -104,12 +104,7 @@ def _build_parser():
     study = sub.add_parser("study", help="reproduce one of the papers' studies", formatter_class=fmt)
     studies = study.add_subparsers(dest="study", required=True)
     for name, modname in STUDIES.items():
-        try:
-            mod = importlib.import_module(modname)
-        except ModuleNotFoundError as exc:  # that study is not part of this build
-            if exc.name != modname:
-                raise
-            continue
+        mod = importlib.import_module(modname)
         summary = (mod.__doc__ or name).strip().split("\n")[0]
         sp = studies.add_parser(name, help=summary, description=summary, formatter_class=fmt)
         mod.add_arguments(sp)

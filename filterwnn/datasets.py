@@ -12,7 +12,8 @@ driven by ``u ~ U[-1, 1]`` with ``y(0) = 0``. 300 points are simulated; the regr
 ``[u(k-1), u(k-2), y(k-1), y(k-2), y(k-3)] -> y(k)`` for ``k = 3..202`` give 200 samples,
 the first 100 for training and the rest for test. Only ``u(k-1)`` and ``y(k-1)`` enter the
 plant: the other three regressors are distractors, which is what limits a 5-20-1 WNN
-(see the findings ``wnn-accuracy-limit.md``).
+(measured by least-squares fits, 10 data seeds x 20 starts: zeroing the three
+distractors lowers the WNN's median test MSE about 60-fold, from about 0.1 to 0.0015).
 
 The test set's variance depends on the seed (1.66 for seed 0, 2.35 median over seeds
 0-9), so a study that re-draws the data per run must say so.

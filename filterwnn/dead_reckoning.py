@@ -325,19 +325,8 @@ class DRModel(StateSpaceModel):
     dim_x = 6
     dim_z = 2
 
-    def __init__(
-        self,
-        dt=0.1,
-        *,
-        zeta=1.0,
-        q=0.1,
-        sigma_heading=np.deg2rad(1.0),
-        sigma_odometer=0.02,
-        accel_term="kinematic",
-        min_speed=0.1,
-        x0=None,
-        P0=None,
-    ):
+    def __init__(self, dt=0.1, *, zeta=1.0, q=0.1, sigma_heading=np.deg2rad(1.0), sigma_odometer=0.02,
+                 accel_term="kinematic", min_speed=0.1, x0=None, P0=None):
         self.dt = check_positive(dt, "dt")
         self.zeta = check_positive(zeta, "zeta")
         self.q = check_positive(q, "q", strict=False)
@@ -374,7 +363,7 @@ class DRModel(StateSpaceModel):
         return dr_HJacobian(x, self.dt, self.zeta, min_speed=self.min_speed)
 
     residual_z = staticmethod(dr_residual)
-    z_mean = staticmethod(dr_z_mean)
+    z_mean_fn = staticmethod(dr_z_mean)
 
     def simulate(self, n_steps, rng=None, x0=None):
         """Simulate with process noise from ``Q`` and wrapped headings (see base class)."""
@@ -638,7 +627,7 @@ class GPSDRModel(StateSpaceModel):
         return R
 
     residual_z = staticmethod(dr_residual)
-    z_mean = staticmethod(dr_z_mean)
+    z_mean_fn = staticmethod(dr_z_mean)
 
     @staticmethod
     def measurement(z_dr, z_gps=None):

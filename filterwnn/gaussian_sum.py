@@ -50,16 +50,9 @@ from __future__ import annotations
 import numpy as np
 from filterpy.kalman import MerweScaledSigmaPoints
 
-from ._validation import (
-    NumericalError,
-    as_measurement,
-    as_state,
-    check_choice,
-    check_covariance,
-    check_positive,
-    check_positive_int,
-    check_rng,
-)
+from ._validation import (NumericalError, as_measurement, as_state, check_choice, check_covariance,
+                          check_positive, check_positive_int, check_rng)
+from ._weighted import WeightedMixtureFilter, logsumexp
 from .proposals import ExtendedKalmanProposal, KalmanPrediction, ProposalModel, UnscentedKalmanProposal
 from .resampling import get_scheme
 from .sigma_points import SphericalSimplexSigmaPoints
@@ -70,14 +63,7 @@ COMPONENTS = ("ekf", "ukf", "sukf")
 COMBINES = ("mixture", "mean")
 
 
-def _logsumexp(a):
-    m = np.max(a)
-    if not np.isfinite(m):
-        return float(m)
-    return float(m + np.log(np.sum(np.exp(a - m))))
-
-
-class GaussianSumFilter:
+class GaussianSumFilter(WeightedMixtureFilter):
     """A Gaussian-sum filter (a weighted bank of Kalman filters), filterpy-style.
 
     Parameters
@@ -132,6 +118,12 @@ class GaussianSumFilter:
         The time step: ``predict`` advances it by one.
     """
 
+    _members_attr = "means"
+    _members_word = "components"
+    _restart_hint = "call initialize(means, covariances) to restart the mixture"
+    x = WeightedMixtureFilter.x  # (in this class's namespace, so that its page documents them)
+    P = WeightedMixtureFilter.P
+
     def __init__(self, dim_x, dim_z, dt, hx, fx, *, component="ukf", points=None, FJacobian=None,
                  HJacobian=None, x_mean_fn=None, z_mean_fn=None, residual_x=None, residual_z=None,
                  tempering=1.0, resampling="systematic", ess_threshold=0.0, combine="mixture",
@@ -173,12 +165,7 @@ class GaussianSumFilter:
             residual_z=residual_z, recover=bool(recover),
         )
         self.means = None
-        self._x = np.zeros(self.dim_x)
-        self._P = np.eye(self.dim_x)
-        self.Q = np.eye(self.dim_x)
-        self.R = np.eye(self.dim_z)
-        self.x_prior, self.P_prior = self._x.copy(), self._P.copy()
-        self.x_post, self.P_post = self._x.copy(), self._P.copy()
+        self._filterpy_defaults()
         self.covariances = None
         self.log_weights = None
         self._predicted = False
@@ -188,34 +175,6 @@ class GaussianSumFilter:
         self.ess = np.nan
         self.n_distinct = 0
         self.ess_history, self.n_distinct_history, self.resampled_history = [], [], []
-
-    @property
-    def x(self):
-        """Mixture mean (see ``combine``); set it with ``P`` before the first ``predict`` for a
-        one-component start ``N(x, P)``, or use :meth:`initialize`."""
-        return self._x
-
-    @x.setter
-    def x(self, value):
-        self._refuse_mid_run("x")
-        self._x = value
-
-    @property
-    def P(self):
-        """Mixture covariance (see ``combine``)."""
-        return self._P
-
-    @P.setter
-    def P(self, value):
-        self._refuse_mid_run("P")
-        self._P = value
-
-    def _refuse_mid_run(self, name):
-        if self.means is not None:
-            raise ValueError(
-                f"{name} cannot be set once the components exist (step {self.step}): it would be "
-                f"ignored; call initialize(means, covariances) to restart the mixture"
-            )
 
     @property
     def weights(self):
@@ -308,9 +267,9 @@ class GaussianSumFilter:
         if not np.all(np.isfinite(log_alpha)):
             raise NumericalError(f"non-finite component likelihood at step {step}", matrix="weights", step=step)
         lw_prev = self.log_weights
-        log_lik = _logsumexp(lw_prev + log_alpha)
+        log_lik = logsumexp(lw_prev + log_alpha)
         new_lw = lw_prev + self.tempering * log_alpha
-        lse = _logsumexp(new_lw)
+        lse = logsumexp(new_lw)
         if not np.isfinite(lse):
             raise NumericalError(f"all component weights underflowed at step {step}", matrix="weights", step=step)
         new_lw = new_lw - lse
@@ -334,34 +293,6 @@ class GaussianSumFilter:
         self._x, self._P = x, P
         self.x_post, self.P_post = x.copy(), P.copy()
         self._record(ess, n_distinct, resampled)
-
-    def _record(self, ess, n_distinct, resampled):
-        self.ess, self.n_distinct = float(ess), int(n_distinct)
-        self.ess_history.append(self.ess)
-        self.n_distinct_history.append(self.n_distinct)
-        self.resampled_history.append(bool(resampled))
-
-    def __getstate__(self):
-        state = self.__dict__.copy()
-        del state["_resample"]  # a scheme's raw implementation (or a wrapped callable): looked up again
-        return state
-
-    def __setstate__(self, state):
-        self.__dict__.update(state)
-        self._resample = get_scheme(self.resampling)
-
-    def batch_filter(self, zs, fx_args=None, hx_args=None):
-        """``predict``/``update`` over ``zs``; returns ``means (n_steps, dim_x)`` and
-        ``covariances (n_steps, dim_x, dim_x)`` of ``x``/``P``."""
-        fx_args = {} if fx_args is None else dict(fx_args)
-        hx_args = {} if hx_args is None else dict(hx_args)
-        n = len(zs)
-        xs, Ps = np.empty((n, self.dim_x)), np.empty((n, self.dim_x, self.dim_x))
-        for k, z in enumerate(zs):
-            self.predict(**fx_args)
-            self.update(z, **hx_args)
-            xs[k], Ps[k] = self.x, self.P
-        return xs, Ps
 
     def __repr__(self):
         return (f"GaussianSumFilter(dim_x={self.dim_x}, dim_z={self.dim_z}, component={self.component!r}, "

@@ -147,23 +147,15 @@ class GPSDRFilter:
         self.kf = kf
         self.motion = None
 
-    @property
-    def x(self):
-        """State estimate ``(dim_x,)``."""
-        return self.kf.x
-
-    @x.setter
-    def x(self, value):
+    def _set_x(self, value):
         self.kf.x = as_state(value, "x", self.model.dim_x).copy()
 
-    @property
-    def P(self):
-        """State covariance ``(dim_x, dim_x)``."""
-        return self.kf.P
-
-    @P.setter
-    def P(self, value):
+    def _set_P(self, value):
         self.kf.P = check_covariance(value, "P", self.model.dim_x).copy()
+
+    # the inner filter's estimate; setting one checks its shape (and P's definiteness)
+    x = property(lambda self: self.kf.x, _set_x, doc="State estimate ``(dim_x,)``.")
+    P = property(lambda self: self.kf.P, _set_P, doc="State covariance ``(dim_x, dim_x)``.")
 
     def classify(self, z_dr):
         """``"still"``, ``"slow"`` or ``"moving"`` from the odometer distance ``z_dr[1]``."""

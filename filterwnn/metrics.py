@@ -22,6 +22,7 @@ from scipy import linalg, stats
 
 from .resampling import effective_sample_size  # one definition, re-exported here
 
+from ._linalg import cholesky_lower, smallest_eigenvalue
 from ._validation import check_positive, check_positive_int, check_symmetric
 
 __all__ = ["mse", "rmse", "nees", "nis", "chi2_bounds", "effective_sample_size"]
@@ -68,15 +69,13 @@ def _quad(e, P, e_name="x_true - x_hat", P_name="P"):
         raise ValueError(f"{e_name} must be finite, got non-finite entries")
     if not np.all(np.isfinite(P)):
         raise ValueError(f"{P_name} must be finite, got non-finite entries")
-    Pt = np.swapaxes(P, -1, -2)
     check_symmetric(P, P_name)
-    try:
-        L = np.linalg.cholesky(P)
-    except np.linalg.LinAlgError as exc:
-        ev = float(np.min(np.linalg.eigvalsh(0.5 * (P + Pt))))
+    L = cholesky_lower(P)
+    if L is None:
         raise ValueError(
-            f"{P_name} must be positive definite (Cholesky failed); smallest eigenvalue {ev:.3g}"
-        ) from exc
+            f"{P_name} must be positive definite (Cholesky failed); smallest eigenvalue "
+            f"{smallest_eigenvalue(P):.3g}"
+        )
     if e.ndim == 1:
         u = linalg.solve_triangular(L, e, lower=True)
         return float(u @ u)

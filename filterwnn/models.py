@@ -177,7 +177,7 @@ class GammaNoiseModel(StateSpaceModel):
 
     ``x_k = 1 + sin(omega pi (k - 1)) + phi1 x_{k-1} + v_{k-1}``, ``v ~ Gamma(shape, scale)``,
 
-    ``z_k = phi2 x_k^2 + n_k`` for ``k <= switch``, ``phi3 x_k - 2 + n_k`` after, ``n_k ~ N(0, r)``.
+    ``z_k = phi2 x_k^2 + n_k`` for ``k <= switch``, ``phi3 x_k - 2 + n_k`` after, ``n_k ~ N(0, R)``.
 
     The paper's Gamma(3, 2) is shape 3 and *rate* 2 (``scale = 0.5``): mean 1.5 and variance
     3/4, the Q = 3/4 its Kalman filters use. The Kalman-type filters and proposals see the
@@ -192,12 +192,12 @@ class GammaNoiseModel(StateSpaceModel):
     omega, phi1, phi2, phi3 : float
     shape, scale : float
         Gamma process noise.
-    r : float
-        Measurement noise variance.
+    R : float
+        Measurement noise variance (stored as the ``(1, 1)`` matrix ``R``, filterpy's name).
     n_steps, switch : int
         Length of a run and the last step of the quadratic measurement.
-    x0, p0 : float
-        Initial state and the filters' initial variance.
+    x0, P0 : float
+        Initial state and the filters' initial variance (stored as ``(1,)`` and ``(1, 1)``).
 
     >>> m = GammaNoiseModel()
     >>> float(m.Q[0, 0]), float(m.noise_mean)
@@ -211,19 +211,18 @@ class GammaNoiseModel(StateSpaceModel):
     dim_z = 1
     dt = 1.0
 
-    def __init__(self, omega=0.04, phi1=0.5, phi2=0.2, phi3=0.5, shape=3.0, scale=0.5, r=1e-5, n_steps=60,
-                 switch=30, x0=1.0, p0=0.75):
+    def __init__(self, omega=0.04, phi1=0.5, phi2=0.2, phi3=0.5, shape=3.0, scale=0.5, R=1e-5, n_steps=60,
+                 switch=30, x0=1.0, P0=0.75):
         self.omega, self.phi1, self.phi2, self.phi3 = (float(v) for v in (omega, phi1, phi2, phi3))
         self.shape = check_positive(shape, "shape")
         self.scale = check_positive(scale, "scale")
-        self.r = check_positive(r, "r")
         self.n_steps = check_positive_int(n_steps, "n_steps")
         self.switch = int(switch)
         self.x0 = np.array([float(x0)])
-        self.P0 = np.array([[check_positive(p0, "p0")]])
+        self.P0 = np.array([[check_positive(P0, "P0")]])
         self.noise_mean = self.shape * self.scale
         self.Q = np.array([[self.shape * self.scale**2]])
-        self.R = np.array([[self.r]])
+        self.R = np.array([[check_positive(R, "R")]])
 
     def _drift(self, x_prev, k):
         return 1.0 + np.sin(self.omega * np.pi * (k - 1)) + self.phi1 * np.asarray(x_prev, dtype=float)
@@ -267,7 +266,7 @@ class GammaNoiseModel(StateSpaceModel):
         for k in range(1, n_steps + 1):
             x = self.process_sampler(x, rng, k)
             xs[k - 1] = x
-            zs[k - 1] = self.hx(x, k) + np.sqrt(self.r) * rng.standard_normal(1)
+            zs[k - 1] = self.hx(x, k) + np.sqrt(self.R[0, 0]) * rng.standard_normal(1)
         return xs, zs
 
     def particle_filter(self, cls, n_particles, rng=None, **kwargs):

@@ -14,7 +14,7 @@ phase 1 (:meth:`NeuralFilter.fit`)
     triples (the paper: 30 states on the line from (-6, -6) to (0, 0), learning rate
     0.1, 300 epochs; :func:`paper_training_states`, :func:`random_motion_states` and
     :func:`make_training_set` build such sets);
-phase 2 (``lr_online > 0`` in :meth:`NeuralFilter.update`)
+phase 2 (``learning_rate_online > 0`` in :meth:`NeuralFilter.update`)
     on-line gradient descent on :math:`\tfrac12\|h(\hat X(k|k-1)) - Y(k)\|^2`
     (eqs. 9-11), differentiated through the recurrence
     :math:`\hat X(k|k-1) = \Phi K_{NN}(u_{k-1}; W)` with the previous network input
@@ -183,9 +183,10 @@ class NeuralFilter:
         ``"passthrough"`` (position from the prediction) the default.
     features : {"velocity", "angle"}
         How the measurement enters the network.
-    lr, epochs, batch_size : float, int, int
-        Phase-1 SGD (the paper: 0.1, 300 epochs; ``batch_size=1`` is per-sample).
-    lr_online : float
+    learning_rate, n_epochs, batch_size : float, int, int
+        Phase-1 SGD (the paper: 0.1, 300 epochs; ``batch_size=1`` is per-sample); the
+        names of :class:`filterwnn.WNNRegressor`.
+    learning_rate_online : float
         Phase-2 learning rate (0 disables on-line training).
     state_scale : array-like of shape (6,)
         Fixed scaling of the states at the network's input and output.
@@ -212,7 +213,7 @@ class NeuralFilter:
     """
 
     def __init__(self, model=None, *, n_hidden=12, form="passthrough", features="velocity",
-                 lr=0.1, epochs=300, batch_size=1, lr_online=1e-3,
+                 learning_rate=0.1, n_epochs=300, batch_size=1, learning_rate_online=1e-3,
                  state_scale=(10.0, 15.0, 1.0, 10.0, 15.0, 1.0), rng=None):
         self.model = DRModel() if model is None else model
         if getattr(self.model, "dim_x", None) != 6:
@@ -220,10 +221,10 @@ class NeuralFilter:
         self.n_hidden = check_positive_int(n_hidden, "n_hidden")
         self.form = check_choice(form, "form", _FORMS)
         self.features = check_choice(features, "features", _FEATURES)
-        self.lr = check_positive(lr, "lr")
-        self.epochs = check_positive_int(epochs, "epochs")
+        self.learning_rate = check_positive(learning_rate, "learning_rate")
+        self.n_epochs = check_positive_int(n_epochs, "n_epochs")
         self.batch_size = check_positive_int(batch_size, "batch_size")
-        self.lr_online = check_positive(lr_online, "lr_online", strict=False)
+        self.learning_rate_online = check_positive(learning_rate_online, "learning_rate_online", strict=False)
         self.state_scale = as_state(state_scale, "state_scale", 6)
         self.rng = check_rng(rng)
         self.dt = self.model.dt
@@ -316,8 +317,8 @@ class NeuralFilter:
         self.loss_curve_ = []
         bs = min(self.batch_size, n)
         W1, b1, W2, b2 = p["W1"], p["b1"], p["W2"], p["b2"]  # updated in place
-        lr = self.lr
-        for _ in range(self.epochs):
+        lr = self.learning_rate
+        for _ in range(self.n_epochs):
             order = self.rng.permutation(n)
             total = 0.0
             if bs == 1:  # per-sample SGD, written out (the hot loop of phase 1)
@@ -344,8 +345,8 @@ class NeuralFilter:
             if not (np.isfinite(total) and all(np.all(np.isfinite(v)) for v in p.values())):
                 epoch = len(self.loss_curve_)
                 raise NumericalError(
-                    f"phase-1 training produced non-finite weights at epoch {epoch}; lower lr "
-                    f"(lr={self.lr})", matrix="weights", step=epoch)
+                    f"phase-1 training produced non-finite weights at epoch {epoch}; lower learning_rate "
+                    f"(learning_rate={self.learning_rate})", matrix="weights", step=epoch)
         self.params_fit_ = {k: v.copy() for k, v in p.items()}
         self.params_ = {k: v.copy() for k, v in p.items()}
         self.n_features_in_ = U.shape[1]
@@ -384,10 +385,10 @@ class NeuralFilter:
         g_out = (g_state * self.state_scale * self._output_mask())[None, :]
         grads = self._backward(U[None, :], Hh, g_out, p)
         for k in p:
-            p[k] -= self.lr_online * grads[k]
+            p[k] -= self.learning_rate_online * grads[k]
 
     def update(self, z):
-        """``x = K_NN(x_prior, z)``; with ``lr_online > 0``, one phase-2 step first.
+        """``x = K_NN(x_prior, z)``; with ``learning_rate_online > 0``, one phase-2 step first.
 
         Does not advance ``step`` (``predict`` does); its errors report the current step.
 
@@ -402,8 +403,8 @@ class NeuralFilter:
             self.x_post = self.x.copy()
             return
         z = as_measurement(z, 2)
-        saved = {k: v.copy() for k, v in self.params_.items()} if self.lr_online > 0 else None
-        if self.lr_online > 0 and self._last is not None:
+        saved = {k: v.copy() for k, v in self.params_.items()} if self.learning_rate_online > 0 else None
+        if self.learning_rate_online > 0 and self._last is not None:
             self._online_step(z)
         U, off = self._inputs(self.x_prior, z)
         out, _ = self._forward(U[None, :], self.params_)
@@ -413,7 +414,7 @@ class NeuralFilter:
                 self.params_ = saved
             raise NumericalError(
                 f"the neural filter's estimate became non-finite at step {self.step} "
-                f"(lr_online={self.lr_online}); x and the weights are left as before",
+                f"(learning_rate_online={self.learning_rate_online}); x and the weights are left as before",
                 matrix="x", step=self.step)
         self.x = x
         self.x_post = self.x.copy()

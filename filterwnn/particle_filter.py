@@ -56,6 +56,7 @@ dynamic Bayesian models", JRSS B 63, 2001.
 
 from __future__ import annotations
 
+import inspect
 import warnings
 
 import numpy as np
@@ -71,6 +72,7 @@ from ._validation import (
     check_positive_int,
     check_rng,
 )
+from ._weighted import WeightedMixtureFilter, logsumexp
 from .proposals import ExtendedKalmanProposal, PriorProposal, ProposalModel, UnscentedKalmanProposal
 from .resampling import get_scheme
 from .sigma_points import SphericalSimplexSigmaPoints
@@ -84,7 +86,7 @@ __all__ = [
     "SimplexUnscentedParticleFilter",
 ]
 
-PROPOSALS = ("prior", "extended", "unscented", "simplex")
+PROPOSALS = ("prior", "extended", "unscented")
 
 #: ESS below this for ``_DEGENERATE_RUN`` consecutive updates triggers the warning.
 _DEGENERATE_ESS = 2.0
@@ -95,14 +97,6 @@ class DegeneracyWarning(RuntimeWarning):
     """The particle weights collapsed: the effective sample size stayed below 2 for 3
     consecutive updates. Raised once per filter; the message names the step, the ESS and
     what to try."""
-
-
-def _logsumexp(a):
-    """``log(sum(exp(a)))`` of a 1-D array (``-inf`` if every entry is ``-inf``)."""
-    m = np.max(a)
-    if not np.isfinite(m):
-        return float(m)
-    return float(m + np.log(np.sum(np.exp(a - m))))
 
 
 def _check_callable(f, name, allow_none=True):
@@ -118,7 +112,7 @@ _MODEL_FIELDS = ("dim_x", "dim_z", "dt", "fx", "hx", "Q", "R", "vectorized", "FJ
                  "transition_logpdf", "measurement_logpdf", "recover")
 
 
-class ParticleFilter:
+class ParticleFilter(WeightedMixtureFilter):
     """A particle filter with a pluggable proposal and resampling, filterpy-style.
 
     Parameters
@@ -136,13 +130,14 @@ class ParticleFilter:
         ``None`` is a random walk, ``x_k = x_{k-1} + w_k``.
     n_particles : int
         Number of particles.
-    proposal : {"prior", "extended", "unscented", "simplex"} or proposal object
+    proposal : {"prior", "extended", "unscented"} or proposal object
         The importance proposal: a name, or any object with the protocol of
         :mod:`filterwnn.proposals` (``carries_covariance``, ``predict``, ``propose``),
         e.g. :class:`~filterwnn.PriorProposal`, :class:`~filterwnn.ExtendedKalmanProposal`,
         :class:`~filterwnn.UnscentedKalmanProposal` or your own. ``"unscented"`` uses
-        ``points`` (default Merwe, alpha=1, beta=2, kappa=0); ``"simplex"`` uses ``points``
-        (default ``SphericalSimplexSigmaPoints(dim_x, beta=2)``).
+        ``points`` (default Merwe, alpha=1, beta=2, kappa=0); pass
+        ``SphericalSimplexSigmaPoints(dim_x, beta=2)`` for the reduced-point SUPF (the
+        default of :class:`SimplexUnscentedParticleFilter`).
     points : sigma-point object, optional
         For the unscented proposals; ``points.n`` must equal ``dim_x`` (checked here).
     FJacobian, HJacobian : callable, optional
@@ -189,7 +184,7 @@ class ParticleFilter:
         Metropolis-Hastings kernel targeting :math:`p(x_k \\mid z_{1:k})`); the filter
         cannot check that. The particle covariances (Kalman proposals) are kept.
     carry_covariance : bool, default True
-        For a Kalman proposal given by name (``"extended"``, ``"unscented"``, ``"simplex"``):
+        For a Kalman proposal given by name (``"extended"`` or ``"unscented"``):
         each particle carries its own covariance from step to step (van der Merwe et al.
         2000), or, with ``False``, its Kalman step starts from the transition noise ``Q``
         alone (the one-step approximation of the optimal proposal, Doucet, Godsill and
@@ -234,51 +229,28 @@ class ParticleFilter:
         errors and warnings name) the current step. 0 before the first ``predict``.
     """
 
-    def __init__(
-        self,
-        dim_x,
-        dim_z,
-        dt,
-        hx,
-        fx,
-        n_particles,
-        proposal="prior",
-        *,
-        points=None,
-        FJacobian=None,
-        HJacobian=None,
-        x_mean_fn=None,
-        z_mean_fn=None,
-        residual_x=None,
-        residual_z=None,
-        resampling="systematic",
-        ess_threshold=1.0,
-        tempering=1.0,
-        vectorized=False,
-        rng=None,
-        transition_logpdf=None,
-        process_sampler=None,
-        measurement_logpdf=None,
-        recover=False,
-        move=None,
-        carry_covariance=True,
-    ):
+    _members_attr = "particles"
+    _members_word = "particles"
+    _restart_hint = "call initialize(particles) to restart the cloud, or set x and P before the first predict"
+    x = WeightedMixtureFilter.x  # (in this class's namespace, so that its page documents them)
+    P = WeightedMixtureFilter.P
+
+    def __init__(self, dim_x, dim_z, dt, hx, fx, n_particles, proposal="prior", *, points=None,
+                 FJacobian=None, HJacobian=None, x_mean_fn=None, z_mean_fn=None, residual_x=None,
+                 residual_z=None, resampling="systematic", ess_threshold=1.0, vectorized=False, rng=None,
+                 tempering=1.0, transition_logpdf=None, process_sampler=None, measurement_logpdf=None,
+                 recover=False, move=None, carry_covariance=True):
         self.dim_x = check_positive_int(dim_x, "dim_x")
         self.dim_z = check_positive_int(dim_z, "dim_z")
         self.dt = check_positive(dt, "dt")
         self.hx = _check_callable(hx, "hx", allow_none=False)
         self.fx = _check_callable(fx, "fx")
         self.n_particles = check_positive_int(n_particles, "n_particles")
-        self.FJacobian = _check_callable(FJacobian, "FJacobian")
-        self.HJacobian = _check_callable(HJacobian, "HJacobian")
-        self.x_mean_fn = _check_callable(x_mean_fn, "x_mean_fn")
-        self.z_mean_fn = _check_callable(z_mean_fn, "z_mean_fn")
-        self.residual_x = _check_callable(residual_x, "residual_x")
-        self.residual_z = _check_callable(residual_z, "residual_z")
-        self.transition_logpdf = _check_callable(transition_logpdf, "transition_logpdf")
-        self.process_sampler = _check_callable(process_sampler, "process_sampler")
-        self.measurement_logpdf = _check_callable(measurement_logpdf, "measurement_logpdf")
-        self.move = _check_callable(move, "move")
+        optional = dict(FJacobian=FJacobian, HJacobian=HJacobian, x_mean_fn=x_mean_fn, z_mean_fn=z_mean_fn,
+                        residual_x=residual_x, residual_z=residual_z, transition_logpdf=transition_logpdf,
+                        process_sampler=process_sampler, measurement_logpdf=measurement_logpdf, move=move)
+        for name, f in optional.items():  # None or callable
+            setattr(self, name, _check_callable(f, name))
         if not isinstance(recover, (bool, np.bool_)):
             raise TypeError(f"recover must be a bool, got {type(recover).__name__}")
         self.recover = bool(recover)
@@ -299,13 +271,7 @@ class ParticleFilter:
             if self.fx is not None and self.FJacobian is None and self.proposal.carries_covariance:
                 raise ValueError("the extended Kalman proposal needs FJacobian when fx is given, got None")
 
-        # filterpy's defaults
-        self._x = np.zeros(self.dim_x)
-        self._P = np.eye(self.dim_x)
-        self.Q = np.eye(self.dim_x)
-        self.R = np.eye(self.dim_z)
-        self.x_prior, self.P_prior = self._x.copy(), self._P.copy()
-        self.x_post, self.P_post = self._x.copy(), self._P.copy()
+        self._filterpy_defaults()
 
         self._model = ProposalModel(self.dim_x, self.dim_z)
         self.particles = None
@@ -332,10 +298,7 @@ class ParticleFilter:
             if proposal == "extended":
                 return ExtendedKalmanProposal(carry_covariance=carry_covariance)
             if points is None:
-                if proposal == "unscented":
-                    points = MerweScaledSigmaPoints(self.dim_x, alpha=1.0, beta=2.0, kappa=0.0)
-                else:
-                    points = SphericalSimplexSigmaPoints(self.dim_x, beta=2.0)
+                points = MerweScaledSigmaPoints(self.dim_x, alpha=1.0, beta=2.0, kappa=0.0)
             n = getattr(points, "n", None)
             if n != self.dim_x:
                 raise ValueError(f"points.n must equal dim_x={self.dim_x}, got {n}")
@@ -353,34 +316,6 @@ class ParticleFilter:
         if check is not None:
             check(self.dim_x)
         return proposal
-
-    @property
-    def x(self):
-        """State estimate, shape ``(dim_x,)``."""
-        return self._x
-
-    @x.setter
-    def x(self, value):
-        self._refuse_mid_run("x")
-        self._x = value
-
-    @property
-    def P(self):
-        """State covariance, shape ``(dim_x, dim_x)``."""
-        return self._P
-
-    @P.setter
-    def P(self, value):
-        self._refuse_mid_run("P")
-        self._P = value
-
-    def _refuse_mid_run(self, name):
-        if self.particles is not None:
-            raise ValueError(
-                f"{name} cannot be set once the particles exist (step {self.step}): it would be "
-                f"ignored; call initialize(particles) to restart the cloud, or set x and P "
-                f"before the first predict"
-            )
 
     @property
     def weights(self):
@@ -443,12 +378,6 @@ class ParticleFilter:
         d = model.residual_x_rows(X, x[None, :])
         P = (d.T * w) @ d
         return x, 0.5 * (P + P.T)
-
-    def _record(self, ess, n_distinct, resampled):
-        self.ess, self.n_distinct = float(ess), int(n_distinct)
-        self.ess_history.append(self.ess)
-        self.n_distinct_history.append(self.n_distinct)
-        self.resampled_history.append(bool(resampled))
 
     def _degeneracy_remedy(self):
         if isinstance(self.proposal, PriorProposal):
@@ -602,7 +531,7 @@ class ParticleFilter:
             )
         lw_prev = self.log_weights
         new_lw = lw_prev + log_alpha if self.tempering == 1.0 else lw_prev + self.tempering * log_alpha
-        lse = _logsumexp(new_lw)
+        lse = logsumexp(new_lw)
         if not np.isfinite(lse):
             lmax = np.max(log_alpha if log_lik is None else log_lik)
             if log_lik is None or not np.isfinite(lmax):
@@ -613,7 +542,7 @@ class ParticleFilter:
                     f"at every sample (largest log-weight increment {np.max(log_alpha):.6g})"
                 )
             raise NumericalError(f"all particle weights underflowed at step {step}: {detail}", matrix="weights", step=step)
-        log_lik_step = lse if self.tempering == 1.0 else _logsumexp(lw_prev + log_alpha)
+        log_lik_step = lse if self.tempering == 1.0 else logsumexp(lw_prev + log_alpha)
         self.log_likelihood = float(log_lik_step)
         self.log_marginal_likelihood += float(log_lik_step)
         return new_lw - lse
@@ -627,41 +556,6 @@ class ParticleFilter:
                 step=step,
             )
         return Y
-
-    def __getstate__(self):
-        state = self.__dict__.copy()
-        del state["_resample"]  # a scheme's raw implementation (or a wrapped callable): looked up again
-        return state
-
-    def __setstate__(self, state):
-        self.__dict__.update(state)
-        self._resample = get_scheme(self.resampling)
-
-    def batch_filter(self, zs, fx_args=None, hx_args=None):
-        """Run ``predict``/``update`` over a sequence of measurements.
-
-        Parameters
-        ----------
-        zs : sequence of length n_steps of array-like of shape (dim_z,) or None
-            ``None`` entries skip the update.
-        fx_args, hx_args : dict, optional
-            Keywords for every ``predict``/``update`` call.
-
-        Returns
-        -------
-        means : ndarray of shape (n_steps, dim_x)
-        covariances : ndarray of shape (n_steps, dim_x, dim_x)
-        """
-        fx_args = {} if fx_args is None else dict(fx_args)
-        hx_args = {} if hx_args is None else dict(hx_args)
-        n = len(zs)
-        means = np.empty((n, self.dim_x))
-        covs = np.empty((n, self.dim_x, self.dim_x))
-        for k, z in enumerate(zs):
-            self.predict(**fx_args)
-            self.update(z, **hx_args)
-            means[k], covs[k] = self._x, self._P
-        return means, covs
 
     def __repr__(self):
         return (
@@ -687,62 +581,20 @@ class _Preset(ParticleFilter):
     """A named particle filter: the issue's constructor, proposal fixed by the class."""
 
     _proposal_name = "prior"
+    #: ``points`` when the caller passes None (the point set of the preset), or None.
+    _default_points = None
 
-    def __init__(
-        self,
-        dim_x,
-        dim_z,
-        dt,
-        hx,
-        fx,
-        n_particles,
-        *,
-        points=None,
-        FJacobian=None,
-        HJacobian=None,
-        x_mean_fn=None,
-        z_mean_fn=None,
-        residual_x=None,
-        residual_z=None,
-        resampling="systematic",
-        ess_threshold=1.0,
-        vectorized=False,
-        rng=None,
-        tempering=1.0,
-        transition_logpdf=None,
-        process_sampler=None,
-        measurement_logpdf=None,
-        recover=False,
-        move=None,
-        carry_covariance=True,
-    ):
-        super().__init__(
-            dim_x,
-            dim_z,
-            dt,
-            hx,
-            fx,
-            n_particles,
-            proposal=self._proposal_name,
-            points=points,
-            FJacobian=FJacobian,
-            HJacobian=HJacobian,
-            x_mean_fn=x_mean_fn,
-            z_mean_fn=z_mean_fn,
-            residual_x=residual_x,
-            residual_z=residual_z,
-            resampling=resampling,
-            ess_threshold=ess_threshold,
-            tempering=tempering,
-            vectorized=vectorized,
-            rng=rng,
-            transition_logpdf=transition_logpdf,
-            process_sampler=process_sampler,
-            measurement_logpdf=measurement_logpdf,
-            recover=recover,
-            move=move,
-            carry_covariance=carry_covariance,
-        )
+    def __init__(self, dim_x, dim_z, dt, hx, fx, n_particles, *, points=None, **kwargs):
+        if points is None and self._default_points is not None:
+            points = self._default_points(check_positive_int(dim_x, "dim_x"))
+        super().__init__(dim_x, dim_z, dt, hx, fx, n_particles, proposal=self._proposal_name, points=points,
+                         **kwargs)
+
+
+# the presets' signature is ParticleFilter's without ``proposal`` (fixed by the class)
+_Preset.__signature__ = inspect.signature(ParticleFilter).replace(
+    parameters=[p for p in inspect.signature(ParticleFilter).parameters.values() if p.name != "proposal"]
+)
 
 
 _PRESET_DOC = """{what}
@@ -794,4 +646,8 @@ class SimplexUnscentedParticleFilter(_Preset):
             "``MinimalSkewSigmaPoints`` suits small states."
         ),
     )
-    _proposal_name = "simplex"
+    _proposal_name = "unscented"
+
+    @staticmethod
+    def _default_points(dim_x):
+        return SphericalSimplexSigmaPoints(dim_x, beta=2.0)

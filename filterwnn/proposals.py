@@ -48,7 +48,7 @@ off it.
 
 **Batched over particles.** A Kalman proposal works on the stacks ``x (N, n)`` and
 ``P (N, n, n)`` at once: one stacked :func:`numpy.linalg.cholesky` factors every
-particle's covariance, :func:`batched_sigma_points` builds all sigma points in O(n^2)
+particle's covariance, :func:`filterwnn.sigma_points.batched_sigma_points` builds all sigma points in O(n^2)
 per particle from the set's structure, and with ``vectorized=True`` the model is called
 *once* on all ``N * n_sigmas`` points (one row per point). With ``dim_z == 1`` the
 innovation covariance is a scalar, the gain needs no solve and the covariance update is
@@ -97,14 +97,13 @@ import numpy as np
 from scipy.linalg import solve_triangular
 
 from ._linalg import LOG_2PI, NoiseFactor, cholesky, repair_pd
-from ._validation import NumericalError, check_covariance, check_symmetric
-from .sigma_points import _StaircaseSimplex, _check_protocol, _symmetric_scale, sigma_deviations, unit_sigma_points
+from ._validation import NumericalError, check_covariance, check_points_protocol, check_symmetric
+from .sigma_points import batched_sigma_points, unit_sigma_points, unit_transpose_apply
 
 __all__ = [
     "ProposalModel",
     "Prediction",
     "Proposed",
-    "batched_sigma_points",
     "PriorProposal",
     "ExtendedKalmanProposal",
     "UnscentedKalmanProposal",
@@ -427,77 +426,6 @@ class Proposed(NamedTuple):
 # ---------------------------------------------------------------------------
 # Kalman steps, batched over particles
 # ---------------------------------------------------------------------------
-
-
-def batched_sigma_points(points, x, L):
-    """Sigma points ``x_i + Z @ L_i^T`` of every particle, ``(N, n_sigmas, n)``, in O(n^2) each.
-
-    The same numbers as ``x[:, None] + sigma_deviations(points, swapaxes(L))`` (up to
-    rounding), fused with the addition of the means: for the symmetric sets
-    (``[0, c U, -c U]``) three passes over the output; for the staircase sets (minimal
-    skew, spherical simplex) the suffix sums are accumulated row by row in an
-    ``(N, n)`` buffer, about half the time of the stacked reverse ``cumsum``. Other
-    sets use :func:`filterwnn.sigma_points.sigma_deviations`.
-
-    Parameters
-    ----------
-    points : sigma-point object
-    x : ndarray of shape (N, n)
-    L : ndarray of shape (N, n, n)
-        Lower Cholesky factors (``P_i = L_i L_i^T``).
-    """
-    N, n = x.shape
-    U = np.swapaxes(L, -1, -2)
-    if isinstance(points, _StaircaseSimplex) and n > 16:
-        # (for small n the stacked cumsum of sigma_deviations, below, has less Python overhead)
-        a, b = points._a, points._b
-        U = np.ascontiguousarray(U)  # rows of U are read one by one below
-        sig = np.empty((N, n + 2, n))
-        sig[:, 0] = x
-        acc = np.zeros((N, n))
-        tmp = np.empty((N, n))
-        for i in range(n, 0, -1):
-            # row i: sum_{m >= i-1} a_m U_m  (+ b_{i-2} U_{i-2} for i >= 2)
-            np.multiply(U[:, i - 1], a[i - 1], out=tmp)
-            acc += tmp
-            np.add(x, acc, out=sig[:, i])
-            if i >= 2:
-                np.multiply(U[:, i - 2], b[i - 2], out=tmp)
-                sig[:, i] += tmp
-        np.multiply(U[:, n - 1], b[n - 1], out=tmp)
-        np.add(x, tmp, out=sig[:, n + 1])
-        return sig
-    c = _symmetric_scale(points)
-    if c is not None and points.num_sigmas() == 2 * n + 1:
-        sig = np.empty((N, 2 * n + 1, n))
-        sig[:, 0] = x
-        plus = sig[:, 1 : n + 1]
-        np.multiply(U, c, out=plus)
-        np.subtract(x[:, None, :], plus, out=sig[:, n + 1 :])
-        plus += x[:, None, :]
-        return sig
-    sig = sigma_deviations(points, U)
-    sig += x[:, None, :]
-    return sig
-
-
-def _unit_transpose_apply(points, Z, B):
-    """``Z^T B`` for unit points ``Z (S, n)`` and ``B (N, S, m)`` -> ``(N, n, m)``, O(S n m).
-
-    Symmetric sets ``[0, c I, -c I]``: ``c (B[1:n+1] - B[n+1:])``. Staircase sets: a
-    prefix sum. Others: the dense product.
-    """
-    n = Z.shape[1]
-    if isinstance(points, _StaircaseSimplex) and n > 16:
-        # (n <= 16 takes the dense product below: within about 20 % of the prefix sum there)
-        a, b = points._a, points._b
-        # (Z^T B)_j = a_j sum_{i=1..j+1} B_i + b_j B_{j+2}   (0-based j, rows 1..n+1 of Z)
-        C = np.cumsum(B[:, 1 : n + 1, :], axis=1)
-        return a[:, None] * C + b[:, None] * B[:, 2 : n + 2, :]
-    c = _symmetric_scale(points)
-    if c is not None and Z.shape[0] == 2 * n + 1:
-        return c * (B[:, 1 : n + 1, :] - B[:, n + 1 :, :])
-    return np.matmul(Z.T, B)
 
 
 class KalmanPrediction(NamedTuple):
@@ -883,7 +811,7 @@ class UnscentedKalmanProposal(_KalmanProposal):
 
     def __init__(self, points, carry_covariance=True):
         super().__init__(carry_covariance)
-        _check_protocol(points, ("n", "Wm", "Wc", "num_sigmas", "sigma_points"))
+        check_points_protocol(points, ("n", "Wm", "Wc", "num_sigmas", "sigma_points"))
         self.points = points
         self._Z = unit_sigma_points(points)
 
@@ -930,7 +858,7 @@ class UnscentedKalmanProposal(_KalmanProposal):
         WdY = dY * Wc[:, None]
         S = np.matmul(np.swapaxes(dY, -1, -2), WdY)
         # Pxy = D^T (Wc dY) = L (Z^T (Wc dY)); the bracket is L^{-1} Pxy for the sampling
-        LinvPxy = _unit_transpose_apply(self.points, self._Z, WdY)
+        LinvPxy = unit_transpose_apply(self.points, self._Z, WdY)
         Pxy = np.matmul(L, LinvPxy)
         return _kalman_finish(model, xp, Pp, z, zp, S, Pxy, L, step, LinvPxy=LinvPxy)
 

@@ -35,7 +35,7 @@ Outages are cut in with :func:`with_outage` (one) or placed by :func:`outage_sta
 from __future__ import annotations
 
 import csv
-import warnings
+import os
 from dataclasses import dataclass, field, replace
 from typing import NamedTuple, Optional
 
@@ -300,86 +300,22 @@ class DRRun(NamedTuple):
         """
         t = _finite_1d(t, "t")
         n = len(t)
-        if n < 3:
-            raise ValueError(f"t must have at least 3 samples, got {n}")
-        dts = np.diff(t)
-        if np.any(dts <= 0):
-            k = int(np.argmax(dts <= 0)) + 1
-            raise ValueError(f"t must be strictly increasing; t[{k}] = {t[k]!r} <= t[{k - 1}] = {t[k - 1]!r}")
-        dt = float(f"{np.median(dts):.9g}")  # 0.1, not 0.09999999999999787
-        jit = np.abs(dts / dt - 1.0)
-        if np.any(jit > max_jitter):
-            k = int(np.argmax(jit)) + 1
-            raise ValueError(f"t must be evenly sampled (each interval within {max_jitter:.0%} of the median "
-                             f"{dt:g} s); t[{k}] - t[{k - 1}] = {dts[k - 1]:g} s: resample the drive first")
+        dts, dt = _sample_grid(t, max_jitter)
         heading = _finite_1d(heading, "heading", n)
         big = float(np.max(np.abs(heading)))
         if big > 2 * np.pi + 1e-6:
             raise ValueError(f"heading must be in radians (|heading| <= 2 pi); max |heading| = {big:g} looks like "
                              "degrees: pass np.deg2rad(heading)")
-        if (distance is None) == (speed is None):
-            raise ValueError("give exactly one of distance (cumulative odometer, m) and speed (m/s), got "
-                             + ("both" if distance is not None else "neither"))
-        if distance is not None:
-            distance = _finite_1d(distance, "distance", n)
-            dd = np.diff(distance)
-            if np.any(dd < 0):
-                k = int(np.argmax(dd < 0)) + 1
-                raise ValueError(f"distance must be non-decreasing (a cumulative odometer); distance[{k}] = "
-                                 f"{distance[k]!r} < distance[{k - 1}] = {distance[k - 1]!r}")
-            step = dd
-            v0 = dd[0] / dts[0]
-        else:
-            speed = _finite_1d(speed, "speed", n)
-            if np.any(speed < 0):
-                k = int(np.argmax(speed < 0))
-                raise ValueError(f"speed must be >= 0 (m/s); speed[{k}] = {speed[k]!r}")
-            step = speed[1:] * dts
-            v0 = speed[0]
+        step, v0 = _odometer_steps(distance, speed, dts, n)
         z_dr = np.stack([wrap_angle(heading[1:]), step], axis=1)
         steps = np.zeros(0, dtype=int)
         z_gps = np.zeros((0, 2))
         sig = None
         if gps_t is not None:
-            gps_t = _finite_1d(gps_t, "gps_t")
-            m = len(gps_t)
-            en_given = east is not None or north is not None
-            ll_given = lat is not None or lon is not None
-            if en_given == ll_given:
-                raise ValueError("give the GPS fixes as exactly one of east/north (m) and lat/lon (deg), got "
-                                 + ("both" if en_given else "neither"))
-            if en_given:
-                e, nn = _finite_1d(east, "east", m), _finite_1d(north, "north", m)
-            else:
-                la, lo = _finite_1d(lat, "lat", m), _finite_1d(lon, "lon", m)
-                if np.any(np.abs(la) > 90) or np.any(np.abs(lo) > 360):
-                    raise ValueError(f"lat/lon must be degrees (|lat| <= 90, |lon| <= 360), got max |lat| = "
-                                     f"{np.max(np.abs(la)):g}, max |lon| = {np.max(np.abs(lo)):g}")
-                lat0, lon0 = (la[0], lo[0]) if origin is None else (float(origin[0]), float(origin[1]))
-                e, nn = latlon_to_en(la, lo, lat0, lon0)
-            if gps_sigma is not None:
-                gs = np.asarray(gps_sigma, dtype=float)
-                gs = np.full(m, float(gs)) if gs.ndim == 0 else _finite_1d(gs, "gps_sigma", m)
-                if not np.all(np.isfinite(gs)) or np.any(gs <= 0):
-                    k = int(np.argmax(~np.isfinite(gs) | (gs <= 0)))
-                    raise ValueError(f"gps_sigma must be finite and > 0 (m); gps_sigma[{k}] = {gs[k]!r}")
-            k_fix = np.round((gps_t - t[0]) / dt).astype(int) - 1
-            keep = (k_fix >= 0) & (k_fix < n - 1)
-            k_fix, idx = np.unique(k_fix[keep], return_index=True)
-            sel = np.flatnonzero(keep)[idx]
-            steps, z_gps = k_fix, np.stack([e[sel], nn[sel]], axis=1)
-            sig = gs[sel] if gps_sigma is not None else None
+            steps, z_gps, sig = _gps_fixes(gps_t, east, north, lat, lon, gps_sigma, origin, t, dt)
         x_true = None
         if truth is not None:
-            tr = np.asarray(truth, dtype=float)
-            if tr.shape != (n, 2):
-                raise ValueError(f"truth must have shape (n_samples, 2) = ({n}, 2) [east, north in m], got {tr.shape}")
-            if not np.all(np.isfinite(tr)):
-                raise ValueError(f"truth must be finite; row {int(np.argmax(~np.isfinite(tr).all(axis=1)))} is not")
-            ve, vn = np.gradient(tr[:, 0], t), np.gradient(tr[:, 1], t)
-            full = np.stack([tr[:, 0], ve, np.gradient(ve, t), tr[:, 1], vn, np.gradient(vn, t)], axis=1)
-            x_true = full[1:]
-            p0 = tr[0]
+            x_true, p0 = _truth_states(truth, t)
         elif len(z_gps):
             p0 = z_gps[0]
         else:
@@ -393,6 +329,90 @@ class DRRun(NamedTuple):
                       sigma_gps=float(np.median(sig)) if sig is not None and len(sig) else 3.0)
         R_true = np.tile([np.deg2rad(1.0) ** 2, 0.02**2], (n - 1, 1))
         return cls(dt * np.arange(1, n), x0, x_true, z_dr, steps, z_gps, R_true, sc, sig)
+
+
+def _sample_grid(t, max_jitter):
+    """The intervals of the sample times ``t`` and their median ``dt``; ValueError unless
+    there are 3 or more, strictly increasing and evenly spaced within ``max_jitter``."""
+    n = len(t)
+    if n < 3:
+        raise ValueError(f"t must have at least 3 samples, got {n}")
+    dts = np.diff(t)
+    if np.any(dts <= 0):
+        k = int(np.argmax(dts <= 0)) + 1
+        raise ValueError(f"t must be strictly increasing; t[{k}] = {t[k]!r} <= t[{k - 1}] = {t[k - 1]!r}")
+    dt = float(f"{np.median(dts):.9g}")  # 0.1, not 0.09999999999999787
+    jit = np.abs(dts / dt - 1.0)
+    if np.any(jit > max_jitter):
+        k = int(np.argmax(jit)) + 1
+        raise ValueError(f"t must be evenly sampled (each interval within {max_jitter:.0%} of the median "
+                         f"{dt:g} s); t[{k}] - t[{k - 1}] = {dts[k - 1]:g} s: resample the drive first")
+    return dts, dt
+
+
+def _odometer_steps(distance, speed, dts, n):
+    """The distance of each step and the first speed, from a cumulative odometer or speeds."""
+    if (distance is None) == (speed is None):
+        raise ValueError("give exactly one of distance (cumulative odometer, m) and speed (m/s), got "
+                         + ("both" if distance is not None else "neither"))
+    if distance is not None:
+        distance = _finite_1d(distance, "distance", n)
+        dd = np.diff(distance)
+        if np.any(dd < 0):
+            k = int(np.argmax(dd < 0)) + 1
+            raise ValueError(f"distance must be non-decreasing (a cumulative odometer); distance[{k}] = "
+                             f"{distance[k]!r} < distance[{k - 1}] = {distance[k - 1]!r}")
+        return dd, dd[0] / dts[0]
+    speed = _finite_1d(speed, "speed", n)
+    if np.any(speed < 0):
+        k = int(np.argmax(speed < 0))
+        raise ValueError(f"speed must be >= 0 (m/s); speed[{k}] = {speed[k]!r}")
+    return speed[1:] * dts, speed[0]
+
+
+def _gps_fixes(gps_t, east, north, lat, lon, gps_sigma, origin, t, dt):
+    """The GPS fixes on the DR grid: their steps, east/north (m) and sigmas (or None)."""
+    n = len(t)
+    gps_t = _finite_1d(gps_t, "gps_t")
+    m = len(gps_t)
+    en_given = east is not None or north is not None
+    ll_given = lat is not None or lon is not None
+    if en_given == ll_given:
+        raise ValueError("give the GPS fixes as exactly one of east/north (m) and lat/lon (deg), got "
+                         + ("both" if en_given else "neither"))
+    if en_given:
+        e, nn = _finite_1d(east, "east", m), _finite_1d(north, "north", m)
+    else:
+        la, lo = _finite_1d(lat, "lat", m), _finite_1d(lon, "lon", m)
+        if np.any(np.abs(la) > 90) or np.any(np.abs(lo) > 360):
+            raise ValueError(f"lat/lon must be degrees (|lat| <= 90, |lon| <= 360), got max |lat| = "
+                             f"{np.max(np.abs(la)):g}, max |lon| = {np.max(np.abs(lo)):g}")
+        lat0, lon0 = (la[0], lo[0]) if origin is None else (float(origin[0]), float(origin[1]))
+        e, nn = latlon_to_en(la, lo, lat0, lon0)
+    if gps_sigma is not None:
+        gs = np.asarray(gps_sigma, dtype=float)
+        gs = np.full(m, float(gs)) if gs.ndim == 0 else _finite_1d(gs, "gps_sigma", m)
+        if not np.all(np.isfinite(gs)) or np.any(gs <= 0):
+            k = int(np.argmax(~np.isfinite(gs) | (gs <= 0)))
+            raise ValueError(f"gps_sigma must be finite and > 0 (m); gps_sigma[{k}] = {gs[k]!r}")
+    k_fix = np.round((gps_t - t[0]) / dt).astype(int) - 1
+    keep = (k_fix >= 0) & (k_fix < n - 1)
+    k_fix, idx = np.unique(k_fix[keep], return_index=True)
+    sel = np.flatnonzero(keep)[idx]
+    return k_fix, np.stack([e[sel], nn[sel]], axis=1), (gs[sel] if gps_sigma is not None else None)
+
+
+def _truth_states(truth, t):
+    """The 6-state truth (steps ``1..n-1``) from reference east/north, and the first position."""
+    n = len(t)
+    tr = np.asarray(truth, dtype=float)
+    if tr.shape != (n, 2):
+        raise ValueError(f"truth must have shape (n_samples, 2) = ({n}, 2) [east, north in m], got {tr.shape}")
+    if not np.all(np.isfinite(tr)):
+        raise ValueError(f"truth must be finite; row {int(np.argmax(~np.isfinite(tr).all(axis=1)))} is not")
+    ve, vn = np.gradient(tr[:, 0], t), np.gradient(tr[:, 1], t)
+    full = np.stack([tr[:, 0], ve, np.gradient(ve, t), tr[:, 1], vn, np.gradient(vn, t)], axis=1)
+    return full[1:], tr[0]
 
 
 def _finite_1d(a, name, n=None):
@@ -467,6 +487,40 @@ DRIVE_CSV_COLUMNS = {
 }
 
 
+def _read_csv(path):
+    """The stripped header and the non-blank rows of a CSV file; ValueError if empty or a
+    column name repeats."""
+    with open(path, newline="") as fh:
+        reader = csv.reader(fh)
+        try:
+            header = [h.strip() for h in next(reader)]
+        except StopIteration:
+            raise ValueError(f"{path}: the file is empty (expected a header row)") from None
+        rows = [r for r in reader if any(c.strip() for c in r)]
+    if len(set(header)) != len(header):
+        raise ValueError(f"{path}: duplicated column names in the header {header}")
+    return header, rows
+
+
+def _csv_column(path, rows, i, h, allow_empty=False):
+    """Column ``i`` (named ``h``) of ``rows`` as floats; empty cells NaN when ``allow_empty``,
+    else a ValueError naming the row, as is a cell that is not a number."""
+    out = np.empty(len(rows))
+    for r, row in enumerate(rows):
+        cell = row[i].strip() if i < len(row) else ""
+        if cell == "":
+            if not allow_empty:
+                raise ValueError(f"{path}: column {h!r} is empty on data row {r + 1} (line {r + 2})")
+            out[r] = np.nan
+            continue
+        try:
+            out[r] = float(cell)
+        except ValueError:
+            raise ValueError(f"{path}: column {h!r} must hold numbers; data row {r + 1} (line {r + 2}) "
+                             f"has {cell!r}") from None
+    return out
+
+
 def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2):
     """Read one's own drive from a CSV file with the columns of :data:`DRIVE_CSV_COLUMNS`.
 
@@ -491,15 +545,7 @@ def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2):
         named), or anything :meth:`DRRun.from_arrays` refuses.
     """
     path = str(path)
-    with open(path, newline="") as fh:
-        reader = csv.reader(fh)
-        try:
-            header = [h.strip() for h in next(reader)]
-        except StopIteration:
-            raise ValueError(f"{path}: the file is empty (expected a header row)") from None
-        rows = [r for r in reader if any(c.strip() for c in r)]
-    if len(set(header)) != len(header):
-        raise ValueError(f"{path}: duplicated column names in the header {header}")
+    header, rows = _read_csv(path)
     col = {h: i for i, h in enumerate(header)}
 
     def need(*alts):
@@ -513,20 +559,7 @@ def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2):
     dname = need("speed", "odometer")
 
     def column(h, allow_empty=False):
-        out = np.empty(len(rows))
-        for r, row in enumerate(rows):
-            cell = row[col[h]].strip() if col[h] < len(row) else ""
-            if cell == "":
-                if not allow_empty:
-                    raise ValueError(f"{path}: column {h!r} is empty on data row {r + 1} (line {r + 2})")
-                out[r] = np.nan
-                continue
-            try:
-                out[r] = float(cell)
-            except ValueError:
-                raise ValueError(f"{path}: column {h!r} must hold numbers; data row {r + 1} (line {r + 2}) "
-                                 f"has {cell!r}") from None
-        return out
+        return _csv_column(path, rows, col[h], h, allow_empty)
 
     t = column("time")
     heading = column(hname)
@@ -570,8 +603,6 @@ def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2):
         if origin is None and len(kw["lat"]):
             kw["origin"] = origin = (kw["lat"][0], kw["lon"][0])
         kw["truth"] = np.stack(latlon_to_en(column("true_lat"), column("true_lon"), *origin), axis=1)
-    import os
-
     return DRRun.from_arrays(t, heading, name=name or os.path.splitext(os.path.basename(path))[0],
                              max_jitter=max_jitter, **kw)
 

@@ -322,19 +322,24 @@ class MALAMove:
             log_q_fwd = -0.5 * np.sum(xi * xi, axis=1)
             log_q_back = -0.5 * np.sum(back * back, axis=1)
             log_alpha = (lp + beta * ll) - (state.lp + beta * state.ll) + log_q_back - log_q_fwd
-            log_alpha = np.where(np.isfinite(log_alpha), log_alpha, -np.inf)
-            accept = np.log(rng.uniform(size=len(prop))) < log_alpha
-            state.x = np.where(accept[:, None], prop, state.x)
-            state.lp = np.where(accept, lp, state.lp)
-            state.ll = np.where(accept, ll, state.ll)
-            state.gp = np.where(accept[:, None], gp, state.gp)
-            state.gl = np.where(accept[:, None], gl, state.gl)
-            rate = float(np.mean(accept))
-            accepted.append(rate)
-            self.acceptance_.append(rate)
-            if self.adapt:
-                self.step_size = float(h * np.exp(rate - self.target_acceptance))
+            accepted.append(self._accept(state, log_alpha, rng, prop, lp, ll, gp, gl))
         return float(np.mean(accepted))
+
+    def _accept(self, state, log_alpha, rng, x, lp, ll, gp, gl):
+        """Metropolis-Hastings: take the proposed rows ``x`` (and their log-prior, log-likelihood
+        and gradients) where ``log u < log_alpha``; record the acceptance rate and adapt the step."""
+        log_alpha = np.where(np.isfinite(log_alpha), log_alpha, -np.inf)
+        accept = np.log(rng.uniform(size=len(x))) < log_alpha
+        state.x = np.where(accept[:, None], x, state.x)
+        state.lp = np.where(accept, lp, state.lp)
+        state.ll = np.where(accept, ll, state.ll)
+        state.gp = np.where(accept[:, None], gp, state.gp)
+        state.gl = np.where(accept[:, None], gl, state.gl)
+        rate = float(np.mean(accept))
+        self.acceptance_.append(rate)
+        if self.adapt:
+            self.step_size = float(self.step_size * np.exp(rate - self.target_acceptance))
+        return rate
 
 
 class HMCMove(MALAMove):
@@ -395,18 +400,7 @@ class HMCMove(MALAMove):
                 log_alpha = (lp + beta * ll) - (state.lp + beta * state.ll) - 0.5 * (
                     np.sum(xi_new * xi_new, axis=1) - np.sum(xi * xi, axis=1)
                 )
-            log_alpha = np.where(np.isfinite(log_alpha), log_alpha, -np.inf)
-            accept = np.log(rng.uniform(size=len(x))) < log_alpha
-            state.x = np.where(accept[:, None], x, state.x)
-            state.lp = np.where(accept, lp, state.lp)
-            state.ll = np.where(accept, ll, state.ll)
-            state.gp = np.where(accept[:, None], gp, state.gp)
-            state.gl = np.where(accept[:, None], gl, state.gl)
-            rate = float(np.mean(accept))
-            accepted.append(rate)
-            self.acceptance_.append(rate)
-            if self.adapt:
-                self.step_size = float(self.step_size * np.exp(rate - self.target_acceptance))
+            accepted.append(self._accept(state, log_alpha, rng, x, lp, ll, gp, gl))
         return float(np.mean(accepted))
 
 

@@ -74,15 +74,17 @@ from filterpy.kalman import UnscentedKalmanFilter as _FilterpyUKF
 from filterpy.kalman import unscented_transform
 from scipy.linalg import cho_factor, cho_solve, cholesky
 
+from ._linalg import cholesky as checked_cholesky
+from ._linalg import cholesky_lower, not_pd_error
 from ._validation import (
     NumericalError,
     check_covariance,
+    check_points_protocol,
     check_positive,
     check_positive_int,
     check_symmetric,
 )
-from ._validation import cholesky_lower as cholesky_or_none
-from .sigma_points import _check_protocol, sigma_deviations
+from .sigma_points import sigma_deviations
 
 __all__ = ["UnscentedKalmanFilter", "fast_unscented_transform"]
 
@@ -183,22 +185,8 @@ class UnscentedKalmanFilter(_FilterpyUKF):
     numbers agree with filterpy's at every step.
     """
 
-    def __init__(
-        self,
-        dim_x,
-        dim_z,
-        dt,
-        hx,
-        fx,
-        points,
-        sqrt_fn=None,
-        x_mean_fn=None,
-        z_mean_fn=None,
-        residual_x=None,
-        residual_z=None,
-        state_add=None,
-        vectorized=False,
-    ):
+    def __init__(self, dim_x, dim_z, dt, hx, fx, points, sqrt_fn=None, x_mean_fn=None, z_mean_fn=None,
+                 residual_x=None, residual_z=None, state_add=None, vectorized=False):
         dim_x = check_positive_int(dim_x, "dim_x")
         dim_z = check_positive_int(dim_z, "dim_z")
         dt = check_positive(dt, "dt")
@@ -206,23 +194,11 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             raise TypeError(f"hx must be callable, got {type(hx).__name__}")
         if fx is not None and not callable(fx):
             raise TypeError(f"fx must be callable or None (random walk), got {type(fx).__name__}")
-        _check_protocol(points, ("num_sigmas", "sigma_points", "Wm", "Wc"))  # n is optional here
+        check_points_protocol(points, ("num_sigmas", "sigma_points", "Wm", "Wc"))  # n is optional here
         if getattr(points, "n", dim_x) != dim_x:
             raise ValueError(f"points.n must equal dim_x={dim_x}, got {points.n}")
-        super().__init__(
-            dim_x,
-            dim_z,
-            dt,
-            hx,
-            fx,
-            points,
-            sqrt_fn=sqrt_fn,
-            x_mean_fn=x_mean_fn,
-            z_mean_fn=z_mean_fn,
-            residual_x=residual_x,
-            residual_z=residual_z,
-            state_add=state_add,
-        )
+        super().__init__(dim_x, dim_z, dt, hx, fx, points, sqrt_fn=sqrt_fn, x_mean_fn=x_mean_fn,
+                         z_mean_fn=z_mean_fn, residual_x=residual_x, residual_z=residual_z, state_add=state_add)
         self.vectorized = bool(vectorized)
         self.step = 0
         self._sigmas_stale = True  # sigmas_f must be drawn from (x, P) before update
@@ -260,7 +236,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             # once per Q object: finite, symmetric, positive semi-definite (a Cholesky
             # settles the usual positive definite Q; eigenvalues only for a singular one)
             _with_fix(check_symmetric, self.Q, "Q")
-            if cholesky_or_none(self.Q) is None:
+            if cholesky_lower(self.Q) is None:
                 _with_fix(check_covariance, self.Q, "Q", n, allow_scalar=False, require_pd=False)
             self._trusted["Q"] = self.Q
 
@@ -282,21 +258,10 @@ class UnscentedKalmanFilter(_FilterpyUKF):
 
     def _cholesky(self, P, what):
         """Lower Cholesky factor of ``P``; NumericalError naming ``what`` if it fails."""
-        L = cholesky_or_none(P)
-        if L is None:
-            raise self._not_pd(what, P)
-        return L
+        return checked_cholesky(P, what, self.step, _PD_FIX[what])
 
     def _not_pd(self, what, M):
-        try:
-            ev = np.linalg.eigvalsh(0.5 * (M + M.T)).min()
-            detail = f"; smallest eigenvalue {ev:.3g}"
-        except (np.linalg.LinAlgError, ValueError):
-            detail = ""
-        return NumericalError(
-            f"{what} is not positive definite at step {self.step}{detail}; {_PD_FIX[what]}",
-            matrix=what, step=self.step,
-        )
+        return not_pd_error(what, M, self.step, _PD_FIX[what])
 
     def _snapshot(self):
         # References suffice: this class never writes into these arrays in place, it
@@ -488,7 +453,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
                 except np.linalg.LinAlgError as exc:
                     raise self._not_pd("S", self.S) from exc
                 # filterpy inverts S without asking whether it is positive definite
-                if np.any(np.isfinite(self.S)) and cholesky_or_none(self.S) is None:
+                if np.any(np.isfinite(self.S)) and cholesky_lower(self.S) is None:
                     raise self._not_pd("S", self.S)
             else:
                 self._vectorized_update(z_arr, R, UT, hx, **hx_args)

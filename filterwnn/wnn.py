@@ -267,8 +267,9 @@ def init_scaled(X, n_hidden, rng=None, *, output_scale=0.1):
     ``W_j ~ N(0, diag(1 / (n_inputs * var x_i)))`` (so ``W_j . x`` has unit variance on
     average), ``b_j = W_j . x_r`` at a random training row ``r``, ``a_j ~ U[0.5, 1.5] *
     std(W_j . x)`` over the training rows, and ``v_j ~ N(0, output_scale**2)``. With it,
-    every filter trainer lands at a far better test MSE than from U[0, 1] (see the
-    findings ``wnn-accuracy-limit.md``).
+    every filter trainer lands at a far better test MSE than from U[0, 1] (in
+    least-squares fits on :func:`filterwnn.datasets.make_siso_benchmark`, 10 data seeds x
+    20 starts, the median test MSE was 0.10 from this start against 0.38 from U[0, 1]).
 
     Parameters
     ----------

@@ -301,11 +301,11 @@ PF_ROWS = [
     row(lambda: make_pf(n_particles=2.5), TypeError, r"n_particles must be an integer, got float 2.5", "pf-n-float"),
     row(lambda: make_pf(dt=0.0), ValueError, r"dt must be finite and > 0, got 0.0", "pf-dt-zero"),
     row(lambda: make_pf(dt=-1.0), ValueError, r"dt must be finite and > 0, got -1.0", "pf-dt-neg"),
-    row(lambda: make_pf(proposal="optimal"), ValueError, r"unknown proposal 'optimal'; valid: 'extended', 'prior', 'simplex', 'unscented'", "pf-proposal"),
+    row(lambda: make_pf(proposal="optimal"), ValueError, r"unknown proposal 'optimal'; valid: 'extended', 'prior', 'unscented'", "pf-proposal"),
     row(lambda: make_pf(proposal=3), TypeError, "proposal must be a name or a proposal object .*got int", "pf-proposal-type"),
     row(lambda: make_pf(resampling="foo"), ValueError, r"unknown resampling scheme 'foo'; valid: 'multinomial', 'residual', 'stratified', 'systematic'", "pf-resampling"),
     row(lambda: make_pf(weighting="bank"), TypeError, "unexpected keyword argument 'weighting'", "pf-bank-gone"),
-    row(lambda: make_pf(proposal="simplex", points=SphericalSimplexSigmaPoints(2)), ValueError, r"points.n must equal dim_x=3, got 2", "pf-points-size"),
+    row(lambda: make_pf(proposal="unscented", points=SphericalSimplexSigmaPoints(2)), ValueError, r"points.n must equal dim_x=3, got 2", "pf-points-size"),
     row(lambda: make_pf(move=3), TypeError, "move must be callable or None, got int", "pf-move"),
     row(lambda: make_pf(ess_threshold=2), ValueError, r"ess_threshold must be a number in \[0, 1\], got 2", "pf-ess"),
     row(lambda: make_pf(tempering=0.0), ValueError, r"tempering must be finite and > 0, got 0.0", "pf-tempering"),
@@ -382,7 +382,7 @@ REGRESSOR_ROWS = [
 # --------------------------------------------------------------------------- dead reckoning and the neural filter
 GPS = dr.GPSDRModel()
 NF_DATA = nfm.make_training_set(nfm.paper_training_states(), dr.DRModel(), rng=0)
-NF = nfm.NeuralFilter(epochs=1, rng=0).fit(*NF_DATA)
+NF = nfm.NeuralFilter(n_epochs=1, rng=0).fit(*NF_DATA)
 DR_ROWS = [
     row(lambda: dr.DRModel(dt=0.0), ValueError, r"dt must be finite and > 0, got 0.0", "drm-dt"),
     row(lambda: dr.DRModel(sigma_heading=-1.0), ValueError, r"sigma_heading must be finite and > 0, got -1.0", "drm-sigma"),
@@ -406,15 +406,15 @@ DR_ROWS = [
     row(lambda: dr.simulate_scenario(dr.SCENARIOS["straight"](duration=-1.0)), ValueError, r"duration must be finite and > 0, got -1.0", "scenario-duration"),
     row(lambda: dr.simulate_scenario(dr.SCENARIOS["gpsdr"](sigma_gps=-1.0)), ValueError, r"sigma_gps must be finite and >= 0, got -1.0", "scenario-sigma-gps"),
     row(lambda: nfm.NeuralFilter(n_hidden=0), ValueError, r"n_hidden must be >= 1, got 0", "nf-hidden"),
-    row(lambda: nfm.NeuralFilter(epochs=0), ValueError, r"epochs must be >= 1, got 0", "nf-epochs"),
-    row(lambda: nfm.NeuralFilter(epochs=-3), ValueError, r"epochs must be >= 1, got -3", "nf-epochs-neg"),
+    row(lambda: nfm.NeuralFilter(n_epochs=0), ValueError, r"n_epochs must be >= 1, got 0", "nf-epochs"),
+    row(lambda: nfm.NeuralFilter(n_epochs=-3), ValueError, r"n_epochs must be >= 1, got -3", "nf-epochs-neg"),
     row(lambda: nfm.NeuralFilter(form="foo"), ValueError, r"unknown form 'foo'; valid: 'absolute', 'passthrough', 'relative'", "nf-form"),
     row(lambda: nfm.NeuralFilter(features="foo"), ValueError, r"unknown features 'foo'; valid: 'angle', 'velocity'", "nf-features"),
-    row(lambda: nfm.NeuralFilter(lr=0.0), ValueError, r"lr must be finite and > 0, got 0.0", "nf-lr"),
-    row(lambda: nfm.NeuralFilter(lr_online=-1.0), ValueError, r"lr_online must be finite and >= 0, got -1.0", "nf-lr-online"),
+    row(lambda: nfm.NeuralFilter(learning_rate=0.0), ValueError, r"learning_rate must be finite and > 0, got 0.0", "nf-lr"),
+    row(lambda: nfm.NeuralFilter(learning_rate_online=-1.0), ValueError, r"learning_rate_online must be finite and >= 0, got -1.0", "nf-lr-online"),
     row(lambda: nfm.NeuralFilter(model=MODEL), ValueError, "model must be a 6-state DR model, got dim_x=3", "nf-model"),
-    row(lambda: nfm.NeuralFilter(epochs=1).fit(NF_DATA[0], NF_DATA[1][:-1], NF_DATA[2]), ValueError, r"X_prior, Z, X_true must have shapes \(n, 6\), \(n, 2\), \(n, 6\); got \(30, 6\), \(29, 2\), \(30, 6\)", "nf-fit-lengths"),
-    row(lambda: nfm.NeuralFilter(epochs=1).fit(NF_DATA[0], np.full_like(NF_DATA[1], np.nan), NF_DATA[2]), ValueError, "X_prior, Z and X_true must be finite", "nf-fit-nan"),
+    row(lambda: nfm.NeuralFilter(n_epochs=1).fit(NF_DATA[0], NF_DATA[1][:-1], NF_DATA[2]), ValueError, r"X_prior, Z, X_true must have shapes \(n, 6\), \(n, 2\), \(n, 6\); got \(30, 6\), \(29, 2\), \(30, 6\)", "nf-fit-lengths"),
+    row(lambda: nfm.NeuralFilter(n_epochs=1).fit(NF_DATA[0], np.full_like(NF_DATA[1], np.nan), NF_DATA[2]), ValueError, "X_prior, Z and X_true must be finite", "nf-fit-nan"),
     row(lambda: nfm.NeuralFilter().update([0.0, 1.0]), ValueError, r"NeuralFilter is not fitted; call fit\(X_prior, Z, X_true\) first", "nf-unfitted"),
     row(lambda: pickle.loads(pickle.dumps(NF)).update([np.nan, 1.0]), ValueError, r"z must be finite .*got \[nan  1.\]", "nf-z-nan"),
     row(lambda: pickle.loads(pickle.dumps(NF)).update([0.0, 1.0, 2.0]), ValueError, r"z must have 2 entries, got shape \(3,\)", "nf-z-len"),

@@ -20,7 +20,7 @@ def model():
 @pytest.fixture(scope="module")
 def fitted(model):
     Xp, Z, X = make_training_set(paper_training_states(), model, rng=0, n_repeats=3)
-    return NeuralFilter(model, rng=1, epochs=200).fit(Xp, Z, X)
+    return NeuralFilter(model, rng=1, n_epochs=200).fit(Xp, Z, X)
 
 
 def test_training_states_and_set_shapes(model):
@@ -40,13 +40,13 @@ def test_training_states_and_set_shapes(model):
 
 def test_fit_learns_and_is_reproducible(model):
     Xp, Z, X = make_training_set(paper_training_states(), model, rng=0)
-    a = NeuralFilter(model, rng=4, epochs=50).fit(Xp, Z, X)
-    b = NeuralFilter(model, rng=4, epochs=50).fit(Xp, Z, X)
+    a = NeuralFilter(model, rng=4, n_epochs=50).fit(Xp, Z, X)
+    b = NeuralFilter(model, rng=4, n_epochs=50).fit(Xp, Z, X)
     assert a.loss_curve_[-1] < 0.1 * a.loss_curve_[0]
     for k in a.params_:
         np.testing.assert_array_equal(a.params_[k], b.params_[k])
     assert a.params_["W1"].shape == (12, 8) and a.params_["W2"].shape == (6, 12)
-    c = NeuralFilter(model, n_hidden=5, rng=4, epochs=5).fit(Xp, Z, X)
+    c = NeuralFilter(model, n_hidden=5, rng=4, n_epochs=5).fit(Xp, Z, X)
     assert c.params_["W1"].shape == (5, 8)
 
 
@@ -92,7 +92,7 @@ def test_noise_free_straight_run_is_tracked(model, fitted):
 def test_absolute_form_cannot_leave_its_training_box(model):
     # the paper's faithful form: trained on positions in [-6, 0] it cannot output km
     Xp, Z, X = make_training_set(paper_training_states(), model, rng=0)
-    nf = NeuralFilter(model, form="absolute", features="angle", rng=1, epochs=100).fit(Xp, Z, X)
+    nf = NeuralFilter(model, form="absolute", features="angle", rng=1, n_epochs=100).fit(Xp, Z, X)
     run = simulate_scenario(SCENARIOS["straight"](duration=30.0), rng=1)
     means = nf.reset(run.x0).batch_filter(run.z_dr)
     assert np.hypot(*(means[-1, [0, 3]] - run.x_true[-1, [0, 3]])) > 100.0
@@ -102,7 +102,7 @@ def test_absolute_form_cannot_leave_its_training_box(model):
 def test_online_gradient_matches_finite_differences(model, form):
     """Phase 2's gradient of 0.5 ||h(Phi x(k-1)(W)) - y||^2 equals finite differences."""
     Xp, Z, X = make_training_set(paper_training_states(), model, rng=0)
-    nf = NeuralFilter(model, form=form, rng=2, epochs=20, lr_online=0.0).fit(Xp, Z, X)
+    nf = NeuralFilter(model, form=form, rng=2, n_epochs=20, learning_rate_online=0.0).fit(Xp, Z, X)
     nf.reset(model.x0)
     nf.predict()
     nf.update(np.array([0.80, 1.40]))
@@ -132,7 +132,7 @@ def test_online_gradient_matches_finite_differences(model, form):
             fd[idx] = (loss(pp) - loss(pm)) / (2 * eps)
         np.testing.assert_allclose(grads[k], fd, atol=1e-8, rtol=1e-5)
     # and update() applies exactly this step
-    nf.lr_online = 1e-2
+    nf.learning_rate_online = 1e-2
     nf.update(z)
     np.testing.assert_allclose(nf.params_["b2"], p0["b2"] - 1e-2 * grads["b2"])
 
@@ -142,7 +142,7 @@ def test_same_seed_same_filter_output(model):
     outs = []
     for _ in range(2):
         Xp, Z, X = make_training_set(paper_training_states(), model, rng=5)
-        nf = NeuralFilter(model, rng=6, epochs=30).fit(Xp, Z, X)
+        nf = NeuralFilter(model, rng=6, n_epochs=30).fit(Xp, Z, X)
         outs.append(nf.reset(run.x0).batch_filter(run.z_dr))
     np.testing.assert_array_equal(outs[0], outs[1])
 

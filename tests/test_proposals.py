@@ -12,9 +12,8 @@ from filterwnn.proposals import (
     PriorProposal,
     ProposalModel,
     UnscentedKalmanProposal,
-    _unit_transpose_apply,
 )
-from filterwnn.sigma_points import unit_sigma_points
+from filterwnn.sigma_points import unit_sigma_points, unit_transpose_apply
 
 ATOL = 1e-10
 
@@ -76,7 +75,7 @@ POINTS = [
 def test_unit_transpose_apply_equals_dense_product(points, rng):
     Z = unit_sigma_points(points)
     B = rng.standard_normal((3, Z.shape[0], 2))
-    np.testing.assert_allclose(_unit_transpose_apply(points, Z, B), np.matmul(Z.T, B), atol=1e-12)
+    np.testing.assert_allclose(unit_transpose_apply(points, Z, B), np.matmul(Z.T, B), atol=1e-12)
 
 
 @pytest.mark.parametrize("points", POINTS[:2], ids=lambda p: type(p).__name__)
@@ -196,7 +195,7 @@ def test_points_protocol_checked():
 
 @pytest.mark.parametrize("points", POINTS + [SphericalSimplexSigmaPoints(4, alpha=0.5, w0=0.3)], ids=lambda p: type(p).__name__)
 def test_batched_sigma_points_equal_the_sigma_point_sets(points, rng):
-    from filterwnn.proposals import batched_sigma_points
+    from filterwnn.sigma_points import batched_sigma_points
 
     x, P = _cloud(rng, N=3)
     sig = batched_sigma_points(points, x, np.linalg.cholesky(P))
@@ -205,7 +204,7 @@ def test_batched_sigma_points_equal_the_sigma_point_sets(points, rng):
 
 
 def test_batched_sigma_points_large_staircase_path(rng):
-    from filterwnn.proposals import batched_sigma_points
+    from filterwnn.sigma_points import batched_sigma_points
 
     pts = SphericalSimplexSigmaPoints(24, alpha=0.7)
     x = rng.standard_normal((2, 24))

@@ -181,7 +181,7 @@ def _nf_data():
 @pytest.mark.filterwarnings("ignore::RuntimeWarning")
 def test_neural_filter_online_divergence_raises_at_its_step():
     m, Xp, Z, X = _nf_data()
-    nf = nfm.NeuralFilter(m, rng=1, epochs=20, lr_online=1e12).fit(Xp, Z, X)
+    nf = nfm.NeuralFilter(m, rng=1, n_epochs=20, learning_rate_online=1e12).fit(Xp, Z, X)
     run = dr.simulate_scenario(dr.SCENARIOS["straight"](duration=20.0), rng=0)
     nf.reset(run.x0)
     with pytest.raises(NumericalError) as info:
@@ -199,14 +199,14 @@ def test_neural_filter_online_divergence_raises_at_its_step():
 def test_neural_filter_phase_one_divergence_raises():
     m, Xp, Z, X = _nf_data()
     with pytest.raises(NumericalError, match="non-finite weights"):
-        nfm.NeuralFilter(m, rng=1, epochs=3, lr=1e30).fit(Xp, Z, X)
+        nfm.NeuralFilter(m, rng=1, n_epochs=3, learning_rate=1e30).fit(Xp, Z, X)
 
 
 @pytest.mark.filterwarnings("ignore::RuntimeWarning")
 def test_neural_filter_phase_one_divergence_names_the_epoch():
     m, Xp, Z, X = _nf_data()
     with pytest.raises(NumericalError) as info:
-        nfm.NeuralFilter(m, rng=1, epochs=3, lr=1e30).fit(Xp, Z, X)
+        nfm.NeuralFilter(m, rng=1, n_epochs=3, learning_rate=1e30).fit(Xp, Z, X)
     assert info.value.step == 1
 
 
@@ -229,7 +229,7 @@ def _neural_filter(rng):
     rng = np.random.default_rng(rng)  # one stream for the data and the weights
     m = dr.DRModel()
     Xp, Z, X = nfm.make_training_set(nfm.paper_training_states(), m, rng=rng, n_repeats=1)
-    nf = nfm.NeuralFilter(m, rng=rng, epochs=3).fit(Xp, Z, X)
+    nf = nfm.NeuralFilter(m, rng=rng, n_epochs=3).fit(Xp, Z, X)
     return [nf.params_fit_[k] for k in sorted(nf.params_fit_)]
 
 
@@ -319,7 +319,7 @@ def test_gpsdr_ekf_pickled_mid_run_with_gps_outage_continues_bit_identically():
 
 def test_neural_filter_with_online_learning_pickled_mid_run_continues_bit_identically():
     m, Xp, Z, X = _nf_data()
-    nf = nfm.NeuralFilter(m, rng=1, epochs=5, lr_online=1e-3).fit(Xp, Z, X)
+    nf = nfm.NeuralFilter(m, rng=1, n_epochs=5, learning_rate_online=1e-3).fit(Xp, Z, X)
     run = dr.simulate_scenario(dr.SCENARIOS["turns"](duration=30.0), rng=0)
     nf.reset(run.x0)
     nf.batch_filter(run.z_dr[:100])

@@ -123,4 +123,4 @@ def test_real_drive_skips_cleanly_without_onavdata(monkeypatch):
 
     monkeypatch.setattr(importlib.resources, "files", missing)
     with pytest.raises(ImportError, match="pip install"):
-        dr._onav_dir(dr.CAR_DRIVE)
+        dr.load_car_drive(dr.CAR_DRIVE)

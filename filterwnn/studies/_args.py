@@ -58,27 +58,26 @@ class HelpFormatter(argparse.RawDescriptionHelpFormatter):
         return f"{text} (default: %(default)s)" if text else "default: %(default)s"
 
 
-def _int(text):
+def _number(text, convert, ok, rule):
+    """``convert(text)`` (``int`` or ``float``) when ``ok`` of it, else an argparse error naming the rule."""
     try:
-        return int(text)
+        value = convert(text)
     except (TypeError, ValueError):
-        raise argparse.ArgumentTypeError(f"must be an integer, got {text!r}") from None
+        noun = "an integer" if convert is int else "a number"
+        raise argparse.ArgumentTypeError(f"must be {noun}, got {text!r}") from None
+    if not ok(value):
+        raise argparse.ArgumentTypeError(f"must be {rule}, got {text!r}")
+    return value
 
 
 def positive_int(text):
     """An integer ``>= 1``."""
-    value = _int(text)
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"must be an integer >= 1, got {text!r}")
-    return value
+    return _number(text, int, lambda v: v >= 1, "an integer >= 1")
 
 
 def nonnegative_int(text):
     """An integer ``>= 0``."""
-    value = _int(text)
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"must be an integer >= 0, got {text!r}")
-    return value
+    return _number(text, int, lambda v: v >= 0, "an integer >= 0")
 
 
 def seed(text):
@@ -88,32 +87,17 @@ def seed(text):
 
 def joblib_jobs(text):
     """A joblib ``n_jobs``: ``>= 1`` workers, or negative (``-1``: all cores, ``-2``: all but one)."""
-    value = _int(text)
-    if value == 0:
-        raise argparse.ArgumentTypeError(f"must be >= 1, or negative (-1: all cores), got {text!r}")
-    return value
+    return _number(text, int, lambda v: v != 0, ">= 1, or negative (-1: all cores)")
 
 
 def positive_float(text):
     """A finite number ``> 0``."""
-    try:
-        value = float(text)
-    except (TypeError, ValueError):
-        raise argparse.ArgumentTypeError(f"must be a number, got {text!r}") from None
-    if not (math.isfinite(value) and value > 0):
-        raise argparse.ArgumentTypeError(f"must be a finite number > 0, got {text!r}")
-    return value
+    return _number(text, float, lambda v: math.isfinite(v) and v > 0, "a finite number > 0")
 
 
 def nonnegative_float(text):
     """A finite number ``>= 0``."""
-    try:
-        value = float(text)
-    except (TypeError, ValueError):
-        raise argparse.ArgumentTypeError(f"must be a number, got {text!r}") from None
-    if not (math.isfinite(value) and value >= 0):
-        raise argparse.ArgumentTypeError(f"must be a finite number >= 0, got {text!r}")
-    return value
+    return _number(text, float, lambda v: math.isfinite(v) and v >= 0, "a finite number >= 0")
 
 
 def float_list(text):

@@ -63,7 +63,6 @@ outages and at the end of each outage.
 
 from __future__ import annotations
 
-import argparse
 import copy
 import csv
 import os
@@ -73,18 +72,13 @@ from typing import NamedTuple
 import numpy as np
 from filterpy.kalman import ExtendedKalmanFilter, MerweScaledSigmaPoints
 
-from .._validation import check_seed, check_positive_int, check_rng
+from .._validation import check_seed, check_positive_int
 from ..adaptive import AdaptiveExtendedKalmanFilter
 from ..dead_reckoning import SENSOR_GRADES, DRModel, GPSDRModel, dr_residual, dr_z_mean
 from ..gpsdr import GPSDRFilter
 from ..scenarios import (
     CAR_DRIVE,
-    CAR_DRIVES,
-    MIN_ODOMETER_SPEED,
     SCENARIOS,
-    DRRun,
-    Scenario,
-    _onav_dir,
     load_car_drive,
     outage_starts,
     read_drive_csv,
@@ -98,16 +92,8 @@ from ..neural_filter import (
     random_motion_states,
 )
 from ..sigma_points import SphericalSimplexSigmaPoints
+from ..unscented import UnscentedKalmanFilter
 from . import _args
-
-try:  # the package's vectorized UKF; filterpy's has the same API
-    from ..unscented import UnscentedKalmanFilter as _UKF
-
-    _VECTORIZED = True
-except ImportError:  # pragma: no cover
-    from filterpy.kalman import UnscentedKalmanFilter as _UKF
-
-    _VECTORIZED = False
 
 __all__ = [
     "DR_FILTERS",
@@ -141,22 +127,13 @@ DIV_FACTOR = 3.0
 DIV_FLOOR = 1.0
 
 
-def _has_upf():
-    try:
-        from .. import particle_filter  # noqa: F401
-
-        return hasattr(particle_filter, "UnscentedParticleFilter")
-    except ImportError:
-        return False
-
-
 # ----------------------------------------------------------------------------- runners
 
 
 def _ukf(model, points, x0, P0, gps):
-    f = _UKF(model.dim_x, 4 if gps else 2, model.dt, hx=model.hx, fx=model.fx, points=points,
-             z_mean_fn=dr_z_mean, residual_z=dr_residual,
-             **({"vectorized": not gps} if _VECTORIZED else {}))  # dim_z varies with GPS
+    f = UnscentedKalmanFilter(model.dim_x, 4 if gps else 2, model.dt, hx=model.hx, fx=model.fx, points=points,
+                              z_mean_fn=dr_z_mean, residual_z=dr_residual,
+                              vectorized=not gps)  # dim_z varies with GPS
     f.x, f.P, f.Q = x0.copy(), P0.copy(), model.Q.copy()
     f.R = model.R.copy()
     return f
@@ -210,12 +187,12 @@ def _neural_filter(name, run, model, nn_cache, rng_nn):
     return NeuralFilter(model, form=form, features=feat, rng=rng_nn).fit(Xp, Z, X)
 
 
-def train_general_nn(seed=0, n_states=1500, epochs=60, dt=0.1):
+def train_general_nn(seed=0, n_states=1500, n_epochs=60, dt=0.1):
     """``NN-gen``: the pass-through network trained on random motions (no route knowledge)."""
     model = DRModel(dt=dt)
     rng = np.random.default_rng(np.random.SeedSequence([seed, 6060]))
     Xp, Z, X = make_training_set(random_motion_states(n_states, rng), model, rng=rng)
-    return NeuralFilter(model, form="passthrough", features="velocity", epochs=epochs,
+    return NeuralFilter(model, form="passthrough", features="velocity", n_epochs=n_epochs,
                         batch_size=10, rng=rng).fit(Xp, Z, X)
 
 
@@ -404,7 +381,6 @@ def run_study(scenarios=DEFAULT_SCENARIOS, n_runs=10, filters=None, seed=0, jobs
     for s in scenarios:
         if s not in SCENARIOS:
             raise ValueError(f"unknown scenario {s!r}; valid: {', '.join(SCENARIOS)}")
-    upf = _has_upf()
     want = set(filters) if filters is not None else None
     if want is not None:
         bad = want - set(DR_FILTERS) - set(GPSDR_FILTERS)
@@ -421,8 +397,7 @@ def run_study(scenarios=DEFAULT_SCENARIOS, n_runs=10, filters=None, seed=0, jobs
         scs[name] = sc
         pool = GPSDR_FILTERS if sc.gps_rate > 0 else DR_FILTERS
         default = [f for f in pool if f not in OPT_IN]
-        fl = [f for f in pool if (f in want if want is not None else f in default)
-              and (upf or not f.startswith("UPF"))]
+        fl = [f for f in pool if (f in want if want is not None else f in default)]
         flist[name] = fl
         tasks += [(name, i) for i in range(n_runs)]
     nn_cache = {}
@@ -694,17 +669,9 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
     sig = run.gps_sigma_list() if use_gps_sigma else [None] * len(run.t)
     low = {} if slow_speed is None else {"low_speed": slow_speed}
     for name in filters:
-        ends = np.empty((len(starts), 2))
         if name == "DR-mech":
-            for j, (k0, k1) in enumerate(zip(k0s, k1s)):
-                if truth:
-                    p = run.x_true[k0 - 1, [0, 3]] if k0 > 0 else run.x0[[0, 3]]
-                else:
-                    p = track[k0 - 1] if k0 > 0 else run.x0[[0, 3]]
-                z = run.z_dr[k0:k1 + 1]
-                ends[j] = p + np.sum(z[:, 1:2] * np.stack([np.sin(z[:, 0]), np.cos(z[:, 0])], axis=1), axis=0)
+            ends = _dr_mech_ends(run, k0s, k1s, track if not truth else None)
         else:
-            # one pass with GPS, a snapshot at each outage start, then the outage alone
             aug = name.endswith("-8")
             if grade is not None:
                 model = GPSDRModel.from_grade(grade, dt, augmented=aug, **({} if aug else {"rate_bias": False}),
@@ -715,26 +682,48 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
             P0 = model.P0.copy()
             P0[0, 0] = P0[3, 3] = 1.0
             f = GPSDRFilter(model, _KIND[name], x0=x0, P0=P0, gps_window=gps_window, **low)
-            snaps = {}
-            for k in range(max(k0s) + 1):
-                if k in k0s:
-                    snaps[k] = copy.deepcopy(f)
-                f.predict()
-                f.update(run.z_dr[k], gps[k], sig[k])
-            for j, (k0, k1) in enumerate(zip(k0s, k1s)):
-                g = copy.deepcopy(snaps[k0])
-                for k in range(k0, k1 + 1):
-                    g.predict()
-                    g.update(run.z_dr[k], None)
-                if not np.all(np.isfinite(g.x)):
-                    raise FloatingPointError(f"{name}: non-finite state at step {k1} (outage at {starts[j]:.1f} s)")
-                ends[j] = g.x[[0, 3]]
+            ends = _outage_ends(f, name, run, k0s, k1s, starts, gps, sig)
         out["end_xy"][name] = ends
         out[name] = np.hypot(*(ends - refs).T)
     return out
 
 
 _REAL_META = ("starts", "moved", "length", "end_steps", "reference", "name", "track", "t", "end_xy")
+
+
+def _dr_mech_ends(run, k0s, k1s, track=None):
+    """Mechanised dead reckoning over each outage ``k0..k1``: ``s [sin theta, cos theta]``
+    summed from the reference position before it (the truth, else ``track``)."""
+    ends = np.empty((len(k0s), 2))
+    for j, (k0, k1) in enumerate(zip(k0s, k1s)):
+        if track is None:
+            p = run.x_true[k0 - 1, [0, 3]] if k0 > 0 else run.x0[[0, 3]]
+        else:
+            p = track[k0 - 1] if k0 > 0 else run.x0[[0, 3]]
+        z = run.z_dr[k0:k1 + 1]
+        ends[j] = p + np.sum(z[:, 1:2] * np.stack([np.sin(z[:, 0]), np.cos(z[:, 0])], axis=1), axis=0)
+    return ends
+
+
+def _outage_ends(f, name, run, k0s, k1s, starts, gps, sig):
+    """The east/north of filter ``f`` at the end of each outage: one pass with GPS, a
+    snapshot at each outage start, then each outage alone (DR only)."""
+    ends = np.empty((len(k0s), 2))
+    snaps = {}
+    for k in range(max(k0s) + 1):
+        if k in k0s:
+            snaps[k] = copy.deepcopy(f)
+        f.predict()
+        f.update(run.z_dr[k], gps[k], sig[k])
+    for j, (k0, k1) in enumerate(zip(k0s, k1s)):
+        g = copy.deepcopy(snaps[k0])
+        for k in range(k0, k1 + 1):
+            g.predict()
+            g.update(run.z_dr[k], None)
+        if not np.all(np.isfinite(g.x)):
+            raise FloatingPointError(f"{name}: non-finite state at step {k1} (outage at {starts[j]:.1f} s)")
+        ends[j] = g.x[[0, 3]]
+    return ends
 
 
 def real_drive_table(res, min_moved=100.0):
@@ -870,8 +859,3 @@ def _run_drives(args, drives, filters):
     print("wrote:", ", ".join(paths))
     return 0
 
-
-if __name__ == "__main__":  # pragma: no cover
-    p = argparse.ArgumentParser()
-    add_arguments(p)
-    run(p.parse_args())

@@ -1,0 +1,121 @@
+"""What the weighted-mixture filters share: :class:`~filterwnn.ParticleFilter` (a cloud of
+weighted particles) and :class:`~filterwnn.GaussianSumFilter` (a bank of weighted Gaussian
+components).
+
+Both keep the estimate in ``x``/``P`` (refused once the members exist: it would be ignored),
+record the effective sample size per update, re-attach their resampling scheme after
+unpickling and run ``batch_filter`` the same way.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .resampling import get_scheme
+
+__all__ = ["logsumexp", "WeightedMixtureFilter"]
+
+
+def logsumexp(a):
+    """``log(sum(exp(a)))`` of a 1-D array (``-inf`` if every entry is ``-inf``).
+
+    >>> logsumexp(np.log([1.0, 3.0]))
+    1.3862943611198906
+    """
+    m = np.max(a)
+    if not np.isfinite(m):
+        return float(m)
+    return float(m + np.log(np.sum(np.exp(a - m))))
+
+
+class WeightedMixtureFilter:
+    """Base of the weighted-mixture filters (no constructor: the subclasses set the state).
+
+    A subclass sets ``_members_attr`` (the attribute that holds the members once they exist),
+    ``_members_word`` and ``_restart_hint`` (for the error when ``x`` or ``P`` is set mid-run),
+    and keeps ``dim_x``, ``step``, ``resampling``, ``_resample``, ``_x``, ``_P`` and the
+    ``ess``/``n_distinct`` histories.
+    """
+
+    _members_attr = "particles"
+    _members_word = "particles"
+    _restart_hint = "call initialize(...) to restart"
+
+    def _filterpy_defaults(self):
+        """filterpy's starting values: ``x = 0``, ``P = Q = I``, ``R = I``; prior and posterior alike."""
+        self._x = np.zeros(self.dim_x)
+        self._P = np.eye(self.dim_x)
+        self.Q = np.eye(self.dim_x)
+        self.R = np.eye(self.dim_z)
+        self.x_prior, self.P_prior = self._x.copy(), self._P.copy()
+        self.x_post, self.P_post = self._x.copy(), self._P.copy()
+
+    @property
+    def x(self):
+        """State estimate, shape ``(dim_x,)``; set it with ``P`` before the first ``predict``
+        (a Gaussian start ``N(x, P)``), or use ``initialize``."""
+        return self._x
+
+    @x.setter
+    def x(self, value):
+        self._refuse_mid_run("x")
+        self._x = value
+
+    @property
+    def P(self):
+        """State covariance, shape ``(dim_x, dim_x)``."""
+        return self._P
+
+    @P.setter
+    def P(self, value):
+        self._refuse_mid_run("P")
+        self._P = value
+
+    def _refuse_mid_run(self, name):
+        if getattr(self, self._members_attr) is not None:
+            raise ValueError(
+                f"{name} cannot be set once the {self._members_word} exist (step {self.step}): it would be "
+                f"ignored; {self._restart_hint}"
+            )
+
+    def _record(self, ess, n_distinct, resampled):
+        self.ess, self.n_distinct = float(ess), int(n_distinct)
+        self.ess_history.append(self.ess)
+        self.n_distinct_history.append(self.n_distinct)
+        self.resampled_history.append(bool(resampled))
+
+    def __getstate__(self):
+        state = self.__dict__.copy()
+        del state["_resample"]  # a scheme's raw implementation (or a wrapped callable): looked up again
+        return state
+
+    def __setstate__(self, state):
+        self.__dict__.update(state)
+        self._resample = get_scheme(self.resampling)
+
+    def batch_filter(self, zs, fx_args=None, hx_args=None):
+        """Run ``predict``/``update`` over a sequence of measurements.
+
+        Parameters
+        ----------
+        zs : sequence of length n_steps of array-like of shape (dim_z,) or None
+            ``None`` entries skip the update.
+        fx_args, hx_args : dict, optional
+            Keywords for every ``predict``/``update`` call.
+
+        Returns
+        -------
+        means : ndarray of shape (n_steps, dim_x)
+        covariances : ndarray of shape (n_steps, dim_x, dim_x)
+            ``x`` and ``P`` after each update.
+        """
+        fx_args = {} if fx_args is None else dict(fx_args)
+        hx_args = {} if hx_args is None else dict(hx_args)
+        n = len(zs)
+        means = np.empty((n, self.dim_x))
+        covs = np.empty((n, self.dim_x, self.dim_x))
+        for k, z in enumerate(zs):
+            self.predict(**fx_args)
+            self.update(z, **hx_args)
+            means[k], covs[k] = self._x, self._P
+        return means, covs
