@@ -15,7 +15,7 @@ def test_demo_runs(capsys):
     assert len(errs) == 3 and max(errs) < 1e-10  # every point set gives the Kalman filter's answer
     mse, var = map(float, re.search(r"test MSE ([0-9.]+) \(predicting the mean: ([0-9.]+)\)", out).groups())
     assert mse < 0.2 * var  # the network learned the plant
-    dr_err, gps_err = map(float, re.search(r"raw dead reckoning ([0-9.]+) m, GPS/DR EKF .*? ([0-9.]+) m",
+    dr_err, gps_err = map(float, re.search(r"raw dead reckoning ([0-9.]+) m, GPS/DR EKF ([0-9.]+) m",
                                            out).groups())
     assert gps_err < dr_err
 

@@ -78,6 +78,7 @@ from ..dead_reckoning import SENSOR_GRADES, DRModel, GPSDRModel, dr_residual, dr
 from ..gpsdr import GPSDRFilter
 from ..scenarios import (
     CAR_DRIVE,
+    CAR_DRIVES,
     SCENARIOS,
     load_car_drive,
     outage_starts,
