@@ -119,6 +119,16 @@ AUTO_SETTINGS = {
     ("upf", "paper"): {"Q": 1e-4, "P0": 0.1},
     ("supf", "scaled"): {"Q": 1e-5, "P0": 0.01},
     ("supf", "paper"): {"Q": 1e-4, "P0": 0.1},
+    # Gaussian-sum filters: the settings the WNN study chose for the former "bank" weighting of
+    # epf/upf/supf (which were these filters); ekf-ensemble: the EKF's.
+    ("gsf-ekf", "scaled"): {"Q": 1e-3, "P0": 0.1},
+    ("gsf-ekf", "paper"): {"Q": 1e-2, "P0": 0.01},
+    ("gsf-ukf", "scaled"): {"Q": 1e-5, "P0": 0.01},
+    ("gsf-ukf", "paper"): {"Q": 1e-4, "P0": 0.1},
+    ("gsf-sukf", "scaled"): {"Q": 1e-5, "P0": 0.01},
+    ("gsf-sukf", "paper"): {"Q": 1e-4, "P0": 0.1},
+    ("ekf-ensemble", "scaled"): {"Q": 1e-3, "P0": 0.1},
+    ("ekf-ensemble", "paper"): {"Q": 1e-2, "P0": 0.01},
     # smc: a static posterior (Q = 0); P0 multiplies the prior matched to the start
     # (kernel "mala": n_moves MALA steps per rung; "hmc": n_moves HMC steps of n_leapfrog leapfrog steps).
     # Scaled: chosen on validation rows (benchmarks/smc_siso.py --validate, seeds 0-2, 80/20 split of the
@@ -134,6 +144,12 @@ AUTO_SETTINGS = {
 PAPER_SETTINGS = {"init": "paper", "process_noise": 1.0, "initial_covariance": 1.0, "measurement_noise": 0.1}
 
 _PF_NAMES = ("spf", "epf", "upf", "supf")
+_GSF_NAMES = ("gsf-ekf", "gsf-ukf", "gsf-sukf", "ekf-ensemble")
+MOVES = (None, "mala", "hmc")
+#: A particle trainer with a move (resample-move): Q = 0 (the static posterior), P0 multiplies the
+#: prior matched to the start (output weights of sd ``output_scale``), ``n_moves`` MALA steps (or HMC
+#: steps of ``n_leapfrog`` leapfrog steps) after each resampling. Not searched by the study.
+MOVE_SETTINGS = {"Q": 0.0, "P0": 1.0, "output_scale": 1.0, "mala": {"n_moves": 5}, "hmc": {"n_moves": 2, "n_leapfrog": 10}}
 
 
 # ---------------------------------------------------------------------------- trainers
@@ -335,7 +351,16 @@ class _SUKFTrainer(_UKFTrainer):
 
 
 class _PFTrainer(_Trainer):
-    """Particle-filter trainers over :mod:`filterwnn.particle_filter`'s presets."""
+    """Particle-filter trainers over :mod:`filterwnn.particle_filter`'s presets (textbook weights).
+
+    ``settings["move"]`` (``None``, ``"mala"`` or ``"hmc"``) adds an MCMC move after every
+    resampling (resample-move, Gilks and Berzuini 2001): the move's target is the prior times the
+    likelihood of every row the filter has been updated with (rows counted once per pass, as the
+    filter's weights count them), and each row is added to it before its update. The prior is the
+    filter's initial distribution: with a move the particles are drawn from the Gaussian prior
+    matched to the start (:func:`filterwnn.weight_model.scaled_prior`, or U[0, 1]'s moments for the
+    paper's start), scaled by ``P0``, and ``Q`` is 0 (the static posterior the move leaves invariant).
+    """
 
     preset = None
 
@@ -343,6 +368,7 @@ class _PFTrainer(_Trainer):
         super().__init__(model, theta0, settings, rng)
         from . import particle_filter as pfmod
 
+        self._move_kind = settings.get("move")
         cls = getattr(pfmod, self.preset)
         kwargs = dict(
             n_particles=settings["n_particles"],
@@ -352,8 +378,6 @@ class _PFTrainer(_Trainer):
             rng=rng,
             tempering=settings["tempering"],
         )
-        if self.name != "spf":
-            kwargs["weighting"] = settings["weighting"]
         if self.name == "upf":
             from filterpy.kalman import MerweScaledSigmaPoints
 
@@ -364,20 +388,12 @@ class _PFTrainer(_Trainer):
             kwargs["points"] = SphericalSimplexSigmaPoints(model.dim_x, alpha=1.0)
         if self.name == "epf":
             kwargs["HJacobian"] = model.HJacobian
-        theta0 = np.atleast_2d(np.asarray(theta0, dtype=float))
-        self._bank = kwargs.pop("weighting", "textbook") == "bank"
-        if self._bank:  # a bank of Kalman filters is the Gaussian-sum filter, not a particle filter
-            from .gaussian_sum import GaussianSumFilter
-
-            n = kwargs.pop("n_particles")
-            comp = {"epf": "ekf", "upf": "ukf", "supf": "sukf"}[self.name]
-            self.pf = GaussianSumFilter(model.dim_x, 1, 1.0, model.hx, None, component=comp, **kwargs)
-            self.pf.Q, self.pf.R = model.Q.copy(), model.R.copy()
-            if theta0.shape[0] == 1:  # one start: component means drawn from N(theta0, P0)
-                L = np.linalg.cholesky(model.P0)
-                theta0 = theta0[0] + self.pf.rng.standard_normal((n, model.dim_x)) @ L.T
-            self.pf.initialize(theta0, model.P0)
+        self._kwargs, self._cls = kwargs, cls
+        self.move = None
+        if self._move_kind is not None:  # the prior needs the training inputs: built in the first epoch
+            self.pf = None
             return
+        theta0 = np.atleast_2d(np.asarray(theta0, dtype=float))
         # fx=None: the random walk, predicted without sigma points (P += Q)
         self.pf = cls(model.dim_x, 1, 1.0, model.hx, None, **kwargs)
         self.pf.Q = model.Q.copy()
@@ -388,9 +404,32 @@ class _PFTrainer(_Trainer):
         else:  # one start per particle (the paper's step 1: draws from the initial distribution)
             self.pf.initialize(theta0, model.P0)
 
+    def _start_with_move(self, X):
+        from . import smc
+        from .weight_model import scaled_prior
+
+        m, s = self.model, self.settings
+        if s.get("prior", "scaled") == "scaled":
+            x0, var = scaled_prior(X, m.n_hidden, output_scale=s["output_scale"])
+        else:  # the paper's start: every weight U[0, 1], mean 0.5 and variance 1/12
+            x0, var = np.full(m.dim_x, 0.5), np.full(m.dim_x, 1.0 / 12.0)
+        P0 = np.diag(var * s["P0"])
+        prior = WNNWeightModel(m.n_inputs, m.n_hidden, m.wavelet, Q=0.0, R=m.R, x0=x0, P0=P0)
+        target = smc.RowsTarget(prior)
+        if self._move_kind == "hmc":
+            self.move = smc.HMCMove(target, n_steps=s["n_moves"], n_leapfrog=s["n_leapfrog"])
+        else:
+            self.move = smc.MALAMove(target, n_steps=s["n_moves"])
+        self.pf = self._cls(m.dim_x, 1, 1.0, m.hx, None, move=self.move, **self._kwargs)
+        self.pf.Q = np.zeros_like(m.Q)
+        self.pf.R = m.R.copy()
+        self.pf.P = P0.copy()
+        L = np.sqrt(var * s["P0"])
+        self.pf.initialize(x0 + self.rng.standard_normal((s["n_particles"], m.dim_x)) * L, P0)
+
     @property
     def particles(self):
-        return np.asarray(self.pf.means if self._bank else self.pf.particles)
+        return np.asarray(self.pf.particles)
 
     @property
     def weights(self):
@@ -401,15 +440,21 @@ class _PFTrainer(_Trainer):
         return self.particles[int(np.argmax(self.weights))]
 
     def epoch(self, X, y):
+        if self._move_kind is not None and self.pf is None:
+            self._start_with_move(X)
         pf = self.pf
         ess, distinct = [], []
         for xk, yk in zip(X, y):
+            if self.move is not None:  # the move's target: every row up to this one
+                self.move.target.append(xk, yk)
             pf.predict()
             pf.update(np.array([yk]), x=xk)
             ess.append(pf.ess)
             distinct.append(pf.n_distinct)
         self._record("mean_ess", float(np.mean(ess)))
         self._record("distinct", int(distinct[-1]))
+        if self.move is not None and self.move.acceptance_:
+            self._record("acceptance", float(np.mean(self.move.acceptance_)))
         self._check_finite(len(self.diagnostics["mean_ess"]), self.particles)
 
     def predict(self, X):
@@ -418,7 +463,7 @@ class _PFTrainer(_Trainer):
         Y = wnn.forward(self.particles, X, wav)  # (N, n)
         mean = w @ Y
         spread = w @ (Y - mean) ** 2
-        Pp = self.pf.covariances
+        Pp = getattr(self.pf, "covariances", None)
         within = 0.0
         if Pp is not None and np.ndim(Pp) == 3:
             J = wnn.jacobian(self.particles, X, wav)  # (N, n, d)
@@ -444,6 +489,82 @@ class _UPFTrainer(_PFTrainer):
 class _SUPFTrainer(_PFTrainer):
     name = "supf"
     preset = "SimplexUnscentedParticleFilter"
+
+
+class _GSFTrainer(_PFTrainer):
+    """A Gaussian-sum filter of ``n_particles`` Kalman filters (:class:`filterwnn.GaussianSumFilter`).
+
+    Each component is an EKF, UKF (Merwe points) or SUKF (simplex points) on the weight-state
+    model, weighted by its innovation likelihood raised to ``tempering`` (1: the Bayesian mixture;
+    the WNN study's working rows use 0.01, a heuristic). Not a particle filter: nothing is sampled
+    after the start, whose component means are ``n_particles`` draws of the initial distribution.
+    """
+
+    component = None
+    combine = "mixture"
+
+    def __init__(self, model, theta0, settings, rng):
+        _Trainer.__init__(self, model, theta0, settings, rng)
+        from .gaussian_sum import GaussianSumFilter
+
+        self.move = None
+        kwargs = dict(resampling="systematic", ess_threshold=settings["ess_threshold"], vectorized=True,
+                      rng=rng, tempering=settings["tempering"], combine=self.combine)
+        if self.component == "ekf":
+            kwargs["HJacobian"] = model.HJacobian
+        elif self.component == "sukf":
+            from .sigma_points import SphericalSimplexSigmaPoints
+
+            kwargs["points"] = SphericalSimplexSigmaPoints(model.dim_x, alpha=1.0)
+        theta0 = np.atleast_2d(np.asarray(theta0, dtype=float))
+        self.pf = GaussianSumFilter(model.dim_x, 1, 1.0, model.hx, None, component=self.component, **kwargs)
+        self.pf.Q, self.pf.R = model.Q.copy(), model.R.copy()
+        if theta0.shape[0] == 1:  # one start: component means drawn from N(theta0, P0)
+            L = np.linalg.cholesky(model.P0)
+            theta0 = theta0[0] + self.pf.rng.standard_normal((settings["n_particles"], model.dim_x)) @ L.T
+        self.pf.initialize(theta0, model.P0)
+
+    @property
+    def particles(self):
+        return np.asarray(self.pf.means)
+
+    @property
+    def weights(self):
+        w = np.asarray(self.pf.weights)
+        return w if self.combine == "mixture" else np.full(len(w), 1.0 / len(w))
+
+    def epoch(self, X, y):
+        pf = self.pf
+        ess = []
+        for xk, yk in zip(X, y):
+            pf.predict()
+            pf.update(np.array([yk]), x=xk)
+            ess.append(pf.ess)
+        self._record("mean_ess", float(np.mean(ess)))
+        self._check_finite(len(self.diagnostics["mean_ess"]), self.particles)
+
+
+class _GSFEKFTrainer(_GSFTrainer):
+    name = "gsf-ekf"
+    component = "ekf"
+
+
+class _GSFUKFTrainer(_GSFTrainer):
+    name = "gsf-ukf"
+    component = "ukf"
+
+
+class _GSFSUKFTrainer(_GSFTrainer):
+    name = "gsf-sukf"
+    component = "sukf"
+
+
+class _EKFEnsembleTrainer(_GSFTrainer):
+    """``n_particles`` independent EKFs from ``n_particles`` starts, their predictions averaged without weights."""
+
+    name = "ekf-ensemble"
+    component = "ekf"
+    combine = "mean"
 
 
 class _SMCTrainer(_Trainer):
@@ -545,6 +666,10 @@ TRAINERS = {
     "epf": _EPFTrainer,
     "upf": _UPFTrainer,
     "supf": _SUPFTrainer,
+    "gsf-ekf": _GSFEKFTrainer,
+    "gsf-ukf": _GSFUKFTrainer,
+    "gsf-sukf": _GSFSUKFTrainer,
+    "ekf-ensemble": _EKFEnsembleTrainer,
     "smc": _SMCTrainer,
 }
 
@@ -697,7 +822,8 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
         initial_covariance="auto",
         measurement_noise=0.1,
         n_particles=50,
-        weighting="bank",
+        move=None,
+        weighting=None,
         early_stopping=False,
         validation_fraction=0.1,
         random_state=None,
@@ -718,6 +844,7 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
         self.initial_covariance = initial_covariance
         self.measurement_noise = measurement_noise
         self.n_particles = n_particles
+        self.move = move
         self.weighting = weighting
         self.early_stopping = early_stopping
         self.validation_fraction = validation_fraction
@@ -735,7 +862,15 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
         check_choice(self.trainer, "trainer", TRAINERS)
         check_choice(self.init, "init", ("scaled", "paper"))
         check_choice(self.wavelet, "wavelet", wnn.WAVELETS)
-        check_choice(self.weighting, "weighting", ("bank", "textbook"))
+        if self.weighting is not None:
+            raise ValueError(
+                f"unknown weighting {self.weighting!r}: the weighting argument was removed (a trainer is named for "
+                "the algorithm it runs): trainer='epf'/'upf'/'supf' are the particle filters with textbook weights "
+                "(add move='mala' or 'hmc' for resample-move), trainer='gsf-ekf'/'gsf-ukf'/'gsf-sukf' the "
+                "Gaussian-sum filters (the former weighting='bank', with tempering=0.01); leave weighting=None"
+            )
+        if self.move not in MOVES:
+            raise ValueError(f"unknown move {self.move!r}; valid: None, 'hmc', 'mala'")
         check_choice(self.ekf_backend, "ekf_backend", ("rank1", "filterpy"))
         check_positive_int(self.n_hidden, "n_hidden")
         check_positive_int(self.n_epochs, "n_epochs")
@@ -752,14 +887,31 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
             p0 = auto["P0"] if self.initial_covariance == "auto" else self.initial_covariance
             s["Q"] = check_positive(q, "process_noise", strict=False)
             s["P0"] = check_positive(p0, "initial_covariance")
-        if self.trainer in _PF_NAMES:
-            bank = self.trainer != "spf" and self.weighting == "bank"
-            temp = (0.01 if bank else 1.0) if self.tempering == "auto" else self.tempering
-            ess = (0.0 if bank else 0.5) if self.ess_threshold == "auto" else self.ess_threshold
+        if self.move is not None and self.trainer not in _PF_NAMES:
+            raise ValueError(
+                f"move is for the particle-filter trainers {_PF_NAMES}, got move={self.move!r} with "
+                f"trainer={self.trainer!r}; use move=None"
+            )
+        if self.trainer in _PF_NAMES + _GSF_NAMES:
+            gsf = self.trainer in _GSF_NAMES
+            temp = 1.0 if self.tempering == "auto" else self.tempering
+            ess = (0.0 if gsf else 0.5) if self.ess_threshold == "auto" else self.ess_threshold
             s["tempering"] = check_positive(temp, "tempering")
             s["ess_threshold"] = check_positive(ess, "ess_threshold", strict=False)
             s["n_particles"] = int(self.n_particles)
-            s["weighting"] = self.weighting if self.trainer != "spf" else "textbook"
+            s["weighting"] = "gaussian-sum" if gsf else "textbook"
+            s["move"] = None if gsf else self.move
+        if self.trainer in _PF_NAMES and self.move is not None:
+            s["Q"] = MOVE_SETTINGS["Q"] if self.process_noise == "auto" else s["Q"]
+            if s["Q"] != 0:
+                raise ValueError(
+                    f"process_noise must be 0 (or 'auto') with move={self.move!r}: the move targets the static "
+                    f"posterior p(theta | rows), got {self.process_noise!r}"
+                )
+            s["P0"] = MOVE_SETTINGS["P0"] if self.initial_covariance == "auto" else s["P0"]
+            s["output_scale"] = MOVE_SETTINGS["output_scale"]
+            s.update(MOVE_SETTINGS[self.move])
+            s["prior"] = self.init
         if self.trainer == "ekf":
             s["ekf_backend"] = self.ekf_backend
         if self.trainer == "smc":
@@ -769,7 +921,7 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
         return s
 
     def _start(self, X, n_inputs, rng):
-        n_starts = self.n_particles if self.trainer in _PF_NAMES else 1
+        n_starts = self.n_particles if self.trainer in _PF_NAMES + _GSF_NAMES else 1
         draws = []
         for _ in range(n_starts):
             if self.init == "scaled":
