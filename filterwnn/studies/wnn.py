@@ -56,8 +56,8 @@ protocol that finishes in a few minutes on 2 cores, and says so in its output;
 ...                 paper_table=False, references=(), sweep_particles=(), seed=1, tune_runs=1)
 >>> [row["trainer"] for row in res.table]
 ['ekf', 'spf']
->>> sorted(res.table[0])[:3]
-['distinct_median', 'epochs', 'fit_time_median']
+>>> res.table[1]["algorithm"], sorted(res.table[0])[:3]
+('SPF (bootstrap)', ['algorithm', 'coverage90', 'distinct_median'])
 """
 
 from __future__ import annotations
@@ -102,26 +102,69 @@ __all__ = [
     "run",
 ]
 
-ALL_TRAINERS = ("bp", "ekf", "ukf", "sukf", "spf", "epf", "upf", "supf")
-PARTICLE_TRAINERS = ("spf", "epf", "upf", "supf")
+#: The study's rows: key -> (trainer, fixed ``WNNRegressor`` keywords, fixed epochs or None, label).
+#: A label's ``{N}`` is the number of particles or components. See ``docs/study-outputs/wnn/PROTOCOL.md``.
+ROWS = {
+    "bp": ("bp", {}, None, "BP"),
+    "ekf": ("ekf", {}, None, "EKF"),
+    "ukf": ("ukf", {}, None, "UKF"),
+    "sukf": ("sukf", {}, None, "SUKF (simplex points)"),
+    "spf": ("spf", {}, None, "SPF (bootstrap)"),
+    "epf": ("epf", {}, None, "EPF (textbook)"),
+    "upf": ("upf", {}, None, "UPF (textbook)"),
+    "supf": ("supf", {}, None, "SUPF (textbook)"),
+    "spf+mala": ("spf", {"move": "mala"}, 1, "SPF + MALA move"),
+    "epf+mala": ("epf", {"move": "mala"}, 1, "EPF + MALA move"),
+    "upf+mala": ("upf", {"move": "mala"}, 1, "UPF + MALA move"),
+    "supf+mala": ("supf", {"move": "mala"}, 1, "SUPF + MALA move"),
+    "upf+hmc": ("upf", {"move": "hmc"}, 1, "UPF + HMC move"),
+    "gsf-ekf": ("gsf-ekf", {"tempering": 0.01}, None, "Gaussian-sum filter of {N} EKFs (tempering 0.01)"),
+    "gsf-ukf": ("gsf-ukf", {"tempering": 0.01}, None, "Gaussian-sum filter of {N} UKFs (tempering 0.01)"),
+    "gsf-sukf": ("gsf-sukf", {"tempering": 0.01}, None, "Gaussian-sum filter of {N} SUKFs (tempering 0.01)"),
+    "ekf-ensemble": ("ekf-ensemble", {}, None, "{N} independent EKFs, averaged"),
+    "smc": ("smc", {}, 1, "SMC sampler (HMC moves)"),
+}
+ALL_TRAINERS = ("bp", "ekf", "ukf", "sukf", "spf", "epf", "upf", "supf", "upf+mala", "gsf-ekf", "gsf-ukf",
+                "gsf-sukf", "ekf-ensemble", "smc")
+#: Rows whose trainer carries ``n_particles`` particles or components.
+PARTICLE_TRAINERS = tuple(k for k, v in ROWS.items() if v[0] not in ("bp", "ekf", "ukf", "sukf"))
+#: Rows of the particle sweep (Figs. 3-4): the papers' particle filters.
+SWEEP_TRAINERS = ("spf", "epf", "upf", "supf")
+#: Rows that copy another row's chosen settings and epochs instead of searching.
+COPY_SETTINGS = {"ekf-ensemble": "gsf-ekf"}
 REFERENCES = ("MLPRegressor", "GaussianProcessRegressor")
 TABLE_COLUMNS = (
-    "trainer", "settings", "test_mse_median", "test_mse_q1", "test_mse_q3", "fit_time_median", "mean_ess",
+    "trainer", "algorithm", "settings", "test_mse_median", "test_mse_q1", "test_mse_q3", "fit_time_median",
+    "mean_ess", "distinct_particles", "coverage90",
 )
+
+
+def row_label(key, n_particles):
+    """The algorithm's name for row ``key`` (e.g. ``"Gaussian-sum filter of 20 EKFs (tempering 0.01)"``)."""
+    return ROWS[key][3].format(N=n_particles) if key in ROWS else key
 
 #: Candidates tried on the validation split, per trainer (``WNNRegressor`` keywords).
 #: EPF/UPF/SUPF are not listed: they search ``Q x {0.1, 1, 10}`` around the Q chosen for
 #: their proposal's filter (:data:`PROPOSAL_PARENT`) and keep its P0 (see :func:`candidates`).
 TUNING_GRID = {
-    "bp": [{"learning_rate": lr} for lr in (0.02, 0.05, 0.1, 0.2)],
-    "ekf": [{"process_noise": q, "initial_covariance": p} for q in (1e-4, 1e-3, 1e-2) for p in (0.01, 0.1)],
-    "ukf": [{"process_noise": q, "initial_covariance": p} for q in (1e-6, 1e-5, 1e-4) for p in (0.01, 0.1)],
-    "sukf": [{"process_noise": q, "initial_covariance": p} for q in (1e-6, 1e-5, 1e-4) for p in (0.01, 0.1)],
-    "spf": [{"process_noise": q, "initial_covariance": 0.01} for q in (1e-5, 1e-4, 1e-3)],
+    "bp": [{"learning_rate": lr} for lr in (0.02, 0.05, 0.1, 0.2, 0.5)],
+    "ekf": [{"process_noise": q, "initial_covariance": p} for q in (1e-5, 1e-4, 1e-3, 1e-2) for p in (0.01, 0.1, 1.0)],
+    "ukf": [{"process_noise": q, "initial_covariance": p} for q in (1e-8, 1e-7, 1e-6, 1e-5, 1e-4) for p in (0.01, 0.1)],
+    "sukf": [{"process_noise": q, "initial_covariance": p} for q in (1e-8, 1e-7, 1e-6, 1e-5, 1e-4) for p in (0.01, 0.1)],
+    "spf": [{"process_noise": q, "initial_covariance": 0.01} for q in (1e-7, 1e-6, 1e-5, 1e-4, 1e-3)],
 }
 
-#: The single filter whose step each particle filter's proposal runs.
-PROPOSAL_PARENT = {"epf": "ekf", "upf": "ukf", "supf": "sukf"}
+#: The single filter whose step each particle filter's proposal (or Gaussian sum's component) runs.
+PROPOSAL_PARENT = {"epf": "ekf", "upf": "ukf", "supf": "sukf", "gsf-ekf": "ekf", "gsf-ukf": "ukf", "gsf-sukf": "sukf"}
+
+#: Factors applied to the parent's chosen Q (:func:`candidates`).
+Q_FACTORS = (0.01, 0.1, 1.0, 10.0, 100.0)
+
+#: Window of the running median that smooths the validation curve before its minimum is taken.
+SMOOTHING_WINDOW = 5
+
+#: Half-width of the central 90 % interval of a normal, in standard deviations.
+Z90 = 1.6448536269514722
 
 #: Fraction of a tuning run's training rows (the last ones) held out for validation.
 VALIDATION_FRACTION = 0.2
@@ -204,10 +247,14 @@ def candidates(trainer, chosen=None):
     list of dict
         ``WNNRegressor`` keyword sets.
 
-    >>> candidates("upf", {"ukf": {"process_noise": 1e-5, "initial_covariance": 0.01}})
-    [{'process_noise': 1e-06, 'initial_covariance': 0.01}, {'process_noise': 1e-05, 'initial_covariance': 0.01}, {'process_noise': 0.0001, 'initial_covariance': 0.01}]
+    >>> [c["process_noise"] for c in candidates("upf", {"ukf": {"process_noise": 1e-5, "initial_covariance": 0.01}})]
+    [1e-07, 1e-06, 1e-05, 0.0001, 0.001]
+    >>> candidates("upf+mala")
+    [{}]
     """
-    check_choice(trainer, "trainer", TRAINERS)
+    check_choice(trainer, "trainer", ROWS)
+    if ROWS[trainer][2] is not None or trainer in COPY_SETTINGS:  # fixed settings: nothing to search
+        return [{}]
     if trainer in TUNING_GRID:
         return [dict(c) for c in TUNING_GRID[trainer]]
     parent = PROPOSAL_PARENT[trainer]
@@ -217,7 +264,7 @@ def candidates(trainer, chosen=None):
         base = {"process_noise": auto["Q"], "initial_covariance": auto["P0"]}
     q = base["process_noise"]
     return [{"process_noise": float(f"{q * f:.3g}"), "initial_covariance": base["initial_covariance"]}
-            for f in (0.1, 1.0, 10.0)]
+            for f in Q_FACTORS]
 
 
 def tune_run(trainer, tune_seed, n_epochs, n_particles=50, params=None, candidate=0, run=0):
@@ -239,8 +286,9 @@ def tune_run(trainer, tune_seed, n_epochs, n_particles=50, params=None, candidat
         X, y, _, _ = make_siso_benchmark(rng=_child(tune_seed, 0))  # test rows unused
         n_val = int(round(VALIDATION_FRACTION * len(X)))
         Xt, yt, Xv, yv = X[:-n_val], y[:-n_val], X[-n_val:], y[-n_val:]
-        reg = WNNRegressor(trainer=trainer, n_epochs=n_epochs, n_particles=n_particles, init="scaled",
-                           random_state=_child(tune_seed, 1), **params)
+        kind, fixed, _, _ = ROWS[trainer]
+        reg = WNNRegressor(trainer=kind, n_epochs=n_epochs, n_particles=n_particles, init="scaled",
+                           random_state=_child(tune_seed, 1), **dict(fixed, **params))
         curve, status = [], "ok"
         try:
             _train_tracked(reg, Xt, yt, Xv, yv, n_epochs, curve)
@@ -255,8 +303,23 @@ def tune_run(trainer, tune_seed, n_epochs, n_particles=50, params=None, candidat
     }
 
 
+def _running_median(curve, window):
+    """Centred running median of ``curve`` (the window shrinks at the ends).
+
+    >>> _running_median(np.array([5.0, 1.0, 5.0, 5.0, 5.0]), 5).tolist()
+    [5.0, 5.0, 5.0, 5.0, 5.0]
+    """
+    half = window // 2
+    return np.array([np.median(curve[max(0, i - half):i + half + 1]) for i in range(len(curve))])
+
+
 def select_settings(results):
-    """Pick, for one trainer, the candidate and epoch of lowest median validation MSE.
+    """Pick, for one trainer, the candidate and epoch of lowest smoothed median validation MSE.
+
+    The median over tuning runs of each candidate's validation curve is smoothed by a
+    running median of :data:`SMOOTHING_WINDOW` epochs (centred, shrunk at the ends); its
+    minimum is the candidate's best epoch (ties: the lower raw median, then the earlier epoch).
+    Ties between candidates go to the one listed first.
 
     A candidate that failed numerically (NumericalError) in any tuning run is passed over
     unless every candidate did.
@@ -278,7 +341,7 @@ def select_settings(results):
     ...        "status": "ok"} for c, q, cv in ((0, 1e-3, [3.0, 2.0, 2.5]), (1, 1e-2, [4.0, 1.0, 9.0]))]
     >>> chosen, rows = select_settings(rs)
     >>> chosen
-    {'params': {'process_noise': 0.01}, 'epochs': 2, 'val_mse': 1.0}
+    {'params': {'process_noise': 0.001}, 'epochs': 2, 'val_mse': 2.5}
     """
     by = {}
     for r in results:
@@ -288,8 +351,11 @@ def select_settings(results):
         rs = by[c]
         n = min(len(r["curve_val"]) for r in rs)
         med = np.median(np.array([r["curve_val"][:n] for r in rs], dtype=float), axis=0)
-        med = np.where(np.isfinite(med), med, np.inf)
-        e = int(np.argmin(med))
+        raw = np.where(np.isfinite(med), med, np.inf)
+        med = _running_median(raw, SMOOTHING_WINDOW)
+        # the smoothed minimum; ties (e.g. a curve shorter than the window) go to the lower raw
+        # validation MSE, then the earlier epoch
+        e = min(range(n), key=lambda i: (med[i], raw[i], i))
         rows.append({
             "trainer": rs[0]["trainer"], "candidate": c, "params": dict(rs[0]["params"]), "best_epoch": e + 1,
             "val_mse": float(med[e]), "val_mse_last": float(med[-1]), "n_runs": len(rs),
@@ -316,11 +382,15 @@ def _settings_text(table, trainer, reg):
         txt = f"init={s['init']}, lr={s['learning_rate']:g}"
     else:
         txt = f"init={s['init']}, Q={s['Q']:g}, P0={s['P0']:g}, R={s['R']:g}"
-    if trainer in PARTICLE_TRAINERS:
+    if "weighting" in s:
         txt += (
             f", N={s['n_particles']}, weighting={s['weighting']}, tempering={s['tempering']:g}, "
-            f"ess_threshold={s['ess_threshold']:g}"
+            f"ess_threshold={s['ess_threshold']:g}, move={s.get('move') or 'none'}"
         )
+        if s.get("move"):
+            txt += f" ({s['n_moves']} steps)"
+    if s.get("trainer") == "smc":
+        txt += f", N={s['n_particles']}, weighting=tempered SMC, move={s['kernel']} ({s['n_moves']} steps)"
     return f"{table}: {txt}"
 
 
@@ -328,7 +398,6 @@ def _params(table, trainer):
     if table == "paper":
         p = dict(PAPER_SETTINGS)
         if trainer in ("epf", "upf", "supf"):
-            p["weighting"] = "textbook"
             p["ess_threshold"] = 1.0  # the paper resamples at every step
             p["tempering"] = 1.0
         if trainer == "spf":
@@ -366,9 +435,12 @@ def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_
 
     with threadpool_limits(limits=1):
         X, y, X_test, y_test = make_siso_benchmark(rng=_child(run_seed, 0))
+        kind, fixed, _, _ = ROWS[trainer]
         kw = _params(table, trainer)
+        if table != "paper":
+            kw.update(fixed)
         kw.update(params or {})
-        reg = WNNRegressor(trainer=trainer, n_epochs=n_epochs, n_particles=n_particles, random_state=_child(run_seed, 1), **kw)
+        reg = WNNRegressor(trainer=kind, n_epochs=n_epochs, n_particles=n_particles, random_state=_child(run_seed, 1), **kw)
         curve_test = []
         status = "ok"
         try:
@@ -376,11 +448,13 @@ def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_
                 _train_tracked(reg, X, y, X_test, y_test, n_epochs, curve_test)
             else:
                 reg.fit(X, y)
-            test_mse = float(np.mean((reg.predict(X_test) - y_test) ** 2))
+            mean, std = reg.predict(X_test, return_std=True)
+            test_mse = float(np.mean((mean - y_test) ** 2))
+            coverage = float(np.mean(np.abs(y_test - mean) <= Z90 * std))
             train_mse = reg.loss_curve_[-1]
         except np.linalg.LinAlgError as exc:  # NumericalError included: a failed run is a result
             status = f"failed: {exc}"
-            test_mse = train_mse = float("nan")
+            test_mse = train_mse = coverage = float("nan")
             if not hasattr(reg, "fit_time_"):
                 reg.fit_time_ = float("nan")
         diag = getattr(reg, "diagnostics_", {}) or {}
@@ -395,6 +469,7 @@ def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_
             "fit_time": float(reg.fit_time_),
             "mean_ess": float(np.mean(ess)) if ess else float("nan"),
             "distinct": int(distinct[-1]) if distinct else -1,
+            "coverage90": coverage,
             "var_test": float(np.var(y_test)),
             "curve_train": list(getattr(reg, "loss_curve_", [])),
             "curve_test": curve_test,
@@ -436,6 +511,11 @@ def fit_reference(name, run_seed, run=0):
             warnings.simplefilter("ignore", ConvergenceWarning)
             model.fit(X, y)
         fit_time = time.perf_counter() - t0
+        if name == "GaussianProcessRegressor":  # predictive std, the fitted white noise included
+            mean, std = model.predict(X_test, return_std=True)
+            coverage = float(np.mean(np.abs(y_test - mean) <= Z90 * std))
+        else:
+            coverage = float("nan")
         return {
             "table": "reference",
             "trainer": name,
@@ -445,6 +525,7 @@ def fit_reference(name, run_seed, run=0):
             "fit_time": fit_time,
             "mean_ess": float("nan"),
             "distinct": 0,
+            "coverage90": coverage,
             "var_test": float(np.var(y_test)),
             "curve_train": [],
             "curve_test": [],
@@ -575,9 +656,11 @@ def summarize(runs):
         paper = PAPER_TABLE1.get(trainer, (float("nan"), float("nan")))
         ess = [r["mean_ess"] for r in rs if np.isfinite(r["mean_ess"])]
         distinct = [r["distinct"] for r in rs if r["distinct"] > 0]
+        cover = [r.get("coverage90", float("nan")) for r in rs]
         rows.append({
             "table": table,
             "trainer": trainer,
+            "algorithm": row_label(trainer, rs[0].get("n_particles", 0)),
             "settings": rs[0]["settings"],
             "test_mse_median": _q(mse, 0.5),
             "test_mse_q1": _q(mse, 0.25),
@@ -585,6 +668,8 @@ def summarize(runs):
             "fit_time_median": _q([r["fit_time"] for r in rs], 0.5),
             "mean_ess": float(np.mean(ess)) if ess else float("nan"),
             "distinct_median": float(np.median(distinct)) if distinct else float("nan"),
+            "distinct_particles": float(np.mean(distinct)) if distinct else float("nan"),
+            "coverage90": _q(cover, 0.5),
             "n_runs": len(rs),
             "epochs": max(r.get("epochs", 0) for r in rs),
             "n_failed": sum(r["status"] != "ok" for r in rs),
@@ -658,21 +743,24 @@ def run_study(
     pf_epochs = n_epochs if pf_epochs is None else check_positive_int(pf_epochs, "pf_epochs")
     n_particles = check_positive_int(n_particles, "n_particles")
     for t in trainers:
-        check_choice(t, "trainer", TRAINERS)
+        check_choice(t, "trainer", ROWS)
     paper_runs = n_runs if paper_runs is None else check_positive_int(paper_runs, "paper_runs", minimum=0)
     sweep_runs = n_runs if sweep_runs is None else check_positive_int(sweep_runs, "sweep_runs")
     tune_runs = check_positive_int(tune_runs, "tune_runs", minimum=0)
     seeds = run_seeds(seed, max(n_runs, paper_runs, sweep_runs))
 
     def epochs(t):
+        if ROWS[t][2] is not None:
+            return ROWS[t][2]
         return pf_epochs if t in PARTICLE_TRAINERS else n_epochs
 
     run_kw = dict(n_jobs=n_jobs, backend=backend, progress=progress, cache_dir=cache_dir, cached_only=cached_only)
     chosen, tuning, complete = {}, [], True
     if tune_runs:
         tseeds = tune_seeds(seed, tune_runs)
-        first = [t for t in trainers if t not in PROPOSAL_PARENT]
-        second = [t for t in trainers if t in PROPOSAL_PARENT]
+        searched = [t for t in trainers if candidates(t) != [{}]]
+        first = [t for t in searched if t not in PROPOSAL_PARENT]
+        second = [t for t in searched if t in PROPOSAL_PARENT]
         for phase in (first, second):
             ttasks = []
             parents = {k: v["params"] for k, v in chosen.items()}
@@ -694,13 +782,15 @@ def run_study(
 
     def working(t):
         """(epochs, extra task keywords) of trainer t's table and sweep runs."""
+        if t in COPY_SETTINGS and COPY_SETTINGS[t] in chosen:
+            t = COPY_SETTINGS[t]
         if t in chosen:
             return chosen[t]["epochs"], {"params": dict(chosen[t]["params"])}
         return epochs(t), {}
 
     tasks = []
-    if tune_runs and not complete:
-        trainers = [t for t in trainers if t in chosen]  # cached_only with an unfinished search
+    if tune_runs and not complete:  # cached_only with an unfinished search
+        trainers = [t for t in trainers if t in chosen or candidates(t) == [{}] and t not in COPY_SETTINGS]
     for t in trainers:
         ep, extra = working(t)
         for i in range(n_runs):
@@ -710,12 +800,12 @@ def run_study(
             tasks.append(("reference", (name, seeds[i]), {"run": i}))
     paper_pf_epochs = pf_epochs if paper_pf_epochs is None else check_positive_int(paper_pf_epochs, "paper_pf_epochs")
     if paper_table:
-        for t in trainers:
+        for t in [t for t in trainers if t in PAPER_TABLE1 or t == "sukf"]:
             for i in range(paper_runs):
                 ep = paper_pf_epochs if t in PARTICLE_TRAINERS else n_epochs
                 tasks.append(("fit", (t, seeds[i], ep, n_particles),
                               {"table": "paper", "run": i, "track_test": False}))
-    sweep_pf = [t for t in trainers if t in PARTICLE_TRAINERS]
+    sweep_pf = [t for t in trainers if t in SWEEP_TRAINERS]
     n_main = len(tasks)
     for n in sweep_particles:
         if n == n_particles:
@@ -744,7 +834,7 @@ def run_study(
     swept = [r for r in out[n_main:] if r is not None]
     table = summarize([r for r in main])
     sweep = []
-    pool = [r for r in main if r["table"] == "working" and r["trainer"] in PARTICLE_TRAINERS] + swept
+    pool = [r for r in main if r["table"] == "working" and r["trainer"] in SWEEP_TRAINERS] + swept
     for t in sweep_pf:
         for n in sorted(set(list(sweep_particles) + [n_particles])):
             rs = [r for r in pool if r["trainer"] == t and r["n_particles"] == n][:sweep_runs]
@@ -766,7 +856,9 @@ def run_study(
 
 
 #: Rough seconds per epoch and particle, for scheduling the longest tasks first.
-_COST = {"bp": 1, "ekf": 1, "ukf": 6, "sukf": 6, "spf": 0.4, "epf": 1.2, "upf": 4, "supf": 4}
+_COST = {"bp": 1, "ekf": 1, "ukf": 6, "sukf": 6, "spf": 0.4, "epf": 1.2, "upf": 4, "supf": 4, "spf+mala": 3,
+         "epf+mala": 4, "upf+mala": 8, "supf+mala": 6, "upf+hmc": 12, "gsf-ekf": 1, "gsf-ukf": 4, "gsf-sukf": 3,
+         "ekf-ensemble": 1, "smc": 40}
 
 
 def _task_cost(task, cost):
@@ -814,9 +906,9 @@ def markdown_table(result):
                   "scale it with --runs, --epochs, --pf-epochs, --particles."]
     lines += ["", f"Timings: median seconds per fit with {c['n_jobs']} joblib worker(s) ({c['backend']}), "
               "one BLAS thread each; parallel workers contend for memory bandwidth."]
-    head = ("| trainer | settings | epochs | test MSE median | q1 | q3 | fit time (s) | mean ESS | distinct particles "
-            "| runs | paper MSE | paper time (s) |")
-    sep = "|---" * 12 + "|"
+    head = ("| algorithm | settings | epochs | test MSE median | q1 | q3 | fit time (s) | mean ESS | distinct particles "
+            "| 90 % coverage | runs | paper MSE | paper time (s) |")
+    sep = "|---" * 13 + "|"
     if c.get("tune_runs"):
         working_title = (f"Working settings (scaled start; Q, P0 or learning rate and the epochs chosen on a "
                          f"validation split of {c['tune_runs']} separate tuning run(s), never on test data)")
@@ -836,10 +928,10 @@ def markdown_table(result):
         for r in rows:
             failed = f" ({r['n_failed']} failed)" if r["n_failed"] else ""
             lines.append(
-                f"| {r['trainer']} | {r['settings'].split(': ', 1)[-1]} | {r['epochs'] or '-'} | "
+                f"| {r['algorithm']} | {r['settings'].split(': ', 1)[-1]} | {r['epochs'] or '-'} | "
                 f"{_fmt(r['test_mse_median'])}{failed} | "
                 f"{_fmt(r['test_mse_q1'])} | {_fmt(r['test_mse_q3'])} | {_fmt(r['fit_time_median'])} | "
-                f"{_fmt(r['mean_ess'])} | {_fmt(r['distinct_median'])} | {r['n_runs']} | "
+                f"{_fmt(r['mean_ess'])} | {_fmt(r['distinct_particles'])} | {_fmt(r['coverage90'])} | {r['n_runs']} | "
                 f"{_fmt(r['paper_mse'], 4)} | {_fmt(r['paper_time'])} |"
             )
     if result.sweep:
@@ -899,7 +991,7 @@ def write_outputs(result, out, figures=True):
     paths.append(p)
     p = os.path.join(out, "runs.csv")
     fields = ["table", "trainer", "run", "n_particles", "epochs", "test_mse", "train_mse", "fit_time", "mean_ess", "distinct",
-              "var_test", "status", "settings"]
+              "coverage90", "var_test", "status", "settings"]
     with open(p, "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=fields, extrasaction="ignore")
         w.writeheader()
