@@ -323,3 +323,13 @@ def test_warm_start_fit_trains_on_the_rows_it_is_given(data):
     same = pickle.loads(pickle.dumps(reg)).fit(X[:20], y[:20])
     assert not np.allclose(other.theta_, same.theta_)
     assert other.t_ == same.t_ == 80
+
+
+def test_particle_trainer_with_a_move_resumes_from_a_pickle_exactly(data):
+    X, y, X_test, _ = data
+    kw = dict(trainer="spf", move="mala", n_hidden=2, n_particles=4, random_state=3)
+    full = WNNRegressor(n_epochs=2, **kw).fit(X, y)
+    part = WNNRegressor(n_epochs=1, warm_start=True, **kw).fit(X, y)
+    resumed = pickle.loads(pickle.dumps(part)).fit(X, y)
+    np.testing.assert_array_equal(resumed.predict(X_test), full.predict(X_test))
+    assert resumed._trainer.move.target.n_rows == 2 * len(X)  # each pass counts the rows once more
