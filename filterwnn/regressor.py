@@ -919,7 +919,8 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
             s["tempering"] = check_positive(temp, "tempering")
             s["ess_threshold"] = check_positive(ess, "ess_threshold", strict=False)
             s["n_particles"] = int(self.n_particles)
-            s["weighting"] = "gaussian-sum" if gsf else "textbook"
+            s["weighting"] = ("unweighted average" if self.trainer == "ekf-ensemble" else "gaussian-sum") if gsf \
+                else "textbook"
             s["move"] = None if gsf else self.move
         if self.trainer in _PF_NAMES and self.move is not None:
             s["Q"] = MOVE_SETTINGS["Q"] if self.process_noise == "auto" else s["Q"]

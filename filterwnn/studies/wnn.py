@@ -72,6 +72,7 @@ import numpy as np
 
 from .._validation import check_choice, check_positive_int, check_seed
 from ..datasets import make_siso_benchmark
+from ..particle_filter import DegeneracyWarning
 from ..regressor import AUTO_SETTINGS, PAPER_SETTINGS, TRAINERS, WNNRegressor
 from . import _args
 
@@ -282,7 +283,8 @@ def tune_run(trainer, tune_seed, n_epochs, n_particles=50, params=None, candidat
     from threadpoolctl import threadpool_limits
 
     params = dict(params or {})
-    with threadpool_limits(limits=1):
+    with threadpool_limits(limits=1), warnings.catch_warnings():
+        warnings.simplefilter("ignore", DegeneracyWarning)  # reported as ESS and distinct particles
         X, y, _, _ = make_siso_benchmark(rng=_child(tune_seed, 0))  # test rows unused
         n_val = int(round(VALIDATION_FRACTION * len(X)))
         Xt, yt, Xv, yv = X[:-n_val], y[:-n_val], X[-n_val:], y[-n_val:]
@@ -382,7 +384,9 @@ def _settings_text(table, trainer, reg):
         txt = f"init={s['init']}, lr={s['learning_rate']:g}"
     else:
         txt = f"init={s['init']}, Q={s['Q']:g}, P0={s['P0']:g}, R={s['R']:g}"
-    if "weighting" in s:
+    if s.get("weighting") == "unweighted average":
+        txt += f", N={s['n_particles']}, weighting=none (unweighted average)"
+    elif "weighting" in s:
         txt += (
             f", N={s['n_particles']}, weighting={s['weighting']}, tempering={s['tempering']:g}, "
             f"ess_threshold={s['ess_threshold']:g}, move={s.get('move') or 'none'}"
@@ -433,7 +437,8 @@ def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_
     """
     from threadpoolctl import threadpool_limits
 
-    with threadpool_limits(limits=1):
+    with threadpool_limits(limits=1), warnings.catch_warnings():
+        warnings.simplefilter("ignore", DegeneracyWarning)  # reported as ESS and distinct particles
         X, y, X_test, y_test = make_siso_benchmark(rng=_child(run_seed, 0))
         kind, fixed, _, _ = ROWS[trainer]
         kw = _params(table, trainer)
