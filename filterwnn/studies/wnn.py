@@ -1,20 +1,28 @@
 """The first paper's WNN study: Table 1 and Figs. 3-5 (Niu, Wu and Li).
 
 ``filterwnn study wnn`` trains a 5-20-1 Morlet wavelet network on the SISO benchmark of
-the paper's eq. (12) (:func:`filterwnn.make_siso_benchmark`) with the paper's seven
-trainers plus the SUKF (``bp, ekf, ukf, sukf, spf, epf, upf, supf``), over independent runs,
-and writes
+the paper's eq. (12) (:func:`filterwnn.make_siso_benchmark`) with the rows of :data:`ROWS`,
+each named for the algorithm it runs: the paper's seven trainers plus the SUKF (``bp, ekf,
+ukf, sukf, spf, epf, upf, supf``; the particle filters with textbook weights), the UPF with a
+MALA move after each resampling (``upf+mala``), the Gaussian-sum filters of N EKFs, UKFs and
+SUKFs at tempering 0.01 (``gsf-ekf, gsf-ukf, gsf-sukf``: the paper's Kalman-proposal
+trainers at their working settings, formerly "bank"), N independent EKFs averaged without
+weights (``ekf-ensemble``) and the SMC sampler (``smc``), over independent runs, and writes
+(the protocol: ``docs/study-outputs/wnn/PROTOCOL.md``)
 
 ``table1.md``
-    the Markdown table: one row per trainer at its *working* settings (scaled start, bank
-    weighting for EPF/UPF/SUPF; Q, P0 or the learning rate, and the number of epochs
+    the Markdown table: one row per trainer at its *working* settings (scaled start; Q, P0 or
+    the learning rate, and the number of epochs
     chosen on a validation split, see *Settings* below), a second table at the *paper's* settings (U[0, 1] start, Q = 1,
     R = 0.1, P0 = 1, textbook particle weights), reference rows for scikit-learn's
     ``MLPRegressor`` and ``GaussianProcessRegressor`` on the same data, and the paper's
     Table 1 values beside ours;
 ``table1.csv``
-    the same rows with the columns ``trainer, settings, test_mse_median, test_mse_q1,
-    test_mse_q3, fit_time_median, mean_ess``;
+    the same rows with the columns of :data:`TABLE_COLUMNS`: ``trainer`` (the row key),
+    ``algorithm``, ``settings`` (weighting, tempering, move), test MSE median and quartiles,
+    ``fit_time_median``, ``mean_ess``, ``distinct_particles`` (mean over runs at the end;
+    empty for non-particle rows) and ``coverage90`` (median over runs of the share of test
+    targets inside mean +- 1.645 std of ``predict(return_std=True)``; the GP's std included);
 ``runs.csv``
     one line per (table, trainer, run): test/train MSE, fit time, ESS, distinct particles;
 ``tuning.md``, ``tuning.csv``
@@ -27,11 +35,13 @@ and writes
 **Settings.** Before the runs, each trainer tries the candidates of :data:`TUNING_GRID`
 on ``tune_runs`` separate *tuning* runs (their own seeds, independent of the table's runs):
 it trains on the first 80 % of the tuning run's training rows and scores the last 20 %
-after every epoch. The candidate and epoch with the lowest median validation MSE are then
-used for every run of the table (trained on all 100 training rows). The test rows are
-never looked at to choose anything. The particle filters search Q around the value chosen
-for the filter their proposal uses (EPF: EKF, UPF: UKF, SUPF: SUKF) and keep its P0, so
-their candidates are set after the single filters' search. ``tune_runs=0`` skips the search
+after every epoch. Each candidate's median validation curve is smoothed by a running median
+of 5 epochs; the candidate and epoch with the lowest smoothed value are then
+used for every run of the table (trained on all 100 training rows). Rows with a move and the
+SMC sampler run one pass with fixed settings; the EKF ensemble copies ``gsf-ekf``'s choice. The test rows are
+never looked at to choose anything. The particle filters and Gaussian sums search Q (x 0.01
+to x 100) around the value chosen for the filter their proposal or components use (EPF: EKF,
+UPF: UKF, SUPF: SUKF) and keep its P0, so their candidates are set after the single filters' search. ``tune_runs=0`` skips the search
 and uses :data:`filterwnn.regressor.AUTO_SETTINGS` for the full ``n_epochs``.
 
 **Runs.** Run ``i`` uses ``SeedSequence(seed).spawn(n_runs)[i]``; it re-draws its data
