@@ -346,8 +346,9 @@ def select_settings(results):
     chosen : dict
         ``params`` (the keywords), ``epochs`` (1-based), ``val_mse``.
     rows : list of dict
-        One per candidate: ``trainer``, ``params``, ``best_epoch``, ``val_mse`` (median over
-        tuning runs at its best epoch), ``val_mse_last``, ``n_runs``, ``n_failed``, ``chosen``.
+        One per candidate: ``trainer``, ``params``, ``best_epoch``, ``val_mse`` (the smoothed median
+        over tuning runs at its best epoch), ``val_mse_last`` (the raw median at the last epoch),
+        ``n_runs``, ``n_failed``, ``chosen``.
 
     >>> rs = [{"trainer": "ekf", "candidate": c, "params": {"process_noise": q}, "curve_val": cv,
     ...        "status": "ok"} for c, q, cv in ((0, 1e-3, [3.0, 2.0, 2.5]), (1, 1e-2, [4.0, 1.0, 9.0]))]
@@ -370,7 +371,7 @@ def select_settings(results):
         e = min(range(n), key=lambda i: (med[i], raw[i], i))
         rows.append({
             "trainer": rs[0]["trainer"], "candidate": c, "params": dict(rs[0]["params"]), "best_epoch": e + 1,
-            "val_mse": float(med[e]), "val_mse_last": float(med[-1]), "n_runs": len(rs),
+            "val_mse": float(med[e]), "val_mse_last": float(raw[-1]), "n_runs": len(rs),
             "n_failed": sum(r["status"] != "ok" for r in rs), "chosen": False,
         })
     # a setting that failed numerically in any tuning run is chosen only if all did
@@ -971,10 +972,11 @@ def tuning_table(result):
         "",
         f"Each candidate trained on the first {1 - c.get('validation_fraction', VALIDATION_FRACTION):.0%} of the "
         f"training rows of {c.get('tune_runs', 0)} tuning run(s) (seeds independent of the table's runs) and was "
-        "scored on the remaining rows after every epoch; the row marked chosen (lowest median validation MSE, "
+        "scored on the remaining rows after every epoch; the row marked chosen (lowest median validation MSE "
+        "smoothed by a running median of 5 epochs, "
         "at its best epoch) is what the table's runs use. Test rows are never used.",
         "",
-        "| trainer | candidate | best epoch | validation MSE (median) | at the last epoch | runs | failed | chosen |",
+        "| trainer | candidate | best epoch | validation MSE (smoothed median) | at the last epoch (median) | runs | failed | chosen |",
         "|---|---|---|---|---|---|---|---|",
     ]
     for r in result.tuning:
