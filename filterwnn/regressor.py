@@ -765,7 +765,7 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
         ``upf``, ``supf``; an error for the others): resample-move on the static posterior,
         with Q = 0 (``process_noise`` must be ``"auto"`` or 0) and the prior matched to the
         start (``initial_covariance`` scales it, ``"auto"``: 1). 5 MALA steps, or 2 HMC steps
-        of 10 leapfrog steps (:data:`MOVE_SETTINGS`).
+        of 10 leapfrog steps (``MOVE_SETTINGS``).
     weighting : None
         Removed: a value other than None raises ``ValueError`` naming the trainer to use
         (``"gsf-ekf"``/``"gsf-ukf"``/``"gsf-sukf"`` with ``tempering=0.01`` for the former

@@ -1,7 +1,7 @@
 """The first paper's WNN study: Table 1 and Figs. 3-5 (Niu, Wu and Li).
 
 ``filterwnn study wnn`` trains a 5-20-1 Morlet wavelet network on the SISO benchmark of
-the paper's eq. (12) (:func:`filterwnn.make_siso_benchmark`) with the rows of :data:`ROWS`,
+the paper's eq. (12) (:func:`filterwnn.make_siso_benchmark`) with the rows of ``ROWS``,
 each named for the algorithm it runs: the paper's seven trainers plus the SUKF (``bp, ekf,
 ukf, sukf, spf, epf, upf, supf``; the particle filters with textbook weights), the UPF with a
 MALA move after each resampling (``upf+mala``), the Gaussian-sum filters of N EKFs, UKFs and
@@ -329,7 +329,7 @@ def select_settings(results):
     """Pick, for one trainer, the candidate and epoch of lowest smoothed median validation MSE.
 
     The median over tuning runs of each candidate's validation curve is smoothed by a
-    running median of :data:`SMOOTHING_WINDOW` epochs (centred, shrunk at the ends); its
+    running median of ``SMOOTHING_WINDOW`` epochs (centred, shrunk at the ends); its
     minimum is the candidate's best epoch (ties: the lower raw median, then the earlier epoch).
     Ties between candidates go to the one listed first.
 
