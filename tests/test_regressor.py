@@ -15,6 +15,7 @@ from filterwnn.weight_model import WNNWeightModel
 
 SINGLE = ["bp", "ekf", "ukf", "sukf"]
 PARTICLE = ["spf", "epf", "upf", "supf"]
+GAUSSIAN_SUM = ["gsf-ekf", "gsf-ukf", "gsf-sukf", "ekf-ensemble"]
 
 
 @pytest.fixture(scope="module")
@@ -84,11 +85,75 @@ def test_grid_search(data):
 
 def test_unknown_trainer_lists_valid_names(data):
     X, y, _, _ = data
-    with pytest.raises(ValueError, match="valid: 'bp', 'ekf', 'epf', 'smc', 'spf', 'sukf', 'supf', 'ukf', 'upf'"):
+    with pytest.raises(ValueError, match="valid: 'bp', 'ekf', 'ekf-ensemble', 'epf', 'gsf-ekf', 'gsf-sukf', "
+                       "'gsf-ukf', 'smc', 'spf', 'sukf', 'supf', 'ukf', 'upf'"):
         WNNRegressor(trainer="lbfgs").fit(X, y)
     with pytest.raises(ValueError, match="trainer"):
         make_trainer("nope", None, None, {})
-    assert set(TRAINERS) == set(SINGLE + PARTICLE + ["smc"])  # smc: tests/test_smc.py
+    assert set(TRAINERS) == set(SINGLE + PARTICLE + GAUSSIAN_SUM + ["smc"])  # smc: tests/test_smc.py
+
+
+def test_gaussian_sum_trainers_lower_training_mse_and_are_gaussian_sum_filters(data):
+    from filterwnn.gaussian_sum import GaussianSumFilter
+
+    X, y, _, _ = data
+    gen = np.random.default_rng(0)
+    starts = np.stack([wnn.init_scaled(X, 3, rng=gen) for _ in range(5)])
+    start = np.mean((wnn.forward(starts, X).mean(axis=0) - y) ** 2)
+    for trainer in GAUSSIAN_SUM:
+        reg = WNNRegressor(n_hidden=3, trainer=trainer, n_epochs=2, n_particles=5, random_state=0).fit(X, y)
+        assert isinstance(reg._trainer.pf, GaussianSumFilter), trainer
+        assert reg.settings_["tempering"] == 1.0
+        assert reg.settings_["weighting"] == ("unweighted average" if trainer == "ekf-ensemble" else "gaussian-sum")
+        assert reg._trainer.pf.combine == ("mean" if trainer == "ekf-ensemble" else "mixture")
+        assert reg.loss_curve_[-1] < start, trainer
+    reg = WNNRegressor(n_hidden=3, trainer="gsf-ukf", n_epochs=1, n_particles=5, tempering=0.01, random_state=0)
+    assert reg.fit(X, y)._trainer.pf.tempering == 0.01
+
+
+def test_ekf_ensemble_is_the_plain_average_of_standalone_ekf_fits(data):
+    X, y, X_test, _ = data
+    reg = WNNRegressor(n_hidden=3, trainer="ekf-ensemble", n_epochs=2, n_particles=4, random_state=0).fit(X, y)
+    gen = np.random.default_rng(0)  # the estimator's starts: one scaled draw per member
+    starts = [wnn.init_scaled(X, 3, rng=gen) for _ in range(4)]
+    model = WNNWeightModel(5, 3, Q=reg.settings_["Q"], R=0.1, P0=reg.settings_["P0"])
+    preds = []
+    for theta0 in starts:
+        tr = make_trainer("ekf", model, theta0, dict(reg.settings_, ekf_backend="rank1"), rng=0)
+        tr.epoch(X, y)
+        tr.epoch(X, y)
+        preds.append(tr.predict_mean(X_test))
+    # same equations, other arithmetic (GaussianSumFilter's EKF step vs the rank-1 EKF): rounding only
+    np.testing.assert_allclose(reg.predict(X_test), np.mean(preds, axis=0), rtol=0, atol=1e-5)
+    # the weights would differ: the ensemble ignores them
+    assert not np.allclose(reg._trainer.pf.weights, 0.25)
+
+
+@pytest.mark.parametrize("move", ["mala", "hmc"])
+def test_particle_trainer_with_a_move_targets_the_rows_seen(data, move):
+    X, y, X_test, y_test = data
+    reg = WNNRegressor(n_hidden=3, trainer="upf", move=move, n_epochs=1, n_particles=8, random_state=0).fit(X, y)
+    tr = reg._trainer
+    assert tr.pf.move is tr.move and tr.move.target.n_rows == len(X)  # every row, added before its update
+    assert np.all(tr.pf.Q == 0) and reg.settings_["Q"] == 0.0 and reg.settings_["move"] == move
+    assert 0 < reg.diagnostics_["acceptance"][-1] < 1  # the move ran and moved
+    assert reg.diagnostics_["distinct"][-1] > 1  # moved particles are distinct after resampling
+    plain = WNNRegressor(n_hidden=3, trainer="upf", n_epochs=1, n_particles=8, random_state=0).fit(X, y)
+    assert plain.diagnostics_["distinct"][-1] < reg.diagnostics_["distinct"][-1]
+    mean, std = reg.predict(X_test, return_std=True)
+    assert np.all(np.isfinite(mean)) and np.all(std > 0)
+
+
+def test_move_and_weighting_errors(data):
+    X, y, _, _ = data
+    with pytest.raises(ValueError, match="move is for the particle-filter trainers"):
+        WNNRegressor(trainer="ekf", move="mala").fit(X, y)
+    with pytest.raises(ValueError, match="process_noise must be 0"):
+        WNNRegressor(trainer="upf", move="mala", process_noise=1e-4).fit(X, y)
+    with pytest.raises(ValueError, match="unknown move 'gibbs'"):
+        WNNRegressor(trainer="upf", move="gibbs").fit(X, y)
+    with pytest.raises(ValueError, match="trainer='gsf-ekf'"):
+        WNNRegressor(trainer="epf", weighting="bank").fit(X, y)
 
 
 def test_bad_arguments(data):
@@ -193,7 +258,7 @@ def _online(reg, X, y, cuts=CHUNKS):
     return reg
 
 
-@pytest.mark.parametrize("trainer, extra", [(t, {}) for t in SINGLE + PARTICLE]
+@pytest.mark.parametrize("trainer, extra", [(t, {}) for t in SINGLE + PARTICLE + GAUSSIAN_SUM]
                          + [("ekf", {"ekf_backend": "filterpy"})])
 def test_partial_fit_in_chunks_equals_one_pass_bit_for_bit(data, trainer, extra):
     X, y, X_test, _ = data
@@ -259,3 +324,13 @@ def test_warm_start_fit_trains_on_the_rows_it_is_given(data):
     same = pickle.loads(pickle.dumps(reg)).fit(X[:20], y[:20])
     assert not np.allclose(other.theta_, same.theta_)
     assert other.t_ == same.t_ == 80
+
+
+def test_particle_trainer_with_a_move_resumes_from_a_pickle_exactly(data):
+    X, y, X_test, _ = data
+    kw = dict(trainer="spf", move="mala", n_hidden=2, n_particles=4, random_state=3)
+    full = WNNRegressor(n_epochs=2, **kw).fit(X, y)
+    part = WNNRegressor(n_epochs=1, warm_start=True, **kw).fit(X, y)
+    resumed = pickle.loads(pickle.dumps(part)).fit(X, y)
+    np.testing.assert_array_equal(resumed.predict(X_test), full.predict(X_test))
+    assert resumed._trainer.move.target.n_rows == 2 * len(X)  # each pass counts the rows once more

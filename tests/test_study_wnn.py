@@ -47,8 +47,8 @@ def test_runs_redraw_data_and_table_rows(serial):
     assert row["test_mse_q1"] <= row["test_mse_median"] <= row["test_mse_q3"]
     assert row["paper_mse"] == study.PAPER_TABLE1["ekf"][0]
     assert {s["n_particles"] for s in serial.sweep} == {2, 3}
-    assert all(len(r["curve_test"]) == r_ep for r, r_ep in
-               ((r, 2 if r["trainer"] != "spf" else 1) for r in serial.runs if r["table"] == "working"))
+    epochs = {r["trainer"]: r["epochs"] for r in serial.table if r["table"] == "working"}
+    assert all(len(r["curve_test"]) == epochs[r["trainer"]] for r in serial.runs if r["table"] == "working")
 
 
 def test_run_seeds_are_spawned_children():
@@ -143,16 +143,49 @@ def test_select_settings_prefers_the_lowest_median_and_skips_failures():
     rs = [res(0, [1.0, 0.5, 0.6]), res(0, [1.0, 0.7, 0.4]),
           res(1, [0.1, inf, inf], "failed: P not positive definite"), res(1, [0.2, inf, inf], "failed: x")]
     chosen, rows = study.select_settings(rs)
-    assert chosen == {"params": {"process_noise": 1.0}, "epochs": 3, "val_mse": 0.5}
+    # median curve [1, 0.6, 0.5]; smoothed (running median of 5): 0.6 everywhere; the raw minimum breaks the tie
+    assert chosen == {"params": {"process_noise": 1.0}, "epochs": 3, "val_mse": 0.6}
     assert [r["n_failed"] for r in rows] == [0, 2] and rows[0]["chosen"] and not rows[1]["chosen"]
+
+
+def test_epoch_criterion_is_the_minimum_of_the_smoothed_curve():
+    curve = [1.0, 0.9, 0.2, 0.9, 0.8, 0.5, 0.5, 0.5, 0.6, 0.7]  # one lucky dip at epoch 3
+    chosen, _ = study.select_settings([{"trainer": "ekf", "candidate": 0, "params": {}, "curve_val": curve,
+                                        "status": "ok"}])
+    assert chosen["epochs"] == 6 and chosen["val_mse"] == 0.5  # not the dip: the smoothed minimum (first of 6-8)
+
+
+def test_rows_name_the_algorithm_and_fixed_rows_are_not_searched():
+    assert study.row_label("gsf-ekf", 20) == "Gaussian-sum filter of 20 EKFs (tempering 0.01)"
+    assert study.row_label("ekf-ensemble", 20) == "20 independent EKFs, averaged"
+    assert study.row_label("upf", 20) == "UPF (textbook)"
+    assert study.candidates("upf+mala") == [{}] and study.candidates("ekf-ensemble") == [{}]
+    assert len(study.candidates("gsf-ukf")) == len(study.Q_FACTORS)
+    for key, (trainer, fixed, _, _) in study.ROWS.items():
+        assert trainer in study.TRAINERS, key
+    for col in ("algorithm", "distinct_particles", "coverage90"):
+        assert col in study.TABLE_COLUMNS
+
+
+def test_new_rows_report_coverage_and_distinct_particles():
+    res = study.run_study(n_runs=1, n_epochs=2, pf_epochs=1, n_particles=3, seed=3, paper_table=False,
+                          references=("GaussianProcessRegressor",), sweep_particles=(), tune_runs=1,
+                          trainers=["gsf-ekf", "ekf-ensemble", "upf+mala"])
+    rows = {r["trainer"]: r for r in res.table}
+    ens, gsf = rows["ekf-ensemble"], rows["gsf-ekf"]
+    assert ens["epochs"] == gsf["epochs"]  # the ensemble copies the Gaussian sum's settings and epochs
+    assert "tempering=0.01" in gsf["settings"] and "move=mala" in rows["upf+mala"]["settings"]
+    assert np.isnan(gsf["distinct_particles"]) and rows["upf+mala"]["distinct_particles"] >= 1
+    for r in res.table:  # every row here has a predictive distribution, the GP included
+        assert 0 <= r["coverage90"] <= 1, r["trainer"]
 
 
 def test_particle_candidates_centre_on_their_proposal_filter():
     got = study.candidates("epf", {"ekf": {"process_noise": 1e-3, "initial_covariance": 0.1}})
-    assert [c["process_noise"] for c in got] == [1e-4, 1e-3, 1e-2]
+    assert [c["process_noise"] for c in got] == [1e-5, 1e-4, 1e-3, 1e-2, 1e-1]
     assert {c["initial_covariance"] for c in got} == {0.1}
     auto = study.candidates("supf")  # parent not searched: its AUTO_SETTINGS
-    assert auto[1]["process_noise"] == study.AUTO_SETTINGS[("sukf", "scaled")]["Q"]
+    assert auto[2]["process_noise"] == study.AUTO_SETTINGS[("sukf", "scaled")]["Q"]
 
 
 def test_no_search_uses_auto_settings_and_all_epochs():

@@ -1,20 +1,28 @@
 """The first paper's WNN study: Table 1 and Figs. 3-5 (Niu, Wu and Li).
 
 ``filterwnn study wnn`` trains a 5-20-1 Morlet wavelet network on the SISO benchmark of
-the paper's eq. (12) (:func:`filterwnn.make_siso_benchmark`) with the paper's seven
-trainers plus the SUKF (``bp, ekf, ukf, sukf, spf, epf, upf, supf``), over independent runs,
-and writes
+the paper's eq. (12) (:func:`filterwnn.make_siso_benchmark`) with the rows of ``ROWS``,
+each named for the algorithm it runs: the paper's seven trainers plus the SUKF (``bp, ekf,
+ukf, sukf, spf, epf, upf, supf``; the particle filters with textbook weights), the UPF with a
+MALA move after each resampling (``upf+mala``), the Gaussian-sum filters of N EKFs, UKFs and
+SUKFs at tempering 0.01 (``gsf-ekf, gsf-ukf, gsf-sukf``: the paper's Kalman-proposal
+trainers at their working settings, formerly "bank"), N independent EKFs averaged without
+weights (``ekf-ensemble``) and the SMC sampler (``smc``), over independent runs, and writes
+(the protocol: ``docs/study-outputs/wnn/PROTOCOL.md``)
 
 ``table1.md``
-    the Markdown table: one row per trainer at its *working* settings (scaled start, bank
-    weighting for EPF/UPF/SUPF; Q, P0 or the learning rate, and the number of epochs
+    the Markdown table: one row per trainer at its *working* settings (scaled start; Q, P0 or
+    the learning rate, and the number of epochs
     chosen on a validation split, see *Settings* below), a second table at the *paper's* settings (U[0, 1] start, Q = 1,
     R = 0.1, P0 = 1, textbook particle weights), reference rows for scikit-learn's
     ``MLPRegressor`` and ``GaussianProcessRegressor`` on the same data, and the paper's
     Table 1 values beside ours;
 ``table1.csv``
-    the same rows with the columns ``trainer, settings, test_mse_median, test_mse_q1,
-    test_mse_q3, fit_time_median, mean_ess``;
+    the same rows with the columns of :data:`TABLE_COLUMNS`: ``trainer`` (the row key),
+    ``algorithm``, ``settings`` (weighting, tempering, move), test MSE median and quartiles,
+    ``fit_time_median``, ``mean_ess``, ``distinct_particles`` (mean over runs at the end;
+    empty for non-particle rows) and ``coverage90`` (median over runs of the share of test
+    targets inside mean +- 1.645 std of ``predict(return_std=True)``; the GP's std included);
 ``runs.csv``
     one line per (table, trainer, run): test/train MSE, fit time, ESS, distinct particles;
 ``tuning.md``, ``tuning.csv``
@@ -27,11 +35,13 @@ and writes
 **Settings.** Before the runs, each trainer tries the candidates of :data:`TUNING_GRID`
 on ``tune_runs`` separate *tuning* runs (their own seeds, independent of the table's runs):
 it trains on the first 80 % of the tuning run's training rows and scores the last 20 %
-after every epoch. The candidate and epoch with the lowest median validation MSE are then
-used for every run of the table (trained on all 100 training rows). The test rows are
-never looked at to choose anything. The particle filters search Q around the value chosen
-for the filter their proposal uses (EPF: EKF, UPF: UKF, SUPF: SUKF) and keep its P0, so
-their candidates are set after the single filters' search. ``tune_runs=0`` skips the search
+after every epoch. Each candidate's median validation curve is smoothed by a running median
+of 5 epochs; the candidate and epoch with the lowest smoothed value are then
+used for every run of the table (trained on all 100 training rows). Rows with a move and the
+SMC sampler run one pass with fixed settings; the EKF ensemble copies ``gsf-ekf``'s choice. The test rows are
+never looked at to choose anything. The particle filters and Gaussian sums search Q (x 0.01
+to x 100) around the value chosen for the filter their proposal or components use (EPF: EKF,
+UPF: UKF, SUPF: SUKF) and keep its P0, so their candidates are set after the single filters' search. ``tune_runs=0`` skips the search
 and uses :data:`filterwnn.regressor.AUTO_SETTINGS` for the full ``n_epochs``.
 
 **Runs.** Run ``i`` uses ``SeedSequence(seed).spawn(n_runs)[i]``; it re-draws its data
@@ -56,8 +66,8 @@ protocol that finishes in a few minutes on 2 cores, and says so in its output;
 ...                 paper_table=False, references=(), sweep_particles=(), seed=1, tune_runs=1)
 >>> [row["trainer"] for row in res.table]
 ['ekf', 'spf']
->>> sorted(res.table[0])[:3]
-['distinct_median', 'epochs', 'fit_time_median']
+>>> res.table[1]["algorithm"], sorted(res.table[0])[:3]
+('SPF (bootstrap)', ['algorithm', 'coverage90', 'distinct_median'])
 """
 
 from __future__ import annotations
@@ -72,6 +82,7 @@ import numpy as np
 
 from .._validation import check_choice, check_positive_int, check_seed
 from ..datasets import make_siso_benchmark
+from ..particle_filter import DegeneracyWarning
 from ..regressor import AUTO_SETTINGS, PAPER_SETTINGS, TRAINERS, WNNRegressor
 from . import _args
 
@@ -102,26 +113,69 @@ __all__ = [
     "run",
 ]
 
-ALL_TRAINERS = ("bp", "ekf", "ukf", "sukf", "spf", "epf", "upf", "supf")
-PARTICLE_TRAINERS = ("spf", "epf", "upf", "supf")
+#: The study's rows: key -> (trainer, fixed ``WNNRegressor`` keywords, fixed epochs or None, label).
+#: A label's ``{N}`` is the number of particles or components. See ``docs/study-outputs/wnn/PROTOCOL.md``.
+ROWS = {
+    "bp": ("bp", {}, None, "BP"),
+    "ekf": ("ekf", {}, None, "EKF"),
+    "ukf": ("ukf", {}, None, "UKF"),
+    "sukf": ("sukf", {}, None, "SUKF (simplex points)"),
+    "spf": ("spf", {}, None, "SPF (bootstrap)"),
+    "epf": ("epf", {}, None, "EPF (textbook)"),
+    "upf": ("upf", {}, None, "UPF (textbook)"),
+    "supf": ("supf", {}, None, "SUPF (textbook)"),
+    "spf+mala": ("spf", {"move": "mala"}, 1, "SPF + MALA move"),
+    "epf+mala": ("epf", {"move": "mala"}, 1, "EPF + MALA move"),
+    "upf+mala": ("upf", {"move": "mala"}, 1, "UPF + MALA move"),
+    "supf+mala": ("supf", {"move": "mala"}, 1, "SUPF + MALA move"),
+    "upf+hmc": ("upf", {"move": "hmc"}, 1, "UPF + HMC move"),
+    "gsf-ekf": ("gsf-ekf", {"tempering": 0.01}, None, "Gaussian-sum filter of {N} EKFs (tempering 0.01)"),
+    "gsf-ukf": ("gsf-ukf", {"tempering": 0.01}, None, "Gaussian-sum filter of {N} UKFs (tempering 0.01)"),
+    "gsf-sukf": ("gsf-sukf", {"tempering": 0.01}, None, "Gaussian-sum filter of {N} SUKFs (tempering 0.01)"),
+    "ekf-ensemble": ("ekf-ensemble", {}, None, "{N} independent EKFs, averaged"),
+    "smc": ("smc", {}, 1, "SMC sampler (HMC moves)"),
+}
+ALL_TRAINERS = ("bp", "ekf", "ukf", "sukf", "spf", "epf", "upf", "supf", "upf+mala", "gsf-ekf", "gsf-ukf",
+                "gsf-sukf", "ekf-ensemble", "smc")
+#: Rows whose trainer carries ``n_particles`` particles or components.
+PARTICLE_TRAINERS = tuple(k for k, v in ROWS.items() if v[0] not in ("bp", "ekf", "ukf", "sukf"))
+#: Rows of the particle sweep (Figs. 3-4): the papers' particle filters.
+SWEEP_TRAINERS = ("spf", "epf", "upf", "supf")
+#: Rows that copy another row's chosen settings and epochs instead of searching.
+COPY_SETTINGS = {"ekf-ensemble": "gsf-ekf"}
 REFERENCES = ("MLPRegressor", "GaussianProcessRegressor")
 TABLE_COLUMNS = (
-    "trainer", "settings", "test_mse_median", "test_mse_q1", "test_mse_q3", "fit_time_median", "mean_ess",
+    "trainer", "algorithm", "settings", "test_mse_median", "test_mse_q1", "test_mse_q3", "fit_time_median",
+    "mean_ess", "distinct_particles", "coverage90",
 )
+
+
+def row_label(key, n_particles):
+    """The algorithm's name for row ``key`` (e.g. ``"Gaussian-sum filter of 20 EKFs (tempering 0.01)"``)."""
+    return ROWS[key][3].format(N=n_particles) if key in ROWS else key
 
 #: Candidates tried on the validation split, per trainer (``WNNRegressor`` keywords).
 #: EPF/UPF/SUPF are not listed: they search ``Q x {0.1, 1, 10}`` around the Q chosen for
 #: their proposal's filter (:data:`PROPOSAL_PARENT`) and keep its P0 (see :func:`candidates`).
 TUNING_GRID = {
-    "bp": [{"learning_rate": lr} for lr in (0.02, 0.05, 0.1, 0.2)],
-    "ekf": [{"process_noise": q, "initial_covariance": p} for q in (1e-4, 1e-3, 1e-2) for p in (0.01, 0.1)],
-    "ukf": [{"process_noise": q, "initial_covariance": p} for q in (1e-6, 1e-5, 1e-4) for p in (0.01, 0.1)],
-    "sukf": [{"process_noise": q, "initial_covariance": p} for q in (1e-6, 1e-5, 1e-4) for p in (0.01, 0.1)],
-    "spf": [{"process_noise": q, "initial_covariance": 0.01} for q in (1e-5, 1e-4, 1e-3)],
+    "bp": [{"learning_rate": lr} for lr in (0.02, 0.05, 0.1, 0.2, 0.5)],
+    "ekf": [{"process_noise": q, "initial_covariance": p} for q in (1e-5, 1e-4, 1e-3, 1e-2) for p in (0.01, 0.1, 1.0)],
+    "ukf": [{"process_noise": q, "initial_covariance": p} for q in (1e-8, 1e-7, 1e-6, 1e-5, 1e-4) for p in (0.01, 0.1)],
+    "sukf": [{"process_noise": q, "initial_covariance": p} for q in (1e-8, 1e-7, 1e-6, 1e-5, 1e-4) for p in (0.01, 0.1)],
+    "spf": [{"process_noise": q, "initial_covariance": 0.01} for q in (1e-7, 1e-6, 1e-5, 1e-4, 1e-3)],
 }
 
-#: The single filter whose step each particle filter's proposal runs.
-PROPOSAL_PARENT = {"epf": "ekf", "upf": "ukf", "supf": "sukf"}
+#: The single filter whose step each particle filter's proposal (or Gaussian sum's component) runs.
+PROPOSAL_PARENT = {"epf": "ekf", "upf": "ukf", "supf": "sukf", "gsf-ekf": "ekf", "gsf-ukf": "ukf", "gsf-sukf": "sukf"}
+
+#: Factors applied to the parent's chosen Q (:func:`candidates`).
+Q_FACTORS = (0.01, 0.1, 1.0, 10.0, 100.0)
+
+#: Window of the running median that smooths the validation curve before its minimum is taken.
+SMOOTHING_WINDOW = 5
+
+#: Half-width of the central 90 % interval of a normal, in standard deviations.
+Z90 = 1.6448536269514722
 
 #: Fraction of a tuning run's training rows (the last ones) held out for validation.
 VALIDATION_FRACTION = 0.2
@@ -204,10 +258,14 @@ def candidates(trainer, chosen=None):
     list of dict
         ``WNNRegressor`` keyword sets.
 
-    >>> candidates("upf", {"ukf": {"process_noise": 1e-5, "initial_covariance": 0.01}})
-    [{'process_noise': 1e-06, 'initial_covariance': 0.01}, {'process_noise': 1e-05, 'initial_covariance': 0.01}, {'process_noise': 0.0001, 'initial_covariance': 0.01}]
+    >>> [c["process_noise"] for c in candidates("upf", {"ukf": {"process_noise": 1e-5, "initial_covariance": 0.01}})]
+    [1e-07, 1e-06, 1e-05, 0.0001, 0.001]
+    >>> candidates("upf+mala")
+    [{}]
     """
-    check_choice(trainer, "trainer", TRAINERS)
+    check_choice(trainer, "trainer", ROWS)
+    if ROWS[trainer][2] is not None or trainer in COPY_SETTINGS:  # fixed settings: nothing to search
+        return [{}]
     if trainer in TUNING_GRID:
         return [dict(c) for c in TUNING_GRID[trainer]]
     parent = PROPOSAL_PARENT[trainer]
@@ -217,7 +275,7 @@ def candidates(trainer, chosen=None):
         base = {"process_noise": auto["Q"], "initial_covariance": auto["P0"]}
     q = base["process_noise"]
     return [{"process_noise": float(f"{q * f:.3g}"), "initial_covariance": base["initial_covariance"]}
-            for f in (0.1, 1.0, 10.0)]
+            for f in Q_FACTORS]
 
 
 def tune_run(trainer, tune_seed, n_epochs, n_particles=50, params=None, candidate=0, run=0):
@@ -235,12 +293,14 @@ def tune_run(trainer, tune_seed, n_epochs, n_particles=50, params=None, candidat
     from threadpoolctl import threadpool_limits
 
     params = dict(params or {})
-    with threadpool_limits(limits=1):
+    with threadpool_limits(limits=1), warnings.catch_warnings():
+        warnings.simplefilter("ignore", DegeneracyWarning)  # reported as ESS and distinct particles
         X, y, _, _ = make_siso_benchmark(rng=_child(tune_seed, 0))  # test rows unused
         n_val = int(round(VALIDATION_FRACTION * len(X)))
         Xt, yt, Xv, yv = X[:-n_val], y[:-n_val], X[-n_val:], y[-n_val:]
-        reg = WNNRegressor(trainer=trainer, n_epochs=n_epochs, n_particles=n_particles, init="scaled",
-                           random_state=_child(tune_seed, 1), **params)
+        kind, fixed, _, _ = ROWS[trainer]
+        reg = WNNRegressor(trainer=kind, n_epochs=n_epochs, n_particles=n_particles, init="scaled",
+                           random_state=_child(tune_seed, 1), **dict(fixed, **params))
         curve, status = [], "ok"
         try:
             _train_tracked(reg, Xt, yt, Xv, yv, n_epochs, curve)
@@ -255,8 +315,23 @@ def tune_run(trainer, tune_seed, n_epochs, n_particles=50, params=None, candidat
     }
 
 
+def _running_median(curve, window):
+    """Centred running median of ``curve`` (the window shrinks at the ends).
+
+    >>> _running_median(np.array([5.0, 1.0, 5.0, 5.0, 5.0]), 5).tolist()
+    [5.0, 5.0, 5.0, 5.0, 5.0]
+    """
+    half = window // 2
+    return np.array([np.median(curve[max(0, i - half):i + half + 1]) for i in range(len(curve))])
+
+
 def select_settings(results):
-    """Pick, for one trainer, the candidate and epoch of lowest median validation MSE.
+    """Pick, for one trainer, the candidate and epoch of lowest smoothed median validation MSE.
+
+    The median over tuning runs of each candidate's validation curve is smoothed by a
+    running median of ``SMOOTHING_WINDOW`` epochs (centred, shrunk at the ends); its
+    minimum is the candidate's best epoch (ties: the lower raw median, then the earlier epoch).
+    Ties between candidates go to the one listed first.
 
     A candidate that failed numerically (NumericalError) in any tuning run is passed over
     unless every candidate did.
@@ -271,14 +346,15 @@ def select_settings(results):
     chosen : dict
         ``params`` (the keywords), ``epochs`` (1-based), ``val_mse``.
     rows : list of dict
-        One per candidate: ``trainer``, ``params``, ``best_epoch``, ``val_mse`` (median over
-        tuning runs at its best epoch), ``val_mse_last``, ``n_runs``, ``n_failed``, ``chosen``.
+        One per candidate: ``trainer``, ``params``, ``best_epoch``, ``val_mse`` (the smoothed median
+        over tuning runs at its best epoch), ``val_mse_last`` (the raw median at the last epoch),
+        ``n_runs``, ``n_failed``, ``chosen``.
 
     >>> rs = [{"trainer": "ekf", "candidate": c, "params": {"process_noise": q}, "curve_val": cv,
     ...        "status": "ok"} for c, q, cv in ((0, 1e-3, [3.0, 2.0, 2.5]), (1, 1e-2, [4.0, 1.0, 9.0]))]
     >>> chosen, rows = select_settings(rs)
     >>> chosen
-    {'params': {'process_noise': 0.01}, 'epochs': 2, 'val_mse': 1.0}
+    {'params': {'process_noise': 0.001}, 'epochs': 2, 'val_mse': 2.5}
     """
     by = {}
     for r in results:
@@ -288,11 +364,14 @@ def select_settings(results):
         rs = by[c]
         n = min(len(r["curve_val"]) for r in rs)
         med = np.median(np.array([r["curve_val"][:n] for r in rs], dtype=float), axis=0)
-        med = np.where(np.isfinite(med), med, np.inf)
-        e = int(np.argmin(med))
+        raw = np.where(np.isfinite(med), med, np.inf)
+        med = _running_median(raw, SMOOTHING_WINDOW)
+        # the smoothed minimum; ties (e.g. a curve shorter than the window) go to the lower raw
+        # validation MSE, then the earlier epoch
+        e = min(range(n), key=lambda i: (med[i], raw[i], i))
         rows.append({
             "trainer": rs[0]["trainer"], "candidate": c, "params": dict(rs[0]["params"]), "best_epoch": e + 1,
-            "val_mse": float(med[e]), "val_mse_last": float(med[-1]), "n_runs": len(rs),
+            "val_mse": float(med[e]), "val_mse_last": float(raw[-1]), "n_runs": len(rs),
             "n_failed": sum(r["status"] != "ok" for r in rs), "chosen": False,
         })
     # a setting that failed numerically in any tuning run is chosen only if all did
@@ -316,11 +395,17 @@ def _settings_text(table, trainer, reg):
         txt = f"init={s['init']}, lr={s['learning_rate']:g}"
     else:
         txt = f"init={s['init']}, Q={s['Q']:g}, P0={s['P0']:g}, R={s['R']:g}"
-    if trainer in PARTICLE_TRAINERS:
+    if s.get("weighting") == "unweighted average":
+        txt += f", N={s['n_particles']}, weighting=none (unweighted average)"
+    elif "weighting" in s:
         txt += (
             f", N={s['n_particles']}, weighting={s['weighting']}, tempering={s['tempering']:g}, "
-            f"ess_threshold={s['ess_threshold']:g}"
+            f"ess_threshold={s['ess_threshold']:g}, move={s.get('move') or 'none'}"
         )
+        if s.get("move"):
+            txt += f" ({s['n_moves']} steps)"
+    if s.get("trainer") == "smc":
+        txt += f", N={s['n_particles']}, weighting=tempered SMC, move={s['kernel']} ({s['n_moves']} steps)"
     return f"{table}: {txt}"
 
 
@@ -328,7 +413,6 @@ def _params(table, trainer):
     if table == "paper":
         p = dict(PAPER_SETTINGS)
         if trainer in ("epf", "upf", "supf"):
-            p["weighting"] = "textbook"
             p["ess_threshold"] = 1.0  # the paper resamples at every step
             p["tempering"] = 1.0
         if trainer == "spf":
@@ -364,11 +448,15 @@ def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_
     """
     from threadpoolctl import threadpool_limits
 
-    with threadpool_limits(limits=1):
+    with threadpool_limits(limits=1), warnings.catch_warnings():
+        warnings.simplefilter("ignore", DegeneracyWarning)  # reported as ESS and distinct particles
         X, y, X_test, y_test = make_siso_benchmark(rng=_child(run_seed, 0))
+        kind, fixed, _, _ = ROWS[trainer]
         kw = _params(table, trainer)
+        if table != "paper":
+            kw.update(fixed)
         kw.update(params or {})
-        reg = WNNRegressor(trainer=trainer, n_epochs=n_epochs, n_particles=n_particles, random_state=_child(run_seed, 1), **kw)
+        reg = WNNRegressor(trainer=kind, n_epochs=n_epochs, n_particles=n_particles, random_state=_child(run_seed, 1), **kw)
         curve_test = []
         status = "ok"
         try:
@@ -376,11 +464,13 @@ def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_
                 _train_tracked(reg, X, y, X_test, y_test, n_epochs, curve_test)
             else:
                 reg.fit(X, y)
-            test_mse = float(np.mean((reg.predict(X_test) - y_test) ** 2))
+            mean, std = reg.predict(X_test, return_std=True)
+            test_mse = float(np.mean((mean - y_test) ** 2))
+            coverage = float(np.mean(np.abs(y_test - mean) <= Z90 * std))
             train_mse = reg.loss_curve_[-1]
         except np.linalg.LinAlgError as exc:  # NumericalError included: a failed run is a result
             status = f"failed: {exc}"
-            test_mse = train_mse = float("nan")
+            test_mse = train_mse = coverage = float("nan")
             if not hasattr(reg, "fit_time_"):
                 reg.fit_time_ = float("nan")
         diag = getattr(reg, "diagnostics_", {}) or {}
@@ -395,6 +485,7 @@ def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_
             "fit_time": float(reg.fit_time_),
             "mean_ess": float(np.mean(ess)) if ess else float("nan"),
             "distinct": int(distinct[-1]) if distinct else -1,
+            "coverage90": coverage,
             "var_test": float(np.var(y_test)),
             "curve_train": list(getattr(reg, "loss_curve_", [])),
             "curve_test": curve_test,
@@ -436,6 +527,11 @@ def fit_reference(name, run_seed, run=0):
             warnings.simplefilter("ignore", ConvergenceWarning)
             model.fit(X, y)
         fit_time = time.perf_counter() - t0
+        if name == "GaussianProcessRegressor":  # predictive std, the fitted white noise included
+            mean, std = model.predict(X_test, return_std=True)
+            coverage = float(np.mean(np.abs(y_test - mean) <= Z90 * std))
+        else:
+            coverage = float("nan")
         return {
             "table": "reference",
             "trainer": name,
@@ -445,6 +541,7 @@ def fit_reference(name, run_seed, run=0):
             "fit_time": fit_time,
             "mean_ess": float("nan"),
             "distinct": 0,
+            "coverage90": coverage,
             "var_test": float(np.var(y_test)),
             "curve_train": [],
             "curve_test": [],
@@ -575,9 +672,11 @@ def summarize(runs):
         paper = PAPER_TABLE1.get(trainer, (float("nan"), float("nan")))
         ess = [r["mean_ess"] for r in rs if np.isfinite(r["mean_ess"])]
         distinct = [r["distinct"] for r in rs if r["distinct"] > 0]
+        cover = [r.get("coverage90", float("nan")) for r in rs]
         rows.append({
             "table": table,
             "trainer": trainer,
+            "algorithm": row_label(trainer, rs[0].get("n_particles", 0)),
             "settings": rs[0]["settings"],
             "test_mse_median": _q(mse, 0.5),
             "test_mse_q1": _q(mse, 0.25),
@@ -585,6 +684,8 @@ def summarize(runs):
             "fit_time_median": _q([r["fit_time"] for r in rs], 0.5),
             "mean_ess": float(np.mean(ess)) if ess else float("nan"),
             "distinct_median": float(np.median(distinct)) if distinct else float("nan"),
+            "distinct_particles": float(np.mean(distinct)) if distinct else float("nan"),
+            "coverage90": _q(cover, 0.5),
             "n_runs": len(rs),
             "epochs": max(r.get("epochs", 0) for r in rs),
             "n_failed": sum(r["status"] != "ok" for r in rs),
@@ -658,21 +759,24 @@ def run_study(
     pf_epochs = n_epochs if pf_epochs is None else check_positive_int(pf_epochs, "pf_epochs")
     n_particles = check_positive_int(n_particles, "n_particles")
     for t in trainers:
-        check_choice(t, "trainer", TRAINERS)
+        check_choice(t, "trainer", ROWS)
     paper_runs = n_runs if paper_runs is None else check_positive_int(paper_runs, "paper_runs", minimum=0)
     sweep_runs = n_runs if sweep_runs is None else check_positive_int(sweep_runs, "sweep_runs")
     tune_runs = check_positive_int(tune_runs, "tune_runs", minimum=0)
     seeds = run_seeds(seed, max(n_runs, paper_runs, sweep_runs))
 
     def epochs(t):
+        if ROWS[t][2] is not None:
+            return ROWS[t][2]
         return pf_epochs if t in PARTICLE_TRAINERS else n_epochs
 
     run_kw = dict(n_jobs=n_jobs, backend=backend, progress=progress, cache_dir=cache_dir, cached_only=cached_only)
     chosen, tuning, complete = {}, [], True
     if tune_runs:
         tseeds = tune_seeds(seed, tune_runs)
-        first = [t for t in trainers if t not in PROPOSAL_PARENT]
-        second = [t for t in trainers if t in PROPOSAL_PARENT]
+        searched = [t for t in trainers if candidates(t) != [{}]]
+        first = [t for t in searched if t not in PROPOSAL_PARENT]
+        second = [t for t in searched if t in PROPOSAL_PARENT]
         for phase in (first, second):
             ttasks = []
             parents = {k: v["params"] for k, v in chosen.items()}
@@ -694,13 +798,15 @@ def run_study(
 
     def working(t):
         """(epochs, extra task keywords) of trainer t's table and sweep runs."""
+        if t in COPY_SETTINGS and COPY_SETTINGS[t] in chosen:
+            t = COPY_SETTINGS[t]
         if t in chosen:
             return chosen[t]["epochs"], {"params": dict(chosen[t]["params"])}
         return epochs(t), {}
 
     tasks = []
-    if tune_runs and not complete:
-        trainers = [t for t in trainers if t in chosen]  # cached_only with an unfinished search
+    if tune_runs and not complete:  # cached_only with an unfinished search
+        trainers = [t for t in trainers if t in chosen or candidates(t) == [{}] and t not in COPY_SETTINGS]
     for t in trainers:
         ep, extra = working(t)
         for i in range(n_runs):
@@ -710,12 +816,12 @@ def run_study(
             tasks.append(("reference", (name, seeds[i]), {"run": i}))
     paper_pf_epochs = pf_epochs if paper_pf_epochs is None else check_positive_int(paper_pf_epochs, "paper_pf_epochs")
     if paper_table:
-        for t in trainers:
+        for t in [t for t in trainers if t in PAPER_TABLE1 or t == "sukf"]:
             for i in range(paper_runs):
                 ep = paper_pf_epochs if t in PARTICLE_TRAINERS else n_epochs
                 tasks.append(("fit", (t, seeds[i], ep, n_particles),
                               {"table": "paper", "run": i, "track_test": False}))
-    sweep_pf = [t for t in trainers if t in PARTICLE_TRAINERS]
+    sweep_pf = [t for t in trainers if t in SWEEP_TRAINERS]
     n_main = len(tasks)
     for n in sweep_particles:
         if n == n_particles:
@@ -744,7 +850,7 @@ def run_study(
     swept = [r for r in out[n_main:] if r is not None]
     table = summarize([r for r in main])
     sweep = []
-    pool = [r for r in main if r["table"] == "working" and r["trainer"] in PARTICLE_TRAINERS] + swept
+    pool = [r for r in main if r["table"] == "working" and r["trainer"] in SWEEP_TRAINERS] + swept
     for t in sweep_pf:
         for n in sorted(set(list(sweep_particles) + [n_particles])):
             rs = [r for r in pool if r["trainer"] == t and r["n_particles"] == n][:sweep_runs]
@@ -766,7 +872,9 @@ def run_study(
 
 
 #: Rough seconds per epoch and particle, for scheduling the longest tasks first.
-_COST = {"bp": 1, "ekf": 1, "ukf": 6, "sukf": 6, "spf": 0.4, "epf": 1.2, "upf": 4, "supf": 4}
+_COST = {"bp": 1, "ekf": 1, "ukf": 6, "sukf": 6, "spf": 0.4, "epf": 1.2, "upf": 4, "supf": 4, "spf+mala": 3,
+         "epf+mala": 4, "upf+mala": 8, "supf+mala": 6, "upf+hmc": 12, "gsf-ekf": 1, "gsf-ukf": 4, "gsf-sukf": 3,
+         "ekf-ensemble": 1, "smc": 40}
 
 
 def _task_cost(task, cost):
@@ -814,9 +922,9 @@ def markdown_table(result):
                   "scale it with --runs, --epochs, --pf-epochs, --particles."]
     lines += ["", f"Timings: median seconds per fit with {c['n_jobs']} joblib worker(s) ({c['backend']}), "
               "one BLAS thread each; parallel workers contend for memory bandwidth."]
-    head = ("| trainer | settings | epochs | test MSE median | q1 | q3 | fit time (s) | mean ESS | distinct particles "
-            "| runs | paper MSE | paper time (s) |")
-    sep = "|---" * 12 + "|"
+    head = ("| algorithm | settings | epochs | test MSE median | q1 | q3 | fit time (s) | mean ESS | distinct particles "
+            "| 90 % coverage | runs | paper MSE | paper time (s) |")
+    sep = "|---" * 13 + "|"
     if c.get("tune_runs"):
         working_title = (f"Working settings (scaled start; Q, P0 or learning rate and the epochs chosen on a "
                          f"validation split of {c['tune_runs']} separate tuning run(s), never on test data)")
@@ -836,10 +944,10 @@ def markdown_table(result):
         for r in rows:
             failed = f" ({r['n_failed']} failed)" if r["n_failed"] else ""
             lines.append(
-                f"| {r['trainer']} | {r['settings'].split(': ', 1)[-1]} | {r['epochs'] or '-'} | "
+                f"| {r['algorithm']} | {r['settings'].split(': ', 1)[-1]} | {r['epochs'] or '-'} | "
                 f"{_fmt(r['test_mse_median'])}{failed} | "
                 f"{_fmt(r['test_mse_q1'])} | {_fmt(r['test_mse_q3'])} | {_fmt(r['fit_time_median'])} | "
-                f"{_fmt(r['mean_ess'])} | {_fmt(r['distinct_median'])} | {r['n_runs']} | "
+                f"{_fmt(r['mean_ess'])} | {_fmt(r['distinct_particles'])} | {_fmt(r['coverage90'])} | {r['n_runs']} | "
                 f"{_fmt(r['paper_mse'], 4)} | {_fmt(r['paper_time'])} |"
             )
     if result.sweep:
@@ -864,10 +972,11 @@ def tuning_table(result):
         "",
         f"Each candidate trained on the first {1 - c.get('validation_fraction', VALIDATION_FRACTION):.0%} of the "
         f"training rows of {c.get('tune_runs', 0)} tuning run(s) (seeds independent of the table's runs) and was "
-        "scored on the remaining rows after every epoch; the row marked chosen (lowest median validation MSE, "
+        "scored on the remaining rows after every epoch; the row marked chosen (lowest median validation MSE "
+        "smoothed by a running median of 5 epochs, "
         "at its best epoch) is what the table's runs use. Test rows are never used.",
         "",
-        "| trainer | candidate | best epoch | validation MSE (median) | at the last epoch | runs | failed | chosen |",
+        "| trainer | candidate | best epoch | validation MSE (smoothed median) | at the last epoch (median) | runs | failed | chosen |",
         "|---|---|---|---|---|---|---|---|",
     ]
     for r in result.tuning:
@@ -899,7 +1008,7 @@ def write_outputs(result, out, figures=True):
     paths.append(p)
     p = os.path.join(out, "runs.csv")
     fields = ["table", "trainer", "run", "n_particles", "epochs", "test_mse", "train_mse", "fit_time", "mean_ess", "distinct",
-              "var_test", "status", "settings"]
+              "coverage90", "var_test", "status", "settings"]
     with open(p, "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=fields, extrasaction="ignore")
         w.writeheader()
