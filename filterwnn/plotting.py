@@ -7,6 +7,8 @@ is the caller's business. Import matplotlib lazily so the package imports headle
 
 from __future__ import annotations
 
+import numpy as np
+
 __all__ = []
 
 
@@ -40,25 +42,90 @@ def wnn_particle_sweep(sweep, metric="test_mse_median", ax=None):
     -------
     matplotlib.figure.Figure
     """
-    fig, ax = _figure(ax)
-    for trainer in dict.fromkeys(r["trainer"] for r in sweep):
+    fig, ax = _figure(ax, figsize=(7.2, 4))
+    counts = sorted({r["n_particles"] for r in sweep})
+    for i, trainer in enumerate(dict.fromkeys(r["trainer"] for r in sweep)):
         rows = sorted((r for r in sweep if r["trainer"] == trainer), key=lambda r: r["n_particles"])
-        ax.plot([r["n_particles"] for r in rows], [r[metric] for r in rows], "o-", label=trainer.upper())
+        ax.plot([r["n_particles"] for r in rows], [r[metric] for r in rows], "-",
+                marker=_WNN_MARKERS[i % len(_WNN_MARKERS)], label=trainer.upper())
     ax.set_xlabel("particles")
+    ax.set_xticks(counts)
+    ax.set_xticklabels([str(c) for c in counts])
     if metric == "test_mse_median":
         ax.set_ylabel("test MSE (median over runs)")
-        ax.set_yscale("log")
+        _plain_log_ticks(ax)
         ax.set_title("Test MSE of the particle-filter trainers (cf. paper Fig. 3)")
     else:
         ax.set_ylabel("training time per run (s, median)")
         ax.set_title("Training time of the particle-filter trainers (cf. paper Fig. 4)")
     ax.grid(True, alpha=0.3)
-    ax.legend()
+    ax.legend(loc="center left", bbox_to_anchor=(1.02, 0.5), frameon=False)
+    fig.tight_layout()
     return fig
 
 
+_WNN_PANELS = (
+    ("single filters and back-propagation", lambda t: t in ("bp", "ekf", "ukf", "sukf")),
+    ("Gaussian sums and the EKF ensemble", lambda t: t.startswith("gsf") or t.endswith("ensemble")),
+    ("particle methods", lambda t: True),
+)
+_WNN_MARKERS = ("o", "s", "^", "v", "D", "P", "X")
+
+
+def _median_curve(sel, key):
+    curves = [r[key] for r in sel if r.get(key)]
+    if not curves:
+        return None
+    n = min(len(c) for c in curves)
+    return np.median(np.array([c[:n] for c in curves]), axis=0)
+
+
+def _draw_convergence(ax, runs, trainers, legend_below=True):
+    from matplotlib.ticker import MaxNLocator
+
+    tests = {t: _median_curve([r for r in runs if r["trainer"] == t], "curve_test") for t in trainers}
+    groups = coincide_groups({t: c for t, c in tests.items() if c is not None})
+    twin = {g[0]: g[1:] for g in groups if len(g) > 1}
+    hidden = {t for g in groups for t in g[1:]}
+    for i, trainer in enumerate(trainers):
+        if trainer in hidden:  # drawn once, under the first of its group
+            continue
+        sel = [r for r in runs if r["trainer"] == trainer]
+        color, marker = f"C{i % 10}", _WNN_MARKERS[i % len(_WNN_MARKERS)]
+        name = ", ".join(t.upper() for t in [trainer] + twin.get(trainer, []))
+        extra = " (coincide)" if trainer in twin else ""
+        for med, style, lw, what in ((tests[trainer], "-", 1.8, "test"),
+                                     (_median_curve(sel, "curve_train"), ":", 1.2, "train")):
+            if med is None:
+                continue
+            n = len(med)
+            ax.plot(np.arange(1, n + 1), med, style, color=color, lw=lw,
+                    marker=marker if n <= 5 or what == "test" else None,
+                    markevery=max(1, n // 8), ms=5, label=f"{name} {what}{extra if what == 'test' else ''}")
+    longest = max((len(c) for c in tests.values() if c is not None), default=1)
+    if longest <= 10:
+        ax.set_xticks(range(1, longest + 1))
+        ax.set_xlim(0.5, longest + 0.5)
+    else:
+        ax.xaxis.set_major_locator(MaxNLocator(integer=True))
+    _plain_log_ticks(ax)
+    lo, hi = ax.get_ylim()
+    if hi > 300 * lo:  # more than two and a half decades: one label per decade
+        from matplotlib.ticker import LogLocator
+
+        ax.yaxis.set_major_locator(LogLocator(base=10, subs=(1.0,)))
+    ax.set_xlabel("epoch")
+    ax.grid(True, alpha=0.3)
+    if legend_below:
+        ax.legend(fontsize="x-small", ncol=2, loc="upper center", bbox_to_anchor=(0.5, -0.16), frameon=False)
+
+
 def wnn_convergence(runs, ax=None):
-    """The first paper's Fig. 5: training (and test) MSE against epochs, median over runs.
+    """The first paper's Fig. 5: test (solid) and training (dotted) MSE against epochs, median over runs.
+
+    Without ``ax``, one panel per family (single filters and BP; Gaussian sums and the EKF
+    ensemble; particle methods), each with a handful of series and its legend below it;
+    with ``ax``, every trainer on that one axis.
 
     Parameters
     ----------
@@ -70,32 +137,33 @@ def wnn_convergence(runs, ax=None):
     -------
     matplotlib.figure.Figure
     """
-    import numpy as np
+    trainers = list(dict.fromkeys(r["trainer"] for r in runs))
+    if ax is not None:
+        fig, ax = _figure(ax)
+        _draw_convergence(ax, runs, trainers, legend_below=False)
+        ax.legend(fontsize="x-small", ncol=2)
+        ax.set_ylabel("MSE (median over runs)")
+        return fig
+    groups, left = [], list(trainers)
+    for title, member in _WNN_PANELS:
+        chosen = [t for t in left if member(t)]
+        left = [t for t in left if t not in chosen]
+        if chosen:
+            groups.append((title, chosen))
+    import matplotlib.pyplot as plt
 
-    fig, ax = _figure(ax)
-    for i, trainer in enumerate(dict.fromkeys(r["trainer"] for r in runs)):
-        color = f"C{i % 10}"
-        sel = [r for r in runs if r["trainer"] == trainer]
-        for key, style, label in (("curve_train", "-", "train"), ("curve_test", "--", "test")):
-            curves = [r[key] for r in sel if r[key]]
-            if not curves:
-                continue
-            n = min(len(c) for c in curves)
-            med = np.median(np.array([c[:n] for c in curves]), axis=0)
-            ax.plot(np.arange(1, n + 1), med, style, color=color, marker="." if n < 40 else None,
-                    label=f"{trainer.upper()} {label}")
-    ax.set_xlabel("epoch")
-    ax.set_ylabel("MSE (median over runs)")
-    ax.set_yscale("log")
-    ax.set_title("Convergence of WNN training (cf. paper Fig. 5)")
-    ax.grid(True, alpha=0.3)
-    ax.legend(fontsize="small")
+    fig, axes = plt.subplots(1, len(groups), figsize=(4.6 * len(groups), 4.6), sharey=True, squeeze=False)
+    for axis, (title, chosen) in zip(axes[0], groups):
+        _draw_convergence(axis, runs, chosen)
+        axis.set_title(title, fontsize="medium")
+    axes[0][0].set_ylabel("MSE (median over runs)")
+    fig.suptitle("Convergence of WNN training (cf. the paper's Fig. 5): test solid, training dotted")
+    fig.tight_layout()
     return fig
 
 
-# --- dead-reckoning study (issue 6) ---
+# --- dead-reckoning study ---
 
-import numpy as np  # noqa: E402  (issue 6 section)
 
 __all__ += ["dr_position_errors", "dr_outage_errors", "coincide_groups", "split_outliers"]
 

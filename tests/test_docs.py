@@ -49,7 +49,7 @@ def test_sphinx_build_has_no_warnings(tmp_path):
         assert (out / f"{page}.html").exists(), page
     # the README is the guide, with its figures copied in
     guide = (out / "guide.html").read_text()
-    assert "Quick start" in guide and "_images/" in guide
+    assert "The first five minutes" in guide and "_images/" in guide
     # the four notebooks are rendered (from the stored files, never executed)
     stored = sorted(p.stem for p in (ROOT / "notebooks").glob("*.ipynb"))
     assert len(stored) == 4
