@@ -340,7 +340,7 @@ def _sample_grid(t, max_jitter):
     dts = np.diff(t)
     if np.any(dts <= 0):
         k = int(np.argmax(dts <= 0)) + 1
-        raise ValueError(f"t must be strictly increasing; t[{k}] = {t[k]!r} <= t[{k - 1}] = {t[k - 1]!r}")
+        raise ValueError(f"t must be strictly increasing; t[{k}] = {float(t[k])!r} <= t[{k - 1}] = {float(t[k - 1])!r}")
     dt = float(f"{np.median(dts):.9g}")  # 0.1, not 0.09999999999999787
     jit = np.abs(dts / dt - 1.0)
     if np.any(jit > max_jitter):
@@ -361,12 +361,12 @@ def _odometer_steps(distance, speed, dts, n):
         if np.any(dd < 0):
             k = int(np.argmax(dd < 0)) + 1
             raise ValueError(f"distance must be non-decreasing (a cumulative odometer); distance[{k}] = "
-                             f"{distance[k]!r} < distance[{k - 1}] = {distance[k - 1]!r}")
+                             f"{float(distance[k])!r} < distance[{k - 1}] = {float(distance[k - 1])!r}")
         return dd, dd[0] / dts[0]
     speed = _finite_1d(speed, "speed", n)
     if np.any(speed < 0):
         k = int(np.argmax(speed < 0))
-        raise ValueError(f"speed must be >= 0 (m/s); speed[{k}] = {speed[k]!r}")
+        raise ValueError(f"speed must be >= 0 (m/s); speed[{k}] = {float(speed[k])!r}")
     return speed[1:] * dts, speed[0]
 
 
@@ -394,7 +394,7 @@ def _gps_fixes(gps_t, east, north, lat, lon, gps_sigma, origin, t, dt):
         gs = np.full(m, float(gs)) if gs.ndim == 0 else _finite_1d(gs, "gps_sigma", m)
         if not np.all(np.isfinite(gs)) or np.any(gs <= 0):
             k = int(np.argmax(~np.isfinite(gs) | (gs <= 0)))
-            raise ValueError(f"gps_sigma must be finite and > 0 (m); gps_sigma[{k}] = {gs[k]!r}")
+            raise ValueError(f"gps_sigma must be finite and > 0 (m); gps_sigma[{k}] = {float(gs[k])!r}")
     k_fix = np.round((gps_t - t[0]) / dt).astype(int) - 1
     keep = (k_fix >= 0) & (k_fix < n - 1)
     k_fix, idx = np.unique(k_fix[keep], return_index=True)
@@ -424,7 +424,7 @@ def _finite_1d(a, name, n=None):
     bad = ~np.isfinite(a)
     if bad.any():
         k = int(np.argmax(bad))
-        raise ValueError(f"{name} must be finite; {name}[{k}] = {a[k]!r}")
+        raise ValueError(f"{name} must be finite; {name}[{k}] = {float(a[k])!r}")
     return a
 
 
@@ -880,7 +880,7 @@ def outage_starts(run, length=30.0, starts=None, n=20, min_speed=0.0):
         bad = ~np.isfinite(starts) | (starts < 0) | (starts > t_end - length)
         if bad.any():
             raise ValueError(f"starts must lie in [0, {t_end - length:g}] (the drive is {t_end:g} s, outages "
-                             f"{length:g} s), got {starts[bad][0]!r}")
+                             f"{length:g} s), got {float(starts[bad][0])!r}")
         return starts
     n = int(n)
     if n < 1:
