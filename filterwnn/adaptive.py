@@ -104,7 +104,7 @@ A constant observed with noise of standard deviation 1 that becomes 5 at step 30
 ...     if k == 299:
 ...         print(f"R before: {kf.R[0, 0]:.0f}")
 R before: 1
->>> 15 < kf.R[0, 0] < 40, kf.n_inflations > 0
+>>> bool(15 < kf.R[0, 0] < 40), kf.n_inflations > 0
 (True, True)
 """
 
