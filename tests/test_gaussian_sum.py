@@ -4,26 +4,10 @@ import numpy as np
 import pytest
 
 from filterwnn import GaussianSumFilter, NumericalError
-from filterwnn.models import LinearGaussianModel
 
-LIN = LinearGaussianModel.random(dim_x=3, dim_z=2, rng=3)
+from _linear_model import LIN, lin_F, lin_fx, lin_H, lin_hx  # noqa: E402
+
 TOL = 1e-8
-
-
-def lin_fx(x, dt):
-    return LIN.fx(x, dt)
-
-
-def lin_hx(x):
-    return LIN.hx(x)
-
-
-def lin_F(x, dt):
-    return LIN.F
-
-
-def lin_H(x):
-    return LIN.H
 
 
 def make(component, **kw):

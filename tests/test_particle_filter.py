@@ -15,7 +15,7 @@ from filterwnn import (
     UnscentedKalmanProposal,
     UnscentedParticleFilter,
 )
-from filterwnn.models import GammaNoiseModel, LinearGaussianModel
+from filterwnn.models import GammaNoiseModel
 
 PRESETS = [
     BootstrapParticleFilter,
@@ -27,23 +27,7 @@ KALMAN_PRESETS = PRESETS[1:]
 
 # --- a linear-Gaussian reference model (module level, so filters pickle) -----------------
 
-LIN = LinearGaussianModel.random(dim_x=3, dim_z=2, rng=3)
-
-
-def lin_fx(x, dt):
-    return LIN.fx(x, dt)
-
-
-def lin_hx(x):
-    return LIN.hx(x)
-
-
-def lin_F(x, dt):
-    return LIN.F
-
-
-def lin_H(x):
-    return LIN.H
+from _linear_model import LIN, lin_F, lin_fx, lin_H, lin_hx  # noqa: E402
 
 
 def make(cls, n_particles=200, rng=1, **kw):
