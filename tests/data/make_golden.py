@@ -1,0 +1,60 @@
+"""Regenerate the golden study numbers (``tests/data/golden_*.json``).
+
+Run only when a change is *meant* to change the studies' numbers, and say so in its commit:
+``test_golden.py`` checks that a refactor leaves them as they were.
+
+    OPENBLAS_NUM_THREADS=1 python tests/data/make_golden.py
+"""
+import json
+import os
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+#: A tiny WNN study: every row of the table and the paper table, one settings search.
+WNN_CONFIG = dict(n_runs=1, n_epochs=2, pf_epochs=1, n_particles=3, seed=5, tune_runs=1, sweep_particles=(2,),
+                  sweep_runs=1, references=("MLPRegressor",), paper_runs=1)
+#: A tiny DR study: every filter (the opt-in UPF included) on a DR-only and a GPS/DR scenario.
+DR_CONFIG = dict(scenarios=("straight", "gpsdr"), n_runs=2, seed=3, n_steps=300)
+
+
+def wnn_numbers():
+    from filterwnn.studies import wnn
+
+    trainers = [k for k in wnn.ROWS if k not in ("upf+hmc",)]
+    res = wnn.run_study(trainers=trainers, **WNN_CONFIG)
+    drop = {"fit_time", "fit_time_median", "curve_train", "curve_test"}
+    return {
+        "runs": [{k: v for k, v in r.items() if k not in drop} for r in res.runs],
+        "table": [{k: v for k, v in r.items() if k not in drop} for r in res.table],
+        "tuning": res.tuning,
+        "curves": [r["curve_train"] for r in res.runs],
+    }
+
+
+def dr_numbers():
+    from filterwnn.studies import dr
+
+    filters = list(dr.DR_FILTERS) + list(dr.GPSDR_FILTERS)
+    res = dr.run_study(filters=filters, **DR_CONFIG)
+    table = [{k: v for k, v in r.items() if k != "us_per_step"} for r in res.table]
+    ends = {s: {f: e[:, ::50].tolist() for f, e in v["filters"].items()} for s, v in res.errors.items()}
+    return {"table": table, "errors": ends}
+
+
+def _plain(obj):
+    if isinstance(obj, dict):
+        return {str(k): _plain(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_plain(v) for v in obj]
+    if isinstance(obj, np.generic):
+        return obj.item()
+    return obj
+
+
+if __name__ == "__main__":
+    for name, fn in (("golden_wnn.json", wnn_numbers), ("golden_dr.json", dr_numbers)):
+        with open(os.path.join(HERE, name), "w") as f:
+            json.dump(_plain(fn()), f, indent=0, sort_keys=True)
+        print("wrote", name)
