@@ -518,38 +518,14 @@ def smc_sampler(
     max_rungs = check_positive_int(max_rungs, "max_rungs")
     if move is None:
         move = MALAMove(target, n_steps=n_moves)
-    if particles is None:
-        particles = target.sample_prior(n_particles, rng)
-    particles = np.asarray(particles, dtype=float)
-    if particles.shape != (n_particles, target.dim):
-        raise ValueError(f"particles must have shape ({n_particles}, {target.dim}), got shape {particles.shape}")
-    state = _State(target, particles)
+    state = _State(target, _initial_particles(target, particles, n_particles, rng))
     ancestors = np.arange(n_particles)
     beta, log_z = 0.0, 0.0
     out = {k: [] for k in ("betas", "ess", "acceptance", "step_sizes", "distinct_particles", "distinct_ancestors")}
     while beta < 1.0:
-        if len(out["betas"]) >= max_rungs:
-            raise RuntimeError(
-                f"the SMC ladder reached max_rungs={max_rungs} at beta={beta:.3g}; use more particles, "
-                "more moves per rung or a larger max_rungs"
-            )
-        ll = np.where(np.isfinite(state.ll), state.ll, -np.inf)
-        new = _next_beta(ll, beta, ess_fraction * n_particles)
-        w, log_sum = normalize_log_weights((new - beta) * ll)
-        if not np.isfinite(log_sum):
-            rung = len(out["betas"]) + 1
-            raise NumericalError(
-                f"every particle has a zero or non-finite likelihood at rung {rung} (beta={beta:.3g}); "
-                "check the rows for non-finite or huge values, or widen the noise R",
-                matrix="log_likelihood",
-                step=rung,
-            )
-        log_z += log_sum - np.log(n_particles)
-        out["ess"].append(effective_sample_size(w))
-        idx = resample(w, resampling, rng)
-        state.take(idx)
+        beta, log_inc, idx = _reweight_resample(state, beta, ess_fraction, max_rungs, resampling, rng, out)
+        log_z += log_inc
         ancestors = ancestors[idx]
-        beta = new
         move.beta = beta
         out["betas"].append(beta)
         out["acceptance"].append(move.run(state, rng))
@@ -563,6 +539,43 @@ def smc_sampler(
         log_evidence=float(log_z),
         **out,
     )
+
+
+def _initial_particles(target, particles, n_particles, rng):
+    """``particles`` as an array of shape ``(n_particles, target.dim)``; draws from the prior when None."""
+    if particles is None:
+        particles = target.sample_prior(n_particles, rng)
+    particles = np.asarray(particles, dtype=float)
+    if particles.shape != (n_particles, target.dim):
+        raise ValueError(f"particles must have shape ({n_particles}, {target.dim}), got shape {particles.shape}")
+    return particles
+
+
+def _reweight_resample(state, beta, ess_fraction, max_rungs, resampling, rng, out):
+    """One rung's reweighting and resampling: the next exponent, the rung's log-evidence
+    increment and the resampled indices (``state`` is resampled in place, the ESS appended
+    to ``out["ess"]``). RuntimeError when the ladder already has ``max_rungs`` rungs."""
+    if len(out["betas"]) >= max_rungs:
+        raise RuntimeError(
+            f"the SMC ladder reached max_rungs={max_rungs} at beta={beta:.3g}; use more particles, "
+            "more moves per rung or a larger max_rungs"
+        )
+    n_particles = len(state.x)
+    ll = np.where(np.isfinite(state.ll), state.ll, -np.inf)
+    new = _next_beta(ll, beta, ess_fraction * n_particles)
+    w, log_sum = normalize_log_weights((new - beta) * ll)
+    if not np.isfinite(log_sum):
+        rung = len(out["betas"]) + 1
+        raise NumericalError(
+            f"every particle has a zero or non-finite likelihood at rung {rung} (beta={beta:.3g}); "
+            "check the rows for non-finite or huge values, or widen the noise R",
+            matrix="log_likelihood",
+            step=rung,
+        )
+    out["ess"].append(effective_sample_size(w))
+    idx = resample(w, resampling, rng)
+    state.take(idx)
+    return new, log_sum - np.log(n_particles), idx
 
 
 def make_weight_model_move(model, X=None, y=None, **kwargs):
