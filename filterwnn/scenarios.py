@@ -301,11 +301,7 @@ class DRRun(NamedTuple):
         t = _finite_1d(t, "t")
         n = len(t)
         dts, dt = _sample_grid(t, max_jitter)
-        heading = _finite_1d(heading, "heading", n)
-        big = float(np.max(np.abs(heading)))
-        if big > 2 * np.pi + 1e-6:
-            raise ValueError(f"heading must be in radians (|heading| <= 2 pi); max |heading| = {big:g} looks like "
-                             "degrees: pass np.deg2rad(heading)")
+        heading = _heading_radians(heading, n)
         step, v0 = _odometer_steps(distance, speed, dts, n)
         z_dr = np.stack([wrap_angle(heading[1:]), step], axis=1)
         steps = np.zeros(0, dtype=int)
@@ -321,14 +317,31 @@ class DRRun(NamedTuple):
         else:
             p0 = np.zeros(2)
         x0 = np.array([p0[0], v0 * np.sin(heading[0]), 0.0, p0[1], v0 * np.cos(heading[0]), 0.0])
-        rate = 0.0
-        if len(steps) > 1:
-            rate = 1.0 / (float(np.median(np.diff(steps))) * dt)
-        sc = Scenario(name=str(name), duration=float(f"{(n - 1) * dt:.9g}"), dt=dt, speed=float(abs(v0)),
-                      heading=float(np.degrees(heading[0])), t_switch=np.inf, factor=1.0, gps_rate=rate,
-                      sigma_gps=float(np.median(sig)) if sig is not None and len(sig) else 3.0)
+        sc = _own_drive_scenario(name, n, dt, v0, heading[0], steps, sig)
         R_true = np.tile([np.deg2rad(1.0) ** 2, 0.02**2], (n - 1, 1))
         return cls(dt * np.arange(1, n), x0, x_true, z_dr, steps, z_gps, R_true, sc, sig)
+
+
+def _heading_radians(heading, n):
+    """``heading`` as ``n`` finite floats; ValueError when it looks like degrees (beyond ``+-2 pi``)."""
+    heading = _finite_1d(heading, "heading", n)
+    big = float(np.max(np.abs(heading)))
+    if big > 2 * np.pi + 1e-6:
+        raise ValueError(f"heading must be in radians (|heading| <= 2 pi); max |heading| = {big:g} looks like "
+                         "degrees: pass np.deg2rad(heading)")
+    return heading
+
+
+def _own_drive_scenario(name, n, dt, v0, heading0, steps, sig):
+    """The :class:`Scenario` describing a drive given as arrays (:meth:`DRRun.from_arrays`):
+    its duration, first speed and heading, GPS rate (from the median gap between fixes) and
+    GPS sigma (the median of ``sig``, else 3 m)."""
+    rate = 0.0
+    if len(steps) > 1:
+        rate = 1.0 / (float(np.median(np.diff(steps))) * dt)
+    return Scenario(name=str(name), duration=float(f"{(n - 1) * dt:.9g}"), dt=dt, speed=float(abs(v0)),
+                    heading=float(np.degrees(heading0)), t_switch=np.inf, factor=1.0, gps_rate=rate,
+                    sigma_gps=float(np.median(sig)) if sig is not None and len(sig) else 3.0)
 
 
 def _sample_grid(t, max_jitter):
@@ -566,30 +579,47 @@ def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2):
     if hname == "heading_deg":
         heading = np.deg2rad(heading)
     kw = {"distance" if dname == "odometer" else "speed": column(dname)}
+    kw.update(_csv_fixes(path, header, col, column, t, origin))
+    _csv_truth(path, header, col, column, origin, kw)
+    return DRRun.from_arrays(t, heading, name=name or os.path.splitext(os.path.basename(path))[0],
+                             max_jitter=max_jitter, **kw)
+
+
+def _csv_fixes(path, header, col, column, t, origin):
+    """The GPS keywords of :meth:`DRRun.from_arrays` from a drive CSV's columns (none without
+    GPS columns); ``column(name, allow_empty)`` reads one column."""
+    kw = {}
     pair = [p for p in (("gps_east", "gps_north"), ("gps_lat", "gps_lon")) if p[0] in col or p[1] in col]
     if len(pair) > 1:
         raise ValueError(f"{path}: give the fixes as gps_east/gps_north or gps_lat/gps_lon, not both")
-    if pair:
-        a, b = pair[0]
-        if a not in col or b not in col:
-            raise ValueError(f"{path}: the columns {a!r} and {b!r} go together; found only one in {header}")
-        ga, gb = column(a, True), column(b, True)
-        fix = np.isfinite(ga) & np.isfinite(gb)
-        if np.any(np.isfinite(ga) != np.isfinite(gb)):
-            r = int(np.argmax(np.isfinite(ga) != np.isfinite(gb)))
-            raise ValueError(f"{path}: {a!r} and {b!r} must be both given or both empty; data row {r + 1} has one")
-        kw["gps_t"] = t[fix]
-        if a == "gps_east":
-            kw["east"], kw["north"] = ga[fix], gb[fix]
-        else:
-            kw["lat"], kw["lon"] = ga[fix], gb[fix]
-            kw["origin"] = origin
-        if "gps_sigma" in col:
-            gs = column("gps_sigma", True)[fix]
-            if np.any(~np.isfinite(gs)):
-                r = int(np.flatnonzero(fix)[np.argmax(~np.isfinite(gs))])
-                raise ValueError(f"{path}: column 'gps_sigma' is empty on data row {r + 1}, which has a fix")
-            kw["gps_sigma"] = gs
+    if not pair:
+        return kw
+    a, b = pair[0]
+    if a not in col or b not in col:
+        raise ValueError(f"{path}: the columns {a!r} and {b!r} go together; found only one in {header}")
+    ga, gb = column(a, True), column(b, True)
+    fix = np.isfinite(ga) & np.isfinite(gb)
+    if np.any(np.isfinite(ga) != np.isfinite(gb)):
+        r = int(np.argmax(np.isfinite(ga) != np.isfinite(gb)))
+        raise ValueError(f"{path}: {a!r} and {b!r} must be both given or both empty; data row {r + 1} has one")
+    kw["gps_t"] = t[fix]
+    if a == "gps_east":
+        kw["east"], kw["north"] = ga[fix], gb[fix]
+    else:
+        kw["lat"], kw["lon"] = ga[fix], gb[fix]
+        kw["origin"] = origin
+    if "gps_sigma" in col:
+        gs = column("gps_sigma", True)[fix]
+        if np.any(~np.isfinite(gs)):
+            r = int(np.flatnonzero(fix)[np.argmax(~np.isfinite(gs))])
+            raise ValueError(f"{path}: column 'gps_sigma' is empty on data row {r + 1}, which has a fix")
+        kw["gps_sigma"] = gs
+    return kw
+
+
+def _csv_truth(path, header, col, column, origin, kw):
+    """Add the ``truth`` (and, for latitude/longitude, the ``origin``) of a drive CSV to the
+    keywords ``kw`` of :meth:`DRRun.from_arrays`, when the CSV has truth columns."""
     for a, b in (("true_east", "true_north"), ("true_lat", "true_lon")):
         if (a in col) != (b in col):
             raise ValueError(f"{path}: the columns {a!r} and {b!r} go together; found only one in {header}")
@@ -603,8 +633,6 @@ def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2):
         if origin is None and len(kw["lat"]):
             kw["origin"] = origin = (kw["lat"][0], kw["lon"][0])
         kw["truth"] = np.stack(latlon_to_en(column("true_lat"), column("true_lon"), *origin), axis=1)
-    return DRRun.from_arrays(t, heading, name=name or os.path.splitext(os.path.basename(path))[0],
-                             max_jitter=max_jitter, **kw)
 
 
 def sample_drive_path():
@@ -786,24 +814,46 @@ def load_car_drive(drive=CAR_DRIVE, dt=0.1, odometer_scale=1.02, odometer_noise=
     gnss = _read_zipped_csv(folder, "n380-gnss-pvt")
     ok = (pos["SystemTov"] > 0) & (pos["InsGnssBIT.InsMode"] == 4)
     tp = pos["SystemTov"][ok]
-    lat, lon, h = pos["Latitude"][ok], pos["Longitude"][ok], pos["AltitudeAboveEllipsoid"][ok]
+    en = _local_frame(pos["Latitude"][ok], pos["Longitude"][ok], pos["AltitudeAboveEllipsoid"][ok])
+    t0 = tp[0]
+    n = int((tp[-1] - t0) / dt) - 1
+    t = t0 + dt * np.arange(1, n + 1)
+    x_true, x0 = _car_truth(en(pos["Latitude"][ok], pos["Longitude"][ok]), tp, vel, t, t0, dt)
+    ve, vn = x_true[:, 1], x_true[:, 4]
+    heading0, theta = _gyro_heading(att, imu, t, t0)
+    speed = np.hypot(ve, vn)
+    moving = speed > MIN_ODOMETER_SPEED  # a wheel odometer reads exactly 0 at standstill
+    dist = np.where(moving, np.maximum(dt * odometer_scale * speed + odometer_noise * rng.standard_normal(n), 0.0), 0.0)
+    z_dr = np.stack([wrap_angle(theta), dist], axis=1)
+    steps, z_gps, gsig = _car_fixes(gnss, en, t0, dt, n)
+    sc = Scenario(name=drive, duration=n * dt, dt=dt, speed=float(np.hypot(x0[1], x0[4])),
+                  heading=float(np.degrees(heading0)), t_switch=np.inf, factor=1.0,
+                  odometer_scale=odometer_scale, sigma_odometer=odometer_noise, gps_rate=1.0,
+                  sigma_gps=1.0)
+    R_true = np.tile([np.deg2rad(1.0) ** 2, odometer_noise**2], (n, 1))
+    return DRRun(t - t0, x0, x_true, z_dr, steps, z_gps, R_true, sc, gsig)
+
+
+def _local_frame(lat, lon, h):
+    """``en(lat, lon)``: radians to local east/north metres about the first of ``lat, lon, h``."""
     lat0, lon0, h0 = lat[0], lon[0], h[0]
-    sl = np.sin(lat0)
-    rn = _WGS84_A / np.sqrt(1 - _WGS84_E2 * sl * sl)
-    rm = _WGS84_A * (1 - _WGS84_E2) / (1 - _WGS84_E2 * sl * sl) ** 1.5
+    rn, rm = _radii(lat0)
 
     def en(la, lo):
         return (lo - lon0) * (rn + h0) * np.cos(lat0), (la - lat0) * (rm + h0)
 
-    t0 = tp[0]
-    n = int((tp[-1] - t0) / dt) - 1
-    t = t0 + dt * np.arange(1, n + 1)
-    e_ref, n_ref = en(lat, lon)
+    return en
+
+
+def _car_truth(ref_en, tp, vel, t, t0, dt):
+    """The reference states on the grid ``t`` (positions ``ref_en`` at the times ``tp``, the
+    velocity file's INS rows, accelerations by finite differences) and the state at ``t0``."""
+    e_ref, n_ref = ref_en
     okv = (vel["SystemTov"] > 0) & (vel["InsGnssBIT.InsMode"] == 4)
     tv = vel["SystemTov"][okv]
     ve = np.interp(t, tv, vel["VelocityNED[1]"][okv])
     vn = np.interp(t, tv, vel["VelocityNED[0]"][okv])
-    x_true = np.zeros((n, 6))
+    x_true = np.zeros((len(t), 6))
     x_true[:, 0] = np.interp(t, tp, e_ref)
     x_true[:, 3] = np.interp(t, tp, n_ref)
     x_true[:, 1], x_true[:, 4] = ve, vn
@@ -811,16 +861,22 @@ def load_car_drive(drive=CAR_DRIVE, dt=0.1, odometer_scale=1.02, odometer_noise=
     x_true[:, 5] = np.gradient(vn, dt)
     x0 = np.array([np.interp(t0, tp, e_ref), np.interp(t0, tv, vel["VelocityNED[1]"][okv]), 0.0,
                    np.interp(t0, tp, n_ref), np.interp(t0, tv, vel["VelocityNED[0]"][okv]), 0.0])
-    # gyro heading: integrate the yaw increments from the reference heading at t0
+    return x_true, x0
+
+
+def _gyro_heading(att, imu, t, t0):
+    """The reference heading at ``t0`` and the gyro heading on ``t``: the yaw increments
+    integrated from it (so it drifts like a real DR gyro)."""
     oka = (att["SystemTov"] > 0) & (att["InsGnssBIT.InsMode"] == 4)
     heading0 = np.interp(t0, att["SystemTov"][oka], np.unwrap(att["EulerAttitude[2]"][oka]))
     ti = imu["SystemTov"]
     cum = np.cumsum(imu["DeltaTheta[0]"])
-    theta = heading0 + np.interp(t, ti, cum) - np.interp(t0, ti, cum)
-    speed = np.hypot(ve, vn)
-    moving = speed > MIN_ODOMETER_SPEED  # a wheel odometer reads exactly 0 at standstill
-    dist = np.where(moving, np.maximum(dt * odometer_scale * speed + odometer_noise * rng.standard_normal(n), 0.0), 0.0)
-    z_dr = np.stack([wrap_angle(theta), dist], axis=1)
+    return heading0, heading0 + np.interp(t, ti, cum) - np.interp(t0, ti, cum)
+
+
+def _car_fixes(gnss, en, t0, dt, n):
+    """The receiver's fixes, each on its nearest grid step (one per step): the steps, the
+    fixes in local metres and each fix's reported accuracy per axis."""
     okg = (gnss["SystemTov"] > t0) & (gnss["InsGnssBIT.GpsMode"] > 0)
     tg = gnss["SystemTov"][okg]
     steps = np.round((tg - t0) / dt).astype(int) - 1
@@ -831,12 +887,7 @@ def load_car_drive(drive=CAR_DRIVE, dt=0.1, odometer_scale=1.02, odometer_noise=
     # the receiver's reported accuracy, per axis: the RMS of its latitude and longitude sigmas
     gsig = np.sqrt(0.5 * (gnss["GnssStdvLat"][okg][keep][idx] ** 2 + gnss["GnssStdvLon"][okg][keep][idx] ** 2))
     gsig = np.maximum(np.where(np.isfinite(gsig), gsig, 1.0), 0.01)
-    sc = Scenario(name=drive, duration=n * dt, dt=dt, speed=float(np.hypot(x0[1], x0[4])),
-                  heading=float(np.degrees(heading0)), t_switch=np.inf, factor=1.0,
-                  odometer_scale=odometer_scale, sigma_odometer=odometer_noise, gps_rate=1.0,
-                  sigma_gps=1.0)
-    R_true = np.tile([np.deg2rad(1.0) ** 2, odometer_noise**2], (n, 1))
-    return DRRun(t - t0, x0, x_true, z_dr, steps, z_gps, R_true, sc, gsig)
+    return steps, z_gps, gsig
 
 
 def with_outage(run, start, length):
