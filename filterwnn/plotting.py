@@ -351,14 +351,7 @@ def dr_position_errors(t, errors, t_switch=None, title="", single=_DR_PAPER_PAIR
     n_rows = 3 if out else 2
     fig, axes = plt.subplots(n_rows, 2, figsize=(13.5, 3.3 * n_rows + 0.6), sharex=True, squeeze=False)
     for j, axis in enumerate(("east", "north")):
-        ax = axes[0, j]
-        for n in single:
-            if n in errors:
-                c, ls, mk, _ = style[n]
-                ax.plot(t, errors[n][run, :, j], color=c, lw=1.3, ls=ls, label=n)
-        ax.axhline(0, color="0.5", lw=0.8)
-        ax.set_title(f"{axis} error, one run (run {run}), signed")
-        ax.set_ylabel("error [m]")
+        _one_run_panel(axes[0, j], t, errors, single, style, run, j, axis)
         band = {}
         for n in bands:
             e = np.abs(errors[n][:, :, j])
@@ -379,6 +372,27 @@ def dr_position_errors(t, errors, t_switch=None, title="", single=_DR_PAPER_PAIR
             if t_switch is not None:
                 ax.axvline(t_switch, color="k", ls=":", lw=1)
             ax.grid(alpha=0.3)
+    _position_legends(axes, bands, t_switch, out)
+    fig.suptitle(f"Dead-reckoning position error: {title}")
+    fig.tight_layout()
+    return fig
+
+
+def _one_run_panel(ax, t, errors, single, style, run, j, axis):
+    """The top panel of :func:`dr_position_errors`: the signed error of one run along ``axis``."""
+    for n in single:
+        if n in errors:
+            c, ls, mk, _ = style[n]
+            ax.plot(t, errors[n][run, :, j], color=c, lw=1.3, ls=ls, label=n)
+    ax.axhline(0, color="0.5", lw=0.8)
+    ax.set_title(f"{axis} error, one run (run {run}), signed")
+    ax.set_ylabel("error [m]")
+
+
+def _position_legends(axes, bands, t_switch, out):
+    """The legends of :func:`dr_position_errors`, right of the panels, with the band and switch keys."""
+    import matplotlib.pyplot as plt
+
     kw = dict(fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0)
     axes[0, 1].legend(**kw)
     h, lab = axes[1, 1].get_legend_handles_labels()
@@ -393,9 +407,6 @@ def dr_position_errors(t, errors, t_switch=None, title="", single=_DR_PAPER_PAIR
     axes[1, 1].legend(h, lab, **kw)
     if out:
         axes[2, 1].legend(**kw)
-    fig.suptitle(f"Dead-reckoning position error: {title}")
-    fig.tight_layout()
-    return fig
 
 
 def dr_outage_errors(t, errors, outages=(), title="", bands=None, rtol=None):
