@@ -35,8 +35,8 @@ after one innovation and ``R`` is near its new value within a few.
 Adding to ``P`` what the mis-weighted measurements added. Until the test rejects, the
 filter takes noisier measurements with the old ``R``; the error they put into the state is
 missing from ``P``, and once ``R`` is raised the gain collapses and that error is never
-corrected (issue 14: a lagging 30-sample estimate gave 17.2 m at 200 s on the straight
-road with the noise x20, against 13.3 m for the nominal EKF). By the Joseph form, an
+corrected (in the dead-reckoning study a lagging 30-sample estimate gave 17.2 m at 200 s
+on the straight road with the noise x20, against 13.3 m for the nominal EKF). By the Joseph form, an
 update with gain :math:`K_j` computed with :math:`R_j` when the noise was
 :math:`R^{true}_j` leaves the actual covariance larger than the filter's by
 :math:`K_j (R^{true}_j - R_j) K_j^T`, carried forward by :math:`G_j = \prod_i F_i (I -
@@ -51,7 +51,7 @@ covariance-matching estimate of :math:`R^{true}_j - R_j` (clipped at 0, so conse
 A rise caught after one sample adds one sample's worth; a rise caught late adds the whole
 lag's. Falling ``R`` never shrinks ``P``. ``inflate=False`` leaves ``P`` alone.
 
-(Issue 14's first remedy, ``P`` multiplied by the ratio of the new ``R`` to the old one,
+(A simpler remedy, ``P`` multiplied by the ratio of the new ``R`` to the old one,
 suits a late estimate only: scaling ``P`` and ``R`` together keeps the old gain, so with
 the rise caught after one sample it kept taking the x20 noise at the nominal gain, and
 on separate seeds it was worse than no inflation.)

@@ -20,9 +20,7 @@ def _figure(ax=None, figsize=(6, 4)):
 
     return plt.subplots(figsize=figsize)
 
-# --- sigma points and particle filters (issues 3-4) ---
-
-# --- WNN study (issue 5) ---
+# --- WNN study ---
 
 __all__ += ["wnn_particle_sweep", "wnn_convergence"]
 
