@@ -91,11 +91,6 @@ __all__ = [
     "SENSOR_GRADES",
 ]
 
-#: Indices of the position, velocity and acceleration states.
-POS = (0, 3)
-VEL = (1, 4)
-ACC = (2, 5)
-
 _ACCEL_TERMS = ("kinematic", "paper")
 
 
