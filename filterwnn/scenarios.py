@@ -814,11 +814,12 @@ def load_car_drive(drive=CAR_DRIVE, dt=0.1, odometer_scale=1.02, odometer_noise=
     gnss = _read_zipped_csv(folder, "n380-gnss-pvt")
     ok = (pos["SystemTov"] > 0) & (pos["InsGnssBIT.InsMode"] == 4)
     tp = pos["SystemTov"][ok]
-    en = _local_frame(pos["Latitude"][ok], pos["Longitude"][ok], pos["AltitudeAboveEllipsoid"][ok])
+    lat, lon = pos["Latitude"][ok], pos["Longitude"][ok]
+    en = _local_frame(lat, lon, pos["AltitudeAboveEllipsoid"][ok])
     t0 = tp[0]
     n = int((tp[-1] - t0) / dt) - 1
     t = t0 + dt * np.arange(1, n + 1)
-    x_true, x0 = _car_truth(en(pos["Latitude"][ok], pos["Longitude"][ok]), tp, vel, t, t0, dt)
+    x_true, x0 = _car_truth(en(lat, lon), tp, vel, t, t0, dt)
     ve, vn = x_true[:, 1], x_true[:, 4]
     heading0, theta = _gyro_heading(att, imu, t, t0)
     speed = np.hypot(ve, vn)
