@@ -438,6 +438,7 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
         Parameters
         ----------
         X : array-like of shape (n_samples, n_features)
+            Training rows, one filter step each per epoch, in order.
         y : array-like of shape (n_samples,)
 
         Returns
@@ -477,6 +478,7 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
         Parameters
         ----------
         X : array-like of shape (n_samples, n_features)
+            The rows of this pass, one filter step each, in order.
         y : array-like of shape (n_samples,)
 
         Returns
