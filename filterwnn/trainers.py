@@ -142,9 +142,11 @@ def simplex_points(n, alpha=1.0):
     return SphericalSimplexSigmaPoints(n, alpha=alpha)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class TrainerSpec:
     """One trainer: everything the estimator, the search and the study read about it.
+
+    Frozen; compared and hashed by identity (an entry is one registration).
 
     Parameters
     ----------
@@ -553,9 +555,11 @@ class _GaussianSumTrainer(_ParticleTrainer):
     """A Gaussian-sum filter of ``n_particles`` Kalman filters (:class:`filterwnn.GaussianSumFilter`).
 
     Each component (the spec's ``component``) is an EKF, UKF (Merwe points) or SUKF (simplex
-    points) on the weight-state model, weighted by its innovation likelihood raised to ``tempering`` (1: the Bayesian mixture;
-    the WNN study's working rows use 0.01, a heuristic). Not a particle filter: nothing is sampled
-    after the start, whose component means are ``n_particles`` draws of the initial distribution.
+    points) on the weight-state model, weighted by its innovation likelihood raised to
+    ``tempering`` (1: the Bayesian mixture; the WNN study's working rows use 0.01, a heuristic),
+    or averaged without weights (the spec's ``combine="mean"``, the EKF ensemble). Not a
+    particle filter: nothing is sampled after the start, whose component means are
+    ``n_particles`` draws of the initial distribution.
     """
 
     def __init__(self, model, theta0, settings, rng, spec=None):
@@ -727,6 +731,22 @@ def register_trainer(spec, replace=False):
     ValueError
         For a duplicate name (without ``replace``), an unknown family, ``auto`` settings that
         lack the family's keys, or a ``parent``/``copy_settings`` that is not registered.
+
+    Examples
+    --------
+    A UKF that is another entry (here a copy of ``"ukf"`` under a new name): the estimator and
+    the WNN study accept its name once it is registered.
+
+    >>> from dataclasses import replace
+    >>> spec = register_trainer(replace(TRAINERS["ukf"], name="ukf-copy", label="UKF (copy)"))
+    >>> AUTO_SETTINGS[("ukf-copy", "scaled")]
+    {'Q': 1e-06, 'P0': 0.01}
+    >>> register_trainer(spec)
+    Traceback (most recent call last):
+    ...
+    ValueError: trainer 'ukf-copy' is already registered; pass replace=True to replace it
+    >>> unregister_trainer("ukf-copy") is spec
+    True
     """
     _check_spec(spec)
     if spec.name in TRAINERS and not replace:
