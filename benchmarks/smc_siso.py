@@ -31,7 +31,7 @@ import time
 import numpy as np
 
 from filterwnn import WNNRegressor, make_siso_benchmark
-from filterwnn import regressor as regmod
+from filterwnn import trainers
 
 
 def _parse(spec):
@@ -49,8 +49,9 @@ def fit_smc(spec, X, y, seed):
     n = int(cfg.pop("N", 50))
     r = float(cfg.pop("R", 0.1))
     key = ("smc", "scaled")
-    saved = dict(regmod.AUTO_SETTINGS[key])
-    regmod.AUTO_SETTINGS[key].update(cfg)
+    auto = trainers.AUTO_SETTINGS[key]  # the smc entry's own dict: changed in place, restored after
+    saved = dict(auto)
+    auto.update(cfg)
     try:
         t0, c0 = time.perf_counter(), time.process_time()
         reg = WNNRegressor(trainer="smc", n_particles=n, n_epochs=1, measurement_noise=r, random_state=seed)
@@ -58,7 +59,8 @@ def fit_smc(spec, X, y, seed):
         reg.cpu_seconds_ = time.process_time() - c0  # CPU time: robust to other jobs on the machine
         return reg, time.perf_counter() - t0
     finally:
-        regmod.AUTO_SETTINGS[key] = saved
+        auto.clear()
+        auto.update(saved)
 
 
 def validate(specs, seeds):

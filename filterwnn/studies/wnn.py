@@ -1,7 +1,8 @@
 """The first paper's WNN study: Table 1 and Figs. 3-5 (Niu, Wu and Li).
 
 ``filterwnn study wnn`` trains a 5-20-1 Morlet wavelet network on the SISO benchmark of
-the paper's eq. (12) (:func:`filterwnn.make_siso_benchmark`) with the rows of ``ROWS``,
+the paper's eq. (12) (:func:`filterwnn.make_siso_benchmark`) with the rows of ``ROWS`` (one per
+trainer of :data:`filterwnn.trainers.TRAINERS`, plus the move rows of ``MOVE_ROWS``),
 each named for the algorithm it runs: the paper's seven trainers plus the SUKF (``bp, ekf,
 ukf, sukf, spf, epf, upf, supf``; the particle filters with textbook weights), the UPF with a
 MALA move after each resampling (``upf+mala``), the Gaussian-sum filters of N EKFs, UKFs and
@@ -42,7 +43,7 @@ SMC sampler run one pass with fixed settings; the EKF ensemble copies ``gsf-ekf`
 never looked at to choose anything. The particle filters and Gaussian sums search Q (x 0.01
 to x 100) around the value chosen for the filter their proposal or components use (EPF: EKF,
 UPF: UKF, SUPF: SUKF) and keep its P0, so their candidates are set after the single filters' search. ``tune_runs=0`` skips the search
-and uses :data:`filterwnn.regressor.AUTO_SETTINGS` for the full ``n_epochs``.
+and uses :data:`filterwnn.trainers.AUTO_SETTINGS` for the full ``n_epochs``.
 
 **Runs.** Run ``i`` uses ``SeedSequence(seed).spawn(n_runs)[i]``; it re-draws its data
 from its own seed (so the test set's variance differs between runs: 1.66 for one seed,
@@ -83,7 +84,8 @@ import numpy as np
 from .._validation import check_choice, check_positive_int, check_seed
 from ..datasets import make_siso_benchmark
 from ..particle_filter import DegeneracyWarning
-from ..regressor import AUTO_SETTINGS, PAPER_SETTINGS, TRAINERS, WNNRegressor
+from ..regressor import WNNRegressor
+from ..trainers import AUTO_SETTINGS, PAPER_SETTINGS, TRAINERS
 from . import _args
 
 __all__ = [
@@ -113,36 +115,77 @@ __all__ = [
     "run",
 ]
 
-#: The study's rows: key -> (trainer, fixed ``WNNRegressor`` keywords, fixed epochs or None, label).
-#: A label's ``{N}`` is the number of particles or components. See ``docs/study-outputs/wnn/PROTOCOL.md``.
-ROWS = {
-    "bp": ("bp", {}, None, "BP"),
-    "ekf": ("ekf", {}, None, "EKF"),
-    "ukf": ("ukf", {}, None, "UKF"),
-    "sukf": ("sukf", {}, None, "SUKF (simplex points)"),
-    "spf": ("spf", {}, None, "SPF (bootstrap)"),
-    "epf": ("epf", {}, None, "EPF (textbook)"),
-    "upf": ("upf", {}, None, "UPF (textbook)"),
-    "supf": ("supf", {}, None, "SUPF (textbook)"),
-    "spf+mala": ("spf", {"move": "mala"}, 1, "SPF + MALA move"),
-    "epf+mala": ("epf", {"move": "mala"}, 1, "EPF + MALA move"),
-    "upf+mala": ("upf", {"move": "mala"}, 1, "UPF + MALA move"),
-    "supf+mala": ("supf", {"move": "mala"}, 1, "SUPF + MALA move"),
-    "upf+hmc": ("upf", {"move": "hmc"}, 1, "UPF + HMC move"),
-    "gsf-ekf": ("gsf-ekf", {"tempering": 0.01}, None, "Gaussian-sum filter of {N} EKFs (tempering 0.01)"),
-    "gsf-ukf": ("gsf-ukf", {"tempering": 0.01}, None, "Gaussian-sum filter of {N} UKFs (tempering 0.01)"),
-    "gsf-sukf": ("gsf-sukf", {"tempering": 0.01}, None, "Gaussian-sum filter of {N} SUKFs (tempering 0.01)"),
-    "ekf-ensemble": ("ekf-ensemble", {}, None, "{N} independent EKFs, averaged"),
-    "smc": ("smc", {}, 1, "SMC sampler (HMC moves)"),
+class StudyRow(NamedTuple):
+    """One row of the study: the trainer it runs, its fixed ``WNNRegressor`` keywords, its fixed
+    epochs (None: searched, or the study's epochs) and its label (``{N}``: the number of particles)."""
+
+    trainer: str
+    fixed: dict
+    epochs: object
+    label: str
+
+
+#: Study-only rows: a registered trainer with a move. key -> (row, cost per epoch and particle,
+#: in :data:`ALL_TRAINERS`). They follow the last particle filter in ``ROWS``.
+MOVE_ROWS = {
+    "spf+mala": (StudyRow("spf", {"move": "mala"}, 1, "SPF + MALA move"), 3, False),
+    "epf+mala": (StudyRow("epf", {"move": "mala"}, 1, "EPF + MALA move"), 4, False),
+    "upf+mala": (StudyRow("upf", {"move": "mala"}, 1, "UPF + MALA move"), 8, True),
+    "supf+mala": (StudyRow("supf", {"move": "mala"}, 1, "SUPF + MALA move"), 6, False),
+    "upf+hmc": (StudyRow("upf", {"move": "hmc"}, 1, "UPF + HMC move"), 12, False),
 }
-ALL_TRAINERS = ("bp", "ekf", "ukf", "sukf", "spf", "epf", "upf", "supf", "upf+mala", "gsf-ekf", "gsf-ukf",
-                "gsf-sukf", "ekf-ensemble", "smc")
+
+
+def _rows():
+    """key -> :class:`StudyRow`: each registered trainer's row (from its
+    :class:`~filterwnn.trainers.TrainerSpec`), and the move rows after the last particle filter;
+    read when called, so that a trainer registered later has its row."""
+    particle = [name for name, spec in TRAINERS.items() if spec.accepts_move]
+    rows = {}
+    for name, spec in TRAINERS.items():
+        rows[name] = StudyRow(name, dict(spec.study), spec.study_epochs, spec.label or name)
+        if particle and name == particle[-1]:
+            rows.update({key: row for key, (row, _, _) in MOVE_ROWS.items()})
+    return rows
+
+
+def _uses_particles(key):
+    """Whether row ``key``'s trainer carries ``n_particles`` particles or components."""
+    return TRAINERS[_rows()[key].trainer].uses_particles
+
+
+def _specs_with(attr):
+    """``name -> spec.<attr>`` for the registered trainers whose ``attr`` is set (not None or empty)."""
+    return {name: getattr(spec, attr) for name, spec in TRAINERS.items() if getattr(spec, attr) not in (None, (), {})}
+
+
+def _sweep_rows():
+    """Rows of the particle sweep: the registered particle filters."""
+    return [name for name, spec in TRAINERS.items() if spec.accepts_move]
+
+
+def _cost():
+    """Rough seconds per epoch and particle of every row, for scheduling the longest tasks first."""
+    return {k: TRAINERS[k].cost if k in TRAINERS else MOVE_ROWS[k][1] for k in _rows()}
+
+
+def _in_paper_table(key):
+    """Whether row ``key`` also runs at the paper's literal settings."""
+    return key in TRAINERS and TRAINERS[key].paper_settings is not None
+
+
+#: The study's rows at import (:class:`StudyRow` tuples): every registered trainer's row, and
+#: ``MOVE_ROWS``. See ``docs/study-outputs/wnn/PROTOCOL.md``.
+ROWS = _rows()
+#: The rows run by default: every trainer, and the move rows so marked in ``MOVE_ROWS``.
+ALL_TRAINERS = tuple(k for k in ROWS if k in TRAINERS or MOVE_ROWS[k][2])
 #: Rows whose trainer carries ``n_particles`` particles or components.
-PARTICLE_TRAINERS = tuple(k for k, v in ROWS.items() if v[0] not in ("bp", "ekf", "ukf", "sukf"))
-#: Rows of the particle sweep (Figs. 3-4): the papers' particle filters.
-SWEEP_TRAINERS = ("spf", "epf", "upf", "supf")
-#: Rows that copy another row's chosen settings and epochs instead of searching.
-COPY_SETTINGS = {"ekf-ensemble": "gsf-ekf"}
+PARTICLE_TRAINERS = tuple(k for k in ROWS if _uses_particles(k))
+#: Rows of the particle sweep (Figs. 3-4): the papers' particle filters (the particle family).
+SWEEP_TRAINERS = tuple(_sweep_rows())
+#: Rows that copy another row's chosen settings and epochs instead of searching (the entries' ``copy_settings``).
+COPY_SETTINGS = _specs_with("copy_settings")
+
 REFERENCES = ("MLPRegressor", "GaussianProcessRegressor")
 TABLE_COLUMNS = (
     "trainer", "algorithm", "settings", "test_mse_median", "test_mse_q1", "test_mse_q3", "fit_time_median",
@@ -152,21 +195,18 @@ TABLE_COLUMNS = (
 
 def row_label(key, n_particles):
     """The algorithm's name for row ``key`` (e.g. ``"Gaussian-sum filter of 20 EKFs (tempering 0.01)"``)."""
-    return ROWS[key][3].format(N=n_particles) if key in ROWS else key
+    rows = _rows()
+    return rows[key].label.format(N=n_particles) if key in rows else key
 
-#: Candidates tried on the validation split, per trainer (``WNNRegressor`` keywords).
-#: EPF/UPF/SUPF are not listed: they search ``Q x {0.1, 1, 10}`` around the Q chosen for
-#: their proposal's filter (:data:`PROPOSAL_PARENT`) and keep its P0 (see :func:`candidates`).
-TUNING_GRID = {
-    "bp": [{"learning_rate": lr} for lr in (0.02, 0.05, 0.1, 0.2, 0.5)],
-    "ekf": [{"process_noise": q, "initial_covariance": p} for q in (1e-5, 1e-4, 1e-3, 1e-2) for p in (0.01, 0.1, 1.0)],
-    "ukf": [{"process_noise": q, "initial_covariance": p} for q in (1e-8, 1e-7, 1e-6, 1e-5, 1e-4) for p in (0.01, 0.1)],
-    "sukf": [{"process_noise": q, "initial_covariance": p} for q in (1e-8, 1e-7, 1e-6, 1e-5, 1e-4) for p in (0.01, 0.1)],
-    "spf": [{"process_noise": q, "initial_covariance": 0.01} for q in (1e-7, 1e-6, 1e-5, 1e-4, 1e-3)],
-}
+#: Candidates tried on the validation split, per trainer (``WNNRegressor`` keywords; the entries'
+#: ``grid``). EPF/UPF/SUPF and the Gaussian sums are not listed: they search ``Q x Q_FACTORS``
+#: around the Q chosen for their proposal's filter (:data:`PROPOSAL_PARENT`) and keep its P0
+#: (see :func:`candidates`).
+TUNING_GRID = {name: [dict(c) for c in grid] for name, grid in _specs_with("grid").items()}
 
-#: The single filter whose step each particle filter's proposal (or Gaussian sum's component) runs.
-PROPOSAL_PARENT = {"epf": "ekf", "upf": "ukf", "supf": "sukf", "gsf-ekf": "ekf", "gsf-ukf": "ukf", "gsf-sukf": "sukf"}
+#: The single filter whose step each particle filter's proposal (or Gaussian sum's component) runs
+#: (the entries' ``parent``).
+PROPOSAL_PARENT = _specs_with("parent")
 
 #: Factors applied to the parent's chosen Q (:func:`candidates`).
 Q_FACTORS = (0.01, 0.1, 1.0, 10.0, 100.0)
@@ -180,16 +220,8 @@ Z90 = 1.6448536269514722
 #: Fraction of a tuning run's training rows (the last ones) held out for validation.
 VALIDATION_FRACTION = 0.2
 
-#: The paper's Table 1: trainer -> (test MSE, training time in s). It has no SUKF row.
-PAPER_TABLE1 = {
-    "bp": (1.6605, 7.9),
-    "ekf": (0.2672, 9.8),
-    "ukf": (0.1258, 12.4),
-    "spf": (0.0859, 7.6),
-    "epf": (0.0601, 8.4),
-    "upf": (0.0226, 17.9),
-    "supf": (0.0245, 10.1),
-}
+#: The paper's Table 1: trainer -> (test MSE, training time in s) (the entries' ``paper``). It has no SUKF row.
+PAPER_TABLE1 = _specs_with("paper")
 
 
 class StudyResult(NamedTuple):
@@ -251,7 +283,7 @@ def candidates(trainer, chosen=None):
     trainer : str
     chosen : dict, optional
         ``trainer -> settings dict`` already chosen; EPF/UPF/SUPF centre their Q on their
-        parent's choice there (else on the parent's :data:`~filterwnn.regressor.AUTO_SETTINGS`).
+        parent's choice there (else on the parent's :data:`~filterwnn.trainers.AUTO_SETTINGS`).
 
     Returns
     -------
@@ -263,12 +295,16 @@ def candidates(trainer, chosen=None):
     >>> candidates("upf+mala")
     [{}]
     """
-    check_choice(trainer, "trainer", ROWS)
-    if ROWS[trainer][2] is not None or trainer in COPY_SETTINGS:  # fixed settings: nothing to search
+    rows = _rows()
+    check_choice(trainer, "trainer", rows)
+    spec = TRAINERS.get(trainer)
+    if rows[trainer].epochs is not None or spec is None or spec.copy_settings:  # fixed settings: nothing to search
         return [{}]
-    if trainer in TUNING_GRID:
-        return [dict(c) for c in TUNING_GRID[trainer]]
-    parent = PROPOSAL_PARENT[trainer]
+    if spec.grid:
+        return [dict(c) for c in spec.grid]
+    parent = spec.parent
+    if parent is None:  # neither a grid nor a parent: nothing to search
+        return [{}]
     base = (chosen or {}).get(parent)
     if base is None:
         auto = AUTO_SETTINGS[(parent, "scaled")]
@@ -298,7 +334,7 @@ def tune_run(trainer, tune_seed, n_epochs, n_particles=50, params=None, candidat
         X, y, _, _ = make_siso_benchmark(rng=_child(tune_seed, 0))  # test rows unused
         n_val = int(round(VALIDATION_FRACTION * len(X)))
         Xt, yt, Xv, yv = X[:-n_val], y[:-n_val], X[-n_val:], y[-n_val:]
-        kind, fixed, _, _ = ROWS[trainer]
+        kind, fixed, _, _ = _rows()[trainer]
         reg = WNNRegressor(trainer=kind, n_epochs=n_epochs, n_particles=n_particles, init="scaled",
                            random_state=_child(tune_seed, 1), **dict(fixed, **params))
         curve, status = [], "ok"
@@ -311,7 +347,7 @@ def tune_run(trainer, tune_seed, n_epochs, n_particles=50, params=None, candidat
     return {
         "table": "tuning", "trainer": trainer, "candidate": int(candidate), "params": params, "run": run,
         "curve_val": curve, "fit_time": float(getattr(reg, "fit_time_", float("nan"))), "status": status,
-        "n_particles": n_particles if trainer in PARTICLE_TRAINERS else 0,
+        "n_particles": n_particles if _uses_particles(trainer) else 0,
     }
 
 
@@ -391,7 +427,7 @@ def _train_tracked(reg, X, y, X_eval, y_eval, n_epochs, curve):
 
 def _settings_text(table, trainer, reg):
     s = reg.settings_
-    if trainer == "bp":
+    if "learning_rate" in s:
         txt = f"init={s['init']}, lr={s['learning_rate']:g}"
     else:
         txt = f"init={s['init']}, Q={s['Q']:g}, P0={s['P0']:g}, R={s['R']:g}"
@@ -404,22 +440,19 @@ def _settings_text(table, trainer, reg):
         )
         if s.get("move"):
             txt += f" ({s['n_moves']} steps)"
-    if s.get("trainer") == "smc":
+    if getattr(TRAINERS.get(s.get("trainer")), "family", None) == "smc":
         txt += f", N={s['n_particles']}, weighting=tempered SMC, move={s['kernel']} ({s['n_moves']} steps)"
     return f"{table}: {txt}"
 
 
 def _params(table, trainer):
-    if table == "paper":
+    if table == "paper":  # the entry's paper_settings over PAPER_SETTINGS (Q and P0 only where used)
+        spec = TRAINERS[_rows()[trainer].trainer]
         p = dict(PAPER_SETTINGS)
-        if trainer in ("epf", "upf", "supf"):
-            p["ess_threshold"] = 1.0  # the paper resamples at every step
-            p["tempering"] = 1.0
-        if trainer == "spf":
-            p["ess_threshold"] = 1.0
-        if trainer == "bp":
+        if not spec.noise_settings:
             p.pop("process_noise")
             p.pop("initial_covariance")
+        p.update(spec.paper_settings or {})
         return p
     return {"init": "scaled"}
 
@@ -430,7 +463,7 @@ def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_
     Parameters
     ----------
     trainer : str
-        A key of :data:`filterwnn.regressor.TRAINERS`.
+        A key of ``ROWS``: a trainer of :data:`filterwnn.trainers.TRAINERS`, or a row of ``MOVE_ROWS``.
     run_seed : (entropy, spawn_key)
         From :func:`run_seeds`.
     n_epochs, n_particles : int
@@ -451,7 +484,7 @@ def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_
     with threadpool_limits(limits=1), warnings.catch_warnings():
         warnings.simplefilter("ignore", DegeneracyWarning)  # reported as ESS and distinct particles
         X, y, X_test, y_test = make_siso_benchmark(rng=_child(run_seed, 0))
-        kind, fixed, _, _ = ROWS[trainer]
+        kind, fixed, _, _ = _rows()[trainer]
         kw = _params(table, trainer)
         if table != "paper":
             kw.update(fixed)
@@ -490,7 +523,7 @@ def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_
             "curve_train": list(getattr(reg, "loss_curve_", [])),
             "curve_test": curve_test,
             "settings": _settings_text(table, trainer, reg) if hasattr(reg, "settings_") else table,
-            "n_particles": n_particles if trainer in PARTICLE_TRAINERS else 0,
+            "n_particles": n_particles if _uses_particles(trainer) else 0,
             "epochs": int(getattr(reg, "n_iter_", 0)),
             "status": status,
         }
@@ -669,7 +702,8 @@ def summarize(runs):
     for table, trainer, _ in keys:
         rs = [r for r in runs if r["table"] == table and r["trainer"] == trainer]
         mse = [r["test_mse"] for r in rs]
-        paper = PAPER_TABLE1.get(trainer, (float("nan"), float("nan")))
+        paper = TRAINERS[trainer].paper if trainer in TRAINERS else None
+        paper = paper or (float("nan"), float("nan"))
         ess = [r["mean_ess"] for r in rs if np.isfinite(r["mean_ess"])]
         distinct = [r["distinct"] for r in rs if r["distinct"] > 0]
         cover = [r.get("coverage90", float("nan")) for r in rs]
@@ -697,26 +731,164 @@ def summarize(runs):
 
 
 # ---------------------------------------------------------------------------- study
-def run_study(
-    n_runs=3,
-    n_epochs=30,
-    pf_epochs=None,
-    n_particles=10,
-    trainers=ALL_TRAINERS,
-    seed=2026,
-    paper_table=True,
-    paper_runs=None,
-    paper_pf_epochs=None,
-    references=REFERENCES,
-    sweep_particles=(5, 10, 20),
-    sweep_runs=None,
-    n_jobs=1,
-    backend=None,
-    progress=False,
-    cache_dir=None,
-    cached_only=False,
-    tune_runs=2,
-):
+class _Plan(NamedTuple):
+    """The study's size, checked: what every task list reads."""
+
+    n_runs: int
+    n_epochs: int
+    pf_epochs: int
+    n_particles: int
+    paper_runs: int
+    paper_pf_epochs: int
+    sweep_runs: int
+    tune_runs: int
+    seeds: list
+
+    def epochs(self, key):
+        """Epochs of row ``key`` without a search: its fixed epochs, else the study's."""
+        fixed = _rows()[key].epochs
+        if fixed is not None:
+            return fixed
+        return self.pf_epochs if _uses_particles(key) else self.n_epochs
+
+
+def _plan(n_runs, n_epochs, pf_epochs, n_particles, trainers, seed, paper_runs, paper_pf_epochs, sweep_runs,
+          tune_runs):
+    """Check :func:`run_study`'s sizes and trainers; the run seeds."""
+    n_runs = check_positive_int(n_runs, "n_runs")
+    n_epochs = check_positive_int(n_epochs, "n_epochs")
+    pf_epochs = n_epochs if pf_epochs is None else check_positive_int(pf_epochs, "pf_epochs")
+    n_particles = check_positive_int(n_particles, "n_particles")
+    rows = _rows()
+    for t in trainers:
+        check_choice(t, "trainer", rows)
+    paper_runs = n_runs if paper_runs is None else check_positive_int(paper_runs, "paper_runs", minimum=0)
+    sweep_runs = n_runs if sweep_runs is None else check_positive_int(sweep_runs, "sweep_runs")
+    tune_runs = check_positive_int(tune_runs, "tune_runs", minimum=0)
+    seeds = run_seeds(seed, max(n_runs, paper_runs, sweep_runs))
+    paper_pf_epochs = pf_epochs if paper_pf_epochs is None else check_positive_int(paper_pf_epochs, "paper_pf_epochs")
+    return _Plan(n_runs, n_epochs, pf_epochs, n_particles, paper_runs, paper_pf_epochs, sweep_runs, tune_runs, seeds)
+
+
+def _search(trainers, plan, seed, run_kw):
+    """The settings search on the validation split (module docstring): the single filters and BP
+    first, then the trainers that centre on their parent's choice.
+
+    Returns
+    -------
+    chosen : dict
+        ``trainer -> select_settings(...)[0]``.
+    tuning : list of dict
+        The candidates' rows.
+    complete : bool
+        False when some trainer's search is not finished (``cached_only``).
+    """
+    chosen, tuning, complete = {}, [], True
+    if not plan.tune_runs:
+        return chosen, tuning, complete
+    tseeds = tune_seeds(seed, plan.tune_runs)
+    parent_of, cost = _specs_with("parent"), _cost()
+    searched = [t for t in trainers if candidates(t) != [{}]]
+    for phase in ([t for t in searched if t not in parent_of], [t for t in searched if t in parent_of]):
+        ttasks = []
+        parents = {k: v["params"] for k, v in chosen.items()}
+        for t in phase:
+            for c, params in enumerate(candidates(t, parents)):
+                for j in range(plan.tune_runs):
+                    ttasks.append(("tune", (t, tseeds[j], plan.epochs(t), plan.n_particles),
+                                   {"params": params, "candidate": c, "run": j}))
+        ttasks.sort(key=lambda task: -_task_cost(task, cost))
+        results = run_tasks(ttasks, **run_kw)
+        for t in phase:
+            rs = [r for r in results if r is not None and r["trainer"] == t]
+            if len(rs) < sum(task[1][0] == t for task in ttasks):
+                complete = False
+                continue
+            choice, rows = select_settings(rs)
+            chosen[t] = choice
+            tuning += rows
+    return chosen, tuning, complete
+
+
+def _working(t, chosen, plan):
+    """(epochs, extra task keywords) of row ``t``'s table and sweep runs."""
+    copy = _specs_with("copy_settings")
+    if t in copy and copy[t] in chosen:
+        t = copy[t]
+    if t in chosen:
+        return chosen[t]["epochs"], {"params": dict(chosen[t]["params"])}
+    return plan.epochs(t), {}
+
+
+def _study_tasks(trainers, plan, chosen, references, paper_table, sweep_particles):
+    """The tasks of the working table, the references, the paper table and the sweep, and the
+    index of the first sweep task (the tuples key the cache: they must not change)."""
+    tasks = []
+    for t in trainers:
+        ep, extra = _working(t, chosen, plan)
+        for i in range(plan.n_runs):
+            tasks.append(("fit", (t, plan.seeds[i], ep, plan.n_particles), {"table": "working", "run": i, **extra}))
+    for name in references:
+        for i in range(plan.n_runs):
+            tasks.append(("reference", (name, plan.seeds[i]), {"run": i}))
+    if paper_table:
+        for t in [t for t in trainers if _in_paper_table(t)]:
+            for i in range(plan.paper_runs):
+                ep = plan.paper_pf_epochs if _uses_particles(t) else plan.n_epochs
+                tasks.append(("fit", (t, plan.seeds[i], ep, plan.n_particles),
+                              {"table": "paper", "run": i, "track_test": False}))
+    n_main = len(tasks)
+    for n in sweep_particles:
+        if n == plan.n_particles:
+            continue  # reuse the main table's runs
+        for t in [t for t in trainers if t in _sweep_rows()]:
+            ep, extra = _working(t, chosen, plan)
+            for i in range(plan.sweep_runs):
+                tasks.append(("fit", (t, plan.seeds[i], ep, int(n)),
+                              {"table": "sweep", "run": i, "track_test": False, **extra}))
+    return tasks, n_main
+
+
+def _run_scheduled(tasks, run_kw):
+    """Run ``tasks``: the working table run by run (so an interrupted study has whole runs), then
+    references, paper table and sweep, longest first inside each; results in task order."""
+    group = {"working": 0, "paper": 2, "sweep": 3}
+    cost = _cost()
+
+    def priority(k):
+        kind, args, kwargs = tasks[k]
+        g = 1 if kind == "reference" else group[kwargs["table"]]
+        return (g, kwargs["run"] if g == 0 else 0, -_task_cost(tasks[k], cost))
+
+    order = sorted(range(len(tasks)), key=priority)
+    results = run_tasks([tasks[k] for k in order], **run_kw)
+    out = [None] * len(tasks)
+    for k, r in zip(order, results):
+        out[k] = r
+    return out
+
+
+def _sweep_table(main, swept, trainers, sweep_particles, plan):
+    """The particle sweep's rows (Figs. 3-4), the main table's runs counted at its particle number."""
+    sweep = []
+    pool = [r for r in main if r["table"] == "working" and r["trainer"] in _sweep_rows()] + swept
+    for t in [t for t in trainers if t in _sweep_rows()]:
+        for n in sorted(set(list(sweep_particles) + [plan.n_particles])):
+            rs = [r for r in pool if r["trainer"] == t and r["n_particles"] == n][:plan.sweep_runs]
+            if not rs:
+                continue
+            sweep.append({
+                "trainer": t, "n_particles": int(n), "n_runs": len(rs),
+                "test_mse_median": _q([r["test_mse"] for r in rs], 0.5),
+                "fit_time_median": _q([r["fit_time"] for r in rs], 0.5),
+            })
+    return sweep
+
+
+def run_study(n_runs=3, n_epochs=30, pf_epochs=None, n_particles=10, trainers=ALL_TRAINERS, seed=2026,
+              paper_table=True, paper_runs=None, paper_pf_epochs=None, references=REFERENCES,
+              sweep_particles=(5, 10, 20), sweep_runs=None, n_jobs=1, backend=None, progress=False,
+              cache_dir=None, cached_only=False, tune_runs=2):
     """Run the study (settings search, Table 1 rows, the particle sweep, the curves).
 
     Parameters
@@ -730,6 +902,7 @@ def run_study(
     n_particles : int
         Particles of the main table (the paper: 50).
     trainers : sequence of str
+        Row keys (:data:`ALL_TRAINERS` by default; any registered trainer has a row).
     seed : int
         Root of ``SeedSequence(seed).spawn(n_runs)``.
     paper_table : bool
@@ -748,133 +921,32 @@ def run_study(
         See :func:`run_tasks` (``cache_dir`` makes the study resumable).
     tune_runs : int
         Tuning runs of the settings search on the validation split (module docstring);
-        0 uses :data:`~filterwnn.regressor.AUTO_SETTINGS` and all ``n_epochs``.
+        0 uses :data:`~filterwnn.trainers.AUTO_SETTINGS` and all ``n_epochs``.
 
     Returns
     -------
     StudyResult
     """
-    n_runs = check_positive_int(n_runs, "n_runs")
-    n_epochs = check_positive_int(n_epochs, "n_epochs")
-    pf_epochs = n_epochs if pf_epochs is None else check_positive_int(pf_epochs, "pf_epochs")
-    n_particles = check_positive_int(n_particles, "n_particles")
-    for t in trainers:
-        check_choice(t, "trainer", ROWS)
-    paper_runs = n_runs if paper_runs is None else check_positive_int(paper_runs, "paper_runs", minimum=0)
-    sweep_runs = n_runs if sweep_runs is None else check_positive_int(sweep_runs, "sweep_runs")
-    tune_runs = check_positive_int(tune_runs, "tune_runs", minimum=0)
-    seeds = run_seeds(seed, max(n_runs, paper_runs, sweep_runs))
-
-    def epochs(t):
-        if ROWS[t][2] is not None:
-            return ROWS[t][2]
-        return pf_epochs if t in PARTICLE_TRAINERS else n_epochs
-
+    plan = _plan(n_runs, n_epochs, pf_epochs, n_particles, trainers, seed, paper_runs, paper_pf_epochs, sweep_runs,
+                 tune_runs)
     run_kw = dict(n_jobs=n_jobs, backend=backend, progress=progress, cache_dir=cache_dir, cached_only=cached_only)
-    chosen, tuning, complete = {}, [], True
-    if tune_runs:
-        tseeds = tune_seeds(seed, tune_runs)
-        searched = [t for t in trainers if candidates(t) != [{}]]
-        first = [t for t in searched if t not in PROPOSAL_PARENT]
-        second = [t for t in searched if t in PROPOSAL_PARENT]
-        for phase in (first, second):
-            ttasks = []
-            parents = {k: v["params"] for k, v in chosen.items()}
-            for t in phase:
-                for c, params in enumerate(candidates(t, parents)):
-                    for j in range(tune_runs):
-                        ttasks.append(("tune", (t, tseeds[j], epochs(t), n_particles),
-                                       {"params": params, "candidate": c, "run": j}))
-            ttasks.sort(key=lambda task: -_task_cost(task, _COST))
-            results = run_tasks(ttasks, **run_kw)
-            for t in phase:
-                rs = [r for r in results if r is not None and r["trainer"] == t]
-                if len(rs) < sum(task[1][0] == t for task in ttasks):
-                    complete = False
-                    continue
-                choice, rows = select_settings(rs)
-                chosen[t] = choice
-                tuning += rows
-
-    def working(t):
-        """(epochs, extra task keywords) of trainer t's table and sweep runs."""
-        if t in COPY_SETTINGS and COPY_SETTINGS[t] in chosen:
-            t = COPY_SETTINGS[t]
-        if t in chosen:
-            return chosen[t]["epochs"], {"params": dict(chosen[t]["params"])}
-        return epochs(t), {}
-
-    tasks = []
-    if tune_runs and not complete:  # cached_only with an unfinished search
-        trainers = [t for t in trainers if t in chosen or candidates(t) == [{}] and t not in COPY_SETTINGS]
-    for t in trainers:
-        ep, extra = working(t)
-        for i in range(n_runs):
-            tasks.append(("fit", (t, seeds[i], ep, n_particles), {"table": "working", "run": i, **extra}))
-    for name in references:
-        for i in range(n_runs):
-            tasks.append(("reference", (name, seeds[i]), {"run": i}))
-    paper_pf_epochs = pf_epochs if paper_pf_epochs is None else check_positive_int(paper_pf_epochs, "paper_pf_epochs")
-    if paper_table:
-        for t in [t for t in trainers if t in PAPER_TABLE1 or t == "sukf"]:
-            for i in range(paper_runs):
-                ep = paper_pf_epochs if t in PARTICLE_TRAINERS else n_epochs
-                tasks.append(("fit", (t, seeds[i], ep, n_particles),
-                              {"table": "paper", "run": i, "track_test": False}))
-    sweep_pf = [t for t in trainers if t in SWEEP_TRAINERS]
-    n_main = len(tasks)
-    for n in sweep_particles:
-        if n == n_particles:
-            continue  # reuse the main table's runs
-        for t in sweep_pf:
-            ep, extra = working(t)
-            for i in range(sweep_runs):
-                tasks.append(("fit", (t, seeds[i], ep, int(n)),
-                              {"table": "sweep", "run": i, "track_test": False, **extra}))
-    # schedule: the working table run by run (so an interrupted study has whole runs),
-    # then references, paper table and sweep; longest first inside each; same numbers
-    group = {"working": 0, "paper": 2, "sweep": 3}
-
-    def priority(k):
-        kind, args, kwargs = tasks[k]
-        g = 1 if kind == "reference" else group[kwargs["table"]]
-        return (g, kwargs["run"] if g == 0 else 0, -_task_cost(tasks[k], _COST))
-
-    order = sorted(range(len(tasks)), key=priority)
-    results = run_tasks([tasks[k] for k in order], **run_kw)
-    out = [None] * len(tasks)
-    for k, r in zip(order, results):
-        out[k] = r
-    n_total, n_done = len(out), sum(r is not None for r in out)
+    chosen, tuning, complete = _search(trainers, plan, seed, run_kw)
+    if plan.tune_runs and not complete:  # cached_only with an unfinished search
+        copy = _specs_with("copy_settings")
+        trainers = [t for t in trainers if t in chosen or candidates(t) == [{}] and t not in copy]
+    tasks, n_main = _study_tasks(trainers, plan, chosen, references, paper_table, sweep_particles)
+    out = _run_scheduled(tasks, run_kw)
     main = [r for r in out[:n_main] if r is not None]
     swept = [r for r in out[n_main:] if r is not None]
-    table = summarize([r for r in main])
-    sweep = []
-    pool = [r for r in main if r["table"] == "working" and r["trainer"] in SWEEP_TRAINERS] + swept
-    for t in sweep_pf:
-        for n in sorted(set(list(sweep_particles) + [n_particles])):
-            rs = [r for r in pool if r["trainer"] == t and r["n_particles"] == n][:sweep_runs]
-            if not rs:
-                continue
-            sweep.append({
-                "trainer": t, "n_particles": int(n), "n_runs": len(rs),
-                "test_mse_median": _q([r["test_mse"] for r in rs], 0.5),
-                "fit_time_median": _q([r["fit_time"] for r in rs], 0.5),
-            })
     config = dict(
-        n_runs=n_runs, n_epochs=n_epochs, pf_epochs=pf_epochs, n_particles=n_particles, seed=seed,
-        trainers=list(trainers), paper_runs=paper_runs if paper_table else 0, paper_pf_epochs=paper_pf_epochs,
-        sweep_particles=list(sweep_particles),
-        sweep_runs=sweep_runs, n_jobs=n_jobs, backend=backend or "loky", n_tasks=n_total, n_done=n_done,
-        tune_runs=tune_runs, validation_fraction=VALIDATION_FRACTION, tuning_complete=complete,
+        n_runs=plan.n_runs, n_epochs=plan.n_epochs, pf_epochs=plan.pf_epochs, n_particles=plan.n_particles,
+        seed=seed, trainers=list(trainers), paper_runs=plan.paper_runs if paper_table else 0,
+        paper_pf_epochs=plan.paper_pf_epochs, sweep_particles=list(sweep_particles), sweep_runs=plan.sweep_runs,
+        n_jobs=n_jobs, backend=backend or "loky", n_tasks=len(out), n_done=sum(r is not None for r in out),
+        tune_runs=plan.tune_runs, validation_fraction=VALIDATION_FRACTION, tuning_complete=complete,
     )
-    return StudyResult(runs=main + swept, table=table, sweep=sweep, config=config, tuning=tuning)
-
-
-#: Rough seconds per epoch and particle, for scheduling the longest tasks first.
-_COST = {"bp": 1, "ekf": 1, "ukf": 6, "sukf": 6, "spf": 0.4, "epf": 1.2, "upf": 4, "supf": 4, "spf+mala": 3,
-         "epf+mala": 4, "upf+mala": 8, "supf+mala": 6, "upf+hmc": 12, "gsf-ekf": 1, "gsf-ukf": 4, "gsf-sukf": 3,
-         "ekf-ensemble": 1, "smc": 40}
+    return StudyResult(runs=main + swept, table=summarize(main), sweep=_sweep_table(main, swept, trainers,
+                       sweep_particles, plan), config=config, tuning=tuning)
 
 
 def _task_cost(task, cost):
@@ -882,7 +954,7 @@ def _task_cost(task, cost):
     if kind == "reference":
         return 2.0
     t, _, ep, n = args
-    per = cost[t] * (n if t in PARTICLE_TRAINERS else 1)
+    per = cost[t] * (n if _uses_particles(t) else 1)
     return per * ep
 
 
