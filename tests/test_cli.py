@@ -42,7 +42,7 @@ import sys  # noqa: E402
 import warnings  # noqa: E402
 
 from filterwnn.cli import _build_parser  # noqa: E402
-from filterwnn.studies import _args  # noqa: E402
+from filterwnn.studies import options as _args  # noqa: E402
 
 BAD = [
     (["study", "wnn", "--runs", "0"], "--runs", ">= 1"),
