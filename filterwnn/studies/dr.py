@@ -483,7 +483,7 @@ def run_study(scenarios=DEFAULT_SCENARIOS, n_runs=10, filters=None, seed=0, jobs
     """
     n_runs = check_positive_int(n_runs, "n_runs")
     if isinstance(jobs, bool) or not isinstance(jobs, (int, np.integer)) or jobs == 0:
-        raise ValueError(f"jobs must be an integer >= 1, or negative (-1: all cores), got {jobs!r}")
+        raise ValueError(f"jobs must be >= 1, or negative (-1: all cores), got {jobs!r}")
     seed = check_seed(seed)
     if n_steps is not None:
         n_steps = check_positive_int(n_steps, "n_steps")
