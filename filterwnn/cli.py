@@ -15,7 +15,7 @@ import sys
 
 from . import __version__
 from .studies import STUDIES
-from .studies import _args
+from .studies import options
 
 __all__ = ["main"]
 
@@ -94,14 +94,14 @@ def _demo(args):
 
 def _build_parser():
     """The ``filterwnn`` parser with every command and every study's options."""
-    fmt = _args.HelpFormatter
+    fmt = options.HelpFormatter
     parser = argparse.ArgumentParser(prog="filterwnn", description=_DESCRIPTION, formatter_class=fmt)
     parser.add_argument("--version", action="version", version=f"filterwnn {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, metavar="{demo,study}")
     demo = sub.add_parser("demo", help="a ten-second tour: sigma points, a filter-trained network, GPS/DR", formatter_class=fmt,
                           description="filterpy's UnscentedKalmanFilter with Merwe's, the minimal-skew and the\n"
                                       "spherical-simplex points on a random 4-state linear model.")
-    demo.add_argument("--seed", type=_args.seed, default=0, help="seed of the model and the simulated run (>= 0)")
+    demo.add_argument("--seed", type=options.seed, default=0, help="seed of the model and the simulated run (>= 0)")
     demo.set_defaults(func=_demo)
     study = sub.add_parser("study", help="reproduce one of the papers' studies", formatter_class=fmt)
     studies = study.add_subparsers(dest="study", required=True)

@@ -441,7 +441,7 @@ STUDY_ROWS = [
 DR_STUDY = dict(scenarios=["straight"], n_runs=1, filters=["EKF"])
 STUDY_ROWS += [
     row(lambda: dr_study.run_study(**{**DR_STUDY, "n_runs": 0}), ValueError, r"n_runs must be >= 1, got 0", "study-dr-runs"),
-    row(lambda: dr_study.run_study(**{**DR_STUDY, "jobs": 0}), ValueError, r"jobs must be >= 1, got 0", "study-dr-jobs"),
+    row(lambda: dr_study.run_study(**{**DR_STUDY, "jobs": 0}), ValueError, r"jobs must be >= 1, or negative \(-1: all cores\), got 0", "study-dr-jobs"),
     row(lambda: dr_study.run_study(**{**DR_STUDY, "filters": ["KF9"]}), ValueError, r"unknown filters \['KF9'\]; valid:", "study-dr-filters"),
     row(lambda: dr_study.run_study(**{**DR_STUDY, "scenarios": ["moon"]}), ValueError, r"unknown scenario 'moon'; valid:", "study-dr-scenario"),
     row(lambda: dr_study.run_study(**{**DR_STUDY, "seed": -1}), ValueError, r"seed must be >= 0, got -1", "study-dr-seed"),

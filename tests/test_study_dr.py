@@ -124,3 +124,50 @@ def test_real_drive_skips_cleanly_without_onavdata(monkeypatch):
     monkeypatch.setattr(importlib.resources, "files", missing)
     with pytest.raises(ImportError, match="pip install"):
         dr.load_car_drive(dr.CAR_DRIVE)
+
+
+CACHED = dict(scenarios=["straight", "gpsdr"], n_runs=2, n_steps=60, filters=["EKF", "NN", "EKF-8"], seed=5)
+
+
+def test_jobs_and_cache_give_identical_tables(tmp_path, monkeypatch):
+    one = dr.run_study(**CACHED, cache_dir=str(tmp_path))
+    assert len(list(tmp_path.glob("*.pkl"))) == 4  # one per (scenario, run)
+    two = dr.run_study(**CACHED, jobs=2)
+    assert _numbers(one) == _numbers(two)
+
+    def must_not_run(*args, **kwargs):
+        raise AssertionError("a cached run ran again")
+
+    monkeypatch.setattr(dr, "run_one", must_not_run)
+    again = dr.run_study(**CACHED, cache_dir=str(tmp_path))
+    assert dr.markdown_table(again) == dr.markdown_table(one)  # timings come from the cache too
+    for name in one.errors:
+        for f, e in one.errors[name]["filters"].items():
+            np.testing.assert_array_equal(e, again.errors[name]["filters"][f])
+
+
+def test_stream_keys_are_fixed_per_name(monkeypatch):
+    for kind in ("dr", "gpsdr"):
+        keys = [f.stream for f in dr.FILTER_TABLE if f.scenario == kind]
+        assert len(keys) == len(set(keys)), kind
+    sc = dr.SCENARIOS["straight"](duration=8.0)
+    seed = np.random.SeedSequence(11).spawn(1)[0]
+    before = dr.run_one(sc, ["EKF", "NN"], seed)["est"]
+    # a new filter (placed first, with a new key) changes no other filter's numbers
+    new = dr.DRFilter("NN-new", "dr", dr.FILTERS[("dr", "NN")].build, 99)
+    monkeypatch.setattr(dr, "FILTER_TABLE", (new,) + dr.FILTER_TABLE)
+    monkeypatch.setattr(dr, "FILTERS", {**dr.FILTERS, ("dr", "NN-new"): new})
+    after = dr.run_one(sc, ["NN-new", "EKF", "NN"], seed)["est"]
+    for f in ("EKF", "NN"):
+        np.testing.assert_array_equal(before[f], after[f])
+    assert not np.array_equal(after["NN-new"], after["NN"])  # its own stream, not NN's
+
+
+def test_cli_cache_and_backend_options(tmp_path):
+    parser = argparse.ArgumentParser()
+    dr.add_arguments(parser)
+    args = parser.parse_args(["--runs", "1", "--scenarios", "straight", "--filters", "EKF", "--out", str(tmp_path),
+                              "--no-figures", "--no-progress", "--jobs", "1", "--backend", "threading",
+                              "--cache", str(tmp_path / "cache")])
+    assert dr.run(args) == 0
+    assert len(list((tmp_path / "cache").glob("*.pkl"))) == 1

@@ -7,6 +7,15 @@ outliers, and GPS/DR with 1 Hz fixes, outages, a 2 % odometer-scale error and a
 2-degree heading bias), with common random numbers: run ``i`` of every filter sees the
 same drive, the same sensor noise and the same initial error, drawn from
 ``SeedSequence(seed).spawn(n_runs)[i]`` whatever the number of worker processes.
+Inside a run every filter draws from its own stream, keyed by its fixed
+:attr:`DRFilter.stream`, so adding a filter changes no other filter's numbers.
+
+Each filter is one row of :data:`FILTER_TABLE` (:class:`DRFilter`: name, the scenarios
+it applies to, how it is built, its stream key, opt-in and oracle flags), and all of
+them run through one predict/update loop, :func:`run_filter`. The runs go through
+:func:`filterwnn.studies.runner.run_tasks`: joblib workers (``--jobs``), Dask
+(``--backend dask --scheduler ADDRESS``), and a per-run cache (``--cache DIR``) that
+makes an interrupted study resume with the same numbers.
 
 Filters (DR-only scenarios)
 
@@ -67,7 +76,8 @@ import copy
 import csv
 import os
 import time
-from typing import NamedTuple
+from functools import partial
+from typing import Callable, NamedTuple
 
 import numpy as np
 from filterpy.kalman import ExtendedKalmanFilter, MerweScaledSigmaPoints
@@ -94,9 +104,13 @@ from ..neural_filter import (
 )
 from ..sigma_points import SphericalSimplexSigmaPoints
 from ..unscented import UnscentedKalmanFilter
-from . import _args
+from . import options, runner
 
 __all__ = [
+    "DRFilter",
+    "FILTER_TABLE",
+    "FILTERS",
+    "run_filter",
     "DR_FILTERS",
     "GPSDR_FILTERS",
     "StudyResult",
@@ -117,18 +131,67 @@ __all__ = [
     "REAL_MODEL",
 ]
 
-DR_FILTERS = ("EKF", "EKF-oracle", "AEKF", "UKF", "SUKF", "NN", "NN-faithful", "NN-gen", "UPF")
-GPSDR_FILTERS = ("EKF", "EKF-8", "UKF-8", "SUKF-8", "DR-only")
 UPF_PARTICLES = 50
-#: Filters run only when asked for (``--filters``): the UPF costs about 100x the EKF.
-OPT_IN = ("UPF",)
-ORACLE = {"dr": "EKF-oracle", "gpsdr": "EKF-8"}
 DEFAULT_SCENARIOS = ("straight", "turns", "heading180", "outliers", "gpsdr")
 DIV_FACTOR = 3.0
 DIV_FLOOR = 1.0
 
 
-# ----------------------------------------------------------------------------- runners
+# ----------------------------------------------------------------------------- filters
+
+
+class _Steps(NamedTuple):
+    """A filter ready to run over one drive: ``predict()``, ``update(k)`` with step ``k``'s
+    measurements, and ``state()``, the posterior mean (its first 6 entries are scored)."""
+
+    predict: Callable
+    update: Callable
+    state: Callable
+
+
+class DRFilter(NamedTuple):
+    """One row of :data:`FILTERS`: a filter of the study and how it is built.
+
+    Attributes
+    ----------
+    name : str
+        The name in the tables and in ``--filters``.
+    scenario : str
+        ``"dr"`` (the DR-only scenarios) or ``"gpsdr"`` (the scenarios with GPS fixes).
+    build : callable
+        ``build(run, x0, rng, context) -> _Steps``: the filter set up on ``run`` from the
+        initial estimate ``x0 (6,)``, its own random stream ``rng`` and the study's shared
+        ``context`` (``{"NN-gen": fitted NeuralFilter}``).
+    stream : int
+        The fixed key of its random stream in every run,
+        ``child(run_seed, 2, stream)``: a new filter takes a new key and changes no other
+        filter's numbers.
+    opt_in : bool
+        Run only when named in ``filters`` (the UPF costs about 100x the EKF).
+    oracle : bool
+        The reference filter whose RMS error sets the divergence envelope.
+    """
+
+    name: str
+    scenario: str
+    build: Callable
+    stream: int
+    opt_in: bool = False
+    oracle: bool = False
+
+
+def _ekf_steps(run, x0, rng, context, adaptive=False, true_R=False):
+    """filterpy's EKF (or the adaptive one) with the nominal ``R``, or told the true ``R``."""
+    model = DRModel(dt=run.scenario.dt)
+    kf = AdaptiveExtendedKalmanFilter(6, 2) if adaptive else ExtendedKalmanFilter(6, 2)
+    kf.F, kf.Q, kf.R = model.F.copy(), model.Q.copy(), model.R.copy()
+    kf.x, kf.P = x0.copy(), model.P0.copy()
+
+    def update(k):
+        R = np.diag(run.R_true[k]) if true_R else None
+        kf.update(run.z_dr[k], model.HJacobian, model.hx, R=R, residual=dr_residual)
+
+    return _Steps(kf.predict, update, lambda: kf.x)
 
 
 def _ukf(model, points, x0, P0, gps):
@@ -146,46 +209,33 @@ def _points(kind, n):
     return SphericalSimplexSigmaPoints(n, w0=0.2)
 
 
-def _dr_filter_run(name, run, x0, nn_cache, rng_nn):
-    """Estimates ``(n_steps, 6)`` of one DR-only filter on one run."""
+def _ukf_steps(run, x0, rng, context, points="merwe"):
+    """The unscented filter with Merwe (13) or spherical-simplex (8) points, circular heading mean."""
     model = DRModel(dt=run.scenario.dt)
-    n = len(run.t)
-    out = np.empty((n, 6))
-    P0 = model.P0
-    if name in ("EKF", "EKF-oracle", "AEKF"):
-        kf = AdaptiveExtendedKalmanFilter(6, 2) if name == "AEKF" else ExtendedKalmanFilter(6, 2)
-        kf.F, kf.Q, kf.R = model.F.copy(), model.Q.copy(), model.R.copy()
-        kf.x, kf.P = x0.copy(), P0.copy()
-        for k in range(n):
-            kf.predict()
-            R = np.diag(run.R_true[k]) if name == "EKF-oracle" else None
-            kf.update(run.z_dr[k], model.HJacobian, model.hx, R=R, residual=dr_residual)
-            out[k] = kf.x
-        return out
-    if name in ("UKF", "SUKF"):
-        f = _ukf(model, _points("merwe" if name == "UKF" else "simplex", 6), x0, P0, False)
-        for k in range(n):
-            f.predict()
-            f.update(run.z_dr[k])
-            out[k] = f.x
-        return out
-    if name.startswith("NN"):
-        nf = _neural_filter(name, run, model, nn_cache, rng_nn)
-        nf.reset(x0)
-        return nf.batch_filter(run.z_dr)
-    if name == "UPF":
-        return _upf_run(run, model, x0, P0, rng_nn)
-    raise ValueError(f"unknown filter {name!r}; valid: {', '.join(DR_FILTERS)}")
+    f = _ukf(model, _points(points, 6), x0, model.P0, False)
+    return _Steps(f.predict, lambda k: f.update(run.z_dr[k]), lambda: f.x)
 
 
-def _neural_filter(name, run, model, nn_cache, rng_nn):
-    if name == "NN-gen":
-        return nn_cache["NN-gen"]
-    sc = run.scenario
-    form, feat = ("absolute", "angle") if name == "NN-faithful" else ("passthrough", "velocity")
+def _nn_steps(run, x0, rng, context, form="passthrough", features="velocity"):
+    """:class:`~filterwnn.NeuralFilter` trained on the paper's 30 points at the scenario's velocity.
+
+    ``rng`` draws the training set's noise, then the network's initial weights.
+    """
+    model, sc = DRModel(dt=run.scenario.dt), run.scenario
     states = paper_training_states(30, speed=sc.speed, heading_deg=sc.heading)
-    Xp, Z, X = make_training_set(states, model, rng=rng_nn)
-    return NeuralFilter(model, form=form, features=feat, rng=rng_nn).fit(Xp, Z, X)
+    Xp, Z, X = make_training_set(states, model, rng=rng)
+    nf = NeuralFilter(model, form=form, features=features, rng=rng).fit(Xp, Z, X)
+    return _nn_run_steps(nf, run, x0)
+
+
+def _nn_gen_steps(run, x0, rng, context):
+    """The network :func:`train_general_nn` trained once per study (``context["NN-gen"]``)."""
+    return _nn_run_steps(context["NN-gen"], run, x0)
+
+
+def _nn_run_steps(nf, run, x0):
+    nf.reset(x0)
+    return _Steps(nf.predict, lambda k: nf.update(run.z_dr[k]), lambda: nf.x)
 
 
 def train_general_nn(seed=0, n_states=1500, n_epochs=60, dt=0.1):
@@ -197,7 +247,7 @@ def train_general_nn(seed=0, n_states=1500, n_epochs=60, dt=0.1):
                         batch_size=10, rng=rng).fit(Xp, Z, X)
 
 
-def _upf_run(run, model, x0, P0, rng, n_particles=UPF_PARTICLES):
+def _upf_steps(run, x0, rng, context, n_particles=UPF_PARTICLES):
     """The unscented particle filter on a DR-only run (fixed ``dim_z = 2``).
 
     A particle filter with a UKF proposal and the textbook weight
@@ -208,40 +258,88 @@ def _upf_run(run, model, x0, P0, rng, n_particles=UPF_PARTICLES):
     """
     from ..particle_filter import UnscentedParticleFilter
 
+    model = DRModel(dt=run.scenario.dt)
     pf = UnscentedParticleFilter(6, 2, model.dt, model.hx, model.fx, n_particles, points=_points("merwe", 6),
                                  residual_z=dr_residual, z_mean_fn=dr_z_mean, vectorized=True, rng=rng,
                                  carry_covariance=False)
     pf.Q, pf.R = model.Q.copy(), model.R.copy()
-    pf.x, pf.P = np.asarray(x0, dtype=float).copy(), np.asarray(P0, dtype=float).copy()
-    out = np.empty((len(run.t), 6))
-    for k, z in enumerate(run.z_dr):
-        pf.predict()
-        pf.update(z)
-        out[k] = pf.x
-    return out
+    pf.x, pf.P = np.asarray(x0, dtype=float).copy(), np.asarray(model.P0, dtype=float).copy()
+    return _Steps(pf.predict, lambda k: pf.update(run.z_dr[k]), lambda: pf.x)
 
 
 _KIND = {"EKF": "ekf", "EKF-8": "ekf", "DR-only": "ekf", "UKF-8": "ukf", "SUKF-8": "sukf"}
 
 
-def _gpsdr_filter_run(name, run, x0, rng):
+def _gpsdr_steps(run, x0, rng, context, kind="ekf", augmented=False, gps=True):
+    """A :class:`~filterwnn.gpsdr.GPSDRFilter` (6 states, or 8 with odometer scale and heading
+    bias), with the run's fixes and their accuracies, or without GPS (``gps=False``)."""
     sc = run.scenario
-    if name not in _KIND:
-        raise ValueError(f"unknown filter {name!r}; valid: {', '.join(GPSDR_FILTERS)}")
-    aug = name.endswith("-8")
-    model = GPSDRModel(dt=sc.dt, augmented=aug, sigma_gps=sc.sigma_gps)
-    x0m = np.concatenate([x0, [1.0, 0.0]]) if aug else x0
-    f = GPSDRFilter(model, _KIND[name], x0=x0m)
-    gps = None if name == "DR-only" else run.gps_list()
-    return f.batch_filter(run.z_dr, gps, None if gps is None else run.gps_sigma_list())[:, :6]
+    model = GPSDRModel(dt=sc.dt, augmented=augmented, sigma_gps=sc.sigma_gps)
+    f = GPSDRFilter(model, kind, x0=np.concatenate([x0, [1.0, 0.0]]) if augmented else x0)
+    n = len(run.t)
+    fixes = run.gps_list() if gps else [None] * n
+    sigmas = run.gps_sigma_list() if gps else [None] * n
+    return _Steps(f.predict, lambda k: f.update(run.z_dr[k], fixes[k], sigmas[k]), lambda: f.kf.x)
 
 
-_ALL_FILTERS = DR_FILTERS + GPSDR_FILTERS
+#: Every filter of the study, one row each (:class:`DRFilter`). The stream keys are
+#: fixed: they are the positions the filters had in the study's first list, so the
+#: numbers stayed when the list became this table; a new filter takes the next free key.
+FILTER_TABLE = (
+    DRFilter("EKF", "dr", _ekf_steps, 0),
+    DRFilter("EKF-oracle", "dr", partial(_ekf_steps, true_R=True), 1, oracle=True),
+    DRFilter("AEKF", "dr", partial(_ekf_steps, adaptive=True), 2),
+    DRFilter("UKF", "dr", partial(_ukf_steps, points="merwe"), 3),
+    DRFilter("SUKF", "dr", partial(_ukf_steps, points="simplex"), 4),
+    DRFilter("NN", "dr", _nn_steps, 5),
+    DRFilter("NN-faithful", "dr", partial(_nn_steps, form="absolute", features="angle"), 6),
+    DRFilter("NN-gen", "dr", _nn_gen_steps, 7),
+    DRFilter("UPF", "dr", _upf_steps, 8, opt_in=True),
+    DRFilter("EKF", "gpsdr", partial(_gpsdr_steps, kind="ekf"), 0),
+    DRFilter("EKF-8", "gpsdr", partial(_gpsdr_steps, kind="ekf", augmented=True), 10, oracle=True),
+    DRFilter("UKF-8", "gpsdr", partial(_gpsdr_steps, kind="ukf", augmented=True), 11),
+    DRFilter("SUKF-8", "gpsdr", partial(_gpsdr_steps, kind="sukf", augmented=True), 12),
+    DRFilter("DR-only", "gpsdr", partial(_gpsdr_steps, kind="ekf", gps=False), 13),
+)
+#: ``{(scenario kind, name): DRFilter}``, the lookup of :data:`FILTER_TABLE`.
+FILTERS = {(f.scenario, f.name): f for f in FILTER_TABLE}
+DR_FILTERS = tuple(f.name for f in FILTER_TABLE if f.scenario == "dr")
+GPSDR_FILTERS = tuple(f.name for f in FILTER_TABLE if f.scenario == "gpsdr")
+#: Filters run only when asked for (``--filters``): the UPF costs about 100x the EKF.
+OPT_IN = tuple(dict.fromkeys(f.name for f in FILTER_TABLE if f.opt_in))
+ORACLE = {f.scenario: f.name for f in FILTER_TABLE if f.oracle}
 
 
-def _child(ss, *keys):
-    """A child of ``ss`` by fixed key (``SeedSequence.spawn`` would depend on call history)."""
-    return np.random.SeedSequence(ss.entropy, spawn_key=tuple(ss.spawn_key) + keys)
+def _scenario_kind(scenario):
+    return "gpsdr" if scenario.gps_rate > 0 else "dr"
+
+
+def run_filter(entry, run, x0, rng, context=None):
+    """Run one filter of :data:`FILTER_TABLE` over a drive: the one predict/update/store loop.
+
+    Parameters
+    ----------
+    entry : DRFilter
+    run : DRRun
+    x0 : ndarray of shape (6,)
+        The initial estimate.
+    rng : numpy.random.Generator
+        The filter's own stream.
+    context : dict, optional
+        ``{"NN-gen": fitted NeuralFilter}`` for ``NN-gen``.
+
+    Returns
+    -------
+    ndarray of shape (n_steps, 6)
+        The posterior mean after each step.
+    """
+    steps = entry.build(run, x0, rng, context or {})
+    out = np.empty((len(run.t), 6))
+    for k in range(len(run.t)):
+        steps.predict()
+        steps.update(k)
+        out[k] = steps.state()[:6]
+    return out
 
 
 def run_one(scenario, filters, seed_seq, nn_cache=None):
@@ -251,30 +349,35 @@ def run_one(scenario, filters, seed_seq, nn_cache=None):
     ----------
     scenario : Scenario
     filters : sequence of str
+        Names of :data:`FILTER_TABLE` rows of the scenario's kind.
     seed_seq : numpy.random.SeedSequence
-        This run's seed; spawns the drive, the initial error and the NN/UPF streams.
+        This run's seed: the drive uses its child ``0``, the initial error ``1``, each
+        filter ``(2, stream)`` (:attr:`DRFilter.stream`).
     nn_cache : dict, optional
         ``{"NN-gen": fitted NeuralFilter}``.
 
     Returns
     -------
     dict
-        ``"x_true" (n_steps, 6)``, ``"est" {filter: (n_steps, 6)}``,
-        ``"seconds" {filter: float}``, ``"extra" {filter: (dim_x - 6)-vector}``.
+        ``"x_true" (n_steps, 6)``, ``"t" (n_steps,)``, ``"est" {filter: (n_steps, 6)}``,
+        ``"seconds" {filter: float}``.
     """
-    run = simulate_scenario(scenario, rng=np.random.default_rng(_child(seed_seq, 0)))
-    x0 = run.x0 + np.array([0.0, 0.5, 0.0, 0.0, 0.5, 0.0]) * np.random.default_rng(
-        _child(seed_seq, 1)).standard_normal(6)
-    gps = scenario.gps_rate > 0
-    est, secs = {}, {}
+    kind = _scenario_kind(scenario)
+    entries = []
     for name in filters:
-        rng = np.random.default_rng(_child(seed_seq, 2, _ALL_FILTERS.index(name)))
+        if (kind, name) not in FILTERS:
+            valid = DR_FILTERS if kind == "dr" else GPSDR_FILTERS
+            raise ValueError(f"unknown filter {name!r}; valid: {', '.join(valid)}")
+        entries.append(FILTERS[(kind, name)])
+    run = simulate_scenario(scenario, rng=np.random.default_rng(runner.child(seed_seq, 0)))
+    x0 = run.x0 + np.array([0.0, 0.5, 0.0, 0.0, 0.5, 0.0]) * np.random.default_rng(
+        runner.child(seed_seq, 1)).standard_normal(6)
+    est, secs = {}, {}
+    for entry in entries:
+        rng = np.random.default_rng(runner.child(seed_seq, 2, entry.stream))
         t0 = time.perf_counter()
-        if gps:
-            est[name] = _gpsdr_filter_run(name, run, x0, rng)
-        else:
-            est[name] = _dr_filter_run(name, run, x0, nn_cache or {}, rng)
-        secs[name] = time.perf_counter() - t0
+        est[entry.name] = run_filter(entry, run, x0, rng, nn_cache)
+        secs[entry.name] = time.perf_counter() - t0
     return {"x_true": run.x_true, "t": run.t, "est": est, "seconds": secs}
 
 
@@ -305,7 +408,7 @@ class StudyResult(NamedTuple):
 
 def summarize(scenario, t, errs, vel_errs, secs, n_steps):
     """Score one scenario: rows of dict, one per filter (see the module docstring)."""
-    kind = "gpsdr" if scenario.gps_rate > 0 else "dr"
+    kind = _scenario_kind(scenario)
     oracle = ORACLE[kind] if ORACLE[kind] in errs else None
     horiz = {f: np.hypot(e[..., 0], e[..., 1]) for f, e in errs.items()}
     env = None
@@ -344,7 +447,7 @@ def summarize(scenario, t, errs, vel_errs, secs, n_steps):
 
 
 def run_study(scenarios=DEFAULT_SCENARIOS, n_runs=10, filters=None, seed=0, jobs=1,
-              n_steps=None, factor=None, progress=False):
+              n_steps=None, factor=None, progress=False, backend=None, cache_dir=None):
     """Run the Monte-Carlo study and score it.
 
     Parameters
@@ -359,23 +462,62 @@ def run_study(scenarios=DEFAULT_SCENARIOS, n_runs=10, filters=None, seed=0, jobs
     seed : int
         Root seed; run ``i`` uses ``SeedSequence(seed).spawn(n_runs)[i]`` in every scenario.
     jobs : int
-        Worker processes (joblib); the numbers do not depend on it.
+        joblib workers (``-1``: all cores); the numbers do not depend on it.
     n_steps : int, optional
         Truncate the drives (tests); the noise switch stays at its time.
     factor : float, optional
         Override the noise factor of the DR-only scenarios.
     progress : bool
         Show a tqdm bar.
+    backend : str, optional
+        joblib backend ("loky", "threading", "dask" inside
+        :func:`filterwnn.studies.runner.dask_client`); default joblib's.
+    cache_dir : str, optional
+        Checkpoint folder: each finished (scenario, run) is pickled there
+        (``<hash of the task>.pkl``, :func:`filterwnn.studies.runner.run_tasks`) and read
+        back instead of run next time, timings included.
 
     Returns
     -------
     StudyResult
     """
-    from joblib import Parallel, delayed
-
     n_runs = check_positive_int(n_runs, "n_runs")
-    jobs = check_positive_int(jobs, "jobs")
+    if isinstance(jobs, bool) or not isinstance(jobs, (int, np.integer)) or jobs == 0:
+        raise ValueError(f"jobs must be >= 1, or negative (-1: all cores), got {jobs!r}")
     seed = check_seed(seed)
+    if n_steps is not None:
+        n_steps = check_positive_int(n_steps, "n_steps")
+    scs, flist = _plan(scenarios, filters, factor, n_steps)
+    tasks = [{"study": "dr", "scenario": name, "run": i, "seed": seed, "filters": flist[name],
+              "n_steps": n_steps, "factor": None if factor is None else float(factor)}
+             for name in scs for i in range(n_runs)]
+    context = {}
+    cached = runner.load_cached(tasks, cache_dir, runner.PICKLE)
+    if any("NN-gen" in t["filters"] and r is None for t, r in zip(tasks, cached)):
+        context["NN-gen"] = train_general_nn(seed)
+    results = runner.run_tasks(tasks, partial(_run_task, context=context), n_jobs=int(jobs), backend=backend,
+                               progress=progress, cache_dir=cache_dir, desc="dr study", unit="run",
+                               serializer=runner.PICKLE)
+    table, errors = [], {}
+    for name, sc in scs.items():
+        res = [r for t, r in zip(tasks, results) if t["scenario"] == name]
+        rows, errors[name] = _score(sc, flist[name], res)
+        table += rows
+    return StudyResult(table, errors, scs, {"seed": seed, "n_runs": n_runs, "jobs": jobs, "filters": flist})
+
+
+def _scenario(name, factor=None, n_steps=None):
+    """Scenario ``name`` with the DR noise factor and the length overridden when given."""
+    sc = SCENARIOS[name]()
+    if factor is not None and sc.gps_rate == 0:
+        sc = sc.with_(factor=float(factor))
+    if n_steps is not None:
+        sc = sc.with_(duration=n_steps * sc.dt)
+    return sc
+
+
+def _plan(scenarios, filters, factor, n_steps):
+    """Check the names; ``({name: Scenario}, {name: [filters it runs]})``."""
     scenarios = list(scenarios)
     if not scenarios:
         raise ValueError(f"scenarios must name at least one of {', '.join(SCENARIOS)}, got []")
@@ -384,49 +526,35 @@ def run_study(scenarios=DEFAULT_SCENARIOS, n_runs=10, filters=None, seed=0, jobs
             raise ValueError(f"unknown scenario {s!r}; valid: {', '.join(SCENARIOS)}")
     want = set(filters) if filters is not None else None
     if want is not None:
-        bad = want - set(DR_FILTERS) - set(GPSDR_FILTERS)
+        bad = want - {f.name for f in FILTER_TABLE}
         if bad:
-            raise ValueError(f"unknown filters {sorted(bad)}; valid: {sorted(set(DR_FILTERS) | set(GPSDR_FILTERS))}")
-    seeds = np.random.SeedSequence(seed).spawn(n_runs)
-    scs, tasks, flist = {}, [], {}
+            raise ValueError(f"unknown filters {sorted(bad)}; valid: {sorted({f.name for f in FILTER_TABLE})}")
+    scs, flist = {}, {}
     for name in scenarios:
-        sc = SCENARIOS[name]()
-        if factor is not None and sc.gps_rate == 0:
-            sc = sc.with_(factor=float(factor))
-        if n_steps is not None:
-            sc = sc.with_(duration=check_positive_int(n_steps, "n_steps") * sc.dt)
-        scs[name] = sc
-        pool = GPSDR_FILTERS if sc.gps_rate > 0 else DR_FILTERS
-        default = [f for f in pool if f not in OPT_IN]
-        fl = [f for f in pool if (f in want if want is not None else f in default)]
-        flist[name] = fl
-        tasks += [(name, i) for i in range(n_runs)]
-    nn_cache = {}
-    if any("NN-gen" in fl for fl in flist.values()):
-        nn_cache["NN-gen"] = train_general_nn(seed)
+        scs[name] = sc = _scenario(name, factor, n_steps)
+        kind = _scenario_kind(sc)
+        flist[name] = [f.name for f in FILTER_TABLE if f.scenario == kind
+                       and (f.name in want if want is not None else not f.opt_in)]
+    return scs, flist
 
-    def job(name, i):
-        from threadpoolctl import threadpool_limits
 
-        with threadpool_limits(1):
-            return run_one(scs[name], flist[name], seeds[i], nn_cache)
+def _run_task(task, context):
+    """One task of :func:`run_study`: run ``task["run"]`` of its scenario, one BLAS thread."""
+    from threadpoolctl import threadpool_limits
 
-    gen = Parallel(n_jobs=jobs, return_as="generator")(delayed(job)(n, i) for n, i in tasks)
-    if progress:
-        from tqdm import tqdm
+    sc = _scenario(task["scenario"], task["factor"], task["n_steps"])
+    seed_seq = runner.child(np.random.SeedSequence(task["seed"]), task["run"])  # = spawn(n_runs)[run]
+    with threadpool_limits(1):
+        return run_one(sc, task["filters"], seed_seq, context)
 
-        gen = tqdm(gen, total=len(tasks), desc="dr study", unit="run")
-    results = list(gen)
-    table, errors = [], {}
-    for name in scenarios:
-        res = [r for (n, _), r in zip(tasks, results) if n == name]
-        t = res[0]["t"]
-        errs = {f: np.stack([r["est"][f][:, [0, 3]] - r["x_true"][:, [0, 3]] for r in res]) for f in flist[name]}
-        verr = {f: np.stack([r["est"][f][:, [1, 4]] - r["x_true"][:, [1, 4]] for r in res]) for f in flist[name]}
-        secs = {f: np.array([r["seconds"][f] for r in res]) for f in flist[name]}
-        table += summarize(scs[name], t, errs, verr, secs, len(t))
-        errors[name] = {"t": t, "filters": errs}
-    return StudyResult(table, errors, scs, {"seed": seed, "n_runs": n_runs, "jobs": jobs, "filters": flist})
+
+def _score(sc, names, res):
+    """Rows of :func:`summarize` and ``{"t", "filters": {name: (n_runs, n_steps, 2)}}`` of one scenario."""
+    t = res[0]["t"]
+    errs = {f: np.stack([r["est"][f][:, [0, 3]] - r["x_true"][:, [0, 3]] for r in res]) for f in names}
+    verr = {f: np.stack([r["est"][f][:, [1, 4]] - r["x_true"][:, [1, 4]] for r in res]) for f in names}
+    secs = {f: np.array([r["seconds"][f] for r in res]) for f in names}
+    return summarize(sc, t, errs, verr, secs, len(t)), {"t": t, "filters": errs}
 
 
 # ----------------------------------------------------------------------------- output
@@ -444,12 +572,6 @@ _GPS_COLS = [
 ]
 
 
-def _fmt(v):
-    if isinstance(v, float):
-        return "nan" if not np.isfinite(v) else (f"{v:.0f}" if abs(v) >= 1000 else f"{v:.2f}")
-    return str(v)
-
-
 def markdown_table(result):
     """The study's tables as Markdown (one per scenario)."""
     lines = []
@@ -464,12 +586,12 @@ def markdown_table(result):
             head += f"noise x{sc.factor:g} at {sc.t_switch:g} s" + (
                 f", {sc.outlier_prob:.0%} heading outliers of {sc.outlier_deg:g} deg" if sc.outlier_prob else "")
         n = rows[0]["runs"] if rows else 0
-        oracle = ORACLE["gpsdr" if sc.gps_rate > 0 else "dr"]
+        oracle = ORACLE[_scenario_kind(sc)]
         lines += [head + f" ({n} runs, positions in m; div: error > {DIV_FACTOR:g}x {oracle} RMS envelope)", ""]
         lines.append("| " + " | ".join(c[1] for c in cols) + " |")
         lines.append("|" + "---|" * len(cols))
         for r in rows:
-            lines.append("| " + " | ".join(_fmt(r.get(c[0], "")) for c in cols) + " |")
+            lines.append("| " + " | ".join(runner.fmt(r.get(c[0], ""), 2, fixed=True, missing="nan") for c in cols) + " |")
         lines.append("")
     return "\n".join(lines)
 
@@ -633,11 +755,31 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
     if bad:
         raise ValueError(f"unknown real-drive filters {bad}; valid: {', '.join(REAL_FILTERS)}")
     kw = dict(REAL_MODEL, **(model_kwargs or {}))
-    dt = run.scenario.dt
     t_end = float(run.t[-1])
     if starts is None and min_speed == 0.0:
         starts = np.linspace(0.0, t_end - length - 1.0, n_placements)
     starts = outage_starts(run, length, starts=starts, n=n_placements, min_speed=min_speed)
+    k0s, k1s, refs, moved, track = _outage_windows(run, starts, length)
+    truth = run.x_true is not None
+    out = {"starts": starts, "length": length, "moved": moved, "end_steps": np.array(k1s),
+           "reference": "truth" if truth else "withheld GPS", "name": run.scenario.name,
+           "track": track, "t": run.t, "end_xy": {}}
+    gps = run.gps_list()
+    sig = run.gps_sigma_list() if use_gps_sigma else [None] * len(run.t)
+    for name in filters:
+        if name == "DR-mech":
+            ends = _dr_mech_ends(run, k0s, k1s, track if not truth else None)
+        else:
+            f = _real_drive_filter(name, run, grade, model_kwargs, kw, gps_window, slow_speed)
+            ends = _outage_ends(f, name, run, k0s, k1s, starts, gps, sig)
+        out["end_xy"][name] = ends
+        out[name] = np.hypot(*(ends - refs).T)
+    return out
+
+
+def _outage_windows(run, starts, length):
+    """The first and scored step of each outage, its reference east/north (the truth, else the
+    last fix withheld), the distance driven in it, and the track ``(n_steps, 2)``."""
     truth = run.x_true is not None
     cum = np.concatenate([[0.0], np.cumsum(run.z_dr[:, 1])])
     k0s, k1s, refs, moved = [], [], [], []
@@ -658,35 +800,28 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         refs.append(ref)
         moved.append(float(cum[k1 + 1] - cum[k0]) if not truth else float(np.sum(np.hypot(
             *np.diff(run.x_true[k0:k1 + 1][:, [0, 3]], axis=0).T))))
-    refs = np.array(refs)
     if truth:
         track = run.x_true[:, [0, 3]]
     else:
         track = np.stack([np.interp(run.t, gps_t, run.z_gps[:, i]) for i in (0, 1)], axis=1)
-    out = {"starts": starts, "length": length, "moved": np.array(moved), "end_steps": np.array(k1s),
-           "reference": "truth" if truth else "withheld GPS", "name": run.scenario.name,
-           "track": track, "t": run.t, "end_xy": {}}
-    gps = run.gps_list()
-    sig = run.gps_sigma_list() if use_gps_sigma else [None] * len(run.t)
+    return k0s, k1s, np.array(refs), np.array(moved), track
+
+
+def _real_drive_filter(name, run, grade, model_kwargs, kw, gps_window, slow_speed):
+    """The :class:`~filterwnn.gpsdr.GPSDRFilter` ``name`` for a real drive, set from ``grade``
+    (or the settings ``kw``), started at the drive's first state with 1 m position sigma."""
+    aug = name.endswith("-8")
+    dt = run.scenario.dt
+    if grade is not None:
+        model = GPSDRModel.from_grade(grade, dt, augmented=aug, **({} if aug else {"rate_bias": False}),
+                                      **(model_kwargs or {}))
+    else:
+        model = GPSDRModel(dt=dt, augmented=aug, **kw)
+    x0 = np.concatenate([run.x0, model.x0[6:]])
+    P0 = model.P0.copy()
+    P0[0, 0] = P0[3, 3] = 1.0
     low = {} if slow_speed is None else {"low_speed": slow_speed}
-    for name in filters:
-        if name == "DR-mech":
-            ends = _dr_mech_ends(run, k0s, k1s, track if not truth else None)
-        else:
-            aug = name.endswith("-8")
-            if grade is not None:
-                model = GPSDRModel.from_grade(grade, dt, augmented=aug, **({} if aug else {"rate_bias": False}),
-                                              **(model_kwargs or {}))
-            else:
-                model = GPSDRModel(dt=dt, augmented=aug, **kw)
-            x0 = np.concatenate([run.x0, model.x0[6:]])
-            P0 = model.P0.copy()
-            P0[0, 0] = P0[3, 3] = 1.0
-            f = GPSDRFilter(model, _KIND[name], x0=x0, P0=P0, gps_window=gps_window, **low)
-            ends = _outage_ends(f, name, run, k0s, k1s, starts, gps, sig)
-        out["end_xy"][name] = ends
-        out[name] = np.hypot(*(ends - refs).T)
-    return out
+    return GPSDRFilter(model, _KIND[name], x0=x0, P0=P0, gps_window=gps_window, **low)
 
 
 _REAL_META = ("starts", "moved", "length", "end_steps", "reference", "name", "track", "t", "end_xy")
@@ -773,23 +908,33 @@ def write_real_drive(res, out_dir, figures=True):
 
 def add_arguments(parser):
     """Options of ``filterwnn study dr``."""
-    parser.add_argument("--runs", type=_args.positive_int, default=10, help="Monte-Carlo runs per scenario")
-    parser.add_argument("--seed", type=_args.seed, default=0,
+    parser.add_argument("--runs", type=options.positive_int, default=10, help="Monte-Carlo runs per scenario")
+    parser.add_argument("--seed", type=options.seed, default=0,
                         help="root seed, an integer >= 0 (run i uses SeedSequence(seed).spawn(runs)[i])")
-    parser.add_argument("--jobs", type=_args.positive_int, default=2,
-                        help="worker processes (the numbers do not depend on it)")
-    parser.add_argument("--scenarios", type=_args.name_list(SCENARIOS), default=",".join(DEFAULT_SCENARIOS),
+    parser.add_argument("--jobs", type=options.joblib_jobs, default=2,
+                        help="joblib workers, -1 for all cores (the numbers do not depend on it)")
+    parser.add_argument("--backend", type=options.joblib_backend, default=None,
+                        help="joblib backend (loky, threading, dask, ...); default joblib's (loky)")
+    parser.add_argument("--scheduler", default=None,
+                        help="with --backend dask: the address of a dask.distributed scheduler "
+                             "(default: a local cluster of --jobs workers)")
+    parser.add_argument("--cache", default=None, metavar="DIR",
+                        help="checkpoint folder (default none): each finished (scenario, run) is pickled "
+                             "there as <hash of its settings>.pkl and read back instead of run, timings "
+                             "included, so an interrupted study resumes with the same numbers; delete it "
+                             "after changing the code")
+    parser.add_argument("--scenarios", type=options.name_list(SCENARIOS), default=",".join(DEFAULT_SCENARIOS),
                         help=f"comma-separated subset of {', '.join(SCENARIOS)}")
-    names = tuple(dict.fromkeys(_ALL_FILTERS + REAL_FILTERS))
-    parser.add_argument("--filters", type=_args.name_list(names), default=None,
+    names = tuple(dict.fromkeys([f.name for f in FILTER_TABLE] + list(REAL_FILTERS)))
+    parser.add_argument("--filters", type=options.name_list(names), default=None,
                         help=f"comma-separated subset of {', '.join(names)} (default all "
                              f"that apply to each scenario, but {', '.join(OPT_IN)})")
-    parser.add_argument("--factor", type=_args.positive_float, default=None,
+    parser.add_argument("--factor", type=options.positive_float, default=None,
                         help="override the DR noise factor at 150 s of the DR-only scenarios (default each "
                              "scenario's own)")
     parser.add_argument("--out", default="results/dr", help="output folder")
     parser.add_argument("--no-figures", action="store_true", help="write the tables only (no PNG figures)")
-    _args.add_progress_flag(parser, "--quiet")
+    options.add_progress_flag(parser, "--quiet")
     parser.add_argument("--real", action="store_true",
                         help=f"also run the GPS/DR filters on onavdata's car drives {', '.join(CAR_DRIVES)} "
                              "(needs the data extra), set from --grade (default survey)")
@@ -797,11 +942,11 @@ def add_arguments(parser):
                         help="run the GPS/DR filters on one's own drive, a CSV with the columns of "
                              "filterwnn.scenarios.DRIVE_CSV_COLUMNS ('sample' for the shipped sample drive); "
                              "repeatable; with --drive only the drives run, not the simulated scenarios")
-    parser.add_argument("--outage-length", type=_args.positive_float, default=30.0, help="GPS outage length on drives (s)")
-    parser.add_argument("--outages", type=_args.positive_int, default=20, help="number of outages spread over each drive")
-    parser.add_argument("--outage-starts", type=_args.float_list, default=None,
+    parser.add_argument("--outage-length", type=options.positive_float, default=30.0, help="GPS outage length on drives (s)")
+    parser.add_argument("--outages", type=options.positive_int, default=20, help="number of outages spread over each drive")
+    parser.add_argument("--outage-starts", type=options.float_list, default=None,
                         help="comma-separated outage start times (s) on --drive drives, instead of spreading them")
-    parser.add_argument("--min-speed", type=_args.nonnegative_float, default=0.0,
+    parser.add_argument("--min-speed", type=options.nonnegative_float, default=0.0,
                         help="spread outages only over windows with at least this mean speed (m/s)")
     parser.add_argument("--grade", choices=sorted(SENSOR_GRADES), default=None,
                         help="sensor grade for the GPS/DR settings (survey, phone; see "
@@ -813,8 +958,10 @@ def run(args):
     drives = getattr(args, "drive", None)
     if drives:
         return _run_drives(args, drives, args.filters)
-    res = run_study(scenarios=args.scenarios, n_runs=args.runs, filters=args.filters,
-                    seed=args.seed, jobs=args.jobs, factor=args.factor, progress=not args.no_progress)
+    with runner.dask_client(getattr(args, "backend", None), getattr(args, "scheduler", None), args.jobs):
+        res = run_study(scenarios=args.scenarios, n_runs=args.runs, filters=args.filters, seed=args.seed,
+                        jobs=args.jobs, factor=args.factor, progress=not args.no_progress,
+                        backend=getattr(args, "backend", None), cache_dir=getattr(args, "cache", None))
     paths = write_outputs(res, args.out, figures=not args.no_figures)
     print(markdown_table(res))
     if getattr(args, "real", False):

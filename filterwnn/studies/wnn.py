@@ -86,7 +86,7 @@ from ..datasets import make_siso_benchmark
 from ..particle_filter import DegeneracyWarning
 from ..regressor import WNNRegressor
 from ..trainers import AUTO_SETTINGS, PAPER_SETTINGS, TRAINERS
-from . import _args
+from . import options, runner
 
 __all__ = [
     "ALL_TRAINERS",
@@ -261,8 +261,7 @@ def run_seeds(seed, n_runs):
 def _child(run_seed, k):
     """The ``k``-th child of a run's seed (0: data, 1: training), built without ``spawn``
     so that the same run gives the same streams however the tasks are scheduled."""
-    entropy, key = run_seed
-    return np.random.SeedSequence(entropy, spawn_key=tuple(key) + (k,))
+    return runner.child(run_seed, k)
 
 
 def tune_seeds(seed, n_runs):
@@ -594,17 +593,6 @@ def _task(task):
     return fit_run(*args, **kwargs)
 
 
-def _task_key(task):
-    import hashlib
-    import json
-
-    return hashlib.sha1(json.dumps(task, sort_keys=True, default=list).encode()).hexdigest()[:20]
-
-
-def _indexed_task(i, task):
-    return i, _task(task)
-
-
 def run_tasks(tasks, n_jobs=1, backend=None, progress=False, cache_dir=None, cached_only=False):
     """Run study tasks through joblib; results in task order whatever ``n_jobs``.
 
@@ -632,63 +620,12 @@ def run_tasks(tasks, n_jobs=1, backend=None, progress=False, cache_dir=None, cac
     list
         One result dict per task (``None`` for a task skipped by ``cached_only``).
     """
-    import json
-
-    from joblib import Parallel, delayed
-
-    out = [None] * len(tasks)
-    keys = [_task_key(t) for t in tasks]
-    if cache_dir is not None:
-        os.makedirs(cache_dir, exist_ok=True)
-        for i, k in enumerate(keys):
-            path = os.path.join(cache_dir, k + ".json")
-            if os.path.exists(path):
-                with open(path) as f:
-                    out[i] = json.load(f)
-    pending = [i for i in range(len(tasks)) if out[i] is None]
-    if cached_only:
-        pending = []
-
-    def save(i, r):
-        out[i] = r
-        if cache_dir is not None:
-            path = os.path.join(cache_dir, keys[i] + ".json")
-            with open(path + ".tmp", "w") as f:
-                json.dump(r, f)
-            os.replace(path + ".tmp", path)
-
-    bar = None
-    if progress and pending:
-        from tqdm.auto import tqdm
-
-        bar = tqdm(total=len(pending), desc="WNN study", unit="fit")
-    try:
-        if n_jobs == 1 and backend is None:
-            for i in pending:
-                save(i, _task(tasks[i]))
-                if bar is not None:
-                    bar.update(1)
-        elif pending:
-            from joblib import parallel_config
-
-            # parallel_config registers external backends such as "dask" on first use
-            with parallel_config(backend=backend or "loky", n_jobs=n_jobs):
-                par = Parallel(return_as="generator_unordered")
-                for i, r in par(delayed(_indexed_task)(i, tasks[i]) for i in pending):
-                    save(i, r)
-                    if bar is not None:
-                        bar.update(1)
-    finally:
-        if bar is not None:
-            bar.close()
-    return out
+    return runner.run_tasks(tasks, _task, n_jobs=n_jobs, backend=backend, progress=progress, cache_dir=cache_dir,
+                            cached_only=cached_only, desc="WNN study", unit="fit", serializer=runner.JSON)
 
 
 # ---------------------------------------------------------------------------- summary
-def _q(values, q):
-    v = np.asarray(values, dtype=float)
-    v = v[np.isfinite(v)]
-    return float(np.quantile(v, q)) if v.size else float("nan")
+_q = runner.quantile
 
 
 def summarize(runs):
@@ -967,11 +904,7 @@ def is_reduced(config):
 
 
 def _fmt(v, digits=3):
-    if v is None or (isinstance(v, float) and not np.isfinite(v)):
-        return "-"
-    if isinstance(v, float):
-        return f"{v:.{digits}g}"
-    return str(v)
+    return runner.fmt(v, digits)
 
 
 def markdown_table(result):
@@ -1130,31 +1063,31 @@ def write_outputs(result, out, figures=True):
 # ---------------------------------------------------------------------------- CLI
 def add_arguments(parser):
     """Options of ``filterwnn study wnn``."""
-    parser.add_argument("--runs", type=_args.positive_int, default=3,
+    parser.add_argument("--runs", type=options.positive_int, default=3,
                         help="independent runs per trainer (paper: 50)")
-    parser.add_argument("--epochs", type=_args.positive_int, default=30,
+    parser.add_argument("--epochs", type=options.positive_int, default=30,
                         help="epochs of BP/EKF/UKF/SUKF (paper: 200)")
-    parser.add_argument("--pf-epochs", type=_args.positive_int, default=3,
+    parser.add_argument("--pf-epochs", type=options.positive_int, default=3,
                         help="epochs of the particle filters (paper: 200)")
-    parser.add_argument("--particles", type=_args.positive_int, default=10, help="particles in the table (paper: 50)")
-    parser.add_argument("--sweep-particles", type=_args.int_list(minimum=1), default="5,10,20",
+    parser.add_argument("--particles", type=options.positive_int, default=10, help="particles in the table (paper: 50)")
+    parser.add_argument("--sweep-particles", type=options.int_list(minimum=1), default="5,10,20",
                         help="comma-separated particle counts for Figs. 3-4 (paper: 50,100,150,200,250; '' skips)")
-    parser.add_argument("--sweep-runs", type=_args.positive_int, default=2, help="runs per sweep point")
-    parser.add_argument("--paper-runs", type=_args.nonnegative_int, default=None,
+    parser.add_argument("--sweep-runs", type=options.positive_int, default=2, help="runs per sweep point")
+    parser.add_argument("--paper-runs", type=options.nonnegative_int, default=None,
                         help="runs at the paper's settings (default --runs)")
-    parser.add_argument("--paper-pf-epochs", type=_args.positive_int, default=None,
+    parser.add_argument("--paper-pf-epochs", type=options.positive_int, default=None,
                         help="particle-filter epochs at the paper's settings (default --pf-epochs)")
     parser.add_argument("--no-paper-table", action="store_true", help="skip the paper-settings table")
-    parser.add_argument("--tune-runs", type=_args.nonnegative_int, default=2,
+    parser.add_argument("--tune-runs", type=options.nonnegative_int, default=2,
                         help="tuning runs of the settings search on a validation split (default 2; 0: use the "
                              "regressor's AUTO_SETTINGS and all epochs)")
-    parser.add_argument("--trainers", type=_args.name_list(ALL_TRAINERS), default=",".join(ALL_TRAINERS),
+    parser.add_argument("--trainers", type=options.name_list(ALL_TRAINERS), default=",".join(ALL_TRAINERS),
                         help=f"comma-separated subset of {', '.join(ALL_TRAINERS)}")
-    parser.add_argument("--seed", type=_args.seed, default=2026,
+    parser.add_argument("--seed", type=options.seed, default=2026,
                         help="root seed, an integer >= 0 (run i uses SeedSequence(seed).spawn(runs)[i])")
-    parser.add_argument("--jobs", type=_args.joblib_jobs, default=-1,
+    parser.add_argument("--jobs", type=options.joblib_jobs, default=-1,
                         help="joblib workers (-1: all cores); the numbers do not depend on it")
-    parser.add_argument("--backend", type=_args.joblib_backend, default=None,
+    parser.add_argument("--backend", type=options.joblib_backend, default=None,
                         help="joblib backend name (loky, threading, dask, ...); default joblib's (loky)")
     parser.add_argument("--scheduler", default=None,
                         help="with --backend dask: a dask.distributed scheduler address (default: a local cluster)")
@@ -1165,7 +1098,7 @@ def add_arguments(parser):
     parser.add_argument("--cached-only", action="store_true",
                         help="only summarize the fits already in the cache (run nothing)")
     parser.add_argument("--no-figures", action="store_true", help="write the tables only (no PNG figures)")
-    _args.add_progress_flag(parser)
+    options.add_progress_flag(parser)
 
 
 def run(args):
@@ -1173,19 +1106,10 @@ def run(args):
     import sys
 
     trainers, sweep = list(args.trainers), list(args.sweep_particles)
-    client = None
-    if args.backend == "dask":
-        from dask.distributed import Client, LocalCluster
-
-        if args.scheduler:
-            client = Client(args.scheduler)
-        else:
-            n = os.cpu_count() if args.jobs in (None, -1) else max(1, args.jobs)
-            client = Client(LocalCluster(n_workers=n, threads_per_worker=1))
     progress = (not args.no_progress) and sys.stderr.isatty()
     cache = os.path.join(args.out, "cache") if args.cache is None else (None if args.cache == "none" else args.cache)
     t0 = time.perf_counter()
-    try:
+    with runner.dask_client(args.backend, args.scheduler, args.jobs):
         res = run_study(
             n_runs=args.runs, n_epochs=args.epochs, pf_epochs=args.pf_epochs, n_particles=args.particles,
             trainers=trainers, seed=args.seed, paper_table=not args.no_paper_table, paper_runs=args.paper_runs,
@@ -1193,9 +1117,6 @@ def run(args):
             sweep_particles=sweep, sweep_runs=args.sweep_runs, n_jobs=args.jobs, backend=args.backend,
             progress=progress, tune_runs=args.tune_runs,
         )
-    finally:
-        if client is not None:
-            client.close()
     text = markdown_table(res)
     paths = write_outputs(res, args.out, figures=not args.no_figures)
     print(text)
