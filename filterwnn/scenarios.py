@@ -100,6 +100,9 @@ class Scenario:
     heading_drift : float
         Gyro rate bias (deg/s): the heading bias grows as ``heading_bias + heading_drift * t``
         (a MEMS gyro's residual bias, integrated).
+    title, figure : str
+        The scenario in words and the stem of its figure's file name (the DR study's
+        figures); empty: built from ``name``.
     """
 
     name: str = "straight"
@@ -121,6 +124,8 @@ class Scenario:
     sigma_gps: float = 3.0
     outages: tuple = field(default=())
     heading_drift: float = 0.0
+    title: str = ""
+    figure: str = ""
 
     def __post_init__(self):
         for name in ("duration", "dt", "factor"):
@@ -156,13 +161,17 @@ _TURNING = dict(
 #: Named scenario factories; each accepts keyword overrides of :class:`Scenario` fields.
 SCENARIOS = {
     # the paper: straight road, 10*sqrt(2) m/s at 45 deg, noise x20 at 150 s
-    "straight": lambda **kw: Scenario(**{"name": "straight", "factor": 20.0, **kw}),
+    "straight": lambda **kw: Scenario(**{"name": "straight", "title": "straight road", "figure": "dr_straight_road",
+                                         "factor": 20.0, **kw}),
     # turns and speed changes, noise x5 at 150 s
-    "turns": lambda **kw: Scenario(**{"name": "turns", "factor": 5.0, **_TURNING, **kw}),
+    "turns": lambda **kw: Scenario(**{"name": "turns", "title": "turning route", "figure": "dr_turning_route",
+                                      "factor": 5.0, **_TURNING, **kw}),
     # heading near 180 deg: west-south-west... through south (180) and back, noise x5
     "heading180": lambda **kw: Scenario(
         **{
             "name": "heading180",
+            "title": "drive through heading 180 deg",
+            "figure": "dr_through_heading_180_deg",
             "heading": 170.0,
             "turns": ((20.0, 40.0, 20.0), (90.0, 110.0, -25.0), (160.0, 180.0, 30.0)),
             "factor": 5.0,
@@ -171,12 +180,15 @@ SCENARIOS = {
     ),
     # noise x5 plus 10 % heading outliers of +-30 deg after 150 s
     "outliers": lambda **kw: Scenario(
-        **{"name": "outliers", "factor": 5.0, "outlier_prob": 0.1, **kw}
+        **{"name": "outliers", "title": "heading outliers", "figure": "dr_heading_outliers", "factor": 5.0,
+           "outlier_prob": 0.1, **kw}
     ),
     # GPS/DR: turning route, 1 Hz GPS (3 m) with outages, 2 % odometer scale, 2 deg bias
     "gpsdr": lambda **kw: Scenario(
         **{
             "name": "gpsdr",
+            "title": "GPS/DR",
+            "figure": "gps_dr",
             "factor": 1.0,
             "odometer_scale": 1.02,
             "heading_bias": 2.0,

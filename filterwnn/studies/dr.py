@@ -116,7 +116,6 @@ __all__ = [
     "StudyResult",
     "run_study",
     "scenario_figure",
-    "SCENARIO_WORDS",
     "run_one",
     "summarize",
     "write_outputs",
@@ -649,14 +648,6 @@ def write_outputs(result, out_dir, figures=True, real_drives=()):
     return paths
 
 
-#: Each scenario in words and the stem of its figure's file name (``write_outputs``).
-SCENARIO_WORDS = {
-    "straight": ("straight road", "dr_straight_road"),
-    "turns": ("turning route", "dr_turning_route"),
-    "heading180": ("drive through heading 180 deg", "dr_through_heading_180_deg"),
-    "outliers": ("heading outliers", "dr_heading_outliers"),
-    "gpsdr": ("GPS/DR", "gps_dr"),
-}
 _COUNT_WORDS = ("no", "one", "two", "three", "four", "five", "six", "seven", "eight", "nine")
 
 
@@ -669,7 +660,7 @@ def scenario_figure(name, sc):
     >>> scenario_figure("gpsdr", SCENARIOS["gpsdr"]())[1]
     'gps_dr_with_outages.png'
     """
-    words, stem = SCENARIO_WORDS.get(name, (str(name), "dr_" + _slug(name)))
+    words, stem = sc.title or str(name), sc.figure or "dr_" + _slug(name)
     if sc.gps_rate > 0:
         k = len(sc.outages)
         if k:
