@@ -59,7 +59,7 @@ cluster). Timings measured in parallel include contention between workers.
 
 **Size.** The paper's protocol (50 runs, 200 epochs, 50 particles, Figs. 3-4 at 50..250
 particles) costs many hours on 2 cores, mostly the particle filters' 160x160 covariance
-per particle (see ``wnn-training-performance.md``). The default here is a *reduced*
+per particle (``benchmarks/bench_particle.py`` times one step). The default here is a *reduced*
 protocol that finishes in a few minutes on 2 cores, and says so in its output;
 ``--runs``, ``--epochs``, ``--pf-epochs``, ``--particles`` and ``--sweep-particles`` scale it.
 
