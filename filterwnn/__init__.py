@@ -16,18 +16,9 @@ from .sigma_points import MinimalSkewSigmaPoints, SphericalSimplexSigmaPoints
 
 # Models: the state-space protocol, the benchmarks, dead reckoning and its scenarios,
 # the WNN weights as a state.
-from .dead_reckoning import (
-    SCENARIOS as DR_SCENARIOS,
-    DRModel,
-    GPSDRModel,
-    Scenario,
-    dr_residual,
-    dr_z_mean,
-    simulate_scenario,
-    wrap_angle,
-)
+from .dead_reckoning import DRModel, GPSDRModel, dr_residual, dr_z_mean, wrap_angle
 from .models import GammaNoiseModel, LinearGaussianModel, StateSpaceModel
-from .scenarios import DRRun, read_drive_csv
+from .scenarios import SCENARIOS as DR_SCENARIOS, DRRun, Scenario, read_drive_csv, simulate_scenario
 from .weight_model import WNNWeightModel
 
 # Algorithms: Kalman-type filters, particle filters and their proposals, SMC samplers

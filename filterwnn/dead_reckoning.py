@@ -732,18 +732,3 @@ class GPSDRModel(StateSpaceModel):
         kf.x = (self.x0 if x0 is None else as_state(x0, "x0", self.dim_x)).copy()
         kf.P = (self.P0 if P0 is None else check_covariance(P0, "P0", self.dim_x)).copy()
         return kf
-
-
-# --------------------------------------------------------------------------- re-exports
-
-# The scenarios and the simulation moved to :mod:`filterwnn.scenarios`; these names stay
-# importable from here (lazily: scenarios.py imports this module) so existing code keeps working.
-_MOVED = ("SCENARIOS", "DRRun", "Scenario", "simulate_scenario", "true_trajectory")
-
-
-def __getattr__(name):
-    if name in _MOVED:
-        from . import scenarios
-
-        return getattr(scenarios, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -30,6 +30,7 @@ from filterwnn import (
 from filterwnn import _validation as val
 from filterwnn.sigma_points import sigma_deviations, unit_sigma_points
 from filterwnn import dead_reckoning as dr
+from filterwnn import scenarios
 from filterwnn.gpsdr import GPSDRFilter
 from filterwnn import neural_filter as nfm
 from filterwnn import particle_filter as pfm
@@ -402,10 +403,10 @@ DR_ROWS = [
     row(lambda: GPSDRFilter(GPS).update([0.0, 1.0], [np.nan, 0.0]), ValueError, "z_gps must be finite", "gps-update-zgps-nan"),
     row(lambda: GPSDRFilter(GPS).update([0.0, 1.0], [0.0, 0.0, 0.0]), ValueError, r"z_gps must have length 2, got shape \(3,\)", "gps-update-zgps-len"),
     row(lambda: dr.transition_matrix(0.0), ValueError, r"dt must be finite and > 0, got 0.0", "transition-dt"),
-    row(lambda: dr.simulate_scenario("straight"), TypeError, "scenario must be a Scenario, got str", "scenario-type"),
-    row(lambda: dr.simulate_scenario(dr.SCENARIOS["straight"](dt=0.0)), ValueError, r"dt must be finite and > 0, got 0.0", "scenario-dt"),
-    row(lambda: dr.simulate_scenario(dr.SCENARIOS["straight"](duration=-1.0)), ValueError, r"duration must be finite and > 0, got -1.0", "scenario-duration"),
-    row(lambda: dr.simulate_scenario(dr.SCENARIOS["gpsdr"](sigma_gps=-1.0)), ValueError, r"sigma_gps must be finite and >= 0, got -1.0", "scenario-sigma-gps"),
+    row(lambda: scenarios.simulate_scenario("straight"), TypeError, "scenario must be a Scenario, got str", "scenario-type"),
+    row(lambda: scenarios.simulate_scenario(scenarios.SCENARIOS["straight"](dt=0.0)), ValueError, r"dt must be finite and > 0, got 0.0", "scenario-dt"),
+    row(lambda: scenarios.simulate_scenario(scenarios.SCENARIOS["straight"](duration=-1.0)), ValueError, r"duration must be finite and > 0, got -1.0", "scenario-duration"),
+    row(lambda: scenarios.simulate_scenario(scenarios.SCENARIOS["gpsdr"](sigma_gps=-1.0)), ValueError, r"sigma_gps must be finite and >= 0, got -1.0", "scenario-sigma-gps"),
     row(lambda: nfm.NeuralFilter(n_hidden=0), ValueError, r"n_hidden must be >= 1, got 0", "nf-hidden"),
     row(lambda: nfm.NeuralFilter(n_epochs=0), ValueError, r"n_epochs must be >= 1, got 0", "nf-epochs"),
     row(lambda: nfm.NeuralFilter(n_epochs=-3), ValueError, r"n_epochs must be >= 1, got -3", "nf-epochs-neg"),
@@ -473,7 +474,8 @@ RNG_ENTRY_POINTS = {
     "NeuralFilter": lambda rng: nfm.NeuralFilter(rng=rng),
     "neural_filter.make_training_set": lambda rng: nfm.make_training_set(nfm.paper_training_states(), rng=rng),
     "neural_filter.random_motion_states": lambda rng: nfm.random_motion_states(5, rng=rng),
-    "dead_reckoning.simulate_scenario": lambda rng: dr.simulate_scenario(dr.SCENARIOS["straight"](duration=1.0), rng=rng),
+    "scenarios.simulate_scenario": lambda rng: scenarios.simulate_scenario(scenarios.SCENARIOS["straight"](duration=1.0),
+                                                                           rng=rng),
     "DRModel.simulate": lambda rng: dr.DRModel().simulate(3, rng=rng),
 }
 

@@ -5,19 +5,17 @@ import pytest
 from filterpy.kalman import ExtendedKalmanFilter, MerweScaledSigmaPoints
 
 from filterwnn.dead_reckoning import (
-    SCENARIOS,
     DRModel,
     GPSDRModel,
-    Scenario,
     dr_fx,
     dr_HJacobian,
     dr_hx,
     dr_residual,
     dr_z_mean,
-    simulate_scenario,
     transition_matrix,
     wrap_angle,
 )
+from filterwnn.scenarios import SCENARIOS, Scenario, simulate_scenario
 from filterwnn.gpsdr import GPSDRFilter
 from filterwnn.sigma_points import SphericalSimplexSigmaPoints
 from filterwnn.unscented import UnscentedKalmanFilter

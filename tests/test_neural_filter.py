@@ -3,7 +3,8 @@
 import numpy as np
 import pytest
 
-from filterwnn.dead_reckoning import SCENARIOS, DRModel, dr_residual, simulate_scenario
+from filterwnn.dead_reckoning import DRModel, dr_residual
+from filterwnn.scenarios import SCENARIOS, simulate_scenario
 from filterwnn.neural_filter import (
     NeuralFilter,
     make_training_set,

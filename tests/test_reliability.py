@@ -34,6 +34,7 @@ from filterwnn import (
     wnn,
 )
 from filterwnn import dead_reckoning as dr
+from filterwnn import scenarios
 from filterwnn import neural_filter as nfm
 from filterwnn import particle_filter as pfm
 from filterwnn.gaussian_sum import GaussianSumFilter
@@ -182,7 +183,7 @@ def _nf_data():
 def test_neural_filter_online_divergence_raises_at_its_step():
     m, Xp, Z, X = _nf_data()
     nf = nfm.NeuralFilter(m, rng=1, n_epochs=20, learning_rate_online=1e12).fit(Xp, Z, X)
-    run = dr.simulate_scenario(dr.SCENARIOS["straight"](duration=20.0), rng=0)
+    run = scenarios.simulate_scenario(scenarios.SCENARIOS["straight"](duration=20.0), rng=0)
     nf.reset(run.x0)
     with pytest.raises(NumericalError) as info:
         for z in run.z_dr:
@@ -238,7 +239,7 @@ STOCHASTIC = {
     "LinearGaussianModel.simulate": lambda rng: LIN.simulate(5, rng=rng),
     "DRModel.simulate": lambda rng: dr.DRModel().simulate(5, rng=rng),
     "GPSDRModel.simulate": lambda rng: dr.GPSDRModel(augmented=True).simulate(5, rng=rng),
-    "simulate_scenario": lambda rng: tuple(dr.simulate_scenario(dr.SCENARIOS["gpsdr"](duration=20.0), rng=rng)[:6]),
+    "simulate_scenario": lambda rng: tuple(scenarios.simulate_scenario(scenarios.SCENARIOS["gpsdr"](duration=20.0), rng=rng)[:6]),
     "WNNWeightModel.simulate": lambda rng: WNNWeightModel(2, 3).simulate(5, rng=rng),
     "datasets.make_siso_benchmark": lambda rng: datasets.make_siso_benchmark(rng=rng),
     "wnn.init_paper": lambda rng: wnn.init_paper(2, 4, rng=rng),
@@ -299,7 +300,7 @@ def test_filters_pickled_mid_run_continue_bit_identically(name):
 
 def test_gpsdr_ekf_pickled_mid_run_with_gps_outage_continues_bit_identically():
     m = dr.GPSDRModel(augmented=True)
-    run = dr.simulate_scenario(dr.SCENARIOS["gpsdr"](duration=60.0, outages=((20.0, 40.0),)), rng=3)
+    run = scenarios.simulate_scenario(scenarios.SCENARIOS["gpsdr"](duration=60.0, outages=((20.0, 40.0),)), rng=3)
     gps = run.gps_list()
     kf = GPSDRFilter(m, "ekf", x0=np.concatenate([run.x0, [1.0, 0.0]]))
 
@@ -320,7 +321,7 @@ def test_gpsdr_ekf_pickled_mid_run_with_gps_outage_continues_bit_identically():
 def test_neural_filter_with_online_learning_pickled_mid_run_continues_bit_identically():
     m, Xp, Z, X = _nf_data()
     nf = nfm.NeuralFilter(m, rng=1, n_epochs=5, learning_rate_online=1e-3).fit(Xp, Z, X)
-    run = dr.simulate_scenario(dr.SCENARIOS["turns"](duration=30.0), rng=0)
+    run = scenarios.simulate_scenario(scenarios.SCENARIOS["turns"](duration=30.0), rng=0)
     nf.reset(run.x0)
     nf.batch_filter(run.z_dr[:100])
     clone = pickle.loads(pickle.dumps(nf))
@@ -354,14 +355,14 @@ def long_gpsdr_scenario(duration):
     turns = tuple((t, t + 20.0, (-1) ** i * 90.0) for i, t in enumerate(np.arange(30.0, t_end, 250.0)))
     changes = tuple((t, t + 10.0, (-1) ** i * 4.0) for i, t in enumerate(np.arange(60.0, t_end, 400.0)))
     outages = tuple((t, t + 100.0) for t in np.arange(500.0, duration, 1000.0))
-    return dr.SCENARIOS["gpsdr"](duration=duration, turns=turns, speed_changes=changes, outages=outages,
+    return scenarios.SCENARIOS["gpsdr"](duration=duration, turns=turns, speed_changes=changes, outages=outages,
                                  t_switch=duration + 1.0)
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize("augmented", [False, True], ids=["ekf-6", "ekf-8"])
 def test_gpsdr_ekf_100k_steps_with_outages(augmented):
-    run = dr.simulate_scenario(long_gpsdr_scenario(10_000.0), rng=0)
+    run = scenarios.simulate_scenario(long_gpsdr_scenario(10_000.0), rng=0)
     assert len(run.t) == 100_000 and len(run.gps_steps) < 10_000 - 500
     m = dr.GPSDRModel(augmented=augmented)
     x0 = np.concatenate([run.x0, [1.0, 0.0]]) if augmented else run.x0
@@ -383,7 +384,7 @@ def test_gpsdr_ekf_100k_steps_with_outages(augmented):
 def test_gpsdr_sukf_8_state_100k_steps_with_outages():
     from filterwnn.sigma_points import SphericalSimplexSigmaPoints as Simplex
 
-    run = dr.simulate_scenario(long_gpsdr_scenario(10_000.0), rng=1)
+    run = scenarios.simulate_scenario(long_gpsdr_scenario(10_000.0), rng=1)
     m = dr.GPSDRModel(augmented=True)
     f = GPSDRFilter(m, "sukf", x0=np.concatenate([run.x0, [1.0, 0.0]]), points=Simplex(8, w0=0.2))
     gps = run.gps_list()
@@ -399,7 +400,7 @@ def test_gpsdr_sukf_8_state_100k_steps_with_outages():
 @pytest.mark.slow
 def test_dr_only_vectorized_sukf_100k_steps():
     sc = long_gpsdr_scenario(10_000.0).with_(gps_rate=0.0, odometer_scale=1.0, heading_bias=0.0)
-    run = dr.simulate_scenario(sc, rng=2)
+    run = scenarios.simulate_scenario(sc, rng=2)
     m = dr.DRModel()
     f = UnscentedKalmanFilter(6, 2, m.dt, m.hx, m.fx, SphericalSimplexSigmaPoints(6, w0=0.2),
                               residual_z=dr.dr_residual, z_mean_fn=dr.dr_z_mean, vectorized=True)
@@ -432,7 +433,7 @@ def test_upf_100_particles_on_the_6_state_gpsdr_model_10k_steps():
     The Gaussian-sum filter (the former ``weighting="bank"``): with the textbook weight a UPF degenerates at once (ESS 1.0
     and a single distinct particle from the first step, so the sample covariance ``P``
     is singular), because the DR transition noise is far narrower than the proposal."""
-    run = dr.simulate_scenario(long_gpsdr_scenario(1_000.0), rng=4)
+    run = scenarios.simulate_scenario(long_gpsdr_scenario(1_000.0), rng=4)
     assert len(run.t) == 10_000
     m = dr.GPSDRModel(augmented=False)
     pf = GaussianSumFilter(6, 4, m.dt, m.hx, m.fx, component="ukf", residual_z=dr.dr_residual,

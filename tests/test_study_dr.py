@@ -77,7 +77,8 @@ def test_bad_arguments():
 
 @pytest.mark.slow
 def test_long_run_100k_steps_stays_finite():
-    from filterwnn.dead_reckoning import DRModel, SCENARIOS, dr_residual, simulate_scenario
+    from filterwnn.dead_reckoning import DRModel, dr_residual
+    from filterwnn.scenarios import SCENARIOS, simulate_scenario
     from filterwnn.neural_filter import NeuralFilter, make_training_set, paper_training_states
 
     sc = SCENARIOS["turns"](duration=10000.0, turns=((20.0, 9990.0, 3000.0),), speed_changes=())
