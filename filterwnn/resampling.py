@@ -111,9 +111,9 @@ def _search(w, u):
 
 # --- the registry ----------------------------------------------------------------------
 
-#: Registry of scheme names -> public (validating) functions, filled by :func:`register`.
+#: Registry of scheme names -> public (validating) functions, filled by :func:`register`;
+#: each function's ``impl`` attribute is the unvalidated ``impl(w, rng, n)`` the filters call.
 SCHEMES = {}
-_IMPL = {}
 
 _DOC = """{title} resampling.
 
@@ -146,7 +146,7 @@ def register(name, title, extra=""):
 
         scheme.__name__ = scheme.__qualname__ = name
         scheme.__doc__ = _DOC.format(title=title, extra=extra)
-        _IMPL[name] = impl
+        scheme.impl = impl
         SCHEMES[name] = scheme
         return scheme
 
@@ -231,8 +231,8 @@ def get_scheme(name):
         return _from_callable(name)
     if not isinstance(name, str):
         raise TypeError(f"resampling must be a scheme name (str) or a callable, got {type(name).__name__}")
-    check_choice(name, "resampling scheme", _IMPL)
-    return _IMPL[name]
+    check_choice(name, "resampling scheme", SCHEMES)
+    return SCHEMES[name].impl
 
 
 def resample(weights, scheme="systematic", rng=None, n=None):
