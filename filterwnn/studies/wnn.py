@@ -641,7 +641,9 @@ def summarize(runs):
         mse = [r["test_mse"] for r in rs]
         paper = TRAINERS[trainer].paper if trainer in TRAINERS else None
         paper = paper or (float("nan"), float("nan"))
-        ess = [r["mean_ess"] for r in rs if np.isfinite(r["mean_ess"])]
+        # an unweighted average (combine="mean") has no weights whose ESS would mean anything
+        weighted = trainer not in TRAINERS or TRAINERS[trainer].combine != "mean"
+        ess = [r["mean_ess"] for r in rs if np.isfinite(r["mean_ess"]) and weighted]
         distinct = [r["distinct"] for r in rs if r["distinct"] > 0]
         cover = [r.get("coverage90", float("nan")) for r in rs]
         rows.append({
@@ -907,6 +909,11 @@ def _fmt(v, digits=3):
     return runner.fmt(v, digits)
 
 
+def _run_variances(runs):
+    """var(y_test) once per run (run ``i`` has the same data in every table; the sweep's runs too)."""
+    return list({r["run"]: r["var_test"] for r in runs if r["table"] != "tuning"}.values())
+
+
 def markdown_table(result):
     """The study's tables as Markdown text (working settings, paper settings, references)."""
     c = result.config
@@ -916,8 +923,9 @@ def markdown_table(result):
         f"Protocol: {c['n_runs']} runs (SeedSequence({c['seed']}).spawn), {c['n_epochs']} epochs "
         f"(particle filters {c['pf_epochs']}), {c['n_particles']} particles, 5-20-1 Morlet WNN, "
         "SISO plant of eq. (12), 100 train / 100 test rows. Each run re-draws its data from its own "
-        "seed, so the test-set variance differs between runs (median var(y_test) "
-        f"{_fmt(_q([r['var_test'] for r in result.runs], 0.5))}; predicting the mean scores that).",
+        "seed, so the test-set variance differs between runs (median var(y_test) over the "
+        f"{len(_run_variances(result.runs))} runs {_fmt(_q(_run_variances(result.runs), 0.5))}; predicting the "
+        "mean scores that).",
     ]
     if c.get("n_done", 0) < c.get("n_tasks", 0):
         lines += ["", f"**Incomplete: {c['n_done']} of {c['n_tasks']} fits finished** (the rows say how many "
