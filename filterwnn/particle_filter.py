@@ -224,6 +224,10 @@ class ParticleFilter(WeightedMixtureFilter):
         ``n_particles`` when the step did not resample. ``ess_history``,
         ``n_distinct_history`` and ``resampled_history`` keep one entry per ``update``
         (``z=None`` included).
+    ancestors : ndarray of int, shape (n_particles,)
+        The index, in the cloud set by the last ``initialize`` (or the first draw), of the
+        particle each one descends from through every resampling since; ``n_ancestors`` is the
+        number of distinct ones (1: every particle shares one ancestor).
     step : int
         The time step: ``predict`` advances it by one; ``update`` works at (and its
         errors and warnings name) the current step. 0 before the first ``predict``.
@@ -283,6 +287,7 @@ class ParticleFilter(WeightedMixtureFilter):
         self.log_marginal_likelihood = 0.0
         self.ess = float(self.n_particles)
         self.n_distinct = self.n_particles
+        self.ancestors = np.arange(self.n_particles)
         self.ess_history = []
         self.n_distinct_history = []
         self.resampled_history = []
@@ -323,6 +328,11 @@ class ParticleFilter(WeightedMixtureFilter):
         return np.exp(self.log_weights)
 
     @property
+    def n_ancestors(self):
+        """Distinct initial particles the current cloud descends from (see ``ancestors``)."""
+        return int(np.unique(self.ancestors).size)
+
+    @property
     def likelihood(self):
         """``exp(log_likelihood)`` of the last update."""
         return float(np.exp(self.log_likelihood))
@@ -350,6 +360,7 @@ class ParticleFilter(WeightedMixtureFilter):
                                    "P" if covariances is None else "covariances", self.n_particles, self.dim_x)
         self.particles = X.copy()
         self.covariances = C
+        self.ancestors = np.arange(self.n_particles)
         self.log_weights = np.full(self.n_particles, -np.log(self.n_particles))
         self._prediction = None
         self._x, self._P = self._moments(self._sync_model(), self.particles, self.weights)
@@ -507,6 +518,7 @@ class ParticleFilter(WeightedMixtureFilter):
             covs = None if covs is None else covs[idx]
             log_w = np.full(self.n_particles, -np.log(self.n_particles))
             n_distinct = int(np.count_nonzero(np.bincount(idx, minlength=self.n_particles)))
+            self.ancestors = self.ancestors[idx]
             if self.move is not None:
                 X = self._apply_move(X, step)
         self.particles, self.covariances, self.log_weights = X, covs, log_w

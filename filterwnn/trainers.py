@@ -532,6 +532,7 @@ class _ParticleTrainer(BaseTrainer):
             distinct.append(pf.n_distinct)
         self._record("mean_ess", float(np.mean(ess)))
         self._record("distinct", int(distinct[-1]))
+        self._record("distinct_ancestors", pf.n_ancestors)
         if self.move is not None and self.move.acceptance_:
             self._record("acceptance", float(np.mean(self.move.acceptance_)))
         self.check_finite(len(self.diagnostics["mean_ess"]), self.particles)

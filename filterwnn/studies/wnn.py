@@ -21,7 +21,8 @@ weights (``ekf-ensemble``) and the SMC sampler (``smc``), over independent runs,
 ``table1.csv``
     the same rows with the columns of :data:`TABLE_COLUMNS`: ``trainer`` (the row key),
     ``algorithm``, ``settings`` (weighting, tempering, move), test MSE median and quartiles,
-    ``fit_time_median``, ``mean_ess``, ``distinct_particles`` (mean over runs at the end;
+    ``fit_time_median``, ``mean_ess``, ``distinct_particles`` and ``distinct_ancestors`` (means
+    over runs at the end: distinct particles, and distinct initial particles they descend from;
     empty for non-particle rows) and ``coverage90`` (median over runs of the share of test
     targets inside mean +- 1.645 std of ``predict(return_std=True)``; the GP's std included);
 ``runs.csv``
@@ -189,7 +190,7 @@ COPY_SETTINGS = _specs_with("copy_settings")
 REFERENCES = ("MLPRegressor", "GaussianProcessRegressor")
 TABLE_COLUMNS = (
     "trainer", "algorithm", "settings", "test_mse_median", "test_mse_q1", "test_mse_q3", "fit_time_median",
-    "mean_ess", "distinct_particles", "coverage90",
+    "mean_ess", "distinct_particles", "distinct_ancestors", "coverage90",
 )
 
 
@@ -508,6 +509,7 @@ def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_
         diag = getattr(reg, "diagnostics_", {}) or {}
         ess = diag.get("mean_ess")
         distinct = diag.get("distinct")
+        ancestors = diag.get("distinct_ancestors")
         return {
             "table": table,
             "trainer": trainer,
@@ -517,6 +519,7 @@ def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_
             "fit_time": float(reg.fit_time_),
             "mean_ess": float(np.mean(ess)) if ess else float("nan"),
             "distinct": int(distinct[-1]) if distinct else -1,
+            "ancestors": int(ancestors[-1]) if ancestors else -1,
             "coverage90": coverage,
             "var_test": float(np.var(y_test)),
             "curve_train": list(getattr(reg, "loss_curve_", [])),
@@ -645,6 +648,7 @@ def summarize(runs):
         weighted = trainer not in TRAINERS or TRAINERS[trainer].combine != "mean"
         ess = [r["mean_ess"] for r in rs if np.isfinite(r["mean_ess"]) and weighted]
         distinct = [r["distinct"] for r in rs if r["distinct"] > 0]
+        ancestors = [r["ancestors"] for r in rs if r.get("ancestors", -1) > 0]  # absent from older caches
         cover = [r.get("coverage90", float("nan")) for r in rs]
         rows.append({
             "table": table,
@@ -658,6 +662,7 @@ def summarize(runs):
             "mean_ess": float(np.mean(ess)) if ess else float("nan"),
             "distinct_median": float(np.median(distinct)) if distinct else float("nan"),
             "distinct_particles": float(np.mean(distinct)) if distinct else float("nan"),
+            "distinct_ancestors": float(np.mean(ancestors)) if ancestors else float("nan"),
             "coverage90": _q(cover, 0.5),
             "n_runs": len(rs),
             "epochs": max(r.get("epochs", 0) for r in rs),
@@ -936,8 +941,8 @@ def markdown_table(result):
     lines += ["", f"Timings: median seconds per fit with {c['n_jobs']} joblib worker(s) ({c['backend']}), "
               "one BLAS thread each; parallel workers contend for memory bandwidth."]
     head = ("| algorithm | settings | epochs | test MSE median | q1 | q3 | fit time (s) | mean ESS | distinct particles "
-            "| 90 % coverage | runs | paper MSE | paper time (s) |")
-    sep = "|---" * 13 + "|"
+            "| distinct ancestors | 90 % coverage | runs | paper MSE | paper time (s) |")
+    sep = "|---" * 14 + "|"
     if c.get("tune_runs"):
         working_title = (f"Working settings (scaled start; Q, P0 or learning rate and the epochs chosen on a "
                          f"validation split of {c['tune_runs']} separate tuning run(s), never on test data)")
@@ -960,7 +965,8 @@ def markdown_table(result):
                 f"| {r['algorithm']} | {r['settings'].split(': ', 1)[-1]} | {r['epochs'] or '-'} | "
                 f"{_fmt(r['test_mse_median'])}{failed} | "
                 f"{_fmt(r['test_mse_q1'])} | {_fmt(r['test_mse_q3'])} | {_fmt(r['fit_time_median'])} | "
-                f"{_fmt(r['mean_ess'])} | {_fmt(r['distinct_particles'])} | {_fmt(r['coverage90'])} | {r['n_runs']} | "
+                f"{_fmt(r['mean_ess'])} | {_fmt(r['distinct_particles'])} | {_fmt(r['distinct_ancestors'])} | "
+                f"{_fmt(r['coverage90'])} | {r['n_runs']} | "
                 f"{_fmt(r['paper_mse'], 4)} | {_fmt(r['paper_time'])} |"
             )
     if result.sweep:
@@ -1021,7 +1027,7 @@ def write_outputs(result, out, figures=True):
     paths.append(p)
     p = os.path.join(out, "runs.csv")
     fields = ["table", "trainer", "run", "n_particles", "epochs", "test_mse", "train_mse", "fit_time", "mean_ess", "distinct",
-              "coverage90", "var_test", "status", "settings"]
+              "ancestors", "coverage90", "var_test", "status", "settings"]
     with open(p, "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=fields, extrasaction="ignore")
         w.writeheader()
