@@ -69,7 +69,7 @@ protocol that finishes in a few minutes on 2 cores, and says so in its output;
 >>> [row["trainer"] for row in res.table]
 ['ekf', 'spf']
 >>> res.table[1]["algorithm"], sorted(res.table[0])[:3]
-('SPF (bootstrap)', ['algorithm', 'coverage90', 'distinct_median'])
+('SPF (bootstrap)', ['algorithm', 'coverage90', 'distinct_ancestors'])
 """
 
 from __future__ import annotations
