@@ -255,12 +255,17 @@ def _filter_extras(spec, model):
     return extras
 
 
-def _prior_moments(X, model, settings):
-    """Mean and variance of the prior matched to the start (the paper's: U[0, 1]'s moments)."""
+def _weight_prior(X, model, settings):
+    """The static posterior's prior: the Gaussian matched to the start (the paper's start: U[0, 1]'s
+    moments), its variances times ``settings["P0"]``. Returns the weight model with ``Q = 0`` that
+    carries it, and those variances."""
     if settings.get("prior", "scaled") == "scaled":
-        return scaled_prior(X, model.n_hidden, output_scale=settings["output_scale"])
-    # the paper's start: every weight U[0, 1], mean 0.5 and variance 1/12
-    return np.full(model.dim_x, 0.5), np.full(model.dim_x, 1.0 / 12.0)
+        x0, var = scaled_prior(X, model.n_hidden, output_scale=settings["output_scale"])
+    else:  # the paper's start: every weight U[0, 1], mean 0.5 and variance 1/12
+        x0, var = np.full(model.dim_x, 0.5), np.full(model.dim_x, 1.0 / 12.0)
+    var = var * settings["P0"]
+    prior = WNNWeightModel(model.n_inputs, model.n_hidden, model.wavelet, Q=0.0, R=model.R, x0=x0, P0=var)
+    return prior, var
 
 
 # ---------------------------------------------------------------------------- trainers
@@ -491,9 +496,7 @@ class _ParticleTrainer(BaseTrainer):
 
     def _start_with_move(self, X):
         m, s = self.model, self.settings
-        x0, var = _prior_moments(X, m, s)
-        P0 = np.diag(var * s["P0"])
-        prior = WNNWeightModel(m.n_inputs, m.n_hidden, m.wavelet, Q=0.0, R=m.R, x0=x0, P0=P0)
+        prior, var = _weight_prior(X, m, s)
         target = smc.RowsTarget(prior)
         if self._move_kind == "hmc":
             self.move = smc.HMCMove(target, n_steps=s["n_moves"], n_leapfrog=s["n_leapfrog"])
@@ -502,9 +505,9 @@ class _ParticleTrainer(BaseTrainer):
         self.pf = self._cls(m.dim_x, 1, 1.0, m.hx, None, move=self.move, **self._kwargs)
         self.pf.Q = np.zeros_like(m.Q)
         self.pf.R = m.R.copy()
-        self.pf.P = P0.copy()
-        L = np.sqrt(var * s["P0"])
-        self.pf.initialize(x0 + self.rng.standard_normal((s["n_particles"], m.dim_x)) * L, P0)
+        self.pf.P = prior.P0.copy()
+        draws = self.rng.standard_normal((s["n_particles"], m.dim_x))
+        self.pf.initialize(prior.x0 + draws * np.sqrt(var), prior.P0)
 
     @property
     def particles(self):
@@ -608,11 +611,6 @@ class _SMCTrainer(BaseTrainer):
         self.move = None
         self.particles = None
 
-    def _prior(self, X):
-        m, s = self.model, self.settings
-        x0, var = _prior_moments(X, m, s)
-        return WNNWeightModel(m.n_inputs, m.n_hidden, m.wavelet, Q=0.0, R=m.R, x0=x0, P0=var * s["P0"])
-
     @property
     def theta(self):
         """The particle of largest posterior density (predictions average all of them)."""
@@ -649,7 +647,7 @@ class _SMCTrainer(BaseTrainer):
 
     def epoch(self, X, y):
         if self.result is None:
-            target = smc.RowsTarget(self._prior(X), X, y)
+            target = smc.RowsTarget(_weight_prior(X, self.model, self.settings)[0], X, y)
             self.move = self._kernel(target)
             res = self._sample(target, self.move, None)
             self._keep(res)
