@@ -174,6 +174,25 @@ def test_ess_threshold_zero_never_resamples_and_one_always(lin_data):
     assert never.ess < 50 and len(always.n_distinct_history) == 5
 
 
+def test_ancestors_follow_every_resampling_back_to_the_initial_cloud(lin_data):
+    never = make(BootstrapParticleFilter, 50, ess_threshold=0.0)
+    never.batch_filter(lin_data[0][:5])
+    assert never.ancestors.tolist() == list(range(50)) and never.n_ancestors == 50  # nothing resampled
+    pf = make(BootstrapParticleFilter, 50, ess_threshold=1.0)
+    pf.predict()
+    pf.update(lin_data[0][0])
+    assert pf.n_ancestors == pf.n_distinct  # one resampling: the ancestors are its distinct indices
+    counts = [pf.n_ancestors]
+    for z in lin_data[0][1:10]:
+        pf.predict()
+        pf.update(z)
+        counts.append(pf.n_ancestors)
+    assert all(b <= a for a, b in zip(counts, counts[1:])) and counts[-1] < counts[0]  # lineages only die out
+    assert pf.ancestors.min() >= 0 and pf.ancestors.max() < 50
+    pf.initialize(pf.particles)
+    assert pf.n_ancestors == 50  # a new cloud starts new lineages
+
+
 # --- errors --------------------------------------------------------------------------------
 
 
