@@ -107,10 +107,11 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
         A name in :data:`filterwnn.trainers.TRAINERS` (``"ekf"``, ``"bp"``, ``"ukf"``, ``"sukf"``,
         ``"spf"``, ``"epf"``, ``"upf"``, ``"supf"``, ``"gsf-ekf"``, ``"gsf-ukf"``, ``"gsf-sukf"``,
         ``"ekf-ensemble"``, ``"smc"``, and any registered with
-        :func:`~filterwnn.trainers.register_trainer`). The EKF from the scaled start is the default. ``WNNRegressor()`` as it stands (EKF,
-        Q = 1e-3, P0 = 0.1, 50 epochs) measured test MSE 0.040, 0.073 and 0.166 on the WNN
-        study's runs 0-2 (seed 2026), 0.4-0.5 s per fit. (The study's tuned EKF, Q = 1e-4 and 5
-        epochs, is another configuration; its numbers are in ``docs/study-outputs/wnn/``.)
+        :func:`~filterwnn.trainers.register_trainer`). The EKF from the scaled start is the
+        default. ``WNNRegressor()`` as it stands (EKF, Q = 1e-3, P0 = 0.1, 50 epochs) measured
+        test MSE 0.040, 0.073 and 0.166 on the WNN study's runs 0-2 (seed 2026), about 0.5 s per
+        fit. (The study's search chooses its own EKF settings, e.g. Q = 1e-2, P0 = 1 and 21
+        epochs in ``docs/study-outputs/wnn-medium/``: another configuration.)
     n_epochs : int, default 50
         Passes over the training samples (all of them, in order, one filter step each).
     init : {"scaled", "paper"}, default "scaled"
