@@ -23,8 +23,8 @@ from filterpy.kalman import ExtendedKalmanFilter  # noqa: E402
 from threadpoolctl import threadpool_limits  # noqa: E402
 
 from filterwnn import AdaptiveExtendedKalmanFilter  # noqa: E402
-from filterwnn.dead_reckoning import DRModel, dr_residual  # noqa: E402
-from filterwnn.scenarios import SCENARIOS, simulate_scenario  # noqa: E402
+from filterwnn.navigation.dead_reckoning import DRModel, dr_residual  # noqa: E402
+from filterwnn.navigation.scenarios import SCENARIOS, simulate_scenario  # noqa: E402
 
 FILTERS = {
     "EKF (filterpy)": lambda: ExtendedKalmanFilter(6, 2),

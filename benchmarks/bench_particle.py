@@ -57,7 +57,7 @@ from filterwnn import (  # noqa: E402
     wnn,
 )
 from filterwnn.datasets import make_siso_benchmark  # noqa: E402
-from filterwnn.resampling import systematic  # noqa: E402
+from filterwnn.monte_carlo.resampling import systematic  # noqa: E402
 
 N_IN, N_HID = 5, 20
 DIM_WNN = wnn.n_params(N_IN, N_HID)

@@ -31,7 +31,7 @@ import time
 import numpy as np
 
 from filterwnn import WNNRegressor, make_siso_benchmark
-from filterwnn import trainers
+from filterwnn.wnn import trainers
 
 
 def _parse(spec):

@@ -67,7 +67,7 @@ def _resolve_reexport(app, env, node, contnode):
     """Resolve ``filterwnn.Name`` (a re-export) to where ``Name`` is documented.
 
     The docstrings cite public names the way users import them (``filterwnn.NeuralFilter``);
-    the reference documents each object once, in its module (``filterwnn.neural_filter``).
+    the reference documents each object once, in its module (``filterwnn.navigation.neural_filter``).
     """
     target = node.get("reftarget", "")
     if node.get("refdomain") != "py" or not target.startswith("filterwnn.") or target.count(".") != 1:

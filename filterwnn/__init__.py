@@ -1,96 +1,104 @@
 """filterwnn: reduced sigma points, particle filters, filter-trained wavelet networks
 and GPS/DR navigation, on top of filterpy.
 
-The public API is the names in ``__all__``; everything else is private or lives in its
-module (``filterwnn.sigma_points``, ``filterwnn.particle_filter``, ...).
+The package reads like filterpy, one subpackage per family::
+
+    filterwnn.kalman        sigma-point sets, the UKF, the adaptive EKF, the batched Kalman step
+    filterwnn.monte_carlo   resampling, proposals, particle filters, the Gaussian-sum filter, SMC
+    filterwnn.wnn           the wavelet network, its weights as a state, trainers, WNNRegressor
+    filterwnn.navigation    dead-reckoning models, the GPS/DR filter, the neural filter, drives
+    filterwnn.studies       the two papers' studies, their runner and plots
+
+over root primitives (``angles``, ``models``, ``datasets``, ``metrics``). Every public name is
+also exported here (``filterwnn.MinimalSkewSigmaPoints``), imported on first use so that
+``import filterwnn`` stays cheap. The flat module paths of earlier versions
+(``filterwnn.kalman.sigma_points``, ``filterwnn.monte_carlo.particle_filter``, ...) still import, with a
+``DeprecationWarning`` naming the new path.
 """
 
-__version__ = "0.1.0"
+__version__ = "0.2.0"
 
-# Primitives: errors, angles, sigma points, resampling, the wavelet network.
-from . import angles, wnn
+from ._lazy import install_moved, lazy_exports
 from ._validation import NumericalError
-from .angles import angle_mean, angle_residual
-from .resampling import resample
-from .sigma_points import MinimalSkewSigmaPoints, SphericalSimplexSigmaPoints
 
-# Models: the state-space protocol, the benchmarks, dead reckoning and its scenarios,
-# the WNN weights as a state.
-from .dead_reckoning import DRModel, GPSDRModel, dr_residual, dr_z_mean, wrap_angle
-from .models import GammaNoiseModel, LinearGaussianModel, StateSpaceModel
-from .scenarios import SCENARIOS as DR_SCENARIOS, DRRun, Scenario, read_drive_csv, simulate_scenario
-from .weight_model import WNNWeightModel
+#: Old flat module -> its home in the subpackages.
+MOVED_MODULES = {
+    "sigma_points": "kalman.sigma_points",
+    "unscented": "kalman.unscented",
+    "adaptive": "kalman.adaptive",
+    "resampling": "monte_carlo.resampling",
+    "proposals": "monte_carlo.proposals",
+    "particle_filter": "monte_carlo.particle_filter",
+    "gaussian_sum": "monte_carlo.gaussian_sum",
+    "smc": "monte_carlo.smc",
+    "weight_model": "wnn.weight_model",
+    "trainers": "wnn.trainers",
+    "regressor": "wnn.regressor",
+    "dead_reckoning": "navigation.dead_reckoning",
+    "gpsdr": "navigation.gpsdr",
+    "neural_filter": "navigation.neural_filter",
+    "scenarios": "navigation.scenarios",
+    "plotting": "studies.plotting",
+}
+install_moved(__name__, MOVED_MODULES)
 
-# Algorithms: Kalman-type filters, particle filters and their proposals, SMC samplers
-# of static weights, the trained filters and the WNN estimator.
-from . import smc
-from .adaptive import AdaptiveExtendedKalmanFilter
-from .gaussian_sum import GaussianSumFilter
-from .gpsdr import GPSDRFilter
-from .neural_filter import NeuralFilter
-from .particle_filter import (
-    BootstrapParticleFilter,
-    DegeneracyWarning,
-    ExtendedKalmanParticleFilter,
-    ParticleFilter,
-    SimplexUnscentedParticleFilter,
-    UnscentedParticleFilter,
-)
-from .proposals import ExtendedKalmanProposal, PriorProposal, UnscentedKalmanProposal
-from .regressor import WNNRegressor
-from .smc import HMCMove, MALAMove, RowsTarget, smc_sampler
-from .unscented import UnscentedKalmanFilter
-
-# Data for the studies.
-from .datasets import make_siso_benchmark
-
-__all__ = [
-    "__version__",
+_EXPORTS = {
+    # subpackages and root modules
+    "kalman": "kalman",
+    "monte_carlo": "monte_carlo",
+    "wnn": "wnn",
+    "navigation": "navigation",
+    "studies": "studies",
+    "angles": "angles",
+    "models": "models",
+    "datasets": "datasets",
+    "metrics": "metrics",
+    "smc": "monte_carlo.smc",
     # primitives
-    "NumericalError",
-    "angles",
-    "angle_residual",
-    "angle_mean",
-    "MinimalSkewSigmaPoints",
-    "SphericalSimplexSigmaPoints",
-    "resample",
-    "wnn",
+    "angle_mean": "angles:angle_mean",
+    "angle_residual": "angles:angle_residual",
+    "MinimalSkewSigmaPoints": "kalman.sigma_points:MinimalSkewSigmaPoints",
+    "SphericalSimplexSigmaPoints": "kalman.sigma_points:SphericalSimplexSigmaPoints",
+    "resample": "monte_carlo.resampling:resample",
     # models
-    "StateSpaceModel",
-    "GammaNoiseModel",
-    "LinearGaussianModel",
-    "DR_SCENARIOS",
-    "DRModel",
-    "GPSDRModel",
-    "Scenario",
-    "dr_residual",
-    "dr_z_mean",
-    "simulate_scenario",
-    "wrap_angle",
-    "DRRun",
-    "read_drive_csv",
-    "WNNWeightModel",
+    "StateSpaceModel": "models:StateSpaceModel",
+    "GammaNoiseModel": "models:GammaNoiseModel",
+    "LinearGaussianModel": "models:LinearGaussianModel",
+    "DR_SCENARIOS": "navigation.scenarios:SCENARIOS",
+    "DRModel": "navigation.dead_reckoning:DRModel",
+    "GPSDRModel": "navigation.dead_reckoning:GPSDRModel",
+    "Scenario": "navigation.scenarios:Scenario",
+    "dr_residual": "navigation.dead_reckoning:dr_residual",
+    "dr_z_mean": "navigation.dead_reckoning:dr_z_mean",
+    "simulate_scenario": "navigation.scenarios:simulate_scenario",
+    "wrap_angle": "navigation.dead_reckoning:wrap_angle",
+    "DRRun": "navigation.scenarios:DRRun",
+    "read_drive_csv": "navigation.drives:read_drive_csv",
+    "WNNWeightModel": "wnn.weight_model:WNNWeightModel",
     # algorithms
-    "UnscentedKalmanFilter",
-    "ParticleFilter",
-    "DegeneracyWarning",
-    "GaussianSumFilter",
-    "BootstrapParticleFilter",
-    "ExtendedKalmanParticleFilter",
-    "UnscentedParticleFilter",
-    "SimplexUnscentedParticleFilter",
-    "PriorProposal",
-    "ExtendedKalmanProposal",
-    "UnscentedKalmanProposal",
-    "smc",
-    "RowsTarget",
-    "MALAMove",
-    "HMCMove",
-    "smc_sampler",
-    "WNNRegressor",
-    "NeuralFilter",
-    "AdaptiveExtendedKalmanFilter",
-    "GPSDRFilter",
+    "UnscentedKalmanFilter": "kalman.unscented:UnscentedKalmanFilter",
+    "AdaptiveExtendedKalmanFilter": "kalman.adaptive:AdaptiveExtendedKalmanFilter",
+    "ParticleFilter": "monte_carlo.particle_filter:ParticleFilter",
+    "DegeneracyWarning": "monte_carlo.particle_filter:DegeneracyWarning",
+    "GaussianSumFilter": "monte_carlo.gaussian_sum:GaussianSumFilter",
+    "BootstrapParticleFilter": "monte_carlo.particle_filter:BootstrapParticleFilter",
+    "ExtendedKalmanParticleFilter": "monte_carlo.particle_filter:ExtendedKalmanParticleFilter",
+    "UnscentedParticleFilter": "monte_carlo.particle_filter:UnscentedParticleFilter",
+    "SimplexUnscentedParticleFilter": "monte_carlo.particle_filter:SimplexUnscentedParticleFilter",
+    "PriorProposal": "monte_carlo.proposals:PriorProposal",
+    "ExtendedKalmanProposal": "monte_carlo.proposals:ExtendedKalmanProposal",
+    "UnscentedKalmanProposal": "monte_carlo.proposals:UnscentedKalmanProposal",
+    "RowsTarget": "monte_carlo.smc:RowsTarget",
+    "MALAMove": "monte_carlo.smc:MALAMove",
+    "HMCMove": "monte_carlo.smc:HMCMove",
+    "smc_sampler": "monte_carlo.smc:smc_sampler",
+    "WNNRegressor": "wnn.regressor:WNNRegressor",
+    "NeuralFilter": "navigation.neural_filter:NeuralFilter",
+    "GPSDRFilter": "navigation.gpsdr:GPSDRFilter",
     # data
-    "make_siso_benchmark",
-]
+    "make_siso_benchmark": "datasets:make_siso_benchmark",
+}
+
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
+
+__all__ = ["__version__", "NumericalError", *(k for k in _EXPORTS if k not in ("studies", "models", "datasets", "metrics", "monte_carlo", "kalman", "navigation"))]

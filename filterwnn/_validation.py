@@ -238,3 +238,21 @@ def check_choice(value, name, choices):
 def check_seed(seed, name="seed"):
     """A root seed for :class:`numpy.random.SeedSequence`: an int ``>= 0``."""
     return check_positive_int(seed, name, minimum=0)
+
+
+def check_weights(weights, name="weights"):
+    """Finite, non-negative, positive-sum 1-D weights, returned normalised."""
+    try:
+        w = np.asarray(weights, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise TypeError(f"{name} must be array-like of numbers, got {type(weights).__name__}") from exc
+    if w.ndim != 1 or w.size == 0:
+        raise ValueError(f"{name} must be a non-empty 1-D array, got shape {w.shape}")
+    if not np.all(np.isfinite(w)):
+        raise ValueError(f"{name} must be finite, got non-finite entries")
+    if np.any(w < 0):
+        raise ValueError(f"{name} must be non-negative, got min {w.min()}")
+    total = w.sum()
+    if not total > 0:
+        raise ValueError(f"{name} must have a positive sum, got {total}")
+    return w / total

@@ -39,11 +39,12 @@ def _demo(args):
 
     from .datasets import make_siso_benchmark
     from .models import LinearGaussianModel
-    from .regressor import WNNRegressor
-    from .dead_reckoning import GPSDRModel
-    from .gpsdr import GPSDRFilter
-    from .scenarios import read_drive_csv, sample_drive_path, with_outage
-    from .sigma_points import MinimalSkewSigmaPoints, SphericalSimplexSigmaPoints
+    from .wnn.regressor import WNNRegressor
+    from .navigation.dead_reckoning import GPSDRModel
+    from .navigation.gpsdr import GPSDRFilter
+    from .navigation.drives import read_drive_csv, sample_drive_path
+    from .navigation.scenarios import with_outage
+    from .kalman.sigma_points import MinimalSkewSigmaPoints, SphericalSimplexSigmaPoints
 
     t0 = time.perf_counter()
     model = LinearGaussianModel.random(dim_x=4, dim_z=2, rng=args.seed)

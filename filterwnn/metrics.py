@@ -20,10 +20,8 @@ from __future__ import annotations
 import numpy as np
 from scipy import linalg, stats
 
-from .resampling import effective_sample_size  # one definition, re-exported here
-
 from ._linalg import cholesky_lower, smallest_eigenvalue
-from ._validation import check_positive, check_positive_int, check_symmetric
+from ._validation import check_positive, check_positive_int, check_symmetric, check_weights
 
 __all__ = ["mse", "rmse", "nees", "nis", "chi2_bounds", "effective_sample_size"]
 
@@ -122,3 +120,20 @@ def chi2_bounds(dof, n_runs=1, alpha=0.05):
     lo = stats.chi2.ppf(alpha / 2, dof * n_runs) / n_runs
     hi = stats.chi2.ppf(1 - alpha / 2, dof * n_runs) / n_runs
     return float(lo), float(hi)
+
+
+def effective_sample_size(weights):
+    """Kish's effective sample size ``1 / sum(w_i^2)`` of (normalised) weights.
+
+    Parameters
+    ----------
+    weights : array-like of shape (n_particles,)
+        Non-negative weights with a positive sum (normalised here).
+
+    Returns
+    -------
+    float
+        ``n_particles`` for equal weights, 1 for a one-hot weight.
+    """
+    w = check_weights(weights)
+    return float(1.0 / np.dot(w, w))

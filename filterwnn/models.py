@@ -270,7 +270,7 @@ class GammaNoiseModel(StateSpaceModel):
         return xs, zs
 
     def particle_filter(self, cls, n_particles, rng=None, **kwargs):
-        """A particle filter of class ``cls`` (one of :mod:`filterwnn.particle_filter`'s presets)
+        """A particle filter of class ``cls`` (one of :mod:`filterwnn.monte_carlo.particle_filter`'s presets)
         set up on this model: vectorized, exact gamma weights, ``x``/``P``/``Q``/``R`` set.
 
         Run it with ``pf.predict(k=k); pf.update(z, k=k)`` for ``k = 1..n_steps``, or

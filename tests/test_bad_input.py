@@ -28,17 +28,17 @@ from filterwnn import (
     wnn,
 )
 from filterwnn import _validation as val
-from filterwnn.sigma_points import sigma_deviations, unit_sigma_points
-from filterwnn import dead_reckoning as dr
-from filterwnn import scenarios
-from filterwnn.gpsdr import GPSDRFilter
-from filterwnn import neural_filter as nfm
-from filterwnn import particle_filter as pfm
-from filterwnn import resampling
-from filterwnn.regressor import WNNRegressor
+from filterwnn.kalman.sigma_points import sigma_deviations, unit_sigma_points
+from filterwnn.navigation import dead_reckoning as dr
+from filterwnn.navigation import scenarios
+from filterwnn.navigation.gpsdr import GPSDRFilter
+from filterwnn.navigation import neural_filter as nfm
+from filterwnn.monte_carlo import particle_filter as pfm
+from filterwnn.monte_carlo import resampling
+from filterwnn.wnn.regressor import WNNRegressor
 from filterwnn.studies import dr as dr_study
 from filterwnn.studies import wnn as wnn_study
-from filterwnn.weight_model import WNNWeightModel
+from filterwnn.wnn.weight_model import WNNWeightModel
 
 RNG_MSG = r"(rng|random_state) must be None, an int seed, a SeedSequence, a BitGenerator or a numpy\.random\.Generator, got "
 BAD_RNGS = [

@@ -14,7 +14,7 @@ the Gaussian-sum filter (the former ``weighting="bank"``) are tested. (With ``we
 model degenerate -- effective sample size near 1 out of 100, a single distinct particle
 and a collapsed sample covariance at some steps -- a property of carrying each particle's
 posterior covariance into the next proposal, not of this package's arithmetic, which
-``tests/test_particle_filter.py`` pins to closed forms.)
+``tests/monte_carlo/test_particle_filter.py`` pins to closed forms.)
 
 Runs are independent streams from ``np.random.SeedSequence(seed).spawn(M)`` and the
 numbers are deterministic; the thresholds (fraction of steps inside the 95 % band,
@@ -31,8 +31,8 @@ from filterwnn import (
     SphericalSimplexSigmaPoints,
     UnscentedKalmanFilter,
 )
-from filterwnn import particle_filter as pf_module
-from filterwnn.gaussian_sum import GaussianSumFilter
+from filterwnn.monte_carlo import particle_filter as pf_module
+from filterwnn.monte_carlo.gaussian_sum import GaussianSumFilter
 from filterwnn.metrics import chi2_bounds, nees, nis
 
 N_RUNS = 50

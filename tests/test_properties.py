@@ -3,7 +3,7 @@
 
 Sigma-point sets (mean/covariance reproduction, nearly singular covariances, structured
 deviations) and resampling schemes (valid indices, count bounds) have their hypothesis
-tests in ``tests/test_sigma_points.py`` and ``tests/test_resampling.py``; this file does
+tests in ``tests/kalman/test_sigma_points.py`` and ``tests/monte_carlo/test_resampling.py``; this file does
 not repeat them. Here: the unscented filter equals the Kalman filter on random
 linear-Gaussian models with ill-conditioned covariances, the boundary check of
 covariances, NEES, effective sample size and log-weight normalisation, and heading
@@ -23,9 +23,9 @@ from filterwnn import (
     UnscentedKalmanFilter,
 )
 from filterwnn._validation import check_covariance
-from filterwnn.dead_reckoning import dr_residual, wrap_angle
+from filterwnn.navigation.dead_reckoning import dr_residual, wrap_angle
 from filterwnn.metrics import effective_sample_size, nees
-from filterwnn.resampling import normalize_log_weights
+from filterwnn.monte_carlo.resampling import normalize_log_weights
 
 SEEDS = st.integers(0, 2**32 - 1)
 

@@ -11,8 +11,8 @@ long runs, reproducibility.
   entry point (and the legacy global ``np.random`` stream is never touched); filters
   built from module-level callables, pickled mid-run, continue bit-identically; a
   ``WNNRegressor`` training checkpointed by pickling and resumed equals the uninterrupted
-  one. (Studies: ``--jobs 1 == --jobs 2`` is pinned in ``tests/test_study_wnn.py`` and
-  ``tests/test_study_dr.py``.)
+  one. (Studies: ``--jobs 1 == --jobs 2`` is pinned in ``tests/studies/test_study_wnn.py`` and
+  ``tests/studies/test_study_dr.py``.)
 
 Rows the library does not yet satisfy are strict xfails whose reason says what happens
 and what should.
@@ -30,17 +30,17 @@ from filterwnn import (
     SphericalSimplexSigmaPoints,
     UnscentedKalmanFilter,
     datasets,
-    resampling,
     wnn,
 )
-from filterwnn import dead_reckoning as dr
-from filterwnn import scenarios
-from filterwnn import neural_filter as nfm
-from filterwnn import particle_filter as pfm
-from filterwnn.gaussian_sum import GaussianSumFilter
-from filterwnn.gpsdr import GPSDRFilter
-from filterwnn.regressor import TRAINERS, WNNRegressor
-from filterwnn.weight_model import WNNWeightModel
+from filterwnn.monte_carlo import resampling
+from filterwnn.navigation import dead_reckoning as dr
+from filterwnn.navigation import scenarios
+from filterwnn.navigation import neural_filter as nfm
+from filterwnn.monte_carlo import particle_filter as pfm
+from filterwnn.monte_carlo.gaussian_sum import GaussianSumFilter
+from filterwnn.navigation.gpsdr import GPSDRFilter
+from filterwnn.wnn.regressor import TRAINERS, WNNRegressor
+from filterwnn.wnn.weight_model import WNNWeightModel
 
 
 def GAP(reason):
@@ -382,7 +382,7 @@ def test_gpsdr_ekf_100k_steps_with_outages(augmented):
 
 @pytest.mark.slow
 def test_gpsdr_sukf_8_state_100k_steps_with_outages():
-    from filterwnn.sigma_points import SphericalSimplexSigmaPoints as Simplex
+    from filterwnn.kalman.sigma_points import SphericalSimplexSigmaPoints as Simplex
 
     run = scenarios.simulate_scenario(long_gpsdr_scenario(10_000.0), rng=1)
     m = dr.GPSDRModel(augmented=True)

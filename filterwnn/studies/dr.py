@@ -1,7 +1,7 @@
 """The second paper's dead-reckoning study: EKF, adaptive EKF, UKF/SUKF and the neural filter.
 
 ``filterwnn study dr`` runs seeded Monte-Carlo runs of every scenario in
-:data:`filterwnn.scenarios.SCENARIOS` (the paper's straight road with the noise
+:data:`filterwnn.navigation.scenarios.SCENARIOS` (the paper's straight road with the noise
 raised x20 at 150 s, a turning route, a run through heading 180 degrees, heading
 outliers, and GPS/DR with 1 Hz fixes, outages, a 2 % odometer-scale error and a
 2-degree heading bias), with common random numbers: run ``i`` of every filter sees the
@@ -37,7 +37,7 @@ Filters (GPS/DR): ``EKF`` (6 states), ``EKF-8`` (odometer scale and heading bias
 estimated; the oracle there), ``UKF-8``, ``SUKF-8``, ``DR-only`` (6-state EKF without GPS).
 
 Real drives (``--real``, needs the ``data`` extra): :func:`load_car_drive` reads
-onavdata's two car drives (:data:`~filterwnn.scenarios.CAR_DRIVES`: gyro yaw integrated
+onavdata's two car drives (:data:`~filterwnn.navigation.drives.CAR_DRIVES`: gyro yaw integrated
 for the heading, the reference speed with a 2 % scale error and noise as the odometer,
 1 Hz GNSS fixes with their reported accuracy, the INS solution as truth) and
 :func:`real_drive_outages` cuts 30 s GPS outages into each at 20 placements and scores the
@@ -46,13 +46,13 @@ error at the end of each. The filters are set from a sensor grade (``--grade``, 
 grades were written (held out).
 
 One's own drive (``--drive my.csv``, ``--drive sample`` for the shipped one): read by
-:func:`~filterwnn.scenarios.read_drive_csv`, the filters set from a sensor grade
-(``--grade``, default ``phone``; :meth:`~filterwnn.dead_reckoning.GPSDRModel.from_grade`),
+:func:`~filterwnn.navigation.drives.read_drive_csv`, the filters set from a sensor grade
+(``--grade``, default ``phone``; :meth:`~filterwnn.navigation.dead_reckoning.GPSDRModel.from_grade`),
 each fix's reported accuracy as its noise (without one, the grade's), outages at ``--outage-starts`` or spread over
 the drive (``--outages``, ``--min-speed``); a table and a figure (the track with the
 outages, each filter's error at the outage ends) per drive.
 
-The GPS/DR filters are :class:`~filterwnn.gpsdr.GPSDRFilter` s: they decide standstill
+The GPS/DR filters are :class:`~filterwnn.navigation.gpsdr.GPSDRFilter` s: they decide standstill
 (zero-velocity update) and low speed (velocity-vector form) from the odometer themselves,
 and without a fix update only velocity and acceleration.
 
@@ -83,28 +83,21 @@ import numpy as np
 from filterpy.kalman import ExtendedKalmanFilter, MerweScaledSigmaPoints
 
 from .._validation import check_seed, check_positive_int
-from ..adaptive import AdaptiveExtendedKalmanFilter
-from ..dead_reckoning import SENSOR_GRADES, DRModel, GPSDRModel, dr_residual, dr_z_mean
-from ..gpsdr import GPSDRFilter
-from ..scenarios import (
-    CAR_DRIVE,
-    CAR_DRIVES,
-    SCENARIOS,
-    load_car_drive,
-    outage_starts,
-    read_drive_csv,
-    simulate_scenario,
-    with_outage,
-)
-from ..neural_filter import (
+from ..kalman.adaptive import AdaptiveExtendedKalmanFilter
+from ..navigation.dead_reckoning import SENSOR_GRADES, DRModel, GPSDRModel, dr_residual, dr_z_mean
+from ..navigation.gpsdr import GPSDRFilter
+from ..navigation.drives import CAR_DRIVE, CAR_DRIVES, load_car_drive, read_drive_csv
+from ..navigation.scenarios import SCENARIOS, outage_starts, simulate_scenario, with_outage
+from ..navigation.neural_filter import (
     NeuralFilter,
     make_training_set,
     paper_training_states,
     random_motion_states,
 )
-from ..sigma_points import SphericalSimplexSigmaPoints
-from ..unscented import UnscentedKalmanFilter
-from . import options, runner
+from ..kalman.sigma_points import SphericalSimplexSigmaPoints
+from ..kalman.unscented import UnscentedKalmanFilter
+from . import options
+from . import runner
 
 __all__ = [
     "DRFilter",
@@ -255,7 +248,7 @@ def _upf_steps(run, x0, rng, context, n_particles=UPF_PARTICLES):
     covariances the weights collapse on this model (ESS 1, 15 m at 200 s on run 0 of the
     straight road, where this form keeps a median ESS of 34 of 50 and ends 11.8 m off).
     """
-    from ..particle_filter import UnscentedParticleFilter
+    from ..monte_carlo.particle_filter import UnscentedParticleFilter
 
     model = DRModel(dt=run.scenario.dt)
     pf = UnscentedParticleFilter(6, 2, model.dt, model.hx, model.fx, n_particles, points=_points("merwe", 6),
@@ -270,7 +263,7 @@ _KIND = {"EKF": "ekf", "EKF-8": "ekf", "DR-only": "ekf", "UKF-8": "ukf", "SUKF-8
 
 
 def _gpsdr_steps(run, x0, rng, context, kind="ekf", augmented=False, gps=True):
-    """A :class:`~filterwnn.gpsdr.GPSDRFilter` (6 states, or 8 with odometer scale and heading
+    """A :class:`~filterwnn.navigation.gpsdr.GPSDRFilter` (6 states, or 8 with odometer scale and heading
     bias), with the run's fixes and their accuracies, or without GPS (``gps=False``)."""
     sc = run.scenario
     model = GPSDRModel(dt=sc.dt, augmented=augmented, sigma_gps=sc.sigma_gps)
@@ -452,7 +445,7 @@ def run_study(scenarios=DEFAULT_SCENARIOS, n_runs=10, filters=None, seed=0, jobs
     Parameters
     ----------
     scenarios : sequence of str
-        Keys of :data:`~filterwnn.scenarios.SCENARIOS`.
+        Keys of :data:`~filterwnn.navigation.scenarios.SCENARIOS`.
     n_runs : int
         Monte-Carlo runs per scenario.
     filters : sequence of str, optional
@@ -632,7 +625,7 @@ def write_outputs(result, out_dir, figures=True, real_drives=()):
         matplotlib.use("Agg", force=False)
         import matplotlib.pyplot as plt
 
-        from .. import plotting
+        from . import plotting
 
         for name, sc in result.scenarios.items():
             e = result.errors[name]
@@ -654,7 +647,7 @@ _COUNT_WORDS = ("no", "one", "two", "three", "four", "five", "six", "seven", "ei
 def scenario_figure(name, sc):
     """``(title, file name)`` of a scenario's figure, in words, from its settings.
 
-    >>> from filterwnn.scenarios import SCENARIOS
+    >>> from filterwnn.navigation.scenarios import SCENARIOS
     >>> scenario_figure("straight", SCENARIOS["straight"]())
     ('straight road, sensor noise x20 from 150 s', 'dr_straight_road.png')
     >>> scenario_figure("gpsdr", SCENARIOS["gpsdr"]())[1]
@@ -700,9 +693,9 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
     """Cut GPS outages of ``length`` s into a drive and score each filter at each outage end.
 
     Placements: ``starts`` as given, or ``n_placements`` spread evenly over the windows
-    whose mean odometer speed is at least ``min_speed`` (:func:`~filterwnn.scenarios.outage_starts`;
+    whose mean odometer speed is at least ``min_speed`` (:func:`~filterwnn.navigation.scenarios.outage_starts`;
     with the default 0 the first one starts before the car moves). ``EKF``/``EKF-8``/
-    ``UKF-8``/``SUKF-8`` are :class:`~filterwnn.gpsdr.GPSDRFilter` s (6 or 8 states; the filter
+    ``UKF-8``/``SUKF-8`` are :class:`~filterwnn.navigation.gpsdr.GPSDRFilter` s (6 or 8 states; the filter
     decides standstill and low speed itself); ``DR-mech`` integrates
     ``s [sin theta, cos theta]`` from the reference position at the outage start (dead
     reckoning without a filter).
@@ -718,20 +711,20 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
     filters : sequence of str
         Subset of :data:`REAL_FILTERS`.
     model_kwargs : dict, optional
-        :class:`~filterwnn.dead_reckoning.GPSDRModel` settings over :data:`REAL_MODEL`, or
+        :class:`~filterwnn.navigation.dead_reckoning.GPSDRModel` settings over :data:`REAL_MODEL`, or
         over the grade's settings.
     grade : str or dict, optional
         Settings from a sensor grade or specification
-        (:meth:`~filterwnn.dead_reckoning.GPSDRModel.from_grade`; ``"phone"`` adds the gyro
+        (:meth:`~filterwnn.navigation.dead_reckoning.GPSDRModel.from_grade`; ``"phone"`` adds the gyro
         rate-bias state to the 8-state filters) instead of :data:`REAL_MODEL`, which was
         tuned on the onavdata drive.
     slow_speed : float, optional
-        The filters' low-speed threshold (m/s; default :data:`filterwnn.gpsdr.LOW_SPEED`).
+        The filters' low-speed threshold (m/s; default :data:`filterwnn.navigation.gpsdr.LOW_SPEED`).
     use_gps_sigma : bool
         Use each fix's reported accuracy (``run.gps_sigma``) as its noise.
     gps_window : int
         Estimate the noise of fixes without an accuracy from the GPS innovations over
-        this many fixes (:class:`~filterwnn.gpsdr.GPSDRFilter`; 0: the model's ``sigma_gps``).
+        this many fixes (:class:`~filterwnn.navigation.gpsdr.GPSDRFilter`; 0: the model's ``sigma_gps``).
 
     Returns
     -------
@@ -799,7 +792,7 @@ def _outage_windows(run, starts, length):
 
 
 def _real_drive_filter(name, run, grade, model_kwargs, kw, gps_window, slow_speed):
-    """The :class:`~filterwnn.gpsdr.GPSDRFilter` ``name`` for a real drive, set from ``grade``
+    """The :class:`~filterwnn.navigation.gpsdr.GPSDRFilter` ``name`` for a real drive, set from ``grade``
     (or the settings ``kw``), started at the drive's first state with 1 m position sigma."""
     aug = name.endswith("-8")
     dt = run.scenario.dt
@@ -887,7 +880,7 @@ def write_real_drive(res, out_dir, figures=True):
         matplotlib.use("Agg", force=False)
         import matplotlib.pyplot as plt
 
-        from .. import plotting
+        from . import plotting
 
         fig = plotting.dr_real_drive(res)
         p = os.path.join(out_dir, f"real_drive_{slug}_track_and_outage_end_errors.png")
@@ -931,7 +924,7 @@ def add_arguments(parser):
                              "(needs the data extra), set from --grade (default survey)")
     parser.add_argument("--drive", action="append", default=None, metavar="CSV",
                         help="run the GPS/DR filters on one's own drive, a CSV with the columns of "
-                             "filterwnn.scenarios.DRIVE_CSV_COLUMNS ('sample' for the shipped sample drive); "
+                             "filterwnn.navigation.drives.DRIVE_CSV_COLUMNS ('sample' for the shipped sample drive); "
                              "repeatable; with --drive only the drives run, not the simulated scenarios")
     parser.add_argument("--outage-length", type=options.positive_float, default=30.0, help="GPS outage length on drives (s)")
     parser.add_argument("--outages", type=options.positive_int, default=20, help="number of outages spread over each drive")
@@ -941,7 +934,7 @@ def add_arguments(parser):
                         help="spread outages only over windows with at least this mean speed (m/s)")
     parser.add_argument("--grade", choices=sorted(SENSOR_GRADES), default=None,
                         help="sensor grade for the GPS/DR settings (survey, phone; see "
-                             "filterwnn.dead_reckoning.SENSOR_GRADES); default phone for --drive, survey for --real")
+                             "filterwnn.navigation.dead_reckoning.SENSOR_GRADES); default phone for --drive, survey for --real")
 
 
 def run(args):
@@ -971,7 +964,7 @@ def run(args):
         if results:
             p = os.path.join(args.out, "dr_real_drive.md")
             with open(p, "w") as fh:
-                fh.write(f"Settings: sensor grade {grade!r} (filterwnn.dead_reckoning.SENSOR_GRADES), each fix's "
+                fh.write(f"Settings: sensor grade {grade!r} (filterwnn.navigation.dead_reckoning.SENSOR_GRADES), each fix's "
                          f"reported accuracy as its noise; nothing tuned on these drives.\n\n" + "\n".join(texts))
             paths.append(p)
             paths += write_outputs(None, args.out, figures=not args.no_figures, real_drives=results)
@@ -981,7 +974,7 @@ def run(args):
 
 def _run_drives(args, drives, filters):
     """``--drive``: the GPS/DR filters on one's own drives, with each fix's accuracy when given."""
-    from ..scenarios import sample_drive_path
+    from ..navigation.drives import sample_drive_path
 
     starts = args.outage_starts or None
     fl = tuple(filters) if filters else REAL_FILTERS

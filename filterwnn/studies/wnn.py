@@ -2,7 +2,7 @@
 
 ``filterwnn study wnn`` trains a 5-20-1 Morlet wavelet network on the SISO benchmark of
 the paper's eq. (12) (:func:`filterwnn.make_siso_benchmark`) with the rows of ``ROWS`` (one per
-trainer of :data:`filterwnn.trainers.TRAINERS`, plus the move rows of ``MOVE_ROWS``),
+trainer of :data:`filterwnn.wnn.trainers.TRAINERS`, plus the move rows of ``MOVE_ROWS``),
 each named for the algorithm it runs: the paper's seven trainers plus the SUKF (``bp, ekf,
 ukf, sukf, spf, epf, upf, supf``; the particle filters with textbook weights), the UPF with a
 MALA move after each resampling (``upf+mala``), the Gaussian-sum filters of N EKFs, UKFs and
@@ -44,7 +44,7 @@ SMC sampler run one pass with fixed settings; the EKF ensemble copies ``gsf-ekf`
 never looked at to choose anything. The particle filters and Gaussian sums search Q (x 0.01
 to x 100) around the value chosen for the filter their proposal or components use (EPF: EKF,
 UPF: UKF, SUPF: SUKF) and keep its P0, so their candidates are set after the single filters' search. ``tune_runs=0`` skips the search
-and uses :data:`filterwnn.trainers.AUTO_SETTINGS` for the full ``n_epochs``.
+and uses :data:`filterwnn.wnn.trainers.AUTO_SETTINGS` for the full ``n_epochs``.
 
 **Runs.** Run ``i`` uses ``SeedSequence(seed).spawn(n_runs)[i]``; it re-draws its data
 from its own seed (so the test set's variance differs between runs: 1.66 for one seed,
@@ -84,10 +84,11 @@ import numpy as np
 
 from .._validation import check_choice, check_positive_int, check_seed
 from ..datasets import make_siso_benchmark
-from ..particle_filter import DegeneracyWarning
-from ..regressor import WNNRegressor
-from ..trainers import AUTO_SETTINGS, PAPER_SETTINGS, TRAINERS
-from . import options, runner
+from ..monte_carlo.particle_filter import DegeneracyWarning
+from ..wnn.regressor import WNNRegressor
+from ..wnn.trainers import AUTO_SETTINGS, PAPER_SETTINGS, TRAINERS
+from . import options
+from . import runner
 
 __all__ = [
     "ALL_TRAINERS",
@@ -139,7 +140,7 @@ MOVE_ROWS = {
 
 def _rows():
     """key -> :class:`StudyRow`: each registered trainer's row (from its
-    :class:`~filterwnn.trainers.TrainerSpec`), and the move rows after the last particle filter;
+    :class:`~filterwnn.wnn.trainers.TrainerSpec`), and the move rows after the last particle filter;
     read when called, so that a trainer registered later has its row."""
     particle = [name for name, spec in TRAINERS.items() if spec.accepts_move]
     rows = {}
@@ -283,7 +284,7 @@ def candidates(trainer, chosen=None):
     trainer : str
     chosen : dict, optional
         ``trainer -> settings dict`` already chosen; EPF/UPF/SUPF centre their Q on their
-        parent's choice there (else on the parent's :data:`~filterwnn.trainers.AUTO_SETTINGS`).
+        parent's choice there (else on the parent's :data:`~filterwnn.wnn.trainers.AUTO_SETTINGS`).
 
     Returns
     -------
@@ -463,7 +464,7 @@ def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_
     Parameters
     ----------
     trainer : str
-        A key of ``ROWS``: a trainer of :data:`filterwnn.trainers.TRAINERS`, or a row of ``MOVE_ROWS``.
+        A key of ``ROWS``: a trainer of :data:`filterwnn.wnn.trainers.TRAINERS`, or a row of ``MOVE_ROWS``.
     run_seed : (entropy, spawn_key)
         From :func:`run_seeds`.
     n_epochs, n_particles : int
@@ -865,7 +866,7 @@ def run_study(n_runs=3, n_epochs=30, pf_epochs=None, n_particles=10, trainers=AL
         See :func:`run_tasks` (``cache_dir`` makes the study resumable).
     tune_runs : int
         Tuning runs of the settings search on the validation split (module docstring);
-        0 uses :data:`~filterwnn.trainers.AUTO_SETTINGS` and all ``n_epochs``.
+        0 uses :data:`~filterwnn.wnn.trainers.AUTO_SETTINGS` and all ``n_epochs``.
 
     Returns
     -------
@@ -1052,7 +1053,7 @@ def write_outputs(result, out, figures=True):
         import matplotlib
 
         matplotlib.use("Agg")
-        from .. import plotting
+        from . import plotting
 
         if result.sweep:
             for metric, name in (("test_mse_median", "fig3_particles_mse.png"),

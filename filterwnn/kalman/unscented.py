@@ -1,0 +1,593 @@
+r"""filterpy's unscented Kalman filter, vectorized, with loud numerical failures.
+
+:class:`UnscentedKalmanFilter` subclasses :class:`filterpy.kalman.UnscentedKalmanFilter`
+with the same constructor (filterpy's order: ``dim_x, dim_z, dt, hx, fx, points, ...``),
+attributes and methods, and adds three things its users lack:
+
+``vectorized=True``
+    ``fx(sigmas, dt, **fx_args)`` and ``hx(sigmas, **hx_args)`` receive *all* sigma
+    points as one ``(n_sigmas, dim)`` array and return ``(n_sigmas, dim_out)``: one
+    call per step instead of one per point, the unscented transform and the cross
+    covariance as matrix products, and the sigma points built from the set's
+    structure in O(n^2) (:func:`filterwnn.kalman.sigma_points.sigma_deviations`).
+    ``predict``, ``update``, ``batch_filter`` and ``rts_smoother`` all honour it.
+``fx=None``
+    a random walk, ``x_k = x_{k-1} + w_k`` (every parameter-estimation problem):
+    ``predict`` is ``x_prior = x, P_prior = P + Q`` with no sigma points and no
+    factorisation, so a step costs one Cholesky where filterpy's costs two.
+:class:`~filterwnn.NumericalError`
+    when ``P``, ``P_prior`` or ``S`` stops being positive definite, with the matrix
+    name and the time step in its message and attributes, and the filter's state left
+    as it was before the failing call. A ``z`` with NaN or inf raises ``ValueError``
+    (``z=None`` skips the update, as in filterpy); a column ``z`` of shape
+    ``(dim_z, 1)`` is flattened in both modes. Every covariance error says how to fix it
+    (a scalar ``Q`` is refused, as filterpy would add it to every entry: the message
+    says ``Q = q * np.eye(dim_x)``).
+
+``step`` is the time step, as in every filter of the package: ``predict`` advances it
+by one, ``update`` (and its errors) report the current one; a failing call leaves it
+unchanged.
+
+With ``vectorized=False`` and a given ``fx`` the numbers are filterpy's own.
+
+Angles: in vectorized mode the residual and mean functions receive all sigma points at
+once, so a filterpy-style ``y[1] = wrap(y[1])`` would wrap sigma point 1, not column 1.
+Each one is checked on its first call (its shape, and its result against a row-by-row
+call on the first sigma set), with a ``ValueError`` naming it; the ready-made
+:func:`filterwnn.angles.angle_residual` and :func:`filterwnn.angles.angle_mean` are right
+in both modes.
+
+The update with sigma points :math:`\chi_i = x^- + D_i` and weights ``Wm, Wc`` is
+
+.. math::
+    \hat z = \sum_i W^m_i h(\chi_i), \quad
+    S = \sum_i W^c_i (h_i - \hat z)(h_i - \hat z)^T + R, \quad
+    P_{xz} = \sum_i W^c_i D_i (h_i - \hat z)^T,
+
+    K = P_{xz} S^{-1}, \quad x = x^- + K (z - \hat z), \quad P = P^- - K S K^T,
+
+with ``K`` from a Cholesky solve, never an explicit inverse.
+
+>>> import numpy as np
+>>> from filterwnn import SphericalSimplexSigmaPoints
+>>> def hx(X):                      # all sigma points at once: (n_sigmas, 2) -> (n_sigmas, 1)
+...     return np.sin(X[:, :1]) + X[:, 1:]
+>>> ukf = UnscentedKalmanFilter(2, 1, 1.0, hx=hx, fx=None,
+...                             points=SphericalSimplexSigmaPoints(2), vectorized=True)
+>>> ukf.Q *= 1e-4; ukf.R *= 0.01
+>>> ukf.predict(); ukf.update(np.array([0.5]))
+>>> ukf.x.shape, ukf.P.shape
+((2,), (2, 2))
+>>> ukf.update(np.array([np.nan]))
+Traceback (most recent call last):
+...
+ValueError: z must be finite (use z=None for a missing measurement), got [nan]
+"""
+
+from __future__ import annotations
+
+import numbers
+from copy import deepcopy
+
+import numpy as np
+from filterpy.kalman import UnscentedKalmanFilter as _FilterpyUKF
+from filterpy.kalman import unscented_transform
+from scipy.linalg import cho_factor, cho_solve, cholesky
+
+from .._linalg import cholesky as checked_cholesky
+from .._linalg import cholesky_lower, not_pd_error
+from .._validation import (
+    NumericalError,
+    check_covariance,
+    check_points_protocol,
+    check_positive,
+    check_positive_int,
+    check_symmetric,
+)
+from .sigma_points import sigma_deviations
+
+__all__ = ["UnscentedKalmanFilter", "fast_unscented_transform"]
+
+# What each covariance error tells the user to do.
+_SHAPE_FIX = {
+    "P": "a scalar is not a covariance here (filterpy would add it to every entry): "
+         "use P = p * np.eye({n}) or np.diag(variances)",
+    "Q": "a scalar is not a covariance here (filterpy would add it to every entry): "
+         "use Q = q * np.eye({n}) or filterpy.common.Q_discrete_white_noise",
+    "R": "use R = np.diag(variances) (one per measurement entry)",
+}
+_PD_FIX = {
+    "P": "set P to a symmetric positive definite matrix, e.g. P = np.diag(variances)",
+    "P_prior": "the predicted covariance lost definiteness: make Q positive semi-definite "
+               "and, with a negative centre weight (Julier kappa < 0, alpha << 1), use w0 >= 0 "
+               "or a larger Q",
+    "S": "S = (transformed P) + R: make R positive definite, e.g. R = np.diag(variances)",
+}
+
+
+def _with_fix(check, M, name, *args, **kwargs):
+    """Run a ``_validation`` check, adding the remedy to its message."""
+    try:
+        return check(M, name, *args, **kwargs)
+    except ValueError as exc:
+        msg = str(exc)
+        if "symmetric" in msg and "semi" not in msg:
+            fix = f"symmetrise it: {name} = 0.5 * ({name} + {name}.T)"
+        elif "semi-definite" in msg:
+            fix = f"{name} must be a covariance, e.g. {name} = np.diag(variances)"
+        else:
+            fix = f"{name} must be a finite symmetric covariance, e.g. {name} = np.diag(variances)"
+        raise ValueError(f"{msg}; {fix}") from exc
+
+
+def fast_unscented_transform(sigmas, Wm, Wc, noise_cov=None):
+    """Unscented transform for linear residuals, as matrix products.
+
+    Equal to :func:`filterpy.kalman.unscented_transform` with the default mean and
+    residual functions, without forming filterpy's dense ``diag(Wc)``.
+
+    Parameters
+    ----------
+    sigmas : ndarray of shape (n_sigmas, dim)
+    Wm, Wc : ndarray of shape (n_sigmas,)
+    noise_cov : ndarray of shape (dim, dim), optional
+
+    Returns
+    -------
+    x : ndarray of shape (dim,)
+    P : ndarray of shape (dim, dim)
+    """
+    x = Wm @ sigmas
+    y = sigmas - x
+    P = (y.T * Wc) @ y
+    if noise_cov is not None:
+        P = P + noise_cov
+    return x, P
+
+
+class UnscentedKalmanFilter(_FilterpyUKF):
+    """filterpy's ``UnscentedKalmanFilter`` with ``vectorized=``, ``fx=None`` and clear errors.
+
+    Parameters
+    ----------
+    dim_x, dim_z : int
+        State and measurement sizes.
+    dt : float
+        Time step passed to ``fx`` (``> 0``).
+    hx : callable
+        ``hx(x, **hx_args)``; with ``vectorized=True``, ``hx(sigmas, **hx_args)`` taking
+        ``(n_sigmas, dim_x)`` and returning ``(n_sigmas, dim_z)``.
+    fx : callable or None
+        ``fx(x, dt, **fx_args)`` (vectorized alike), or ``None`` for a random walk.
+    points : sigma-point object
+        Any filterpy-protocol set: filterpy's Merwe/Julier/simplex points, or
+        :class:`~filterwnn.MinimalSkewSigmaPoints`,
+        :class:`~filterwnn.SphericalSimplexSigmaPoints`.
+    sqrt_fn, x_mean_fn, z_mean_fn, residual_x, residual_z, state_add : callable, optional
+        As in filterpy. In vectorized mode, ``residual_x``/``residual_z`` are called
+        on whole arrays (``residual(sigmas, mean)`` broadcasting a row), so write them
+        with NumPy operations on the last axis (``y[..., 1]``, not ``y[1]``), or use
+        :func:`filterwnn.angles.angle_residual` and :func:`filterwnn.angles.angle_mean`;
+        each is checked on its first call (a ``ValueError`` names it).
+    vectorized : bool, default False
+        Evaluate ``fx``/``hx`` once per step on all sigma points.
+
+    Attributes
+    ----------
+    step : int
+        The time step: ``predict`` advances it by one; ``update`` and its errors
+        report the current step. A call that raises leaves it unchanged.
+
+    Notes
+    -----
+    filterpy 2.0 re-draws the sigma points from the predicted ``(x, P)`` at the end of
+    ``predict``; this class does the same (lazily, in ``update``) in both modes, so the
+    numbers agree with filterpy's at every step.
+    """
+
+    def __init__(self, dim_x, dim_z, dt, hx, fx, points, sqrt_fn=None, x_mean_fn=None, z_mean_fn=None,
+                 residual_x=None, residual_z=None, state_add=None, vectorized=False):
+        dim_x = check_positive_int(dim_x, "dim_x")
+        dim_z = check_positive_int(dim_z, "dim_z")
+        dt = check_positive(dt, "dt")
+        if not callable(hx):
+            raise TypeError(f"hx must be callable, got {type(hx).__name__}")
+        if fx is not None and not callable(fx):
+            raise TypeError(f"fx must be callable or None (random walk), got {type(fx).__name__}")
+        check_points_protocol(points, ("num_sigmas", "sigma_points", "Wm", "Wc"))  # n is optional here
+        if getattr(points, "n", dim_x) != dim_x:
+            raise ValueError(f"points.n must equal dim_x={dim_x}, got {points.n}")
+        super().__init__(dim_x, dim_z, dt, hx, fx, points, sqrt_fn=sqrt_fn, x_mean_fn=x_mean_fn,
+                         z_mean_fn=z_mean_fn, residual_x=residual_x, residual_z=residual_z, state_add=state_add)
+        self.vectorized = bool(vectorized)
+        self.step = 0
+        self._sigmas_stale = True  # sigmas_f must be drawn from (x, P) before update
+        self._deviations = None
+        self._trusted = {}  # the P and Q objects already checked (or produced) here
+        self._chol = None  # (P_prior object, its lower Cholesky factor), vectorized mode
+        self._checked = {}  # role -> the residual/mean callable already checked on arrays
+
+    # ------------------------------------------------------------------ helpers
+    def _fast_points(self):
+        """True when sigma points may be built as x + sigma_deviations(chol(P))."""
+        pts = self.points_fn
+        return (
+            getattr(pts, "sqrt", None) is cholesky
+            and getattr(pts, "subtract", np.subtract) is np.subtract
+        )
+
+    def _check_state(self, when, check_Q=False):
+        """Shapes, finiteness and symmetry of ``x``, ``P`` (and ``Q``); ``when`` is for messages."""
+        x, P, n = self.x, self.P, self._dim_x
+        if np.shape(x) != (n,):
+            raise ValueError(f"x must have shape ({n},), got {np.shape(x)}")
+        for name, M in (("P", P), ("Q", self.Q)):
+            if np.shape(M) != (n, n):
+                raise ValueError(f"{name} must have shape ({n}, {n}), got {np.shape(M)}; "
+                                 + _SHAPE_FIX[name].format(n=n))
+        if not (np.all(np.isfinite(x)) and np.all(np.isfinite(P))):
+            raise NumericalError(
+                f"x and P must be finite {when}; set them again (x_post and P_post hold the "
+                "last update's values)", matrix="P", step=self.step)
+        # symmetry costs a full pass: check what the user set, not what we produced
+        if P is not self._trusted.get("P"):
+            _with_fix(check_symmetric, P, "P")
+        if check_Q and self.Q is not self._trusted.get("Q"):
+            # once per Q object: finite, symmetric, positive semi-definite (a Cholesky
+            # settles the usual positive definite Q; eigenvalues only for a singular one)
+            _with_fix(check_symmetric, self.Q, "Q")
+            if cholesky_lower(self.Q) is None:
+                _with_fix(check_covariance, self.Q, "Q", n, allow_scalar=False, require_pd=False)
+            self._trusted["Q"] = self.Q
+
+    def _sigmas(self, x, P, what):
+        """Sigma points of N(x, P); NumericalError naming ``what`` if P is not PD."""
+        if self.vectorized and self._fast_points():
+            if self._chol is not None and self._chol[0] is P:
+                L = self._chol[1]  # factored at predict (P_prior's check)
+            else:
+                L = self._cholesky(P, what)
+            D = sigma_deviations(self.points_fn, L.T)
+            self._deviations = D
+            return x + D
+        self._deviations = None
+        try:
+            return np.asarray(self.points_fn.sigma_points(x, P), dtype=float)
+        except np.linalg.LinAlgError as exc:
+            raise self._not_pd(what, P) from exc
+
+    def _cholesky(self, P, what):
+        """Lower Cholesky factor of ``P``; NumericalError naming ``what`` if it fails."""
+        return checked_cholesky(P, what, self.step, _PD_FIX[what])
+
+    def _not_pd(self, what, M):
+        return not_pd_error(what, M, self.step, _PD_FIX[what])
+
+    def _snapshot(self):
+        # References suffice: this class never writes into these arrays in place, it
+        # rebinds them (its predict does not call filterpy's, which fills sigmas_f in place).
+        return {k: getattr(self, k) for k in (
+            "x", "P", "x_prior", "P_prior", "x_post", "P_post", "sigmas_f", "sigmas_h",
+            "K", "y", "z", "S", "SI", "_sigmas_stale", "_deviations",
+            "_log_likelihood", "_likelihood", "_mahalanobis", "step", "_chol",
+        )}
+
+    def _restore(self, snap):
+        for k, v in snap.items():
+            setattr(self, k, v)
+
+    def _call(self, fn, sigmas, name, dim_out, *args, **kwargs):
+        """Evaluate fx/hx on all sigma points (vectorized) or row by row."""
+        if self.vectorized:
+            out = np.asarray(fn(sigmas, *args, **kwargs), dtype=float)
+            if out.ndim == 1 and dim_out == 1:
+                out = out[:, None]
+            if out.shape != (sigmas.shape[0], dim_out):
+                raise ValueError(
+                    f"vectorized {name} must map ({sigmas.shape[0]}, {sigmas.shape[1]}) sigma "
+                    f"points to shape ({sigmas.shape[0]}, {dim_out}), got {out.shape}"
+                )
+            return out
+        return np.atleast_2d([fn(s, *args, **kwargs) for s in sigmas])
+
+    def _residual(self, role, fn, A, b):
+        """``fn(A, b)`` on all rows at once, checked against a row-by-row call the first time.
+
+        ``role`` is the constructor argument's name (``"residual_x"``, ``"residual_z"``).
+        """
+        if self._checked.get(role) is fn:
+            return fn(A, b)
+        out = np.asarray(fn(A.copy(), np.copy(b)), dtype=float)
+        fix = (f"write {role} on the last axis (y[..., 1] = ..., not y[1] = ...) or use "
+               "filterwnn.angles.angle_residual(columns)")
+        if out.shape != A.shape:
+            raise ValueError(
+                f"vectorized {role} must map sigma points of shape {A.shape} and a mean of "
+                f"shape {np.shape(b)} to shape {A.shape}, got {out.shape}; {fix}"
+            )
+        # A function written for one row (filterpy's y[1] = wrap(y[1])) wraps a sigma
+        # point instead of a column. Compare it with a row-by-row call on this first
+        # sigma set, and on a probe whose residuals all exceed pi (where a wrap of the
+        # wrong entries shows even if the sigma points are close together).
+        probe = np.asarray(b, dtype=float) + 4.0 * (1.0 + np.arange(A.size).reshape(A.shape))
+        for label, X in (("sigma point", A), ("probe row", probe)):
+            try:
+                vec = out if X is A else np.asarray(fn(X.copy(), np.copy(b)), dtype=float)
+                rows = np.array([fn(a.copy(), np.copy(b)) for a in X], dtype=float)
+            except (IndexError, ValueError, TypeError):  # written for arrays only: cannot compare
+                break
+            if rows.shape != vec.shape:
+                break
+            bad = ~np.isclose(vec, rows, rtol=1e-9, atol=1e-12, equal_nan=True)
+            if bad.any():
+                i, j = np.argwhere(bad)[0]
+                raise ValueError(
+                    f"vectorized {role} differs from {role} applied row by row ({label} {i}, "
+                    f"column {j}: {vec[i, j]:.6g} against {rows[i, j]:.6g}): in vectorized mode it "
+                    f"receives all {A.shape[0]} sigma points at once, so an index such as y[1] "
+                    f"selects a sigma point, not a column; {fix}"
+                )
+        self._checked[role] = fn
+        return out
+
+    def _mean(self, role, fn, sigmas):
+        """``fn(sigmas, Wm)`` (filterpy's mean signature), its shape checked the first time."""
+        if fn is None:
+            return self.Wm @ sigmas
+        m = np.asarray(fn(sigmas, self.Wm), dtype=float)
+        if self._checked.get(role) is not fn:
+            if m.shape != (sigmas.shape[1],):
+                raise ValueError(
+                    f"{role} must map sigma points of shape {sigmas.shape} and Wm of shape "
+                    f"{self.Wm.shape} to shape ({sigmas.shape[1]},), got {m.shape}; use "
+                    "filterwnn.angles.angle_mean(columns) for angles"
+                )
+            self._checked[role] = fn
+        return m
+
+    def _vectorized_ut(self, sigmas, mean_fn, residual_fn, noise_cov, roles):
+        """Unscented transform on all rows at once; returns ``(mean, cov, residuals)``."""
+        m = self._mean(roles[0], mean_fn, sigmas)
+        if residual_fn is np.subtract:
+            y = sigmas - m
+        else:
+            y = self._residual(roles[1], residual_fn, sigmas, m)
+        P = (y.T * self.Wc) @ y + noise_cov
+        return m, P, y
+
+    # ------------------------------------------------------------------ predict
+    def predict(self, dt=None, UT=None, fx=None, **fx_args):
+        """Predict step; ``fx=None`` (here and at construction) is a random walk.
+
+        Advances ``step`` by one. On return ``x``, ``P`` (and ``x_prior``, ``P_prior``)
+        hold the prediction, and ``P_prior`` is known to be positive definite (both
+        modes). Raises ``ValueError`` for a bad ``x``, ``P`` or ``Q`` (shape, symmetry,
+        a ``Q`` that is not positive semi-definite) and :class:`~filterwnn.NumericalError`
+        if ``P`` or ``P_prior`` is not positive definite or ``fx`` returns non-finite
+        values, with the state (and ``step``) left as they were.
+        """
+        self._check_state(f"before step {self.step + 1}", check_Q=True)
+        dt = self._dt if dt is None else check_positive(dt, "dt")
+        fx = self.fx if fx is None else fx
+        snap = self._snapshot()
+        self.step += 1
+        try:
+            if fx is None:  # random walk: no sigma points here
+                self.P = self.P + self.Q
+                self.x = self.x.copy()
+            else:
+                sigmas = self._sigmas(self.x, self.P, "P")
+                self.sigmas_f = self._call(fx, sigmas, "fx", self._dim_x, dt, **fx_args)
+                if self.vectorized and UT is None:
+                    self.x, self.P, _ = self._vectorized_ut(
+                        self.sigmas_f, self.x_mean, self.residual_x, self.Q, ("x_mean_fn", "residual_x")
+                    )
+                else:  # filterpy's own arithmetic (bit-identical in loop mode)
+                    UT = unscented_transform if UT is None else UT
+                    self.x, self.P = UT(
+                        self.sigmas_f, self.Wm, self.Wc, self.Q, self.x_mean, self.residual_x
+                    )
+                if not (np.all(np.isfinite(self.x)) and np.all(np.isfinite(self.P))):
+                    raise NumericalError(
+                        f"fx produced a non-finite prediction (x_prior or P_prior) at step {self.step}; "
+                        "check fx at the sigma points of (x, P)",
+                        matrix="P_prior", step=self.step,
+                    )
+            if self.vectorized:
+                if fx is not None:  # P + Q is already symmetric
+                    self.P = 0.5 * (self.P + self.P.T)
+                # P_prior must be positive definite, as loop mode checks by drawing the
+                # sigma points; the factor is kept for the update's sigma points
+                self._chol = (self.P, self._cholesky(self.P, "P_prior"))
+                self._sigmas_stale = True  # filterpy 2.0 re-draws sigmas from the prior
+            else:  # as filterpy 2.0: the update's sigma points are the prior's
+                self.sigmas_f = self._sigmas(self.x, self.P, "P_prior")
+                self._sigmas_stale = False
+        except Exception:
+            self._restore(snap)
+            raise
+        self.x_prior = np.copy(self.x)
+        self.P_prior = np.copy(self.P)
+        self._trusted["P"] = self.P
+
+    def compute_process_sigmas(self, dt, fx=None, **fx_args):
+        """filterpy's helper: ``sigmas_f`` = the sigma points passed through ``fx``."""
+        fx = self.fx if fx is None else fx
+        sigmas = self._sigmas(self.x, self.P, "P")
+        self.sigmas_f = sigmas if fx is None else self._call(fx, sigmas, "fx", self._dim_x, dt, **fx_args)
+        self._sigmas_stale = False
+
+    # ------------------------------------------------------------------ update
+    def update(self, z, R=None, UT=None, hx=None, **hx_args):
+        """Update with measurement ``z`` (``None`` skips the update, as in filterpy).
+
+        ``z`` of shape ``(dim_z,)``, or ``(dim_z, 1)`` (flattened, in both modes). Does
+        not advance ``step``: errors report the current time step. Raises
+        ``ValueError`` for a non-finite ``z`` and :class:`~filterwnn.NumericalError`
+        when ``P`` or ``S`` is not positive definite; either way the filter's state is
+        left as it was.
+        """
+        if z is None:
+            self.z = np.array([[None] * self._dim_z]).T
+            self.x_post = self.x.copy()
+            self.P_post = self.P.copy()
+            return
+        try:
+            z_arr = np.asarray(z, dtype=float)
+        except (TypeError, ValueError) as exc:
+            raise TypeError(f"z must be array-like of numbers or None, got {type(z).__name__}") from exc
+        if not np.all(np.isfinite(z_arr)):
+            raise ValueError(
+                f"z must be finite (use z=None for a missing measurement), got {np.ravel(z_arr)}"
+            )
+        self._check_state(f"at step {self.step} (update)")
+        z_arr, R = self._check_measurement(z_arr, R)
+        snap = self._snapshot()
+        try:
+            if self._sigmas_stale:
+                self.sigmas_f = self._sigmas(self.x, self.P, "P")
+                self._sigmas_stale = False
+            if not self.vectorized:
+                try:  # filterpy gets the checked z: a column z is flattened as in vectorized mode
+                    super().update(z_arr, R=R, UT=UT, hx=hx, **hx_args)
+                except np.linalg.LinAlgError as exc:
+                    raise self._not_pd("S", self.S) from exc
+                # filterpy inverts S without asking whether it is positive definite
+                if np.any(np.isfinite(self.S)) and cholesky_lower(self.S) is None:
+                    raise self._not_pd("S", self.S)
+            else:
+                self._vectorized_update(z_arr, R, UT, hx, **hx_args)
+            if not (np.all(np.isfinite(self.x)) and np.all(np.isfinite(self.P))):
+                raise NumericalError(
+                    f"the update produced non-finite x or P at step {self.step}", matrix="P", step=self.step
+                )
+        except Exception:
+            self._restore(snap)
+            raise
+        self._sigmas_stale = True
+        self._chol = None
+        self._trusted["P"] = self.P
+
+    def _check_measurement(self, z, R):
+        """Validate ``z`` and ``R`` together; returns ``(z, R)`` as float arrays.
+
+        Without an ``R`` argument, ``z`` must have ``dim_z`` entries and ``self.R`` be
+        ``(dim_z, dim_z)``; with one (another sensor, as filterpy allows), ``R`` must be
+        square and match the length of ``z``.
+        """
+        given = R is not None
+        R = self.R if R is None else R
+        if isinstance(R, numbers.Real):
+            R = np.eye(self._dim_z if not given else np.size(z)) * R
+        R = np.asarray(R, dtype=float)
+        z = np.atleast_1d(z)
+        m = self._dim_z if not given else (R.shape[0] if R.ndim == 2 else self._dim_z)
+        if z.size == m and z.ndim > 1:
+            z = z.reshape(m)
+        if not given and z.shape != (m,):
+            raise ValueError(f"z must have {m} entries, got shape {np.shape(z)}")
+        if z.ndim != 1:
+            raise ValueError(f"z must be 1-D, got shape {z.shape}")
+        if R.shape != (z.size, z.size):
+            raise ValueError(f"R must have shape ({z.size}, {z.size}), got shape {R.shape}; "
+                             + _SHAPE_FIX["R"].format(n=z.size))
+        if not np.all(np.isfinite(R)):
+            raise ValueError("R must be finite, got non-finite entries; use R = np.diag(variances)")
+        _with_fix(check_symmetric, R, "R")
+        return z, R
+
+    def _vectorized_update(self, z, R, UT, hx, **hx_args):
+        hx = self.hx if hx is None else hx
+        sig = self.sigmas_f
+        # z may change size between sensors (filterpy allows it): the size is R's
+        # (R comes from _check_measurement: always square 2-D)
+        dim_z = R.shape[0]
+        self.sigmas_h = self._call(hx, sig, "hx", dim_z, **hx_args)
+        if UT is None:
+            zp, S, dz = self._vectorized_ut(
+                self.sigmas_h, self.z_mean, self.residual_z, R, ("z_mean_fn", "residual_z")
+            )
+        else:
+            zp, S = UT(self.sigmas_h, self.Wm, self.Wc, R, self.z_mean, self.residual_z)
+            dz = self._residual("residual_z", self.residual_z, self.sigmas_h, zp)
+        if self._deviations is not None and self.residual_x is np.subtract:
+            dx = self._deviations
+        else:
+            dx = self._residual("residual_x", self.residual_x, sig, self.x)
+        Pxz = dx.T @ (dz * self.Wc[:, None])
+        S = 0.5 * (S + S.T)
+        self.S = S
+        try:
+            cf = cho_factor(S, lower=True, check_finite=True)
+        except (np.linalg.LinAlgError, ValueError) as exc:
+            raise self._not_pd("S", S) from exc
+        self.SI = cho_solve(cf, np.eye(S.shape[0]))
+        self.K = cho_solve(cf, Pxz.T).T
+        self.y = self.residual_z(z.reshape(np.shape(zp)), zp)
+        self.x = self.state_add(self.x, self.K @ self.y)
+        if S.shape == (1, 1):  # rank-1 downdate, symmetric by construction
+            self.P = self.P - S[0, 0] * np.outer(self.K[:, 0], self.K[:, 0])
+        else:
+            P = self.P - self.K @ S @ self.K.T
+            self.P = 0.5 * (P + P.T)
+        self.z = deepcopy(z)
+        self.x_post = self.x.copy()
+        self.P_post = self.P.copy()
+        self._log_likelihood = None
+        self._likelihood = None
+        self._mahalanobis = None
+
+    def _rows_residual(self, A, b):
+        """``residual_x`` of every row of ``A`` against ``b``, in either mode."""
+        if self.residual_x is np.subtract:
+            return A - b
+        if self.vectorized:
+            return self._residual("residual_x", self.residual_x, A, b)
+        return np.array([self.residual_x(a, b) for a in A], dtype=float)
+
+    # ------------------------------------------------------------------ smoother
+    def rts_smoother(self, Xs, Ps, Qs=None, dts=None, UT=None):
+        """Rauch-Tung-Striebel smoother over ``batch_filter`` output (filterpy's API).
+
+        Honours ``vectorized`` and ``fx=None`` (then the smoother gain is
+        ``P_k (P_k + Q)^{-1}``, applied by solves).
+
+        Returns
+        -------
+        xs : ndarray of shape (n_steps, dim_x)
+        Ps : ndarray of shape (n_steps, dim_x, dim_x)
+        Ks : ndarray of shape (n_steps, dim_x, dim_x)
+        """
+        if self.fx is not None and not self.vectorized:
+            return super().rts_smoother(Xs, Ps, Qs=Qs, dts=dts, UT=UT)
+        if len(Xs) != len(Ps):
+            raise ValueError(f"Xs and Ps must have the same length, got {len(Xs)} and {len(Ps)}")
+        Xs = np.asarray(Xs, dtype=float)
+        n, dim_x = Xs.shape
+        dts = [self._dt] * n if dts is None else ([dts] * n if np.isscalar(dts) else dts)
+        Qs = [self.Q] * n if Qs is None else Qs
+        UT = unscented_transform if UT is None else UT
+        xs, ps = Xs.copy(), np.array(Ps, dtype=float)
+        Ks = np.zeros((n, dim_x, dim_x))
+        for k in reversed(range(n - 1)):
+            sigmas = self._sigmas(xs[k], ps[k], "P")
+            if self.fx is None:
+                sigmas_f = sigmas
+            else:
+                sigmas_f = self._call(self.fx, sigmas, "fx", dim_x, dts[k])
+            xb, Pb = UT(sigmas_f, self.Wm, self.Wc, Qs[k], self.x_mean, self.residual_x)
+            dyf = self._rows_residual(sigmas_f, xb)
+            dzs = self._rows_residual(sigmas, Xs[k])
+            Pxb = (dzs.T * self.Wc) @ dyf
+            try:
+                cf = cho_factor(0.5 * (Pb + Pb.T), lower=True)
+            except np.linalg.LinAlgError as exc:
+                raise NumericalError(
+                    f"predicted covariance is not positive definite at smoother step {k}",
+                    matrix="P_prior", step=k,
+                ) from exc
+            K = cho_solve(cf, Pxb.T).T
+            xs[k] = xs[k] + K @ self.residual_x(xs[k + 1], xb)
+            ps[k] = ps[k] + K @ (ps[k + 1] - Pb) @ K.T
+            Ks[k] = K
+        return xs, ps, Ks

@@ -1,0 +1,279 @@
+r"""Resampling schemes for particle filters, and log-weight arithmetic.
+
+A particle filter carries normalised weights :math:`w_i` (``sum w_i = 1``). Resampling
+replaces the weighted cloud by an (equally weighted) one in which particle ``i`` appears
+:math:`N_i` times, with :math:`E[N_i] = n\,w_i` (*unbiasedness*) for ``n`` draws. The
+four classic schemes differ only in how much extra variance :math:`\operatorname{Var}(N_i)`
+they add (Douc, Cappe and Moulines 2005; Hol, Schon and Gustafsson 2006):
+
+``multinomial``
+    ``n`` independent draws from the categorical distribution ``w`` (the most variance).
+``stratified``
+    one uniform draw in each stratum :math:`[(k + u_k)/n]`, ``k = 0 .. n-1``.
+``systematic``
+    one uniform :math:`u`, then the points :math:`(k + u)/n` (the least variance in
+    practice; the default).
+``residual``
+    first :math:`\lfloor n w_i \rfloor` deterministic copies of each particle, then the
+    remaining :math:`n - \sum_i \lfloor n w_i \rfloor` draws multinomially from the
+    residual weights :math:`n w_i - \lfloor n w_i \rfloor` (renormalised). filterpy's
+    ``residual_resample`` gets this wrong (filterpy issue #290: it draws the residual
+    part from the *original* weights' cumulative sum over ``N`` instead of ``n - sum``
+    draws of the residual weights, and its output is not unbiased); the version here is.
+
+Every scheme is a pure function ``scheme(weights, rng, n=None) -> indices`` that returns
+``n`` (default ``len(weights)``) integer indices into the particle array; ``n`` may be
+larger (up-sampling) or smaller (down-sampling) than the cloud. Each scheme is registered
+where it is defined (:func:`register`, a decorator); :func:`resample` and the filters'
+``resampling=`` accept a registered name or a callable (filterpy's ``systematic_resample``
+included, see :func:`get_scheme`). Weights are validated (finite, non-negative, positive sum) and
+normalised internally.
+
+Weights are best kept on the log scale: :func:`normalize_log_weights` turns unnormalised
+log-weights into normalised weights with ``logsumexp``, without underflow.
+
+>>> import numpy as np
+>>> w = np.array([0.1, 0.2, 0.3, 0.4])
+>>> resample(w, "systematic", rng=0).shape
+(4,)
+>>> np.sort(resample([0.0, 1.0, 0.0], "residual", rng=1, n=5))
+array([1, 1, 1, 1, 1])
+>>> effective_sample_size(np.full(8, 1 / 8))
+8.0
+>>> w, lse = normalize_log_weights(np.array([-1000.0, -1000.0]))
+>>> w, round(lse, 4)
+(array([0.5, 0.5]), -999.3069)
+
+References
+----------
+R. Douc, O. Cappe and E. Moulines, "Comparison of resampling schemes for particle
+filtering", ISPA 2005.
+J. D. Hol, T. B. Schon and F. Gustafsson, "On resampling algorithms for particle
+filters", NSSPW 2006.
+"""
+
+from __future__ import annotations
+
+import inspect
+
+import numpy as np
+from scipy.special import logsumexp
+
+from .._validation import check_choice, check_positive_int, check_rng, check_weights
+from ..metrics import effective_sample_size  # re-exported: one definition, in metrics
+
+__all__ = [
+    "multinomial",
+    "stratified",
+    "systematic",
+    "residual",
+    "resample",
+    "SCHEMES",
+    "register",
+    "get_scheme",
+    "effective_sample_size",
+    "normalize_log_weights",
+]
+
+
+def _check_n(n, size):
+    return size if n is None else check_positive_int(n, "n")
+
+
+def _search(w, u):
+    """Indices ``i`` with ``c[i-1] <= u < c[i]`` for the cumulative sum ``c`` of ``w``.
+
+    The cumulative sum is divided by its last entry, so it ends at exactly 1.0, and a
+    zero-weight particle can never be selected (its cumulative value equals its
+    predecessor's, and ``side="right"`` picks the first strictly larger one).
+    """
+    c = np.cumsum(w)
+    c /= c[-1]
+    return np.searchsorted(c, u, side="right")
+
+
+# --- the registry ----------------------------------------------------------------------
+
+#: Registry of scheme names -> public (validating) functions, filled by :func:`register`;
+#: each function's ``impl`` attribute is the unvalidated ``impl(w, rng, n)`` the filters call.
+SCHEMES = {}
+
+_DOC = """{title} resampling.
+
+    Parameters
+    ----------
+    weights : array-like of shape (n_particles,)
+        Non-negative weights with a positive sum (normalised here).
+    rng : None, int, SeedSequence, BitGenerator or Generator
+        Source of randomness (normalised with :func:`numpy.random.default_rng`).
+    n : int, optional
+        Number of indices to draw (default ``n_particles``); larger or smaller than
+        ``n_particles`` up- or down-samples.
+
+    Returns
+    -------
+    indices : ndarray of int, shape (n,)
+        Indices into the particle array; ``E[count of i] = n * weights[i]``.
+    {extra}
+    """
+
+
+def register(name, title, extra=""):
+    """Decorator: register the unvalidated scheme ``impl(w, rng, n)`` under ``name`` and
+    return its public, validating version ``scheme(weights, rng, n=None)``."""
+
+    def deco(impl):
+        def scheme(weights, rng, n=None):
+            w = check_weights(weights)
+            return impl(w, check_rng(rng), _check_n(n, w.size))
+
+        scheme.__name__ = scheme.__qualname__ = name
+        scheme.__doc__ = _DOC.format(title=title, extra=extra)
+        scheme.impl = impl
+        SCHEMES[name] = scheme
+        return scheme
+
+    return deco
+
+
+# --- the schemes (registered where defined) ----------------------------------------------
+
+
+@register("multinomial", "Multinomial", "Indices come out sorted.")
+def multinomial(w, rng, n):
+    return np.sort(_search(w, rng.random(n)))
+
+
+@register("stratified", "Stratified", "Indices come out sorted.")
+def stratified(w, rng, n):
+    return _search(w, (np.arange(n) + rng.random(n)) / n)
+
+
+@register("systematic", "Systematic",
+          "Indices come out sorted; equal weights with ``n = n_particles`` keep every particle.")
+def systematic(w, rng, n):
+    # point k = (k + u) / n goes to the first i with k + u < n c_i, so the points below c_i
+    # number ceil(n c_i - u): counts are their differences (O(n), no binary search)
+    u = rng.random()
+    c = np.cumsum(w)
+    c *= n / c[-1]
+    c -= u
+    m = np.ceil(c, out=c)  # >= 0 (c >= 0, u < 1); the last is n up to rounding: pin it
+    m[-1] = n
+    counts = np.empty(m.size, dtype=np.intp)
+    counts[0] = m[0]
+    np.subtract(m[1:], m[:-1], out=counts[1:], casting="unsafe")
+    return np.repeat(np.arange(w.size), counts)
+
+
+@register("residual", "Residual (correct, unlike filterpy's: its issue #290)",
+          "Indices come out sorted; particle ``i`` gets at least ``floor(n * w_i)`` copies.")
+def residual(w, rng, n):
+    nw = n * w
+    counts = np.floor(nw).astype(np.intp)
+    n_rest = n - int(counts.sum())
+    if n_rest > 0:
+        rest = nw - counts
+        rest = np.clip(rest, 0.0, None)
+        counts += np.bincount(_search(rest, rng.random(n_rest)), minlength=w.size)
+    return np.repeat(np.arange(w.size), counts)
+
+
+def _from_callable(fn):
+    """A user scheme: ``fn(weights, rng, n)``, or filterpy's one-argument ``fn(weights)``
+    (which draws from numpy's *global* random state and returns ``len(weights)`` indices)."""
+    try:
+        params = [p for p in inspect.signature(fn).parameters.values()
+                  if p.default is p.empty and p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD)]
+    except (TypeError, ValueError):
+        params = [None, None, None]
+    if len(params) == 1:
+        def one_arg(w, rng, n):
+            if n != w.size:
+                raise ValueError(f"a one-argument resampling function draws len(weights) = {w.size} indices, not n = {n}")
+            return np.asarray(fn(w), dtype=np.intp)
+
+        return one_arg
+
+    def scheme(w, rng, n):
+        return np.asarray(fn(w, rng, n), dtype=np.intp)
+
+    return scheme
+
+
+def get_scheme(name):
+    """The unvalidated implementation of scheme ``name`` (for the filters' loops).
+
+    ``name`` is a registered name or a callable: ``fn(weights, rng, n) -> indices``, or a
+    one-argument ``fn(weights)`` such as filterpy's ``systematic_resample`` (note: filterpy's
+    functions draw from numpy's global random state, so ``rng`` no longer makes the run
+    reproducible; seed ``np.random`` yourself). Raises ``ValueError`` listing the valid
+    names for an unknown one.
+    """
+    if callable(name):
+        return _from_callable(name)
+    if not isinstance(name, str):
+        raise TypeError(f"resampling must be a scheme name (str) or a callable, got {type(name).__name__}")
+    check_choice(name, "resampling scheme", SCHEMES)
+    return SCHEMES[name].impl
+
+
+def resample(weights, scheme="systematic", rng=None, n=None):
+    """Draw ``n`` particle indices from ``weights`` with the named scheme.
+
+    Parameters
+    ----------
+    weights : array-like of shape (n_particles,)
+        Non-negative weights with a positive sum.
+    scheme : {"systematic", "stratified", "residual", "multinomial"} or callable
+        Name of the scheme (an unknown name raises ``ValueError`` listing the valid ones),
+        or a callable as :func:`get_scheme` accepts.
+    rng : None, int, SeedSequence, BitGenerator or Generator
+    n : int, optional
+        Number of indices (default ``n_particles``).
+
+    Returns
+    -------
+    indices : ndarray of int, shape (n,)
+
+    Examples
+    --------
+    >>> resample([0.5, 0.5], "systematic", rng=0)
+    array([0, 1])
+    >>> resample([1.0], "magic")
+    Traceback (most recent call last):
+    ...
+    ValueError: unknown resampling scheme 'magic'; valid: 'multinomial', 'residual', 'stratified', 'systematic'
+    """
+    impl = get_scheme(scheme)
+    w = check_weights(weights)
+    return impl(w, check_rng(rng), _check_n(n, w.size))
+
+
+def normalize_log_weights(log_weights):
+    """Normalised weights and the log of their sum, from unnormalised log-weights.
+
+    Parameters
+    ----------
+    log_weights : array-like of shape (n_particles,)
+        Unnormalised log-weights; ``-inf`` (weight 0) is allowed, NaN is not.
+
+    Returns
+    -------
+    weights : ndarray of shape (n_particles,)
+        ``exp(log_weights - logsumexp(log_weights))``, summing to 1.
+    log_sum : float
+        ``logsumexp(log_weights)``; ``-inf`` when every weight is 0 (then ``weights``
+        is all NaN and the caller must raise).
+    """
+    lw = np.asarray(log_weights, dtype=float)
+    if lw.ndim != 1 or lw.size == 0:
+        raise ValueError(f"log_weights must be a non-empty 1-D array, got shape {lw.shape}")
+    if np.any(np.isnan(lw)):
+        raise ValueError("log_weights must not contain NaN")
+    if np.any(lw == np.inf):
+        raise ValueError("log_weights must not contain +inf")
+    lse = logsumexp(lw)
+    if not np.isfinite(lse):
+        return np.full(lw.shape, np.nan), float(lse)
+    return np.exp(lw - lse), float(lse)

@@ -1,0 +1,338 @@
+r"""Recorded drives: one's own CSV, the onavdata car drives, the shipped sample.
+
+Each reader returns a :class:`~filterwnn.navigation.scenarios.DRRun` built by
+:meth:`~filterwnn.navigation.scenarios.DRRun.from_arrays`, which validates it.
+
+* :func:`read_drive_csv`: a CSV in the columns of :data:`DRIVE_CSV_COLUMNS`;
+* :func:`sample_drive_path`: the simulated town drive shipped with the package;
+* :func:`load_car_drive`: the onavdata HGuide n380 car drives (optional ``data`` extra).
+"""
+
+from __future__ import annotations
+
+import csv
+import os
+
+import numpy as np
+
+from .._validation import check_rng
+from .dead_reckoning import wrap_angle
+from .scenarios import DRRun, Scenario, earth_radii, latlon_to_en
+
+__all__ = ["DRIVE_CSV_COLUMNS", "read_drive_csv", "sample_drive_path", "load_car_drive", "CAR_DRIVE", "CAR_DRIVES",
+           "MIN_ODOMETER_SPEED"]
+
+#: The columns :func:`read_drive_csv` reads: ``{column: (unit, meaning)}``. ``time``, one of
+#: ``heading``/``heading_deg`` and one of ``speed``/``odometer`` are required; GPS columns
+#: are empty on rows without a fix.
+DRIVE_CSV_COLUMNS = {
+    "time": ("s", "DR sample time, strictly increasing, evenly spaced"),
+    "heading": ("rad", "heading from north, clockwise (or heading_deg in degrees)"),
+    "heading_deg": ("deg", "heading from north, clockwise (instead of heading)"),
+    "speed": ("m/s", "odometer / CAN speed (or odometer)"),
+    "odometer": ("m", "cumulative odometer distance (instead of speed)"),
+    "gps_east": ("m", "GPS fix east in a local frame (with gps_north), empty without a fix"),
+    "gps_north": ("m", "GPS fix north"),
+    "gps_lat": ("deg", "GPS fix latitude, WGS84 (with gps_lon; instead of gps_east/gps_north)"),
+    "gps_lon": ("deg", "GPS fix longitude"),
+    "gps_sigma": ("m", "optional: the fix's horizontal accuracy (standard deviation per axis)"),
+    "true_east": ("m", "optional: reference east (with true_north), same frame as the fixes"),
+    "true_north": ("m", "optional: reference north"),
+    "true_lat": ("deg", "optional: reference latitude (with true_lon; needs gps_lat/gps_lon)"),
+    "true_lon": ("deg", "optional: reference longitude"),
+}
+
+
+def _read_csv(path):
+    """The stripped header and the non-blank rows of a CSV file; ValueError if empty or a
+    column name repeats."""
+    with open(path, newline="") as fh:
+        reader = csv.reader(fh)
+        try:
+            header = [h.strip() for h in next(reader)]
+        except StopIteration:
+            raise ValueError(f"{path}: the file is empty (expected a header row)") from None
+        rows = [r for r in reader if any(c.strip() for c in r)]
+    if len(set(header)) != len(header):
+        raise ValueError(f"{path}: duplicated column names in the header {header}")
+    return header, rows
+
+
+def _csv_column(path, rows, i, h, allow_empty=False):
+    """Column ``i`` (named ``h``) of ``rows`` as floats; empty cells NaN when ``allow_empty``,
+    else a ValueError naming the row, as is a cell that is not a number."""
+    out = np.empty(len(rows))
+    for r, row in enumerate(rows):
+        cell = row[i].strip() if i < len(row) else ""
+        if cell == "":
+            if not allow_empty:
+                raise ValueError(f"{path}: column {h!r} is empty on data row {r + 1} (line {r + 2})")
+            out[r] = np.nan
+            continue
+        try:
+            out[r] = float(cell)
+        except ValueError:
+            raise ValueError(f"{path}: column {h!r} must hold numbers; data row {r + 1} (line {r + 2}) "
+                             f"has {cell!r}") from None
+    return out
+
+
+def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2):
+    """Read one's own drive from a CSV file with the columns of :data:`DRIVE_CSV_COLUMNS`.
+
+    One row per DR sample, a header row with the column names; a GPS fix is the row's
+    ``gps_east``/``gps_north`` (or ``gps_lat``/``gps_lon``) at the row's ``time``, empty
+    cells where there is none. With ``gps_lat``/``gps_lon`` and ``true_east``/``true_north``
+    the truth must be about ``origin`` (default the first fix). Unknown columns are ignored.
+
+    >>> run = read_drive_csv(sample_drive_path())
+    >>> run.z_dr.shape[1], run.scenario.dt, run.gps_sigma is not None
+    (2, 0.1, True)
+
+    Returns
+    -------
+    DRRun
+        As :meth:`DRRun.from_arrays`.
+
+    Raises
+    ------
+    ValueError
+        A missing or duplicated column, a cell that is not a number (row and column
+        named), or anything :meth:`DRRun.from_arrays` refuses.
+    """
+    path = str(path)
+    header, rows = _read_csv(path)
+    col = {h: i for i, h in enumerate(header)}
+
+    def need(*alts):
+        have = [a for a in alts if a in col]
+        if len(have) != 1:
+            raise ValueError(f"{path}: needs exactly one of the columns {list(alts)}, found {have} in {header}")
+        return have[0]
+
+    need("time")
+    hname = need("heading", "heading_deg")
+    dname = need("speed", "odometer")
+
+    def column(h, allow_empty=False):
+        return _csv_column(path, rows, col[h], h, allow_empty)
+
+    t = column("time")
+    heading = column(hname)
+    if hname == "heading_deg":
+        heading = np.deg2rad(heading)
+    kw = {"distance" if dname == "odometer" else "speed": column(dname)}
+    kw.update(_csv_fixes(path, header, col, column, t, origin))
+    _csv_truth(path, header, col, column, origin, kw)
+    return DRRun.from_arrays(t, heading, name=name or os.path.splitext(os.path.basename(path))[0],
+                             max_jitter=max_jitter, **kw)
+
+
+def _csv_fixes(path, header, col, column, t, origin):
+    """The GPS keywords of :meth:`DRRun.from_arrays` from a drive CSV's columns (none without
+    GPS columns); ``column(name, allow_empty)`` reads one column."""
+    kw = {}
+    pair = [p for p in (("gps_east", "gps_north"), ("gps_lat", "gps_lon")) if p[0] in col or p[1] in col]
+    if len(pair) > 1:
+        raise ValueError(f"{path}: give the fixes as gps_east/gps_north or gps_lat/gps_lon, not both")
+    if not pair:
+        return kw
+    a, b = pair[0]
+    if a not in col or b not in col:
+        raise ValueError(f"{path}: the columns {a!r} and {b!r} go together; found only one in {header}")
+    ga, gb = column(a, True), column(b, True)
+    fix = np.isfinite(ga) & np.isfinite(gb)
+    if np.any(np.isfinite(ga) != np.isfinite(gb)):
+        r = int(np.argmax(np.isfinite(ga) != np.isfinite(gb)))
+        raise ValueError(f"{path}: {a!r} and {b!r} must be both given or both empty; data row {r + 1} has one")
+    kw["gps_t"] = t[fix]
+    if a == "gps_east":
+        kw["east"], kw["north"] = ga[fix], gb[fix]
+    else:
+        kw["lat"], kw["lon"] = ga[fix], gb[fix]
+        kw["origin"] = origin
+    if "gps_sigma" in col:
+        gs = column("gps_sigma", True)[fix]
+        if np.any(~np.isfinite(gs)):
+            r = int(np.flatnonzero(fix)[np.argmax(~np.isfinite(gs))])
+            raise ValueError(f"{path}: column 'gps_sigma' is empty on data row {r + 1}, which has a fix")
+        kw["gps_sigma"] = gs
+    return kw
+
+
+def _csv_truth(path, header, col, column, origin, kw):
+    """Add the ``truth`` (and, for latitude/longitude, the ``origin``) of a drive CSV to the
+    keywords ``kw`` of :meth:`DRRun.from_arrays`, when the CSV has truth columns."""
+    for a, b in (("true_east", "true_north"), ("true_lat", "true_lon")):
+        if (a in col) != (b in col):
+            raise ValueError(f"{path}: the columns {a!r} and {b!r} go together; found only one in {header}")
+    if "true_east" in col and "true_lat" in col:
+        raise ValueError(f"{path}: give the truth as true_east/true_north or true_lat/true_lon, not both")
+    if "true_east" in col:
+        kw["truth"] = np.stack([column("true_east"), column("true_north")], axis=1)
+    elif "true_lat" in col:
+        if "lat" not in kw:
+            raise ValueError(f"{path}: true_lat/true_lon need the fixes as gps_lat/gps_lon (one origin)")
+        if origin is None and len(kw["lat"]):
+            kw["origin"] = origin = (kw["lat"][0], kw["lon"][0])
+        kw["truth"] = np.stack(latlon_to_en(column("true_lat"), column("true_lon"), *origin), axis=1)
+
+
+def sample_drive_path():
+    """Path of the sample drive shipped with the package (``filterwnn/navigation/data/sample_drive.csv``).
+
+    A simulated 3-minute town drive at 10 Hz: it starts from rest, stops at a light,
+    turns, with 1 Hz GPS fixes as latitude/longitude and their accuracy (phone-like,
+    3-6 m) and the truth, in the columns of :data:`DRIVE_CSV_COLUMNS`.
+    """
+    from importlib import resources
+
+    return str(resources.files("filterwnn.navigation") / "data" / "sample_drive.csv")
+
+
+# --------------------------------------------------------------------------- real drives
+
+CAR_DRIVE = "2021-04-27C-car-hill-drive"
+#: Reference speeds below this (m/s) give an odometer reading of 0 (standstill).
+MIN_ODOMETER_SPEED = 0.05
+#: The onavdata HGuide n380 car drives: the first is the development drive, the second is
+#: kept back to check that settings carry over (see ``filterwnn.studies.dr``).
+CAR_DRIVES = (CAR_DRIVE, "2021-03-29-automotive-stoplight-to-stoplight")
+
+
+def _onav_dir(drive):
+    try:
+        import importlib.resources as resources
+
+        root = resources.files("onavdata")
+    except (ImportError, ModuleNotFoundError) as exc:
+        raise ImportError(
+            "the real-drive part needs the optional 'onavdata' package: pip install 'filterwnn[data]' "
+            "(or pip install onavdata)"
+        ) from exc
+    d = root / "data" / "HGuide n380" / drive
+    if not d.is_dir():
+        raise ValueError(f"drive {drive!r} not found in onavdata (looked in {d})")
+    return d
+
+
+def _read_zipped_csv(folder, name):
+    import io
+    import zipfile
+
+    with (folder / f"{name}.csv.zip").open("rb") as fh:
+        zf = zipfile.ZipFile(io.BytesIO(fh.read()))
+        with zf.open(zf.namelist()[0]) as f:
+            header = [h.strip() for h in f.readline().decode().strip().split(",")]
+            data = np.loadtxt(io.TextIOWrapper(f), delimiter=",", usecols=range(len(header)), ndmin=2)
+    return {h: data[:, i] for i, h in enumerate(header)}
+
+
+def load_car_drive(drive=CAR_DRIVE, dt=0.1, odometer_scale=1.02, odometer_noise=0.02, rng=0):
+    """A real car drive from ``onavdata`` as a :class:`~filterwnn.navigation.scenarios.DRRun`.
+
+    The HGuide n380 drives ship 100 Hz IMU increments, 1 Hz GNSS fixes and the
+    INS/GNSS reference solution, as zipped CSV files read here through
+    :mod:`importlib.resources` (``pip install onavdata``, the ``data`` extra).
+
+    * truth: the reference INS position (latitude/longitude to local east/north metres
+      about the first valid sample) and velocity, on a ``dt`` grid, rows with
+      ``InsMode == 4`` only;
+    * heading: the gyro's yaw, ``DeltaTheta[0]`` (the body down axis per the package's
+      meta file; an angle increment per 100 Hz sample), integrated from the reference
+      heading at the start -- so it drifts like a real DR gyro;
+    * odometer: the car has none, so ``dt * odometer_scale * |v_ref| + noise`` (clipped
+      at 0), a stated 2 % scale error by default -- never the GNSS speed, which an
+      outage would take away too;
+    * GPS: the receiver's 1 Hz fixes, each on its nearest grid step.
+
+    Returns
+    -------
+    DRRun
+        ``scenario`` describes the drive (``gps_rate=1``, no outages: cut them in with
+        :func:`~filterwnn.navigation.scenarios.with_outage`).
+    """
+    rng = check_rng(rng)
+    folder = _onav_dir(drive)
+    pos = _read_zipped_csv(folder, "n380-position")
+    vel = _read_zipped_csv(folder, "n380-velocity")
+    att = _read_zipped_csv(folder, "n380-attitude")
+    imu = _read_zipped_csv(folder, "n380-imu-nav")
+    gnss = _read_zipped_csv(folder, "n380-gnss-pvt")
+    ok = (pos["SystemTov"] > 0) & (pos["InsGnssBIT.InsMode"] == 4)
+    tp = pos["SystemTov"][ok]
+    lat, lon = pos["Latitude"][ok], pos["Longitude"][ok]
+    en = _local_frame(lat, lon, pos["AltitudeAboveEllipsoid"][ok])
+    t0 = tp[0]
+    n = int((tp[-1] - t0) / dt) - 1
+    t = t0 + dt * np.arange(1, n + 1)
+    x_true, x0 = _car_truth(en(lat, lon), tp, vel, t, t0, dt)
+    ve, vn = x_true[:, 1], x_true[:, 4]
+    heading0, theta = _gyro_heading(att, imu, t, t0)
+    speed = np.hypot(ve, vn)
+    moving = speed > MIN_ODOMETER_SPEED  # a wheel odometer reads exactly 0 at standstill
+    dist = np.where(moving, np.maximum(dt * odometer_scale * speed + odometer_noise * rng.standard_normal(n), 0.0), 0.0)
+    z_dr = np.stack([wrap_angle(theta), dist], axis=1)
+    steps, z_gps, gsig = _car_fixes(gnss, en, t0, dt, n)
+    sc = Scenario(name=drive, duration=n * dt, dt=dt, speed=float(np.hypot(x0[1], x0[4])),
+                  heading=float(np.degrees(heading0)), t_switch=np.inf, factor=1.0,
+                  odometer_scale=odometer_scale, sigma_odometer=odometer_noise, gps_rate=1.0,
+                  sigma_gps=1.0)
+    R_true = np.tile([np.deg2rad(1.0) ** 2, odometer_noise**2], (n, 1))
+    return DRRun(t - t0, x0, x_true, z_dr, steps, z_gps, R_true, sc, gsig)
+
+
+def _local_frame(lat, lon, h):
+    """``en(lat, lon)``: radians to local east/north metres about the first of ``lat, lon, h``."""
+    lat0, lon0, h0 = lat[0], lon[0], h[0]
+    rn, rm = earth_radii(lat0)
+
+    def en(la, lo):
+        return (lo - lon0) * (rn + h0) * np.cos(lat0), (la - lat0) * (rm + h0)
+
+    return en
+
+
+def _car_truth(ref_en, tp, vel, t, t0, dt):
+    """The reference states on the grid ``t`` (positions ``ref_en`` at the times ``tp``, the
+    velocity file's INS rows, accelerations by finite differences) and the state at ``t0``."""
+    e_ref, n_ref = ref_en
+    okv = (vel["SystemTov"] > 0) & (vel["InsGnssBIT.InsMode"] == 4)
+    tv = vel["SystemTov"][okv]
+    ve = np.interp(t, tv, vel["VelocityNED[1]"][okv])
+    vn = np.interp(t, tv, vel["VelocityNED[0]"][okv])
+    x_true = np.zeros((len(t), 6))
+    x_true[:, 0] = np.interp(t, tp, e_ref)
+    x_true[:, 3] = np.interp(t, tp, n_ref)
+    x_true[:, 1], x_true[:, 4] = ve, vn
+    x_true[:, 2] = np.gradient(ve, dt)
+    x_true[:, 5] = np.gradient(vn, dt)
+    x0 = np.array([np.interp(t0, tp, e_ref), np.interp(t0, tv, vel["VelocityNED[1]"][okv]), 0.0,
+                   np.interp(t0, tp, n_ref), np.interp(t0, tv, vel["VelocityNED[0]"][okv]), 0.0])
+    return x_true, x0
+
+
+def _gyro_heading(att, imu, t, t0):
+    """The reference heading at ``t0`` and the gyro heading on ``t``: the yaw increments
+    integrated from it (so it drifts like a real DR gyro)."""
+    oka = (att["SystemTov"] > 0) & (att["InsGnssBIT.InsMode"] == 4)
+    heading0 = np.interp(t0, att["SystemTov"][oka], np.unwrap(att["EulerAttitude[2]"][oka]))
+    ti = imu["SystemTov"]
+    cum = np.cumsum(imu["DeltaTheta[0]"])
+    return heading0, heading0 + np.interp(t, ti, cum) - np.interp(t0, ti, cum)
+
+
+def _car_fixes(gnss, en, t0, dt, n):
+    """The receiver's fixes, each on its nearest grid step (one per step): the steps, the
+    fixes in local metres and each fix's reported accuracy per axis."""
+    okg = (gnss["SystemTov"] > t0) & (gnss["InsGnssBIT.GpsMode"] > 0)
+    tg = gnss["SystemTov"][okg]
+    steps = np.round((tg - t0) / dt).astype(int) - 1
+    keep = (steps >= 0) & (steps < n)
+    steps, idx = np.unique(steps[keep], return_index=True)
+    ge, gn = en(gnss["GnssLatitude"][okg][keep][idx], gnss["GnssLongitude"][okg][keep][idx])
+    z_gps = np.stack([ge, gn], axis=1)
+    # the receiver's reported accuracy, per axis: the RMS of its latitude and longitude sigmas
+    gsig = np.sqrt(0.5 * (gnss["GnssStdvLat"][okg][keep][idx] ** 2 + gnss["GnssStdvLon"][okg][keep][idx] ** 2))
+    gsig = np.maximum(np.where(np.isfinite(gsig), gsig, 1.0), 0.01)
+    return steps, z_gps, gsig

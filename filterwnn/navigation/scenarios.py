@@ -1,0 +1,659 @@
+r"""Drives for the GPS/DR filters: simulated scenarios, one's own recorded drive, GPS outages.
+
+A drive is a :class:`DRRun`: DR samples (gyro heading and odometer distance per sample)
+on a regular grid, the GPS fixes that fall on that grid, and, where known, the truth.
+Three ways to get one:
+
+* :func:`simulate_scenario` of a :class:`Scenario` (the named ones are in
+  :data:`SCENARIOS`): the truth and the sensors, with seeded noise;
+* :meth:`DRRun.from_arrays` or :func:`~filterwnn.navigation.drives.read_drive_csv`: one's own drive (time, heading,
+  odometer distance or speed, GPS fixes as east/north metres or latitude/longitude,
+  optionally each fix's accuracy and the truth), validated;
+* :func:`~filterwnn.navigation.drives.load_car_drive`: the onavdata HGuide n380 car drives
+  (optional ``data`` extra).
+
+Conventions (the ones :class:`DRRun` documents): ``run.t`` are the sample times after
+the first one, measured from it (``t[0]`` is one sample interval), ``run.x0`` is the
+state at the first sample (``t = 0``), ``run.z_dr[k]`` is ``[heading (rad, from north,
+clockwise), distance driven since the previous sample (m)]``, and GPS fix ``j`` belongs to
+step ``run.gps_steps[j]``. A missing fix is absent, never NaN.
+
+Outages are cut in with :func:`with_outage` (one) or placed by :func:`outage_starts`
+(given start times, or spread evenly over the parts of the drive where the car moves).
+
+>>> run = simulate_scenario(SCENARIOS["straight"](), rng=0)
+>>> run.x_true.shape, run.z_dr.shape
+((2000, 6), (2000, 2))
+>>> import numpy as np
+>>> t = np.arange(0.0, 10.05, 0.1)
+>>> own = DRRun.from_arrays(t, np.full(t.size, 0.5), speed=np.full(t.size, 10.0),
+...                         gps_t=t[::10], east=10 * np.sin(0.5) * t[::10],
+...                         north=10 * np.cos(0.5) * t[::10], gps_sigma=3.0)
+>>> own.z_dr.shape, own.gps_steps[:3], float(own.scenario.dt)
+((100, 2), array([ 9, 19, 29]), 0.1)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+from typing import NamedTuple, Optional
+
+import numpy as np
+
+from .._validation import check_positive, check_rng
+from .dead_reckoning import dr_fx, wrap_angle
+
+__all__ = [
+    "Scenario",
+    "DRRun",
+    "SCENARIOS",
+    "true_trajectory",
+    "simulate_scenario",
+    "latlon_to_en",
+    "en_to_latlon",
+    "with_outage",
+    "outage_starts",
+]
+
+
+#: Names that moved to :mod:`filterwnn.navigation.drives` (the readers of recorded drives).
+_MOVED_TO_DRIVES = ("read_drive_csv", "DRIVE_CSV_COLUMNS", "sample_drive_path", "load_car_drive", "CAR_DRIVE",
+                    "CAR_DRIVES", "MIN_ODOMETER_SPEED")
+
+
+def __getattr__(name):
+    """The readers' old home: they still import from here, with a warning naming the new one."""
+    if name in _MOVED_TO_DRIVES:
+        import importlib
+        import warnings
+
+        warnings.warn(f"{name} moved to filterwnn.navigation.drives: from filterwnn.navigation.drives import {name}",
+                      DeprecationWarning, stacklevel=2)
+        return getattr(importlib.import_module("filterwnn.navigation.drives"), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+# --------------------------------------------------------------------------- simulation
+
+
+@dataclass(frozen=True)
+class Scenario:
+    """A simulated drive and its sensors (all times in s, angles in degrees).
+
+    The truth has no process noise: its acceleration follows the speed and turn
+    profile (piecewise constant over each sample), integrated by the kinematic
+    transition, so the truth is exactly what the model with ``T^2/2`` describes.
+
+    Attributes
+    ----------
+    name : str
+    duration, dt : float
+        Length of the run and DR sample interval.
+    speed, heading : float
+        Initial speed (m/s) and heading (deg from north, clockwise).
+    turns : tuple of (t_start, t_end, angle_deg)
+        Constant-rate turns (positive clockwise).
+    speed_changes : tuple of (t_start, t_end, delta_speed)
+        Constant-rate speed changes (m/s).
+    sigma_heading, sigma_odometer : float
+        Nominal DR noise (deg, m per sample).
+    t_switch, factor : float
+        From ``t_switch`` on, both DR noise levels are multiplied by ``factor``.
+    outlier_prob, outlier_deg : float
+        After ``t_switch``, each heading has this chance of a +-``outlier_deg`` error.
+    odometer_scale, heading_bias : float
+        True odometer scale ``zeta`` and heading bias (deg).
+    gps_rate, sigma_gps : float
+        GPS fix rate (Hz; 0 for none) and noise per axis (m).
+    outages : tuple of (t_start, t_end)
+        Intervals without GPS.
+    heading_drift : float
+        Gyro rate bias (deg/s): the heading bias grows as ``heading_bias + heading_drift * t``
+        (a MEMS gyro's residual bias, integrated).
+    title, figure : str
+        The scenario in words and the stem of its figure's file name (the DR study's
+        figures); empty: built from ``name``.
+    """
+
+    name: str = "straight"
+    duration: float = 200.0
+    dt: float = 0.1
+    speed: float = 10.0 * np.sqrt(2.0)
+    heading: float = 45.0
+    turns: tuple = ()
+    speed_changes: tuple = ()
+    sigma_heading: float = 1.0
+    sigma_odometer: float = 0.02
+    t_switch: float = 150.0
+    factor: float = 1.0
+    outlier_prob: float = 0.0
+    outlier_deg: float = 30.0
+    odometer_scale: float = 1.0
+    heading_bias: float = 0.0
+    gps_rate: float = 0.0
+    sigma_gps: float = 3.0
+    outages: tuple = field(default=())
+    heading_drift: float = 0.0
+    title: str = ""
+    figure: str = ""
+
+    def __post_init__(self):
+        for name in ("duration", "dt", "factor"):
+            check_positive(getattr(self, name), name)
+        for name in ("speed", "sigma_heading", "sigma_odometer", "outlier_deg", "gps_rate",
+                     "sigma_gps", "odometer_scale"):
+            check_positive(getattr(self, name), name, strict=False)
+        if not self.t_switch >= 0:  # inf means never
+            raise ValueError(f"t_switch must be >= 0 (inf: never), got {self.t_switch}")
+        if not 0 <= self.outlier_prob <= 1:
+            raise ValueError(f"outlier_prob must satisfy 0 <= outlier_prob <= 1, got {self.outlier_prob}")
+
+    @property
+    def n_steps(self):
+        return int(round(self.duration / self.dt))
+
+    @property
+    def x0(self):
+        """True initial state ``(6,)``."""
+        h = np.deg2rad(self.heading)
+        return np.array([0.0, self.speed * np.sin(h), 0.0, 0.0, self.speed * np.cos(h), 0.0])
+
+    def with_(self, **changes):
+        """A copy with some fields changed."""
+        return replace(self, **changes)
+
+
+_TURNING = dict(
+    turns=((20.0, 30.0, 90.0), (60.0, 75.0, -135.0), (100.0, 110.0, 60.0), (160.0, 175.0, -90.0)),
+    speed_changes=((40.0, 50.0, -6.0), (85.0, 95.0, 8.0), (130.0, 140.0, -4.0)),
+)
+
+#: Named scenario factories; each accepts keyword overrides of :class:`Scenario` fields.
+SCENARIOS = {
+    # the paper: straight road, 10*sqrt(2) m/s at 45 deg, noise x20 at 150 s
+    "straight": lambda **kw: Scenario(**{"name": "straight", "title": "straight road", "figure": "dr_straight_road",
+                                         "factor": 20.0, **kw}),
+    # turns and speed changes, noise x5 at 150 s
+    "turns": lambda **kw: Scenario(**{"name": "turns", "title": "turning route", "figure": "dr_turning_route",
+                                      "factor": 5.0, **_TURNING, **kw}),
+    # heading near 180 deg: west-south-west... through south (180) and back, noise x5
+    "heading180": lambda **kw: Scenario(
+        **{
+            "name": "heading180",
+            "title": "drive through heading 180 deg",
+            "figure": "dr_through_heading_180_deg",
+            "heading": 170.0,
+            "turns": ((20.0, 40.0, 20.0), (90.0, 110.0, -25.0), (160.0, 180.0, 30.0)),
+            "factor": 5.0,
+            **kw,
+        }
+    ),
+    # noise x5 plus 10 % heading outliers of +-30 deg after 150 s
+    "outliers": lambda **kw: Scenario(
+        **{"name": "outliers", "title": "heading outliers", "figure": "dr_heading_outliers", "factor": 5.0,
+           "outlier_prob": 0.1, **kw}
+    ),
+    # GPS/DR: turning route, 1 Hz GPS (3 m) with outages, 2 % odometer scale, 2 deg bias
+    "gpsdr": lambda **kw: Scenario(
+        **{
+            "name": "gpsdr",
+            "title": "GPS/DR",
+            "figure": "gps_dr",
+            "factor": 1.0,
+            "odometer_scale": 1.02,
+            "heading_bias": 2.0,
+            "gps_rate": 1.0,
+            "outages": ((50.0, 80.0), (120.0, 170.0)),
+            **_TURNING,
+            **kw,
+        }
+    ),
+}
+
+
+class DRRun(NamedTuple):
+    """One simulated drive.
+
+    Attributes
+    ----------
+    t : ndarray of shape (n_steps,)
+        Sample times ``dt, 2 dt, ...`` (s).
+    x0 : ndarray of shape (6,)
+        True state at ``t = 0``.
+    x_true : ndarray of shape (n_steps, 6)
+        True states at ``t``.
+    z_dr : ndarray of shape (n_steps, 2)
+        ``[heading (rad, wrapped), odometer distance (m)]``.
+    gps_steps : ndarray of shape (n_fixes,)
+        Indices into ``t`` of the steps with a GPS fix.
+    z_gps : ndarray of shape (n_fixes, 2)
+        The fixes ``[e, n]`` (m).
+    R_true : ndarray of shape (n_steps, 2)
+        True DR noise variances ``[heading, odometer]`` at each step (for oracle filters).
+    scenario : Scenario
+    """
+
+    t: np.ndarray
+    x0: np.ndarray
+    x_true: np.ndarray
+    z_dr: np.ndarray
+    gps_steps: np.ndarray
+    z_gps: np.ndarray
+    R_true: np.ndarray
+    scenario: Scenario
+    gps_sigma: Optional[np.ndarray] = None
+
+    def gps_list(self):
+        """Per-step list: the fix ``(2,)`` or ``None`` (missing GPS is ``None``, never NaN)."""
+        out = [None] * len(self.t)
+        for k, z in zip(self.gps_steps, self.z_gps):
+            out[int(k)] = z
+        return out
+
+    def gps_sigma_list(self):
+        """Per-step list: the fix's sigma (m) or ``None`` (no fix, or no per-fix accuracy)."""
+        out = [None] * len(self.t)
+        if self.gps_sigma is not None:
+            for k, sd in zip(self.gps_steps, self.gps_sigma):
+                out[int(k)] = float(sd)
+        return out
+
+    @property
+    def has_truth(self):
+        """Whether ``x_true`` holds a reference trajectory (simulated, or given to :meth:`from_arrays`)."""
+        return self.x_true is not None
+
+    @classmethod
+    def from_arrays(cls, t, heading, *, distance=None, speed=None, gps_t=None, east=None, north=None,
+                    lat=None, lon=None, gps_sigma=None, truth=None, origin=None, name="drive",
+                    max_jitter=0.2):
+        """One's own drive from arrays: validated, on the DR sample grid, in local metres.
+
+        Parameters
+        ----------
+        t : array-like of shape (n_samples,)
+            DR sample times (s), strictly increasing and evenly spaced (each interval
+            within ``max_jitter`` of the median interval, which becomes ``dt``).
+        heading : array-like of shape (n_samples,)
+            Gyro (or fused) heading in **radians**, from north, clockwise positive. Values
+            beyond ``+-2 pi`` are taken for degrees and refused.
+        distance : array-like of shape (n_samples,), optional
+            Cumulative odometer reading (m), non-decreasing. Give this or ``speed``.
+        speed : array-like of shape (n_samples,), optional
+            Odometer (wheel / CAN) speed (m/s), ``>= 0``; the distance of step ``k`` is
+            ``speed[k] * (t[k] - t[k-1])``.
+        gps_t : array-like of shape (n_fixes,), optional
+            GPS fix times (s, same clock as ``t``); each fix goes to the nearest sample
+            (fixes more than half an interval outside the samples are dropped).
+        east, north : array-like of shape (n_fixes,), optional
+            Fix positions (m) in a local frame. Or:
+        lat, lon : array-like of shape (n_fixes,), optional
+            Fix latitude/longitude (degrees, WGS84), converted by :func:`latlon_to_en`
+            about ``origin`` (default the first fix).
+        gps_sigma : float or array-like of shape (n_fixes,), optional
+            Each fix's standard deviation per axis (m), e.g. the receiver's reported
+            horizontal accuracy. Kept in ``run.gps_sigma`` for the filters.
+        truth : array-like of shape (n_samples, 2), optional
+            Reference east/north (m, same frame as the fixes; with ``lat``/``lon`` fixes,
+            give the truth as east/north about the same ``origin``). Without it the study
+            scores against the withheld GPS fixes.
+        origin : (lat0, lon0), optional
+            Origin of the local frame (degrees) for ``lat``/``lon``.
+        name : str
+            Name of the drive (tables and figures).
+        max_jitter : float
+            Allowed relative deviation of a sample interval from the median interval.
+
+        Returns
+        -------
+        DRRun
+            ``t`` from ``dt`` (the first sample is ``t = 0`` and gives ``x0``: position
+            the truth's or the first fix's, velocity from the first speed and heading),
+            ``x_true`` ``None`` without truth, ``R_true`` the nominal DR variances (1
+            degree, 2 cm), ``scenario`` a :class:`Scenario` describing the drive.
+
+        Raises
+        ------
+        ValueError
+            Naming the argument, the rule and the offending value: lengths that differ,
+            non-finite values, time not strictly increasing or unevenly sampled, headings
+            in degrees, a decreasing odometer, a negative speed, both or neither of
+            ``distance``/``speed``, both or neither of ``east``/``north`` and ``lat``/``lon``.
+        """
+        t = _finite_1d(t, "t")
+        n = len(t)
+        dts, dt = _sample_grid(t, max_jitter)
+        heading = _heading_radians(heading, n)
+        step, v0 = _odometer_steps(distance, speed, dts, n)
+        z_dr = np.stack([wrap_angle(heading[1:]), step], axis=1)
+        steps = np.zeros(0, dtype=int)
+        z_gps = np.zeros((0, 2))
+        sig = None
+        if gps_t is not None:
+            steps, z_gps, sig = _gps_fixes(gps_t, east, north, lat, lon, gps_sigma, origin, t, dt)
+        x_true = None
+        if truth is not None:
+            x_true, p0 = _truth_states(truth, t)
+        elif len(z_gps):
+            p0 = z_gps[0]
+        else:
+            p0 = np.zeros(2)
+        x0 = np.array([p0[0], v0 * np.sin(heading[0]), 0.0, p0[1], v0 * np.cos(heading[0]), 0.0])
+        sc = _own_drive_scenario(name, n, dt, v0, heading[0], steps, sig)
+        R_true = np.tile([np.deg2rad(1.0) ** 2, 0.02**2], (n - 1, 1))
+        return cls(dt * np.arange(1, n), x0, x_true, z_dr, steps, z_gps, R_true, sc, sig)
+
+
+def _heading_radians(heading, n):
+    """``heading`` as ``n`` finite floats; ValueError when it looks like degrees (beyond ``+-2 pi``)."""
+    heading = _finite_1d(heading, "heading", n)
+    big = float(np.max(np.abs(heading)))
+    if big > 2 * np.pi + 1e-6:
+        raise ValueError(f"heading must be in radians (|heading| <= 2 pi); max |heading| = {big:g} looks like "
+                         "degrees: pass np.deg2rad(heading)")
+    return heading
+
+
+def _own_drive_scenario(name, n, dt, v0, heading0, steps, sig):
+    """The :class:`Scenario` describing a drive given as arrays (:meth:`DRRun.from_arrays`):
+    its duration, first speed and heading, GPS rate (from the median gap between fixes) and
+    GPS sigma (the median of ``sig``, else 3 m)."""
+    rate = 0.0
+    if len(steps) > 1:
+        rate = 1.0 / (float(np.median(np.diff(steps))) * dt)
+    return Scenario(name=str(name), duration=float(f"{(n - 1) * dt:.9g}"), dt=dt, speed=float(abs(v0)),
+                    heading=float(np.degrees(heading0)), t_switch=np.inf, factor=1.0, gps_rate=rate,
+                    sigma_gps=float(np.median(sig)) if sig is not None and len(sig) else 3.0)
+
+
+def _sample_grid(t, max_jitter):
+    """The intervals of the sample times ``t`` and their median ``dt``; ValueError unless
+    there are 3 or more, strictly increasing and evenly spaced within ``max_jitter``."""
+    n = len(t)
+    if n < 3:
+        raise ValueError(f"t must have at least 3 samples, got {n}")
+    dts = np.diff(t)
+    if np.any(dts <= 0):
+        k = int(np.argmax(dts <= 0)) + 1
+        raise ValueError(f"t must be strictly increasing; t[{k}] = {float(t[k])!r} <= t[{k - 1}] = {float(t[k - 1])!r}")
+    dt = float(f"{np.median(dts):.9g}")  # 0.1, not 0.09999999999999787
+    jit = np.abs(dts / dt - 1.0)
+    if np.any(jit > max_jitter):
+        k = int(np.argmax(jit)) + 1
+        raise ValueError(f"t must be evenly sampled (each interval within {max_jitter:.0%} of the median "
+                         f"{dt:g} s); t[{k}] - t[{k - 1}] = {dts[k - 1]:g} s: resample the drive first")
+    return dts, dt
+
+
+def _odometer_steps(distance, speed, dts, n):
+    """The distance of each step and the first speed, from a cumulative odometer or speeds."""
+    if (distance is None) == (speed is None):
+        raise ValueError("give exactly one of distance (cumulative odometer, m) and speed (m/s), got "
+                         + ("both" if distance is not None else "neither"))
+    if distance is not None:
+        distance = _finite_1d(distance, "distance", n)
+        dd = np.diff(distance)
+        if np.any(dd < 0):
+            k = int(np.argmax(dd < 0)) + 1
+            raise ValueError(f"distance must be non-decreasing (a cumulative odometer); distance[{k}] = "
+                             f"{float(distance[k])!r} < distance[{k - 1}] = {float(distance[k - 1])!r}")
+        return dd, dd[0] / dts[0]
+    speed = _finite_1d(speed, "speed", n)
+    if np.any(speed < 0):
+        k = int(np.argmax(speed < 0))
+        raise ValueError(f"speed must be >= 0 (m/s); speed[{k}] = {float(speed[k])!r}")
+    return speed[1:] * dts, speed[0]
+
+
+def _gps_fixes(gps_t, east, north, lat, lon, gps_sigma, origin, t, dt):
+    """The GPS fixes on the DR grid: their steps, east/north (m) and sigmas (or None)."""
+    n = len(t)
+    gps_t = _finite_1d(gps_t, "gps_t")
+    m = len(gps_t)
+    en_given = east is not None or north is not None
+    ll_given = lat is not None or lon is not None
+    if en_given == ll_given:
+        raise ValueError("give the GPS fixes as exactly one of east/north (m) and lat/lon (deg), got "
+                         + ("both" if en_given else "neither"))
+    if en_given:
+        e, nn = _finite_1d(east, "east", m), _finite_1d(north, "north", m)
+    else:
+        la, lo = _finite_1d(lat, "lat", m), _finite_1d(lon, "lon", m)
+        if np.any(np.abs(la) > 90) or np.any(np.abs(lo) > 360):
+            raise ValueError(f"lat/lon must be degrees (|lat| <= 90, |lon| <= 360), got max |lat| = "
+                             f"{np.max(np.abs(la)):g}, max |lon| = {np.max(np.abs(lo)):g}")
+        lat0, lon0 = (la[0], lo[0]) if origin is None else (float(origin[0]), float(origin[1]))
+        e, nn = latlon_to_en(la, lo, lat0, lon0)
+    if gps_sigma is not None:
+        gs = np.asarray(gps_sigma, dtype=float)
+        gs = np.full(m, float(gs)) if gs.ndim == 0 else _finite_1d(gs, "gps_sigma", m)
+        if not np.all(np.isfinite(gs)) or np.any(gs <= 0):
+            k = int(np.argmax(~np.isfinite(gs) | (gs <= 0)))
+            raise ValueError(f"gps_sigma must be finite and > 0 (m); gps_sigma[{k}] = {float(gs[k])!r}")
+    k_fix = np.round((gps_t - t[0]) / dt).astype(int) - 1
+    keep = (k_fix >= 0) & (k_fix < n - 1)
+    k_fix, idx = np.unique(k_fix[keep], return_index=True)
+    sel = np.flatnonzero(keep)[idx]
+    return k_fix, np.stack([e[sel], nn[sel]], axis=1), (gs[sel] if gps_sigma is not None else None)
+
+
+def _truth_states(truth, t):
+    """The 6-state truth (steps ``1..n-1``) from reference east/north, and the first position."""
+    n = len(t)
+    tr = np.asarray(truth, dtype=float)
+    if tr.shape != (n, 2):
+        raise ValueError(f"truth must have shape (n_samples, 2) = ({n}, 2) [east, north in m], got {tr.shape}")
+    if not np.all(np.isfinite(tr)):
+        raise ValueError(f"truth must be finite; row {int(np.argmax(~np.isfinite(tr).all(axis=1)))} is not")
+    ve, vn = np.gradient(tr[:, 0], t), np.gradient(tr[:, 1], t)
+    full = np.stack([tr[:, 0], ve, np.gradient(ve, t), tr[:, 1], vn, np.gradient(vn, t)], axis=1)
+    return full[1:], tr[0]
+
+
+def _finite_1d(a, name, n=None):
+    a = np.asarray(a, dtype=float)
+    if a.ndim != 1:
+        raise ValueError(f"{name} must be one-dimensional, got shape {a.shape}")
+    if n is not None and len(a) != n:
+        raise ValueError(f"{name} must have the same length as t ({n}), got {len(a)}")
+    bad = ~np.isfinite(a)
+    if bad.any():
+        k = int(np.argmax(bad))
+        raise ValueError(f"{name} must be finite; {name}[{k}] = {float(a[k])!r}")
+    return a
+
+
+_WGS84_A, _WGS84_E2 = 6378137.0, 6.69437999014e-3
+
+
+def earth_radii(lat0_rad):
+    sl = np.sin(lat0_rad)
+    rn = _WGS84_A / np.sqrt(1 - _WGS84_E2 * sl * sl)
+    rm = _WGS84_A * (1 - _WGS84_E2) / (1 - _WGS84_E2 * sl * sl) ** 1.5
+    return rn, rm
+
+
+def latlon_to_en(lat, lon, lat0, lon0, h0=0.0):
+    """Latitude/longitude (degrees, WGS84) to local east/north metres about ``(lat0, lon0)``.
+
+    The local tangent-plane approximation with the WGS84 radii of curvature at the origin
+    (prime vertical ``R_N``, meridian ``R_M``): ``e = dlon (R_N + h0) cos(lat0)``,
+    ``n = dlat (R_M + h0)``. Good to centimetres over a few kilometres.
+
+    >>> e, n = latlon_to_en([45.0, 45.001], [7.0, 7.001], 45.0, 7.0)
+    >>> [round(float(v), 2) for v in (e[1], n[1])]
+    [78.85, 111.13]
+    """
+    la0, lo0 = np.deg2rad(lat0), np.deg2rad(lon0)
+    rn, rm = earth_radii(la0)
+    dlon = wrap_angle(np.deg2rad(np.asarray(lon, dtype=float)) - lo0)
+    e = dlon * (rn + h0) * np.cos(la0)
+    n = (np.deg2rad(np.asarray(lat, dtype=float)) - la0) * (rm + h0)
+    return e, n
+
+
+def en_to_latlon(east, north, lat0, lon0, h0=0.0):
+    """The inverse of :func:`latlon_to_en`: ``(lat, lon)`` in degrees."""
+    la0 = np.deg2rad(lat0)
+    rn, rm = earth_radii(la0)
+    lat = lat0 + np.rad2deg(np.asarray(north, dtype=float) / (rm + h0))
+    lon = lon0 + np.rad2deg(np.asarray(east, dtype=float) / ((rn + h0) * np.cos(la0)))
+    return lat, lon
+
+
+def _profile_rate(windows, t):
+    rate = 0.0
+    for t0, t1, amount in windows:
+        if t0 <= t < t1:
+            rate += amount / (t1 - t0)
+    return rate
+
+
+def true_trajectory(scenario):
+    """Noise-free truth of a scenario: ``(t (n,), x0 (6,), x_true (n, 6))``."""
+    sc = scenario
+    n = sc.n_steps
+    dt = sc.dt
+    x = sc.x0.copy()
+    xs = np.empty((n, 6))
+
+    h0 = np.deg2rad(sc.heading)
+    last = [np.sin(h0), np.cos(h0)]  # a standing car pulls away along its last heading
+
+    def accel(x, t):
+        ve, vn = x[1], x[4]
+        v = np.hypot(ve, vn)
+        dv = _profile_rate(sc.speed_changes, t)
+        om = np.deg2rad(_profile_rate(sc.turns, t))
+        if v > 0:
+            last[:] = ve / v, vn / v
+        ue, un = last
+        return dv * ue + om * vn, dv * un - om * ve
+
+    x[2], x[5] = accel(x, 0.0)
+    for k in range(n):
+        x = dr_fx(x, dt)
+        t = (k + 1) * dt
+        x[2], x[5] = accel(x, t)
+        xs[k] = x
+    return dt * np.arange(1, n + 1), sc.x0.copy(), xs
+
+
+def _true_heading(xs, heading0_deg):
+    """``atan2(v_e, v_n)``, held at its last value while the car stands (a gyro keeps its heading)."""
+    hd = np.arctan2(xs[:, 1], xs[:, 4])
+    moving = np.hypot(xs[:, 1], xs[:, 4]) > 0
+    if moving.all():
+        return hd
+    idx = np.where(moving, np.arange(len(hd)), -1)
+    idx = np.maximum.accumulate(idx)
+    return np.where(idx >= 0, hd[np.maximum(idx, 0)], np.deg2rad(heading0_deg))
+
+
+def simulate_scenario(scenario, rng=None):
+    """Simulate the truth and the sensors of a :class:`Scenario`.
+
+    Random numbers are drawn in a fixed order (heading noise, odometer noise, outlier
+    draws, GPS noise), always for every step, so two scenarios differing only in noise
+    levels share their random numbers.
+
+    Returns
+    -------
+    DRRun
+    """
+    if not isinstance(scenario, Scenario):
+        raise TypeError(f"scenario must be a Scenario, got {type(scenario).__name__}")
+    rng = check_rng(rng)
+    sc = scenario
+    t, x0, xs = true_trajectory(sc)
+    n = len(t)
+    f = np.where(t >= sc.t_switch, sc.factor, 1.0)
+    sh = np.deg2rad(sc.sigma_heading) * f
+    so = sc.sigma_odometer * f
+    e_h = rng.standard_normal(n)
+    e_s = rng.standard_normal(n)
+    u_out = rng.random(n)
+    sign_out = np.where(rng.random(n) < 0.5, -1.0, 1.0)
+    e_g = rng.standard_normal((n, 2))
+    heading = _true_heading(xs, sc.heading) + np.deg2rad(sc.heading_bias + sc.heading_drift * t) + sh * e_h
+    outlier = (t >= sc.t_switch) & (u_out < sc.outlier_prob)
+    heading = heading + outlier * sign_out * np.deg2rad(sc.outlier_deg)
+    speed = np.hypot(xs[:, 1], xs[:, 4])
+    # an odometer never reads negative, and reads exactly 0 at standstill
+    dist = np.where(speed > 0, np.maximum(sc.dt * sc.odometer_scale * speed + so * e_s, 0.0), 0.0)
+    z_dr = np.stack([wrap_angle(heading), dist], axis=1)
+    if sc.gps_rate > 0:
+        every = max(int(round(1.0 / (sc.gps_rate * sc.dt))), 1)
+        steps = np.arange(every - 1, n, every)
+        ok = np.ones(len(steps), dtype=bool)
+        for a, b in sc.outages:
+            ok &= ~((t[steps] >= a) & (t[steps] < b))
+        steps = steps[ok]
+        z_gps = xs[steps][:, [0, 3]] + sc.sigma_gps * e_g[steps]
+    else:
+        steps = np.zeros(0, dtype=int)
+        z_gps = np.zeros((0, 2))
+    R_true = np.stack([sh**2, so**2], axis=1)
+    return DRRun(t, x0, xs, z_dr, steps, z_gps, R_true, sc)
+
+
+def with_outage(run, start, length):
+    """A copy of ``run`` without GPS fixes in ``[start, start + length)`` (times of ``run.t``)."""
+    tf = run.t[run.gps_steps]
+    keep = ~((tf >= start) & (tf < start + length))
+    sc = run.scenario.with_(outages=((float(start), float(start + length)),))
+    sig = None if run.gps_sigma is None else run.gps_sigma[keep]
+    return run._replace(gps_steps=run.gps_steps[keep], z_gps=run.z_gps[keep], scenario=sc, gps_sigma=sig)
+
+
+def outage_starts(run, length=30.0, starts=None, n=20, min_speed=0.0):
+    """Start times (s, on ``run.t``) of GPS outages of ``length`` s.
+
+    Parameters
+    ----------
+    run : DRRun
+    length : float
+        Outage length (s).
+    starts : array-like, optional
+        The start times, as given: checked to lie in ``[0, t_end - length]``.
+    n : int
+        Without ``starts``: ``n`` outages spread evenly over the drive, among the
+        windows that qualify under ``min_speed``.
+    min_speed : float
+        Without ``starts``: only windows whose mean odometer speed is at least this
+        (m/s) qualify (0: every window; e.g. 2 m/s keeps outages where the car drives
+        rather than waits at lights). Fewer than ``n`` come back if fewer qualify
+        without overlapping the same start.
+
+    Returns
+    -------
+    ndarray of shape (n_outages,)
+    """
+    length = check_positive(length, "length")
+    t_end = float(run.t[-1])
+    if t_end - length < run.t[0]:
+        raise ValueError(f"length must be shorter than the drive ({t_end:g} s), got {length:g}")
+    if starts is not None:
+        starts = np.atleast_1d(np.asarray(starts, dtype=float))
+        bad = ~np.isfinite(starts) | (starts < 0) | (starts > t_end - length)
+        if bad.any():
+            raise ValueError(f"starts must lie in [0, {t_end - length:g}] (the drive is {t_end:g} s, outages "
+                             f"{length:g} s), got {float(starts[bad][0])!r}")
+        return starts
+    n = int(n)
+    if n < 1:
+        raise ValueError(f"n must be >= 1, got {n}")
+    min_speed = check_positive(min_speed, "min_speed", strict=False)
+    dt = run.scenario.dt
+    grid = np.arange(0.0, t_end - length, dt)
+    cum = np.concatenate([[0.0], np.cumsum(run.z_dr[:, 1])])
+    k0 = np.searchsorted(run.t, grid)
+    k1 = np.searchsorted(run.t, grid + length)
+    mean_speed = (cum[k1] - cum[k0]) / length
+    ok = grid[mean_speed >= min_speed]
+    if len(ok) == 0:
+        raise ValueError(f"no {length:g} s window has a mean odometer speed >= min_speed = {min_speed:g} m/s")
+    pick = np.unique(np.round(np.linspace(0, len(ok) - 1, n)).astype(int))
+    return ok[pick]
+
+

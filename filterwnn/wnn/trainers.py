@@ -1,0 +1,848 @@
+r"""WNN trainers: one table, :data:`TRAINERS`, of the filters that train a wavelet network.
+
+Training a WNN with a filter is running the filter on the weight-state model of
+:mod:`filterwnn.wnn.weight_model` (``theta_k = theta_{k-1} + u_k``, ``y_k = WNN(theta_k, x_k) + v_k``),
+one training sample per step, epoch after epoch (Niu, Wu and Li, Sec. 4). A trainer is one
+:class:`TrainerSpec` entry: its class, its family (what the estimator resolves for it), the
+filter class, points and Jacobian it builds, its ``"auto"`` settings per start, the WNN
+study's search grid, cost and row, and the paper's Table 1 row. :class:`filterwnn.WNNRegressor`
+and :mod:`filterwnn.studies.wnn` read only this table; :func:`register_trainer` adds one. The
+trainers, by name:
+
+``"bp"``
+    back-propagation: per-sample gradient descent on the squared error (the baseline).
+``"ekf"``
+    extended Kalman filter. By default a rank-1 EKF written for ``dim_z = 1``
+    (``backend="rank1"``): the same equations as filterpy's
+    :class:`~filterpy.kalman.ExtendedKalmanFilter` (which the tests check it against
+    step by step), about 10x faster because it skips filterpy's dense ``(I - K H)``
+    Joseph products; ``ekf_backend="filterpy"`` runs filterpy's class itself.
+``"ukf"``, ``"sukf"``
+    :class:`filterwnn.kalman.unscented.UnscentedKalmanFilter` (vectorized, ``fx=None``) with
+    Merwe's ``2n + 1`` points (``alpha=1, beta=2, kappa=0``) or the ``n + 2`` spherical
+    simplex points (Julier 2003; the paper's SUKF).
+``"spf"``, ``"epf"``, ``"upf"``, ``"supf"``
+    the papers' particle filters (:mod:`filterwnn.monte_carlo.particle_filter`): bootstrap, and the EKF-,
+    UKF- and simplex-UKF-proposal filters, with the textbook weights
+    ``p(y|x) p(x|x') / q(x)`` and resampling at ESS < N/2. Without a move they degenerate to
+    one particle in 160 dimensions (see the findings). ``move="mala"`` or ``"hmc"`` adds an MCMC
+    move after every resampling (resample-move, Gilks and Berzuini 2001;
+    :func:`filterwnn.monte_carlo.smc.make_weight_model_move`): the move leaves the static posterior
+    ``p(theta | rows seen)`` invariant, each row joins its target before the row's update, its
+    prior is the filter's initial distribution (the Gaussian matched to the start, as for
+    ``"smc"``), and Q is 0. A second pass over the rows counts them again (the filter's weights
+    and the move's target alike), so ``n_epochs=1`` is the posterior. Predictions average the
+    particles' outputs with their weights.
+``"gsf-ekf"``, ``"gsf-ukf"``, ``"gsf-sukf"``
+    Gaussian-sum filters (:class:`filterwnn.GaussianSumFilter`) of ``n_particles`` EKF, UKF or
+    SUKF components, each weighted by its innovation likelihood ``N(y_k; y_hat_i, S_i)`` raised
+    to ``tempering`` (default 1, the Bayesian mixture; the WNN study's working rows use 0.01, a
+    heuristic; these were the former ``weighting="bank"`` of epf/upf/supf). Not particle filters:
+    the components are Gaussians, drawn once at the start.
+``"ekf-ensemble"``
+    ``n_particles`` independent EKFs from ``n_particles`` starts, their predictions averaged
+    without weights (``GaussianSumFilter(combine="mean")``): the baseline that tells the Gaussian
+    sum's weights from plain averaging.
+``"smc"``
+    a tempered SMC sampler over all training rows (:func:`filterwnn.monte_carlo.smc.smc_sampler`; Del
+    Moral, Doucet and Jasra 2006): ``n_particles`` draws from a Gaussian prior matched to
+    the start (:func:`filterwnn.wnn.weight_model.scaled_prior`, output weights of sd 1.0; for
+    ``init="paper"`` the moments of U[0, 1]) are carried to the posterior ``p(theta | rows)``
+    (``Q = 0``) on an adaptive ladder of likelihood exponents that keeps the ESS at N/2, with
+    resampling and MCMC moves at every rung (by default 6 HMC steps of 10 leapfrogs each,
+    :class:`filterwnn.monte_carlo.smc.HMCMove`; ``kernel="mala"`` in the settings for MALA), untempered at
+    the end. The first epoch runs the sampler; each later epoch runs the same moves again on
+    the posterior (still a posterior sample), so ``n_epochs=1`` is the plain sampler;
+    ``partial_fit`` with new rows tempers their likelihood in from the current particles
+    (iterated batch importance sampling; chunks are not bit-for-bit one pass here). R is
+    part of the posterior: ``measurement_noise=0.03`` measured better than the default 0.1
+    on validation rows (``benchmarks/smc_siso.py``). Predictions are the particles' mean output, with variance
+    the particles' spread plus R.
+
+``"auto"`` noise settings (``process_noise`` Q, ``initial_covariance`` P0) are per trainer and
+start (:data:`AUTO_SETTINGS`, from each entry's ``auto``): for the scaled start, what the WNN study chose on a validation
+split (``filterwnn study wnn``, ``docs/study-outputs/wnn/tuning.md``). The paper's ``Q = 1``
+does not work literally (UKF/SUKF end worse than the mean predictor).
+
+>>> sorted(TRAINERS)[:4]
+['bp', 'ekf', 'ekf-ensemble', 'epf']
+>>> spec = TRAINERS["upf"]
+>>> spec.family, spec.filter.__name__, spec.points.__name__, spec.parent
+('particle', 'UnscentedParticleFilter', 'merwe_points', 'ukf')
+>>> AUTO_SETTINGS[("upf", "scaled")]
+{'Q': 1e-05, 'P0': 0.01}
+
+A new trainer is one :func:`register_trainer` call (see ``tests/wnn/test_trainers.py``);
+:class:`~filterwnn.WNNRegressor` and the WNN study then accept its name.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from filterpy.kalman import ExtendedKalmanFilter, MerweScaledSigmaPoints
+from scipy.linalg.blas import dsymv, dsyr
+
+from ..monte_carlo import smc
+from . import network as wnn
+from .._validation import NumericalError, check_choice, check_rng
+from ..monte_carlo.gaussian_sum import GaussianSumFilter
+from ..monte_carlo.particle_filter import (
+    BootstrapParticleFilter,
+    ExtendedKalmanParticleFilter,
+    SimplexUnscentedParticleFilter,
+    UnscentedParticleFilter,
+)
+from ..kalman.sigma_points import SphericalSimplexSigmaPoints
+from ..kalman.unscented import UnscentedKalmanFilter
+from .weight_model import WNNWeightModel, scaled_prior
+
+__all__ = [
+    "TrainerSpec",
+    "BaseTrainer",
+    "TRAINERS",
+    "AUTO_SETTINGS",
+    "PAPER_SETTINGS",
+    "MOVES",
+    "MOVE_SETTINGS",
+    "FAMILIES",
+    "register_trainer",
+    "unregister_trainer",
+    "get_trainer",
+    "make_trainer",
+    "merwe_points",
+    "simplex_points",
+]
+
+#: The trainer families, each a set of settings the estimator resolves: ``"gradient"`` (a
+#: learning rate, no Q or P0), ``"single"`` (Q and P0, one start), ``"particle"`` (Q and P0, one
+#: start per particle, textbook weights, an optional MCMC move), ``"gaussian-sum"`` (one start per
+#: component, likelihood-weighted or averaged components) and ``"smc"`` (a static posterior:
+#: the entry's ``auto`` settings configure the sampler).
+FAMILIES = ("gradient", "single", "particle", "gaussian-sum", "smc")
+
+#: The paper's literal settings (Sec. 5): Q = 1, R = 0.1, U[0, 1] start; P0 is not stated (1 here).
+PAPER_SETTINGS = {"init": "paper", "process_noise": 1.0, "initial_covariance": 1.0, "measurement_noise": 0.1}
+
+#: The MCMC moves a ``"particle"`` trainer accepts (``WNNRegressor(move=...)``).
+MOVES = (None, "mala", "hmc")
+#: A particle trainer with a move (resample-move): Q = 0 (the static posterior), P0 multiplies the
+#: prior matched to the start (output weights of sd ``output_scale``), ``n_moves`` MALA steps (or HMC
+#: steps of ``n_leapfrog`` leapfrog steps) after each resampling. Not searched by the study.
+MOVE_SETTINGS = {"Q": 0.0, "P0": 1.0, "output_scale": 1.0, "mala": {"n_moves": 5}, "hmc": {"n_moves": 2, "n_leapfrog": 10}}
+
+
+def merwe_points(n, alpha=1.0):
+    """Van der Merwe's ``2n + 1`` scaled points (``beta=2, kappa=0``), filterpy's class."""
+    return MerweScaledSigmaPoints(n, alpha=alpha, beta=2.0, kappa=0.0)
+
+
+def simplex_points(n, alpha=1.0):
+    """The ``n + 2`` spherical simplex points (Julier 2003)."""
+    return SphericalSimplexSigmaPoints(n, alpha=alpha)
+
+
+@dataclass(frozen=True, eq=False)
+class TrainerSpec:
+    """One trainer: everything the estimator, the search and the study read about it.
+
+    Frozen; compared and hashed by identity (an entry is one registration).
+
+    Parameters
+    ----------
+    name : str
+        The ``trainer`` name of :class:`~filterwnn.WNNRegressor`.
+    trainer : type
+        The class, built as ``trainer(model, theta0, settings, rng, spec)`` (see
+        :class:`BaseTrainer`).
+    family : str
+        One of :data:`FAMILIES`: which settings the estimator resolves and how many starts it draws.
+    auto : dict
+        ``{"scaled": {...}, "paper": {...}}``: the ``"auto"`` settings per start (``Q`` and ``P0``;
+        ``learning_rate`` for the gradient family; the sampler's settings for ``smc``).
+    filter : type, optional
+        The filter class the trainer builds (a :mod:`filterwnn.monte_carlo.particle_filter` preset,
+        :class:`~filterwnn.GaussianSumFilter`, :class:`~filterwnn.UnscentedKalmanFilter`, ...).
+    points : callable, optional
+        Sigma-point factory ``points(n, alpha=1.0)`` (:func:`merwe_points`, :func:`simplex_points`).
+    jacobian : bool
+        Pass the model's ``HJacobian`` to the filter.
+    component : str, optional
+        The Gaussian-sum filter's component (``"ekf"``, ``"ukf"``, ``"sukf"``).
+    combine : {"mixture", "mean"}
+        Gaussian sums: weight the components, or average them without weights.
+    options : tuple of str
+        Estimator parameters passed through into the settings (``("ekf_backend",)``).
+    grid : tuple of dict
+        The WNN study's candidates (``WNNRegressor`` keywords); empty: not searched on a grid.
+    parent : str, optional
+        Search Q around the value chosen for this trainer (its P0 kept) instead of a grid.
+    copy_settings : str, optional
+        Copy this trainer's chosen settings and epochs in the study instead of searching.
+    cost : float
+        Rough seconds per epoch and particle (the study schedules long tasks first).
+    paper : (float, float), optional
+        The paper's Table 1 row: test MSE, training time (s).
+    paper_settings : dict, optional
+        Keywords over :data:`PAPER_SETTINGS` for the study's paper-settings table; ``None``
+        leaves the trainer out of that table.
+    label : str, optional
+        The study's row label (``{N}``: the number of particles); default the name.
+    study : dict
+        Fixed ``WNNRegressor`` keywords of the study's row (``{"tempering": 0.01}``).
+    study_epochs : int, optional
+        Fixed epochs of the study's row (not searched).
+    doc : str
+        One line on what the trainer runs.
+    """
+
+    name: str
+    trainer: type
+    family: str
+    auto: dict
+    filter: type = None
+    points: object = None
+    jacobian: bool = False
+    component: str = None
+    combine: str = "mixture"
+    options: tuple = ()
+    grid: tuple = ()
+    parent: str = None
+    copy_settings: str = None
+    cost: float = 1.0
+    paper: tuple = None
+    paper_settings: dict = None
+    label: str = None
+    study: dict = field(default_factory=dict)
+    study_epochs: int = None
+    doc: str = ""
+
+    @property
+    def noise_settings(self):
+        """Whether the trainer takes Q and P0 (``process_noise``, ``initial_covariance``)."""
+        return self.family != "gradient"
+
+    @property
+    def starts_per_particle(self):
+        """Whether the estimator draws one start per particle or component."""
+        return self.family in ("particle", "gaussian-sum")
+
+    @property
+    def uses_particles(self):
+        """Whether ``n_particles`` means something for this trainer."""
+        return self.family in ("particle", "gaussian-sum", "smc")
+
+    @property
+    def accepts_move(self):
+        """Whether ``move="mala"``/``"hmc"`` applies (the particle family)."""
+        return self.family == "particle"
+
+    @property
+    def weighting(self):
+        """The weighting a particle or Gaussian-sum trainer reports in its settings, else None."""
+        if self.family == "gaussian-sum":
+            return "unweighted average" if self.combine == "mean" else "gaussian-sum"
+        return "textbook" if self.family == "particle" else None
+
+
+def _filter_extras(spec, model):
+    """The points and Jacobian the spec's filter takes."""
+    extras = {}
+    if spec.points is not None:
+        extras["points"] = spec.points(model.dim_x)
+    if spec.jacobian:
+        extras["HJacobian"] = model.HJacobian
+    return extras
+
+
+def _weight_prior(X, model, settings):
+    """The static posterior's prior: the Gaussian matched to the start (the paper's start: U[0, 1]'s
+    moments), its variances times ``settings["P0"]``. Returns the weight model with ``Q = 0`` that
+    carries it, and those variances."""
+    if settings.get("prior", "scaled") == "scaled":
+        x0, var = scaled_prior(X, model.n_hidden, output_scale=settings["output_scale"])
+    else:  # the paper's start: every weight U[0, 1], mean 0.5 and variance 1/12
+        x0, var = np.full(model.dim_x, 0.5), np.full(model.dim_x, 1.0 / 12.0)
+    var = var * settings["P0"]
+    prior = WNNWeightModel(model.n_inputs, model.n_hidden, model.wavelet, Q=0.0, R=model.R, x0=x0, P0=var)
+    return prior, var
+
+
+# ---------------------------------------------------------------------------- trainers
+class BaseTrainer:
+    """One trainer: holds the filter state, runs epochs, predicts with a variance.
+
+    A trainer class is built as ``cls(model, theta0, settings, rng, spec)``: the weight-state
+    model (:class:`~filterwnn.wnn.weight_model.WNNWeightModel`), the start (shape ``(n_params,)``, or
+    ``(n_particles, n_params)`` for the particle and Gaussian-sum families), the settings the
+    estimator resolved (Q, P0, R, ...), a ``Generator`` and its :class:`TrainerSpec` (what the
+    class reads to build its filter). Subclasses implement ``epoch(X, y)``, ``theta`` and
+    ``predict(X) -> (mean, var)``. ``diagnostics`` collects per-epoch numbers (e.g. mean ESS)
+    as lists.
+    """
+
+    def __init__(self, model, theta0, settings, rng, spec=None):
+        self.model = model
+        self.settings = settings
+        self.rng = rng
+        self.spec = spec
+        self.name = spec.name if spec is not None else type(self).__name__
+        self.diagnostics = {}
+
+    def _record(self, key, value):
+        self.diagnostics.setdefault(key, []).append(value)
+
+    def predict_mean(self, X):
+        """The predictive mean alone (the loss curve needs no variance)."""
+        return self.predict(X)[0]
+
+    def check_finite(self, epoch, *arrays):
+        """Raise :class:`~filterwnn.NumericalError` if any of ``arrays`` is not finite after ``epoch``."""
+        for a in arrays:
+            if not np.all(np.isfinite(a)):
+                raise NumericalError(
+                    f"the {self.name} trainer produced non-finite weights in epoch {epoch}; "
+                    "lower process_noise/initial_covariance (or the learning rate) or use init='scaled'",
+                    matrix="theta",
+                    step=epoch,
+                )
+
+
+class _BPTrainer(BaseTrainer):
+    """Per-sample gradient descent on ``(y - f)^2 / 2`` (samples in order)."""
+
+    def __init__(self, model, theta0, settings, rng, spec=None):
+        super().__init__(model, theta0, settings, rng, spec)
+        self.x = np.array(theta0, dtype=float)
+        self.lr = float(settings["learning_rate"])
+        self.resid_var = float(model.R[0, 0])
+
+    @property
+    def theta(self):
+        return self.x
+
+    def epoch(self, X, y):
+        wav = self.model.wavelet
+        x = self.x
+        for xk, yk in zip(X, y):
+            xk = xk[None]
+            err = yk - wnn.forward(x, xk, wav)[0]
+            x = x + self.lr * err * wnn.jacobian(x, xk, wav)[0]
+        self.x = x
+        self.resid_var = max(float(np.mean((y - wnn.forward(x, X, wav)) ** 2)), 1e-12)
+
+    def predict(self, X):
+        return wnn.forward(self.x, X, self.model.wavelet), np.full(len(X), self.resid_var)
+
+
+class _EKFTrainer(BaseTrainer):
+    """EKF on the weight model; ``backend="rank1"`` (default) or ``"filterpy"``.
+
+    The rank-1 backend keeps ``P`` as its lower triangle (a Fortran array whose upper
+    triangle is never read): ``P h`` by BLAS ``dsymv`` and the update
+    ``P - (P h)(P h)^T / s`` by ``dsyr`` read and write half the matrix, so ``P`` is
+    symmetric by construction and no pass has to symmetrise it. A pass over rows is
+    then the same arithmetic however the rows are split into calls (``partial_fit``).
+    """
+
+    def __init__(self, model, theta0, settings, rng, spec=None):
+        super().__init__(model, theta0, settings, rng, spec)
+        self.backend = settings.get("ekf_backend", "rank1")
+        self.x = np.array(theta0, dtype=float)
+        self.P_lower = np.asfortranarray(model.P0, dtype=float).copy(order="F")
+        Q = model.Q
+        self.q_diag = np.diag(Q).copy() if np.allclose(Q, np.diag(np.diag(Q))) else None
+        if self.backend == "filterpy":
+            self.kf = ExtendedKalmanFilter(model.dim_x, model.dim_z)
+            self.kf.x = self.x.copy()
+            self.kf.P = model.P0.copy()
+            self.kf.Q = model.Q.copy()
+            self.kf.R = model.R.copy()
+
+    @property
+    def theta(self):
+        return self.kf.x if self.backend == "filterpy" else self.x
+
+    @property
+    def cov(self):
+        if self.backend == "filterpy":
+            return self.kf.P
+        L = np.tril(self.P_lower)
+        return L + np.tril(L, -1).T
+
+    def epoch(self, X, y):
+        m = self.model
+        if self.backend == "filterpy":
+            kf = self.kf
+            for xk, yk in zip(X, y):
+                kf.predict()
+                kf.update(np.array([yk]), _Bound(m.HJacobian, xk), _Bound(m.hx, xk))
+            return
+        x, P = self.x, self.P_lower
+        Q, r, qd = m.Q, float(m.R[0, 0]), self.q_diag
+        idx = np.diag_indices_from(P)
+        wav = m.wavelet
+        # theta = [W, v, a, b] and dy/dv = psi(t): the output psi(t) v is read off the
+        # Jacobian row, by the same product wnn.forward computes (one network pass a step)
+        n_hidden = m.n_hidden
+        v_part = slice(n_hidden * X.shape[1], n_hidden * (X.shape[1] + 1))
+        for xk, yk in zip(X, y):
+            if qd is not None:
+                P[idx] += qd
+            else:
+                P += Q  # only the lower triangle is read
+            h = wnn.jacobian(x, xk[None], wav)[0]
+            f = np.matmul(h[None, v_part], x[v_part, None])[0, 0]
+            Ph = dsymv(1.0, P, h, lower=1)
+            s = h @ Ph + r
+            x = x + (Ph / s) * (yk - f)
+            P = dsyr(-1.0 / s, Ph, a=P, lower=1, overwrite_a=1)
+        self.x, self.P_lower = x, P
+
+    def predict_mean(self, X):
+        return wnn.forward(self.theta, X, self.model.wavelet)
+
+    def predict(self, X):
+        J = wnn.jacobian(self.theta, X, self.model.wavelet)
+        var = np.sum((J @ self.cov) * J, axis=1)
+        return wnn.forward(self.theta, X, self.model.wavelet), var + float(self.model.R[0, 0])
+
+
+class _Bound:
+    """``f(theta)`` = ``fn(theta, x=x)``: picklable partial for filterpy's EKF update."""
+
+    def __init__(self, fn, x):
+        self.fn, self.x = fn, x
+
+    def __call__(self, theta):
+        return self.fn(theta, x=self.x)
+
+
+class _UKFTrainer(BaseTrainer):
+    """The spec's UKF class (vectorized, ``fx=None``: the random walk) with the spec's points
+    (Merwe's or the spherical simplex; ``settings["alpha"]``, default 1)."""
+
+    def __init__(self, model, theta0, settings, rng, spec=None):
+        super().__init__(model, theta0, settings, rng, spec)
+        n = model.dim_x
+        points = spec.points(n, alpha=settings.get("alpha", 1.0))
+        self.kf = spec.filter(n, 1, 1.0, model.hx, None, points, vectorized=True)
+        self.kf.x = np.array(theta0, dtype=float)
+        self.kf.P = model.P0.copy()
+        self.kf.Q = model.Q.copy()
+        self.kf.R = model.R.copy()
+
+    @property
+    def theta(self):
+        return self.kf.x
+
+    def epoch(self, X, y):
+        kf = self.kf
+        for xk, yk in zip(X, y):
+            kf.predict()
+            kf.update(np.array([yk]), x=xk)
+        kf.P = 0.5 * (kf.P + kf.P.T)
+
+    def predict_mean(self, X):
+        return wnn.forward(self.kf.x, X, self.model.wavelet)
+
+    def predict(self, X):
+        J = wnn.jacobian(self.kf.x, X, self.model.wavelet)
+        var = np.sum((J @ self.kf.P) * J, axis=1)
+        return wnn.forward(self.kf.x, X, self.model.wavelet), var + float(self.model.R[0, 0])
+
+
+class _ParticleTrainer(BaseTrainer):
+    """A particle filter of :mod:`filterwnn.monte_carlo.particle_filter` (the spec's preset class, its points
+    and Jacobian) on the weight model, with textbook weights.
+
+    ``settings["move"]`` (``None``, ``"mala"`` or ``"hmc"``) adds an MCMC move after every
+    resampling (resample-move, Gilks and Berzuini 2001): the move's target is the prior times the
+    likelihood of every row the filter has been updated with (rows counted once per pass, as the
+    filter's weights count them), and each row is added to it before its update. The prior is the
+    filter's initial distribution: with a move the particles are drawn from the Gaussian prior
+    matched to the start (:func:`filterwnn.wnn.weight_model.scaled_prior`, or U[0, 1]'s moments for the
+    paper's start), scaled by ``P0``, and ``Q`` is 0 (the static posterior the move leaves invariant).
+    """
+
+    def __init__(self, model, theta0, settings, rng, spec=None):
+        super().__init__(model, theta0, settings, rng, spec)
+        self._move_kind = settings.get("move")
+        cls = spec.filter
+        kwargs = dict(
+            n_particles=settings["n_particles"],
+            resampling="systematic",
+            ess_threshold=settings["ess_threshold"],
+            vectorized=True,
+            rng=rng,
+            tempering=settings["tempering"],
+        )
+        kwargs.update(_filter_extras(spec, model))
+        self._kwargs, self._cls = kwargs, cls
+        self.move = None
+        if self._move_kind is not None:  # the prior needs the training inputs: built in the first epoch
+            self.pf = None
+            return
+        theta0 = np.atleast_2d(np.asarray(theta0, dtype=float))
+        # fx=None: the random walk, predicted without sigma points (P += Q)
+        self.pf = cls(model.dim_x, 1, 1.0, model.hx, None, **kwargs)
+        self.pf.Q = model.Q.copy()
+        self.pf.R = model.R.copy()
+        self.pf.P = model.P0.copy()
+        if theta0.shape[0] == 1:  # one start: particles drawn from N(theta0, P0)
+            self.pf.x = theta0[0].copy()
+        else:  # one start per particle (the paper's step 1: draws from the initial distribution)
+            self.pf.initialize(theta0, model.P0)
+
+    def _start_with_move(self, X):
+        m, s = self.model, self.settings
+        prior, var = _weight_prior(X, m, s)
+        target = smc.RowsTarget(prior)
+        if self._move_kind == "hmc":
+            self.move = smc.HMCMove(target, n_steps=s["n_moves"], n_leapfrog=s["n_leapfrog"])
+        else:
+            self.move = smc.MALAMove(target, n_steps=s["n_moves"])
+        self.pf = self._cls(m.dim_x, 1, 1.0, m.hx, None, move=self.move, **self._kwargs)
+        self.pf.Q = np.zeros_like(m.Q)
+        self.pf.R = m.R.copy()
+        self.pf.P = prior.P0.copy()
+        draws = self.rng.standard_normal((s["n_particles"], m.dim_x))
+        self.pf.initialize(prior.x0 + draws * np.sqrt(var), prior.P0)
+
+    @property
+    def particles(self):
+        return np.asarray(self.pf.particles)
+
+    @property
+    def weights(self):
+        return np.asarray(self.pf.weights)
+
+    @property
+    def theta(self):
+        return self.particles[int(np.argmax(self.weights))]
+
+    def epoch(self, X, y):
+        if self._move_kind is not None and self.pf is None:
+            self._start_with_move(X)
+        pf = self.pf
+        ess, distinct = [], []
+        for xk, yk in zip(X, y):
+            if self.move is not None:  # the move's target: every row up to this one
+                self.move.target.append(xk, yk)
+            pf.predict()
+            pf.update(np.array([yk]), x=xk)
+            ess.append(pf.ess)
+            distinct.append(pf.n_distinct)
+        self._record("mean_ess", float(np.mean(ess)))
+        self._record("distinct", int(distinct[-1]))
+        self._record("distinct_ancestors", pf.n_ancestors)
+        if self.move is not None and self.move.acceptance_:
+            self._record("acceptance", float(np.mean(self.move.acceptance_)))
+        self.check_finite(len(self.diagnostics["mean_ess"]), self.particles)
+
+    def predict(self, X):
+        w = self.weights
+        wav = self.model.wavelet
+        Y = wnn.forward(self.particles, X, wav)  # (N, n)
+        mean = w @ Y
+        spread = w @ (Y - mean) ** 2
+        Pp = getattr(self.pf, "covariances", None)
+        within = 0.0
+        if Pp is not None and np.ndim(Pp) == 3:
+            J = wnn.jacobian(self.particles, X, wav)  # (N, n, d)
+            within = w @ np.sum(np.matmul(J, Pp) * J, axis=2)
+        return mean, spread + within + float(self.model.R[0, 0])
+
+
+
+class _GaussianSumTrainer(_ParticleTrainer):
+    """A Gaussian-sum filter of ``n_particles`` Kalman filters (:class:`filterwnn.GaussianSumFilter`).
+
+    Each component (the spec's ``component``) is an EKF, UKF (Merwe points) or SUKF (simplex
+    points) on the weight-state model, weighted by its innovation likelihood raised to
+    ``tempering`` (1: the Bayesian mixture; the WNN study's working rows use 0.01, a heuristic),
+    or averaged without weights (the spec's ``combine="mean"``, the EKF ensemble). Not a
+    particle filter: nothing is sampled after the start, whose component means are
+    ``n_particles`` draws of the initial distribution.
+    """
+
+    def __init__(self, model, theta0, settings, rng, spec=None):
+        BaseTrainer.__init__(self, model, theta0, settings, rng, spec)
+        self.move = None
+        self.combine = spec.combine
+        kwargs = dict(resampling="systematic", ess_threshold=settings["ess_threshold"], vectorized=True,
+                      rng=rng, tempering=settings["tempering"], combine=self.combine)
+        kwargs.update(_filter_extras(spec, model))
+        theta0 = np.atleast_2d(np.asarray(theta0, dtype=float))
+        self.pf = spec.filter(model.dim_x, 1, 1.0, model.hx, None, component=spec.component, **kwargs)
+        self.pf.Q, self.pf.R = model.Q.copy(), model.R.copy()
+        if theta0.shape[0] == 1:  # one start: component means drawn from N(theta0, P0)
+            L = np.linalg.cholesky(model.P0)
+            theta0 = theta0[0] + self.pf.rng.standard_normal((settings["n_particles"], model.dim_x)) @ L.T
+        self.pf.initialize(theta0, model.P0)
+
+    @property
+    def particles(self):
+        return np.asarray(self.pf.means)
+
+    @property
+    def weights(self):
+        w = np.asarray(self.pf.weights)
+        return w if self.combine == "mixture" else np.full(len(w), 1.0 / len(w))
+
+    def epoch(self, X, y):
+        pf = self.pf
+        ess = []
+        for xk, yk in zip(X, y):
+            pf.predict()
+            pf.update(np.array([yk]), x=xk)
+            ess.append(pf.ess)
+        self._record("mean_ess", float(np.mean(ess)))
+        self.check_finite(len(self.diagnostics["mean_ess"]), self.particles)
+
+
+
+class _SMCTrainer(BaseTrainer):
+    """Tempered SMC sampler over all training rows, then MCMC rejuvenation at the posterior (:mod:`filterwnn.monte_carlo.smc`)."""
+
+    def __init__(self, model, theta0, settings, rng, spec=None):
+        super().__init__(model, theta0, settings, rng, spec)
+        self.result = None
+        self.move = None
+        self.particles = None
+
+    @property
+    def theta(self):
+        """The particle of largest posterior density (predictions average all of them)."""
+        t = self.move.target
+        lp = t.log_prior_and_grad(self.particles)[0] + t.log_likelihood(self.particles)
+        return self.particles[int(np.argmax(lp))]
+
+    def _kernel(self, target):
+        s = self.settings
+        if s.get("kernel", "mala") == "hmc":
+            return smc.HMCMove(
+                target, n_steps=s["n_moves"], n_leapfrog=s["n_leapfrog"], preconditioner=s["preconditioner"]
+            )
+        return smc.MALAMove(target, n_steps=s["n_moves"], preconditioner=s["preconditioner"])
+
+    def _sample(self, target, move, particles):
+        n = len(self.diagnostics.get("acceptance", [])) + 1
+        try:
+            return smc.smc_sampler(
+                target, self.settings["n_particles"], self.rng, move=move,
+                ess_fraction=self.settings["ess_fraction"], particles=particles,
+            )
+        except (NumericalError, RuntimeError) as err:
+            raise NumericalError(f"the smc trainer failed in epoch {n}: {err}", matrix="theta", step=n) from err
+
+    def _keep(self, res):
+        """Keep a sampler run's particles and record its diagnostics."""
+        self.result, self.particles = res, res.particles
+        self._record("mean_ess", float(np.mean(res.ess)))
+        self._record("n_rungs", len(res.betas))
+        self._record("acceptance", float(np.mean(res.acceptance)))
+        self._record("distinct", res.distinct_particles[-1])
+        self._record("distinct_ancestors", res.distinct_ancestors[-1])
+
+    def epoch(self, X, y):
+        if self.result is None:
+            target = smc.RowsTarget(_weight_prior(X, self.model, self.settings)[0], X, y)
+            self.move = self._kernel(target)
+            res = self._sample(target, self.move, None)
+            self._keep(res)
+        elif not (X.shape == self.move.target.X.shape and np.array_equal(X, self.move.target.X)
+                  and np.array_equal(y, self.move.target.y)):
+            # new rows (partial_fit): temper their likelihood in, from the current posterior
+            base = self.move.target
+            added = smc.AddedRowsTarget(base, X, y)
+            res = self._sample(added, self._kernel(added), self.particles)
+            base.set_rows(np.vstack([base.X, X]), np.concatenate([base.y, y]))
+            self._keep(res)
+        else:  # the same rows again (fit's later epochs): rejuvenation on the untempered posterior
+            n_before = len(self.move.acceptance_)
+            self.particles = self.move(self.particles, self.rng)
+            self._record("acceptance", float(np.mean(self.move.acceptance_[n_before:])))
+            self._record("distinct", int(np.unique(self.particles, axis=0).shape[0]))
+            self._record("distinct_ancestors", self.diagnostics["distinct_ancestors"][-1])
+        self.check_finite(len(self.diagnostics["acceptance"]), self.particles)
+
+    def predict(self, X):
+        Y = wnn.forward(self.particles, X, self.model.wavelet)  # (N, n)
+        return Y.mean(axis=0), Y.var(axis=0) + float(self.model.R[0, 0])
+
+
+
+# ---------------------------------------------------------------------------- the table
+#: The trainer table: name -> :class:`TrainerSpec`, in registration order (the study's row order).
+#: Add to it with :func:`register_trainer`.
+TRAINERS = {}
+
+#: ``(trainer, init) -> dict`` used for ``"auto"``: each entry's ``auto`` (the same dicts).
+#: Scaled start: the settings the WNN study's validation search chose (5 tuning runs,
+#: ``docs/study-outputs/wnn/tuning.md``), except the EKF's: the search's Q = 1e-4 wins only
+#: when stopped after 5 epochs, Q = 1e-3 is the best candidate over 50 to 200 epochs (the
+#: regressor's default runs 50). Paper start: the prototypes' values (the study does not search it).
+AUTO_SETTINGS = {}
+
+_REQUIRED = {"gradient": ("learning_rate",), "single": ("Q", "P0"), "particle": ("Q", "P0"),
+             "gaussian-sum": ("Q", "P0"), "smc": ("Q", "P0")}
+
+
+def _check_spec(spec):
+    """The rules a :class:`TrainerSpec` must meet before it joins the table."""
+    if not isinstance(spec, TrainerSpec):
+        raise TypeError(f"spec must be a TrainerSpec, got {type(spec).__name__}")
+    if not isinstance(spec.name, str) or not spec.name or "+" in spec.name:
+        raise ValueError(f"name must be a non-empty string without '+', got {spec.name!r}")
+    check_choice(spec.family, "family", FAMILIES)
+    if not callable(spec.trainer):
+        raise TypeError(f"trainer must be a class, got {spec.trainer!r}")
+    for init in ("scaled", "paper"):
+        auto = spec.auto.get(init) if isinstance(spec.auto, dict) else None
+        missing = [k for k in _REQUIRED[spec.family] if auto is None or k not in auto]
+        if missing:
+            raise ValueError(f"auto[{init!r}] of trainer {spec.name!r} must set {missing}, got {auto!r}")
+    if spec.family in ("particle", "gaussian-sum") and spec.filter is None:
+        raise ValueError(f"a {spec.family} trainer needs its filter class, got filter=None for {spec.name!r}")
+    for attr in ("parent", "copy_settings"):
+        other = getattr(spec, attr)
+        if other is not None and other not in TRAINERS:
+            raise ValueError(f"{attr} of trainer {spec.name!r} must be a registered trainer, got {other!r}")
+
+
+def register_trainer(spec, replace=False):
+    """Add ``spec`` to :data:`TRAINERS` (and its ``auto`` to :data:`AUTO_SETTINGS`).
+
+    Parameters
+    ----------
+    spec : TrainerSpec
+    replace : bool
+        Replace an entry of the same name (else a duplicate is refused).
+
+    Returns
+    -------
+    TrainerSpec
+        ``spec``.
+
+    Raises
+    ------
+    ValueError
+        For a duplicate name (without ``replace``), an unknown family, ``auto`` settings that
+        lack the family's keys, or a ``parent``/``copy_settings`` that is not registered.
+
+    Examples
+    --------
+    A UKF that is another entry (here a copy of ``"ukf"`` under a new name): the estimator and
+    the WNN study accept its name once it is registered.
+
+    >>> from dataclasses import replace
+    >>> spec = register_trainer(replace(TRAINERS["ukf"], name="ukf-copy", label="UKF (copy)"))
+    >>> AUTO_SETTINGS[("ukf-copy", "scaled")]
+    {'Q': 1e-06, 'P0': 0.01}
+    >>> register_trainer(spec)
+    Traceback (most recent call last):
+    ...
+    ValueError: trainer 'ukf-copy' is already registered; pass replace=True to replace it
+    >>> unregister_trainer("ukf-copy") is spec
+    True
+    """
+    _check_spec(spec)
+    if spec.name in TRAINERS and not replace:
+        raise ValueError(f"trainer {spec.name!r} is already registered; pass replace=True to replace it")
+    TRAINERS[spec.name] = spec
+    for init in ("scaled", "paper"):
+        AUTO_SETTINGS[(spec.name, init)] = spec.auto[init]
+    return spec
+
+
+def unregister_trainer(name):
+    """Remove trainer ``name`` from :data:`TRAINERS` and :data:`AUTO_SETTINGS`; returns its spec."""
+    check_choice(name, "trainer", TRAINERS)
+    for init in ("scaled", "paper"):
+        AUTO_SETTINGS.pop((name, init), None)
+    return TRAINERS.pop(name)
+
+
+def get_trainer(name):
+    """The :class:`TrainerSpec` of ``name``; ``ValueError`` listing the valid names otherwise."""
+    check_choice(name, "trainer", TRAINERS)
+    return TRAINERS[name]
+
+
+def make_trainer(name, model, theta0, settings, rng=None):
+    """Build the trainer ``name`` (a key of :data:`TRAINERS`) on ``model``.
+
+    Raises ``ValueError`` listing the valid names for an unknown one.
+    """
+    spec = get_trainer(name)
+    return spec.trainer(model, theta0, settings, check_rng(rng), spec)
+
+
+# ---------------------------------------------------------------------------- the built-in trainers
+def _qp(scaled, paper):
+    """``auto`` of a Q/P0 trainer from ``(Q, P0)`` pairs for the scaled and paper starts."""
+    return {"scaled": {"Q": scaled[0], "P0": scaled[1]}, "paper": {"Q": paper[0], "P0": paper[1]}}
+
+
+def _grid(qs, p0s):
+    return tuple({"process_noise": q, "initial_covariance": p} for q in qs for p in p0s)
+
+
+_PF_PAPER = {"ess_threshold": 1.0, "tempering": 1.0}  # the paper resamples at every step
+_GSF = {"tempering": 0.01}
+# smc: a static posterior (Q = 0); P0 multiplies the prior matched to the start (kernel "mala": n_moves
+# MALA steps per rung; "hmc": n_moves HMC steps of n_leapfrog leapfrog steps). Scaled: chosen on
+# validation rows (benchmarks/smc_siso.py --validate, seeds 0-2, 80/20 split of the training rows): HMC
+# 6 x 10 median validation MSE 0.070, HMC 3 x 10 0.072, MALA 30 steps 0.137 (at the default R = 0.1).
+# measurement_noise=0.03 gave 0.027 (R = 0.01: 0.040); R is the estimator's argument.
+_SMC = {"Q": 0.0, "P0": 1.0, "output_scale": 1.0, "n_moves": 6, "ess_fraction": 0.5, "kernel": "hmc",
+        "n_leapfrog": 10, "preconditioner": "diag"}
+
+for _spec in (
+    TrainerSpec("bp", _BPTrainer, "gradient", {"scaled": {"learning_rate": 0.1}, "paper": {"learning_rate": 0.05}},
+                grid=tuple({"learning_rate": lr} for lr in (0.02, 0.05, 0.1, 0.2, 0.5)), cost=1,
+                paper=(1.6605, 7.9), paper_settings={}, label="BP", doc="back-propagation (the baseline)"),
+    TrainerSpec("ekf", _EKFTrainer, "single", _qp((1e-3, 0.1), (1e-2, 0.01)), filter=ExtendedKalmanFilter,
+                options=("ekf_backend",), grid=_grid((1e-5, 1e-4, 1e-3, 1e-2), (0.01, 0.1, 1.0)), cost=1,
+                paper=(0.2672, 9.8), paper_settings={}, label="EKF", doc="extended Kalman filter (rank-1)"),
+    TrainerSpec("ukf", _UKFTrainer, "single", _qp((1e-6, 0.01), (1e-4, 0.1)), filter=UnscentedKalmanFilter,
+                points=merwe_points, grid=_grid((1e-8, 1e-7, 1e-6, 1e-5, 1e-4), (0.01, 0.1)), cost=6,
+                paper=(0.1258, 12.4), paper_settings={}, label="UKF", doc="UKF, Merwe's 2n + 1 points"),
+    TrainerSpec("sukf", _UKFTrainer, "single", _qp((1e-6, 0.01), (1e-4, 0.1)), filter=UnscentedKalmanFilter,
+                points=simplex_points, grid=_grid((1e-8, 1e-7, 1e-6, 1e-5, 1e-4), (0.01, 0.1)), cost=6,
+                paper_settings={}, label="SUKF (simplex points)", doc="UKF, n + 2 spherical simplex points"),
+    TrainerSpec("spf", _ParticleTrainer, "particle", _qp((1e-5, 0.01), (1e-4, 0.1)), filter=BootstrapParticleFilter,
+                grid=_grid((1e-7, 1e-6, 1e-5, 1e-4, 1e-3), (0.01,)), cost=0.4, paper=(0.0859, 7.6),
+                paper_settings={"ess_threshold": 1.0}, label="SPF (bootstrap)", doc="bootstrap particle filter"),
+    TrainerSpec("epf", _ParticleTrainer, "particle", _qp((1e-3, 0.1), (1e-2, 0.01)),
+                filter=ExtendedKalmanParticleFilter, jacobian=True, parent="ekf", cost=1.2, paper=(0.0601, 8.4),
+                paper_settings=_PF_PAPER, label="EPF (textbook)", doc="particle filter, EKF proposal"),
+    TrainerSpec("upf", _ParticleTrainer, "particle", _qp((1e-5, 0.01), (1e-4, 0.1)), filter=UnscentedParticleFilter,
+                points=merwe_points, parent="ukf", cost=4, paper=(0.0226, 17.9), paper_settings=_PF_PAPER,
+                label="UPF (textbook)", doc="particle filter, UKF proposal"),
+    TrainerSpec("supf", _ParticleTrainer, "particle", _qp((1e-5, 0.01), (1e-4, 0.1)),
+                filter=SimplexUnscentedParticleFilter, points=simplex_points, parent="sukf", cost=4,
+                paper=(0.0245, 10.1), paper_settings=_PF_PAPER, label="SUPF (textbook)",
+                doc="particle filter, simplex-UKF proposal"),
+    # Gaussian sums: the settings the WNN study chose for the former "bank" weighting of epf/upf/supf
+    # (which were these filters); ekf-ensemble: the EKF's.
+    TrainerSpec("gsf-ekf", _GaussianSumTrainer, "gaussian-sum", _qp((1e-3, 0.1), (1e-2, 0.01)),
+                filter=GaussianSumFilter, jacobian=True, component="ekf", parent="ekf", cost=1, study=_GSF,
+                label="Gaussian-sum filter of {N} EKFs (tempering 0.01)", doc="Gaussian sum of EKFs"),
+    TrainerSpec("gsf-ukf", _GaussianSumTrainer, "gaussian-sum", _qp((1e-5, 0.01), (1e-4, 0.1)),
+                filter=GaussianSumFilter, points=merwe_points, component="ukf", parent="ukf", cost=4, study=_GSF,
+                label="Gaussian-sum filter of {N} UKFs (tempering 0.01)", doc="Gaussian sum of UKFs"),
+    TrainerSpec("gsf-sukf", _GaussianSumTrainer, "gaussian-sum", _qp((1e-5, 0.01), (1e-4, 0.1)),
+                filter=GaussianSumFilter, points=simplex_points, component="sukf", parent="sukf", cost=3,
+                study=_GSF, label="Gaussian-sum filter of {N} SUKFs (tempering 0.01)", doc="Gaussian sum of SUKFs"),
+    TrainerSpec("ekf-ensemble", _GaussianSumTrainer, "gaussian-sum", _qp((1e-3, 0.1), (1e-2, 0.01)),
+                filter=GaussianSumFilter, jacobian=True, component="ekf", combine="mean",
+                copy_settings="gsf-ekf", cost=1, label="{N} independent EKFs, averaged",
+                doc="independent EKFs, averaged without weights"),
+    TrainerSpec("smc", _SMCTrainer, "smc", {"scaled": dict(_SMC), "paper": dict(_SMC)}, cost=40, study_epochs=1,
+                label="SMC sampler (HMC moves)", doc="tempered SMC sampler with HMC moves"),
+):
+    register_trainer(_spec)
+del _spec

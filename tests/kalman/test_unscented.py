@@ -1,0 +1,332 @@
+"""Our UnscentedKalmanFilter against filterpy's, in both modes, and its failures."""
+
+import pickle
+
+import numpy as np
+import pytest
+from filterpy.kalman import MerweScaledSigmaPoints
+from filterpy.kalman import UnscentedKalmanFilter as FilterpyUKF
+
+from filterwnn import NumericalError, SphericalSimplexSigmaPoints
+from filterwnn.kalman.unscented import UnscentedKalmanFilter
+
+ATOL = 1e-9  # same numbers as filterpy up to rounding
+
+
+# a nonlinear model, written on the last axis: works for (n,) and (n_sigmas, n)
+def fx(x, dt):
+    out = np.empty_like(x)
+    out[..., 0] = x[..., 0] + dt * x[..., 1]
+    out[..., 1] = x[..., 1] + dt * np.sin(x[..., 0]) * 0.5
+    out[..., 2] = 0.9 * x[..., 2] + 0.1 * x[..., 0] * x[..., 1]
+    return out
+
+
+def hx(x):
+    return np.stack([np.sqrt(1.0 + x[..., 0] ** 2 + x[..., 2] ** 2), np.arctan(x[..., 1])], axis=-1)
+
+
+def make(cls, points, vectorized=None, f=fx):
+    kw = {} if vectorized is None else {"vectorized": vectorized}
+    ukf = cls(3, 2, 0.1, hx, f, points, **kw)
+    ukf.x = np.array([0.3, -0.2, 1.0])
+    ukf.P = np.diag([0.5, 0.3, 0.2])
+    ukf.Q = np.eye(3) * 1e-3
+    ukf.R = np.diag([0.05, 0.02])
+    return ukf
+
+
+def simulate(n=30, seed=0):
+    rng = np.random.default_rng(seed)
+    x = np.array([0.5, 0.1, 0.8])
+    zs = []
+    for _ in range(n):
+        x = fx(x, 0.1) + rng.normal(0, 0.03, 3)
+        zs.append(hx(x) + rng.normal(0, 0.1, 2))
+    return np.array(zs)
+
+
+POINTS = {
+    "merwe": lambda: MerweScaledSigmaPoints(3, alpha=0.5, beta=2.0, kappa=0.0),
+    "simplex": lambda: SphericalSimplexSigmaPoints(3, alpha=0.8, beta=2.0, w0=0.1),
+}
+
+
+@pytest.mark.parametrize("points", sorted(POINTS))
+@pytest.mark.parametrize("vectorized", [False, True])
+def test_equals_filterpy_on_nonlinear_model_at_every_step(points, vectorized):
+    ref = make(FilterpyUKF, POINTS[points]())
+    ours = make(UnscentedKalmanFilter, POINTS[points](), vectorized)
+    for z in simulate():
+        ref.predict()
+        ours.predict()
+        np.testing.assert_allclose(ours.x_prior, ref.x_prior, atol=ATOL)
+        np.testing.assert_allclose(ours.P_prior, ref.P_prior, atol=ATOL)
+        ref.update(z)
+        ours.update(z)
+        np.testing.assert_allclose(ours.x, ref.x, atol=ATOL)
+        np.testing.assert_allclose(ours.P, ref.P, atol=ATOL)
+        np.testing.assert_allclose(ours.log_likelihood, ref.log_likelihood, rtol=1e-9)
+    assert ours.step == 30  # the time step: predict advances it, update does not
+
+
+def test_non_vectorized_is_bit_identical_to_filterpy():
+    ref = make(FilterpyUKF, POINTS["merwe"]())
+    ours = make(UnscentedKalmanFilter, POINTS["merwe"](), False)
+    for z in simulate(10):
+        ref.predict(); ours.predict(); ref.update(z); ours.update(z)
+    assert np.array_equal(ours.x, ref.x) and np.array_equal(ours.P, ref.P)
+
+
+@pytest.mark.parametrize("vectorized", [False, True])
+def test_random_walk_equals_filterpy_with_identity_fx(vectorized):
+    ident = lambda x, dt: x.copy()  # noqa: E731
+    ref = make(FilterpyUKF, POINTS["merwe"](), f=ident)
+    ours = make(UnscentedKalmanFilter, POINTS["merwe"](), vectorized, f=None)
+    for z in simulate():
+        ref.predict(); ours.predict()
+        np.testing.assert_allclose(ours.P_prior, ref.P_prior, atol=ATOL)
+        ref.update(z); ours.update(z)
+        np.testing.assert_allclose(ours.x, ref.x, atol=ATOL)
+        np.testing.assert_allclose(ours.P, ref.P, atol=ATOL)
+
+
+def test_random_walk_step_needs_one_factorisation(monkeypatch):
+    """predict factors P_prior once (its check), and update reuses the factor."""
+    ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), True, f=None)
+    ukf.predict(); ukf.update(np.array([1.2, 0.1]))  # the first predict also checks Q, once
+    calls = []
+    real = np.linalg.cholesky
+    monkeypatch.setattr(np.linalg, "cholesky", lambda a: calls.append(1) or real(a))
+    for z in ([1.2, 0.1], [1.1, 0.0]):
+        ukf.predict()
+        ukf.update(np.array(z))
+    assert len(calls) == 2  # one Cholesky per step
+
+
+@pytest.mark.parametrize("vectorized", [False, True])
+def test_batch_filter_and_rts_smoother_match_filterpy(vectorized):
+    zs = simulate(25)
+    ref = make(FilterpyUKF, POINTS["merwe"]())
+    ours = make(UnscentedKalmanFilter, POINTS["merwe"](), vectorized)
+    mu_r, cov_r = ref.batch_filter(zs)
+    mu_o, cov_o = ours.batch_filter(zs)
+    np.testing.assert_allclose(mu_o, mu_r, atol=ATOL)
+    np.testing.assert_allclose(cov_o, cov_r, atol=ATOL)
+    xs_r, ps_r, _ = ref.rts_smoother(mu_r, cov_r)
+    xs_o, ps_o, _ = ours.rts_smoother(mu_o, cov_o)
+    np.testing.assert_allclose(xs_o, xs_r, atol=1e-8)
+    np.testing.assert_allclose(ps_o, ps_r, atol=1e-8)
+
+
+def test_rts_smoother_random_walk_equals_identity_fx():
+    zs = simulate(15)
+    ident = lambda x, dt: x.copy()  # noqa: E731
+    ref = make(FilterpyUKF, POINTS["merwe"](), f=ident)
+    ours = make(UnscentedKalmanFilter, POINTS["merwe"](), True, f=None)
+    mu, cov = ref.batch_filter(zs)
+    xs_r, ps_r, _ = ref.rts_smoother(mu, cov)
+    xs_o, ps_o, _ = ours.rts_smoother(mu, cov)
+    np.testing.assert_allclose(xs_o, xs_r, atol=1e-8)
+    np.testing.assert_allclose(ps_o, ps_r, atol=1e-8)
+
+
+def test_z_none_skips_update():
+    ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), True)
+    ukf.predict()
+    x, P = ukf.x.copy(), ukf.P.copy()
+    ukf.update(None)
+    assert np.array_equal(ukf.x, x) and np.array_equal(ukf.P_post, P)
+
+
+@pytest.mark.parametrize("vectorized", [False, True])
+@pytest.mark.parametrize("bad", [np.nan, np.inf])
+def test_non_finite_z_raises_and_leaves_state(vectorized, bad):
+    ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), vectorized)
+    ukf.predict()
+    x, P, step = ukf.x.copy(), ukf.P.copy(), ukf.step
+    with pytest.raises(ValueError, match="z must be finite"):
+        ukf.update(np.array([1.0, bad]))
+    assert np.array_equal(ukf.x, x) and np.array_equal(ukf.P, P) and ukf.step == step
+
+
+@pytest.mark.parametrize("vectorized", [False, True])
+def test_not_positive_definite_P_raises_numerical_error_with_step(vectorized):
+    ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), vectorized)
+    ukf.predict(); ukf.update(np.array([1.2, 0.1]))
+    ukf.P = -np.eye(3)
+    x = ukf.x.copy()
+    with pytest.raises(NumericalError, match="P is not positive definite at step 2") as info:
+        ukf.predict()
+    assert info.value.matrix == "P" and info.value.step == 2 and ukf.step == 1
+    assert isinstance(info.value, np.linalg.LinAlgError) and isinstance(info.value, ValueError)
+    assert np.array_equal(ukf.x, x) and np.array_equal(ukf.P, -np.eye(3))
+
+
+def test_not_positive_definite_S_raises():
+    ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), True)
+    ukf.predict()
+    with pytest.raises(NumericalError, match="S is not positive definite at step 1") as info:
+        ukf.update(np.array([1.0, 0.0]), R=-10 * np.eye(2))
+    assert info.value.matrix == "S"
+
+
+def test_vectorized_hx_shape_is_checked():
+    ukf = UnscentedKalmanFilter(3, 2, 0.1, lambda X: X[:, :1], fx, POINTS["simplex"](), vectorized=True)
+    ukf.predict()
+    with pytest.raises(ValueError, match=r"vectorized hx must map \(5, 3\) sigma points to shape \(5, 2\), got \(5, 1\)"):
+        ukf.update(np.zeros(2))
+
+
+@pytest.mark.parametrize(
+    "args, match",
+    [
+        ((0, 2, 0.1), "dim_x must be >= 1, got 0"),
+        ((3, 0, 0.1), "dim_z must be >= 1, got 0"),
+        ((3, 2, 0.0), r"dt must be finite and > 0, got 0.0"),
+        ((3, 2, -1.0), r"dt must be finite and > 0, got -1.0"),
+        ((4, 2, 0.1), "points.n must equal dim_x=4, got 3"),
+    ],
+)
+def test_constructor_errors(args, match):
+    with pytest.raises(ValueError, match=match):
+        UnscentedKalmanFilter(*args, hx, fx, POINTS["simplex"]())
+
+
+def test_wrong_shapes_of_state_raise():
+    ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), True)
+    ukf.x = np.zeros(4)
+    with pytest.raises(ValueError, match=r"x must have shape \(3,\), got \(4,\)"):
+        ukf.predict()
+    ukf.x = np.zeros(3)
+    ukf.P = np.eye(2)
+    with pytest.raises(ValueError, match=r"P must have shape \(3, 3\), got \(2, 2\)"):
+        ukf.predict()
+
+
+def test_pickle_mid_run_continues_identically():
+    zs = simulate(20)
+    a = make(UnscentedKalmanFilter, POINTS["simplex"](), True)
+    for z in zs[:10]:
+        a.predict(); a.update(z)
+    b = pickle.loads(pickle.dumps(a))
+    for z in zs[10:]:
+        a.predict(); a.update(z); b.predict(); b.update(z)
+    assert np.array_equal(a.x, b.x) and np.array_equal(a.P, b.P)
+
+
+def test_vectorized_measurement_size_may_change_with_R():
+    """Like filterpy: a second sensor with another z size, given its own hx and R."""
+    ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), True)
+    ukf.predict()
+    ukf.update(np.array([0.4]), R=np.eye(1) * 0.1, hx=lambda X: X[:, :1])
+    assert ukf.x.shape == (3,) and ukf.K.shape == (3, 1)
+
+
+# --------------------------------------------------------------------------- issue 15: drop-in
+def filterpy_style_residual_z(a, b):
+    """As filterpy's examples write it: for ONE row (wraps entry 1)."""
+    y = a - b
+    y[1] = (y[1] + np.pi) % (2 * np.pi) - np.pi
+    return y
+
+
+def test_vectorized_per_row_residual_is_detected_on_first_call():
+    ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), True)
+    ukf.residual_z = filterpy_style_residual_z
+    ukf.predict()
+    x, P = ukf.x.copy(), ukf.P.copy()
+    with pytest.raises(ValueError, match=r"vectorized residual_z differs from residual_z applied row by "
+                                         r"row .*y\[1\] selects a sigma point.*angle_residual"):
+        ukf.update(np.array([1.2, 0.1]))
+    assert np.array_equal(ukf.x, x) and np.array_equal(ukf.P, P) and ukf.step == 1
+
+
+def test_per_row_residual_is_fine_in_loop_mode():
+    ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), False)
+    ukf.residual_z = filterpy_style_residual_z
+    ukf.predict()
+    ukf.update(np.array([1.2, 0.1]))
+
+
+def test_vectorized_residual_x_and_shapes_are_checked():
+    ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), True)
+    ukf.residual_x = lambda a, b: (a - b)[..., :2]
+    with pytest.raises(ValueError, match=r"vectorized residual_x must map sigma points of shape \(5, 3\)"):
+        ukf.predict()
+    ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), True)
+    ukf.z_mean = lambda s, w: w @ s[:, :1]
+    ukf.predict()
+    with pytest.raises(ValueError, match=r"z_mean_fn must map sigma points of shape \(5, 2\).*got \(1,\)"):
+        ukf.update(np.array([1.2, 0.1]))
+
+
+def test_a_last_axis_residual_passes_and_equals_loop_mode():
+    def residual(a, b):
+        y = np.subtract(a, b)
+        y[..., 1] = (y[..., 1] + np.pi) % (2 * np.pi) - np.pi
+        return y
+
+    runs = []
+    for vectorized in (False, True):
+        ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), vectorized)
+        ukf.residual_z = residual
+        for z in simulate(5):
+            ukf.predict(); ukf.update(z)
+        runs.append(ukf)
+    np.testing.assert_allclose(runs[1].x, runs[0].x, atol=ATOL)
+
+
+@pytest.mark.parametrize("vectorized", [False, True])
+def test_column_z_is_flattened_in_both_modes(vectorized):
+    a = make(UnscentedKalmanFilter, POINTS["simplex"](), vectorized)
+    b = make(UnscentedKalmanFilter, POINTS["simplex"](), vectorized)
+    z = np.array([1.2, 0.1])
+    a.predict(); a.update(z)
+    b.predict(); b.update(z.reshape(2, 1))
+    np.testing.assert_array_equal(a.x, b.x)
+    np.testing.assert_array_equal(a.P, b.P)
+
+
+@pytest.mark.parametrize("vectorized", [False, True])
+def test_negative_Q_fails_at_predict_and_says_the_fix(vectorized):
+    ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), vectorized, f=None)
+    ukf.Q = -np.eye(3)
+    with pytest.raises(ValueError, match=r"Q must be positive semi-definite; smallest eigenvalue -1; "
+                                         r"Q must be a covariance, e.g. Q = np.diag\(variances\)"):
+        ukf.predict()
+    assert ukf.step == 0
+
+
+@pytest.mark.parametrize("vectorized", [False, True])
+def test_indefinite_P_prior_fails_at_predict_in_both_modes(vectorized):
+    ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), vectorized, f=lambda x, dt: 0.0 * x)
+    ukf.Q = np.zeros((3, 3))  # every sigma point maps to 0: P_prior = 0
+    x = ukf.x.copy()
+    with pytest.raises(NumericalError, match="P_prior is not positive definite at step 1") as info:
+        ukf.predict()
+    assert info.value.matrix == "P_prior" and ukf.step == 0 and np.array_equal(ukf.x, x)
+
+
+@pytest.mark.parametrize("name", ["P", "Q"])
+def test_scalar_covariance_message_says_eye(name):
+    ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), True)
+    setattr(ukf, name, 0.1)
+    with pytest.raises(ValueError, match=rf"{name} must have shape \(3, 3\), got \(\); .*"
+                                         rf"use {name} = {name.lower()} \* np.eye\(3\)"):
+        ukf.predict()
+
+
+@pytest.mark.parametrize("vectorized", [False, True])
+def test_step_is_the_time_step(vectorized):
+    ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), vectorized)
+    assert ukf.step == 0
+    ukf.predict()
+    assert ukf.step == 1
+    ukf.update(np.array([1.2, 0.1]))
+    assert ukf.step == 1
+    ukf.predict(); ukf.update(None)
+    assert ukf.step == 2
+    with pytest.raises(NumericalError, match="S is not positive definite at step 2") as info:
+        ukf.update(np.array([1.2, 0.1]), R=-10 * np.eye(2))
+    assert info.value.step == 2 and ukf.step == 2

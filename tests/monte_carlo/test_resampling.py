@@ -1,0 +1,206 @@
+"""Resampling schemes: edge cases, unbiasedness, the registry, property tests."""
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from filterwnn.monte_carlo import resampling
+from filterwnn.monte_carlo.resampling import (
+    SCHEMES,
+    effective_sample_size,
+    normalize_log_weights,
+    resample,
+)
+
+NAMES = sorted(SCHEMES)
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_equal_weights_keep_every_particle_for_low_variance_schemes(name, rng):
+    n = 17
+    idx = resample(np.full(n, 1 / n), name, rng=rng)
+    assert idx.shape == (n,)
+    if name == "multinomial":  # the only scheme allowed to duplicate here
+        assert np.all((idx >= 0) & (idx < n))
+    else:
+        np.testing.assert_array_equal(np.sort(idx), np.arange(n))
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_one_hot_weight_copies_that_particle(name, rng):
+    w = np.zeros(9)
+    w[4] = 1.0
+    for n in (1, 9, 25):
+        np.testing.assert_array_equal(resample(w, name, rng=rng, n=n), np.full(n, 4))
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_weight_only_on_even_indices_gives_only_even_indices(name, rng):
+    w = np.zeros(20)
+    w[::2] = rng.random(10) + 0.01
+    for _ in range(50):
+        idx = resample(w, name, rng=rng, n=31)
+        assert np.all(idx % 2 == 0)
+
+
+@pytest.mark.parametrize("name", NAMES)
+@pytest.mark.parametrize("n", [3, 10, 40])
+def test_up_and_down_sampling_give_requested_count(name, n, rng):
+    w = rng.random(10)
+    idx = resample(w, name, rng=rng, n=n)
+    assert idx.shape == (n,)
+    assert idx.dtype.kind == "i"
+    assert np.all((idx >= 0) & (idx < 10))
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_schemes_are_unbiased(name):
+    """Mean copy counts over R repetitions equal n * w.
+
+    Tolerance: each count's variance is at most that of multinomial resampling,
+    n w (1 - w), so the mean of R draws has standard error <= sqrt(n w (1 - w) / R);
+    we allow 5 standard errors (plus 1e-9), a false-alarm rate below 1e-5 per entry.
+    """
+    gen = np.random.default_rng(11)
+    w = gen.random(7) ** 2
+    w /= w.sum()
+    n, R = 13, 4000
+    counts = np.zeros(w.size)
+    for _ in range(R):
+        counts += np.bincount(resample(w, name, rng=gen, n=n), minlength=w.size)
+    mean = counts / R
+    se = np.sqrt(n * w * (1 - w) / R)
+    np.testing.assert_array_less(np.abs(mean - n * w), 5 * se + 1e-9)
+
+
+def test_residual_gives_floor_copies_deterministically(rng):
+    w = np.array([0.55, 0.3, 0.15])
+    for _ in range(20):
+        c = np.bincount(resample(w, "residual", rng=rng, n=10), minlength=3)
+        assert np.all(c >= np.floor(10 * w))
+        assert c.sum() == 10
+
+
+def test_residual_is_unbiased_where_filterpy_is_not():
+    """filterpy issue #290: its residual_resample is biased; ours matches n*w."""
+    gen = np.random.default_rng(3)
+    w = np.array([0.05, 0.05, 0.1, 0.8])
+    R = 4000
+    counts = np.zeros(4)
+    for _ in range(R):
+        counts += np.bincount(resample(w, "residual", rng=gen), minlength=4)
+    np.testing.assert_allclose(counts / R, 4 * w, atol=5 * np.sqrt(4 * 0.25 / R))
+
+
+def test_unknown_scheme_lists_valid_names():
+    with pytest.raises(ValueError, match="unknown resampling scheme 'magic'; valid: 'multinomial', 'residual'"):
+        resample([0.5, 0.5], "magic")
+
+
+@pytest.mark.parametrize(
+    "weights, match",
+    [
+        ([0.5, np.nan], "weights must be finite"),
+        ([0.5, -0.1], "weights must be non-negative"),
+        ([0.0, 0.0], "weights must have a positive sum"),
+        ([[0.5, 0.5]], "weights must be a non-empty 1-D array"),
+        ([], "weights must be a non-empty 1-D array"),
+    ],
+)
+def test_bad_weights_raise(weights, match, rng):
+    for fn in SCHEMES.values():
+        with pytest.raises(ValueError, match=match):
+            fn(weights, rng)
+
+
+def test_bad_n_and_rng_raise():
+    with pytest.raises(ValueError, match="n must be >= 1, got 0"):
+        resampling.systematic([1.0], 0, n=0)
+    with pytest.raises(TypeError, match="rng must be None, an int seed"):
+        resampling.systematic([1.0], "seed")
+
+
+def test_same_seed_same_indices():
+    w = np.random.default_rng(1).random(50)
+    for name in NAMES:
+        np.testing.assert_array_equal(resample(w, name, rng=5), resample(w, name, rng=5))
+
+
+def test_effective_sample_size():
+    assert effective_sample_size(np.ones(10)) == pytest.approx(10.0)
+    assert effective_sample_size([0, 0, 1.0]) == pytest.approx(1.0)
+    assert effective_sample_size([1.0, 1.0, 2.0]) == pytest.approx(16 / 6)
+
+
+def test_normalize_log_weights_survives_underflow():
+    w, lse = normalize_log_weights(np.array([-2000.0, -2001.0, -np.inf]))
+    np.testing.assert_allclose(w, [1 / (1 + np.exp(-1)), np.exp(-1) / (1 + np.exp(-1)), 0.0])
+    assert lse == pytest.approx(-2000 + np.log1p(np.exp(-1)))
+    w, lse = normalize_log_weights(np.array([-np.inf, -np.inf]))
+    assert lse == -np.inf and np.all(np.isnan(w))
+    with pytest.raises(ValueError, match="NaN"):
+        normalize_log_weights(np.array([0.0, np.nan]))
+
+
+# --- property tests ---------------------------------------------------------------------
+
+weights_strategy = st.lists(
+    st.one_of(st.just(0.0), st.floats(1e-12, 1e6, allow_nan=False, allow_infinity=False)),
+    min_size=1,
+    max_size=60,
+).filter(lambda w: sum(w) > 0)
+
+
+@settings(max_examples=100, deadline=None)
+@given(
+    w=weights_strategy,
+    n=st.integers(1, 200),
+    name=st.sampled_from(NAMES),
+    seed=st.integers(0, 2**32 - 1),
+)
+def test_property_indices_valid_and_only_positive_weights(w, n, name, seed):
+    w = np.asarray(w)
+    idx = resample(w, name, rng=seed, n=n)
+    assert idx.shape == (n,)
+    assert np.all((idx >= 0) & (idx < w.size))
+    assert np.all(w[idx] > 0)
+
+
+@settings(max_examples=100, deadline=None)
+@given(
+    w=weights_strategy,
+    n=st.integers(1, 200),
+    name=st.sampled_from(["systematic", "stratified", "residual"]),
+    seed=st.integers(0, 2**32 - 1),
+)
+def test_property_low_variance_counts_bounded(w, n, name, seed):
+    """Systematic and residual counts lie within one of n*w; stratified within two."""
+    w = np.asarray(w) / np.sum(w)
+    counts = np.bincount(resample(w, name, rng=seed, n=n), minlength=w.size)
+    slack = {"systematic": 1, "stratified": 2}.get(name)
+    if name == "residual":
+        assert np.all(counts >= np.floor(n * w * (1 - 1e-12)))
+    else:
+        assert np.all(np.abs(counts - n * w) <= slack + 1e-9)
+
+
+def test_a_callable_is_accepted_wherever_a_scheme_name_is():
+    from filterpy.monte_carlo import systematic_resample
+
+    from filterwnn import BootstrapParticleFilter
+    from filterwnn.monte_carlo.resampling import SCHEMES, get_scheme
+
+    w = np.array([0.1, 0.2, 0.3, 0.4])
+    idx = resample(w, systematic_resample)
+    assert idx.shape == (4,) and set(idx) <= {0, 1, 2, 3}
+    mine = resample(w, lambda w, rng, n: np.repeat(np.argmax(w), n), rng=0, n=3)
+    np.testing.assert_array_equal(mine, [3, 3, 3])
+    with pytest.raises(ValueError, match="one-argument resampling function draws len"):
+        get_scheme(systematic_resample)(w, None, 5)
+    assert sorted(SCHEMES) == ["multinomial", "residual", "stratified", "systematic"]
+    pf = BootstrapParticleFilter(1, 1, 1.0, lambda x: x, None, 20, vectorized=True, rng=0,
+                                 resampling=systematic_resample)
+    pf.predict()
+    pf.update(np.array([0.3]))
+    assert pf.resampled_history == [True]

@@ -1,0 +1,232 @@
+"""Tests of GPSDRFilter: starts and stops handled by default, per-fix GPS sigma, the three kinds."""
+
+import numpy as np
+import pytest
+from filterpy.kalman import ExtendedKalmanFilter
+
+from filterwnn.navigation.dead_reckoning import GPSDRModel, dr_residual
+from filterwnn.navigation.gpsdr import KINDS, LOW_SPEED, STANDSTILL_SPEED, GPSDRFilter
+from filterwnn.navigation.scenarios import SCENARIOS, Scenario, simulate_scenario
+
+# starts from rest, turns, stops at a light for 10 s, pulls away again, then a 30 s tunnel;
+# 2 % odometer scale and a 2-degree heading bias, 1 Hz GPS of 3 m
+FROM_REST = Scenario(name="from rest", duration=120.0, speed=0.0, heading=60.0,
+                     speed_changes=((10.0, 20.0, 12.0), (60.0, 66.0, -12.0), (76.0, 84.0, 10.0)),
+                     turns=((30.0, 40.0, 90.0),), gps_rate=1.0, sigma_gps=3.0, odometer_scale=1.02,
+                     heading_bias=2.0, outages=((90.0, 120.0),))
+
+
+def _end_error(run, est):
+    return float(np.hypot(*(est[-1, [0, 3]] - run.x_true[-1, [0, 3]])))
+
+
+@pytest.fixture(scope="module")
+def rest_run():
+    return simulate_scenario(FROM_REST, rng=0)
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_drive_from_rest_with_defaults_ends_close(rest_run, kind):
+    """The issue: with the old defaults a drive from rest ends tens to hundreds of metres off."""
+    run = rest_run
+    m = GPSDRModel(augmented=True)
+    f = GPSDRFilter(m, kind, x0=np.r_[run.x0, 1.0, 0.0])
+    est = f.batch_filter(run.z_dr, run.gps_list())
+    assert np.all(np.isfinite(est)) and np.all(np.isfinite(f.P))
+    assert _end_error(run, est) < 5.0
+    assert abs(est[-1, 6] - 1.02) < 0.01 and abs(np.degrees(est[-1, 7]) - 2.0) < 0.5
+
+
+def test_switching_the_logic_off_fails_from_rest(rest_run):
+    """The same filter without the standstill/low-speed logic: the test above can fail."""
+    run = rest_run
+    m = GPSDRModel(augmented=True)
+    off = GPSDRFilter(m, "ekf", x0=np.r_[run.x0, 1.0, 0.0], standstill_speed=0.0, low_speed=0.0)
+    assert _end_error(run, off.batch_filter(run.z_dr, run.gps_list())) > 50.0
+
+
+def test_motion_thresholds_are_speeds_not_exact_zero():
+    m = GPSDRModel(dt=0.1)
+    f = GPSDRFilter(m)
+    assert f.standstill_speed == STANDSTILL_SPEED and f.low_speed == LOW_SPEED
+    creep = 0.03 * 0.44704  # 0.03 mph, what a standing car's CAN speed reads
+    assert f.classify([0.3, creep * 0.1]) == "still"
+    assert f.classify([0.3, 0.0]) == "still"
+    assert f.classify([0.3, 1.0 * 0.1]) == "slow"
+    assert f.classify([0.3, 10.0 * 0.1]) == "moving"
+    f.update([0.3, creep * 0.1])
+    assert f.motion == "still"
+    g = GPSDRFilter(m, standstill_speed=0.0, low_speed=0.0)
+    assert g.classify([0.3, 0.0]) == "moving"
+
+
+def test_creeping_can_speed_holds_the_car():
+    """A standing car whose odometer creeps at 0.01-0.03 mph stays put (zero-velocity updates)."""
+    m = GPSDRModel(dt=0.1, augmented=True)
+    f = GPSDRFilter(m, x0=np.r_[np.zeros(6), 1.0, 0.0])
+    rng = np.random.default_rng(1)
+    for _ in range(600):
+        f.predict()
+        f.update([rng.uniform(-np.pi, np.pi), rng.uniform(0.0, 0.0013)])
+    assert np.hypot(f.x[0], f.x[3]) < 0.05 and np.hypot(f.x[1], f.x[4]) < 0.01
+
+
+def test_per_fix_gps_sigma_is_the_noise():
+    m = GPSDRModel(dt=0.1, sigma_gps=3.0)
+    z, R, kw = m.measurement_for([0.5, 1.0], [1.0, 2.0], gps_sigma=7.0)
+    assert kw["gps"] and np.allclose(R[2:, 2:], 49.0 * np.eye(2)) and R[0, 0] == m.R[0, 0]
+    _, R0, _ = m.measurement_for([0.5, 1.0], [1.0, 2.0])
+    assert np.allclose(R0[2:, 2:], 9.0 * np.eye(2))
+    # a fix said to be poor moves the estimate less
+    moves = []
+    for sd in (1.0, 30.0):
+        f = GPSDRFilter(m, x0=np.array([0.0, 10.0, 0.0, 0.0, 10.0, 0.0]))
+        f.P = np.diag([100.0, 0.25, 0.01, 100.0, 0.25, 0.01])
+        f.predict()
+        f.update([np.pi / 4, np.sqrt(2.0)], [20.0, 20.0], gps_sigma=sd)
+        moves.append(np.hypot(f.x[0] - 1.0, f.x[3] - 1.0))
+    assert moves[0] > 5 * moves[1]
+    with pytest.raises(ValueError, match="gps_sigma"):
+        m.measurement_for([0.5, 1.0], [1.0, 2.0], gps_sigma=-1.0)
+
+
+def test_study_numbers_are_the_old_update_path():
+    """With the full update, GPSDRFilter equals a filterpy EKF updated by hand with the study's old flags."""
+    run = simulate_scenario(SCENARIOS["gpsdr"](duration=30.0), rng=3)
+    m = GPSDRModel(augmented=True)
+    x0 = np.r_[run.x0, 1.0, 0.0]
+    new = GPSDRFilter(m, "ekf", x0=x0, hold_without_gps=False).batch_filter(run.z_dr, run.gps_list())
+    kf = m.ekf(x0=x0)
+    old = []
+    for k, g in enumerate(run.gps_list()):  # the update the study used to write by hand
+        kf.predict()
+        slow = run.z_dr[k, 1] < LOW_SPEED * m.dt
+        z, R, kw = m.measurement_for(run.z_dr[k], g, low_speed=bool(slow), zupt=bool(run.z_dr[k, 1] <= 0))
+        args = (kw["gps"], kw["velocity"])
+        kf.update(z, m.HJacobian, m.hx, R=R, args=args, hx_args=args,
+                  residual=np.subtract if kw["velocity"] else dr_residual)
+        old.append(kf.x.copy())
+    np.testing.assert_allclose(new, np.array(old), rtol=1e-12, atol=1e-12)
+
+
+def test_filter_api_and_bad_arguments():
+    m = GPSDRModel(augmented=True)
+    f = GPSDRFilter(m, "sukf")
+    assert f.x.shape == (8,) and f.P.shape == (8, 8)
+    assert isinstance(GPSDRFilter(m).kf, ExtendedKalmanFilter)
+    with pytest.raises(ValueError, match="kind"):
+        GPSDRFilter(m, "pf")
+    with pytest.raises(TypeError, match="model must be a GPSDRModel"):
+        GPSDRFilter("model")
+    with pytest.raises(ValueError, match="standstill_speed"):
+        GPSDRFilter(m, standstill_speed=-1.0)
+    with pytest.raises(ValueError, match="finite"):
+        f.update([np.nan, 1.0])
+    with pytest.raises(ValueError, match="z_dr must have shape"):
+        f.batch_filter(np.zeros((3, 3)))
+    with pytest.raises(ValueError, match="one entry per DR sample"):
+        f.batch_filter(np.zeros((3, 2)), [None])
+    with pytest.raises(ValueError, match="x0 must have length 8"):
+        GPSDRFilter(m, x0=np.zeros(6))
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_without_gps_only_velocity_and_acceleration_move(rest_run, kind):
+    """Position and calibration are consider states between fixes; a fix updates everything."""
+    run = rest_run
+    m = GPSDRModel(augmented=True, rate_bias=True)
+    f = GPSDRFilter(m, kind, x0=np.r_[run.x0, m.x0[6:]])
+    for k in range(150):
+        f.predict()
+        before = f.x.copy()
+        f.update(run.z_dr[k], None)
+        np.testing.assert_array_equal(f.x[f.held_states], before[f.held_states])
+    assert np.all(np.linalg.eigvalsh(f.P) > 0)
+    before = f.x.copy()
+    f.predict()
+    f.update(run.z_dr[150], run.x_true[150, [0, 3]] + 2.0)
+    assert np.all(f.x[[0, 3]] != before[[0, 3]])
+
+
+def test_an_outage_from_the_first_second():
+    """The sample drive with 30 s without GPS from the start (a garage): the full update trades speed
+    against scale and track against heading bias and ends far off; the held update stays near the raw DR."""
+    from filterwnn.navigation.drives import read_drive_csv, sample_drive_path
+
+    run = read_drive_csv(sample_drive_path())
+    m = GPSDRModel(augmented=True, q=2.0, sigma_gps=1.0, q_scale=1e-6, q_bias=1e-6)
+    cut = run.gps_list()
+    cut[:300] = [None] * 300
+    ends = {}
+    for hold in (True, False):
+        est = GPSDRFilter(m, x0=np.r_[run.x0, 1.0, 0.0], hold_without_gps=hold).batch_filter(run.z_dr[:300], cut[:300])
+        ends[hold] = float(np.hypot(*(est[-1, [0, 3]] - run.x_true[299, [0, 3]])))
+    z = run.z_dr[:300]
+    p = run.x0[[0, 3]] + np.sum(z[:, 1:] * np.stack([np.sin(z[:, 0]), np.cos(z[:, 0])], 1), axis=0)
+    raw = float(np.hypot(*(p - run.x_true[299, [0, 3]])))
+    assert ends[True] < raw + 3.0 and ends[False] > 5 * ends[True], (ends, raw)
+
+
+def test_grades_map_specifications_to_settings():
+    from filterwnn.navigation.dead_reckoning import SENSOR_GRADES
+
+    phone = GPSDRModel.from_grade("phone", dt=0.1)
+    spec = SENSOR_GRADES["phone"]
+    assert phone.dim_x == 9 and phone.rate_bias
+    assert phone.sigma_gps == spec["gps_sigma_m"]
+    assert np.isclose(phone.sigma_heading, np.deg2rad(spec["heading_noise_deg"]))
+    assert np.isclose(phone.q_bias, (np.deg2rad(spec["gyro_arw_deg_rt_h"]) / 60) ** 2)
+    assert np.isclose(np.sqrt(phone.P0[8, 8]), np.deg2rad(spec["gyro_bias_deg_s"]))
+    survey = GPSDRModel.from_grade("survey")
+    assert survey.dim_x == 8 and survey.sigma_gps == 1.5
+    own = GPSDRModel.from_grade({"gps_sigma_m": 2.5, "rate_bias": False}, augmented=True)
+    assert own.dim_x == 8 and own.sigma_gps == 2.5
+    assert GPSDRModel.from_grade("phone", q=0.5).q == 0.5          # overrides win
+    assert GPSDRModel.from_grade("phone", augmented=False, rate_bias=False).dim_x == 6
+    with pytest.raises(ValueError, match="grade must be one of"):
+        GPSDRModel.from_grade("military")
+    with pytest.raises(ValueError, match="unknown keys"):
+        GPSDRModel.from_grade({"gps_sigma": 2.0})
+    with pytest.raises(ValueError, match="rate_bias=True needs augmented=True"):
+        GPSDRModel(rate_bias=True)
+
+
+def test_rate_bias_state_jacobians_and_transition():
+    m = GPSDRModel(augmented=True, rate_bias=True, dt=0.1)
+    x = np.array([1.0, 5.0, 0.1, 2.0, 7.0, -0.1, 1.02, 0.03, 0.001])
+    np.testing.assert_allclose(m.fx(x), m.F @ x, atol=1e-12)
+    assert m.fx(x)[7] == pytest.approx(0.03 + 0.1 * 0.001)
+    for gps in (False, True):
+        for velocity in (False, True):
+            f = lambda v: m.hx(v, gps=gps, velocity=velocity)  # noqa: E731
+            cols = [(f(x + d) - f(x - d)) / 2e-6 for d in 1e-6 * np.eye(9)]
+            np.testing.assert_allclose(m.HJacobian(x, gps=gps, velocity=velocity), np.stack(cols, -1), atol=1e-6)
+
+
+def test_rate_bias_state_follows_a_drifting_gyro():
+    """A MEMS gyro's 0.05 deg/s residual bias: the 9-state filter estimates it and ends a later outage closer."""
+    sc = SCENARIOS["gpsdr"](heading_drift=0.05, heading_bias=0.0, outages=((150.0, 180.0),),
+                            duration=180.0, sigma_gps=5.0)
+    errs = {False: [], True: []}
+    for seed in (0, 1):
+        run = simulate_scenario(sc, rng=seed)
+        for rate in (False, True):
+            m = GPSDRModel.from_grade("phone", rate_bias=rate)
+            est = GPSDRFilter(m, "ekf", x0=np.r_[run.x0, m.x0[6:]]).batch_filter(run.z_dr, run.gps_list())
+            errs[rate].append(_end_error(run, est))
+            if rate:
+                assert abs(np.degrees(est[-1, 8]) - 0.05) < 0.01
+    assert np.mean(errs[True]) < 0.5 * np.mean(errs[False])
+
+
+@pytest.mark.parametrize("true_sigma", [1.0, 8.0])
+def test_gps_noise_estimated_from_innovations(true_sigma):
+    """Fixes without an accuracy of their own: the filter learns their noise (the model says 3 m)."""
+    sc = SCENARIOS["gpsdr"](sigma_gps=true_sigma, outages=(), duration=150.0)
+    run = simulate_scenario(sc, rng=0)
+    f = GPSDRFilter(GPSDRModel(augmented=True, sigma_gps=3.0), x0=np.r_[run.x0, 1.0, 0.0], gps_window=60)
+    f.batch_filter(run.z_dr, run.gps_list())
+    assert abs(f.gps_sigma_est / true_sigma - 1.0) < 0.25
+    assert GPSDRFilter(GPSDRModel()).gps_sigma_est is None
+    with pytest.raises(ValueError, match="gps_window must be >= 0"):
+        GPSDRFilter(GPSDRModel(), gps_window=-1)

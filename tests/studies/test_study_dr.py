@@ -1,0 +1,174 @@
+"""Tests of the dead-reckoning study: reproducibility, jobs-independence, outputs."""
+
+import argparse
+import os
+
+import numpy as np
+import pytest
+
+from filterwnn.studies import dr
+
+SMALL = dict(scenarios=["straight", "gpsdr"], n_runs=2, n_steps=120,
+             filters=["EKF", "EKF-oracle", "AEKF", "NN", "EKF-8", "DR-only"], seed=3)
+
+
+def _numbers(res):
+    return [{k: v for k, v in r.items() if k != "us_per_step"} for r in res.table]
+
+
+@pytest.fixture(scope="module")
+def small_result():
+    return dr.run_study(**SMALL)
+
+
+def test_same_seed_same_numbers(small_result):
+    again = dr.run_study(**SMALL)
+    assert _numbers(small_result) == _numbers(again)
+    for name in small_result.errors:
+        for f, e in small_result.errors[name]["filters"].items():
+            np.testing.assert_array_equal(e, again.errors[name]["filters"][f])
+    other = dr.run_study(**{**SMALL, "seed": 4})
+    assert _numbers(small_result) != _numbers(other)
+
+
+def test_jobs_do_not_change_numbers(small_result):
+    par = dr.run_study(**{**SMALL, "jobs": 2})
+    assert _numbers(small_result) == _numbers(par)
+
+
+def test_table_contents(small_result):
+    rows = {(r["scenario"], r["filter"]): r for r in small_result.table}
+    assert set(rows) == {("straight", f) for f in ("EKF", "EKF-oracle", "AEKF", "NN")} | {
+        ("gpsdr", f) for f in ("EKF", "EKF-8", "DR-only")}
+    for r in small_result.table:
+        assert r["runs"] == 2 and np.isfinite(r["final_median"]) and r["div"] >= 0
+    assert rows[("straight", "EKF-oracle")]["div"] == 0
+    e = small_result.errors["straight"]["filters"]["EKF"]
+    assert e.shape == (2, 120, 2)
+
+
+def test_common_random_numbers_across_filters():
+    # EKF and the oracle EKF see identical data: identical before the noise switch
+    res = dr.run_study(scenarios=["straight"], n_runs=2, n_steps=200, filters=["EKF", "EKF-oracle"], seed=1)
+    f = res.errors["straight"]["filters"]
+    np.testing.assert_array_equal(f["EKF"], f["EKF-oracle"])
+
+
+def test_write_outputs_and_cli(small_result, tmp_path):
+    paths = dr.write_outputs(small_result, str(tmp_path))
+    names = {os.path.basename(p) for p in paths}
+    assert {"dr_table.md", "dr_table.csv", "dr_straight_road.png", "gps_dr_with_outages.png"} <= names
+    text = (tmp_path / "dr_table.md").read_text()
+    assert "| EKF-oracle |" in text and "EKF-8" in text
+    parser = argparse.ArgumentParser()
+    dr.add_arguments(parser)
+    args = parser.parse_args(["--runs", "1", "--scenarios", "straight", "--filters", "EKF",
+                              "--out", str(tmp_path / "cli"), "--no-figures", "--no-progress", "--jobs", "1"])
+    assert dr.run(args) == 0
+    assert (tmp_path / "cli" / "dr_table.csv").exists()
+
+
+def test_bad_arguments():
+    with pytest.raises(ValueError, match="scenario"):
+        dr.run_study(scenarios=["moon"], n_runs=1)
+    with pytest.raises(ValueError, match="filters"):
+        dr.run_study(scenarios=["straight"], n_runs=1, filters=["KF9"])
+
+
+@pytest.mark.slow
+def test_long_run_100k_steps_stays_finite():
+    from filterwnn.navigation.dead_reckoning import DRModel, dr_residual
+    from filterwnn.navigation.scenarios import SCENARIOS, simulate_scenario
+    from filterwnn.navigation.neural_filter import NeuralFilter, make_training_set, paper_training_states
+
+    sc = SCENARIOS["turns"](duration=10000.0, turns=((20.0, 9990.0, 3000.0),), speed_changes=())
+    run = simulate_scenario(sc, rng=0)
+    assert len(run.t) == 100_000
+    m = DRModel()
+    kf = m.ekf(x0=run.x0)
+    for z in run.z_dr:
+        kf.predict()
+        kf.update(z, m.HJacobian, m.hx, residual=dr_residual)
+    assert np.all(np.isfinite(kf.x)) and np.all(np.isfinite(kf.P))
+    assert np.all(np.linalg.eigvalsh(kf.P) > 0)
+    Xp, Z, X = make_training_set(paper_training_states(), m, rng=0)
+    nf = NeuralFilter(m, rng=1).fit(Xp, Z, X)
+    means = nf.reset(run.x0).batch_filter(run.z_dr)
+    assert np.all(np.isfinite(means))
+
+
+def test_real_drive_outages_never_nan():
+    """The onavdata car drive: outages anywhere, including before the car first moves."""
+    pytest.importorskip("onavdata", reason="the real drive needs the optional 'onavdata' package (data extra)")
+    run = dr.load_car_drive()
+    n = len(run.t)
+    assert run.x_true.shape == (n, 6) and run.z_dr.shape == (n, 2)
+    assert np.all(np.isfinite(run.x_true)) and np.all(np.isfinite(run.z_dr)) and np.all(np.isfinite(run.z_gps))
+    assert np.all(run.z_dr[:, 1] >= 0) and np.any(run.z_dr[:, 1] == 0)  # stands still at times
+    first_move = run.t[np.argmax(np.hypot(run.x_true[:, 1], run.x_true[:, 4]) > 1.0)]
+    assert first_move > 30.0
+    cut = dr.with_outage(run, 0.0, 30.0)
+    assert np.all(cut.t[cut.gps_steps] >= 30.0) and len(cut.gps_steps) < len(run.gps_steps)
+    res = dr.real_drive_outages(run, n_placements=3, length=30.0)
+    assert res["starts"][0] == 0.0 and res["starts"][0] < first_move
+    for name in ("DR-mech", "EKF", "EKF-8"):
+        assert res[name].shape == (3,) and np.all(np.isfinite(res[name]))
+    assert "| EKF-8 |" in dr.real_drive_table(res)
+
+
+def test_real_drive_skips_cleanly_without_onavdata(monkeypatch):
+    import importlib.resources
+
+    def missing(name):
+        raise ModuleNotFoundError(f"No module named {name!r}")
+
+    monkeypatch.setattr(importlib.resources, "files", missing)
+    with pytest.raises(ImportError, match="pip install"):
+        dr.load_car_drive(dr.CAR_DRIVE)
+
+
+CACHED = dict(scenarios=["straight", "gpsdr"], n_runs=2, n_steps=60, filters=["EKF", "NN", "EKF-8"], seed=5)
+
+
+def test_jobs_and_cache_give_identical_tables(tmp_path, monkeypatch):
+    one = dr.run_study(**CACHED, cache_dir=str(tmp_path))
+    assert len(list(tmp_path.glob("*.pkl"))) == 4  # one per (scenario, run)
+    two = dr.run_study(**CACHED, jobs=2)
+    assert _numbers(one) == _numbers(two)
+
+    def must_not_run(*args, **kwargs):
+        raise AssertionError("a cached run ran again")
+
+    monkeypatch.setattr(dr, "run_one", must_not_run)
+    again = dr.run_study(**CACHED, cache_dir=str(tmp_path))
+    assert dr.markdown_table(again) == dr.markdown_table(one)  # timings come from the cache too
+    for name in one.errors:
+        for f, e in one.errors[name]["filters"].items():
+            np.testing.assert_array_equal(e, again.errors[name]["filters"][f])
+
+
+def test_stream_keys_are_fixed_per_name(monkeypatch):
+    for kind in ("dr", "gpsdr"):
+        keys = [f.stream for f in dr.FILTER_TABLE if f.scenario == kind]
+        assert len(keys) == len(set(keys)), kind
+    sc = dr.SCENARIOS["straight"](duration=8.0)
+    seed = np.random.SeedSequence(11).spawn(1)[0]
+    before = dr.run_one(sc, ["EKF", "NN"], seed)["est"]
+    # a new filter (placed first, with a new key) changes no other filter's numbers
+    new = dr.DRFilter("NN-new", "dr", dr.FILTERS[("dr", "NN")].build, 99)
+    monkeypatch.setattr(dr, "FILTER_TABLE", (new,) + dr.FILTER_TABLE)
+    monkeypatch.setattr(dr, "FILTERS", {**dr.FILTERS, ("dr", "NN-new"): new})
+    after = dr.run_one(sc, ["NN-new", "EKF", "NN"], seed)["est"]
+    for f in ("EKF", "NN"):
+        np.testing.assert_array_equal(before[f], after[f])
+    assert not np.array_equal(after["NN-new"], after["NN"])  # its own stream, not NN's
+
+
+def test_cli_cache_and_backend_options(tmp_path):
+    parser = argparse.ArgumentParser()
+    dr.add_arguments(parser)
+    args = parser.parse_args(["--runs", "1", "--scenarios", "straight", "--filters", "EKF", "--out", str(tmp_path),
+                              "--no-figures", "--no-progress", "--jobs", "1", "--backend", "threading",
+                              "--cache", str(tmp_path / "cache")])
+    assert dr.run(args) == 0
+    assert len(list((tmp_path / "cache").glob("*.pkl"))) == 1
