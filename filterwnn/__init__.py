@@ -21,7 +21,7 @@ __version__ = "0.2.0"
 from ._lazy import install_moved, lazy_exports
 from ._validation import NumericalError
 
-#: Old flat module -> its home in the subpackages.
+#: Old flat module -> its home in the subpackages (``scenarios``: its readers went to ``drives``).
 MOVED_MODULES = {
     "sigma_points": "kalman.sigma_points",
     "unscented": "kalman.unscented",
@@ -37,7 +37,7 @@ MOVED_MODULES = {
     "dead_reckoning": "navigation.dead_reckoning",
     "gpsdr": "navigation.gpsdr",
     "neural_filter": "navigation.neural_filter",
-    "scenarios": "navigation.scenarios",
+    "scenarios": ("navigation.scenarios", "navigation.drives"),
     "plotting": "studies.plotting",
 }
 install_moved(__name__, MOVED_MODULES)

@@ -13,6 +13,7 @@ import importlib
 import importlib.abc
 import importlib.util
 import sys
+import types
 import warnings
 
 
@@ -42,17 +43,41 @@ def lazy_exports(package, exports):
 
 
 class _MovedLoader(importlib.abc.Loader):
-    def __init__(self, new):
-        self.new = new
+    """An old path: the new module itself, or a module that reads through several new homes."""
+
+    def __init__(self, homes):
+        self.homes = homes
 
     def create_module(self, spec):
-        warnings.warn(f"{spec.name} moved to {self.new}: import it from there", DeprecationWarning, stacklevel=4)
-        module = importlib.import_module(self.new)
-        self._spec = module.__spec__
-        return module
+        where = " and ".join(self.homes)
+        warnings.warn(f"{spec.name} moved to {where}: import it from there", DeprecationWarning, stacklevel=4)
+        if len(self.homes) == 1:
+            module = importlib.import_module(self.homes[0])
+            self._spec = module.__spec__
+            return module
+        self._spec = None
+        return _ReadThrough(spec.name, [importlib.import_module(h) for h in self.homes])
 
     def exec_module(self, module):
-        module.__spec__ = self._spec  # the import system set the alias's spec on the real module
+        if self._spec is not None:
+            module.__spec__ = self._spec  # the import system set the alias's spec on the real module
+
+
+class _ReadThrough(types.ModuleType):
+    """A module whose names are those of its homes, the first home that has the name."""
+
+    def __init__(self, name, homes):
+        super().__init__(name, f"Moved: its names are in {', '.join(h.__name__ for h in homes)}.")
+        self._homes = homes
+
+    def __getattr__(self, name):
+        for home in self._homes:
+            if hasattr(home, name):
+                return getattr(home, name)
+        raise AttributeError(f"module {self.__name__!r} has no attribute {name!r}")
+
+    def __dir__(self):
+        return sorted(set().union(*(dir(h) for h in self._homes)))
 
 
 class MovedModules(importlib.abc.MetaPathFinder):
@@ -60,16 +85,20 @@ class MovedModules(importlib.abc.MetaPathFinder):
 
     def __init__(self, package, moved):
         self.package = package
-        self.moved = dict(moved)
+        self.moved = {old: (new,) if isinstance(new, str) else tuple(new) for old, new in moved.items()}
 
     def find_spec(self, fullname, path=None, target=None):
         head, _, tail = fullname.partition(".")
         if head != self.package or tail not in self.moved:
             return None
-        return importlib.util.spec_from_loader(fullname, _MovedLoader(f"{head}.{self.moved[tail]}"))
+        return importlib.util.spec_from_loader(fullname, _MovedLoader([f"{head}.{h}" for h in self.moved[tail]]))
 
 
 def install_moved(package, moved):
-    """Register the old paths of ``package`` once (idempotent on re-import)."""
+    """Register the old paths of ``package`` once (idempotent on re-import).
+
+    ``moved`` maps each old module (relative to ``package``) to its new home, or to a tuple of
+    homes when its names went to several modules (the first home that has a name gives it).
+    """
     if not any(isinstance(f, MovedModules) and f.package == package for f in sys.meta_path):
         sys.meta_path.append(MovedModules(package, moved))

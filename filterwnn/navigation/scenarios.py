@@ -56,23 +56,6 @@ __all__ = [
 ]
 
 
-#: Names that moved to :mod:`filterwnn.navigation.drives` (the readers of recorded drives).
-_MOVED_TO_DRIVES = ("read_drive_csv", "DRIVE_CSV_COLUMNS", "sample_drive_path", "load_car_drive", "CAR_DRIVE",
-                    "CAR_DRIVES", "MIN_ODOMETER_SPEED")
-
-
-def __getattr__(name):
-    """The readers' old home: they still import from here, with a warning naming the new one."""
-    if name in _MOVED_TO_DRIVES:
-        import importlib
-        import warnings
-
-        warnings.warn(f"{name} moved to filterwnn.navigation.drives: from filterwnn.navigation.drives import {name}",
-                      DeprecationWarning, stacklevel=2)
-        return getattr(importlib.import_module("filterwnn.navigation.drives"), name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
 # --------------------------------------------------------------------------- simulation
 
 
