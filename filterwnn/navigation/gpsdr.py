@@ -19,6 +19,36 @@ Both thresholds are public attributes, on by default; set ``low_speed=0`` and
 receiver's reported horizontal accuracy) is used as its noise when given
 (``update(..., gps_sigma=...)``); otherwise the model's ``sigma_gps``.
 
+What the filter does when GPS lies (each part a public setting, on by default):
+
+* **Integrity gate.** Each fix's innovation ``y = z - [e, n]^-`` is tested against its
+  predicted covariance ``S = P^-_{pos} + R_{gps}`` before it is used: the normalised
+  innovation squared ``NIS = y^T S^{-1} y`` is chi-square with 2 degrees of freedom for a
+  consistent filter, and a fix with ``NIS > gate`` (default :data:`GATE`, the 99.9 %
+  point, 13.8) is rejected: the step updates from dead reckoning alone. Rejections are
+  counted (:attr:`GPSDRFilter.n_rejected`) and their steps kept
+  (:attr:`GPSDRFilter.rejected_steps`); :attr:`GPSDRFilter.fix_status` says what became of
+  the last fix (Bar-Shalom, Li and Kirubarajan 2001, sections 5.4 and 11.2).
+* **Re-acquisition.** After :data:`REACQUIRE_AFTER` rejections in a row the filter, not the
+  fixes, is taken to be lost (a start far off, a wrong heading, a long drift): the position
+  variances are raised to the innovation's square (their cross-covariances dropped) and the
+  fix is accepted, counted in :attr:`GPSDRFilter.n_reacquired`.
+* **Calibration only where it is observable.** The odometer scale, heading bias and gyro
+  rate bias learn from a fix only when it was accepted, the car is moving
+  (``motion == "moving"``: the heading is the track's, the scale multiplies a real speed)
+  and it has driven :data:`CALIBRATION_SPACING` fix sigmas since the last fix they learnt
+  from (a receiver's errors are correlated over seconds, so fixes closer than their own
+  noise carry little new information about a bias). Otherwise they are Schmidt
+  "consider" states (zero gain, their uncertainty still counted). A calibration state that
+  leaves :data:`CALIBRATION_SIGMAS` prior standard deviations of its prior mean (the grade's
+  specification) is held at that bound, with a warning naming the step.
+* **Numerical safety.** After every update ``P`` is checked by Cholesky; one that is not
+  positive definite is repaired (symmetrised, eigenvalues floored at 1e-12 of the
+  largest), counted in :attr:`GPSDRFilter.n_repairs`, with a warning naming the step.
+* **Consistency monitor.** The mean NIS over the last :data:`NIS_WINDOW` fixes is compared
+  with the 99.9 % point of its chi-square distribution; above it, a warning names the step
+  and the remedy (the fixes' reported accuracy is optimistic, or the grade too good).
+
 >>> import numpy as np
 >>> from filterwnn.navigation.dead_reckoning import GPSDRModel
 >>> from filterwnn.navigation.scenarios import Scenario, simulate_scenario
@@ -35,17 +65,20 @@ True
 
 from __future__ import annotations
 
+import warnings
 from collections import deque
 
 import numpy as np
 from filterpy.kalman import ExtendedKalmanFilter, MerweScaledSigmaPoints
 
-from .._validation import as_state, check_choice, check_covariance, check_positive
+from .._linalg import repair_pd
+from .._validation import as_state, check_choice, check_covariance, check_positive, check_positive_int
 from .dead_reckoning import GPSDRModel, dr_residual, dr_z_mean
 from ..kalman.sigma_points import SphericalSimplexSigmaPoints
 from ..kalman.unscented import UnscentedKalmanFilter
 
-__all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS"]
+__all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS", "GATE", "REACQUIRE_AFTER", "NIS_WINDOW",
+           "CALIBRATION_SIGMAS", "CALIBRATION_SPACING"]
 
 #: Default standstill threshold (m/s) on the odometer speed: 0.05 m/s = 0.11 mph, four
 #: times the creep of a standing car's CAN speed (0.001-0.03 mph).
@@ -54,6 +87,17 @@ STANDSTILL_SPEED = 0.05
 LOW_SPEED = 5.0
 #: Filter kinds: filterpy's EKF, the unscented filter with Merwe points, with spherical-simplex points.
 KINDS = ("ekf", "ukf", "sukf")
+#: Default integrity gate on a fix's NIS: the 99.9 % point of chi-square with 2 degrees of
+#: freedom, ``-2 ln(0.001) = 13.82`` (a consistent filter rejects one good fix in 1000).
+GATE = float(-2.0 * np.log(1e-3))
+#: Rejected fixes in a row after which the filter re-acquires (takes itself to be lost).
+REACQUIRE_AFTER = 5
+#: Fixes over which the consistency monitor averages the NIS.
+NIS_WINDOW = 30
+#: A calibration state is held within this many prior (specification) sigmas of its prior mean.
+CALIBRATION_SIGMAS = 3.0
+#: Calibration learns from a fix only after this many fix sigmas driven since the last one it learnt from.
+CALIBRATION_SPACING = 2.0
 
 
 class GPSDRFilter:
@@ -102,6 +146,14 @@ class GPSDRFilter:
         receiver's per-fix accuracy.
     points : sigma points, optional
         Override the unscented kinds' points (filterpy protocol).
+    gate : float
+        A fix whose NIS exceeds it is rejected (default :data:`GATE`; ``numpy.inf``
+        switches the test off).
+    reacquire_after : int
+        Rejected fixes in a row after which the next one re-acquires (default
+        :data:`REACQUIRE_AFTER`).
+    nis_window : int
+        Fixes averaged by the consistency monitor (default :data:`NIS_WINDOW`).
 
     Attributes
     ----------
@@ -109,10 +161,26 @@ class GPSDRFilter:
         The wrapped filterpy-style filter.
     motion : str
         What the last update took the car to do: ``"still"``, ``"slow"`` or ``"moving"``.
+    step : int
+        Updates so far (the step the warnings name is ``step - 1``, counted from 0).
+    fix_status : str
+        What became of the last update's fix: ``"none"``, ``"accepted"``, ``"rejected"``
+        or ``"reacquired"``.
+    nis : float or None
+        The last fix's normalised innovation squared (before the gate).
+    n_fixes, n_rejected, n_reacquired, n_repairs : int
+        Fixes seen, rejected, accepted to re-acquire; covariance repairs.
+    rejected_steps : list of int
+        The steps whose fix was rejected.
+    nis_accepted : list of float
+        The NIS of every accepted fix (:attr:`nis_mean` is their mean; 2 when consistent).
+    nis_warnings : list of int
+        The steps at which the consistency monitor warned.
     """
 
     def __init__(self, model, kind="ekf", *, x0=None, P0=None, standstill_speed=STANDSTILL_SPEED,
-                 low_speed=LOW_SPEED, hold_without_gps=True, gps_window=0, points=None):
+                 low_speed=LOW_SPEED, hold_without_gps=True, gps_window=0, points=None, gate=GATE,
+                 reacquire_after=REACQUIRE_AFTER, nis_window=NIS_WINDOW):
         if not isinstance(model, GPSDRModel):
             raise TypeError(f"model must be a GPSDRModel, got {type(model).__name__}")
         self.model = model
@@ -146,6 +214,36 @@ class GPSDRFilter:
         kf.x, kf.P = x0, P0
         self.kf = kf
         self.motion = None
+        self._init_integrity(gate, reacquire_after, nis_window, x0)
+
+    def _init_integrity(self, gate, reacquire_after, nis_window, x0):
+        """The gate, the counters, the consistency monitor and the calibration bounds."""
+        gate = float(gate)
+        if not gate > 0:
+            raise ValueError(f"gate must be > 0 (numpy.inf: no gate), got {gate}")
+        self.gate = gate
+        self.reacquire_after = check_positive_int(reacquire_after, "reacquire_after")
+        self.nis_window = check_positive_int(nis_window, "nis_window")
+        from scipy.stats import chi2
+
+        # the window's mean NIS is chi-square(2 W) / W for a consistent filter
+        self._nis_bound = float(chi2.ppf(0.999, 2 * self.nis_window)) / self.nis_window
+        self._nis = deque(maxlen=self.nis_window)
+        self.step, self.fix_status, self.nis = 0, "none", None
+        self.n_fixes = self.n_rejected = self.n_reacquired = self.n_repairs = 0
+        self.rejected_steps, self.nis_accepted, self.nis_warnings = [], [], []
+        self._in_a_row, self._inconsistent = 0, False
+        cal = np.arange(6, self.model.dim_x)
+        self._cal = cal
+        self._cal_mean = np.asarray(x0, dtype=float)[cal].copy()
+        self._cal_bound = CALIBRATION_SIGMAS * np.sqrt(np.diag(self.model.P0)[cal])
+        self._cal_warned = set()
+        self._since_cal = np.inf  # distance driven since calibration last learnt (m)
+
+    @property
+    def nis_mean(self):
+        """Mean NIS of the accepted fixes (2 for a consistent filter; None before the first)."""
+        return float(np.mean(self.nis_accepted)) if self.nis_accepted else None
 
     def _set_x(self, value):
         self.kf.x = as_state(value, "x", self.model.dim_x).copy()
@@ -185,6 +283,7 @@ class GPSDRFilter:
         """
         z_dr = as_state(z_dr, "z_dr", 2)
         self.motion = self.classify(z_dr)
+        self._since_cal += float(z_dr[1])
         adapt = self.gps_window > 0 and z_gps is not None and gps_sigma is None
         if adapt:
             # the fix's innovation and its predicted-state part, before the update
@@ -192,23 +291,135 @@ class GPSDRFilter:
             y = np.asarray(z_gps, dtype=float) - self.kf.x[[0, 3]]
             if self.gps_sigma_est is not None:
                 gps_sigma = self.gps_sigma_est
+        self.fix_status = "none"
+        if z_gps is not None:  # a noise still being learnt from the innovations cannot judge them yet
+            z_gps = self._check_fix(z_gps, gps_sigma, test=not (adapt and self.gps_sigma_est is None))
         z, R, kw = self.model.measurement_for(z_dr, z_gps, zupt=self.motion == "still",
                                               low_speed=self.motion == "slow", gps_sigma=gps_sigma)
-        consider = self.hold_without_gps and not kw["gps"]
-        if consider:
+        held = self._held_rows(kw["gps"], gps_sigma)
+        if held.size:
             x_pre, P_pre = self.kf.x.copy(), self.kf.P.copy()
         self._update(z, R, kw)
-        if consider:
-            self._schmidt(x_pre, P_pre)
+        if held.size:
+            self._schmidt(x_pre, P_pre, held)
+        if self._bound_calibration() | self._repair() and hasattr(self.kf, "x_post"):
+            self.kf.x_post, self.kf.P_post = self.kf.x.copy(), self.kf.P.copy()
         if adapt:
             self._gps_y.append(float(np.mean(y * y)))
             self._gps_hph.append(hph)
             if len(self._gps_y) >= 10:
                 self.gps_sigma_est = float(np.sqrt(max(np.mean(self._gps_y) - np.mean(self._gps_hph), 0.01)))
+        self.step += 1
         return self
 
-    def _schmidt(self, x_pre, P_pre):
-        """Redo the last update with zero gain on :attr:`held_states` (Schmidt-Kalman).
+    def _fix_sigma(self, gps_sigma):
+        return self.model.sigma_gps if gps_sigma is None else float(gps_sigma)
+
+    def _check_fix(self, z_gps, gps_sigma, test=True):
+        """The integrity gate: the fix, or ``None`` when its NIS exceeds :attr:`gate`.
+
+        After :attr:`reacquire_after` rejections in a row a failing fix re-acquires
+        (:meth:`_reacquire`) instead; ``test=False`` accepts it untested (its NIS still counts).
+        """
+        z_gps = as_state(z_gps, "z_gps", 2)
+        pos = [0, 3]
+        y = z_gps - self.kf.x[pos]
+        S = self.kf.P[np.ix_(pos, pos)] + check_positive(self._fix_sigma(gps_sigma), "gps_sigma") ** 2 * np.eye(2)
+        self.nis = nis = float(y @ np.linalg.solve(S, y))
+        self.n_fixes += 1
+        self._monitor(nis)
+        if nis <= self.gate or not test:
+            self._in_a_row = 0
+            self.fix_status = "accepted"
+            self.nis_accepted.append(nis)
+            return z_gps
+        if self._in_a_row >= self.reacquire_after:
+            self._reacquire(y)
+            self._in_a_row = 0
+            self.fix_status = "reacquired"
+            self.n_reacquired += 1
+            return z_gps
+        self._in_a_row += 1
+        self.fix_status = "rejected"
+        self.n_rejected += 1
+        self.rejected_steps.append(self.step)
+        return None
+
+    def _reacquire(self, y):
+        """Take the filter to be lost: position variances ``+= y^2``, their cross-covariances dropped."""
+        kf = self.kf
+        P = kf.P.copy()
+        for i, r in enumerate((0, 3)):
+            v = P[r, r] + y[i] ** 2
+            P[r, :] = P[:, r] = 0.0
+            P[r, r] = v
+        kf.P = P
+        if self.kind != "ekf":  # the update's sigma points come from the prior: draw them from the new one
+            kf.compute_process_sigmas(self.model.dt, fx=lambda s, dt: s)
+
+    def _monitor(self, nis):
+        """Warn when the mean NIS over the last :attr:`nis_window` fixes leaves its 99.9 % bound."""
+        self._nis.append(min(nis, 10.0 * self.gate))  # one wild fix does not hold the alarm for a window
+        if len(self._nis) < self.nis_window:
+            return
+        high = float(np.mean(self._nis)) > self._nis_bound
+        if high and not self._inconsistent:
+            self.nis_warnings.append(self.step)
+            warnings.warn(
+                f"GPSDRFilter is inconsistent at step {self.step}: the mean NIS of the last {self.nis_window} "
+                f"fixes is {np.mean(self._nis):.1f}, above its 99.9 % bound {self._nis_bound:.2f} (2 expected); "
+                "the fixes' reported accuracy is optimistic or the sensor grade too good: pass the receiver's "
+                "accuracy as gps_sigma, or use a lower grade", RuntimeWarning, stacklevel=4)
+        self._inconsistent = high
+
+    def _held_rows(self, gps, gps_sigma):
+        """The rows this update must not move: position and calibration without a fix; the
+        calibration when it is not observable (see the module docstring)."""
+        if not gps:
+            return self.held_states if self.hold_without_gps else np.zeros(0, dtype=int)
+        if not self._cal.size:
+            return self._cal
+        if self.motion == "moving" and self._since_cal >= CALIBRATION_SPACING * self._fix_sigma(gps_sigma):
+            self._since_cal = 0.0
+            return np.zeros(0, dtype=int)
+        return self._cal
+
+    def _bound_calibration(self):
+        """Hold each calibration state within :data:`CALIBRATION_SIGMAS` of its prior (its specification)."""
+        x = self.kf.x
+        d = x[self._cal] - self._cal_mean
+        out = np.abs(d) > self._cal_bound
+        if not out.any():
+            return False
+        x = x.copy()
+        x[self._cal] = self._cal_mean + np.clip(d, -self._cal_bound, self._cal_bound)
+        self.kf.x = x
+        names = ("odometer scale", "heading bias", "gyro rate bias")
+        for i in np.flatnonzero(out):
+            if i not in self._cal_warned:
+                self._cal_warned.add(i)
+                warnings.warn(
+                    f"GPSDRFilter: the {names[i]} state ran past {CALIBRATION_SIGMAS:g} sigma of its "
+                    f"specification at step {self.step} ({d[i]:+.3g} from its prior mean, bound "
+                    f"{self._cal_bound[i]:.3g}); held at the bound. Check the sensor grade (or the sensor)",
+                    RuntimeWarning, stacklevel=4)
+        return True
+
+    def _repair(self):
+        """Keep ``P`` symmetric positive definite (documented repair, counted and warned)."""
+        P, n_bad = repair_pd(self.kf.P[None])
+        if not n_bad:
+            return False
+        self.kf.P = P[0]
+        self.n_repairs += 1
+        if self.n_repairs == 1:
+            warnings.warn(f"GPSDRFilter: P lost positive definiteness at step {self.step}; repaired (symmetrised, "
+                          "eigenvalues floored at 1e-12 of the largest; later repairs are counted in n_repairs)",
+                          RuntimeWarning, stacklevel=4)
+        return True
+
+    def _schmidt(self, x_pre, P_pre, held):
+        """Redo the last update with zero gain on the rows ``held`` (Schmidt-Kalman).
 
         With gain ``K`` (the held rows zeroed: ``K'``), innovation ``y`` and its covariance
         ``S``, the cross-covariance is ``C = K S`` and, for any gain,
@@ -219,7 +430,7 @@ class GPSDRFilter:
         S = np.asarray(kf.S, dtype=float)
         C = K @ S
         Kc = K.copy()
-        Kc[self.held_states] = 0.0
+        Kc[held] = 0.0
         kf.x = x_pre + Kc @ np.asarray(kf.y, dtype=float)
         P = P_pre - Kc @ C.T - C @ Kc.T + Kc @ S @ Kc.T
         kf.P = 0.5 * (P + P.T)

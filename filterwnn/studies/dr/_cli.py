@@ -1,0 +1,115 @@
+"""``filterwnn study dr``: its options (:func:`add_arguments`) and its entry point (:func:`run`)."""
+
+from __future__ import annotations
+
+import os
+
+from ...navigation.dead_reckoning import SENSOR_GRADES
+from ...navigation.drives import CAR_DRIVES, load_car_drive, read_drive_csv
+from ...navigation.scenarios import SCENARIOS
+from .. import options, runner
+from ._filters import FILTER_TABLE, OPT_IN
+from ._real import REAL_FILTERS, real_drive_outages, real_drive_table
+from ._run import DEFAULT_SCENARIOS, run_study
+from ._tables import markdown_table, write_outputs
+
+def add_arguments(parser):
+    """Options of ``filterwnn study dr``."""
+    parser.add_argument("--runs", type=options.positive_int, default=10, help="Monte-Carlo runs per scenario")
+    parser.add_argument("--seed", type=options.seed, default=0,
+                        help="root seed, an integer >= 0 (run i uses SeedSequence(seed).spawn(runs)[i])")
+    parser.add_argument("--jobs", type=options.joblib_jobs, default=2,
+                        help="joblib workers, -1 for all cores (the numbers do not depend on it)")
+    parser.add_argument("--backend", type=options.joblib_backend, default=None,
+                        help="joblib backend (loky, threading, dask, ...); default joblib's (loky)")
+    parser.add_argument("--scheduler", default=None,
+                        help="with --backend dask: the address of a dask.distributed scheduler "
+                             "(default: a local cluster of --jobs workers)")
+    parser.add_argument("--cache", default=None, metavar="DIR",
+                        help="checkpoint folder (default none): each finished (scenario, run) is pickled "
+                             "there as <hash of its settings>.pkl and read back instead of run, timings "
+                             "included, so an interrupted study resumes with the same numbers; delete it "
+                             "after changing the code")
+    parser.add_argument("--scenarios", type=options.name_list(SCENARIOS), default=",".join(DEFAULT_SCENARIOS),
+                        help=f"comma-separated subset of {', '.join(SCENARIOS)}")
+    names = tuple(dict.fromkeys([f.name for f in FILTER_TABLE] + list(REAL_FILTERS)))
+    parser.add_argument("--filters", type=options.name_list(names), default=None,
+                        help=f"comma-separated subset of {', '.join(names)} (default all "
+                             f"that apply to each scenario, but {', '.join(OPT_IN)})")
+    parser.add_argument("--factor", type=options.positive_float, default=None,
+                        help="override the DR noise factor at 150 s of the DR-only scenarios (default each "
+                             "scenario's own)")
+    parser.add_argument("--out", default="results/dr", help="output folder")
+    parser.add_argument("--no-figures", action="store_true", help="write the tables only (no PNG figures)")
+    options.add_progress_flag(parser, "--quiet")
+    parser.add_argument("--real", action="store_true",
+                        help=f"also run the GPS/DR filters on onavdata's car drives {', '.join(CAR_DRIVES)} "
+                             "(needs the data extra), set from --grade (default survey)")
+    parser.add_argument("--drive", action="append", default=None, metavar="CSV",
+                        help="run the GPS/DR filters on one's own drive, a CSV with the columns of "
+                             "filterwnn.navigation.drives.DRIVE_CSV_COLUMNS ('sample' for the shipped sample drive); "
+                             "repeatable; with --drive only the drives run, not the simulated scenarios")
+    parser.add_argument("--outage-length", type=options.positive_float, default=30.0, help="GPS outage length on drives (s)")
+    parser.add_argument("--outages", type=options.positive_int, default=20, help="number of outages spread over each drive")
+    parser.add_argument("--outage-starts", type=options.float_list, default=None,
+                        help="comma-separated outage start times (s) on --drive drives, instead of spreading them")
+    parser.add_argument("--min-speed", type=options.nonnegative_float, default=0.0,
+                        help="spread outages only over windows with at least this mean speed (m/s)")
+    parser.add_argument("--grade", choices=sorted(SENSOR_GRADES), default=None,
+                        help="sensor grade for the GPS/DR settings (survey, phone; see "
+                             "filterwnn.navigation.dead_reckoning.SENSOR_GRADES); default phone for --drive, survey for --real")
+
+
+def run(args):
+    """Entry point of ``filterwnn study dr``."""
+    drives = getattr(args, "drive", None)
+    if drives:
+        return _run_drives(args, drives, args.filters)
+    with runner.dask_client(getattr(args, "backend", None), getattr(args, "scheduler", None), args.jobs):
+        res = run_study(scenarios=args.scenarios, n_runs=args.runs, filters=args.filters, seed=args.seed,
+                        jobs=args.jobs, factor=args.factor, progress=not args.no_progress,
+                        backend=getattr(args, "backend", None), cache_dir=getattr(args, "cache", None))
+    paths = write_outputs(res, args.out, figures=not args.no_figures)
+    print(markdown_table(res))
+    if getattr(args, "real", False):
+        grade = args.grade or "survey"
+        results, texts = [], []
+        for name in CAR_DRIVES:
+            try:
+                drive = load_car_drive(name)
+            except ImportError as exc:
+                print(f"skipping the real drives: {exc}")
+                break
+            rd = real_drive_outages(drive, grade=grade, use_gps_sigma=True)
+            results.append(rd)
+            texts.append(real_drive_table(rd))
+            print(texts[-1])
+        if results:
+            p = os.path.join(args.out, "dr_real_drive.md")
+            with open(p, "w") as fh:
+                fh.write(f"Settings: sensor grade {grade!r} (filterwnn.navigation.dead_reckoning.SENSOR_GRADES), each fix's "
+                         f"reported accuracy as its noise; nothing tuned on these drives.\n\n" + "\n".join(texts))
+            paths.append(p)
+            paths += write_outputs(None, args.out, figures=not args.no_figures, real_drives=results)
+    print("wrote:", ", ".join(paths))
+    return 0
+
+
+def _run_drives(args, drives, filters):
+    """``--drive``: the GPS/DR filters on one's own drives, with each fix's accuracy when given."""
+    from ...navigation.drives import sample_drive_path
+
+    starts = args.outage_starts or None
+    fl = tuple(filters) if filters else REAL_FILTERS
+    results = []
+    for path in drives:
+        run = read_drive_csv(sample_drive_path() if path == "sample" else path)
+        res = real_drive_outages(run, n_placements=args.outages, length=args.outage_length, filters=fl,
+                                 starts=starts, min_speed=args.min_speed,
+                                 use_gps_sigma=run.gps_sigma is not None,
+                                 grade=getattr(args, "grade", None) or "phone")
+        results.append(res)
+        print(real_drive_table(res))
+    paths = write_outputs(None, args.out, figures=not args.no_figures, real_drives=results)
+    print("wrote:", ", ".join(paths))
+    return 0

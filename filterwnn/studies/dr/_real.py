@@ -1,0 +1,203 @@
+"""The DR study on recorded drives: GPS outages cut into a drive, each filter scored at their ends.
+
+:func:`real_drive_outages` places ``length``-second outages over a drive (onavdata's car
+drives, the shipped sample, or one's own CSV), runs each filter of :data:`REAL_FILTERS`
+once with GPS, snapshots it at each outage start and runs each outage alone;
+:func:`real_drive_table` is its Markdown table.
+"""
+
+from __future__ import annotations
+
+import copy
+
+import numpy as np
+
+from ...navigation.dead_reckoning import GPSDRModel
+from ...navigation.drives import CAR_DRIVE
+from ...navigation.gpsdr import GPSDRFilter
+from ...navigation.scenarios import outage_starts
+from ._filters import _KIND
+
+#: GPS/DR model settings for the real drive (a car's manoeuvres need a larger jerk PSD,
+#: the receiver's fixes are about 1 m, and the gyro's heading drifts: a random-walk bias).
+REAL_MODEL = dict(q=2.0, sigma_heading=np.deg2rad(1.0), sigma_odometer=0.02, sigma_gps=1.0,
+                  q_scale=1e-6, q_bias=1e-6)
+
+
+#: The filters run on a real drive (raw dead reckoning, the 6-state EKF and the 8-state filters).
+REAL_FILTERS = ("DR-mech", "EKF", "EKF-8", "UKF-8", "SUKF-8")
+
+
+def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "EKF", "EKF-8"),
+                       model_kwargs=None, slow_speed=None, starts=None, min_speed=0.0,
+                       use_gps_sigma=False, grade=None, gps_window=0):
+    """Cut GPS outages of ``length`` s into a drive and score each filter at each outage end.
+
+    Placements: ``starts`` as given, or ``n_placements`` spread evenly over the windows
+    whose mean odometer speed is at least ``min_speed`` (:func:`~filterwnn.navigation.scenarios.outage_starts`;
+    with the default 0 the first one starts before the car moves). ``EKF``/``EKF-8``/
+    ``UKF-8``/``SUKF-8`` are :class:`~filterwnn.navigation.gpsdr.GPSDRFilter` s (6 or 8 states; the filter
+    decides standstill and low speed itself); ``DR-mech`` integrates
+    ``s [sin theta, cos theta]`` from the reference position at the outage start (dead
+    reckoning without a filter).
+
+    The reference is the truth when the drive has one (``run.x_true``); otherwise the
+    GPS fix withheld last in the outage, so the score then includes that fix's own error.
+
+    Parameters
+    ----------
+    run : DRRun
+    n_placements, length, starts, min_speed
+        Where the outages go (see above).
+    filters : sequence of str
+        Subset of :data:`REAL_FILTERS`.
+    model_kwargs : dict, optional
+        :class:`~filterwnn.navigation.dead_reckoning.GPSDRModel` settings over :data:`REAL_MODEL`, or
+        over the grade's settings.
+    grade : str or dict, optional
+        Settings from a sensor grade or specification
+        (:meth:`~filterwnn.navigation.dead_reckoning.GPSDRModel.from_grade`; ``"phone"`` adds the gyro
+        rate-bias state to the 8-state filters) instead of :data:`REAL_MODEL`, which was
+        tuned on the onavdata drive.
+    slow_speed : float, optional
+        The filters' low-speed threshold (m/s; default :data:`filterwnn.navigation.gpsdr.LOW_SPEED`).
+    use_gps_sigma : bool
+        Use each fix's reported accuracy (``run.gps_sigma``) as its noise.
+    gps_window : int
+        Estimate the noise of fixes without an accuracy from the GPS innovations over
+        this many fixes (:class:`~filterwnn.navigation.gpsdr.GPSDRFilter`; 0: the model's ``sigma_gps``).
+
+    Returns
+    -------
+    dict
+        ``starts (n,)``, ``length``, ``moved (n,)`` (distance driven during each outage, m),
+        ``end_steps (n,)`` (the scored step of each outage), ``reference`` ("truth" or
+        "withheld GPS"), ``name``, ``track (n_steps, 2)`` (truth, else the fixes
+        interpolated), ``end_xy {filter: (n, 2)}``, and per filter ``(n,)`` end-of-outage
+        horizontal errors (m); NaN never appears (a non-finite estimate raises).
+    """
+    bad = [f for f in filters if f not in REAL_FILTERS]
+    if bad:
+        raise ValueError(f"unknown real-drive filters {bad}; valid: {', '.join(REAL_FILTERS)}")
+    kw = dict(REAL_MODEL, **(model_kwargs or {}))
+    t_end = float(run.t[-1])
+    if starts is None and min_speed == 0.0:
+        starts = np.linspace(0.0, t_end - length - 1.0, n_placements)
+    starts = outage_starts(run, length, starts=starts, n=n_placements, min_speed=min_speed)
+    k0s, k1s, refs, moved, track = _outage_windows(run, starts, length)
+    truth = run.x_true is not None
+    out = {"starts": starts, "length": length, "moved": moved, "end_steps": np.array(k1s),
+           "reference": "truth" if truth else "withheld GPS", "name": run.scenario.name,
+           "track": track, "t": run.t, "end_xy": {}}
+    gps = run.gps_list()
+    sig = run.gps_sigma_list() if use_gps_sigma else [None] * len(run.t)
+    for name in filters:
+        if name == "DR-mech":
+            ends = _dr_mech_ends(run, k0s, k1s, track if not truth else None)
+        else:
+            f = _real_drive_filter(name, run, grade, model_kwargs, kw, gps_window, slow_speed)
+            ends = _outage_ends(f, name, run, k0s, k1s, starts, gps, sig)
+        out["end_xy"][name] = ends
+        out[name] = np.hypot(*(ends - refs).T)
+    return out
+
+
+def _outage_windows(run, starts, length):
+    """The first and scored step of each outage, its reference east/north (the truth, else the
+    last fix withheld), the distance driven in it, and the track ``(n_steps, 2)``."""
+    truth = run.x_true is not None
+    cum = np.concatenate([[0.0], np.cumsum(run.z_dr[:, 1])])
+    k0s, k1s, refs, moved = [], [], [], []
+    gps_t = run.t[run.gps_steps]
+    for a in starts:
+        k0 = int(np.searchsorted(run.t, a))
+        k1 = int(np.searchsorted(run.t, a + length)) - 1
+        if truth:
+            ref = run.x_true[k1, [0, 3]]
+        else:
+            inside = np.flatnonzero((gps_t >= a) & (gps_t < a + length))
+            if len(inside) == 0:
+                raise ValueError(f"the drive has no truth and no GPS fix in the outage at {a:.1f} s to score against")
+            k1 = int(run.gps_steps[inside[-1]])
+            ref = run.z_gps[inside[-1]]
+        k0s.append(k0)
+        k1s.append(k1)
+        refs.append(ref)
+        moved.append(float(cum[k1 + 1] - cum[k0]) if not truth else float(np.sum(np.hypot(
+            *np.diff(run.x_true[k0:k1 + 1][:, [0, 3]], axis=0).T))))
+    if truth:
+        track = run.x_true[:, [0, 3]]
+    else:
+        track = np.stack([np.interp(run.t, gps_t, run.z_gps[:, i]) for i in (0, 1)], axis=1)
+    return k0s, k1s, np.array(refs), np.array(moved), track
+
+
+def _real_drive_filter(name, run, grade, model_kwargs, kw, gps_window, slow_speed):
+    """The :class:`~filterwnn.navigation.gpsdr.GPSDRFilter` ``name`` for a real drive, set from ``grade``
+    (or the settings ``kw``), started at the drive's first state with 1 m position sigma."""
+    aug = name.endswith("-8")
+    dt = run.scenario.dt
+    if grade is not None:
+        model = GPSDRModel.from_grade(grade, dt, augmented=aug, **({} if aug else {"rate_bias": False}),
+                                      **(model_kwargs or {}))
+    else:
+        model = GPSDRModel(dt=dt, augmented=aug, **kw)
+    x0 = np.concatenate([run.x0, model.x0[6:]])
+    P0 = model.P0.copy()
+    P0[0, 0] = P0[3, 3] = 1.0
+    low = {} if slow_speed is None else {"low_speed": slow_speed}
+    return GPSDRFilter(model, _KIND[name], x0=x0, P0=P0, gps_window=gps_window, **low)
+
+
+_REAL_META = ("starts", "moved", "length", "end_steps", "reference", "name", "track", "t", "end_xy")
+
+
+def _dr_mech_ends(run, k0s, k1s, track=None):
+    """Mechanised dead reckoning over each outage ``k0..k1``: ``s [sin theta, cos theta]``
+    summed from the reference position before it (the truth, else ``track``)."""
+    ends = np.empty((len(k0s), 2))
+    for j, (k0, k1) in enumerate(zip(k0s, k1s)):
+        if track is None:
+            p = run.x_true[k0 - 1, [0, 3]] if k0 > 0 else run.x0[[0, 3]]
+        else:
+            p = track[k0 - 1] if k0 > 0 else run.x0[[0, 3]]
+        z = run.z_dr[k0:k1 + 1]
+        ends[j] = p + np.sum(z[:, 1:2] * np.stack([np.sin(z[:, 0]), np.cos(z[:, 0])], axis=1), axis=0)
+    return ends
+
+
+def _outage_ends(f, name, run, k0s, k1s, starts, gps, sig):
+    """The east/north of filter ``f`` at the end of each outage: one pass with GPS, a
+    snapshot at each outage start, then each outage alone (DR only)."""
+    ends = np.empty((len(k0s), 2))
+    snaps = {}
+    for k in range(max(k0s) + 1):
+        if k in k0s:
+            snaps[k] = copy.deepcopy(f)
+        f.predict()
+        f.update(run.z_dr[k], gps[k], sig[k])
+    for j, (k0, k1) in enumerate(zip(k0s, k1s)):
+        g = copy.deepcopy(snaps[k0])
+        for k in range(k0, k1 + 1):
+            g.predict()
+            g.update(run.z_dr[k], None)
+        if not np.all(np.isfinite(g.x)):
+            raise FloatingPointError(f"{name}: non-finite state at step {k1} (outage at {starts[j]:.1f} s)")
+        ends[j] = g.x[[0, 3]]
+    return ends
+
+
+def real_drive_table(res, min_moved=100.0):
+    """Markdown: median/p90/max end-of-outage error over all placements and moving ones."""
+    mv = res["moved"] >= min_moved
+    names = [k for k in res if k not in _REAL_META]
+    lines = [f"### real drive {res.get('name', CAR_DRIVE)}: {len(res['starts'])} GPS outages of {res['length']:g} s "
+             f"({int(mv.sum())} with >= {min_moved:g} m driven), error at the outage ends against the "
+             f"{res.get('reference', 'truth')} (m)", "",
+             "| filter | median all | p90 all | max all | median moving | max moving |", "|---|---|---|---|---|---|"]
+    for n in names:
+        e = res[n]
+        em = e[mv] if mv.any() else np.array([np.nan])
+        lines.append(f"| {n} | {np.median(e):.2f} | {np.percentile(e, 90):.2f} | {e.max():.2f} | "
+                     f"{np.median(em):.2f} | {em.max():.2f} |")
+    return "\n".join(lines) + "\n"
