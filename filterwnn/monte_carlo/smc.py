@@ -220,7 +220,13 @@ class MALAMove:
     target_acceptance : float, default 0.574
     preconditioner : {"diag", "cov"}, default "diag"
         ``"diag"``: the population's variance per coordinate; ``"cov"``: the population
-        covariance shrunk toward its diagonal, ``(1 - shrinkage) C + shrinkage diag(C)``.
+        covariance shrunk toward its diagonal, ``(1 - shrinkage) C + shrinkage diag(C)``,
+        refused (``ValueError``) for a population of no more particles than dimensions.
+        Either is estimated once per call from the population it moves, so the kernel depends
+        on the particle it moves: the moves leave the target invariant only as the population
+        grows (the usual adaptive SMC practice; Del Moral, Doucet and Jasra 2006). With
+        ``"cov"`` at ``N <= d`` the dependence is large (a Bayesian regression's variance
+        ended at 0.71 of the target's), hence the refusal.
     shrinkage : float, default 0.1
         Only for ``"cov"``.
     var_floor : float, default 1e-4
@@ -285,6 +291,13 @@ class MALAMove:
         var = np.maximum(x.var(axis=0, ddof=1), floor)
         if self.preconditioner == "diag":
             return np.sqrt(var), None
+        if len(x) <= self.target.dim:
+            raise ValueError(
+                f"preconditioner='cov' needs more particles than dimensions, got {len(x)} particles in "
+                f"{self.target.dim} dimensions: a covariance estimated from the population it moves, with "
+                "N <= d, does not leave the target invariant (on a Bayesian regression the moved variance "
+                "ended at 0.71 of the target's); use preconditioner='diag', or more particles than dimensions"
+            )
         # (1 - s) C + s diag(C), with the floored variances on the diagonal: positive definite
         M = (1.0 - self.shrinkage) * np.cov(x, rowvar=False)
         M[np.diag_indices_from(M)] = var

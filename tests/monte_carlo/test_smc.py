@@ -214,12 +214,15 @@ def test_regressor_smc_trainer():
     assert np.mean((reg.predict(X) - y) ** 2) < np.var(y)
 
 
-def test_cov_preconditioner_with_few_particles(blr, rng):
-    """Fewer particles than dimensions: the shrunk covariance stays positive definite."""
+def test_cov_preconditioner_refuses_no_more_particles_than_dimensions(blr, rng):
+    """N <= d: the population's covariance does not leave the target invariant, so it is refused;
+    N > d runs (and the shrunk covariance stays positive definite)."""
     model, X, y = blr
     move = MALAMove(RowsTarget(model, X, y), n_steps=2, preconditioner="cov")
-    out = move(rng.normal(size=(2, 3)), rng)
-    assert out.shape == (2, 3) and np.all(np.isfinite(out))
+    with pytest.raises(ValueError, match=r"needs more particles than dimensions, got 3 particles in 3 dim.*'diag'"):
+        move(rng.normal(size=(3, 3)), rng)
+    out = move(rng.normal(size=(4, 3)), rng)
+    assert out.shape == (4, 3) and np.all(np.isfinite(out))
 
 
 @pytest.mark.filterwarnings("ignore::RuntimeWarning")

@@ -116,13 +116,13 @@ def test_working_runs_use_the_settings_chosen_on_validation(serial):
 
 
 def test_tuning_never_reads_the_test_rows(monkeypatch):
-    real = study.make_siso_benchmark
+    real = study.runs.make_siso_benchmark
 
     def poisoned(rng=None):
         X, y, X_test, y_test = real(rng=rng)
         return X, y, np.full_like(X_test, np.nan), np.full_like(y_test, np.nan)
 
-    monkeypatch.setattr(study, "make_siso_benchmark", poisoned)
+    monkeypatch.setattr(study.runs, "make_siso_benchmark", poisoned)
     r = study.tune_run("ekf", study.tune_seeds(0, 1)[0], 3, params={"process_noise": 1e-3})
     assert r["status"] == "ok" and np.all(np.isfinite(r["curve_val"])) and len(r["curve_val"]) == 3
     assert "test_mse" not in r

@@ -1,0 +1,472 @@
+"""The WNN study's runs: one tuning fit, one table fit, one reference, the summary rows and
+:func:`~filterwnn.studies.wnn.run_study`, which runs the search, then the table, the references and the sweep."""
+
+from __future__ import annotations
+
+import time
+import warnings
+
+import numpy as np
+
+from ..._validation import check_choice
+from ...datasets import make_siso_benchmark
+from ...monte_carlo.particle_filter import DegeneracyWarning
+from ...wnn.regressor import WNNRegressor
+from ...wnn.trainers import PAPER_SETTINGS, TRAINERS
+from .. import runner
+from .plan import (StudyResult, _child, _plan, _study_tasks, _task_cost, candidates, select_settings,
+                   tune_seeds)
+from .rows import (ALL_TRAINERS, REFERENCES, VALIDATION_FRACTION, Z90, _cost, _rows, _specs_with, _sweep_rows,
+                   _uses_particles, row_label)
+
+__all__ = [
+    "tune_run",
+    "fit_run",
+    "fit_reference",
+    "run_tasks",
+    "summarize",
+    "run_study",
+]
+
+
+def tune_run(trainer, tune_seed, n_epochs, n_particles=50, params=None, candidate=0, run=0):
+    """Train on the first 80 % of a tuning run's training rows; validation MSE per epoch.
+
+    The run's test rows are drawn (so the data match :func:`fit_run`'s for the same seed)
+    and discarded unseen. A fit that fails numerically scores ``inf`` from the failing epoch on.
+
+    Returns
+    -------
+    dict
+        ``table`` ("tuning"), ``trainer``, ``candidate``, ``params``, ``run``, ``curve_val``
+        (validation MSE after each epoch), ``fit_time``, ``status``.
+    """
+    from threadpoolctl import threadpool_limits
+
+    params = dict(params or {})
+    with threadpool_limits(limits=1), warnings.catch_warnings():
+        warnings.simplefilter("ignore", DegeneracyWarning)  # reported as ESS and distinct particles
+        X, y, _, _ = make_siso_benchmark(rng=_child(tune_seed, 0))  # test rows unused
+        n_val = int(round(VALIDATION_FRACTION * len(X)))
+        Xt, yt, Xv, yv = X[:-n_val], y[:-n_val], X[-n_val:], y[-n_val:]
+        kind, fixed, _, _ = _rows()[trainer]
+        reg = WNNRegressor(trainer=kind, n_epochs=n_epochs, n_particles=n_particles, init="scaled",
+                           random_state=_child(tune_seed, 1), **dict(fixed, **params))
+        curve, status = [], "ok"
+        try:
+            _train_tracked(reg, Xt, yt, Xv, yv, n_epochs, curve)
+        except np.linalg.LinAlgError as exc:
+            status = f"failed: {exc}"
+        curve = [v if np.isfinite(v) else float("inf") for v in curve]
+        curve += [float("inf")] * (n_epochs - len(curve))
+    return {
+        "table": "tuning", "trainer": trainer, "candidate": int(candidate), "params": params, "run": run,
+        "curve_val": curve, "fit_time": float(getattr(reg, "fit_time_", float("nan"))), "status": status,
+        "n_particles": n_particles if _uses_particles(trainer) else 0,
+    }
+
+
+def _train_tracked(reg, X, y, X_eval, y_eval, n_epochs, curve):
+    """``n_epochs`` epochs of ``partial_fit``, appending the MSE on ``(X_eval, y_eval)`` after
+    each to ``curve`` (kept up to the failing epoch if a NumericalError interrupts)."""
+    for _ in range(n_epochs):
+        reg.partial_fit(X, y)
+        curve.append(float(np.mean((reg.predict(X_eval) - y_eval) ** 2)))
+
+
+def _settings_text(table, trainer, reg):
+    s = reg.settings_
+    if "learning_rate" in s:
+        txt = f"init={s['init']}, lr={s['learning_rate']:g}"
+    else:
+        txt = f"init={s['init']}, Q={s['Q']:g}, P0={s['P0']:g}, R={s['R']:g}"
+    if s.get("weighting") == "unweighted average":
+        txt += f", N={s['n_particles']}, weighting=none (unweighted average)"
+    elif "weighting" in s:
+        txt += (
+            f", N={s['n_particles']}, weighting={s['weighting']}, tempering={s['tempering']:g}, "
+            f"ess_threshold={s['ess_threshold']:g}, move={s.get('move') or 'none'}"
+        )
+        if s.get("move"):
+            txt += f" ({s['n_moves']} steps)"
+    if getattr(TRAINERS.get(s.get("trainer")), "family", None) == "smc":
+        txt += f", N={s['n_particles']}, weighting=tempered SMC, move={s['kernel']} ({s['n_moves']} steps)"
+    return f"{table}: {txt}"
+
+
+def _params(table, trainer):
+    if table == "paper":  # the entry's paper_settings over PAPER_SETTINGS (Q and P0 only where used)
+        spec = TRAINERS[_rows()[trainer].trainer]
+        p = dict(PAPER_SETTINGS)
+        if not spec.noise_settings:
+            p.pop("process_noise")
+            p.pop("initial_covariance")
+        p.update(spec.paper_settings or {})
+        return p
+    return {"init": "scaled"}
+
+
+def _particle_fields(reg):
+    """A fit's particle diagnostics: mean ESS, distinct particles and ancestors at the end (NaN or
+    -1 where the trainer has none)."""
+    diag = getattr(reg, "diagnostics_", {}) or {}
+    ess, distinct, ancestors = diag.get("mean_ess"), diag.get("distinct"), diag.get("distinct_ancestors")
+    return {
+        "mean_ess": float(np.mean(ess)) if ess else float("nan"),
+        "distinct": int(distinct[-1]) if distinct else -1,
+        "ancestors": int(ancestors[-1]) if ancestors else -1,
+    }
+
+
+def _regressor(trainer, table, run_seed, n_epochs, n_particles, params):
+    """The row's estimator in one run: the table's settings, the row's fixed keywords (not in the
+    paper table), then ``params``; seeded with the run's training stream."""
+    kind, fixed, _, _ = _rows()[trainer]
+    kw = _params(table, trainer)
+    if table != "paper":
+        kw.update(fixed)
+    kw.update(params or {})
+    return WNNRegressor(trainer=kind, n_epochs=n_epochs, n_particles=n_particles, random_state=_child(run_seed, 1),
+                        **kw)
+
+
+def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_test=True, run=0, params=None):
+    """Train one WNN in one run and score it on that run's test set.
+
+    Parameters
+    ----------
+    trainer : str
+        A key of ``ROWS``: a trainer of :data:`filterwnn.wnn.trainers.TRAINERS`, or a row of ``MOVE_ROWS``.
+    run_seed : (entropy, spawn_key)
+        From :func:`run_seeds`.
+    n_epochs, n_particles : int
+    table : {"working", "paper"}
+        Working settings (scaled start, ``"auto"``) or the paper's literal ones.
+    track_test : bool
+        Record the test MSE after every epoch (``curve_test``).
+    params : dict, optional
+        Extra :class:`~filterwnn.WNNRegressor` parameters.
+
+    Returns
+    -------
+    dict
+        See :class:`StudyResult` ``runs``.
+    """
+    from threadpoolctl import threadpool_limits
+
+    with threadpool_limits(limits=1), warnings.catch_warnings():
+        warnings.simplefilter("ignore", DegeneracyWarning)  # reported as ESS and distinct particles
+        X, y, X_test, y_test = make_siso_benchmark(rng=_child(run_seed, 0))
+        reg = _regressor(trainer, table, run_seed, n_epochs, n_particles, params)
+        curve_test, status = [], "ok"
+        try:
+            if track_test:
+                _train_tracked(reg, X, y, X_test, y_test, n_epochs, curve_test)
+            else:
+                reg.fit(X, y)
+            mean, std = reg.predict(X_test, return_std=True)
+            test_mse = float(np.mean((mean - y_test) ** 2))
+            coverage = float(np.mean(np.abs(y_test - mean) <= Z90 * std))
+            train_mse = reg.loss_curve_[-1]
+        except np.linalg.LinAlgError as exc:  # NumericalError included: a failed run is a result
+            status = f"failed: {exc}"
+            test_mse = train_mse = coverage = float("nan")
+            if not hasattr(reg, "fit_time_"):
+                reg.fit_time_ = float("nan")
+        return {
+            "table": table,
+            "trainer": trainer,
+            "run": run,
+            "test_mse": test_mse,
+            "train_mse": float(train_mse),
+            "fit_time": float(reg.fit_time_),
+            **_particle_fields(reg),
+            "coverage90": coverage,
+            "var_test": float(np.var(y_test)),
+            "curve_train": list(getattr(reg, "loss_curve_", [])),
+            "curve_test": curve_test,
+            "settings": _settings_text(table, trainer, reg) if hasattr(reg, "settings_") else table,
+            "n_particles": n_particles if _uses_particles(trainer) else 0,
+            "epochs": int(getattr(reg, "n_iter_", 0)),
+            "status": status,
+        }
+
+
+def fit_reference(name, run_seed, run=0):
+    """Fit a scikit-learn reference (``MLPRegressor`` or ``GaussianProcessRegressor``) on run data.
+
+    ``MLPRegressor``: 20 tanh units, L-BFGS, ``alpha=1e-2``, 2000 iterations.
+    ``GaussianProcessRegressor``: constant x ARD RBF + white noise, 2 optimiser restarts.
+    """
+    from threadpoolctl import threadpool_limits
+    from sklearn.gaussian_process import GaussianProcessRegressor
+    from sklearn.gaussian_process.kernels import RBF, ConstantKernel, WhiteKernel
+    from sklearn.exceptions import ConvergenceWarning
+    from sklearn.neural_network import MLPRegressor
+
+    check_choice(name, "reference", REFERENCES)
+    with threadpool_limits(limits=1):
+        X, y, X_test, y_test = make_siso_benchmark(rng=_child(run_seed, 0))
+        seed = int(_child(run_seed, 1).generate_state(1)[0])
+        if name == "MLPRegressor":
+            model = MLPRegressor(
+                hidden_layer_sizes=(20,), activation="tanh", solver="lbfgs", alpha=1e-2, max_iter=2000,
+                random_state=seed,
+            )
+            settings = "reference: MLPRegressor 5-20-1 tanh, lbfgs, alpha=1e-2"
+        else:
+            kernel = ConstantKernel(1.0) * RBF(length_scale=np.ones(X.shape[1])) + WhiteKernel(1e-3)
+            model = GaussianProcessRegressor(kernel=kernel, normalize_y=True, n_restarts_optimizer=2, random_state=seed)
+            settings = "reference: GaussianProcessRegressor, ARD RBF + white noise"
+        t0 = time.perf_counter()
+        with warnings.catch_warnings():  # length scales of the distractor inputs hit their bound: intended
+            warnings.simplefilter("ignore", ConvergenceWarning)
+            model.fit(X, y)
+        fit_time = time.perf_counter() - t0
+        if name == "GaussianProcessRegressor":  # predictive std, the fitted white noise included
+            mean, std = model.predict(X_test, return_std=True)
+            coverage = float(np.mean(np.abs(y_test - mean) <= Z90 * std))
+        else:
+            coverage = float("nan")
+        return {
+            "table": "reference",
+            "trainer": name,
+            "run": run,
+            "test_mse": float(np.mean((model.predict(X_test) - y_test) ** 2)),
+            "train_mse": float(np.mean((model.predict(X) - y) ** 2)),
+            "fit_time": fit_time,
+            "mean_ess": float("nan"),
+            "distinct": 0,
+            "coverage90": coverage,
+            "var_test": float(np.var(y_test)),
+            "curve_train": [],
+            "curve_test": [],
+            "settings": settings,
+            "n_particles": 0,
+            "epochs": 0,
+            "status": "ok",
+        }
+
+
+def _task(task):
+    kind, args, kwargs = task
+    if kind == "reference":
+        return fit_reference(*args, **kwargs)
+    if kind == "tune":
+        return tune_run(*args, **kwargs)
+    return fit_run(*args, **kwargs)
+
+
+def run_tasks(tasks, n_jobs=1, backend=None, progress=False, cache_dir=None, cached_only=False):
+    """Run study tasks through joblib; results in task order whatever ``n_jobs``.
+
+    Parameters
+    ----------
+    tasks : list of (kind, args, kwargs)
+        ``kind`` "fit" (:func:`fit_run`), "tune" (:func:`tune_run`) or "reference"
+        (:func:`fit_reference`).
+    n_jobs : int
+        joblib workers (``-1``: all cores).
+    backend : str, optional
+        joblib backend name ("loky", "threading", "dask", ...); ``None`` is joblib's
+        default (loky). "dask" needs a ``dask.distributed.Client`` (see :func:`run`).
+    progress : bool
+        A tqdm bar over tasks.
+    cache_dir : str, optional
+        Checkpoint folder: each finished task is saved there as JSON (named by a hash of
+        the task), and tasks already there are loaded instead of run, so an interrupted
+        study resumes where it stopped, with the same numbers.
+    cached_only : bool
+        Only load cached results; tasks not in the cache give ``None``.
+
+    Returns
+    -------
+    list
+        One result dict per task (``None`` for a task skipped by ``cached_only``).
+    """
+    return runner.run_tasks(tasks, _task, n_jobs=n_jobs, backend=backend, progress=progress, cache_dir=cache_dir,
+                            cached_only=cached_only, desc="WNN study", unit="fit", serializer=runner.JSON)
+
+
+_q = runner.quantile
+
+
+def summarize(runs):
+    """Table rows (one per table and trainer, in first-seen order) from per-run results."""
+    keys = []
+    for r in runs:
+        k = (r["table"], r["trainer"], r.get("n_particles", 0))
+        if k not in keys:
+            keys.append(k)
+    rows = []
+    for table, trainer, _ in keys:
+        rs = [r for r in runs if r["table"] == table and r["trainer"] == trainer]
+        mse = [r["test_mse"] for r in rs]
+        paper = TRAINERS[trainer].paper if trainer in TRAINERS else None
+        paper = paper or (float("nan"), float("nan"))
+        # an unweighted average (combine="mean") has no weights whose ESS would mean anything
+        weighted = trainer not in TRAINERS or TRAINERS[trainer].combine != "mean"
+        ess = [r["mean_ess"] for r in rs if np.isfinite(r["mean_ess"]) and weighted]
+        distinct = [r["distinct"] for r in rs if r["distinct"] > 0]
+        ancestors = [r["ancestors"] for r in rs if r.get("ancestors", -1) > 0]  # absent from older caches
+        cover = [r.get("coverage90", float("nan")) for r in rs]
+        rows.append({
+            "table": table,
+            "trainer": trainer,
+            "algorithm": row_label(trainer, rs[0].get("n_particles", 0)),
+            "settings": rs[0]["settings"],
+            "test_mse_median": _q(mse, 0.5),
+            "test_mse_q1": _q(mse, 0.25),
+            "test_mse_q3": _q(mse, 0.75),
+            "fit_time_median": _q([r["fit_time"] for r in rs], 0.5),
+            "mean_ess": float(np.mean(ess)) if ess else float("nan"),
+            "distinct_median": float(np.median(distinct)) if distinct else float("nan"),
+            "distinct_particles": float(np.mean(distinct)) if distinct else float("nan"),
+            "distinct_ancestors": float(np.mean(ancestors)) if ancestors else float("nan"),
+            "coverage90": _q(cover, 0.5),
+            "n_runs": len(rs),
+            "epochs": max(r.get("epochs", 0) for r in rs),
+            "n_failed": sum(r["status"] != "ok" for r in rs),
+            "var_test_median": _q([r["var_test"] for r in rs], 0.5),
+            "paper_mse": paper[0] if table != "reference" else float("nan"),
+            "paper_time": paper[1] if table != "reference" else float("nan"),
+        })
+    return rows
+
+
+def _search(trainers, plan, seed, run_kw):
+    """The settings search on the validation split (module docstring): the single filters and BP
+    first, then the trainers that centre on their parent's choice.
+
+    Returns
+    -------
+    chosen : dict
+        ``trainer -> select_settings(...)[0]``.
+    tuning : list of dict
+        The candidates' rows.
+    complete : bool
+        False when some trainer's search is not finished (``cached_only``).
+    """
+    chosen, tuning, complete = {}, [], True
+    if not plan.tune_runs:
+        return chosen, tuning, complete
+    tseeds = tune_seeds(seed, plan.tune_runs)
+    parent_of, cost = _specs_with("parent"), _cost()
+    searched = [t for t in trainers if candidates(t) != [{}]]
+    for phase in ([t for t in searched if t not in parent_of], [t for t in searched if t in parent_of]):
+        ttasks = []
+        parents = {k: v["params"] for k, v in chosen.items()}
+        for t in phase:
+            for c, params in enumerate(candidates(t, parents)):
+                for j in range(plan.tune_runs):
+                    ttasks.append(("tune", (t, tseeds[j], plan.epochs(t), plan.n_particles),
+                                   {"params": params, "candidate": c, "run": j}))
+        ttasks.sort(key=lambda task: -_task_cost(task, cost))
+        results = run_tasks(ttasks, **run_kw)
+        for t in phase:
+            rs = [r for r in results if r is not None and r["trainer"] == t]
+            if len(rs) < sum(task[1][0] == t for task in ttasks):
+                complete = False
+                continue
+            choice, rows = select_settings(rs)
+            chosen[t] = choice
+            tuning += rows
+    return chosen, tuning, complete
+
+
+def _run_scheduled(tasks, run_kw):
+    """Run ``tasks``: the working table run by run (so an interrupted study has whole runs), then
+    references, paper table and sweep, longest first inside each; results in task order."""
+    group = {"working": 0, "paper": 2, "sweep": 3}
+    cost = _cost()
+
+    def priority(k):
+        kind, args, kwargs = tasks[k]
+        g = 1 if kind == "reference" else group[kwargs["table"]]
+        return (g, kwargs["run"] if g == 0 else 0, -_task_cost(tasks[k], cost))
+
+    order = sorted(range(len(tasks)), key=priority)
+    results = run_tasks([tasks[k] for k in order], **run_kw)
+    out = [None] * len(tasks)
+    for k, r in zip(order, results):
+        out[k] = r
+    return out
+
+
+def _sweep_table(main, swept, trainers, sweep_particles, plan):
+    """The particle sweep's rows (Figs. 3-4), the main table's runs counted at its particle number."""
+    sweep = []
+    pool = [r for r in main if r["table"] == "working" and r["trainer"] in _sweep_rows()] + swept
+    for t in [t for t in trainers if t in _sweep_rows()]:
+        for n in sorted(set(list(sweep_particles) + [plan.n_particles])):
+            rs = [r for r in pool if r["trainer"] == t and r["n_particles"] == n][:plan.sweep_runs]
+            if not rs:
+                continue
+            sweep.append({
+                "trainer": t, "n_particles": int(n), "n_runs": len(rs),
+                "test_mse_median": _q([r["test_mse"] for r in rs], 0.5),
+                "fit_time_median": _q([r["fit_time"] for r in rs], 0.5),
+            })
+    return sweep
+
+
+def run_study(n_runs=3, n_epochs=30, pf_epochs=None, n_particles=10, trainers=ALL_TRAINERS, seed=2026,
+              paper_table=True, paper_runs=None, paper_pf_epochs=None, references=REFERENCES,
+              sweep_particles=(5, 10, 20), sweep_runs=None, n_jobs=1, backend=None, progress=False,
+              cache_dir=None, cached_only=False, tune_runs=2):
+    """Run the study (settings search, Table 1 rows, the particle sweep, the curves).
+
+    Parameters
+    ----------
+    n_runs : int
+        Independent runs per trainer (the paper: 50).
+    n_epochs : int
+        Epochs of the single-filter trainers and BP (the paper: up to 200).
+    pf_epochs : int, optional
+        Epochs of the particle-filter trainers (default ``n_epochs``).
+    n_particles : int
+        Particles of the main table (the paper: 50).
+    trainers : sequence of str
+        Row keys (:data:`~filterwnn.studies.wnn.rows.ALL_TRAINERS` by default; any registered trainer has a row).
+    seed : int
+        Root of ``SeedSequence(seed).spawn(n_runs)``.
+    paper_table : bool
+        Also run every trainer at the paper's literal settings.
+    paper_runs : int, optional
+        Runs of the paper-settings table (default ``n_runs``).
+    paper_pf_epochs : int, optional
+        Epochs of the particle filters in the paper-settings table (default ``pf_epochs``).
+    references : sequence of str
+        scikit-learn references to fit on the same runs.
+    sweep_particles : sequence of int
+        Particle counts of Figs. 3-4 (the paper: 50..250); empty to skip.
+    sweep_runs : int, optional
+        Runs per sweep point (default ``n_runs``).
+    n_jobs, backend, progress, cache_dir, cached_only
+        See :func:`run_tasks` (``cache_dir`` makes the study resumable).
+    tune_runs : int
+        Tuning runs of the settings search on the validation split (module docstring);
+        0 uses :data:`~filterwnn.wnn.trainers.AUTO_SETTINGS` and all ``n_epochs``.
+
+    Returns
+    -------
+    StudyResult
+    """
+    plan = _plan(n_runs, n_epochs, pf_epochs, n_particles, trainers, seed, paper_runs, paper_pf_epochs, sweep_runs,
+                 tune_runs)
+    run_kw = dict(n_jobs=n_jobs, backend=backend, progress=progress, cache_dir=cache_dir, cached_only=cached_only)
+    chosen, tuning, complete = _search(trainers, plan, seed, run_kw)
+    if plan.tune_runs and not complete:  # cached_only with an unfinished search: the rows that need none
+        copy = _specs_with("copy_settings")
+        trainers = [t for t in trainers if t in chosen or candidates(t) == [{}] and t not in copy]
+    tasks, n_main = _study_tasks(trainers, plan, chosen, references, paper_table, sweep_particles)
+    out = _run_scheduled(tasks, run_kw)
+    main, swept = [r for r in out[:n_main] if r is not None], [r for r in out[n_main:] if r is not None]
+    config = dict(
+        n_runs=plan.n_runs, n_epochs=plan.n_epochs, pf_epochs=plan.pf_epochs, n_particles=plan.n_particles,
+        seed=seed, trainers=list(trainers), paper_runs=plan.paper_runs if paper_table else 0,
+        paper_pf_epochs=plan.paper_pf_epochs, sweep_particles=list(sweep_particles), sweep_runs=plan.sweep_runs,
+        n_jobs=n_jobs, backend=backend or "loky", n_tasks=len(out), n_done=sum(r is not None for r in out),
+        tune_runs=plan.tune_runs, validation_fraction=VALIDATION_FRACTION, tuning_complete=complete)
+    return StudyResult(runs=main + swept, table=summarize(main), sweep=_sweep_table(main, swept, trainers,
+                       sweep_particles, plan), config=config, tuning=tuning)
