@@ -60,6 +60,8 @@ _EXPORTS = {
     "MinimalSkewSigmaPoints": "kalman.sigma_points:MinimalSkewSigmaPoints",
     "SphericalSimplexSigmaPoints": "kalman.sigma_points:SphericalSimplexSigmaPoints",
     "resample": "monte_carlo.resampling:resample",
+    "POINT_PRESETS": "kalman.presets:POINT_PRESETS",
+    "make_points": "kalman.presets:make_points",
     # models
     "StateSpaceModel": "models:StateSpaceModel",
     "GammaNoiseModel": "models:GammaNoiseModel",

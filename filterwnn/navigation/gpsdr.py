@@ -38,11 +38,11 @@ from __future__ import annotations
 from collections import deque
 
 import numpy as np
-from filterpy.kalman import ExtendedKalmanFilter, MerweScaledSigmaPoints
+from filterpy.kalman import ExtendedKalmanFilter
 
 from .._validation import as_state, check_choice, check_covariance, check_positive
 from .dead_reckoning import GPSDRModel, dr_residual, dr_z_mean
-from ..kalman.sigma_points import SphericalSimplexSigmaPoints
+from ..kalman.presets import make_points
 from ..kalman.unscented import UnscentedKalmanFilter
 
 __all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS"]
@@ -137,8 +137,7 @@ class GPSDRFilter:
             kf.F = model.F.copy()
         else:
             if points is None:
-                points = (MerweScaledSigmaPoints(n, alpha=0.5, beta=2.0, kappa=0.0) if self.kind == "ukf"
-                          else SphericalSimplexSigmaPoints(n, w0=0.2))
+                points = make_points("gpsdr-ukf" if self.kind == "ukf" else "gpsdr-sukf", n)
             # dim_z follows the fix (4 with GPS, 2 without), so the per-point hx is used
             kf = UnscentedKalmanFilter(n, 4, model.dt, hx=model.hx, fx=model.fx, points=points,
                                        z_mean_fn=dr_z_mean, residual_z=dr_residual)

@@ -80,7 +80,7 @@ from functools import partial
 from typing import Callable, NamedTuple
 
 import numpy as np
-from filterpy.kalman import ExtendedKalmanFilter, MerweScaledSigmaPoints
+from filterpy.kalman import ExtendedKalmanFilter
 
 from .._validation import check_seed, check_positive_int
 from ..kalman.adaptive import AdaptiveExtendedKalmanFilter
@@ -94,7 +94,7 @@ from ..navigation.neural_filter import (
     paper_training_states,
     random_motion_states,
 )
-from ..kalman.sigma_points import SphericalSimplexSigmaPoints
+from ..kalman.presets import make_points
 from ..kalman.unscented import UnscentedKalmanFilter
 from . import options
 from . import runner
@@ -196,9 +196,7 @@ def _ukf(model, points, x0, P0, gps):
 
 
 def _points(kind, n):
-    if kind == "merwe":
-        return MerweScaledSigmaPoints(n, alpha=0.5, beta=2.0, kappa=0.0)
-    return SphericalSimplexSigmaPoints(n, w0=0.2)
+    return make_points("gpsdr-ukf" if kind == "merwe" else "gpsdr-sukf", n)
 
 
 def _ukf_steps(run, x0, rng, context, points="merwe"):

@@ -81,7 +81,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-from filterpy.kalman import ExtendedKalmanFilter, MerweScaledSigmaPoints
+from filterpy.kalman import ExtendedKalmanFilter
 from scipy.linalg.blas import dsymv, dsyr
 
 from ..monte_carlo import smc
@@ -94,7 +94,7 @@ from ..monte_carlo.particle_filter import (
     SimplexUnscentedParticleFilter,
     UnscentedParticleFilter,
 )
-from ..kalman.sigma_points import SphericalSimplexSigmaPoints
+from ..kalman.presets import make_points
 from ..kalman.unscented import UnscentedKalmanFilter
 from .weight_model import WNNWeightModel, scaled_prior
 
@@ -134,13 +134,21 @@ MOVE_SETTINGS = {"Q": 0.0, "P0": 1.0, "output_scale": 1.0, "mala": {"n_moves": 5
 
 
 def merwe_points(n, alpha=1.0):
-    """Van der Merwe's ``2n + 1`` scaled points (``beta=2, kappa=0``), filterpy's class."""
-    return MerweScaledSigmaPoints(n, alpha=alpha, beta=2.0, kappa=0.0)
+    """The ``"merwe"`` preset (:mod:`filterwnn.kalman.presets`): van der Merwe's ``2n + 1`` points,
+    ``beta=2, kappa=0``, with the trainer's ``alpha`` (the ``ukf``, ``upf`` and ``gsf-ukf`` trainers)."""
+    return make_points("merwe", n, alpha=alpha)
 
 
 def simplex_points(n, alpha=1.0):
-    """The ``n + 2`` spherical simplex points (Julier 2003)."""
-    return SphericalSimplexSigmaPoints(n, alpha=alpha)
+    """The ``"simplex"`` preset (:mod:`filterwnn.kalman.presets`): the unscaled ``n + 2`` spherical
+    simplex of Julier (2003), ``beta=0, w0=0``, with the trainer's ``alpha`` (the ``sukf``,
+    ``supf`` and ``gsf-sukf`` trainers).
+
+    A named choice, not the SUPF preset's ``beta=2``: the WNN study's searched settings and
+    numbers were measured with this set, so the ``supf`` trainer keeps it (``beta=2`` would be
+    another trainer, with its own row).
+    """
+    return make_points("simplex", n, alpha=alpha)
 
 
 @dataclass(frozen=True, eq=False)
