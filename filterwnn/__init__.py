@@ -64,6 +64,8 @@ _EXPORTS = {
     "make_points": "kalman.presets:make_points",
     # models
     "StateSpaceModel": "models:StateSpaceModel",
+    "from_model": "models:from_model",
+    "wire": "models:wire",
     "GammaNoiseModel": "models:GammaNoiseModel",
     "LinearGaussianModel": "models:LinearGaussianModel",
     "DR_SCENARIOS": "navigation.scenarios:SCENARIOS",

@@ -37,7 +37,7 @@ def _demo(args):
     from filterpy.kalman import UnscentedKalmanFilter as FilterpyUKF
 
     from .datasets import make_siso_benchmark
-    from .models import LinearGaussianModel
+    from .models import LinearGaussianModel, from_model
     from .wnn.regressor import WNNRegressor
     from .navigation.dead_reckoning import GPSDRModel
     from .navigation.gpsdr import GPSDRFilter
@@ -59,8 +59,7 @@ def _demo(args):
         MinimalSkewSigmaPoints(4),
         make_points("simplex", 4),
     ):
-        ukf = FilterpyUKF(4, 2, 1.0, model.hx, model.fx, points)
-        ukf.x, ukf.P, ukf.Q, ukf.R = model.x0.copy(), model.P0.copy(), model.Q, model.R
+        ukf = from_model(FilterpyUKF, model, points=points)
         means, _ = ukf.batch_filter(zs)
         err = np.max(np.abs(means - np.asarray(ref).reshape(means.shape)))
         # the agreement is at rounding level, whose last digits differ between machines: print the bound

@@ -41,8 +41,9 @@ import numpy as np
 from filterpy.kalman import ExtendedKalmanFilter
 
 from .._validation import as_state, check_choice, check_covariance, check_positive
-from .dead_reckoning import GPSDRModel, dr_residual, dr_z_mean
+from .dead_reckoning import GPSDRModel, dr_residual
 from ..kalman.presets import make_points
+from ..models import from_model
 from ..kalman.unscented import UnscentedKalmanFilter
 
 __all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS"]
@@ -129,21 +130,13 @@ class GPSDRFilter:
         self.gps_sigma_est = None
         #: state rows held without GPS: position and the calibration states
         self.held_states = np.array([0, 3] + list(range(6, model.dim_x)))
-        n = model.dim_x
-        x0 = (model.x0 if x0 is None else as_state(x0, "x0", n)).copy()
-        P0 = (model.P0 if P0 is None else check_covariance(P0, "P0", n)).copy()
         if self.kind == "ekf":
-            kf = ExtendedKalmanFilter(dim_x=n, dim_z=4)
-            kf.F = model.F.copy()
+            self.kf = from_model(ExtendedKalmanFilter, model, x0=x0, P0=P0)
         else:
             if points is None:
-                points = make_points("gpsdr-ukf" if self.kind == "ukf" else "gpsdr-sukf", n)
+                points = make_points("gpsdr-ukf" if self.kind == "ukf" else "gpsdr-sukf", model.dim_x)
             # dim_z follows the fix (4 with GPS, 2 without), so the per-point hx is used
-            kf = UnscentedKalmanFilter(n, 4, model.dt, hx=model.hx, fx=model.fx, points=points,
-                                       z_mean_fn=dr_z_mean, residual_z=dr_residual)
-        kf.Q, kf.R = model.Q.copy(), model.R.copy()
-        kf.x, kf.P = x0, P0
-        self.kf = kf
+            self.kf = from_model(UnscentedKalmanFilter, model, points=points, x0=x0, P0=P0)
         self.motion = None
 
     def _set_x(self, value):

@@ -84,7 +84,7 @@ from filterpy.kalman import ExtendedKalmanFilter
 
 from .._validation import check_seed, check_positive_int
 from ..kalman.adaptive import AdaptiveExtendedKalmanFilter
-from ..navigation.dead_reckoning import SENSOR_GRADES, DRModel, GPSDRModel, dr_residual, dr_z_mean
+from ..navigation.dead_reckoning import SENSOR_GRADES, DRModel, GPSDRModel, dr_residual
 from ..navigation.gpsdr import GPSDRFilter
 from ..navigation.drives import CAR_DRIVE, CAR_DRIVES, load_car_drive, read_drive_csv
 from ..navigation.scenarios import SCENARIOS, outage_starts, simulate_scenario, with_outage
@@ -95,6 +95,7 @@ from ..navigation.neural_filter import (
     random_motion_states,
 )
 from ..kalman.presets import make_points
+from ..models import from_model
 from ..kalman.unscented import UnscentedKalmanFilter
 from . import options
 from . import runner
@@ -175,9 +176,7 @@ class DRFilter(NamedTuple):
 def _ekf_steps(run, x0, rng, context, adaptive=False, true_R=False):
     """filterpy's EKF (or the adaptive one) with the nominal ``R``, or told the true ``R``."""
     model = DRModel(dt=run.scenario.dt)
-    kf = AdaptiveExtendedKalmanFilter(6, 2) if adaptive else ExtendedKalmanFilter(6, 2)
-    kf.F, kf.Q, kf.R = model.F.copy(), model.Q.copy(), model.R.copy()
-    kf.x, kf.P = x0.copy(), model.P0.copy()
+    kf = from_model(AdaptiveExtendedKalmanFilter if adaptive else ExtendedKalmanFilter, model, x0=x0)
 
     def update(k):
         R = np.diag(run.R_true[k]) if true_R else None
@@ -187,12 +186,8 @@ def _ekf_steps(run, x0, rng, context, adaptive=False, true_R=False):
 
 
 def _ukf(model, points, x0, P0, gps):
-    f = UnscentedKalmanFilter(model.dim_x, 4 if gps else 2, model.dt, hx=model.hx, fx=model.fx, points=points,
-                              z_mean_fn=dr_z_mean, residual_z=dr_residual,
-                              vectorized=not gps)  # dim_z varies with GPS
-    f.x, f.P, f.Q = x0.copy(), P0.copy(), model.Q.copy()
-    f.R = model.R.copy()
-    return f
+    # hx per point with GPS (its dim_z varies with the fix), vectorized without
+    return from_model(UnscentedKalmanFilter, model, points=points, x0=x0, P0=P0, vectorized=not gps)
 
 
 def _points(kind, n):
@@ -249,11 +244,8 @@ def _upf_steps(run, x0, rng, context, n_particles=UPF_PARTICLES):
     from ..monte_carlo.particle_filter import UnscentedParticleFilter
 
     model = DRModel(dt=run.scenario.dt)
-    pf = UnscentedParticleFilter(6, 2, model.dt, model.hx, model.fx, n_particles, points=_points("merwe", 6),
-                                 residual_z=dr_residual, z_mean_fn=dr_z_mean, vectorized=True, rng=rng,
-                                 carry_covariance=False)
-    pf.Q, pf.R = model.Q.copy(), model.R.copy()
-    pf.x, pf.P = np.asarray(x0, dtype=float).copy(), np.asarray(model.P0, dtype=float).copy()
+    pf = from_model(UnscentedParticleFilter, model, x0=x0, n_particles=n_particles, points=_points("merwe", 6),
+                    vectorized=True, rng=rng, carry_covariance=False)
     return _Steps(pf.predict, lambda k: pf.update(run.z_dr[k]), lambda: pf.x)
 
 

@@ -95,6 +95,7 @@ from ..monte_carlo.particle_filter import (
     UnscentedParticleFilter,
 )
 from ..kalman.presets import make_points
+from ..models import from_model
 from ..kalman.unscented import UnscentedKalmanFilter
 from .weight_model import WNNWeightModel, scaled_prior
 
@@ -362,11 +363,7 @@ class _EKFTrainer(BaseTrainer):
         Q = model.Q
         self.q_diag = np.diag(Q).copy() if np.allclose(Q, np.diag(np.diag(Q))) else None
         if self.backend == "filterpy":
-            self.kf = ExtendedKalmanFilter(model.dim_x, model.dim_z)
-            self.kf.x = self.x.copy()
-            self.kf.P = model.P0.copy()
-            self.kf.Q = model.Q.copy()
-            self.kf.R = model.R.copy()
+            self.kf = from_model(ExtendedKalmanFilter, model, x0=self.x)
 
     @property
     def theta(self):
@@ -435,11 +432,7 @@ class _UKFTrainer(BaseTrainer):
         super().__init__(model, theta0, settings, rng, spec)
         n = model.dim_x
         points = spec.points(n, alpha=settings.get("alpha", 1.0))
-        self.kf = spec.filter(n, 1, 1.0, model.hx, None, points, vectorized=True)
-        self.kf.x = np.array(theta0, dtype=float)
-        self.kf.P = model.P0.copy()
-        self.kf.Q = model.Q.copy()
-        self.kf.R = model.R.copy()
+        self.kf = from_model(spec.filter, model, x0=theta0, fx=None, points=points, vectorized=True)
 
     @property
     def theta(self):
@@ -494,13 +487,8 @@ class _ParticleTrainer(BaseTrainer):
             return
         theta0 = np.atleast_2d(np.asarray(theta0, dtype=float))
         # fx=None: the random walk, predicted without sigma points (P += Q)
-        self.pf = cls(model.dim_x, 1, 1.0, model.hx, None, **kwargs)
-        self.pf.Q = model.Q.copy()
-        self.pf.R = model.R.copy()
-        self.pf.P = model.P0.copy()
-        if theta0.shape[0] == 1:  # one start: particles drawn from N(theta0, P0)
-            self.pf.x = theta0[0].copy()
-        else:  # one start per particle (the paper's step 1: draws from the initial distribution)
+        self.pf = from_model(cls, model, x0=theta0[0], fx=None, **kwargs)
+        if theta0.shape[0] > 1:  # one start per particle (the paper's step 1: draws from the initial distribution)
             self.pf.initialize(theta0, model.P0)
 
     def _start_with_move(self, X):
@@ -511,10 +499,7 @@ class _ParticleTrainer(BaseTrainer):
             self.move = smc.HMCMove(target, n_steps=s["n_moves"], n_leapfrog=s["n_leapfrog"])
         else:
             self.move = smc.MALAMove(target, n_steps=s["n_moves"])
-        self.pf = self._cls(m.dim_x, 1, 1.0, m.hx, None, move=self.move, **self._kwargs)
-        self.pf.Q = np.zeros_like(m.Q)
-        self.pf.R = m.R.copy()
-        self.pf.P = prior.P0.copy()
+        self.pf = from_model(self._cls, m, P0=prior.P0, Q=prior.Q, fx=None, move=self.move, **self._kwargs)
         draws = self.rng.standard_normal((s["n_particles"], m.dim_x))
         self.pf.initialize(prior.x0 + draws * np.sqrt(var), prior.P0)
 
@@ -583,8 +568,7 @@ class _GaussianSumTrainer(_ParticleTrainer):
                       rng=rng, tempering=settings["tempering"], combine=self.combine)
         kwargs.update(_filter_extras(spec, model))
         theta0 = np.atleast_2d(np.asarray(theta0, dtype=float))
-        self.pf = spec.filter(model.dim_x, 1, 1.0, model.hx, None, component=spec.component, **kwargs)
-        self.pf.Q, self.pf.R = model.Q.copy(), model.R.copy()
+        self.pf = from_model(spec.filter, model, fx=None, component=spec.component, **kwargs)
         if theta0.shape[0] == 1:  # one start: component means drawn from N(theta0, P0)
             L = np.linalg.cholesky(model.P0)
             theta0 = theta0[0] + self.pf.rng.standard_normal((settings["n_particles"], model.dim_x)) @ L.T
