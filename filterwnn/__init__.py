@@ -60,8 +60,12 @@ _EXPORTS = {
     "MinimalSkewSigmaPoints": "kalman.sigma_points:MinimalSkewSigmaPoints",
     "SphericalSimplexSigmaPoints": "kalman.sigma_points:SphericalSimplexSigmaPoints",
     "resample": "monte_carlo.resampling:resample",
+    "POINT_PRESETS": "kalman.presets:POINT_PRESETS",
+    "make_points": "kalman.presets:make_points",
     # models
     "StateSpaceModel": "models:StateSpaceModel",
+    "from_model": "models:from_model",
+    "wire": "models:wire",
     "GammaNoiseModel": "models:GammaNoiseModel",
     "LinearGaussianModel": "models:LinearGaussianModel",
     "DR_SCENARIOS": "navigation.scenarios:SCENARIOS",

@@ -34,17 +34,17 @@ def _demo(args):
     import time
 
     import numpy as np
-    from filterpy.kalman import MerweScaledSigmaPoints
     from filterpy.kalman import UnscentedKalmanFilter as FilterpyUKF
 
     from .datasets import make_siso_benchmark
-    from .models import LinearGaussianModel
+    from .models import LinearGaussianModel, from_model
     from .wnn.regressor import WNNRegressor
     from .navigation.dead_reckoning import GPSDRModel
     from .navigation.gpsdr import GPSDRFilter
     from .navigation.drives import read_drive_csv, sample_drive_path
     from .navigation.scenarios import with_outage
-    from .kalman.sigma_points import MinimalSkewSigmaPoints, SphericalSimplexSigmaPoints
+    from .kalman.presets import make_points
+    from .kalman.sigma_points import MinimalSkewSigmaPoints
 
     t0 = time.perf_counter()
     model = LinearGaussianModel.random(dim_x=4, dim_z=2, rng=args.seed)
@@ -55,12 +55,11 @@ def _demo(args):
     print("1. Reduced sigma points in filterpy's own UnscentedKalmanFilter, on a random 4-state")
     print("   linear model (50 steps; every set must give the Kalman filter's answer):")
     for points in (
-        MerweScaledSigmaPoints(4, alpha=0.5, beta=2.0, kappa=-1.0),
+        make_points("merwe-kappa", 4),
         MinimalSkewSigmaPoints(4),
-        SphericalSimplexSigmaPoints(4),
+        make_points("simplex", 4),
     ):
-        ukf = FilterpyUKF(4, 2, 1.0, model.hx, model.fx, points)
-        ukf.x, ukf.P, ukf.Q, ukf.R = model.x0.copy(), model.P0.copy(), model.Q, model.R
+        ukf = from_model(FilterpyUKF, model, points=points)
         means, _ = ukf.batch_filter(zs)
         err = np.max(np.abs(means - np.asarray(ref).reshape(means.shape)))
         # the agreement is at rounding level, whose last digits differ between machines: print the bound

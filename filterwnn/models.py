@@ -18,6 +18,11 @@ A model is separate from any filter. It holds
 ``simulate(n_steps, rng)``
     a ground-truth run ``(xs, zs)`` of shapes ``(n_steps, dim_x)`` and ``(n_steps, dim_z)``.
 
+A model wires itself into a filter in one place: :func:`from_model` builds any filter whose
+constructor speaks filterpy's names (``dim_x, dim_z, dt, hx, fx``, the Jacobians,
+``residual_z``, ...) from the model, and :func:`wire` copies the start ``x0, P0`` and the
+noise ``Q, R`` (and ``F``/``H`` where both have them) onto a filter already built.
+
 The linear-Gaussian model below is the reference against which every nonlinear filter is
 pinned: on it the unscented and particle filters must reproduce filterpy's
 ``KalmanFilter``.
@@ -29,16 +34,29 @@ pinned: on it the unscented and particle filters must reproduce filterpy's
 ((5, 3), (5, 2))
 >>> np.allclose(m.hx(xs), xs @ m.H.T)
 True
+>>> from filterpy.kalman import UnscentedKalmanFilter
+>>> from filterwnn.kalman import make_points
+>>> ukf = from_model(UnscentedKalmanFilter, m, points=make_points("merwe", 3))
+>>> np.array_equal(ukf.Q, m.Q), ukf.fx == m.fx, ukf.x is m.x0
+(True, True, False)
 """
 
 from __future__ import annotations
+
+import inspect
 
 import numpy as np
 from scipy.special import gammaln
 
 from ._validation import as_state, check_covariance, check_positive, check_positive_int, check_rng
 
-__all__ = ["StateSpaceModel", "LinearGaussianModel", "GammaNoiseModel"]
+__all__ = ["StateSpaceModel", "LinearGaussianModel", "GammaNoiseModel", "from_model", "wire"]
+
+#: What :func:`from_model` hands to a filter's constructor, where the constructor names it.
+MODEL_ARGUMENTS = ("dim_x", "dim_z", "dt", "hx", "fx", "FJacobian", "HJacobian", "residual_z", "z_mean_fn",
+                   "process_sampler", "transition_logpdf")
+#: The matrices :func:`wire` copies onto a filter that has them (filterpy's ``KalmanFilter``, EKF).
+MODEL_MATRICES = ("F", "H")
 
 
 class StateSpaceModel:
@@ -163,10 +181,7 @@ class LinearGaussianModel(StateSpaceModel):
         """A filterpy ``KalmanFilter`` set up on this model (the reference answer)."""
         from filterpy.kalman import KalmanFilter
 
-        kf = KalmanFilter(dim_x=self.dim_x, dim_z=self.dim_z)
-        kf.F, kf.H, kf.Q, kf.R = self.F.copy(), self.H.copy(), self.Q.copy(), self.R.copy()
-        kf.x, kf.P = self.x0.copy(), self.P0.copy()
-        return kf
+        return from_model(KalmanFilter, self)
 
 
 class GammaNoiseModel(StateSpaceModel):
@@ -276,11 +291,7 @@ class GammaNoiseModel(StateSpaceModel):
         Run it with ``pf.predict(k=k); pf.update(z, k=k)`` for ``k = 1..n_steps``, or
         :meth:`run`.
         """
-        pf = cls(1, 1, self.dt, self.hx, self.fx, n_particles, FJacobian=self.FJacobian, HJacobian=self.HJacobian,
-                 process_sampler=self.process_sampler, transition_logpdf=self.transition_logpdf, vectorized=True,
-                 rng=rng, **kwargs)
-        pf.x, pf.P, pf.Q, pf.R = self.x0.copy(), self.P0.copy(), self.Q.copy(), self.R.copy()
-        return pf
+        return from_model(cls, self, n_particles=n_particles, vectorized=True, rng=rng, **kwargs)
 
     def run(self, pf, zs):
         """Filter ``zs`` (steps ``1..len(zs)``) with ``pf``; returns the means, shape ``(len(zs), 1)``."""
@@ -291,3 +302,87 @@ class GammaNoiseModel(StateSpaceModel):
             pf.update(z, k=k)
             means[k - 1] = pf.x
         return means
+
+
+# --------------------------------------------------------------------------- wiring
+
+
+def _model_value(model, name):
+    """``model.name``, or None where the model lacks it or only inherits the base class's placeholder."""
+    value = getattr(model, name, None)
+    placeholder = getattr(StateSpaceModel, name, None)
+    if placeholder is not None and callable(placeholder) and getattr(type(model), name, None) is placeholder:
+        return None
+    return value
+
+
+def wire(filt, model, *, x0=None, P0=None, Q=None, R=None):
+    """Copy a model's start and noise onto a filter: ``x, P, Q, R`` (and ``F``, ``H``).
+
+    Every value is a fresh float array, so the filter never shares (and never changes) the
+    model's. ``F`` and ``H`` are copied where the model has them and the filter has the
+    attribute (filterpy's ``KalmanFilter``; ``F`` of its ``ExtendedKalmanFilter``).
+
+    Parameters
+    ----------
+    filt : filter
+        Any filter with filterpy's attributes ``x, P, Q, R`` (filterpy's, this package's
+        unscented, particle and Gaussian-sum filters).
+    model : StateSpaceModel
+        Anything with ``dim_x, dim_z, x0, P0, Q, R``.
+    x0 : array-like of shape (dim_x,), optional
+        A start other than ``model.x0`` (checked: finite, of length ``dim_x``).
+    P0, Q, R : array-like, optional
+        Covariances other than the model's (checked; ``Q`` may be singular).
+
+    Returns
+    -------
+    filt
+        The same filter, wired.
+    """
+    n = model.dim_x
+    for name in MODEL_MATRICES:
+        value = getattr(model, name, None)
+        if value is not None and hasattr(filt, name):
+            setattr(filt, name, np.array(value, dtype=float))
+    filt.x = np.array(model.x0 if x0 is None else as_state(x0, "x0", n), dtype=float)
+    filt.P = np.array(model.P0 if P0 is None else check_covariance(P0, "P0", n), dtype=float)
+    filt.Q = np.array(model.Q if Q is None else check_covariance(Q, "Q", n, require_pd=False), dtype=float)
+    filt.R = np.array(model.R if R is None else check_covariance(R, "R", model.dim_z), dtype=float)
+    return filt
+
+
+def from_model(cls, model, *, x0=None, P0=None, Q=None, R=None, **kwargs):
+    """A filter of class ``cls`` built from ``model`` and wired to it (:func:`wire`).
+
+    The constructor gets, of ``MODEL_ARGUMENTS`` (``dim_x, dim_z, dt, hx, fx``, the
+    Jacobians, ``residual_z``, ``z_mean_fn``, ``process_sampler``, ``transition_logpdf``),
+    those it names and the model has, as keywords; ``kwargs`` go to it too and win, so
+    ``fx=None`` asks for a random walk (and then the model's ``FJacobian`` is not passed) and
+    ``points=...``, ``n_particles=...`` are the filter's own settings. A model that only
+    inherits :class:`StateSpaceModel`'s ``residual_z`` passes none (the filter's default
+    subtraction). filterpy's own constructors stay as they are: this is a function beside them.
+
+    Parameters
+    ----------
+    cls : type
+        E.g. filterpy's ``KalmanFilter``, ``ExtendedKalmanFilter`` or ``UnscentedKalmanFilter``,
+        :class:`~filterwnn.kalman.unscented.UnscentedKalmanFilter`, a particle filter of
+        :mod:`filterwnn.monte_carlo.particle_filter` or the Gaussian-sum filter.
+    model : StateSpaceModel
+    x0, P0, Q, R : array-like, optional
+        Passed to :func:`wire`.
+    **kwargs
+        The constructor's other arguments.
+
+    Returns
+    -------
+    filt : cls
+    """
+    params = inspect.signature(cls).parameters
+    for name in MODEL_ARGUMENTS:
+        if name in params and name not in kwargs:
+            value = _model_value(model, name)
+            if value is not None and not (name == "FJacobian" and kwargs.get("fx", True) is None):
+                kwargs[name] = value
+    return wire(cls(**kwargs), model, x0=x0, P0=P0, Q=Q, R=R)

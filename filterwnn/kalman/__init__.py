@@ -1,8 +1,8 @@
 """Kalman-type filters, in ``filterpy.kalman``'s image.
 
 ``from filterwnn.kalman import MinimalSkewSigmaPoints`` as ``from filterpy.kalman import
-MerweScaledSigmaPoints``: the reduced sigma-point sets (:mod:`.sigma_points`, also the one
-home of the package's named point-set presets), the unscented filter with vectorized model
+MerweScaledSigmaPoints``: the reduced sigma-point sets (:mod:`.sigma_points`), the package's
+named point-set presets, its one home of point settings (:mod:`.presets`), the unscented filter with vectorized model
 calls and loud covariance errors (:mod:`.unscented`) and the innovation-adaptive EKF
 (:mod:`.adaptive`).
 """
@@ -13,10 +13,13 @@ _EXPORTS = {
     "sigma_points": "sigma_points",
     "unscented": "unscented",
     "adaptive": "adaptive",
+    "presets": "presets",
     "MinimalSkewSigmaPoints": "sigma_points:MinimalSkewSigmaPoints",
     "SphericalSimplexSigmaPoints": "sigma_points:SphericalSimplexSigmaPoints",
+    "POINT_PRESETS": "presets:POINT_PRESETS",
+    "make_points": "presets:make_points",
     "UnscentedKalmanFilter": "unscented:UnscentedKalmanFilter",
     "AdaptiveExtendedKalmanFilter": "adaptive:AdaptiveExtendedKalmanFilter",
 }
 __getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
-__all__ = [k for k in _EXPORTS if k[0].isupper()]
+__all__ = [k for k, v in _EXPORTS.items() if ":" in v]

@@ -49,11 +49,11 @@ The update with sigma points :math:`\chi_i = x^- + D_i` and weights ``Wm, Wc`` i
 with ``K`` from a Cholesky solve, never an explicit inverse.
 
 >>> import numpy as np
->>> from filterwnn import SphericalSimplexSigmaPoints
+>>> from filterwnn.kalman import make_points
 >>> def hx(X):                      # all sigma points at once: (n_sigmas, 2) -> (n_sigmas, 1)
 ...     return np.sin(X[:, :1]) + X[:, 1:]
 >>> ukf = UnscentedKalmanFilter(2, 1, 1.0, hx=hx, fx=None,
-...                             points=SphericalSimplexSigmaPoints(2), vectorized=True)
+...                             points=make_points("simplex", 2), vectorized=True)
 >>> ukf.Q *= 1e-4; ukf.R *= 0.01
 >>> ukf.predict(); ukf.update(np.array([0.5]))
 >>> ukf.x.shape, ukf.P.shape

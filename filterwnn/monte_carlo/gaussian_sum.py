@@ -48,14 +48,13 @@ Processing 51(10), 2003.
 from __future__ import annotations
 
 import numpy as np
-from filterpy.kalman import MerweScaledSigmaPoints
 
 from .._validation import (NumericalError, as_measurement, as_state, check_choice, check_covariance,
                           check_positive, check_positive_int, check_rng)
 from ._weighted import WeightedMixtureFilter, logsumexp
 from .proposals import ExtendedKalmanProposal, KalmanPrediction, ProposalModel, UnscentedKalmanProposal
 from .resampling import get_scheme
-from ..kalman.sigma_points import SphericalSimplexSigmaPoints
+from ..kalman.presets import make_points
 
 __all__ = ["GaussianSumFilter"]
 
@@ -75,9 +74,9 @@ class GaussianSumFilter(WeightedMixtureFilter):
         As in :class:`~filterwnn.ParticleFilter` (``fx=None`` is a random walk).
     component : {"ekf", "ukf", "sukf"}, default "ukf"
         The Kalman step of every component: extended (needs ``HJacobian``, and
-        ``FJacobian`` unless ``fx`` is None), unscented with ``points`` (default Merwe,
-        alpha=1, beta=2, kappa=0) or unscented with ``points`` (default
-        ``SphericalSimplexSigmaPoints(dim_x, beta=2)``).
+        ``FJacobian`` unless ``fx`` is None), unscented with ``points`` (default the
+        ``"merwe"`` preset of :mod:`filterwnn.kalman.presets`: alpha=1, beta=2, kappa=0) or
+        unscented with ``points`` (default the ``"supf"`` preset: spherical simplex, beta=2).
     points : sigma-point object, optional
         For ``"ukf"``/``"sukf"``; ``points.n`` must equal ``dim_x``.
     FJacobian, HJacobian, x_mean_fn, z_mean_fn, residual_x, residual_z : callable, optional
@@ -153,8 +152,7 @@ class GaussianSumFilter(WeightedMixtureFilter):
             self._step = ExtendedKalmanProposal()
         else:
             if points is None:
-                points = (MerweScaledSigmaPoints(self.dim_x, alpha=1.0, beta=2.0, kappa=0.0) if component == "ukf"
-                          else SphericalSimplexSigmaPoints(self.dim_x, beta=2.0))
+                points = make_points("merwe" if component == "ukf" else "supf", self.dim_x)
             if getattr(points, "n", None) != self.dim_x:
                 raise ValueError(f"points.n must equal dim_x={self.dim_x}, got {getattr(points, 'n', None)}")
             self._step = UnscentedKalmanProposal(points)

@@ -60,7 +60,6 @@ import inspect
 import warnings
 
 import numpy as np
-from filterpy.kalman import MerweScaledSigmaPoints
 
 from .._validation import (
     NumericalError,
@@ -75,7 +74,7 @@ from .._validation import (
 from ._weighted import WeightedMixtureFilter, logsumexp
 from .proposals import ExtendedKalmanProposal, PriorProposal, ProposalModel, UnscentedKalmanProposal
 from .resampling import get_scheme
-from ..kalman.sigma_points import SphericalSimplexSigmaPoints
+from ..kalman.presets import make_points
 
 __all__ = [
     "DegeneracyWarning",
@@ -135,8 +134,8 @@ class ParticleFilter(WeightedMixtureFilter):
         :mod:`filterwnn.monte_carlo.proposals` (``carries_covariance``, ``predict``, ``propose``),
         e.g. :class:`~filterwnn.PriorProposal`, :class:`~filterwnn.ExtendedKalmanProposal`,
         :class:`~filterwnn.UnscentedKalmanProposal` or your own. ``"unscented"`` uses
-        ``points`` (default Merwe, alpha=1, beta=2, kappa=0); pass
-        ``SphericalSimplexSigmaPoints(dim_x, beta=2)`` for the reduced-point SUPF (the
+        ``points`` (default the ``"merwe"`` preset, alpha=1, beta=2, kappa=0); pass
+        ``make_points("supf", dim_x)`` (:mod:`filterwnn.kalman.presets`) for the reduced-point SUPF (the
         default of :class:`SimplexUnscentedParticleFilter`).
     points : sigma-point object, optional
         For the unscented proposals; ``points.n`` must equal ``dim_x`` (checked here).
@@ -303,7 +302,7 @@ class ParticleFilter(WeightedMixtureFilter):
             if proposal == "extended":
                 return ExtendedKalmanProposal(carry_covariance=carry_covariance)
             if points is None:
-                points = MerweScaledSigmaPoints(self.dim_x, alpha=1.0, beta=2.0, kappa=0.0)
+                points = make_points("merwe", self.dim_x)
             n = getattr(points, "n", None)
             if n != self.dim_x:
                 raise ValueError(f"points.n must equal dim_x={self.dim_x}, got {n}")
@@ -642,7 +641,7 @@ class UnscentedParticleFilter(_Preset):
             "The unscented particle filter (UPF) of van der Merwe, Doucet, de Freitas and Wan "
             "(2000): a per-particle UKF step as proposal."
         ),
-        extra="``points`` defaults to ``MerweScaledSigmaPoints(dim_x, alpha=1, beta=2, kappa=0)``.",
+        extra="``points`` defaults to the ``\"merwe\"`` preset (alpha=1, beta=2, kappa=0).",
     )
     _proposal_name = "unscented"
 
@@ -651,7 +650,7 @@ class SimplexUnscentedParticleFilter(_Preset):
     __doc__ = _PRESET_DOC.format(
         what="The first paper's SUPF: the UPF with reduced (n + 2) sigma points.",
         extra=(
-            "``points`` defaults to ``SphericalSimplexSigmaPoints(dim_x, beta=2)`` (the paper's "
+            "``points`` defaults to the ``\"supf\"`` preset (spherical simplex, beta=2: the paper's "
             "equations with the Gaussian-optimal beta = 2 that the UPF's Merwe default also has: on "
             "van der Merwe et al.'s gamma-noise benchmark, n = 1 with a quadratic measurement, "
             "beta = 0 gives a too narrow proposal and loses to the bootstrap filter); "
@@ -662,4 +661,4 @@ class SimplexUnscentedParticleFilter(_Preset):
 
     @staticmethod
     def _default_points(dim_x):
-        return SphericalSimplexSigmaPoints(dim_x, beta=2.0)
+        return make_points("supf", dim_x)

@@ -69,10 +69,10 @@ exactly when :math:`\hat P` is positive definite. With ``dim_z > 1`` the proposa
 factors :math:`\hat P` itself. ``fx=None`` is a random walk (:math:`x^- = x, P^- = P + Q`).
 
 >>> import numpy as np
->>> from filterpy.kalman import MerweScaledSigmaPoints
+>>> from filterwnn.kalman import make_points
 >>> model = ProposalModel(2, 1, dt=1.0, fx=None, hx=lambda X: X[:, :1] ** 2,
 ...                       Q=0.01 * np.eye(2), R=np.array([[0.1]]), vectorized=True)
->>> prop = UnscentedKalmanProposal(MerweScaledSigmaPoints(2, alpha=1, beta=2, kappa=0))
+>>> prop = UnscentedKalmanProposal(make_points("merwe", 2))
 >>> x, P = np.ones((3, 2)), np.tile(np.eye(2), (3, 1, 1))    # 3 particles
 >>> rng = np.random.default_rng(0)
 >>> pred = prop.predict(model, x, P, {}, rng, step=1)

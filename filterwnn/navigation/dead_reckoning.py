@@ -75,7 +75,7 @@ from .._validation import (
     check_covariance,
     check_positive,
 )
-from ..models import StateSpaceModel
+from ..models import StateSpaceModel, from_model
 
 __all__ = [
     "wrap_angle",
@@ -373,13 +373,7 @@ class DRModel(StateSpaceModel):
         """
         from filterpy.kalman import ExtendedKalmanFilter
 
-        kf = ExtendedKalmanFilter(dim_x=6, dim_z=2)
-        kf.F = self.F.copy()
-        kf.Q = self.Q.copy()
-        kf.R = self.R.copy() if R is None else check_covariance(R, "R", 2)
-        kf.x = (self.x0 if x0 is None else as_state(x0, "x0", 6)).copy()
-        kf.P = (self.P0 if P0 is None else check_covariance(P0, "P0", 6)).copy()
-        return kf
+        return from_model(ExtendedKalmanFilter, self, x0=x0, P0=P0, R=R)
 
 
 class GPSDRModel(StateSpaceModel):
@@ -727,8 +721,4 @@ class GPSDRModel(StateSpaceModel):
         """A filterpy ``ExtendedKalmanFilter`` on this model (or use :class:`filterwnn.navigation.gpsdr.GPSDRFilter`)."""
         from filterpy.kalman import ExtendedKalmanFilter
 
-        kf = ExtendedKalmanFilter(dim_x=self.dim_x, dim_z=4)
-        kf.F, kf.Q, kf.R = self.F.copy(), self.Q.copy(), self.R.copy()
-        kf.x = (self.x0 if x0 is None else as_state(x0, "x0", self.dim_x)).copy()
-        kf.P = (self.P0 if P0 is None else check_covariance(P0, "P0", self.dim_x)).copy()
-        return kf
+        return from_model(ExtendedKalmanFilter, self, x0=x0, P0=P0)

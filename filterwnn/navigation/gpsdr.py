@@ -69,12 +69,13 @@ import warnings
 from collections import deque
 
 import numpy as np
-from filterpy.kalman import ExtendedKalmanFilter, MerweScaledSigmaPoints
+from filterpy.kalman import ExtendedKalmanFilter
 
 from .._linalg import repair_pd
 from .._validation import as_state, check_choice, check_covariance, check_positive, check_positive_int
-from .dead_reckoning import GPSDRModel, dr_residual, dr_z_mean
-from ..kalman.sigma_points import SphericalSimplexSigmaPoints
+from .dead_reckoning import GPSDRModel, dr_residual
+from ..kalman.presets import make_points
+from ..models import from_model
 from ..kalman.unscented import UnscentedKalmanFilter
 
 __all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS", "GATE", "REACQUIRE_AFTER", "NIS_WINDOW",
@@ -197,24 +198,15 @@ class GPSDRFilter:
         self.gps_sigma_est = None
         #: state rows held without GPS: position and the calibration states
         self.held_states = np.array([0, 3] + list(range(6, model.dim_x)))
-        n = model.dim_x
-        x0 = (model.x0 if x0 is None else as_state(x0, "x0", n)).copy()
-        P0 = (model.P0 if P0 is None else check_covariance(P0, "P0", n)).copy()
         if self.kind == "ekf":
-            kf = ExtendedKalmanFilter(dim_x=n, dim_z=4)
-            kf.F = model.F.copy()
+            self.kf = from_model(ExtendedKalmanFilter, model, x0=x0, P0=P0)
         else:
             if points is None:
-                points = (MerweScaledSigmaPoints(n, alpha=0.5, beta=2.0, kappa=0.0) if self.kind == "ukf"
-                          else SphericalSimplexSigmaPoints(n, w0=0.2))
+                points = make_points("gpsdr-ukf" if self.kind == "ukf" else "gpsdr-sukf", model.dim_x)
             # dim_z follows the fix (4 with GPS, 2 without), so the per-point hx is used
-            kf = UnscentedKalmanFilter(n, 4, model.dt, hx=model.hx, fx=model.fx, points=points,
-                                       z_mean_fn=dr_z_mean, residual_z=dr_residual)
-        kf.Q, kf.R = model.Q.copy(), model.R.copy()
-        kf.x, kf.P = x0, P0
-        self.kf = kf
+            self.kf = from_model(UnscentedKalmanFilter, model, points=points, x0=x0, P0=P0)
         self.motion = None
-        self._init_integrity(gate, reacquire_after, nis_window, x0)
+        self._init_integrity(gate, reacquire_after, nis_window, self.kf.x)
 
     def _init_integrity(self, gate, reacquire_after, nis_window, x0):
         """The gate, the counters, the consistency monitor and the calibration bounds."""

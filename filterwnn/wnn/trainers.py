@@ -81,7 +81,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-from filterpy.kalman import ExtendedKalmanFilter, MerweScaledSigmaPoints
+from filterpy.kalman import ExtendedKalmanFilter
 from scipy.linalg.blas import dsymv, dsyr
 
 from ..monte_carlo import smc
@@ -94,7 +94,8 @@ from ..monte_carlo.particle_filter import (
     SimplexUnscentedParticleFilter,
     UnscentedParticleFilter,
 )
-from ..kalman.sigma_points import SphericalSimplexSigmaPoints
+from ..kalman.presets import make_points
+from ..models import from_model
 from ..kalman.unscented import UnscentedKalmanFilter
 from .weight_model import WNNWeightModel, scaled_prior
 
@@ -134,13 +135,21 @@ MOVE_SETTINGS = {"Q": 0.0, "P0": 1.0, "output_scale": 1.0, "mala": {"n_moves": 5
 
 
 def merwe_points(n, alpha=1.0):
-    """Van der Merwe's ``2n + 1`` scaled points (``beta=2, kappa=0``), filterpy's class."""
-    return MerweScaledSigmaPoints(n, alpha=alpha, beta=2.0, kappa=0.0)
+    """The ``"merwe"`` preset (:mod:`filterwnn.kalman.presets`): van der Merwe's ``2n + 1`` points,
+    ``beta=2, kappa=0``, with the trainer's ``alpha`` (the ``ukf``, ``upf`` and ``gsf-ukf`` trainers)."""
+    return make_points("merwe", n, alpha=alpha)
 
 
 def simplex_points(n, alpha=1.0):
-    """The ``n + 2`` spherical simplex points (Julier 2003)."""
-    return SphericalSimplexSigmaPoints(n, alpha=alpha)
+    """The ``"simplex"`` preset (:mod:`filterwnn.kalman.presets`): the unscaled ``n + 2`` spherical
+    simplex of Julier (2003), ``beta=0, w0=0``, with the trainer's ``alpha`` (the ``sukf``,
+    ``supf`` and ``gsf-sukf`` trainers).
+
+    A named choice, not the SUPF preset's ``beta=2``: the WNN study's searched settings and
+    numbers were measured with this set, so the ``supf`` trainer keeps it (``beta=2`` would be
+    another trainer, with its own row).
+    """
+    return make_points("simplex", n, alpha=alpha)
 
 
 @dataclass(frozen=True, eq=False)
@@ -354,11 +363,7 @@ class _EKFTrainer(BaseTrainer):
         Q = model.Q
         self.q_diag = np.diag(Q).copy() if np.allclose(Q, np.diag(np.diag(Q))) else None
         if self.backend == "filterpy":
-            self.kf = ExtendedKalmanFilter(model.dim_x, model.dim_z)
-            self.kf.x = self.x.copy()
-            self.kf.P = model.P0.copy()
-            self.kf.Q = model.Q.copy()
-            self.kf.R = model.R.copy()
+            self.kf = from_model(ExtendedKalmanFilter, model, x0=self.x)
 
     @property
     def theta(self):
@@ -427,11 +432,7 @@ class _UKFTrainer(BaseTrainer):
         super().__init__(model, theta0, settings, rng, spec)
         n = model.dim_x
         points = spec.points(n, alpha=settings.get("alpha", 1.0))
-        self.kf = spec.filter(n, 1, 1.0, model.hx, None, points, vectorized=True)
-        self.kf.x = np.array(theta0, dtype=float)
-        self.kf.P = model.P0.copy()
-        self.kf.Q = model.Q.copy()
-        self.kf.R = model.R.copy()
+        self.kf = from_model(spec.filter, model, x0=theta0, fx=None, points=points, vectorized=True)
 
     @property
     def theta(self):
@@ -486,13 +487,8 @@ class _ParticleTrainer(BaseTrainer):
             return
         theta0 = np.atleast_2d(np.asarray(theta0, dtype=float))
         # fx=None: the random walk, predicted without sigma points (P += Q)
-        self.pf = cls(model.dim_x, 1, 1.0, model.hx, None, **kwargs)
-        self.pf.Q = model.Q.copy()
-        self.pf.R = model.R.copy()
-        self.pf.P = model.P0.copy()
-        if theta0.shape[0] == 1:  # one start: particles drawn from N(theta0, P0)
-            self.pf.x = theta0[0].copy()
-        else:  # one start per particle (the paper's step 1: draws from the initial distribution)
+        self.pf = from_model(cls, model, x0=theta0[0], fx=None, **kwargs)
+        if theta0.shape[0] > 1:  # one start per particle (the paper's step 1: draws from the initial distribution)
             self.pf.initialize(theta0, model.P0)
 
     def _start_with_move(self, X):
@@ -503,10 +499,7 @@ class _ParticleTrainer(BaseTrainer):
             self.move = smc.HMCMove(target, n_steps=s["n_moves"], n_leapfrog=s["n_leapfrog"])
         else:
             self.move = smc.MALAMove(target, n_steps=s["n_moves"])
-        self.pf = self._cls(m.dim_x, 1, 1.0, m.hx, None, move=self.move, **self._kwargs)
-        self.pf.Q = np.zeros_like(m.Q)
-        self.pf.R = m.R.copy()
-        self.pf.P = prior.P0.copy()
+        self.pf = from_model(self._cls, m, P0=prior.P0, Q=prior.Q, fx=None, move=self.move, **self._kwargs)
         draws = self.rng.standard_normal((s["n_particles"], m.dim_x))
         self.pf.initialize(prior.x0 + draws * np.sqrt(var), prior.P0)
 
@@ -575,8 +568,7 @@ class _GaussianSumTrainer(_ParticleTrainer):
                       rng=rng, tempering=settings["tempering"], combine=self.combine)
         kwargs.update(_filter_extras(spec, model))
         theta0 = np.atleast_2d(np.asarray(theta0, dtype=float))
-        self.pf = spec.filter(model.dim_x, 1, 1.0, model.hx, None, component=spec.component, **kwargs)
-        self.pf.Q, self.pf.R = model.Q.copy(), model.R.copy()
+        self.pf = from_model(spec.filter, model, fx=None, component=spec.component, **kwargs)
         if theta0.shape[0] == 1:  # one start: component means drawn from N(theta0, P0)
             L = np.linalg.cholesky(model.P0)
             theta0 = theta0[0] + self.pf.rng.standard_normal((settings["n_particles"], model.dim_x)) @ L.T

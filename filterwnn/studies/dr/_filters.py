@@ -12,12 +12,13 @@ from functools import partial
 from typing import Callable, NamedTuple
 
 import numpy as np
-from filterpy.kalman import ExtendedKalmanFilter, MerweScaledSigmaPoints
+from filterpy.kalman import ExtendedKalmanFilter
 
 from ...kalman.adaptive import AdaptiveExtendedKalmanFilter
-from ...kalman.sigma_points import SphericalSimplexSigmaPoints
+from ...kalman.presets import make_points
+from ...models import from_model
 from ...kalman.unscented import UnscentedKalmanFilter
-from ...navigation.dead_reckoning import DRModel, GPSDRModel, dr_residual, dr_z_mean
+from ...navigation.dead_reckoning import DRModel, GPSDRModel, dr_residual
 from ...navigation.gpsdr import GPSDRFilter
 from ...navigation.neural_filter import (
     NeuralFilter,
@@ -72,9 +73,7 @@ class DRFilter(NamedTuple):
 def _ekf_steps(run, x0, rng, context, adaptive=False, true_R=False):
     """filterpy's EKF (or the adaptive one) with the nominal ``R``, or told the true ``R``."""
     model = DRModel(dt=run.scenario.dt)
-    kf = AdaptiveExtendedKalmanFilter(6, 2) if adaptive else ExtendedKalmanFilter(6, 2)
-    kf.F, kf.Q, kf.R = model.F.copy(), model.Q.copy(), model.R.copy()
-    kf.x, kf.P = x0.copy(), model.P0.copy()
+    kf = from_model(AdaptiveExtendedKalmanFilter if adaptive else ExtendedKalmanFilter, model, x0=x0)
 
     def update(k):
         R = np.diag(run.R_true[k]) if true_R else None
@@ -84,18 +83,12 @@ def _ekf_steps(run, x0, rng, context, adaptive=False, true_R=False):
 
 
 def _ukf(model, points, x0, P0, gps):
-    f = UnscentedKalmanFilter(model.dim_x, 4 if gps else 2, model.dt, hx=model.hx, fx=model.fx, points=points,
-                              z_mean_fn=dr_z_mean, residual_z=dr_residual,
-                              vectorized=not gps)  # dim_z varies with GPS
-    f.x, f.P, f.Q = x0.copy(), P0.copy(), model.Q.copy()
-    f.R = model.R.copy()
-    return f
+    # hx per point with GPS (its dim_z varies with the fix), vectorized without
+    return from_model(UnscentedKalmanFilter, model, points=points, x0=x0, P0=P0, vectorized=not gps)
 
 
 def _points(kind, n):
-    if kind == "merwe":
-        return MerweScaledSigmaPoints(n, alpha=0.5, beta=2.0, kappa=0.0)
-    return SphericalSimplexSigmaPoints(n, w0=0.2)
+    return make_points("gpsdr-ukf" if kind == "merwe" else "gpsdr-sukf", n)
 
 
 def _ukf_steps(run, x0, rng, context, points="merwe"):
@@ -148,11 +141,8 @@ def _upf_steps(run, x0, rng, context, n_particles=UPF_PARTICLES):
     from ...monte_carlo.particle_filter import UnscentedParticleFilter
 
     model = DRModel(dt=run.scenario.dt)
-    pf = UnscentedParticleFilter(6, 2, model.dt, model.hx, model.fx, n_particles, points=_points("merwe", 6),
-                                 residual_z=dr_residual, z_mean_fn=dr_z_mean, vectorized=True, rng=rng,
-                                 carry_covariance=False)
-    pf.Q, pf.R = model.Q.copy(), model.R.copy()
-    pf.x, pf.P = np.asarray(x0, dtype=float).copy(), np.asarray(model.P0, dtype=float).copy()
+    pf = from_model(UnscentedParticleFilter, model, x0=x0, n_particles=n_particles, points=_points("merwe", 6),
+                    vectorized=True, rng=rng, carry_covariance=False)
     return _Steps(pf.predict, lambda k: pf.update(run.z_dr[k]), lambda: pf.x)
 
 
