@@ -3,8 +3,9 @@
 ``from filterwnn.kalman import MinimalSkewSigmaPoints`` as ``from filterpy.kalman import
 MerweScaledSigmaPoints``: the reduced sigma-point sets (:mod:`.sigma_points`, also the one
 home of the package's named point-set presets), the unscented filter with vectorized model
-calls and loud covariance errors (:mod:`.unscented`) and the innovation-adaptive EKF
-(:mod:`.adaptive`).
+calls and loud covariance errors (:mod:`.unscented`), the innovation-adaptive EKF
+(:mod:`.adaptive`), the batched Kalman step of N Gaussians at once (:mod:`.batched`) and the
+banks of independent filters built on it (:mod:`.bank`).
 """
 
 from .._lazy import lazy_exports
@@ -13,10 +14,15 @@ _EXPORTS = {
     "sigma_points": "sigma_points",
     "unscented": "unscented",
     "adaptive": "adaptive",
+    "batched": "batched",
     "MinimalSkewSigmaPoints": "sigma_points:MinimalSkewSigmaPoints",
     "SphericalSimplexSigmaPoints": "sigma_points:SphericalSimplexSigmaPoints",
     "UnscentedKalmanFilter": "unscented:UnscentedKalmanFilter",
     "AdaptiveExtendedKalmanFilter": "adaptive:AdaptiveExtendedKalmanFilter",
+    "KalmanModel": "batched:KalmanModel",
+    "UnscentedStep": "batched:UnscentedStep",
+    "ExtendedStep": "batched:ExtendedStep",
+    "LinearStep": "batched:LinearStep",
 }
 __getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
 __all__ = [k for k in _EXPORTS if k[0].isupper()]

@@ -53,8 +53,8 @@ from filterpy.kalman import MerweScaledSigmaPoints
 from .._validation import (NumericalError, as_measurement, as_state, check_choice, check_covariance,
                           check_positive, check_positive_int, check_rng)
 from ._weighted import WeightedMixtureFilter, logsumexp
-from .proposals import ExtendedKalmanProposal, KalmanPrediction, ProposalModel, UnscentedKalmanProposal
 from .resampling import get_scheme
+from ..kalman.batched import ExtendedStep, KalmanModel, KalmanPrediction, UnscentedStep, repairing
 from ..kalman.sigma_points import SphericalSimplexSigmaPoints
 
 __all__ = ["GaussianSumFilter"]
@@ -150,16 +150,16 @@ class GaussianSumFilter(WeightedMixtureFilter):
                 raise ValueError("component='ekf' needs HJacobian, got None")
             if fx is not None and FJacobian is None:
                 raise ValueError("component='ekf' needs FJacobian when fx is given, got None")
-            self._step = ExtendedKalmanProposal()
+            self._step = ExtendedStep()
         else:
             if points is None:
                 points = (MerweScaledSigmaPoints(self.dim_x, alpha=1.0, beta=2.0, kappa=0.0) if component == "ukf"
                           else SphericalSimplexSigmaPoints(self.dim_x, beta=2.0))
             if getattr(points, "n", None) != self.dim_x:
                 raise ValueError(f"points.n must equal dim_x={self.dim_x}, got {getattr(points, 'n', None)}")
-            self._step = UnscentedKalmanProposal(points)
+            self._step = UnscentedStep(points)
         self.points = points
-        self._model = ProposalModel(
+        self._model = KalmanModel(
             self.dim_x, self.dim_z, self.dt, fx, hx, vectorized=bool(vectorized), FJacobian=FJacobian,
             HJacobian=HJacobian, x_mean_fn=x_mean_fn, z_mean_fn=z_mean_fn, residual_x=residual_x,
             residual_z=residual_z, recover=bool(recover),
@@ -240,11 +240,12 @@ class GaussianSumFilter(WeightedMixtureFilter):
         """Advance the step and every component by its Kalman prediction."""
         model = self._sync()
         step = self.step + 1
-        pred = self._step.predict(model, self.means, self.covariances, fx_args, self.rng, step)
-        if not (np.all(np.isfinite(pred.particles)) and np.all(np.isfinite(pred.covariances))):
+        pred, _ = repairing(model, lambda C: self._step.predict(model, self.means, C, fx_args, step),
+                            self.covariances, step, "posterior", stacklevel=4)
+        if not (np.all(np.isfinite(pred.x)) and np.all(np.isfinite(pred.P))):
             raise NumericalError(f"non-finite Kalman prediction at step {step} (check fx, FJacobian and Q)",
                                  matrix="P_prior", step=step)
-        self.means, self.covariances = pred.particles, pred.covariances
+        self.means, self.covariances = pred
         self._predicted = True
         self.step = step
         self._x, self._P = self._moments(self.means, self.covariances)
@@ -262,7 +263,7 @@ class GaussianSumFilter(WeightedMixtureFilter):
             self._record(self.ess, self.n_components, False)
             return
         z = as_measurement(z, self.dim_z)
-        upd = self._step.kalman_update(model, KalmanPrediction(self.means, self.covariances), z, hx_args, step)
+        upd = self._step.update(model, KalmanPrediction(self.means, self.covariances), z, hx_args, step)
         log_alpha = upd.log_likelihood
         if not np.all(np.isfinite(log_alpha)):
             raise NumericalError(f"non-finite component likelihood at step {step}", matrix="weights", step=step)
