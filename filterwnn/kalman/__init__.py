@@ -15,6 +15,7 @@ _EXPORTS = {
     "unscented": "unscented",
     "adaptive": "adaptive",
     "batched": "batched",
+    "bank": "bank",
     "MinimalSkewSigmaPoints": "sigma_points:MinimalSkewSigmaPoints",
     "SphericalSimplexSigmaPoints": "sigma_points:SphericalSimplexSigmaPoints",
     "UnscentedKalmanFilter": "unscented:UnscentedKalmanFilter",
@@ -23,6 +24,9 @@ _EXPORTS = {
     "UnscentedStep": "batched:UnscentedStep",
     "ExtendedStep": "batched:ExtendedStep",
     "LinearStep": "batched:LinearStep",
+    "UnscentedKalmanFilterBank": "bank:UnscentedKalmanFilterBank",
+    "ExtendedKalmanFilterBank": "bank:ExtendedKalmanFilterBank",
+    "KalmanFilterBank": "bank:KalmanFilterBank",
 }
 __getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
 __all__ = [k for k in _EXPORTS if k[0].isupper()]
