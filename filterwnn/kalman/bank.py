@@ -56,17 +56,9 @@ import numpy as np
 
 from .._linalg import first_not_pd
 from .._validation import NumericalError, cholesky_lower, check_points_protocol, check_positive, check_positive_int
-from .batched import ExtendedStep, KalmanModel, KalmanPrediction, LinearStep, UnscentedStep
+from .batched import ExtendedStep, KalmanModel, KalmanPrediction, LinearStep, UnscentedStep, check_callable
 
 __all__ = ["UnscentedKalmanFilterBank", "ExtendedKalmanFilterBank", "KalmanFilterBank"]
-
-
-def _check_callable(f, name, allow_none=False):
-    if f is None and allow_none:
-        return None
-    if not callable(f):
-        raise TypeError(f"{name} must be callable{' or None' if allow_none else ''}, got {type(f).__name__}")
-    return f
 
 
 def _stack(M, name, B, dim, *, kind):
@@ -346,11 +338,11 @@ class UnscentedKalmanFilterBank(_NonlinearBank):
         self.points = points
         self._step = UnscentedStep(points)
         self._model = KalmanModel(
-            self.dim_x, self.dim_z, self.dt, _check_callable(fx, "fx", True), _check_callable(hx, "hx"),
-            vectorized=bool(vectorized), x_mean_fn=_check_callable(x_mean_fn, "x_mean_fn", True),
-            z_mean_fn=_check_callable(z_mean_fn, "z_mean_fn", True),
-            residual_x=_check_callable(residual_x, "residual_x", True),
-            residual_z=_check_callable(residual_z, "residual_z", True),
+            self.dim_x, self.dim_z, self.dt, check_callable(fx, "fx"), check_callable(hx, "hx", False),
+            vectorized=bool(vectorized), x_mean_fn=check_callable(x_mean_fn, "x_mean_fn"),
+            z_mean_fn=check_callable(z_mean_fn, "z_mean_fn"),
+            residual_x=check_callable(residual_x, "residual_x"),
+            residual_z=check_callable(residual_z, "residual_z"),
         )
 
 
@@ -381,10 +373,10 @@ class ExtendedKalmanFilterBank(_NonlinearBank):
             raise ValueError("ExtendedKalmanFilterBank needs FJacobian when fx is given, got None")
         self._step = ExtendedStep()
         self._model = KalmanModel(
-            self.dim_x, self.dim_z, self.dt, _check_callable(fx, "fx", True), _check_callable(hx, "hx"),
-            vectorized=bool(vectorized), FJacobian=_check_callable(FJacobian, "FJacobian", True),
-            HJacobian=_check_callable(HJacobian, "HJacobian"),
-            residual_z=_check_callable(residual_z, "residual_z", True),
+            self.dim_x, self.dim_z, self.dt, check_callable(fx, "fx"), check_callable(hx, "hx", False),
+            vectorized=bool(vectorized), FJacobian=check_callable(FJacobian, "FJacobian"),
+            HJacobian=check_callable(HJacobian, "HJacobian", False),
+            residual_z=check_callable(residual_z, "residual_z"),
         )
 
 

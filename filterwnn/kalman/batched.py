@@ -182,6 +182,15 @@ def _solve_lower(L, B):
         X[:, j, :] = r / L[:, j, j][:, None]
     return X
 
+def check_callable(f, name, allow_none=True):
+    """``f`` when it is callable (or None where allowed), else ``TypeError`` naming ``name``."""
+    if f is None and allow_none:
+        return None
+    if not callable(f):
+        raise TypeError(f"{name} must be callable{' or None' if allow_none else ''}, got {type(f).__name__}")
+    return f
+
+
 # ---------------------------------------------------------------------------
 # The model side of a Kalman step
 # ---------------------------------------------------------------------------

@@ -52,9 +52,9 @@ from filterpy.kalman import MerweScaledSigmaPoints
 
 from .._validation import (NumericalError, as_measurement, as_state, check_choice, check_covariance,
                           check_positive, check_positive_int, check_rng)
-from ._weighted import WeightedMixtureFilter, logsumexp
+from ._weighted import ModelAttribute, WeightedMixtureFilter, logsumexp
 from .resampling import get_scheme
-from ..kalman.batched import ExtendedStep, KalmanModel, KalmanPrediction, UnscentedStep, repairing
+from ..kalman.batched import ExtendedStep, KalmanModel, KalmanPrediction, UnscentedStep, check_callable, repairing
 from ..kalman.sigma_points import SphericalSimplexSigmaPoints
 
 __all__ = ["GaussianSumFilter"]
@@ -123,6 +123,11 @@ class GaussianSumFilter(WeightedMixtureFilter):
     _restart_hint = "call initialize(means, covariances) to restart the mixture"
     x = WeightedMixtureFilter.x  # (in this class's namespace, so that its page documents them)
     P = WeightedMixtureFilter.P
+    # the model: one KalmanModel, read and written through
+    hx = ModelAttribute(lambda f, name: check_callable(f, name, False), "Measurement function (on the model).")
+    fx = ModelAttribute(check_callable, "Transition mean, or None for a random walk (on the model).")
+    Q = ModelAttribute(doc="Process noise covariance (on the model; checked when it changes).")
+    R = ModelAttribute(doc="Measurement noise covariance (on the model; checked when it changes).")
 
     def __init__(self, dim_x, dim_z, dt, hx, fx, *, component="ukf", points=None, FJacobian=None,
                  HJacobian=None, x_mean_fn=None, z_mean_fn=None, residual_x=None, residual_z=None,
@@ -134,8 +139,7 @@ class GaussianSumFilter(WeightedMixtureFilter):
         for name, f in (("hx", hx), ("fx", fx), ("FJacobian", FJacobian), ("HJacobian", HJacobian),
                         ("x_mean_fn", x_mean_fn), ("z_mean_fn", z_mean_fn), ("residual_x", residual_x),
                         ("residual_z", residual_z)):
-            if f is None and name == "hx" or f is not None and not callable(f):
-                raise TypeError(f"{name} must be callable, got {type(f).__name__}")
+            check_callable(f, name, allow_none=name != "hx")
         self.component = check_choice(component, "component", COMPONENTS)
         self.combine = check_choice(combine, "combine", COMBINES)
         self.tempering = check_positive(tempering, "tempering")
@@ -221,7 +225,6 @@ class GaussianSumFilter(WeightedMixtureFilter):
 
     def _sync(self):
         m = self._model
-        m.Q, m.R = self.Q, self.R
         m.noise("Q")
         m.noise("R")
         if self.means is None:  # one component N(x, P)
