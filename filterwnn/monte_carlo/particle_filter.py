@@ -542,11 +542,28 @@ class ParticleFilter(WeightedMixtureFilter):
         self._watch_degeneracy(ess)
 
     def _add_weights(self, model, step, log_alpha, log_lik):
-        """New normalised log-weights from the increment (None when skipped as an outlier)."""
+        """New normalised log-weights from the increment (None when skipped as an outlier).
+
+        One pass in the usual case: a finite normaliser means no NaN or ``+inf`` increment
+        (either would make it non-finite), so the scans for them run only when it is not.
+        """
+        lw_prev = self.log_weights
+        new_lw = lw_prev + log_alpha if self.tempering == 1.0 else lw_prev + self.tempering * log_alpha
+        lse = logsumexp(new_lw)
+        if not np.isfinite(lse):
+            if self._weights_failed(model, step, log_alpha, log_lik):
+                return None
+        log_lik_step = lse if self.tempering == 1.0 else logsumexp(lw_prev + log_alpha)
+        self.log_likelihood = float(log_lik_step)
+        self.log_marginal_likelihood += float(log_lik_step)
+        return new_lw - lse
+
+    def _weights_failed(self, model, step, log_alpha, log_lik):
+        """The weights cannot be normalised: skip as an outlier (``recover``, True) or raise."""
         bad_weights = np.any(np.isnan(log_alpha)) or np.any(log_alpha == np.inf)
         if self.recover and (bad_weights or not np.any(log_alpha > -np.inf)):
             self._skip_measurement(model, step, "no finite particle weight (all underflow or NaN)")
-            return None
+            return True
         if bad_weights:
             bad = int(np.argmax(np.isnan(log_alpha) | (log_alpha == np.inf)))
             raise NumericalError(
@@ -554,23 +571,15 @@ class ParticleFilter(WeightedMixtureFilter):
                 matrix="weights",
                 step=step,
             )
-        lw_prev = self.log_weights
-        new_lw = lw_prev + log_alpha if self.tempering == 1.0 else lw_prev + self.tempering * log_alpha
-        lse = logsumexp(new_lw)
-        if not np.isfinite(lse):
-            lmax = np.max(log_alpha if log_lik is None else log_lik)
-            if log_lik is None or not np.isfinite(lmax):
-                detail = f"the measurement is impossible under every particle (largest log-likelihood {lmax:.6g})"
-            else:
-                detail = (
-                    f"largest log-likelihood {lmax:.6g}, but the transition density is 0 "
-                    f"at every sample (largest log-weight increment {np.max(log_alpha):.6g})"
-                )
-            raise NumericalError(f"all particle weights underflowed at step {step}: {detail}", matrix="weights", step=step)
-        log_lik_step = lse if self.tempering == 1.0 else logsumexp(lw_prev + log_alpha)
-        self.log_likelihood = float(log_lik_step)
-        self.log_marginal_likelihood += float(log_lik_step)
-        return new_lw - lse
+        lmax = np.max(log_alpha if log_lik is None else log_lik)
+        if log_lik is None or not np.isfinite(lmax):
+            detail = f"the measurement is impossible under every particle (largest log-likelihood {lmax:.6g})"
+        else:
+            detail = (
+                f"largest log-likelihood {lmax:.6g}, but the transition density is 0 "
+                f"at every sample (largest log-weight increment {np.max(log_alpha):.6g})"
+            )
+        raise NumericalError(f"all particle weights underflowed at step {step}: {detail}", matrix="weights", step=step)
 
     def _apply_move(self, X, step):
         Y = np.asarray(self.move(X, self.rng), dtype=float)
