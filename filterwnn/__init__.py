@@ -82,6 +82,9 @@ _EXPORTS = {
     # algorithms
     "UnscentedKalmanFilter": "kalman.unscented:UnscentedKalmanFilter",
     "AdaptiveExtendedKalmanFilter": "kalman.adaptive:AdaptiveExtendedKalmanFilter",
+    "UnscentedKalmanFilterBank": "kalman.bank:UnscentedKalmanFilterBank",
+    "ExtendedKalmanFilterBank": "kalman.bank:ExtendedKalmanFilterBank",
+    "KalmanFilterBank": "kalman.bank:KalmanFilterBank",
     "ParticleFilter": "monte_carlo.particle_filter:ParticleFilter",
     "DegeneracyWarning": "monte_carlo.particle_filter:DegeneracyWarning",
     "GaussianSumFilter": "monte_carlo.gaussian_sum:GaussianSumFilter",

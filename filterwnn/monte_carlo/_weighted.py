@@ -13,7 +13,7 @@ import numpy as np
 
 from .resampling import get_scheme
 
-__all__ = ["logsumexp", "WeightedMixtureFilter"]
+__all__ = ["logsumexp", "ModelAttribute", "WeightedMixtureFilter"]
 
 
 def logsumexp(a):
@@ -26,6 +26,31 @@ def logsumexp(a):
     if not np.isfinite(m):
         return float(m)
     return float(m + np.log(np.sum(np.exp(a - m))))
+
+
+class ModelAttribute:
+    """A filter attribute that lives on the filter's one model object (``self._model``).
+
+    ``pf.Q`` reads ``pf._model.Q`` and ``pf.Q = ...`` writes it (through ``check(value,
+    name)`` when given), so the model the proposals and Kalman steps see is always the
+    filter's, with no per-step copying; an in-place edit (``pf.Q[0, 0] = 2``) edits the
+    model's matrix, which the model's noise check compares at the next step.
+    """
+
+    def __init__(self, check=None, doc=None):
+        self.check = check
+        self.__doc__ = doc
+
+    def __set_name__(self, owner, name):
+        self.name = name
+
+    def __get__(self, obj, objtype=None):
+        if obj is None:
+            return self
+        return getattr(obj._model, self.name)
+
+    def __set__(self, obj, value):
+        setattr(obj._model, self.name, value if self.check is None else self.check(value, self.name))
 
 
 class WeightedMixtureFilter:

@@ -51,9 +51,9 @@ import numpy as np
 
 from .._validation import (NumericalError, as_measurement, as_state, check_choice, check_covariance,
                           check_positive, check_positive_int, check_rng)
-from ._weighted import WeightedMixtureFilter, logsumexp
-from .proposals import ExtendedKalmanProposal, KalmanPrediction, ProposalModel, UnscentedKalmanProposal
+from ._weighted import ModelAttribute, WeightedMixtureFilter, logsumexp
 from .resampling import get_scheme
+from ..kalman.batched import ExtendedStep, KalmanModel, KalmanPrediction, UnscentedStep, check_callable, repairing
 from ..kalman.presets import make_points
 
 __all__ = ["GaussianSumFilter"]
@@ -122,6 +122,11 @@ class GaussianSumFilter(WeightedMixtureFilter):
     _restart_hint = "call initialize(means, covariances) to restart the mixture"
     x = WeightedMixtureFilter.x  # (in this class's namespace, so that its page documents them)
     P = WeightedMixtureFilter.P
+    # the model: one KalmanModel, read and written through
+    hx = ModelAttribute(lambda f, name: check_callable(f, name, False), "Measurement function (on the model).")
+    fx = ModelAttribute(check_callable, "Transition mean, or None for a random walk (on the model).")
+    Q = ModelAttribute(doc="Process noise covariance (on the model; checked when it changes).")
+    R = ModelAttribute(doc="Measurement noise covariance (on the model; checked when it changes).")
 
     def __init__(self, dim_x, dim_z, dt, hx, fx, *, component="ukf", points=None, FJacobian=None,
                  HJacobian=None, x_mean_fn=None, z_mean_fn=None, residual_x=None, residual_z=None,
@@ -133,8 +138,7 @@ class GaussianSumFilter(WeightedMixtureFilter):
         for name, f in (("hx", hx), ("fx", fx), ("FJacobian", FJacobian), ("HJacobian", HJacobian),
                         ("x_mean_fn", x_mean_fn), ("z_mean_fn", z_mean_fn), ("residual_x", residual_x),
                         ("residual_z", residual_z)):
-            if f is None and name == "hx" or f is not None and not callable(f):
-                raise TypeError(f"{name} must be callable, got {type(f).__name__}")
+            check_callable(f, name, allow_none=name != "hx")
         self.component = check_choice(component, "component", COMPONENTS)
         self.combine = check_choice(combine, "combine", COMBINES)
         self.tempering = check_positive(tempering, "tempering")
@@ -149,15 +153,15 @@ class GaussianSumFilter(WeightedMixtureFilter):
                 raise ValueError("component='ekf' needs HJacobian, got None")
             if fx is not None and FJacobian is None:
                 raise ValueError("component='ekf' needs FJacobian when fx is given, got None")
-            self._step = ExtendedKalmanProposal()
+            self._step = ExtendedStep()
         else:
             if points is None:
                 points = make_points("merwe" if component == "ukf" else "supf", self.dim_x)
             if getattr(points, "n", None) != self.dim_x:
                 raise ValueError(f"points.n must equal dim_x={self.dim_x}, got {getattr(points, 'n', None)}")
-            self._step = UnscentedKalmanProposal(points)
+            self._step = UnscentedStep(points)
         self.points = points
-        self._model = ProposalModel(
+        self._model = KalmanModel(
             self.dim_x, self.dim_z, self.dt, fx, hx, vectorized=bool(vectorized), FJacobian=FJacobian,
             HJacobian=HJacobian, x_mean_fn=x_mean_fn, z_mean_fn=z_mean_fn, residual_x=residual_x,
             residual_z=residual_z, recover=bool(recover),
@@ -219,7 +223,6 @@ class GaussianSumFilter(WeightedMixtureFilter):
 
     def _sync(self):
         m = self._model
-        m.Q, m.R = self.Q, self.R
         m.noise("Q")
         m.noise("R")
         if self.means is None:  # one component N(x, P)
@@ -238,11 +241,12 @@ class GaussianSumFilter(WeightedMixtureFilter):
         """Advance the step and every component by its Kalman prediction."""
         model = self._sync()
         step = self.step + 1
-        pred = self._step.predict(model, self.means, self.covariances, fx_args, self.rng, step)
-        if not (np.all(np.isfinite(pred.particles)) and np.all(np.isfinite(pred.covariances))):
+        pred, _ = repairing(model, lambda C: self._step.predict(model, self.means, C, fx_args, step),
+                            self.covariances, step, "posterior", stacklevel=4)
+        if not (np.all(np.isfinite(pred.x)) and np.all(np.isfinite(pred.P))):
             raise NumericalError(f"non-finite Kalman prediction at step {step} (check fx, FJacobian and Q)",
                                  matrix="P_prior", step=step)
-        self.means, self.covariances = pred.particles, pred.covariances
+        self.means, self.covariances = pred
         self._predicted = True
         self.step = step
         self._x, self._P = self._moments(self.means, self.covariances)
@@ -260,7 +264,7 @@ class GaussianSumFilter(WeightedMixtureFilter):
             self._record(self.ess, self.n_components, False)
             return
         z = as_measurement(z, self.dim_z)
-        upd = self._step.kalman_update(model, KalmanPrediction(self.means, self.covariances), z, hx_args, step)
+        upd = self._step.update(model, KalmanPrediction(self.means, self.covariances), z, hx_args, step)
         log_alpha = upd.log_likelihood
         if not np.all(np.isfinite(log_alpha)):
             raise NumericalError(f"non-finite component likelihood at step {step}", matrix="weights", step=step)

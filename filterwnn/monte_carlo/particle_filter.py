@@ -71,9 +71,10 @@ from .._validation import (
     check_positive_int,
     check_rng,
 )
-from ._weighted import WeightedMixtureFilter, logsumexp
+from ._weighted import ModelAttribute, WeightedMixtureFilter, logsumexp
 from .proposals import ExtendedKalmanProposal, PriorProposal, ProposalModel, UnscentedKalmanProposal
 from .resampling import get_scheme
+from ..kalman.batched import check_callable
 from ..kalman.presets import make_points
 
 __all__ = [
@@ -98,17 +99,20 @@ class DegeneracyWarning(RuntimeWarning):
     what to try."""
 
 
-def _check_callable(f, name, allow_none=True):
-    if f is None and allow_none:
-        return None
-    if not callable(f):
-        raise TypeError(f"{name} must be callable{' or None' if allow_none else ''}, got {type(f).__name__}")
-    return f
+def _flag(value, name):
+    if not isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{name} must be a bool, got {type(value).__name__}")
+    return bool(value)
 
 
-_MODEL_FIELDS = ("dim_x", "dim_z", "dt", "fx", "hx", "Q", "R", "vectorized", "FJacobian", "HJacobian",
-                 "x_mean_fn", "z_mean_fn", "residual_x", "residual_z", "process_sampler",
-                 "transition_logpdf", "measurement_logpdf", "recover")
+def _required(f, name):
+    return check_callable(f, name, allow_none=False)
+
+
+#: The constructor's model keywords: they live on the filter's one ``ProposalModel`` (the
+#: attributes of the same names read and write through it, :class:`ModelAttribute`).
+_MODEL_CALLABLES = ("FJacobian", "HJacobian", "x_mean_fn", "z_mean_fn", "residual_x", "residual_z",
+                    "transition_logpdf", "process_sampler", "measurement_logpdf")
 
 
 class ParticleFilter(WeightedMixtureFilter):
@@ -237,6 +241,17 @@ class ParticleFilter(WeightedMixtureFilter):
     _restart_hint = "call initialize(particles) to restart the cloud, or set x and P before the first predict"
     x = WeightedMixtureFilter.x  # (in this class's namespace, so that its page documents them)
     P = WeightedMixtureFilter.P
+    # the model: one ProposalModel, read and written through (no per-step copying)
+    dt = ModelAttribute(doc="Time step passed to ``fx`` (on the model).")
+    hx = ModelAttribute(_required, "Measurement function (on the model).")
+    fx = ModelAttribute(check_callable, "Transition mean, or None for a random walk (on the model).")
+    Q = ModelAttribute(doc="Process noise covariance (on the model; checked when it changes).")
+    R = ModelAttribute(doc="Measurement noise covariance (on the model; checked when it changes).")
+    vectorized = ModelAttribute(_flag, "Whether the callables take one row per point (on the model).")
+    recover = ModelAttribute(_flag, "Opt-in recovery (on the model; see the constructor).")
+    (FJacobian, HJacobian, x_mean_fn, z_mean_fn, residual_x, residual_z, transition_logpdf, process_sampler,
+     measurement_logpdf) = (ModelAttribute(check_callable, "None or callable, on the model (see the constructor).")
+                            for _ in _MODEL_CALLABLES)
 
     def __init__(self, dim_x, dim_z, dt, hx, fx, n_particles, proposal="prior", *, points=None,
                  FJacobian=None, HJacobian=None, x_mean_fn=None, z_mean_fn=None, residual_x=None,
@@ -245,38 +260,22 @@ class ParticleFilter(WeightedMixtureFilter):
                  recover=False, move=None, carry_covariance=True):
         self.dim_x = check_positive_int(dim_x, "dim_x")
         self.dim_z = check_positive_int(dim_z, "dim_z")
+        self._model = ProposalModel(self.dim_x, self.dim_z)
         self.dt = check_positive(dt, "dt")
-        self.hx = _check_callable(hx, "hx", allow_none=False)
-        self.fx = _check_callable(fx, "fx")
+        self.hx, self.fx = hx, fx
         self.n_particles = check_positive_int(n_particles, "n_particles")
         optional = dict(FJacobian=FJacobian, HJacobian=HJacobian, x_mean_fn=x_mean_fn, z_mean_fn=z_mean_fn,
                         residual_x=residual_x, residual_z=residual_z, transition_logpdf=transition_logpdf,
-                        process_sampler=process_sampler, measurement_logpdf=measurement_logpdf, move=move)
-        for name, f in optional.items():  # None or callable
-            setattr(self, name, _check_callable(f, name))
-        if not isinstance(recover, (bool, np.bool_)):
-            raise TypeError(f"recover must be a bool, got {type(recover).__name__}")
-        self.recover = bool(recover)
-        self._resample = get_scheme(resampling)  # validates the name (or callable)
-        self.resampling = resampling
-        if isinstance(ess_threshold, bool) or not np.isscalar(ess_threshold) or not 0 <= ess_threshold <= 1:
-            raise ValueError(f"ess_threshold must be a number in [0, 1], got {ess_threshold!r}")
-        self.ess_threshold = float(ess_threshold)
+                        process_sampler=process_sampler, measurement_logpdf=measurement_logpdf)
+        for name, f in optional.items():  # None or callable, checked by the attribute
+            setattr(self, name, f)
+        self.move = check_callable(move, "move")
+        self.recover, self.vectorized = recover, vectorized
+        self._set_resampling(resampling, ess_threshold)
         self.tempering = check_positive(tempering, "tempering")
-        if not isinstance(vectorized, (bool, np.bool_)):
-            raise TypeError(f"vectorized must be a bool, got {type(vectorized).__name__}")
-        self.vectorized = bool(vectorized)
         self.rng = check_rng(rng)
         self.proposal = self._make_proposal(proposal, points, bool(carry_covariance))
-        if isinstance(self.proposal, ExtendedKalmanProposal):
-            if self.HJacobian is None:
-                raise ValueError("the extended Kalman proposal needs HJacobian, got None")
-            if self.fx is not None and self.FJacobian is None and self.proposal.carries_covariance:
-                raise ValueError("the extended Kalman proposal needs FJacobian when fx is given, got None")
-
         self._filterpy_defaults()
-
-        self._model = ProposalModel(self.dim_x, self.dim_z)
         self.particles = None
         self.covariances = None
         self.log_weights = np.full(self.n_particles, -np.log(self.n_particles))
@@ -294,7 +293,23 @@ class ParticleFilter(WeightedMixtureFilter):
         self._warned_degenerate = False
 
     # ------------------------------------------------------------------ set-up
+    def _set_resampling(self, resampling, ess_threshold):
+        self._resample = get_scheme(resampling)  # validates the name (or callable)
+        self.resampling = resampling
+        if isinstance(ess_threshold, bool) or not np.isscalar(ess_threshold) or not 0 <= ess_threshold <= 1:
+            raise ValueError(f"ess_threshold must be a number in [0, 1], got {ess_threshold!r}")
+        self.ess_threshold = float(ess_threshold)
+
     def _make_proposal(self, proposal, points, carry_covariance=True):
+        proposal = self._proposal_object(proposal, points, carry_covariance)
+        if isinstance(proposal, ExtendedKalmanProposal):
+            if self.HJacobian is None:
+                raise ValueError("the extended Kalman proposal needs HJacobian, got None")
+            if self.fx is not None and self.FJacobian is None and proposal.carries_covariance:
+                raise ValueError("the extended Kalman proposal needs FJacobian when fx is given, got None")
+        return proposal
+
+    def _proposal_object(self, proposal, points, carry_covariance):
         if isinstance(proposal, str):
             check_choice(proposal, "proposal", PROPOSALS)
             if proposal == "prior":
@@ -373,11 +388,9 @@ class ParticleFilter(WeightedMixtureFilter):
 
     # ------------------------------------------------------------------ helpers
     def _sync_model(self):
-        """The :class:`ProposalModel` the proposals see, with the filter's current settings;
-        ``Q`` and ``R`` are checked and factored only when they changed."""
+        """The filter's :class:`ProposalModel` (its attributes *are* the model's); ``Q`` and
+        ``R`` are checked and factored only when they changed (in place too)."""
         m = self._model
-        for name in _MODEL_FIELDS:
-            setattr(m, name, getattr(self, name))
         m.noise("Q")
         m.noise("R")
         return m
@@ -528,11 +541,28 @@ class ParticleFilter(WeightedMixtureFilter):
         self._watch_degeneracy(ess)
 
     def _add_weights(self, model, step, log_alpha, log_lik):
-        """New normalised log-weights from the increment (None when skipped as an outlier)."""
+        """New normalised log-weights from the increment (None when skipped as an outlier).
+
+        One pass in the usual case: a finite normaliser means no NaN or ``+inf`` increment
+        (either would make it non-finite), so the scans for them run only when it is not.
+        """
+        lw_prev = self.log_weights
+        new_lw = lw_prev + log_alpha if self.tempering == 1.0 else lw_prev + self.tempering * log_alpha
+        lse = logsumexp(new_lw)
+        if not np.isfinite(lse):
+            if self._weights_failed(model, step, log_alpha, log_lik):
+                return None
+        log_lik_step = lse if self.tempering == 1.0 else logsumexp(lw_prev + log_alpha)
+        self.log_likelihood = float(log_lik_step)
+        self.log_marginal_likelihood += float(log_lik_step)
+        return new_lw - lse
+
+    def _weights_failed(self, model, step, log_alpha, log_lik):
+        """The weights cannot be normalised: skip as an outlier (``recover``, True) or raise."""
         bad_weights = np.any(np.isnan(log_alpha)) or np.any(log_alpha == np.inf)
         if self.recover and (bad_weights or not np.any(log_alpha > -np.inf)):
             self._skip_measurement(model, step, "no finite particle weight (all underflow or NaN)")
-            return None
+            return True
         if bad_weights:
             bad = int(np.argmax(np.isnan(log_alpha) | (log_alpha == np.inf)))
             raise NumericalError(
@@ -540,23 +570,15 @@ class ParticleFilter(WeightedMixtureFilter):
                 matrix="weights",
                 step=step,
             )
-        lw_prev = self.log_weights
-        new_lw = lw_prev + log_alpha if self.tempering == 1.0 else lw_prev + self.tempering * log_alpha
-        lse = logsumexp(new_lw)
-        if not np.isfinite(lse):
-            lmax = np.max(log_alpha if log_lik is None else log_lik)
-            if log_lik is None or not np.isfinite(lmax):
-                detail = f"the measurement is impossible under every particle (largest log-likelihood {lmax:.6g})"
-            else:
-                detail = (
-                    f"largest log-likelihood {lmax:.6g}, but the transition density is 0 "
-                    f"at every sample (largest log-weight increment {np.max(log_alpha):.6g})"
-                )
-            raise NumericalError(f"all particle weights underflowed at step {step}: {detail}", matrix="weights", step=step)
-        log_lik_step = lse if self.tempering == 1.0 else logsumexp(lw_prev + log_alpha)
-        self.log_likelihood = float(log_lik_step)
-        self.log_marginal_likelihood += float(log_lik_step)
-        return new_lw - lse
+        lmax = np.max(log_alpha if log_lik is None else log_lik)
+        if log_lik is None or not np.isfinite(lmax):
+            detail = f"the measurement is impossible under every particle (largest log-likelihood {lmax:.6g})"
+        else:
+            detail = (
+                f"largest log-likelihood {lmax:.6g}, but the transition density is 0 "
+                f"at every sample (largest log-weight increment {np.max(log_alpha):.6g})"
+            )
+        raise NumericalError(f"all particle weights underflowed at step {step}: {detail}", matrix="weights", step=step)
 
     def _apply_move(self, X, step):
         Y = np.asarray(self.move(X, self.rng), dtype=float)

@@ -46,13 +46,13 @@ the same coordinates). :meth:`ProposalModel.log_transition` evaluates the densit
 Q's support and raises :class:`~filterwnn.NumericalError` naming the step for a particle
 off it.
 
-**Batched over particles.** A Kalman proposal works on the stacks ``x (N, n)`` and
-``P (N, n, n)`` at once: one stacked :func:`numpy.linalg.cholesky` factors every
-particle's covariance, :func:`filterwnn.kalman.sigma_points.batched_sigma_points` builds all sigma points in O(n^2)
-per particle from the set's structure, and with ``vectorized=True`` the model is called
-*once* on all ``N * n_sigmas`` points (one row per point). With ``dim_z == 1`` the
-innovation covariance is a scalar, the gain needs no solve and the covariance update is
-the rank-1 downdate :math:`\hat P = P^- - P_{xy} P_{xy}^T / S`.
+**Batched over particles.** A Kalman proposal is a user of the batched Kalman step of
+:mod:`filterwnn.kalman.batched` (:class:`~filterwnn.kalman.batched.ExtendedStep`,
+:class:`~filterwnn.kalman.batched.UnscentedStep`, held as ``kalman_step``): it works on
+the stacks ``x (N, n)`` and ``P (N, n, n)`` at once, one stacked Cholesky factors every
+particle's covariance and with ``vectorized=True`` the model is called *once* on all
+``N * n_sigmas`` points. With ``dim_z == 1`` the covariance update is the rank-1 downdate
+:math:`\hat P = P^- - P_{xy} P_{xy}^T / S`.
 
 **Sampling without a second Cholesky** (``dim_z == 1``). With :math:`P^- = L L^T` and
 :math:`u = L^{-1} P_{xy} / \sqrt{S}`, :math:`\hat P = L (I - u u^T) L^T`, and
@@ -94,11 +94,11 @@ import warnings
 from typing import Any, NamedTuple, Optional
 
 import numpy as np
-from scipy.linalg import solve_triangular
 
-from .._linalg import LOG_2PI, NoiseFactor, cholesky, repair_pd
-from .._validation import NumericalError, check_covariance, check_points_protocol, check_symmetric
-from ..kalman.sigma_points import batched_sigma_points, unit_sigma_points, unit_transpose_apply
+from .._linalg import LOG_2PI, cholesky, repair_pd
+from .._validation import NumericalError
+from ..kalman.batched import (ExtendedStep, KalmanModel, KalmanPrediction, KalmanUpdate, UnscentedStep, _noise,
+                              _rows, _solve_lower, repairing)
 
 __all__ = [
     "ProposalModel",
@@ -107,42 +107,10 @@ __all__ = [
     "PriorProposal",
     "ExtendedKalmanProposal",
     "UnscentedKalmanProposal",
-    "KalmanPrediction",
-    "KalmanUpdate",
 ]
 
-
-# ---------------------------------------------------------------------------
-# Calling the model on rows
-# ---------------------------------------------------------------------------
-
-
-def _rows(f, X, out_dim, vectorized, name, args=(), kwargs=None):
-    """``f`` on every row of ``X (m, n)`` -> ``(m, out_dim)``; one call when vectorized."""
-    kwargs = {} if kwargs is None else kwargs
-    m = X.shape[0]
-    if vectorized:
-        Y = np.asarray(f(X, *args, **kwargs), dtype=float)
-        if Y.size != m * out_dim:
-            raise ValueError(
-                f"{name} with vectorized=True must return one row per point, shape "
-                f"({m}, {out_dim}), got shape {Y.shape}"
-            )
-        return Y.reshape(m, out_dim)
-    Y = np.empty((m, out_dim))
-    if m == 0:
-        return Y
-    # check the first point fully, then assign without per-call checks (hot loop)
-    y0 = np.asarray(f(X[0], *args, **kwargs), dtype=float)
-    if y0.size != out_dim:
-        raise ValueError(f"{name} must return {out_dim} values, got shape {y0.shape}")
-    Y[0] = y0.reshape(out_dim)
-    try:
-        for i in range(1, m):
-            Y[i] = f(X[i], *args, **kwargs)
-    except ValueError as exc:
-        raise ValueError(f"{name} must return {out_dim} values for every point: {exc}") from exc
-    return Y
+# ``KalmanPrediction`` and ``KalmanUpdate`` (the batched step's results) live in
+# :mod:`filterwnn.kalman.batched`; they stay importable from here.
 
 
 def _scalars(f, first, X, vectorized, name, kwargs):
@@ -156,106 +124,17 @@ def _scalars(f, first, X, vectorized, name, kwargs):
     return np.array([float(f(first, X[i], **kwargs)) for i in range(m)])
 
 
-def _residual(fn, a, b, vectorized):
-    """``fn(a, b)`` broadcasting ``b`` against ``a (..., d)``; ``a - b`` when ``fn`` is None."""
-    if fn is None or fn is np.subtract:
-        return a - b
-    if vectorized:
-        return np.asarray(fn(a, b), dtype=float).reshape(np.broadcast_shapes(np.shape(a), np.shape(b)))
-    a, b = np.broadcast_arrays(a, b)
-    d = a.shape[-1]
-    A, B = a.reshape(-1, d), b.reshape(-1, d)
-    out = np.array([fn(A[i], B[i]) for i in range(A.shape[0])], dtype=float)
-    return out.reshape(a.shape)
-
-
-def _weighted_mean(fn, pts, W):
-    """Weighted mean of ``pts (N, S, d)`` over axis 1 -> ``(N, d)``, or ``fn(pts_i, W)``."""
-    if fn is None:
-        return np.matmul(W, pts)
-    return np.array([np.asarray(fn(p, W), dtype=float).reshape(pts.shape[-1]) for p in pts])
-
-
-def _jacobians(J, X, shape, vectorized, name, args, kwargs):
-    """Jacobians at every row of ``X (N, n)`` -> ``(N,) + shape``.
-
-    Vectorized: one call ``J(X, ...)`` returning ``(N,) + shape`` (or ``shape``, the same
-    for every row). Otherwise one call per row.
-    """
-    N = X.shape[0]
-    if vectorized:
-        out = np.asarray(J(X, *args, **kwargs), dtype=float)
-        if out.shape == shape:
-            return np.broadcast_to(out, (N,) + shape)
-        if out.size != N * int(np.prod(shape)):
-            raise ValueError(f"{name} must return shape {(N,) + shape} or {shape}, got {out.shape}")
-        return out.reshape((N,) + shape)
-    out = np.empty((N,) + shape)
-    for i in range(N):
-        Ji = np.asarray(J(X[i], *args, **kwargs), dtype=float)
-        if Ji.size != int(np.prod(shape)):
-            raise ValueError(f"{name} must return shape {shape}, got {Ji.shape}")
-        out[i] = Ji.reshape(shape)
-    return out
-
-
-def _noise(M, name, dim):
-    """A noise covariance as a float ``(dim, dim)`` array (a scalar means ``M * I``)."""
-    M = np.asarray(M, dtype=float)
-    if M.ndim == 0:
-        M = float(M) * np.eye(dim)
-    elif M.size == dim * dim:
-        M = M.reshape(dim, dim)
-    else:
-        raise ValueError(f"{name} must have shape ({dim}, {dim}), got shape {M.shape}")
-    if not np.all(np.isfinite(M)):
-        raise ValueError(f"{name} must be finite, got non-finite entries")
-    return M
-
-
-def _solve_lower(L, B):
-    """``L^{-1} B`` for stacked lower-triangular ``L (N, n, n)`` and ``B (N, n, m)``.
-
-    Forward substitution vectorized over the stack (``n`` small steps) for small ``n``,
-    where scipy's batched ``solve_triangular`` (a Python loop over the stack) is slow;
-    scipy's for large ``n``.
-    """
-    N, n, m = B.shape
-    if n > 64:
-        return solve_triangular(L, B, lower=True, check_finite=False)
-    X = np.empty(B.shape)
-    for j in range(n):
-        r = B[:, j, :]
-        if j:
-            r = r - np.matmul(L[:, j : j + 1, :j], X[:, :j, :])[:, 0, :]
-        X[:, j, :] = r / L[:, j, j][:, None]
-    return X
-
-
-# ---------------------------------------------------------------------------
-# The model side of a proposal
-# ---------------------------------------------------------------------------
-
-
-class ProposalModel:
+class ProposalModel(KalmanModel):
     """What a proposal may use of the state-space model: a small object, not the filter.
+
+    The batched Kalman step's :class:`~filterwnn.kalman.batched.KalmanModel` (the callables,
+    the noise factored once, the model on rows) plus the densities a proposal weights with.
 
     Parameters
     ----------
-    dim_x, dim_z : int
-    dt : float
-        Passed to ``fx`` as ``fx(x, dt, **fx_args)``.
-    fx : callable or None
-        Transition mean (``None``: a random walk).
-    hx : callable
-        Measurement function.
-    Q, R : array-like of shape (dim_x, dim_x) and (dim_z, dim_z), or scalars
-        Process and measurement noise (``Q`` may be singular). Each is checked and
-        factored once, again only when it changes (:meth:`noise`).
-    vectorized : bool
-        The callables take one 2-D array, one row per point.
-    FJacobian, HJacobian, x_mean_fn, z_mean_fn, residual_x, residual_z : callable, optional
-        As in :class:`~filterwnn.ParticleFilter`.
+    dim_x, dim_z, dt, fx, hx, Q, R, vectorized, FJacobian, HJacobian, x_mean_fn, z_mean_fn, residual_x, residual_z
+        As in :class:`~filterwnn.kalman.batched.KalmanModel` (the callables as in
+        :class:`~filterwnn.ParticleFilter`).
     process_sampler, transition_logpdf, measurement_logpdf : callable, optional
         Non-Gaussian transition and likelihood (see :class:`~filterwnn.ParticleFilter`).
     recover : bool
@@ -269,74 +148,12 @@ class ProposalModel:
                  FJacobian=None, HJacobian=None, x_mean_fn=None, z_mean_fn=None, residual_x=None,
                  residual_z=None, process_sampler=None, transition_logpdf=None, measurement_logpdf=None,
                  recover=False):
-        self.dim_x, self.dim_z, self.dt = dim_x, dim_z, dt
-        self.fx, self.hx = fx, hx
-        self.Q = np.eye(dim_x) if Q is None else Q
-        self.R = np.eye(dim_z) if R is None else R
-        self.vectorized = vectorized
-        self.FJacobian, self.HJacobian = FJacobian, HJacobian
-        self.x_mean_fn, self.z_mean_fn = x_mean_fn, z_mean_fn
-        self.residual_x, self.residual_z = residual_x, residual_z
+        super().__init__(dim_x, dim_z, dt, fx, hx, Q, R, vectorized=vectorized, FJacobian=FJacobian,
+                         HJacobian=HJacobian, x_mean_fn=x_mean_fn, z_mean_fn=z_mean_fn, residual_x=residual_x,
+                         residual_z=residual_z, recover=recover)
         self.process_sampler = process_sampler
         self.transition_logpdf = transition_logpdf
         self.measurement_logpdf = measurement_logpdf
-        self.recover = recover
-        self._factors = {}
-
-    def noise(self, name, check=True):
-        """The ``NoiseFactor`` (the checked Cholesky factor, in ``filterwnn._linalg``) of ``"Q"`` or ``"R"``.
-
-        Validated (shape, finite, symmetric; ``Q`` positive semi-definite, ``R`` positive
-        definite) and factored when the matrix changed since the last call, else cached.
-        ``check=False`` trusts the cache without comparing (inside one filter step, after
-        the filter's own check).
-        """
-        M = getattr(self, name)
-        hit = self._factors.get(name)
-        if hit is not None:
-            if not check:
-                return hit[1]
-            if type(M) is np.ndarray and M.dtype == np.float64:  # the usual case: compare the bytes
-                if M.shape == hit[0].shape and M.tobytes() == hit[2]:
-                    return hit[1]
-            elif np.shape(M) == hit[0].shape and np.array_equal(hit[0], M):
-                return hit[1]
-        dim = self.dim_x if name == "Q" else self.dim_z
-        A = check_symmetric(_noise(M, name, dim), name)
-        if name == "R":
-            check_covariance(A, "R", dim)
-        factor = NoiseFactor(A, name)
-        kept = np.array(M, dtype=float, copy=True)
-        self._factors[name] = (kept, factor, kept.tobytes())
-        return factor
-
-    # --- the model on rows -------------------------------------------------------------
-    def transition_mean(self, x_prev, fx_args):
-        """``fx(x_prev)`` on every row -> ``(N, dim_x)`` (``x_prev`` for a random walk)."""
-        if self.fx is None:
-            return x_prev
-        return _rows(self.fx, x_prev, self.dim_x, self.vectorized, "fx", (self.dt,), fx_args)
-
-    def measure(self, X, hx_args):
-        """``hx`` on every row -> ``(N, dim_z)``."""
-        return _rows(self.hx, X, self.dim_z, self.vectorized, "hx", (), hx_args)
-
-    def residual_x_rows(self, a, b):
-        """``residual_x(a, b)`` broadcast over rows (``a - b`` by default)."""
-        return _residual(self.residual_x, a, b, self.vectorized)
-
-    def residual_z_rows(self, a, b):
-        """``residual_z(a, b)`` broadcast over rows (``a - b`` by default)."""
-        return _residual(self.residual_z, a, b, self.vectorized)
-
-    def mean_x(self, X, w):
-        """Weighted mean of the rows ``X (N, dim_x)`` (``x_mean_fn(X, w)`` when given)."""
-        if self.x_mean_fn is None:
-            return w @ X
-        x = np.asarray(self.x_mean_fn(X, w), dtype=float).reshape(-1)
-        if x.shape != (self.dim_x,) or not np.all(np.isfinite(x)):
-            raise ValueError(f"x_mean_fn(particles, weights) must return {self.dim_x} finite values, got {x}")
-        return x
 
     # --- densities ----------------------------------------------------------------------
     def sample_transition(self, x_prev, fx_args, rng):
@@ -423,93 +240,6 @@ class Proposed(NamedTuple):
     log_likelihood: Optional[np.ndarray] = None
 
 
-# ---------------------------------------------------------------------------
-# Kalman steps, batched over particles
-# ---------------------------------------------------------------------------
-
-
-class KalmanPrediction(NamedTuple):
-    """Per-particle predicted moments.
-
-    Attributes
-    ----------
-    x : ndarray of shape (n_particles, dim_x)
-    P : ndarray of shape (n_particles, dim_x, dim_x)
-    """
-
-    x: np.ndarray
-    P: np.ndarray
-
-
-class KalmanUpdate(NamedTuple):
-    r"""Per-particle Kalman update: the proposal ``N(x, P)`` and the innovation.
-
-    Attributes
-    ----------
-    x : ndarray of shape (n_particles, dim_x)
-        Posterior means :math:`\hat x_i`.
-    P : ndarray of shape (n_particles, dim_x, dim_x)
-        Posterior covariances :math:`\hat P_i`.
-    z_pred : ndarray of shape (n_particles, dim_z)
-        Predicted measurements :math:`\\hat y_i`.
-    S : ndarray of shape (n_particles, dim_z, dim_z)
-        Innovation covariances.
-    Pxy : ndarray of shape (n_particles, dim_x, dim_z)
-        Cross covariances.
-    log_likelihood : ndarray of shape (n_particles,)
-        :math:`\log N(y; \hat y_i, S_i)` (the bank weight).
-    L_prior : ndarray of shape (n_particles, dim_x, dim_x) or None
-        Lower Cholesky factors ``L_i`` of the predicted covariances, when computed.
-    LinvPxy : ndarray of shape (n_particles, dim_x, dim_z) or None
-        :math:`L_i^{-1} P_{xy,i}` when known without a solve (unscented:
-        :math:`Z^T (W_c \circ \Delta Y)`, since :math:`P_{xy} = L Z^T (W_c \circ \Delta Y)`).
-    H : ndarray of shape (n_particles, dim_z, dim_x) or None
-        Measurement Jacobians (extended): :math:`L^{-1} P_{xy} = L^T H^T`.
-    """
-
-    x: np.ndarray
-    P: np.ndarray
-    z_pred: np.ndarray
-    S: np.ndarray
-    Pxy: np.ndarray
-    log_likelihood: np.ndarray
-    L_prior: Optional[np.ndarray]
-    LinvPxy: Optional[np.ndarray] = None
-    H: Optional[np.ndarray] = None
-
-
-def _kalman_finish(model, x_prior, P_prior, z, z_pred, S, Pxy, L_prior, step, LinvPxy=None, H=None):
-    """Gain, posterior and innovation likelihood from the batched moments."""
-    R = _noise(model.R, "R", model.dim_z)
-    S = S + R
-    y = _residual(model.residual_z, z[None, :], z_pred, model.vectorized)
-    if model.dim_z == 1:
-        s = S[:, 0, 0]
-        if not np.all(s > 0) or not np.all(np.isfinite(s)):
-            raise NumericalError(f"S is not positive at step {step} (min {np.min(s):.3g})", matrix="S", step=step)
-        pxy = Pxy[:, :, 0]
-        x = x_prior + pxy * (y / s[:, None])
-        # rank-1 downdate with v v^T, v = Pxy / sqrt(S): exactly symmetric, no extra pass
-        v = pxy / np.sqrt(s)[:, None]
-        P = v[:, :, None] * v[:, None, :]
-        np.subtract(P_prior, P, out=P)
-        loglik = -0.5 * (y[:, 0] ** 2 / s + np.log(s) + LOG_2PI)
-        return KalmanUpdate(x, P, z_pred, S, Pxy, loglik, L_prior, LinvPxy, H)
-    else:
-        Ls = cholesky(S, "S", step)
-        Kt = np.linalg.solve(S, np.swapaxes(Pxy, -1, -2))  # (N, m, n)
-        x = x_prior + np.matmul(y[:, None, :], Kt)[:, 0, :]
-        P = P_prior - np.matmul(Pxy, Kt)
-        e = _solve_lower(Ls, y[:, :, None])[:, :, 0]
-        loglik = (
-            -0.5 * np.sum(e * e, axis=1)
-            - np.sum(np.log(np.diagonal(Ls, axis1=1, axis2=2)), axis=1)
-            - 0.5 * model.dim_z * LOG_2PI
-        )
-    P = 0.5 * (P + np.swapaxes(P, -1, -2))
-    return KalmanUpdate(x, P, z_pred, S, Pxy, loglik, L_prior, LinvPxy, H)
-
-
 class PriorProposal:
     """The transition prior ``q = p(x_k | x_{k-1})``: the bootstrap (SPF) proposal.
 
@@ -563,15 +293,12 @@ class _KalmanProposal:
         """Whether particles carry covariances (``carry_covariance``)."""
         return self.carry_covariance
 
-    def check(self, dim_x):
-        """Raise ``ValueError`` when the proposal does not fit a ``dim_x`` state."""
-
     # --- the protocol -------------------------------------------------------------------
     def predict(self, model, particles, covariances, fx_args, rng, step=None):
         """Every particle's Kalman prediction -> :class:`Prediction` (spread ``Q``)."""
         P = covariances if self.carry_covariance else None
-        pred, _ = _repairing(model, lambda C: self.kalman_predict(model, particles, C, fx_args, step),
-                             P, step, "posterior")
+        pred, _ = repairing(model, lambda C: self.kalman_predict(model, particles, C, fx_args, step),
+                            P, step, "posterior")
         Q = _noise(model.Q, "Q", model.dim_x)
         return Prediction(pred.x, pred.P, Q, _KalmanContext(particles, fx_args))
 
@@ -581,7 +308,7 @@ class _KalmanProposal:
         if z is None:  # no measurement: the optimal proposal is the transition, zero increment
             X = model.sample_transition(ctx.x_prev, ctx.fx_args, rng)
             return Proposed(X, prediction.covariances if self.carry_covariance else None, np.zeros(X.shape[0]))
-        upd, P_prior = _repairing(
+        upd, P_prior = repairing(
             model,
             lambda C: self.kalman_update(model, KalmanPrediction(prediction.particles, C), z, hx_args, step),
             prediction.covariances, step, "predicted",
@@ -634,17 +361,23 @@ class _KalmanProposal:
         return fx_prev + v @ G.T, log_p - log_q
 
     # --- the Kalman steps ---------------------------------------------------------------
-    @staticmethod
-    def _point_prediction(model, x):
-        """``x^- = f(x)``, ``P^- = Q`` for every particle (``P^-`` a broadcast view)."""
-        Q = _noise(model.Q, "Q", model.dim_x)
-        return x, np.broadcast_to(Q, (x.shape[0],) + Q.shape)
+    def kalman_predict(self, model, x, P, fx_args, step=None):
+        """Every particle's predicted ``(x (N, n), P (N, n, n))`` -> ``KalmanPrediction``:
+        the batched step's, or from the particle as a point (``P`` None: ``x^- = f(x)``,
+        ``P^- = Q``, a broadcast view)."""
+        self.kalman_step.check(model.dim_x)
+        if P is None:
+            Q = _noise(model.Q, "Q", model.dim_x)
+            return KalmanPrediction(model.transition_mean(x, fx_args), np.broadcast_to(Q, (x.shape[0],) + Q.shape))
+        return self.kalman_step.predict(model, x, P, fx_args, step)
 
-    def kalman_predict(self, model, x, P, fx_args, step=None):  # pragma: no cover - abstract
-        raise NotImplementedError
+    def kalman_update(self, model, prediction, z, hx_args, step=None):
+        """The batched step's update with ``z (dim_z,)`` -> ``KalmanUpdate``."""
+        return self.kalman_step.update(model, prediction, z, hx_args, step)
 
-    def kalman_update(self, model, prediction, z, hx_args, step=None):  # pragma: no cover - abstract
-        raise NotImplementedError
+    def check(self, dim_x):
+        """Raise ``ValueError`` when the proposal's step does not fit a ``dim_x`` state."""
+        self.kalman_step.check(dim_x)
 
     @staticmethod
     def _with_factor(upd, P_prior, step):
@@ -739,56 +472,20 @@ class _KalmanProposal:
         return f"{type(self).__name__}({extra})"
 
 
-def _repairing(model, fn, C, step, what):
-    """``fn(C)``; with ``model.recover`` a covariance failure repairs ``C`` once (warning
-    with the step) and retries. Returns ``(result, C_used)``."""
-    try:
-        return fn(C), C
-    except NumericalError as exc:
-        if not model.recover or exc.matrix not in ("P", "P_prior") or C is None:
-            raise
-        C2, n_bad = repair_pd(C)
-        warnings.warn(
-            f"step {step}: {n_bad} particle {what} covariance(s) not positive definite ({exc}); "
-            "eigenvalues clipped (recover=True)",
-            RuntimeWarning,
-            stacklevel=5,
-        )
-        return fn(C2), C2
-
-
 class ExtendedKalmanProposal(_KalmanProposal):
     """One extended Kalman step per particle (the EPF proposal).
 
-    Predict: :math:`x^-_i = f(x_i)`, :math:`P^-_i = F_i P_i F_i^T + Q` with
-    ``F_i = FJacobian(x_i, dt, **fx_args)`` (random walk when ``fx`` is None). Update:
+    The step is :class:`~filterwnn.kalman.batched.ExtendedStep`: predict
+    :math:`x^-_i = f(x_i)`, :math:`P^-_i = F_i P_i F_i^T + Q` with
+    ``F_i = FJacobian(x_i, dt, **fx_args)`` (random walk when ``fx`` is None); update with
     ``H_i = HJacobian(x^-_i, **hx_args)``, :math:`P_{xy} = P^- H^T`,
     :math:`S = H P^- H^T + R`. With ``vectorized=True`` the Jacobians are called once on
     all particles (``(N, dim_x)`` in, ``(N, rows, dim_x)`` or one shared matrix out).
     """
 
-    def kalman_predict(self, model, x, P, fx_args, step=None):
-        """Predicted ``(x (N, n), P (N, n, n))`` from the particles' ``x (N, n)``, ``P (N, n, n)``."""
-        if P is None:
-            return KalmanPrediction(*self._point_prediction(model, model.transition_mean(x, fx_args)))
-        Q = _noise(model.Q, "Q", model.dim_x)
-        if model.fx is None:
-            return KalmanPrediction(x.copy(), P + Q)
-        n = model.dim_x
-        F = _jacobians(model.FJacobian, x, (n, n), model.vectorized, "FJacobian", (model.dt,), fx_args)
-        xp = _rows(model.fx, x, n, model.vectorized, "fx", (model.dt,), fx_args)
-        Pp = np.matmul(np.matmul(F, P), np.swapaxes(F, -1, -2)) + Q
-        return KalmanPrediction(xp, 0.5 * (Pp + np.swapaxes(Pp, -1, -2)))
-
-    def kalman_update(self, model, prediction, z, hx_args, step=None):
-        """Batched EKF update with measurement ``z (dim_z,)`` -> :class:`KalmanUpdate`."""
-        xp, Pp = prediction
-        n, m = model.dim_x, model.dim_z
-        H = _jacobians(model.HJacobian, xp, (m, n), model.vectorized, "HJacobian", (), hx_args)
-        zp = _rows(model.hx, xp, m, model.vectorized, "hx", (), hx_args)
-        Pxy = np.matmul(Pp, np.swapaxes(H, -1, -2))
-        S = np.matmul(H, Pxy)
-        return _kalman_finish(model, xp, Pp, z, zp, S, Pxy, None, step, H=H)
+    def __init__(self, carry_covariance=True):
+        super().__init__(carry_covariance)
+        self.kalman_step = ExtendedStep()
 
 
 class UnscentedKalmanProposal(_KalmanProposal):
@@ -804,63 +501,20 @@ class UnscentedKalmanProposal(_KalmanProposal):
 
     Notes
     -----
-    As filterpy 2.0 does, the update draws fresh sigma points from the predicted
-    ``(x^-_i, P^-_i)``; the factor of ``P^-_i`` is kept for the rank-1 sampling. With
-    ``fx=None`` the predict is ``P^- = P + Q`` and a step costs one stacked Cholesky.
+    The step is :class:`~filterwnn.kalman.batched.UnscentedStep`: as filterpy 2.0 does,
+    the update draws fresh sigma points from the predicted ``(x^-_i, P^-_i)``; the factor
+    of ``P^-_i`` is kept for the rank-1 sampling. With ``fx=None`` the predict is
+    ``P^- = P + Q`` and a step costs one stacked Cholesky.
     """
 
     def __init__(self, points, carry_covariance=True):
         super().__init__(carry_covariance)
-        check_points_protocol(points, ("n", "Wm", "Wc", "num_sigmas", "sigma_points"))
-        self.points = points
-        self._Z = unit_sigma_points(points)
+        self.kalman_step = UnscentedStep(points)
 
-    def check(self, dim_x):
-        """Raise ``ValueError`` unless ``points.n == dim_x``."""
-        if self.points.n != dim_x:
-            raise ValueError(f"points.n must equal dim_x={dim_x}, got {self.points.n}")
-
-    def _sigmas(self, x, P, step, name):
-        L = cholesky(P, name, step)
-        return L, batched_sigma_points(self.points, x, L)
-
-    def kalman_predict(self, model, x, P, fx_args, step=None):
-        """Predicted ``(x (N, n), P (N, n, n))`` by the unscented transform through ``fx``."""
-        self.check(model.dim_x)
-        if P is None:
-            return KalmanPrediction(*self._point_prediction(model, model.transition_mean(x, fx_args)))
-        Q = _noise(model.Q, "Q", model.dim_x)
-        if model.fx is None:
-            return KalmanPrediction(x.copy(), P + Q)
-        N, n = x.shape
-        _, sig = self._sigmas(x, P, step, "P")
-        S_ = sig.shape[1]
-        F = _rows(model.fx, sig.reshape(N * S_, n), n, model.vectorized, "fx", (model.dt,), fx_args)
-        F = F.reshape(N, S_, n)
-        Wm, Wc = self.points.Wm, self.points.Wc
-        xp = _weighted_mean(model.x_mean_fn, F, Wm)
-        dX = _residual(model.residual_x, F, xp[:, None, :], model.vectorized)
-        Pp = np.matmul(np.swapaxes(dX * Wc[:, None], -1, -2), dX) + Q
-        return KalmanPrediction(xp, 0.5 * (Pp + np.swapaxes(Pp, -1, -2)))
-
-    def kalman_update(self, model, prediction, z, hx_args, step=None):
-        """Batched UKF update with measurement ``z (dim_z,)`` -> :class:`KalmanUpdate`."""
-        self.check(model.dim_x)
-        xp, Pp = prediction
-        N, n = xp.shape
-        m = model.dim_z
-        L, sig = self._sigmas(xp, Pp, step, "P_prior")
-        S_ = sig.shape[1]
-        Hs = _rows(model.hx, sig.reshape(N * S_, n), m, model.vectorized, "hx", (), hx_args).reshape(N, S_, m)
-        Wm, Wc = self.points.Wm, self.points.Wc
-        zp = _weighted_mean(model.z_mean_fn, Hs, Wm)
-        dY = _residual(model.residual_z, Hs, zp[:, None, :], model.vectorized)
-        WdY = dY * Wc[:, None]
-        S = np.matmul(np.swapaxes(dY, -1, -2), WdY)
-        # Pxy = D^T (Wc dY) = L (Z^T (Wc dY)); the bracket is L^{-1} Pxy for the sampling
-        LinvPxy = unit_transpose_apply(self.points, self._Z, WdY)
-        Pxy = np.matmul(L, LinvPxy)
-        return _kalman_finish(model, xp, Pp, z, zp, S, Pxy, L, step, LinvPxy=LinvPxy)
+    @property
+    def points(self):
+        """The sigma-point set of the step."""
+        return self.kalman_step.points
 
     def __repr__(self):
         extra = "" if self.carry_covariance else ", carry_covariance=False"

@@ -641,3 +641,26 @@ def test_Q_and_R_are_checked_again_when_changed_in_place(lin_data):
     pf.R = -np.eye(2)
     with pytest.raises(ValueError, match="R must be positive definite"):
         pf.predict()
+
+
+def test_the_filter_reads_and_writes_its_model_through_its_attributes(lin_data):
+    """One model object: ``pf.Q = ...`` and ``pf.hx = ...`` are the model's, in-place edits too."""
+    import filterwnn
+
+    pf = make(BootstrapParticleFilter, 10)
+    model = pf._model
+    for name in ("dt", "hx", "fx", "Q", "R", "vectorized", "recover", "FJacobian", "measurement_logpdf"):
+        assert getattr(pf, name) is getattr(model, name), name
+    Q = 2.0 * LIN.Q
+    pf.Q = Q
+    assert model.Q is Q
+    pf.R[0, 0] *= 2.0
+    assert model.R[0, 0] == pf.R[0, 0]
+    with pytest.raises(TypeError, match="HJacobian must be callable or None, got int"):
+        pf.HJacobian = 3
+    gsf = filterwnn.GaussianSumFilter(3, 2, 1.0, lin_hx, lin_fx, vectorized=True)
+    gsf.Q = Q
+    assert gsf._model.Q is Q and gsf.hx is gsf._model.hx
+    pf.predict()
+    pf.update(lin_data[0][1])
+    assert pf._model is model

@@ -1,0 +1,245 @@
+"""Filter banks and the batched Kalman step: a bank of B equals B independent filters (1e-12)."""
+
+import numpy as np
+import pytest
+from filterpy.kalman import ExtendedKalmanFilter, KalmanFilter, MerweScaledSigmaPoints
+from filterpy.kalman import UnscentedKalmanFilter as FilterpyUKF
+
+from filterwnn import NumericalError
+from filterwnn.kalman import (ExtendedKalmanFilterBank, KalmanFilterBank, SphericalSimplexSigmaPoints,
+                              UnscentedKalmanFilterBank)
+from filterwnn.kalman.batched import KalmanModel, KalmanPrediction, UnscentedStep, batched_step
+from filterwnn.kalman.unscented import UnscentedKalmanFilter
+
+TOL = 1e-12  # the issue's: a bank agrees with B independent filters
+B, N_STEPS, DT = 5, 12, 0.1
+
+
+def fx(x, dt):  # on the last axis: one point (n,) or rows (m, n)
+    out = np.empty_like(x)
+    out[..., 0] = x[..., 0] + dt * x[..., 1]
+    out[..., 1] = x[..., 1] + dt * np.sin(x[..., 0]) * 0.5
+    out[..., 2] = 0.9 * x[..., 2] + 0.1 * x[..., 0] * x[..., 1]
+    return out
+
+
+def hx(x):
+    return np.stack([np.sqrt(1.0 + x[..., 0] ** 2 + x[..., 2] ** 2), np.arctan(x[..., 1])], axis=-1)
+
+
+def FJ(x, dt):
+    J = np.zeros(x.shape[:-1] + (3, 3))
+    J[..., 0, 0], J[..., 0, 1] = 1.0, dt
+    J[..., 1, 0], J[..., 1, 1] = dt * 0.5 * np.cos(x[..., 0]), 1.0
+    J[..., 2, 0], J[..., 2, 1], J[..., 2, 2] = 0.1 * x[..., 1], 0.1 * x[..., 0], 0.9
+    return J
+
+
+def HJ(x):
+    r = np.sqrt(1.0 + x[..., 0] ** 2 + x[..., 2] ** 2)
+    J = np.zeros(x.shape[:-1] + (2, 3))
+    J[..., 0, 0], J[..., 0, 2] = x[..., 0] / r, x[..., 2] / r
+    J[..., 1, 1] = 1.0 / (1.0 + x[..., 1] ** 2)
+    return J
+
+
+@pytest.fixture
+def problem():
+    """B starting states and covariances, per-member Q and R, and measurements with gaps."""
+    g = np.random.default_rng(3)
+    x0 = g.normal(0.0, 0.5, (B, 3))
+    A = g.normal(0.0, 0.3, (B, 3, 3))
+    P0 = np.matmul(A, np.swapaxes(A, 1, 2)) + 0.2 * np.eye(3)
+    Q = np.stack([np.eye(3) * q for q in np.linspace(1e-3, 5e-3, B)])
+    R = np.stack([np.diag([0.05, 0.02]) * r for r in np.linspace(0.5, 2.0, B)])
+    zs = g.normal(0.0, 0.3, (N_STEPS, B, 2)) + np.array([1.2, 0.0])
+    zs[2, 1] = np.nan  # member 1 misses step 3, member 4 steps 5 and 6
+    zs[4:6, 4] = np.nan
+    return x0, P0, Q, R, zs
+
+
+def _run_singles(make, x0, P0, Q, R, zs, update):
+    means = np.empty((N_STEPS, B, 3))
+    covs = np.empty((N_STEPS, B, 3, 3))
+    lls = np.zeros((N_STEPS, B))
+    for i in range(B):
+        f = make()
+        f.x, f.P, f.Q, f.R = x0[i].copy(), P0[i].copy(), Q[i].copy(), R[i].copy()
+        for k in range(N_STEPS):
+            f.predict()
+            if not np.isnan(zs[k, i, 0]):
+                update(f, zs[k, i])
+                lls[k, i] = f.log_likelihood
+            means[k, i], covs[k, i] = f.x, f.P
+    return means, covs, lls
+
+
+def _run_bank(bank, x0, P0, Q, R, zs):
+    bank.x, bank.P, bank.Q, bank.R = x0, P0, Q, R
+    lls = np.zeros((N_STEPS, B))
+    means = np.empty((N_STEPS, B, 3))
+    covs = np.empty((N_STEPS, B, 3, 3))
+    for k in range(N_STEPS):
+        bank.predict()
+        bank.update(zs[k])
+        means[k], covs[k], lls[k] = bank.x, bank.P, bank.log_likelihood
+    return means, covs, lls
+
+
+POINTS = [MerweScaledSigmaPoints(3, alpha=1.0, beta=2.0, kappa=0.0), SphericalSimplexSigmaPoints(3, beta=2.0)]
+
+
+@pytest.mark.parametrize("points", POINTS, ids=["ukf-merwe", "sukf-simplex"])
+@pytest.mark.parametrize("single", [FilterpyUKF, UnscentedKalmanFilter], ids=["filterpy", "filterwnn"])
+def test_ukf_bank_equals_independent_ukfs(points, single, problem):
+    x0, P0, Q, R, zs = problem
+    ref = _run_singles(lambda: single(3, 2, DT, hx, fx, points), x0, P0, Q, R, zs, lambda f, z: f.update(z))
+    got = _run_bank(UnscentedKalmanFilterBank(B, 3, 2, DT, hx, fx, points), x0, P0, Q, R, zs)
+    for a, b in zip(got, ref):
+        np.testing.assert_allclose(a, b, rtol=0, atol=TOL)
+
+
+def test_ukf_bank_with_per_point_callables_equals_the_vectorized_one(problem):
+    x0, P0, Q, R, zs = problem
+    vec = _run_bank(UnscentedKalmanFilterBank(B, 3, 2, DT, hx, fx, POINTS[1]), x0, P0, Q, R, zs)
+    loop = _run_bank(UnscentedKalmanFilterBank(B, 3, 2, DT, hx, fx, POINTS[1], vectorized=False), x0, P0, Q, R, zs)
+    for a, b in zip(vec, loop):
+        np.testing.assert_allclose(a, b, rtol=0, atol=TOL)
+
+
+class _NonlinearEKF(ExtendedKalmanFilter):
+    def predict_x(self, u=0):
+        self.x = fx(self.x, DT)
+
+
+def test_ekf_bank_equals_independent_filterpy_ekfs(problem):
+    x0, P0, Q, R, zs = problem
+
+    def make():
+        f = _NonlinearEKF(3, 2)
+        f.predict_F = f.predict
+        return f
+
+    def step_predict(f):
+        f.F = FJ(f.x, DT)
+        f.predict_F()
+
+    def run_one(make_f):
+        f = make_f()
+        f.predict = lambda: step_predict(f)
+        return f
+
+    ref = _run_singles(lambda: run_one(make), x0, P0, Q, R, zs,
+                       lambda f, z: f.update(z, lambda x: HJ(x), lambda x: hx(x)))
+    got = _run_bank(ExtendedKalmanFilterBank(B, 3, 2, DT, hx, fx, FJ, HJ), x0, P0, Q, R, zs)
+    for a, b in zip(got[:2], ref[:2]):
+        np.testing.assert_allclose(a, b, rtol=0, atol=TOL)
+
+
+def test_kalman_filter_bank_equals_independent_filterpy_kalman_filters(problem):
+    x0, P0, Q, R, zs = problem
+    F = np.array([[1.0, DT, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 0.9]])
+    H = np.array([[1.0, 0.0, 1.0], [0.0, 1.0, 0.0]])
+
+    def make():
+        f = KalmanFilter(3, 2)
+        f.F, f.H = F, H
+        return f
+
+    ref = _run_singles(make, x0, P0, Q, R, zs, lambda f, z: f.update(z))
+    bank = KalmanFilterBank(B, 3, 2)
+    bank.F, bank.H = F, H
+    got = _run_bank(bank, x0, P0, Q, R, zs)
+    for a, b in zip(got, ref):
+        np.testing.assert_allclose(a, b, rtol=0, atol=TOL)
+
+
+def test_batch_filter_equals_the_step_loop_and_shared_noise_broadcasts(problem):
+    x0, P0, _, _, zs = problem
+    a = UnscentedKalmanFilterBank(B, 3, 2, DT, hx, fx, POINTS[0])
+    a.x, a.P, a.Q, a.R = x0, P0, 1e-3 * np.eye(3), np.diag([0.05, 0.02])
+    means, covs = a.batch_filter(zs)
+    b = UnscentedKalmanFilterBank(B, 3, 2, DT, hx, fx, POINTS[0])
+    b.x, b.P = x0, P0
+    b.Q, b.R = np.broadcast_to(1e-3 * np.eye(3), (B, 3, 3)), np.broadcast_to(np.diag([0.05, 0.02]), (B, 2, 2))
+    m2, c2, _ = _run_bank(b, x0, P0, b.Q, b.R, zs)
+    np.testing.assert_allclose(means, m2, rtol=0, atol=TOL)
+    np.testing.assert_allclose(covs, c2, rtol=0, atol=TOL)
+    assert means.shape == (N_STEPS, B, 3) and covs.shape == (N_STEPS, B, 3, 3) and a.step == N_STEPS
+
+
+def test_missing_members_keep_their_prediction_with_a_mask_or_none(problem):
+    x0, P0, Q, R, zs = problem
+    bank = UnscentedKalmanFilterBank(B, 3, 2, DT, hx, fx, POINTS[1])
+    bank.x, bank.P, bank.Q, bank.R = x0, P0, Q, R
+    bank.predict()
+    prior = bank.x.copy(), bank.P.copy()
+    mask = np.array([True, False, True, False, True])
+    bank.update(zs[0], mask=mask)
+    assert np.array_equal(bank.x[~mask], prior[0][~mask]) and np.array_equal(bank.P[~mask], prior[1][~mask])
+    assert np.all(bank.log_likelihood[~mask] == 0) and np.all(bank.log_likelihood[mask] != 0)
+    assert not np.allclose(bank.x[mask], prior[0][mask])
+    before = bank.x.copy()
+    bank.update(None)
+    assert np.array_equal(bank.x, before) and np.all(bank.log_likelihood == 0)
+
+
+def test_shared_measurement_equals_the_same_row_for_every_member_bit_for_bit(problem):
+    x0, P0, Q, R, _ = problem
+    model = KalmanModel(3, 2, DT, fx, hx, Q=1e-3 * np.eye(3), R=np.diag([0.05, 0.02]), vectorized=True)
+    for kind, points in (("ukf", POINTS[0]), ("sukf", POINTS[1]), ("ekf", None)):
+        model.FJacobian, model.HJacobian = FJ, HJ
+        step = batched_step(kind, points)
+        pred = step.predict(model, x0, P0, {})
+        z = np.array([1.1, 0.2])
+        shared = step.update(model, pred, z, {})
+        rows = step.update(model, pred, np.tile(z, (B, 1)), {})
+        for a, b in zip(shared[:6], rows[:6]):
+            assert np.array_equal(a, b), kind
+
+
+def test_mask_equals_running_the_observed_members_alone(problem):
+    x0, P0, Q, R, zs = problem
+    model = KalmanModel(3, 2, DT, fx, hx, Q=1e-3 * np.eye(3), vectorized=True)
+    step = UnscentedStep(POINTS[1])
+    pred = step.predict(model, x0, P0, {}, Q=Q)
+    mask = np.array([False, True, True, False, True])
+    full = step.update(model, pred, zs[0], {}, R=R, mask=mask)
+    sub = step.update(model, KalmanPrediction(pred.x[mask], pred.P[mask]), zs[0][mask], {}, R=R[mask])
+    assert np.array_equal(full.x[mask], sub.x) and np.array_equal(full.log_likelihood[mask], sub.log_likelihood)
+    assert np.all(np.isnan(full.z_pred[~mask])) and np.array_equal(full.x[~mask], pred.x[~mask])
+
+
+def test_errors_name_the_member_and_the_step(problem):
+    x0, P0, Q, R, zs = problem
+    bank = UnscentedKalmanFilterBank(B, 3, 2, DT, hx, fx, POINTS[0])
+    bad = P0.copy()
+    bad[3] = -np.eye(3)
+    with pytest.raises(ValueError, match=r"P must be positive definite \(member 3\)"):
+        bank.P = bad
+    with pytest.raises(ValueError, match=r"R must be positive definite \(member 2\)"):
+        bank.R = np.stack([np.eye(2)] * 2 + [-np.eye(2)] + [np.eye(2)] * 2)
+    with pytest.raises(ValueError, match=r"Q must have shape \(3, 3\) \(shared\) or \(5, 3, 3\)"):
+        bank.Q = np.eye(2)
+    with pytest.raises(ValueError, match=r"z of member 2 must be finite, or all NaN"):
+        bank.update(np.array([[1.0, 0.0], [1.0, 0.0], [np.nan, 0.0], [1.0, 0.0], [1.0, 0.0]]))
+    bank.x, bank.P = x0, P0
+    bank.predict()
+    bank._P[4] = -np.eye(3)  # a corrupted member (not through the checked setter)
+    with pytest.raises(NumericalError, match=r"UnscentedKalmanFilterBank.update at step 1, member 4: "):
+        bank.update(zs[0])
+    nan_fx = lambda X, dt: np.where(np.arange(X.shape[0])[:, None] >= 7 * 2, np.nan, fx(X, dt))  # noqa: E731
+    bank2 = UnscentedKalmanFilterBank(B, 3, 2, DT, hx, nan_fx, POINTS[0])
+    with pytest.raises(NumericalError, match=r"predict at step 1: non-finite result for member 2 \(check fx"):
+        bank2.predict()
+
+
+def test_constructor_checks():
+    with pytest.raises(ValueError, match="points.n must equal dim_x=3"):
+        UnscentedKalmanFilterBank(2, 3, 1, 1.0, hx, fx, MerweScaledSigmaPoints(2, 1.0, 2.0, 0.0))
+    with pytest.raises(TypeError, match="hx must be callable"):
+        UnscentedKalmanFilterBank(2, 3, 1, 1.0, None, fx, POINTS[0])
+    with pytest.raises(ValueError, match="needs FJacobian when fx is given"):
+        ExtendedKalmanFilterBank(2, 3, 2, 1.0, hx, fx, None, HJ)
+    with pytest.raises(ValueError, match="B must be"):
+        KalmanFilterBank(0, 3, 2)
