@@ -105,6 +105,70 @@ _PD_FIX = {
 }
 
 
+# What a function written for one point should become in vectorized mode.
+_LAST_AXIS = "index the last axis (x[..., 1], not x[1])"
+_ONE_POINT_FIX = {
+    "fx": f"{_LAST_AXIS}: out = np.empty_like(x); out[..., 0] = x[..., 0] + dt * x[..., 1]; ...",
+    "hx": f"{_LAST_AXIS} and return shape (n_sigmas, dim_z), e.g. "
+          "np.stack([np.hypot(x[..., 0], x[..., 2]), np.arctan2(x[..., 2], x[..., 0])], axis=-1)",
+    "residual_x": "wrap on the last axis (y = a - b; y[..., 2] = wrap(y[..., 2]), not y[2] = ...) or use "
+                  "filterwnn.angles.angle_residual(columns)",
+    "residual_z": "wrap on the last axis (y = a - b; y[..., 1] = wrap(y[..., 1]), not y[1] = ...) or use "
+                  "filterwnn.angles.angle_residual(columns)",
+}
+_CALL_ERRORS = (IndexError, ValueError, TypeError)  # what a one-point function raises on a batch
+
+
+def _one_point_error(role, detail):
+    return ValueError(
+        f"vectorized {role} looks written for one point: {detail}. With vectorized=True it receives "
+        "all sigma points as one (n_sigmas, dim) array, so an index such as x[1] selects a sigma "
+        f"point, not a column. Fix: {_ONE_POINT_FIX[role]}; or use vectorized=False"
+    )
+
+
+def _on_single_rows(fn, X, rows, size, args=(), kwargs=None):
+    """``fn`` on single rows of ``X``, each given as ``(1, d)`` or else as ``(d,)``.
+
+    Returns ``(outputs, one_d)``: the flattened outputs of ``size`` entries and whether
+    the ``(d,)`` form was needed (a function written for one point), or ``None`` when
+    ``fn`` takes neither form (it needs the whole batch: nothing to compare).
+    """
+    kwargs = kwargs or {}
+    outs, one_d = [], False
+    for i in rows:
+        for flat, arg in ((False, X[i : i + 1]), (True, X[i])):
+            try:
+                v = np.asarray(fn(arg.copy(), *args, **kwargs), dtype=float).reshape(-1)
+            except _CALL_ERRORS:
+                continue
+            if v.size == size:
+                outs.append(v)
+                one_d |= flat
+                break
+        else:
+            return None
+    return outs, one_d
+
+
+def _rows_differ(batch, X, fn, args=(), kwargs=None):
+    """The first of a few rows where ``batch`` differs from ``fn`` on that row alone, or None."""
+    S = X.shape[0]
+    rows = sorted({0, min(1, S - 1), S - 1})
+    got = _on_single_rows(fn, X, rows, batch[0].size, args, kwargs)
+    if got is None:
+        return None
+    for i, v in zip(rows, got[0]):
+        b = batch[i].reshape(-1)
+        bad = ~np.isclose(b, v, rtol=1e-9, atol=1e-12 * max(1.0, float(np.max(np.abs(v), initial=0.0))),
+                          equal_nan=True)
+        if bad.any():
+            j = int(np.argmax(bad))
+            return (f"row {i}, entry {j} of the batch is {b[j]:.6g}, but {v[j]:.6g} when that "
+                    "row is passed alone")
+    return None
+
+
 def _with_fix(check, M, name, *args, **kwargs):
     """Run a ``_validation`` check, adding the remedy to its message."""
     try:
@@ -203,7 +267,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         self.step = 0
         self._sigmas_stale = True  # sigmas_f must be drawn from (x, P) before update
         self._deviations = None
-        self._trusted = {}  # the P and Q objects already checked (or produced) here
+        self._trusted = {}  # copies of the x, P and Q last checked (or produced) here
         self._chol = None  # (P_prior object, its lower Cholesky factor), vectorized mode
         self._checked = {}  # role -> the residual/mean callable already checked on arrays
 
@@ -229,16 +293,33 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             raise NumericalError(
                 f"x and P must be finite {when}; set them again (x_post and P_post hold the "
                 "last update's values)", matrix="P", step=self.step)
-        # symmetry costs a full pass: check what the user set, not what we produced
-        if P is not self._trusted.get("P"):
+        # Symmetry costs a full pass: check what the user set, not what we produced. What
+        # the filter last produced or checked is kept by content, not identity, so an edit
+        # in place (P *= 4, P[0, 2] += 0.5) is seen like an assignment; it also makes the
+        # cached factor and the update's sigma points stale (both modes redraw them).
+        if not self._unchanged("P", P):
             _with_fix(check_symmetric, P, "P")
-        if check_Q and self.Q is not self._trusted.get("Q"):
-            # once per Q object: finite, symmetric, positive semi-definite (a Cholesky
-            # settles the usual positive definite Q; eigenvalues only for a singular one)
+            self._chol = None
+            self._sigmas_stale = True
+            self._mark("P", P)
+        if not self._unchanged("x", x):
+            self._sigmas_stale = True
+            self._mark("x", x)
+        if check_Q and not self._unchanged("Q", self.Q):
+            # once per Q: finite, symmetric, positive semi-definite (a Cholesky settles
+            # the usual positive definite Q; eigenvalues only for a singular one)
             _with_fix(check_symmetric, self.Q, "Q")
             if cholesky_lower(self.Q) is None:
                 _with_fix(check_covariance, self.Q, "Q", n, allow_scalar=False, require_pd=False)
-            self._trusted["Q"] = self.Q
+            self._mark("Q", self.Q)
+
+    def _unchanged(self, name, M):
+        """True when ``M`` holds what the filter last produced or checked as ``name``."""
+        seen = self._trusted.get(name)
+        return seen is not None and seen.shape == np.shape(M) and bool((seen == M).all())
+
+    def _mark(self, name, M):
+        self._trusted[name] = np.array(M, dtype=float)  # a copy: later edits in place show
 
     def _sigmas(self, x, P, what):
         """Sigma points of N(x, P); NumericalError naming ``what`` if P is not PD."""
@@ -278,55 +359,76 @@ class UnscentedKalmanFilter(_FilterpyUKF):
 
     def _call(self, fn, sigmas, name, dim_out, *args, **kwargs):
         """Evaluate fx/hx on all sigma points (vectorized) or row by row."""
-        if self.vectorized:
-            out = np.asarray(fn(sigmas, *args, **kwargs), dtype=float)
-            if out.ndim == 1 and dim_out == 1:
-                out = out[:, None]
-            if out.shape != (sigmas.shape[0], dim_out):
-                raise ValueError(
-                    f"vectorized {name} must map ({sigmas.shape[0]}, {sigmas.shape[1]}) sigma "
-                    f"points to shape ({sigmas.shape[0]}, {dim_out}), got {out.shape}"
-                )
+        if not self.vectorized:  # as filterpy's compute_process_sigmas: row i of an array
+            out = np.empty((sigmas.shape[0], dim_out))
+            try:
+                for i, s in enumerate(sigmas):
+                    out[i] = fn(s, *args, **kwargs)
+            except ValueError as exc:
+                raise self._loop_shape_error(name, np.shape(fn(sigmas[0], *args, **kwargs)), dim_out) from exc
             return out
-        return np.atleast_2d([fn(s, *args, **kwargs) for s in sigmas])
+        first = self._checked.get(name) is not fn
+        try:
+            out = np.asarray(fn(sigmas, *args, **kwargs), dtype=float)
+        except _CALL_ERRORS as exc:
+            if first and _on_single_rows(fn, sigmas, [0], dim_out, args, kwargs) is not None:
+                raise _one_point_error(name, f"on all {sigmas.shape[0]} sigma points it raised "
+                                             f"{type(exc).__name__}: {exc}") from exc
+            raise
+        if out.ndim == 1 and dim_out == 1:
+            out = out[:, None]
+        if out.shape != (sigmas.shape[0], dim_out):
+            msg = (f"vectorized {name} must map ({sigmas.shape[0]}, {sigmas.shape[1]}) sigma "
+                   f"points to shape ({sigmas.shape[0]}, {dim_out}), got {out.shape}")
+            got = _on_single_rows(fn, sigmas, [0], dim_out, args, kwargs) if first else None
+            if got is not None and got[1]:
+                raise _one_point_error(name, msg)
+            raise ValueError(msg)
+        if first:
+            detail = _rows_differ(out, sigmas, fn, args, kwargs)
+            if detail is not None:
+                raise _one_point_error(name, detail)
+            self._checked[name] = fn
+        return out
+
+    def _loop_shape_error(self, name, one, dim_out):
+        what = "a scalar" if one == () else f"shape {one}"
+        example = "np.array([x[0]])" if name == "hx" else "np.array([x[0] + dt * x[1], ...])"
+        return ValueError(
+            f"{name} must return an array of shape ({dim_out},) for one point, got {what}; return "
+            f"a 1-D array, e.g. {example} (filterpy would fail later with 'shapes ... not aligned')"
+        )
 
     def _residual(self, role, fn, A, b):
         """``fn(A, b)`` on all rows at once, checked against a row-by-row call the first time.
 
-        ``role`` is the constructor argument's name (``"residual_x"``, ``"residual_z"``).
+        ``role`` is the constructor argument's name (``"residual_x"``, ``"residual_z"``). A
+        function written for one row (filterpy's ``y[1] = wrap(y[1])``) wraps a sigma point
+        instead of a column: it is compared with row-by-row calls on this first sigma set,
+        and on a probe whose residuals all exceed pi (where a wrap of the wrong entries
+        shows even if the sigma points are close together).
         """
         if self._checked.get(role) is fn:
             return fn(A, b)
-        out = np.asarray(fn(A.copy(), np.copy(b)), dtype=float)
-        fix = (f"write {role} on the last axis (y[..., 1] = ..., not y[1] = ...) or use "
-               "filterwnn.angles.angle_residual(columns)")
+        b = np.copy(b)
+        try:
+            out = np.asarray(fn(A.copy(), b.copy()), dtype=float)
+        except _CALL_ERRORS as exc:
+            if _on_single_rows(fn, A, [0], A.shape[1], (b,)) is not None:
+                raise _one_point_error(role, f"on all {A.shape[0]} sigma points it raised "
+                                             f"{type(exc).__name__}: {exc}") from exc
+            raise
         if out.shape != A.shape:
             raise ValueError(
                 f"vectorized {role} must map sigma points of shape {A.shape} and a mean of "
-                f"shape {np.shape(b)} to shape {A.shape}, got {out.shape}; {fix}"
+                f"shape {np.shape(b)} to shape {A.shape}, got {out.shape}; {_ONE_POINT_FIX[role]}"
             )
-        # A function written for one row (filterpy's y[1] = wrap(y[1])) wraps a sigma
-        # point instead of a column. Compare it with a row-by-row call on this first
-        # sigma set, and on a probe whose residuals all exceed pi (where a wrap of the
-        # wrong entries shows even if the sigma points are close together).
         probe = np.asarray(b, dtype=float) + 4.0 * (1.0 + np.arange(A.size).reshape(A.shape))
-        for label, X in (("sigma point", A), ("probe row", probe)):
-            try:
-                vec = out if X is A else np.asarray(fn(X.copy(), np.copy(b)), dtype=float)
-                rows = np.array([fn(a.copy(), np.copy(b)) for a in X], dtype=float)
-            except (IndexError, ValueError, TypeError):  # written for arrays only: cannot compare
-                break
-            if rows.shape != vec.shape:
-                break
-            bad = ~np.isclose(vec, rows, rtol=1e-9, atol=1e-12, equal_nan=True)
-            if bad.any():
-                i, j = np.argwhere(bad)[0]
-                raise ValueError(
-                    f"vectorized {role} differs from {role} applied row by row ({label} {i}, "
-                    f"column {j}: {vec[i, j]:.6g} against {rows[i, j]:.6g}): in vectorized mode it "
-                    f"receives all {A.shape[0]} sigma points at once, so an index such as y[1] "
-                    f"selects a sigma point, not a column; {fix}"
-                )
+        for label, X in (("sigma points", A), ("a probe with residuals above pi", probe)):
+            vec = out if X is A else np.asarray(fn(X.copy(), b.copy()), dtype=float)
+            detail = _rows_differ(vec, X, fn, (b,))
+            if detail is not None:
+                raise _one_point_error(role, f"on {label}, {detail}")
         self._checked[role] = fn
         return out
 
@@ -408,7 +510,8 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             raise
         self.x_prior = np.copy(self.x)
         self.P_prior = np.copy(self.P)
-        self._trusted["P"] = self.P
+        self._mark("P", self.P)
+        self._mark("x", self.x)
 
     def compute_process_sigmas(self, dt, fx=None, **fx_args):
         """filterpy's helper: ``sigmas_f`` = the sigma points passed through ``fx``."""
@@ -448,6 +551,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
                 self.sigmas_f = self._sigmas(self.x, self.P, "P")
                 self._sigmas_stale = False
             if not self.vectorized:
+                self._check_loop_hx(self.hx if hx is None else hx, z_arr.size, hx_args)
                 try:  # filterpy gets the checked z: a column z is flattened as in vectorized mode
                     super().update(z_arr, R=R, UT=UT, hx=hx, **hx_args)
                 except np.linalg.LinAlgError as exc:
@@ -466,7 +570,17 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             raise
         self._sigmas_stale = True
         self._chol = None
-        self._trusted["P"] = self.P
+        self._mark("P", self.P)
+        self._mark("x", self.x)
+
+    def _check_loop_hx(self, hx, dim_z, hx_args):
+        """Once per ``hx``: one point must give ``dim_z`` values as an array (not a scalar)."""
+        if self._checked.get("hx") is hx:
+            return
+        h = np.shape(hx(self.sigmas_f[0], **hx_args))
+        if h != (dim_z,) and not (len(h) == 2 and np.prod(h) == dim_z):
+            raise self._loop_shape_error("hx", h, dim_z)
+        self._checked["hx"] = hx
 
     def _check_measurement(self, z, R):
         """Validate ``z`` and ``R`` together; returns ``(z, R)`` as float arrays.
