@@ -67,7 +67,6 @@ ValueError: z must be finite (use z=None for a missing measurement), got [nan]
 from __future__ import annotations
 
 import numbers
-from copy import deepcopy
 
 import numpy as np
 from filterpy.kalman import UnscentedKalmanFilter as _FilterpyUKF
@@ -84,6 +83,7 @@ from .._validation import (
     check_positive_int,
     check_symmetric,
 )
+from . import _filterpy_arithmetic as fpa
 from .sigma_points import sigma_deviations
 
 __all__ = ["UnscentedKalmanFilter", "fast_unscented_transform"]
@@ -182,6 +182,22 @@ def _with_fix(check, M, name, *args, **kwargs):
         else:
             fix = f"{name} must be a finite symmetric covariance, e.g. {name} = np.diag(variances)"
         raise ValueError(f"{msg}; {fix}") from exc
+
+
+def _each_row(residual, A, b):
+    """``residual(A[i], b)`` for every row, as filterpy's loops call it (one array op for np.subtract)."""
+    if residual is np.subtract:
+        return A - b
+    return np.array([residual(a, b) for a in A], dtype=float)
+
+
+def _positive_definite(S):
+    """Whether the (symmetric) ``S`` is positive definite; 1x1 and 2x2 without a LAPACK call."""
+    if S.shape == (1, 1):
+        return bool(S[0, 0] > 0)
+    if S.shape == (2, 2):  # Sylvester's criterion
+        return bool(S[0, 0] > 0 and S[0, 0] * S[1, 1] - S[0, 1] * S[1, 0] > 0)
+    return cholesky_lower(S) is not None
 
 
 def fast_unscented_transform(sigmas, Wm, Wc, noise_cov=None):
@@ -289,7 +305,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             if np.shape(M) != (n, n):
                 raise ValueError(f"{name} must have shape ({n}, {n}), got {np.shape(M)}; "
                                  + _SHAPE_FIX[name].format(n=n))
-        if not (np.all(np.isfinite(x)) and np.all(np.isfinite(P))):
+        if not (np.isfinite(x).all() and np.isfinite(P).all()):
             raise NumericalError(
                 f"x and P must be finite {when}; set them again (x_post and P_post hold the "
                 "last update's values)", matrix="P", step=self.step)
@@ -314,12 +330,17 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             self._mark("Q", self.Q)
 
     def _unchanged(self, name, M):
-        """True when ``M`` holds what the filter last produced or checked as ``name``."""
+        """True when ``M`` holds what the filter last produced or checked as ``name``.
+
+        Compared by bytes (one ``memcmp``): a ``-0.0`` for ``0.0`` or an integer array
+        only costs one more check.
+        """
         seen = self._trusted.get(name)
-        return seen is not None and seen.shape == np.shape(M) and bool((seen == M).all())
+        return seen is not None and type(M) is np.ndarray and seen[0] == M.shape and seen[1] == M.tobytes()
 
     def _mark(self, name, M):
-        self._trusted[name] = np.array(M, dtype=float)  # a copy: later edits in place show
+        M = np.asarray(M, dtype=float)
+        self._trusted[name] = (M.shape, M.tobytes())  # a copy: later edits in place show
 
     def _sigmas(self, x, P, what):
         """Sigma points of N(x, P); NumericalError naming ``what`` if P is not PD."""
@@ -333,6 +354,8 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             return x + D
         self._deviations = None
         try:
+            if fpa.is_plain_merwe(self.points_fn) and type(P) is np.ndarray and P.dtype == float:
+                return fpa.merwe_sigma_points(self.points_fn, np.asarray(x, dtype=float), P)
             return np.asarray(self.points_fn.sigma_points(x, P), dtype=float)
         except np.linalg.LinAlgError as exc:
             raise self._not_pd(what, P) from exc
@@ -485,11 +508,11 @@ class UnscentedKalmanFilter(_FilterpyUKF):
                         self.sigmas_f, self.x_mean, self.residual_x, self.Q, ("x_mean_fn", "residual_x")
                     )
                 else:  # filterpy's own arithmetic (bit-identical in loop mode)
-                    UT = unscented_transform if UT is None else UT
+                    UT = fpa.unscented_transform if UT is None else UT
                     self.x, self.P = UT(
                         self.sigmas_f, self.Wm, self.Wc, self.Q, self.x_mean, self.residual_x
                     )
-                if not (np.all(np.isfinite(self.x)) and np.all(np.isfinite(self.P))):
+                if not (np.isfinite(self.x).all() and np.isfinite(self.P).all()):
                     raise NumericalError(
                         f"fx produced a non-finite prediction (x_prior or P_prior) at step {self.step}; "
                         "check fx at the sigma points of (x, P)",
@@ -539,7 +562,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             z_arr = np.asarray(z, dtype=float)
         except (TypeError, ValueError) as exc:
             raise TypeError(f"z must be array-like of numbers or None, got {type(z).__name__}") from exc
-        if not np.all(np.isfinite(z_arr)):
+        if not np.isfinite(z_arr).all():
             raise ValueError(
                 f"z must be finite (use z=None for a missing measurement), got {np.ravel(z_arr)}"
             )
@@ -551,17 +574,21 @@ class UnscentedKalmanFilter(_FilterpyUKF):
                 self.sigmas_f = self._sigmas(self.x, self.P, "P")
                 self._sigmas_stale = False
             if not self.vectorized:
-                self._check_loop_hx(self.hx if hx is None else hx, z_arr.size, hx_args)
-                try:  # filterpy gets the checked z: a column z is flattened as in vectorized mode
-                    super().update(z_arr, R=R, UT=UT, hx=hx, **hx_args)
+                hx = self.hx if hx is None else hx
+                self._check_loop_hx(hx, z_arr.size, hx_args)
+                try:  # filterpy's update gets the checked z: a column z is flattened as in vectorized mode
+                    if UT is None and type(self).cross_variance is _FilterpyUKF.cross_variance:
+                        self._loop_update(z_arr, R, hx, **hx_args)
+                    else:
+                        super().update(z_arr, R=R, UT=UT, hx=hx, **hx_args)
                 except np.linalg.LinAlgError as exc:
                     raise self._not_pd("S", self.S) from exc
                 # filterpy inverts S without asking whether it is positive definite
-                if np.any(np.isfinite(self.S)) and cholesky_lower(self.S) is None:
+                if np.isfinite(self.S).any() and not _positive_definite(self.S):
                     raise self._not_pd("S", self.S)
             else:
                 self._vectorized_update(z_arr, R, UT, hx, **hx_args)
-            if not (np.all(np.isfinite(self.x)) and np.all(np.isfinite(self.P))):
+            if not (np.isfinite(self.x).all() and np.isfinite(self.P).all()):
                 raise NumericalError(
                     f"the update produced non-finite x or P at step {self.step}", matrix="P", step=self.step
                 )
@@ -572,6 +599,28 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         self._chol = None
         self._mark("P", self.P)
         self._mark("x", self.x)
+
+    def _loop_update(self, z, R, hx, **hx_args):
+        """filterpy's ``update`` (UT and cross variance at their defaults): the same
+        floating-point operations (:mod:`._filterpy_arithmetic`) with fewer calls."""
+        self.sigmas_h = np.atleast_2d([hx(s, **hx_args) for s in self.sigmas_f])
+        zp, self.S = fpa.unscented_transform(self.sigmas_h, self.Wm, self.Wc, R, self.z_mean, self.residual_z)
+        self.SI = self.inv(self.S)
+        dx = _each_row(self.residual_x, self.sigmas_f, self.x)
+        dz = _each_row(self.residual_z, self.sigmas_h, zp)
+        self.K = np.dot(fpa.weighted_outer_sum(self.Wc, dx, dz), self.SI)
+        self.y = self.residual_z(z, zp)
+        self.x = self.state_add(self.x, np.dot(self.K, self.y))
+        self.P = self.P - np.dot(self.K, np.dot(self.S, self.K.T))
+        self._store_posterior(z)
+
+    def _store_posterior(self, z):
+        self.z = z.copy()
+        self.x_post = self.x.copy()
+        self.P_post = self.P.copy()
+        self._log_likelihood = None
+        self._likelihood = None
+        self._mahalanobis = None
 
     def _check_loop_hx(self, hx, dim_z, hx_args):
         """Once per ``hx``: one point must give ``dim_z`` values as an array (not a scalar)."""
@@ -605,9 +654,11 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         if R.shape != (z.size, z.size):
             raise ValueError(f"R must have shape ({z.size}, {z.size}), got shape {R.shape}; "
                              + _SHAPE_FIX["R"].format(n=z.size))
-        if not np.all(np.isfinite(R)):
-            raise ValueError("R must be finite, got non-finite entries; use R = np.diag(variances)")
-        _with_fix(check_symmetric, R, "R")
+        if not self._unchanged("R", R):  # checked once per content, not every step
+            if not np.isfinite(R).all():
+                raise ValueError("R must be finite, got non-finite entries; use R = np.diag(variances)")
+            _with_fix(check_symmetric, R, "R")
+            self._mark("R", R)
         return z, R
 
     def _vectorized_update(self, z, R, UT, hx, **hx_args):
@@ -644,12 +695,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         else:
             P = self.P - self.K @ S @ self.K.T
             self.P = 0.5 * (P + P.T)
-        self.z = deepcopy(z)
-        self.x_post = self.x.copy()
-        self.P_post = self.P.copy()
-        self._log_likelihood = None
-        self._likelihood = None
-        self._mahalanobis = None
+        self._store_posterior(z)
 
     def _rows_residual(self, A, b):
         """``residual_x`` of every row of ``A`` against ``b``, in either mode."""
