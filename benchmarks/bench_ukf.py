@@ -11,6 +11,14 @@ output at one input, the transition a random walk. A filterpy user writes filter
 4. ours, vectorized with a general ``fx`` (the identity written as a function),
 5. the floor: one Cholesky of the 160x160 covariance and the rank-1 covariance update.
 
+Then, in the same run (issue 22), what a filterpy user sees:
+
+6. loop mode against filterpy on the book's examples as ``tests/kalman/test_filterpy_book.py``
+   writes them (first UKF, radar, robot with landmarks; filterpy's Merwe points), the two
+   filters interleaved, median time per predict+update and our/filterpy ratio (target <= 1);
+7. ``import filterwnn`` against ``import filterpy.kalman``, each in a fresh interpreter,
+   interleaved, medians and their ratio (target <= 1.2).
+
 Run: ``python benchmarks/bench_ukf.py`` (``--quick`` for a short run). One BLAS thread.
 """
 
@@ -19,6 +27,8 @@ from __future__ import annotations
 import argparse
 import os
 import platform
+import subprocess
+import sys
 import time
 
 os.environ.setdefault("OMP_NUM_THREADS", "1")
@@ -68,6 +78,67 @@ def floor(P, n_steps):
         P2 = P - 0.1 * np.outer(K, K)
     del P2
     return (time.perf_counter() - t0) / n_steps
+
+
+def book_cases():
+    """(name, make(cls), run(filter)) for the book's examples, from the tests' own code."""
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "kalman"))
+    import test_filterpy_book as book  # noqa: E402
+
+    _, cz = book.cv_data()
+    _, rz = book.radar_data()
+    _, us, bz = book.robot_data()
+    return [
+        ("first UKF (4 states)", lambda c: book.cv_filter(c, MerweScaledSigmaPoints(4, 0.1, 2.0, -1.0)),
+         lambda f: book.run(f, cz)),
+        ("radar (3 states)", lambda c: book.radar_filter(c, MerweScaledSigmaPoints(3, 0.1, 2.0, 0.0)),
+         lambda f: book.run(f, rz)),
+        ("robot, landmarks (3 states)", lambda c: book.robot_filter(c, MerweScaledSigmaPoints(3, 0.1, 2.0, 0.0)),
+         lambda f: book.run_robot(f, us, bz)),
+    ], len(cz), len(rz), len(bz)
+
+
+def loop_mode(repeats):
+    """Median ms per step, filterpy's and ours in loop mode, interleaved."""
+    cases, *steps = book_cases()
+    rows = []
+    for (name, make, go), n_steps in zip(cases, steps):
+        t = {FilterpyUKF: [], UnscentedKalmanFilter: []}
+        for _ in range(repeats):
+            for cls in t:
+                f = make(cls)
+                t0 = time.perf_counter()
+                go(f)
+                t[cls].append((time.perf_counter() - t0) / n_steps)
+        rows.append((name, float(np.median(t[FilterpyUKF])), float(np.median(t[UnscentedKalmanFilter]))))
+    return rows
+
+
+def import_times(repeats):
+    """Median seconds of ``import filterwnn`` and ``import filterpy.kalman`` in fresh interpreters."""
+    t = {"import filterwnn": [], "import filterpy.kalman": [],
+         "from filterwnn import UnscentedKalmanFilter": [], "from filterpy.kalman import UnscentedKalmanFilter": []}
+    for _ in range(repeats):
+        for stmt in t:
+            t0 = time.perf_counter()
+            subprocess.run([sys.executable, "-c", stmt], check=True)
+            t[stmt].append(time.perf_counter() - t0)
+    return {k: float(np.median(v)) for k, v in t.items()}
+
+
+def report_filterpy_user(repeats):
+    print(f"\nloop mode (vectorized=False) against filterpy, the book's examples, Merwe points; "
+          f"median of {repeats} interleaved runs")
+    print(f"{'example':32s} {'filterpy ms':>12s} {'filterwnn ms':>13s} {'ratio':>7s}")
+    ratios = []
+    for name, a, b in loop_mode(repeats):
+        ratios.append(b / a)
+        print(f"{name:32s} {1e3 * a:12.3f} {1e3 * b:13.3f} {b / a:7.2f}")
+    print(f"loop-mode ratio filterwnn/filterpy: max {max(ratios):.2f}, median {np.median(ratios):.2f} (target <= 1)")
+    imp = list(import_times(repeats).items())
+    print(f"import in a fresh interpreter (python -c), median of {repeats} interleaved:")
+    for (ours, a), (theirs, b) in (imp[0:2], imp[2:4]):
+        print(f"  {ours!r} {a:.3f} s, {theirs!r} {b:.3f} s, ratio {a / b:.2f} (target <= 1.2)")
 
 
 def main(argv=None):
@@ -121,6 +192,11 @@ def main(argv=None):
           f"{med['filterpy UKF, spherical simplex (162 pts)'] / base:.2f} (target <= 0.55); "
           f"speed-up fx=None = {base / med['filterwnn UKF, vectorized, fx=None (321 pts)']:.1f}x (target >= 15); "
           f"general fx = {base / med['filterwnn UKF, vectorized, general fx (321 pts)']:.1f}x (target >= 5)")
+    fl = med["floor: 1 Cholesky + rank-1 P update"]
+    print("vectorized step / floor (one Cholesky + rank-1 update): "
+          f"fx=None, Merwe {med['filterwnn UKF, vectorized, fx=None (321 pts)'] / fl:.1f}x, "
+          f"fx=None, simplex {med['filterwnn UKF, vectorized, fx=None, simplex (162 pts)'] / fl:.1f}x (target <= 3)")
+    report_filterpy_user(max(args.repeats, 5))
 
 
 if __name__ == "__main__":

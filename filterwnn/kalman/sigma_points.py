@@ -31,8 +31,14 @@ Both use the *scaled* unscented transformation of Julier (2002): points
 :math:`W^c_0 = W'_0 + 1 - \alpha^2 + \beta` for the covariance. With ``alpha = 1`` and
 ``beta = 0`` they are the unscaled sets.
 
-Both subclass filterpy's :class:`~filterpy.kalman.MerweScaledSigmaPoints`, so they drop
-into ``filterpy.kalman.UnscentedKalmanFilter(points=...)`` unchanged.
+Both subclass filterpy's :class:`~filterpy.kalman.MerweScaledSigmaPoints` and take its
+arguments, ``(n, alpha, beta, kappa, sqrt_method=None, subtract=None)``, positionally and
+with its meanings: ``kappa`` sets the unscaled centre weight ``w0 = kappa / (n + kappa)``
+(the weight it gives the symmetric set), so the centre weights are Merwe's for the same
+``(alpha, beta, kappa)``; the reduced set's own parameter ``w0=`` is keyword-only. So they
+drop into ``filterpy.kalman.UnscentedKalmanFilter(points=...)`` unchanged, and
+``from filterwnn import SphericalSimplexSigmaPoints as MerweScaledSigmaPoints`` runs
+filterpy's own ``test_ukf.py`` (``tests/kalman/test_filterpy_suite.py``).
 
 >>> import numpy as np
 >>> pts = SphericalSimplexSigmaPoints(3, w0=0.2)
@@ -83,6 +89,7 @@ from .._validation import NumericalError, check_points_protocol, check_positive_
 __all__ = [
     "MinimalSkewSigmaPoints",
     "SphericalSimplexSigmaPoints",
+    "centre_weight",
     "unit_sigma_points",
     "sigma_deviations",
     "batched_sigma_points",
@@ -112,9 +119,57 @@ def _check_scaling(alpha, beta, w0):
             raise ValueError(f"{name} must be a finite real number, got {value!r}")
     if alpha <= 0:
         raise ValueError(f"alpha must be > 0, got {alpha}")
-    if not 0 <= w0 < 1:
-        raise ValueError(f"w0 must satisfy 0 <= w0 < 1, got {w0}")
+    if not w0 < 1:
+        raise ValueError(f"w0 must satisfy w0 < 1 (the outer points share 1 - w0), got {w0}")
     return float(alpha), float(beta), float(w0)
+
+
+def centre_weight(n, kappa=0.0, w0=None):
+    r"""The reduced set's unscaled centre weight ``w0`` from filterpy's ``kappa``, or ``w0`` itself.
+
+    filterpy's :class:`~filterpy.kalman.MerweScaledSigmaPoints` is Julier's (2002) scaled
+    transform applied to the symmetric set whose centre weight is
+    :math:`W_0 = \kappa / (n + \kappa)`. Applying the same scaling to an ``n + 2`` set
+    with that centre weight gives *Merwe's* centre weights for the same
+    ``(alpha, beta, kappa)``: :math:`W^m_0 = \lambda / (n + \lambda)` and
+    :math:`W^c_0 = W^m_0 + 1 - \alpha^2 + \beta` with
+    :math:`\lambda = \alpha^2 (n + \kappa) - n`, and (for the spherical simplex) the
+    outer points on Merwe's sphere, radius :math:`\alpha \sqrt{n + \kappa}`.
+
+    Parameters
+    ----------
+    n : int
+    kappa : float, default 0.0
+        filterpy's ``kappa``; needs ``n + kappa > 0`` (filterpy's scaled transform
+        divides by it).
+    w0 : float, optional
+        The centre weight itself (``w0 < 1``); then ``kappa`` must stay 0.
+
+    Returns
+    -------
+    w0 : float
+
+    Examples
+    --------
+    >>> centre_weight(3, kappa=1.0), centre_weight(3, w0=0.2)
+    (0.25, 0.2)
+    """
+    if isinstance(kappa, bool) or not np.isscalar(kappa) or not np.isfinite(kappa):
+        raise ValueError(f"kappa must be a finite real number, got {kappa!r}")
+    if w0 is not None:
+        if kappa != 0:
+            raise ValueError(
+                f"give kappa (filterpy's meaning: w0 = kappa / (n + kappa)) or w0=, not both; "
+                f"got kappa={kappa} and w0={w0}"
+            )
+        return w0
+    if not n + kappa > 0:
+        raise ValueError(
+            f"kappa must satisfy n + kappa > 0 (filterpy's scaled transform divides by it), got "
+            f"kappa={kappa} with n={n}; kappa = 3 - n is filterpy's usual choice, or set the "
+            "centre weight directly with w0= (any w0 < 1)"
+        )
+    return float(kappa) / (n + float(kappa))
 
 
 def _staircase(a, b):
@@ -134,13 +189,13 @@ def _staircase(a, b):
 class _StaircaseSimplex(MerweScaledSigmaPoints):
     """Shared machinery of the two ``n + 2`` sets (a private base)."""
 
-    def __init__(self, n, alpha=1.0, beta=0.0, w0=0.0, sqrt_method=None, subtract=None):
+    def __init__(self, n, alpha=1.0, beta=0.0, kappa=0.0, sqrt_method=None, subtract=None, *, w0=None):
         n = check_positive_int(n, "n")
-        alpha, beta, w0 = _check_scaling(alpha, beta, w0)
+        alpha, beta, w0 = _check_scaling(alpha, beta, centre_weight(n, kappa, w0))
         self.w0 = w0
         # MerweScaledSigmaPoints.__init__ stores n, alpha, beta, kappa, sqrt and
         # subtract, then calls our _compute_weights.
-        super().__init__(n, alpha, beta, 0.0, sqrt_method=sqrt_method, subtract=subtract)
+        super().__init__(n, alpha, beta, float(kappa), sqrt_method=sqrt_method, subtract=subtract)
         self._default_sqrt = sqrt_method is None
 
     # -- the two subclasses define these -------------------------------------
@@ -250,6 +305,7 @@ class _StaircaseSimplex(MerweScaledSigmaPoints):
                 pretty_str("n", self.n),
                 pretty_str("alpha", self.alpha),
                 pretty_str("beta", self.beta),
+                pretty_str("kappa", self.kappa),
                 pretty_str("w0", self.w0),
                 pretty_str("Wm", self.Wm),
                 pretty_str("Wc", self.Wc),
@@ -283,13 +339,20 @@ class MinimalSkewSigmaPoints(_StaircaseSimplex):
     beta : float, default 0.0
         Prior knowledge of the distribution (2 is optimal for a Gaussian), added to
         the centre's covariance weight.
-    w0 : float, default 0.0
-        Weight of the centre point before scaling, ``0 <= w0 < 1``.
+    kappa : float, default 0.0
+        filterpy's ``kappa``, with its meaning in the scaled transform: the unscaled
+        centre weight is ``w0 = kappa / (n + kappa)`` (:func:`centre_weight`), so the
+        centre weights ``Wm[0]``, ``Wc[0]`` equal
+        ``MerweScaledSigmaPoints(n, alpha, beta, kappa)``'s. Needs ``n + kappa > 0``.
     sqrt_method : callable, optional
         Matrix square root returning an *upper* factor (default
         :func:`scipy.linalg.cholesky`), as in filterpy.
     subtract : callable, optional
         ``subtract(x, y)`` for states that do not subtract linearly (angles).
+    w0 : float, optional, keyword-only
+        The centre weight before scaling (``w0 < 1``; Julier's sets use
+        ``0 <= w0 < 1``), in place of ``kappa``. Default: from ``kappa`` (0 for
+        ``kappa = 0``).
 
     Attributes
     ----------
@@ -311,9 +374,10 @@ class MinimalSkewSigmaPoints(_StaircaseSimplex):
     ...                             fx=lambda x, dt: x, points=pts)
     """
 
-    def __init__(self, n, alpha=1.0, beta=0.0, w0=0.0, sqrt_method=None, subtract=None):
+    def __init__(self, n, alpha=1.0, beta=0.0, kappa=0.0, sqrt_method=None, subtract=None, *, w0=None):
         n_checked = check_positive_int(n, "n")
-        tiny = np.ldexp(1.0 - (w0 if np.isscalar(w0) and 0 <= w0 < 1 else 0.0), -n_checked)
+        w = centre_weight(n_checked, kappa, w0)
+        tiny = np.ldexp(1.0 - (w if np.isscalar(w) and w < 1 else 0.0), -n_checked)
         if tiny < np.finfo(float).tiny:
             raise ValueError(
                 f"n must be small enough for the minimal-skew weights 2^-n to be "
@@ -328,7 +392,7 @@ class MinimalSkewSigmaPoints(_StaircaseSimplex):
                 UserWarning,
                 stacklevel=2,
             )
-        super().__init__(n, alpha, beta, w0, sqrt_method=sqrt_method, subtract=subtract)
+        super().__init__(n, alpha, beta, kappa, sqrt_method=sqrt_method, subtract=subtract, w0=w0)
 
     def _unscaled(self):
         n = self.n
@@ -360,10 +424,14 @@ class SphericalSimplexSigmaPoints(_StaircaseSimplex):
         Spread (``> 0``).
     beta : float, default 0.0
         Added to the centre's covariance weight (2 is optimal for a Gaussian).
-    w0 : float, default 0.0
-        Centre weight before scaling, ``0 <= w0 < 1``.
+    kappa : float, default 0.0
+        filterpy's ``kappa``: ``w0 = kappa / (n + kappa)`` (:func:`centre_weight`),
+        which puts the outer points on Merwe's sphere, radius
+        ``alpha * sqrt(n + kappa)``, with Merwe's centre weights. Needs ``n + kappa > 0``.
     sqrt_method, subtract : callable, optional
         As in filterpy's sigma-point classes.
+    w0 : float, optional, keyword-only
+        Centre weight before scaling (``w0 < 1``), in place of ``kappa``.
 
     Attributes
     ----------
@@ -377,6 +445,9 @@ class SphericalSimplexSigmaPoints(_StaircaseSimplex):
     >>> pts.num_sigmas(), float(pts.Wm[1]) * 161
     (162, 1.0)
     """
+
+    def __init__(self, n, alpha=1.0, beta=0.0, kappa=0.0, sqrt_method=None, subtract=None, *, w0=None):
+        super().__init__(n, alpha, beta, kappa, sqrt_method=sqrt_method, subtract=subtract, w0=w0)
 
     def _unscaled(self):
         n = self.n

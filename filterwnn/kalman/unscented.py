@@ -67,7 +67,6 @@ ValueError: z must be finite (use z=None for a missing measurement), got [nan]
 from __future__ import annotations
 
 import numbers
-from copy import deepcopy
 
 import numpy as np
 from filterpy.kalman import UnscentedKalmanFilter as _FilterpyUKF
@@ -84,6 +83,7 @@ from .._validation import (
     check_positive_int,
     check_symmetric,
 )
+from . import _filterpy_arithmetic as fpa
 from .sigma_points import sigma_deviations
 
 __all__ = ["UnscentedKalmanFilter", "fast_unscented_transform"]
@@ -105,6 +105,70 @@ _PD_FIX = {
 }
 
 
+# What a function written for one point should become in vectorized mode.
+_LAST_AXIS = "index the last axis (x[..., 1], not x[1])"
+_ONE_POINT_FIX = {
+    "fx": f"{_LAST_AXIS}: out = np.empty_like(x); out[..., 0] = x[..., 0] + dt * x[..., 1]; ...",
+    "hx": f"{_LAST_AXIS} and return shape (n_sigmas, dim_z), e.g. "
+          "np.stack([np.hypot(x[..., 0], x[..., 2]), np.arctan2(x[..., 2], x[..., 0])], axis=-1)",
+    "residual_x": "wrap on the last axis (y = a - b; y[..., 2] = wrap(y[..., 2]), not y[2] = ...) or use "
+                  "filterwnn.angles.angle_residual(columns)",
+    "residual_z": "wrap on the last axis (y = a - b; y[..., 1] = wrap(y[..., 1]), not y[1] = ...) or use "
+                  "filterwnn.angles.angle_residual(columns)",
+}
+_CALL_ERRORS = (IndexError, ValueError, TypeError)  # what a one-point function raises on a batch
+
+
+def _one_point_error(role, detail):
+    return ValueError(
+        f"vectorized {role} looks written for one point: {detail}. With vectorized=True it receives "
+        "all sigma points as one (n_sigmas, dim) array, so an index such as x[1] selects a sigma "
+        f"point, not a column. Fix: {_ONE_POINT_FIX[role]}; or use vectorized=False"
+    )
+
+
+def _on_single_rows(fn, X, rows, size, args=(), kwargs=None):
+    """``fn`` on single rows of ``X``, each given as ``(1, d)`` or else as ``(d,)``.
+
+    Returns ``(outputs, one_d)``: the flattened outputs of ``size`` entries and whether
+    the ``(d,)`` form was needed (a function written for one point), or ``None`` when
+    ``fn`` takes neither form (it needs the whole batch: nothing to compare).
+    """
+    kwargs = kwargs or {}
+    outs, one_d = [], False
+    for i in rows:
+        for flat, arg in ((False, X[i : i + 1]), (True, X[i])):
+            try:
+                v = np.asarray(fn(arg.copy(), *args, **kwargs), dtype=float).reshape(-1)
+            except _CALL_ERRORS:
+                continue
+            if v.size == size:
+                outs.append(v)
+                one_d |= flat
+                break
+        else:
+            return None
+    return outs, one_d
+
+
+def _rows_differ(batch, X, fn, args=(), kwargs=None):
+    """The first of a few rows where ``batch`` differs from ``fn`` on that row alone, or None."""
+    S = X.shape[0]
+    rows = sorted({0, min(1, S - 1), S - 1})
+    got = _on_single_rows(fn, X, rows, batch[0].size, args, kwargs)
+    if got is None:
+        return None
+    for i, v in zip(rows, got[0]):
+        b = batch[i].reshape(-1)
+        bad = ~np.isclose(b, v, rtol=1e-9, atol=1e-12 * max(1.0, float(np.max(np.abs(v), initial=0.0))),
+                          equal_nan=True)
+        if bad.any():
+            j = int(np.argmax(bad))
+            return (f"row {i}, entry {j} of the batch is {b[j]:.6g}, but {v[j]:.6g} when that "
+                    "row is passed alone")
+    return None
+
+
 def _with_fix(check, M, name, *args, **kwargs):
     """Run a ``_validation`` check, adding the remedy to its message."""
     try:
@@ -118,6 +182,22 @@ def _with_fix(check, M, name, *args, **kwargs):
         else:
             fix = f"{name} must be a finite symmetric covariance, e.g. {name} = np.diag(variances)"
         raise ValueError(f"{msg}; {fix}") from exc
+
+
+def _each_row(residual, A, b):
+    """``residual(A[i], b)`` for every row, as filterpy's loops call it (one array op for np.subtract)."""
+    if residual is np.subtract:
+        return A - b
+    return np.array([residual(a, b) for a in A], dtype=float)
+
+
+def _positive_definite(S):
+    """Whether the (symmetric) ``S`` is positive definite; 1x1 and 2x2 without a LAPACK call."""
+    if S.shape == (1, 1):
+        return bool(S[0, 0] > 0)
+    if S.shape == (2, 2):  # Sylvester's criterion
+        return bool(S[0, 0] > 0 and S[0, 0] * S[1, 1] - S[0, 1] * S[1, 0] > 0)
+    return cholesky_lower(S) is not None
 
 
 def fast_unscented_transform(sigmas, Wm, Wc, noise_cov=None):
@@ -203,7 +283,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         self.step = 0
         self._sigmas_stale = True  # sigmas_f must be drawn from (x, P) before update
         self._deviations = None
-        self._trusted = {}  # the P and Q objects already checked (or produced) here
+        self._trusted = {}  # copies of the x, P and Q last checked (or produced) here
         self._chol = None  # (P_prior object, its lower Cholesky factor), vectorized mode
         self._checked = {}  # role -> the residual/mean callable already checked on arrays
 
@@ -225,20 +305,42 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             if np.shape(M) != (n, n):
                 raise ValueError(f"{name} must have shape ({n}, {n}), got {np.shape(M)}; "
                                  + _SHAPE_FIX[name].format(n=n))
-        if not (np.all(np.isfinite(x)) and np.all(np.isfinite(P))):
+        if not (np.isfinite(x).all() and np.isfinite(P).all()):
             raise NumericalError(
                 f"x and P must be finite {when}; set them again (x_post and P_post hold the "
                 "last update's values)", matrix="P", step=self.step)
-        # symmetry costs a full pass: check what the user set, not what we produced
-        if P is not self._trusted.get("P"):
+        # Symmetry costs a full pass: check what the user set, not what we produced. What
+        # the filter last produced or checked is kept by content, not identity, so an edit
+        # in place (P *= 4, P[0, 2] += 0.5) is seen like an assignment; it also makes the
+        # cached factor and the update's sigma points stale (both modes redraw them).
+        if not self._unchanged("P", P):
             _with_fix(check_symmetric, P, "P")
-        if check_Q and self.Q is not self._trusted.get("Q"):
-            # once per Q object: finite, symmetric, positive semi-definite (a Cholesky
-            # settles the usual positive definite Q; eigenvalues only for a singular one)
+            self._chol = None
+            self._sigmas_stale = True
+            self._mark("P", P)
+        if not self._unchanged("x", x):
+            self._sigmas_stale = True
+            self._mark("x", x)
+        if check_Q and not self._unchanged("Q", self.Q):
+            # once per Q: finite, symmetric, positive semi-definite (a Cholesky settles
+            # the usual positive definite Q; eigenvalues only for a singular one)
             _with_fix(check_symmetric, self.Q, "Q")
             if cholesky_lower(self.Q) is None:
                 _with_fix(check_covariance, self.Q, "Q", n, allow_scalar=False, require_pd=False)
-            self._trusted["Q"] = self.Q
+            self._mark("Q", self.Q)
+
+    def _unchanged(self, name, M):
+        """True when ``M`` holds what the filter last produced or checked as ``name``.
+
+        Compared by bytes (one ``memcmp``): a ``-0.0`` for ``0.0`` or an integer array
+        only costs one more check.
+        """
+        seen = self._trusted.get(name)
+        return seen is not None and type(M) is np.ndarray and seen[0] == M.shape and seen[1] == M.tobytes()
+
+    def _mark(self, name, M):
+        M = np.asarray(M, dtype=float)
+        self._trusted[name] = (M.shape, M.tobytes())  # a copy: later edits in place show
 
     def _sigmas(self, x, P, what):
         """Sigma points of N(x, P); NumericalError naming ``what`` if P is not PD."""
@@ -252,6 +354,8 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             return x + D
         self._deviations = None
         try:
+            if fpa.is_plain_merwe(self.points_fn) and type(P) is np.ndarray and P.dtype == float:
+                return fpa.merwe_sigma_points(self.points_fn, np.asarray(x, dtype=float), P)
             return np.asarray(self.points_fn.sigma_points(x, P), dtype=float)
         except np.linalg.LinAlgError as exc:
             raise self._not_pd(what, P) from exc
@@ -278,55 +382,76 @@ class UnscentedKalmanFilter(_FilterpyUKF):
 
     def _call(self, fn, sigmas, name, dim_out, *args, **kwargs):
         """Evaluate fx/hx on all sigma points (vectorized) or row by row."""
-        if self.vectorized:
-            out = np.asarray(fn(sigmas, *args, **kwargs), dtype=float)
-            if out.ndim == 1 and dim_out == 1:
-                out = out[:, None]
-            if out.shape != (sigmas.shape[0], dim_out):
-                raise ValueError(
-                    f"vectorized {name} must map ({sigmas.shape[0]}, {sigmas.shape[1]}) sigma "
-                    f"points to shape ({sigmas.shape[0]}, {dim_out}), got {out.shape}"
-                )
+        if not self.vectorized:  # as filterpy's compute_process_sigmas: row i of an array
+            out = np.empty((sigmas.shape[0], dim_out))
+            try:
+                for i, s in enumerate(sigmas):
+                    out[i] = fn(s, *args, **kwargs)
+            except ValueError as exc:
+                raise self._loop_shape_error(name, np.shape(fn(sigmas[0], *args, **kwargs)), dim_out) from exc
             return out
-        return np.atleast_2d([fn(s, *args, **kwargs) for s in sigmas])
+        first = self._checked.get(name) is not fn
+        try:
+            out = np.asarray(fn(sigmas, *args, **kwargs), dtype=float)
+        except _CALL_ERRORS as exc:
+            if first and _on_single_rows(fn, sigmas, [0], dim_out, args, kwargs) is not None:
+                raise _one_point_error(name, f"on all {sigmas.shape[0]} sigma points it raised "
+                                             f"{type(exc).__name__}: {exc}") from exc
+            raise
+        if out.ndim == 1 and dim_out == 1:
+            out = out[:, None]
+        if out.shape != (sigmas.shape[0], dim_out):
+            msg = (f"vectorized {name} must map ({sigmas.shape[0]}, {sigmas.shape[1]}) sigma "
+                   f"points to shape ({sigmas.shape[0]}, {dim_out}), got {out.shape}")
+            got = _on_single_rows(fn, sigmas, [0], dim_out, args, kwargs) if first else None
+            if got is not None and got[1]:
+                raise _one_point_error(name, msg)
+            raise ValueError(msg)
+        if first:
+            detail = _rows_differ(out, sigmas, fn, args, kwargs)
+            if detail is not None:
+                raise _one_point_error(name, detail)
+            self._checked[name] = fn
+        return out
+
+    def _loop_shape_error(self, name, one, dim_out):
+        what = "a scalar" if one == () else f"shape {one}"
+        example = "np.array([x[0]])" if name == "hx" else "np.array([x[0] + dt * x[1], ...])"
+        return ValueError(
+            f"{name} must return an array of shape ({dim_out},) for one point, got {what}; return "
+            f"a 1-D array, e.g. {example} (filterpy would fail later with 'shapes ... not aligned')"
+        )
 
     def _residual(self, role, fn, A, b):
         """``fn(A, b)`` on all rows at once, checked against a row-by-row call the first time.
 
-        ``role`` is the constructor argument's name (``"residual_x"``, ``"residual_z"``).
+        ``role`` is the constructor argument's name (``"residual_x"``, ``"residual_z"``). A
+        function written for one row (filterpy's ``y[1] = wrap(y[1])``) wraps a sigma point
+        instead of a column: it is compared with row-by-row calls on this first sigma set,
+        and on a probe whose residuals all exceed pi (where a wrap of the wrong entries
+        shows even if the sigma points are close together).
         """
         if self._checked.get(role) is fn:
             return fn(A, b)
-        out = np.asarray(fn(A.copy(), np.copy(b)), dtype=float)
-        fix = (f"write {role} on the last axis (y[..., 1] = ..., not y[1] = ...) or use "
-               "filterwnn.angles.angle_residual(columns)")
+        b = np.copy(b)
+        try:
+            out = np.asarray(fn(A.copy(), b.copy()), dtype=float)
+        except _CALL_ERRORS as exc:
+            if _on_single_rows(fn, A, [0], A.shape[1], (b,)) is not None:
+                raise _one_point_error(role, f"on all {A.shape[0]} sigma points it raised "
+                                             f"{type(exc).__name__}: {exc}") from exc
+            raise
         if out.shape != A.shape:
             raise ValueError(
                 f"vectorized {role} must map sigma points of shape {A.shape} and a mean of "
-                f"shape {np.shape(b)} to shape {A.shape}, got {out.shape}; {fix}"
+                f"shape {np.shape(b)} to shape {A.shape}, got {out.shape}; {_ONE_POINT_FIX[role]}"
             )
-        # A function written for one row (filterpy's y[1] = wrap(y[1])) wraps a sigma
-        # point instead of a column. Compare it with a row-by-row call on this first
-        # sigma set, and on a probe whose residuals all exceed pi (where a wrap of the
-        # wrong entries shows even if the sigma points are close together).
         probe = np.asarray(b, dtype=float) + 4.0 * (1.0 + np.arange(A.size).reshape(A.shape))
-        for label, X in (("sigma point", A), ("probe row", probe)):
-            try:
-                vec = out if X is A else np.asarray(fn(X.copy(), np.copy(b)), dtype=float)
-                rows = np.array([fn(a.copy(), np.copy(b)) for a in X], dtype=float)
-            except (IndexError, ValueError, TypeError):  # written for arrays only: cannot compare
-                break
-            if rows.shape != vec.shape:
-                break
-            bad = ~np.isclose(vec, rows, rtol=1e-9, atol=1e-12, equal_nan=True)
-            if bad.any():
-                i, j = np.argwhere(bad)[0]
-                raise ValueError(
-                    f"vectorized {role} differs from {role} applied row by row ({label} {i}, "
-                    f"column {j}: {vec[i, j]:.6g} against {rows[i, j]:.6g}): in vectorized mode it "
-                    f"receives all {A.shape[0]} sigma points at once, so an index such as y[1] "
-                    f"selects a sigma point, not a column; {fix}"
-                )
+        for label, X in (("sigma points", A), ("a probe with residuals above pi", probe)):
+            vec = out if X is A else np.asarray(fn(X.copy(), b.copy()), dtype=float)
+            detail = _rows_differ(vec, X, fn, (b,))
+            if detail is not None:
+                raise _one_point_error(role, f"on {label}, {detail}")
         self._checked[role] = fn
         return out
 
@@ -383,11 +508,11 @@ class UnscentedKalmanFilter(_FilterpyUKF):
                         self.sigmas_f, self.x_mean, self.residual_x, self.Q, ("x_mean_fn", "residual_x")
                     )
                 else:  # filterpy's own arithmetic (bit-identical in loop mode)
-                    UT = unscented_transform if UT is None else UT
+                    UT = fpa.unscented_transform if UT is None else UT
                     self.x, self.P = UT(
                         self.sigmas_f, self.Wm, self.Wc, self.Q, self.x_mean, self.residual_x
                     )
-                if not (np.all(np.isfinite(self.x)) and np.all(np.isfinite(self.P))):
+                if not (np.isfinite(self.x).all() and np.isfinite(self.P).all()):
                     raise NumericalError(
                         f"fx produced a non-finite prediction (x_prior or P_prior) at step {self.step}; "
                         "check fx at the sigma points of (x, P)",
@@ -408,7 +533,8 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             raise
         self.x_prior = np.copy(self.x)
         self.P_prior = np.copy(self.P)
-        self._trusted["P"] = self.P
+        self._mark("P", self.P)
+        self._mark("x", self.x)
 
     def compute_process_sigmas(self, dt, fx=None, **fx_args):
         """filterpy's helper: ``sigmas_f`` = the sigma points passed through ``fx``."""
@@ -436,7 +562,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             z_arr = np.asarray(z, dtype=float)
         except (TypeError, ValueError) as exc:
             raise TypeError(f"z must be array-like of numbers or None, got {type(z).__name__}") from exc
-        if not np.all(np.isfinite(z_arr)):
+        if not np.isfinite(z_arr).all():
             raise ValueError(
                 f"z must be finite (use z=None for a missing measurement), got {np.ravel(z_arr)}"
             )
@@ -448,16 +574,21 @@ class UnscentedKalmanFilter(_FilterpyUKF):
                 self.sigmas_f = self._sigmas(self.x, self.P, "P")
                 self._sigmas_stale = False
             if not self.vectorized:
-                try:  # filterpy gets the checked z: a column z is flattened as in vectorized mode
-                    super().update(z_arr, R=R, UT=UT, hx=hx, **hx_args)
+                hx = self.hx if hx is None else hx
+                self._check_loop_hx(hx, z_arr.size, hx_args)
+                try:  # filterpy's update gets the checked z: a column z is flattened as in vectorized mode
+                    if UT is None and type(self).cross_variance is _FilterpyUKF.cross_variance:
+                        self._loop_update(z_arr, R, hx, **hx_args)
+                    else:
+                        super().update(z_arr, R=R, UT=UT, hx=hx, **hx_args)
                 except np.linalg.LinAlgError as exc:
                     raise self._not_pd("S", self.S) from exc
                 # filterpy inverts S without asking whether it is positive definite
-                if np.any(np.isfinite(self.S)) and cholesky_lower(self.S) is None:
+                if np.isfinite(self.S).any() and not _positive_definite(self.S):
                     raise self._not_pd("S", self.S)
             else:
                 self._vectorized_update(z_arr, R, UT, hx, **hx_args)
-            if not (np.all(np.isfinite(self.x)) and np.all(np.isfinite(self.P))):
+            if not (np.isfinite(self.x).all() and np.isfinite(self.P).all()):
                 raise NumericalError(
                     f"the update produced non-finite x or P at step {self.step}", matrix="P", step=self.step
                 )
@@ -466,7 +597,39 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             raise
         self._sigmas_stale = True
         self._chol = None
-        self._trusted["P"] = self.P
+        self._mark("P", self.P)
+        self._mark("x", self.x)
+
+    def _loop_update(self, z, R, hx, **hx_args):
+        """filterpy's ``update`` (UT and cross variance at their defaults): the same
+        floating-point operations (:mod:`._filterpy_arithmetic`) with fewer calls."""
+        self.sigmas_h = np.atleast_2d([hx(s, **hx_args) for s in self.sigmas_f])
+        zp, self.S = fpa.unscented_transform(self.sigmas_h, self.Wm, self.Wc, R, self.z_mean, self.residual_z)
+        self.SI = self.inv(self.S)
+        dx = _each_row(self.residual_x, self.sigmas_f, self.x)
+        dz = _each_row(self.residual_z, self.sigmas_h, zp)
+        self.K = np.dot(fpa.weighted_outer_sum(self.Wc, dx, dz), self.SI)
+        self.y = self.residual_z(z, zp)
+        self.x = self.state_add(self.x, np.dot(self.K, self.y))
+        self.P = self.P - np.dot(self.K, np.dot(self.S, self.K.T))
+        self._store_posterior(z)
+
+    def _store_posterior(self, z):
+        self.z = z.copy()
+        self.x_post = self.x.copy()
+        self.P_post = self.P.copy()
+        self._log_likelihood = None
+        self._likelihood = None
+        self._mahalanobis = None
+
+    def _check_loop_hx(self, hx, dim_z, hx_args):
+        """Once per ``hx``: one point must give ``dim_z`` values as an array (not a scalar)."""
+        if self._checked.get("hx") is hx:
+            return
+        h = np.shape(hx(self.sigmas_f[0], **hx_args))
+        if h != (dim_z,) and not (len(h) == 2 and np.prod(h) == dim_z):
+            raise self._loop_shape_error("hx", h, dim_z)
+        self._checked["hx"] = hx
 
     def _check_measurement(self, z, R):
         """Validate ``z`` and ``R`` together; returns ``(z, R)`` as float arrays.
@@ -491,9 +654,11 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         if R.shape != (z.size, z.size):
             raise ValueError(f"R must have shape ({z.size}, {z.size}), got shape {R.shape}; "
                              + _SHAPE_FIX["R"].format(n=z.size))
-        if not np.all(np.isfinite(R)):
-            raise ValueError("R must be finite, got non-finite entries; use R = np.diag(variances)")
-        _with_fix(check_symmetric, R, "R")
+        if not self._unchanged("R", R):  # checked once per content, not every step
+            if not np.isfinite(R).all():
+                raise ValueError("R must be finite, got non-finite entries; use R = np.diag(variances)")
+            _with_fix(check_symmetric, R, "R")
+            self._mark("R", R)
         return z, R
 
     def _vectorized_update(self, z, R, UT, hx, **hx_args):
@@ -530,12 +695,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         else:
             P = self.P - self.K @ S @ self.K.T
             self.P = 0.5 * (P + P.T)
-        self.z = deepcopy(z)
-        self.x_post = self.x.copy()
-        self.P_post = self.P.copy()
-        self._log_likelihood = None
-        self._likelihood = None
-        self._mahalanobis = None
+        self._store_posterior(z)
 
     def _rows_residual(self, A, b):
         """``residual_x`` of every row of ``A`` against ``b``, in either mode."""

@@ -29,6 +29,15 @@ where it is defined (:func:`register`, a decorator); :func:`resample` and the fi
 included, see :func:`get_scheme`). Weights are validated (finite, non-negative, positive sum) and
 normalised internally.
 
+filterpy's names, ``systematic_resample(weights)``, ``stratified_resample``,
+``residual_resample`` and ``multinomial_resample``, sit beside them with filterpy's
+signature and seeding: without a generator they draw from NumPy's *global* state (so
+``np.random.seed(1)`` makes a run repeat, as in filterpy); a legacy ``RandomState`` or any
+``rng`` the schemes accept may be passed as ``rng=``. For the same seed,
+``systematic_resample`` and ``stratified_resample`` return filterpy's indices,
+``multinomial_resample`` filterpy's indices sorted, and ``residual_resample`` differs
+where filterpy's is biased.
+
 Weights are best kept on the log scale: :func:`normalize_log_weights` turns unnormalised
 log-weights into normalised weights with ``logsumexp``, without underflow.
 
@@ -68,6 +77,10 @@ __all__ = [
     "systematic",
     "residual",
     "resample",
+    "systematic_resample",
+    "stratified_resample",
+    "residual_resample",
+    "multinomial_resample",
     "SCHEMES",
     "register",
     "get_scheme",
@@ -177,6 +190,81 @@ def residual(w, rng, n):
         rest = np.clip(rest, 0.0, None)
         counts += np.bincount(_search(rest, rng.random(n_rest)), minlength=w.size)
     return np.repeat(np.arange(w.size), counts)
+
+
+# --- filterpy's names and seeding -------------------------------------------------------
+
+_FILTERPY_DOC = """{title} resampling with filterpy's signature: ``{name}_resample(weights)``.
+
+    A drop-in for :func:`filterpy.monte_carlo.{name}_resample`: without ``rng`` it draws
+    from NumPy's global random state, so ``np.random.seed(s)`` makes it repeat. {note}
+    Weights are validated and normalised (filterpy's are used as given).
+
+    Parameters
+    ----------
+    weights : array-like of shape (n_particles,)
+        Non-negative weights with a positive sum.
+    rng : None, numpy.random.RandomState, or any ``rng`` of :func:`{name}`
+        ``None`` (default): the global state (``np.random.random``); a ``RandomState``
+        is used as given; anything else is normalised with
+        :func:`numpy.random.default_rng`.
+
+    Returns
+    -------
+    indices : ndarray of int, shape (n_particles,)
+        Sorted indices into the particle array; ``E[count of i] = n_particles * weights[i]``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> np.random.seed(3); a = {name}_resample([0.1, 0.2, 0.3, 0.4])
+    >>> np.random.seed(3); b = {name}_resample([0.1, 0.2, 0.3, 0.4])
+    >>> bool(np.array_equal(a, b)), a.shape
+    (True, (4,))
+    """
+
+_FILTERPY_NOTE = {
+    "systematic": "For the same state it returns filterpy's indices.",
+    "stratified": "For the same state it returns filterpy's indices.",
+    "multinomial": "For the same state it returns filterpy's indices, sorted.",
+    "residual": ("Unlike filterpy's (its issue #290) it is unbiased: the residual draws come "
+                 "from the residual weights, so for the same state the indices may differ."),
+}
+
+
+class _GlobalState:
+    """NumPy's global random state, read at each draw (``np.random.seed`` reaches it)."""
+
+    @staticmethod
+    def random(size=None):
+        return np.random.random(size)
+
+
+def _legacy_rng(rng):
+    if rng is None:
+        return _GlobalState
+    if isinstance(rng, np.random.RandomState):
+        return rng
+    return check_rng(rng)
+
+
+def _filterpy_named(name):
+    impl = SCHEMES[name].impl
+
+    def scheme(weights, rng=None):
+        w = check_weights(weights)
+        return impl(w, _legacy_rng(rng), w.size)
+
+    scheme.__name__ = scheme.__qualname__ = f"{name}_resample"
+    title = {"residual": "Residual (unbiased)"}.get(name, name.capitalize())
+    scheme.__doc__ = _FILTERPY_DOC.format(title=title, name=name, note=_FILTERPY_NOTE[name])
+    return scheme
+
+
+systematic_resample = _filterpy_named("systematic")
+stratified_resample = _filterpy_named("stratified")
+residual_resample = _filterpy_named("residual")
+multinomial_resample = _filterpy_named("multinomial")
 
 
 def _from_callable(fn):

@@ -157,8 +157,10 @@ def test_custom_subtract_is_used():
         ({"n": 2.5}, "n must be an integer"),
         ({"n": 2, "alpha": 0.0}, r"alpha must be > 0, got 0.0"),
         ({"n": 2, "alpha": -1.0}, r"alpha must be > 0, got -1.0"),
-        ({"n": 2, "w0": 1.0}, r"w0 must satisfy 0 <= w0 < 1, got 1.0"),
-        ({"n": 2, "w0": -0.1}, r"w0 must satisfy 0 <= w0 < 1, got -0.1"),
+        ({"n": 2, "w0": 1.0}, r"w0 must satisfy w0 < 1 \(the outer points share 1 - w0\), got 1.0"),
+        ({"n": 2, "kappa": -2.0}, r"kappa must satisfy n \+ kappa > 0 .* got kappa=-2.0 with n=2; .* w0="),
+        ({"n": 2, "kappa": 1.0, "w0": 0.2}, r"give kappa .* or w0=, not both; got kappa=1.0 and w0=0.2"),
+        ({"n": 2, "kappa": float("inf")}, "kappa must be a finite real number, got inf"),
         ({"n": 2, "beta": float("nan")}, "beta must be a finite real number"),
     ],
 )
@@ -217,3 +219,34 @@ def test_fast_path_still_refuses_asymmetric_and_custom_sqrt_is_used(cls):
     pts = cls(2, sqrt_method=lambda M: calls.append(1) or cholesky(M))
     pts.sigma_points(np.zeros(2), np.eye(2))
     assert calls == [1]
+
+
+@pytest.mark.parametrize("cls", CLASSES)
+@pytest.mark.parametrize("n, alpha, beta, kappa", [(1, 1.0, 2.0, 0.1), (2, 0.1, 2.0, 1.0), (4, 0.1, 2.0, -1.0),
+                                                   (3, 0.5, 2.0, 0.0), (6, 1.0, 0.0, 3.0 - 6)])
+def test_filterpys_arguments_mean_what_they_mean_in_merwes_set(cls, n, alpha, beta, kappa):
+    """Positional (n, alpha, beta, kappa) as filterpy's: Merwe's centre weights, the moments exact."""
+    ours, merwe = cls(n, alpha, beta, kappa), MerweScaledSigmaPoints(n, alpha, beta, kappa)
+    assert (ours.alpha, ours.beta, ours.kappa) == (alpha, beta, kappa)
+    np.testing.assert_allclose([ours.Wm[0], ours.Wc[0]], [merwe.Wm[0], merwe.Wc[0]], rtol=1e-12)
+    np.testing.assert_allclose(ours.w0, kappa / (n + kappa), rtol=1e-15)
+    P = random_spd(np.random.default_rng(n), n)
+    m, C = moments(ours, ours.sigma_points(np.ones(n), P))
+    np.testing.assert_allclose(m, np.ones(n), atol=1e-12)
+    np.testing.assert_allclose(C, P, rtol=1e-8, atol=1e-10)
+    if cls is SphericalSimplexSigmaPoints:  # the outer points on Merwe's sphere
+        sig = ours.sigma_points(np.zeros(n), np.eye(n))
+        np.testing.assert_allclose(np.linalg.norm(sig[1:], axis=1), alpha * np.sqrt(n + kappa), rtol=1e-12)
+
+
+@pytest.mark.parametrize("cls", CLASSES)
+def test_kappa_zero_and_the_default_are_the_old_w0_zero_bit_for_bit(cls):
+    a, b, c = cls(3, 0.5, 2.0), cls(3, 0.5, 2.0, 0.0), cls(3, 0.5, 2.0, w0=0.0)
+    assert np.array_equal(a.Wm, b.Wm) and np.array_equal(a.Wm, c.Wm) and np.array_equal(a.Z, c.Z)
+    assert cls(3, w0=0.2).kappa == 0.0 and "kappa" in repr(b)
+
+
+@pytest.mark.parametrize("cls", CLASSES)
+def test_a_signature_mistake_names_the_public_class(cls):
+    with pytest.raises(TypeError, match=cls.__name__):
+        cls(2, 1.0, 2.0, 0.0, None, None, 0.2)  # w0 is keyword-only

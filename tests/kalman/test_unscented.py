@@ -236,8 +236,8 @@ def test_vectorized_per_row_residual_is_detected_on_first_call():
     ukf.residual_z = filterpy_style_residual_z
     ukf.predict()
     x, P = ukf.x.copy(), ukf.P.copy()
-    with pytest.raises(ValueError, match=r"vectorized residual_z differs from residual_z applied row by "
-                                         r"row .*y\[1\] selects a sigma point.*angle_residual"):
+    with pytest.raises(ValueError, match=r"vectorized residual_z looks written for one point: .*when that row "
+                                         r"is passed alone.*x\[1\] selects a sigma point.*angle_residual"):
         ukf.update(np.array([1.2, 0.1]))
     assert np.array_equal(ukf.x, x) and np.array_equal(ukf.P, P) and ukf.step == 1
 
@@ -330,3 +330,57 @@ def test_step_is_the_time_step(vectorized):
     with pytest.raises(NumericalError, match="S is not positive definite at step 2") as info:
         ukf.update(np.array([1.2, 0.1]), R=-10 * np.eye(2))
     assert info.value.step == 2 and ukf.step == 2
+
+
+# --------------------------------------------------------------------------- issue 26.6: P edits
+def _estimate_after_edit(vectorized, edit):
+    ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), vectorized)
+    ukf.predict()
+    edit(ukf)
+    ukf.update(np.array([1.2, 0.1]))
+    return ukf.x
+
+
+def _assign(ukf):
+    ukf.P = ukf.P * 4
+
+
+def _in_place(ukf):
+    ukf.P *= 4
+
+
+@pytest.mark.parametrize("vectorized", [False, True])
+def test_reassigning_P_and_scaling_it_in_place_give_the_same_estimate(vectorized):
+    """The caches (symmetry checked, Cholesky factor, update's sigma points) follow P's content."""
+    a = _estimate_after_edit(vectorized, _assign)
+    b = _estimate_after_edit(vectorized, _in_place)
+    np.testing.assert_array_equal(a, b)
+    untouched = _estimate_after_edit(vectorized, lambda ukf: None)
+    assert not np.allclose(a, untouched)  # the edit mattered: its sigma points were redrawn
+
+
+def test_both_modes_see_an_edit_between_predict_and_update_alike():
+    np.testing.assert_allclose(_estimate_after_edit(False, _in_place), _estimate_after_edit(True, _in_place),
+                               atol=ATOL)
+
+
+@pytest.mark.parametrize("vectorized", [False, True])
+@pytest.mark.parametrize("when", ["before update", "before predict"])
+def test_an_asymmetric_edit_in_place_is_refused(vectorized, when):
+    ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), vectorized)
+    ukf.predict(); ukf.update(np.array([1.2, 0.1]))
+    if when == "before update":
+        ukf.predict()
+    ukf.P[0, 2] += 0.5
+    call = (lambda: ukf.update(np.array([1.2, 0.1]))) if when == "before update" else ukf.predict
+    with pytest.raises(ValueError, match=r"P must be symmetric; max \|P - P.T\| = 0.5; symmetrise it"):
+        call()
+
+
+@pytest.mark.parametrize("vectorized", [False, True])
+def test_a_Q_edited_in_place_is_checked_again(vectorized):
+    ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), vectorized)
+    ukf.predict()
+    ukf.Q *= -1
+    with pytest.raises(ValueError, match="Q must be positive semi-definite"):
+        ukf.predict()

@@ -204,3 +204,61 @@ def test_a_callable_is_accepted_wherever_a_scheme_name_is():
     pf.predict()
     pf.update(np.array([0.3]))
     assert pf.resampled_history == [True]
+
+
+# --- filterpy's names and seeding ----------------------------------------------------------
+
+FILTERPY_NAMES = ["systematic", "stratified", "residual", "multinomial"]
+
+
+@pytest.fixture
+def global_state():
+    """These tests must reach NumPy's global state (filterpy's seeding); it is restored after."""
+    state = np.random.get_state()
+    yield
+    np.random.set_state(state)
+
+
+@pytest.mark.parametrize("name", ["systematic", "stratified", "multinomial"])
+def test_filterpy_named_functions_give_filterpys_indices_for_the_same_seed(name, rng, global_state):
+    from filterpy.monte_carlo import resampling as fp
+
+    import filterwnn.monte_carlo as mc
+
+    ours_fn, theirs_fn = getattr(mc, f"{name}_resample"), getattr(fp, f"{name}_resample")
+    for seed in range(50):
+        w = rng.dirichlet(np.ones(1 + seed % 40))
+        np.random.seed(seed)
+        theirs = theirs_fn(w)
+        np.random.seed(seed)
+        ours = ours_fn(w)
+        np.testing.assert_array_equal(ours, np.sort(theirs))
+        np.testing.assert_array_equal(ours_fn(w, np.random.RandomState(seed)), np.sort(theirs))
+
+
+@pytest.mark.parametrize("name", FILTERPY_NAMES)
+def test_filterpy_named_functions_take_the_global_state_a_randomstate_or_an_rng(name, global_state):
+    fn = getattr(resampling, f"{name}_resample")
+    w = np.array([0.05, 0.15, 0.3, 0.5, 0.0, 0.0, 0.0, 0.0])
+    draws = []
+    for _ in range(2):
+        np.random.seed(7)
+        draws.append(fn(w))
+    np.testing.assert_array_equal(draws[0], draws[1])
+    np.testing.assert_array_equal(fn(w, 5), fn(w, np.random.default_rng(5)))
+    assert fn(w).shape == (8,) and np.all(w[fn(w, np.random.RandomState(0))] > 0)
+    with pytest.raises(ValueError, match="weights"):
+        fn([0.5, -0.5])
+
+
+def test_filterpy_named_residual_is_unbiased_where_filterpys_is_not(global_state):
+    from filterpy.monte_carlo import residual_resample as fp_residual
+
+    w = np.array([0.42, 0.33, 0.13, 0.07, 0.05])
+    n_runs = 4000
+    np.random.seed(11)
+    ours = np.mean([np.bincount(resampling.residual_resample(w), minlength=5) for _ in range(n_runs)], axis=0)
+    theirs = np.mean([np.bincount(fp_residual(w), minlength=5) for _ in range(n_runs)], axis=0)
+    sd = np.sqrt(5 * w * (1 - w) / n_runs)  # a multinomial bound on the count's standard error
+    assert np.all(np.abs(ours - 5 * w) < 4 * sd)
+    assert np.any(np.abs(theirs - 5 * w) > 8 * sd)
