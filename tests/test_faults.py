@@ -212,3 +212,77 @@ def test_two_processes_on_one_cache_folder(tmp_path):
         got = runner.load_cached(tasks, str(cache), runner.NPZ)
     assert all(np.all(r["a"] == t["x"]) and r["s"] in (1, 2) for r, t in zip(got, tasks))
     assert sorted(os.listdir(cache)) == sorted(runner.task_key(t) + ".npz" for t in tasks)  # no temp files left
+
+
+# --- a study killed part-way resumes from its cache ----------------------------------------
+
+N_RUNS = 6
+
+
+def _study(tmp_path, out, jobs, cache=True):
+    argv = [sys.executable, "-m", "filterwnn.cli", "study", "dr", "--runs", str(N_RUNS), "--scenarios", "straight",
+            "--filters", "EKF,UKF", "--jobs", str(jobs), "--out", str(tmp_path / out), "--no-figures",
+            "--no-progress"]
+    return argv + (["--cache", str(tmp_path / "cache")] if cache else [])
+
+
+def _descendants(pid):
+    out = subprocess.run(["pgrep", "-P", str(pid)], capture_output=True, text=True).stdout.split()
+    return [int(p) for p in out] + [d for p in out for d in _descendants(int(p))]
+
+
+def _running(pid):
+    try:
+        with open(f"/proc/{pid}/status") as fh:
+            return "\nState:\tZ" not in fh.read()
+    except FileNotFoundError:
+        return False
+
+
+def _numbers(path):
+    """The table without its timing column (the only one a resumed study may change)."""
+    import csv
+
+    rows = list(csv.DictReader(open(path)))
+    return [{k: v for k, v in r.items() if k != "us_per_step"} for r in rows]
+
+
+@pytest.fixture(scope="module")
+def fresh_table(tmp_path_factory):
+    """The table of the same study run once, uninterrupted and without a cache."""
+    tmp = tmp_path_factory.mktemp("fresh")
+    fresh = subprocess.run(_study(tmp, "fresh", 1, cache=False), env=_env(), capture_output=True, text=True,
+                           timeout=600)
+    assert fresh.returncode == 0, fresh.stderr
+    return _numbers(tmp / "fresh" / "dr_table.csv")
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
+@pytest.mark.parametrize("sig", [signal.SIGKILL, signal.SIGINT], ids=["SIGKILL", "SIGINT"])
+def test_a_study_killed_part_way_resumes_with_the_same_numbers(tmp_path, sig, fresh_table):
+    cache = tmp_path / "cache"
+    proc = subprocess.Popen(_study(tmp_path, "killed", 2), env=_env(), stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 180
+    while not list(cache.glob("*.npz")) and time.monotonic() < deadline and proc.poll() is None:
+        time.sleep(0.05)
+    workers = _descendants(proc.pid)
+    proc.send_signal(sig)
+    _, err = proc.communicate(timeout=120)
+    if sig == signal.SIGINT:
+        assert proc.returncode == 130 and "Traceback" not in err, err
+        assert err.strip().splitlines()[-1].startswith("filterwnn: interrupted")
+    else:
+        assert proc.returncode == -signal.SIGKILL
+    deadline = time.monotonic() + 20
+    while any(_running(w) for w in workers) and time.monotonic() < deadline:
+        time.sleep(0.1)
+    assert workers and not any(_running(w) for w in workers), "worker processes outlived their parent"
+    done = {p.name: p.stat().st_mtime_ns for p in cache.glob("*.npz")}
+    assert 0 < len(done) < N_RUNS, "the kill came too late to test a resume"
+    resumed = subprocess.run(_study(tmp_path, "resumed", 1), env=_env(), capture_output=True, text=True,
+                             timeout=600)
+    assert resumed.returncode == 0 and "warning" not in resumed.stderr, resumed.stderr
+    assert {p.name: p.stat().st_mtime_ns for p in cache.glob("*.npz") if p.name in done} == done  # not rerun
+    assert len(list(cache.glob("*.npz"))) == N_RUNS
+    assert _numbers(tmp_path / "resumed" / "dr_table.csv") == fresh_table

@@ -912,9 +912,11 @@ def add_arguments(parser):
     parser.add_argument("--scenarios", type=options.name_list(SCENARIOS), default=",".join(DEFAULT_SCENARIOS),
                         help=f"comma-separated subset of {', '.join(SCENARIOS)}")
     names = tuple(dict.fromkeys([f.name for f in FILTER_TABLE] + list(REAL_FILTERS)))
+    simulated = tuple(dict.fromkeys(f.name for f in FILTER_TABLE))
     parser.add_argument("--filters", type=options.name_list(names), default=None,
-                        help=f"comma-separated subset of {', '.join(names)} (default all "
-                             f"that apply to each scenario, but {', '.join(OPT_IN)})")
+                        help=f"comma-separated filters: on the simulated scenarios a subset of {', '.join(simulated)} "
+                             f"(default all that apply to each scenario, but {', '.join(OPT_IN)}); with --drive a "
+                             f"subset of {', '.join(REAL_FILTERS)} (default all)")
     parser.add_argument("--factor", type=options.positive_float, default=None,
                         help="override the DR noise factor at 150 s of the DR-only scenarios (default each "
                              "scenario's own)")

@@ -386,9 +386,32 @@ def _finished(fn, tasks, pending, n_jobs, backend):
         return
     from joblib import Parallel, delayed, parallel_config
 
+    backend = backend or "loky"
+    # loky workers outlive a parent killed by a signal; this initializer ends them with it
+    extra = {"initializer": _end_with_parent} if backend == "loky" else {}
     # parallel_config registers external backends such as "dask" on first use
-    with parallel_config(backend=backend or "loky", n_jobs=n_jobs):
+    with parallel_config(backend=backend, n_jobs=n_jobs, **extra):
         yield from Parallel(return_as="generator_unordered")(delayed(_indexed)(fn, i, tasks[i]) for i in pending)
+
+
+def _end_with_parent(poll=0.5):
+    """Worker initializer: a daemon thread that ends this worker once its parent is gone.
+
+    A loky worker whose parent dies (SIGKILL, SIGTERM, a crash) is re-parented and would
+    otherwise keep its memory until loky's idle timeout, or for good; this one checks
+    ``os.getppid()`` every ``poll`` seconds and exits when it changes.
+    """
+    import threading
+    import time
+
+    parent = os.getppid()
+
+    def watch():
+        while os.getppid() == parent:
+            time.sleep(poll)
+        os._exit(1)
+
+    threading.Thread(target=watch, name="filterwnn-end-with-parent", daemon=True).start()
 
 
 @contextlib.contextmanager
