@@ -97,6 +97,9 @@ def _build_parser():
     fmt = options.HelpFormatter
     parser = argparse.ArgumentParser(prog="filterwnn", description=_DESCRIPTION, formatter_class=fmt)
     parser.add_argument("--version", action="version", version=f"filterwnn {__version__}")
+    parser.add_argument("--debug", action="store_true",
+                        help="show the traceback of an error (anywhere on the line; by default an error is "
+                             "one line on stderr: exit 2 for a refused input, 130 for Ctrl-C)")
     sub = parser.add_subparsers(dest="command", required=True, metavar="{demo,study}")
     demo = sub.add_parser("demo", help="a ten-second tour: sigma points, a filter-trained network, GPS/DR", formatter_class=fmt,
                           description="filterpy's UnscentedKalmanFilter with Merwe's, the minimal-skew and the\n"
@@ -114,6 +117,62 @@ def _build_parser():
     return parser
 
 
+#: Exit status of a run ended by Ctrl-C (SIGINT), and by SIGTERM: 128 + the signal number.
+EXIT_INTERRUPT, EXIT_TERMINATED = 130, 143
+#: Exit status of a refused input (a bad option, file or drive) and of an internal error.
+EXIT_BAD_INPUT, EXIT_INTERNAL = 2, 1
+#: The exceptions that mean "the input is wrong": reported in one line, exit 2.
+BAD_INPUT = (ValueError, OSError, ImportError)
+
+
+class _Terminated(BaseException):
+    """Raised in the main thread by SIGTERM, so the run unwinds (workers end) like Ctrl-C."""
+
+
+def _one_line(exc):
+    """The exception's message as one line (its own line breaks folded)."""
+    text = " ".join(str(exc).split())
+    return text or type(exc).__name__
+
+
+def _warning_line(message, category, filename, lineno, file=None, line=None):
+    """``warnings.showwarning`` for the command: one line per warning on stderr, no source line."""
+    print(f"filterwnn: warning: {' '.join(str(message).split())}", file=file or sys.stderr)
+
+
+def _on_sigterm(signum, frame):
+    raise _Terminated()
+
+
+def _run(args, debug):
+    """``args.func(args)``; a refused input, an interrupt or an error becomes one stderr line
+    and an exit status (2, 130/143, 1), unless ``debug``."""
+    try:
+        return args.func(args) or 0
+    except KeyboardInterrupt:
+        if debug:
+            raise
+        print("filterwnn: interrupted (Ctrl-C); finished tasks are kept in --cache when one is given",
+              file=sys.stderr)
+        return EXIT_INTERRUPT
+    except _Terminated:
+        if debug:
+            raise
+        print("filterwnn: terminated (SIGTERM)", file=sys.stderr)
+        return EXIT_TERMINATED
+    except BAD_INPUT as exc:
+        if debug:
+            raise
+        print(f"filterwnn: error: {_one_line(exc)} (--debug shows the traceback)", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    except Exception as exc:  # noqa: BLE001 -- the command's last line of defence: one line, exit 1
+        if debug:
+            raise
+        print(f"filterwnn: internal error: {type(exc).__name__}: {_one_line(exc)} (a bug: rerun with "
+              "--debug for the traceback and report it)", file=sys.stderr)
+        return EXIT_INTERNAL
+
+
 def main(argv=None):
     """Entry point of the ``filterwnn`` command.
 
@@ -121,15 +180,36 @@ def main(argv=None):
     ----------
     argv : list of str, optional
         The arguments (default ``sys.argv[1:]``). A bad value exits with status 2 and one
-        argparse error line, before any work starts.
+        argparse error line, before any work starts. ``--debug`` (anywhere) shows the
+        traceback of an error instead of its one line.
 
     Returns
     -------
     int
-        The exit status of the command (0 on success).
+        The exit status: 0 on success, 2 for a refused input (the line names the file,
+        column, row and rule), 130 after Ctrl-C, 143 after SIGTERM, 1 for an internal
+        error. Warnings (a cache entry not used) print one line each on stderr.
     """
+    import signal
+    import threading
+    import warnings
+
+    argv = list(sys.argv[1:] if argv is None else argv)
+    debug = "--debug" in argv
+    argv = [a for a in argv if a != "--debug"]
     args = _build_parser().parse_args(argv)
-    return args.func(args) or 0
+    old_term = None
+    if threading.current_thread() is threading.main_thread():
+        old_term = signal.signal(signal.SIGTERM, _on_sigterm)
+    show = warnings.showwarning
+    if not debug:
+        warnings.showwarning = _warning_line
+    try:
+        return _run(args, debug)
+    finally:
+        warnings.showwarning = show
+        if old_term is not None:
+            signal.signal(signal.SIGTERM, old_term)
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -172,3 +172,76 @@ def test_argument_types_raise_argparse_errors():
     assert _args.name_list(("a", "b"), allow_empty=True)("") == []
     with pytest.raises(argparse.ArgumentTypeError, match="finite"):
         _args.positive_float("nan")
+
+
+# --- errors at run time: one stderr line and an exit status, never a traceback ----------
+
+import os  # noqa: E402
+
+from filterwnn import cli  # noqa: E402
+
+
+def _dr_with(monkeypatch, exc):
+    from filterwnn.studies import dr
+
+    def boom(args):
+        raise exc
+
+    monkeypatch.setattr(dr, "run", boom)
+
+
+@pytest.mark.parametrize("exc, code, text", [
+    (ValueError("drive.csv: column 'time' must hold numbers;\n data row 3 (line 4) has 'x'"), 2,
+     "filterwnn: error: drive.csv: column 'time' must hold numbers; data row 3 (line 4) has 'x'"),
+    (FileNotFoundError(2, "No such file or directory", "nope.csv"), 2, "nope.csv"),
+    (KeyboardInterrupt(), 130, "filterwnn: interrupted"),
+    (cli._Terminated(), 143, "filterwnn: terminated"),
+    (IndexError("index 3 is out of bounds"), 1, "internal error: IndexError: index 3"),
+])
+def test_run_time_errors_are_one_line_with_their_exit_status(monkeypatch, capsys, exc, code, text):
+    _dr_with(monkeypatch, exc)
+    assert main(["study", "dr"]) == code
+    captured = capsys.readouterr()
+    assert len(captured.err.strip().splitlines()) == 1 and text in captured.err, captured.err
+    assert "Traceback" not in captured.err
+
+
+def test_debug_shows_the_traceback(monkeypatch):
+    _dr_with(monkeypatch, ValueError("bad drive"))
+    with pytest.raises(ValueError, match="bad drive"):
+        main(["study", "dr", "--debug"])
+    with pytest.raises(ValueError, match="bad drive"):
+        main(["--debug", "study", "dr"])
+
+
+def test_a_warning_is_one_line_on_stderr(monkeypatch, capsys):
+    from filterwnn.studies import dr, runner
+
+    def warns(args):
+        warnings.warn("cache C: not using C/x.npz: made by other code", runner.CacheEntryWarning)
+        return 0
+
+    monkeypatch.setattr(dr, "run", warns)
+    assert main(["study", "dr"]) == 0
+    assert capsys.readouterr().err == "filterwnn: warning: cache C: not using C/x.npz: made by other code\n"
+
+
+def test_missing_drive_file_in_a_subprocess_is_one_line(tmp_path):
+    proc = subprocess.run([sys.executable, "-m", "filterwnn.cli", "study", "dr", "--drive", str(tmp_path / "no.csv"),
+                           "--out", str(tmp_path)], capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 2 and "Traceback" not in proc.stderr
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1 and "no.csv" in lines[0] and lines[0].startswith("filterwnn: error:"), proc.stderr
+
+
+def test_dr_help_keeps_the_drive_only_filters_apart():
+    flat = " ".join(_commands()["study dr"].format_help().split())
+    block = flat[flat.index("--filters FILTERS "):]
+    simulated = block[:block.index("with --drive")]
+    assert "DR-mech" not in simulated and "DR-mech" in block[:600]
+
+
+def test_wnn_help_states_the_default_cache_and_its_invalidation_rule():
+    flat = " ".join(_commands()["study wnn"].format_help().split())
+    block = flat[flat.index("--cache CACHE "):][:500]
+    assert "default OUT/cache" in block and "hash of every filterwnn .py file" in block and "'none'" in block

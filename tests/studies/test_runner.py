@@ -22,7 +22,7 @@ def test_child_is_the_spawned_child_and_depends_only_on_its_key():
     assert a.tolist() != runner.child(spawned, 8).generate_state(2).tolist()
 
 
-@pytest.mark.parametrize("serializer", [runner.JSON, runner.PICKLE])
+@pytest.mark.parametrize("serializer", [runner.JSON, runner.NPZ])
 def test_run_tasks_order_cache_and_cached_only(tmp_path, serializer):
     tasks = [{"x": i} for i in range(5)]
     want = [_square(t) for t in tasks]

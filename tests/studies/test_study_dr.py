@@ -132,7 +132,7 @@ CACHED = dict(scenarios=["straight", "gpsdr"], n_runs=2, n_steps=60, filters=["E
 
 def test_jobs_and_cache_give_identical_tables(tmp_path, monkeypatch):
     one = dr.run_study(**CACHED, cache_dir=str(tmp_path))
-    assert len(list(tmp_path.glob("*.pkl"))) == 4  # one per (scenario, run)
+    assert len(list(tmp_path.glob("*.npz"))) == 4  # one per (scenario, run)
     two = dr.run_study(**CACHED, jobs=2)
     assert _numbers(one) == _numbers(two)
 
@@ -170,4 +170,4 @@ def test_cli_cache_and_backend_options(tmp_path):
                               "--no-figures", "--no-progress", "--jobs", "1", "--backend", "threading",
                               "--cache", str(tmp_path / "cache")])
     assert dr.run(args) == 0
-    assert len(list((tmp_path / "cache").glob("*.pkl"))) == 1
+    assert len(list((tmp_path / "cache").glob("*.npz"))) == 1

@@ -26,16 +26,19 @@ def add_arguments(parser):
                         help="with --backend dask: the address of a dask.distributed scheduler "
                              "(default: a local cluster of --jobs workers)")
     parser.add_argument("--cache", default=None, metavar="DIR",
-                        help="checkpoint folder (default none): each finished (scenario, run) is pickled "
-                             "there as <hash of its settings>.pkl and read back instead of run, timings "
-                             "included, so an interrupted study resumes with the same numbers; delete it "
-                             "after changing the code")
+                        help="checkpoint folder (default none): each finished (scenario, run) is stored "
+                             "there as <hash of its settings>.npz (no pickle: nothing in it can run code) and "
+                             "read back instead of run, timings included, so an interrupted study resumes "
+                             "with the same numbers; an entry written by other code (any change to the "
+                             "package's source), another task, or damaged is named on stderr and recomputed")
     parser.add_argument("--scenarios", type=options.name_list(SCENARIOS), default=",".join(DEFAULT_SCENARIOS),
                         help=f"comma-separated subset of {', '.join(SCENARIOS)}")
     names = tuple(dict.fromkeys([f.name for f in FILTER_TABLE] + list(REAL_FILTERS)))
+    simulated = tuple(dict.fromkeys(f.name for f in FILTER_TABLE))
     parser.add_argument("--filters", type=options.name_list(names), default=None,
-                        help=f"comma-separated subset of {', '.join(names)} (default all "
-                             f"that apply to each scenario, but {', '.join(OPT_IN)})")
+                        help=f"comma-separated filters: on the simulated scenarios a subset of {', '.join(simulated)} "
+                             f"(default all that apply to each scenario, but {', '.join(OPT_IN)}); with --drive a "
+                             f"subset of {', '.join(REAL_FILTERS)} (default all)")
     parser.add_argument("--factor", type=options.positive_float, default=None,
                         help="override the DR noise factor at 150 s of the DR-only scenarios (default each "
                              "scenario's own)")

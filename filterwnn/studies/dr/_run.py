@@ -160,9 +160,10 @@ def run_study(scenarios=DEFAULT_SCENARIOS, n_runs=10, filters=None, seed=0, jobs
         joblib backend ("loky", "threading", "dask" inside
         :func:`filterwnn.studies.runner.dask_client`); default joblib's.
     cache_dir : str, optional
-        Checkpoint folder: each finished (scenario, run) is pickled there
-        (``<hash of the task>.pkl``, :func:`filterwnn.studies.runner.run_tasks`) and read
-        back instead of run next time, timings included.
+        Checkpoint folder: each finished (scenario, run) is stored there
+        (``<hash of the task>.npz``, :func:`filterwnn.studies.runner.run_tasks`) and read
+        back instead of run next time, timings included, while the package's source is
+        unchanged (other code's entries are recomputed).
 
     Returns
     -------
@@ -179,12 +180,12 @@ def run_study(scenarios=DEFAULT_SCENARIOS, n_runs=10, filters=None, seed=0, jobs
               "n_steps": n_steps, "factor": None if factor is None else float(factor)}
              for name in scs for i in range(n_runs)]
     context = {}
-    cached = runner.load_cached(tasks, cache_dir, runner.PICKLE)
+    cached = runner.load_cached(tasks, cache_dir, runner.NPZ)
     if any("NN-gen" in t["filters"] and r is None for t, r in zip(tasks, cached)):
         context["NN-gen"] = train_general_nn(seed)
     results = runner.run_tasks(tasks, partial(_run_task, context=context), n_jobs=int(jobs), backend=backend,
                                progress=progress, cache_dir=cache_dir, desc="dr study", unit="run",
-                               serializer=runner.PICKLE)
+                               serializer=runner.NPZ)
     table, errors = [], {}
     for name, sc in scs.items():
         res = [r for t, r in zip(tasks, results) if t["scenario"] == name]

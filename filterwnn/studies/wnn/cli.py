@@ -49,8 +49,11 @@ def add_arguments(parser):
                         help="with --backend dask: a dask.distributed scheduler address (default: a local cluster)")
     parser.add_argument("--out", default="wnn-study", help="output folder")
     parser.add_argument("--cache", default=None,
-                        help="checkpoint folder (default OUT/cache): finished fits are saved there and reused, "
-                             "so an interrupted study resumes; 'none' disables it")
+                        help="checkpoint folder (default OUT/cache): each finished fit is saved there as JSON "
+                             "and reused, so an interrupted study resumes with the same numbers; an entry is "
+                             "used only if the same package source (a hash of every filterwnn .py file) wrote "
+                             "it for the same settings, so after any code change it is recomputed (named on "
+                             "stderr); 'none' disables it")
     parser.add_argument("--cached-only", action="store_true",
                         help="only summarize the fits already in the cache (run nothing)")
     parser.add_argument("--no-figures", action="store_true", help="write the tables only (no PNG figures)")

@@ -1,0 +1,288 @@
+"""Fault injection: damaged, foreign and stale cache entries, crafted pickles, two processes
+on one cache folder, a study killed part-way (SIGKILL, SIGINT) and resumed, and fuzzed
+bad calls that must leave a filter's state (its RNG included) as it was."""
+
+import json
+import os
+import pickle
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+import warnings
+
+import numpy as np
+import pytest
+
+from filterwnn.studies import runner
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def _arrays(task):
+    x = float(task["x"])
+    # keys out of sorted order: the stored names must not depend on it
+    return {"t": np.linspace(0, 1, 4), "est": {"b": np.full((2, 3), x), "a": np.arange(4.0) * x}, "seconds": x}
+
+
+def _plain(task):
+    return {"x": task["x"] ** 2, "mean_ess": float("nan")}
+
+
+SERIALIZERS = {"json": (runner.JSON, _plain), "npz": (runner.NPZ, _arrays)}
+
+
+def _equal(a, b):
+    if isinstance(a, dict):
+        return a.keys() == b.keys() and all(_equal(a[k], b[k]) for k in a)
+    return np.array_equal(a, b, equal_nan=True)
+
+
+def _entry(tmp_path, task, serializer):
+    return tmp_path / (runner.task_key(task) + serializer.suffix)
+
+
+def _run_counting(tasks, fn, cache, serializer):
+    ran = []
+
+    def counted(task):
+        ran.append(task["x"])
+        return fn(task)
+
+    return runner.run_tasks(tasks, counted, cache_dir=str(cache), serializer=serializer), ran
+
+
+def _truncate(path, tasks, serializer):
+    path.write_bytes(path.read_bytes()[: path.stat().st_size // 2])
+
+
+def _garbage(path, tasks, serializer):
+    path.write_bytes(b"\x00garbage{")
+
+
+def _swap(path, tasks, serializer):  # another task's (valid) entry under this task's name
+    other = path.parent / (runner.task_key(tasks[1]) + serializer.suffix)
+    path.write_bytes(other.read_bytes())
+
+
+def _stale(path, tasks, serializer):  # an entry written by other code
+    entry = serializer.load(open(path, "rb" if serializer.binary else "r"))
+    entry["meta"]["code"] = "0" * 16
+    with open(path, "wb" if serializer.binary else "w") as fh:
+        serializer.dump(entry, fh)
+
+
+def _nan(path, tasks, serializer):  # a result turned NaN, checksum recomputed to match
+    entry = serializer.load(open(path, "rb" if serializer.binary else "r"))
+    res = entry["result"]
+    if "est" in res:
+        res["est"]["a"][1] = np.nan
+    else:
+        res["x"] = float("nan")
+    entry["meta"]["checksum"] = runner._checksum(res, serializer)
+    with open(path, "wb" if serializer.binary else "w") as fh:
+        serializer.dump(entry, fh)
+
+
+def _old_format(path, tasks, serializer):  # a plain result, as the previous runner wrote it
+    res = serializer.load(open(path, "rb" if serializer.binary else "r"))["result"]
+    if serializer.binary:
+        np.savez(path, **{k: v for k, v in res.items() if isinstance(v, np.ndarray)})
+    else:
+        path.write_text(json.dumps(res))
+
+
+DAMAGE = {"truncated": (_truncate, "unreadable"), "garbage": (_garbage, "unreadable"),
+          "swapped": (_swap, "another task"), "stale code": (_stale, "other code"),
+          "nan": (_nan, "non-finite"), "old format": (_old_format, "unreadable")}
+
+
+@pytest.mark.parametrize("damage", sorted(DAMAGE))
+@pytest.mark.parametrize("kind", sorted(SERIALIZERS))
+def test_a_damaged_foreign_or_stale_entry_is_named_and_recomputed(tmp_path, kind, damage):
+    serializer, fn = SERIALIZERS[kind]
+    tasks = [{"x": 2}, {"x": 3}, {"x": 5}]
+    want = [fn(t) for t in tasks]
+    first, _ = _run_counting(tasks, fn, tmp_path, serializer)
+    assert all(_equal(a, b) for a, b in zip(first, want))
+    path = _entry(tmp_path, tasks[0], serializer)
+    hurt, reason = DAMAGE[damage]
+    hurt(path, tasks, serializer)
+    with pytest.warns(runner.CacheEntryWarning, match=reason) as rec:
+        got, ran = _run_counting(tasks, fn, tmp_path, serializer)
+    assert ran == [2]  # only the damaged entry ran again
+    assert all(_equal(a, b) for a, b in zip(got, want))
+    msgs = [str(w.message) for w in rec if w.category is runner.CacheEntryWarning]
+    assert len(msgs) == 1 and str(path) in msgs[0] and "\n" not in msgs[0]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", runner.CacheEntryWarning)
+        again, ran = _run_counting(tasks, fn, tmp_path, serializer)  # the rewritten entry is valid
+    assert ran == [] and all(_equal(a, b) for a, b in zip(again, want))
+
+
+def test_a_result_that_is_nan_when_computed_is_cached_as_such(tmp_path):
+    tasks = [{"x": 1}]
+    runner.run_tasks(tasks, _plain, cache_dir=str(tmp_path))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", runner.CacheEntryWarning)
+        got, ran = _run_counting(tasks, _plain, tmp_path, runner.JSON)
+    assert ran == [] and np.isnan(got[0]["mean_ess"])
+
+
+def test_code_version_hashes_the_package_source_and_format(monkeypatch):
+    v = runner.code_version()
+    assert len(v) == 16 and v == runner.code_version()
+    runner.code_version.cache_clear()
+    monkeypatch.setattr(runner, "CACHE_FORMAT", runner.CACHE_FORMAT + 1)
+    try:
+        assert runner.code_version() != v
+    finally:
+        runner.code_version.cache_clear()
+
+
+class _Payload:
+    def __reduce__(self):
+        return (os.system, (f"touch {self.marker}",))
+
+
+@pytest.mark.parametrize("kind", sorted(SERIALIZERS))
+def test_nothing_in_a_cache_folder_is_executed(tmp_path, kind):
+    serializer, fn = SERIALIZERS[kind]
+    tasks = [{"x": 2}]
+    marker = tmp_path / "payload-ran"
+    payload = _Payload()
+    payload.marker = marker
+    crafted = pickle.dumps({"x": 4, "payload": payload})
+    _entry(tmp_path, tasks[0], serializer).write_bytes(crafted)
+    # an object array inside an npz is a pickle too
+    np.save(tmp_path / "obj.npy", np.array([payload], dtype=object), allow_pickle=True)
+    with pytest.warns(runner.CacheEntryWarning, match="unreadable"):
+        got, ran = _run_counting(tasks, fn, tmp_path, serializer)
+    assert ran == [2] and _equal(got[0], fn(tasks[0]))
+    assert not marker.exists()
+    if kind == "npz":  # an entry whose arrays need pickle is refused, not loaded
+        path = _entry(tmp_path, tasks[0], serializer)
+        head = json.dumps({"meta": runner._meta(tasks[0], {"p": np.zeros(1)}, serializer),
+                           "tree": {"p": {"__npz__": "a0"}}})
+        np.savez(path, __entry__=np.array(head), a0=np.array([payload], dtype=object))
+        with pytest.warns(runner.CacheEntryWarning, match="unreadable"):
+            assert runner.load_cached(tasks, str(tmp_path), serializer) == [None]
+        assert not marker.exists()
+
+
+def test_no_pickle_serializer_is_left():
+    with pytest.warns(DeprecationWarning, match="never pickled"):
+        assert runner.PICKLE is runner.NPZ
+
+
+_HAMMER = textwrap.dedent("""
+    import sys, numpy as np
+    from filterwnn.studies import runner
+    cache, seed = sys.argv[1], int(sys.argv[2])
+    tasks = [{"x": i} for i in range(40)]
+    def fn(task):
+        return {"a": np.full(20000, float(task["x"])), "s": seed}
+    for _ in range(6):
+        for t in tasks:
+            runner._save(cache, t, fn(t), runner.NPZ)
+    res = runner.run_tasks(tasks, fn, cache_dir=cache, serializer=runner.NPZ)
+    assert all(np.all(r["a"] == t["x"]) for r, t in zip(res, tasks))
+""")
+
+
+def _env():
+    return {**os.environ, "PYTHONPATH": ROOT + os.pathsep + os.environ.get("PYTHONPATH", ""),
+            "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"}
+
+
+def test_two_processes_on_one_cache_folder(tmp_path):
+    script = tmp_path / "hammer.py"
+    script.write_text(_HAMMER)
+    cache = tmp_path / "cache"
+    cache.mkdir()
+    procs = [subprocess.Popen([sys.executable, "-W", "error::UserWarning", str(script), str(cache), str(s)],
+                              env=_env(), stderr=subprocess.PIPE, text=True) for s in (1, 2)]
+    for p in procs:
+        _, err = p.communicate(timeout=300)
+        assert p.returncode == 0, err
+    tasks = [{"x": i} for i in range(40)]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", runner.CacheEntryWarning)
+        got = runner.load_cached(tasks, str(cache), runner.NPZ)
+    assert all(np.all(r["a"] == t["x"]) and r["s"] in (1, 2) for r, t in zip(got, tasks))
+    assert sorted(os.listdir(cache)) == sorted(runner.task_key(t) + ".npz" for t in tasks)  # no temp files left
+
+
+# --- a study killed part-way resumes from its cache ----------------------------------------
+
+N_RUNS = 6
+
+
+def _study(tmp_path, out, jobs, cache=True):
+    argv = [sys.executable, "-m", "filterwnn.cli", "study", "dr", "--runs", str(N_RUNS), "--scenarios", "straight",
+            "--filters", "EKF,UKF", "--jobs", str(jobs), "--out", str(tmp_path / out), "--no-figures",
+            "--no-progress"]
+    return argv + (["--cache", str(tmp_path / "cache")] if cache else [])
+
+
+def _descendants(pid):
+    out = subprocess.run(["pgrep", "-P", str(pid)], capture_output=True, text=True).stdout.split()
+    return [int(p) for p in out] + [d for p in out for d in _descendants(int(p))]
+
+
+def _running(pid):
+    try:
+        with open(f"/proc/{pid}/status") as fh:
+            return "\nState:\tZ" not in fh.read()
+    except FileNotFoundError:
+        return False
+
+
+def _numbers(path):
+    """The table without its timing column (the only one a resumed study may change)."""
+    import csv
+
+    rows = list(csv.DictReader(open(path)))
+    return [{k: v for k, v in r.items() if k != "us_per_step"} for r in rows]
+
+
+@pytest.fixture(scope="module")
+def fresh_table(tmp_path_factory):
+    """The table of the same study run once, uninterrupted and without a cache."""
+    tmp = tmp_path_factory.mktemp("fresh")
+    fresh = subprocess.run(_study(tmp, "fresh", 1, cache=False), env=_env(), capture_output=True, text=True,
+                           timeout=600)
+    assert fresh.returncode == 0, fresh.stderr
+    return _numbers(tmp / "fresh" / "dr_table.csv")
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
+@pytest.mark.parametrize("sig", [signal.SIGKILL, signal.SIGINT], ids=["SIGKILL", "SIGINT"])
+def test_a_study_killed_part_way_resumes_with_the_same_numbers(tmp_path, sig, fresh_table):
+    cache = tmp_path / "cache"
+    proc = subprocess.Popen(_study(tmp_path, "killed", 2), env=_env(), stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 180
+    while not list(cache.glob("*.npz")) and time.monotonic() < deadline and proc.poll() is None:
+        time.sleep(0.05)
+    workers = _descendants(proc.pid)
+    proc.send_signal(sig)
+    _, err = proc.communicate(timeout=120)
+    if sig == signal.SIGINT:
+        assert proc.returncode == 130 and "Traceback" not in err, err
+        assert err.strip().splitlines()[-1].startswith("filterwnn: interrupted")
+    else:
+        assert proc.returncode == -signal.SIGKILL
+    deadline = time.monotonic() + 20
+    while any(_running(w) for w in workers) and time.monotonic() < deadline:
+        time.sleep(0.1)
+    assert workers and not any(_running(w) for w in workers), "worker processes outlived their parent"
+    done = {p.name: p.stat().st_mtime_ns for p in cache.glob("*.npz")}
+    assert 0 < len(done) < N_RUNS, "the kill came too late to test a resume"
+    resumed = subprocess.run(_study(tmp_path, "resumed", 1), env=_env(), capture_output=True, text=True,
+                             timeout=600)
+    assert resumed.returncode == 0 and "warning" not in resumed.stderr, resumed.stderr
+    assert {p.name: p.stat().st_mtime_ns for p in cache.glob("*.npz") if p.name in done} == done  # not rerun
+    assert len(list(cache.glob("*.npz"))) == N_RUNS
+    assert _numbers(tmp_path / "resumed" / "dr_table.csv") == fresh_table
