@@ -75,6 +75,7 @@ from ._weighted import WeightedMixtureFilter, logsumexp
 from .proposals import ExtendedKalmanProposal, PriorProposal, ProposalModel, UnscentedKalmanProposal
 from .resampling import get_scheme
 from ..kalman.presets import make_points
+from ..metrics import kish_ess
 
 __all__ = [
     "DegeneracyWarning",
@@ -507,7 +508,7 @@ class ParticleFilter(WeightedMixtureFilter):
         if log_w is None:
             return
         w = np.exp(log_w)
-        ess = 1.0 / np.dot(w, w)
+        ess = kish_ess(w)
         x, P = self._moments(model, X, w)
         n_distinct = self.n_particles
         resampled = self.ess_threshold >= 1.0 or ess < self.ess_threshold * self.n_particles
