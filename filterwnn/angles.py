@@ -1,4 +1,8 @@
-r"""Angle-aware residual and mean functions for unscented filters, in both call modes.
+r"""Angles: wrapping, and the residual and circular mean unscented filters need, in both call modes.
+
+This module is the package's one home of angle arithmetic: the dead-reckoning models'
+``wrap_angle``, ``dr_residual`` and ``dr_z_mean`` (heading in measurement column 0) are
+:func:`wrap`, :func:`angle_residual` and :func:`angle_mean`.
 
 A state or measurement with an angle (a bearing, a heading) needs two things in an
 unscented filter: the residual ``a - b`` wrapped to :math:`[-\pi, \pi)`, and a
@@ -131,8 +135,8 @@ def angle_mean(columns):
                 f"{cols[-1]}) and Wm of shape (n_sigmas,), got {sigmas.shape} and {Wm.shape}"
             )
         m = Wm @ sigmas
-        a = sigmas[:, cols]
-        m[cols] = np.arctan2(Wm @ np.sin(a), Wm @ np.cos(a))
+        for c in cols:  # one dot product per column (the DR heading's numbers, bit for bit)
+            m[c] = np.arctan2(Wm @ np.sin(sigmas[:, c]), Wm @ np.cos(sigmas[:, c]))
         return m
 
     mean.__qualname__ = mean.__name__ = f"angle_mean({cols.tolist()})"

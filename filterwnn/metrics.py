@@ -23,7 +23,7 @@ from scipy import linalg, stats
 from ._linalg import cholesky_lower, smallest_eigenvalue
 from ._validation import check_positive, check_positive_int, check_symmetric, check_weights
 
-__all__ = ["mse", "rmse", "nees", "nis", "chi2_bounds", "effective_sample_size"]
+__all__ = ["mse", "rmse", "nees", "nis", "chi2_bounds", "effective_sample_size", "kish_ess"]
 
 
 def _difference(y_true, y_pred):
@@ -135,5 +135,23 @@ def effective_sample_size(weights):
     float
         ``n_particles`` for equal weights, 1 for a one-hot weight.
     """
-    w = check_weights(weights)
-    return float(1.0 / np.dot(w, w))
+    return float(kish_ess(check_weights(weights)))
+
+
+def kish_ess(w):
+    """Kish's ``1 / sum(w_i^2)`` of weights that already sum to 1, unchecked: the filters' inner loop.
+
+    Parameters
+    ----------
+    w : ndarray of shape (n_particles,)
+        Normalised weights (e.g. ``exp`` of normalised log-weights); use
+        :func:`effective_sample_size` for weights from elsewhere.
+
+    Returns
+    -------
+    numpy.float64
+
+    >>> float(kish_ess(np.full(4, 0.25)))
+    4.0
+    """
+    return 1.0 / np.dot(w, w)

@@ -94,3 +94,18 @@ def test_helpers_give_filterpy_numbers_in_both_modes(points):
         ours = run(UnscentedKalmanFilter, points(), vectorized=vectorized)
         np.testing.assert_allclose(ours.x, ref.x, atol=1e-9)
         np.testing.assert_allclose(ours.P, ref.P, atol=1e-9)
+
+
+def test_angles_is_the_one_home_of_the_dr_heading_arithmetic():
+    from filterwnn.navigation import dead_reckoning as dr
+
+    assert dr.wrap_angle is wrap
+    rng = np.random.default_rng(7)
+    a, b = rng.uniform(-4, 4, (9, 4)), rng.uniform(-4, 4, 4)
+    np.testing.assert_array_equal(dr.dr_residual(a, b), angle_residual(0)(a, b))
+    sig, w = rng.uniform(-4, 4, (9, 2)), rng.dirichlet(np.ones(9))
+    # bit for bit the former DR formula (one dot product per angle column)
+    want = w @ sig
+    want[0] = np.arctan2(w @ np.sin(sig[:, 0]), w @ np.cos(sig[:, 0]))
+    np.testing.assert_array_equal(dr.dr_z_mean(sig, w), want)
+    np.testing.assert_array_equal(angle_mean([0])(sig, w), want)

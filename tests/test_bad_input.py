@@ -358,7 +358,7 @@ REGRESSOR_ROWS = [
     row(lambda: fit_reg(wavelet="haar"), ValueError, r"unknown wavelet 'haar'; valid: 'mexican_hat', 'morlet'", "reg-wavelet"),
     row(lambda: fit_reg(init="zeros"), ValueError, r"unknown init 'zeros'; valid: 'paper', 'scaled'", "reg-init"),
     row(lambda: fit_reg(trainer="spf", n_particles=0), ValueError, r"n_particles must be >= 1, got 0", "reg-particles"),
-    row(lambda: fit_reg(weighting="foo"), ValueError, r"unknown weighting 'foo'", "reg-weighting"),
+    row(lambda: fit_reg(weighting="bank"), TypeError, "unexpected keyword argument 'weighting'", "reg-weighting-gone"),
     row(lambda: fit_reg(trainer="upf", move="gibbs"), ValueError, r"unknown move 'gibbs'; valid: None, 'hmc', 'mala'", "reg-move"),
     row(lambda: fit_reg(ekf_backend="foo"), ValueError, r"unknown ekf_backend 'foo'; valid: 'filterpy', 'rank1'", "reg-backend"),
     row(lambda: fit_reg(process_noise=-1.0), ValueError, r"process_noise must be finite and >= 0, got -1.0", "reg-Q-neg"),

@@ -8,13 +8,19 @@ builds points builds them here, by name, so that one setting has one definition 
 table row names the set it ran. The registry, printed from the code:
 
 >>> for name, preset in POINT_PRESETS.items():
-...     print(f"{name:12s} {preset.describe()}")
-merwe        MerweScaledSigmaPoints(alpha=1.0, beta=2.0, kappa=0.0): van der Merwe's 2n + 1 points, alpha 1: the UPF's (van der Merwe et al. 2000), the Gaussian-sum UKF components', the WNN ukf/upf/gsf-ukf trainers'
-supf         SphericalSimplexSigmaPoints(alpha=1.0, beta=2.0, w0=0.0): the papers' SUPF set (Niu, Wu and Li), beta 2: SimplexUnscentedParticleFilter's default, the Gaussian-sum SUKF components'
-simplex      SphericalSimplexSigmaPoints(alpha=1.0, beta=0.0, w0=0.0): the unscaled spherical simplex (Julier 2003): the WNN sukf/supf/gsf-sukf trainers'
-gpsdr-ukf    MerweScaledSigmaPoints(alpha=0.5, beta=2.0, kappa=0.0): Merwe's set, alpha 0.5: the GPS/DR filter's "ukf" kind, the DR study's UKF and UPF
-gpsdr-sukf   SphericalSimplexSigmaPoints(alpha=1.0, beta=0.0, w0=0.2): the spherical simplex, centre weight 0.2: the GPS/DR filter's "sukf" kind, the DR study's SUKF
-merwe-kappa  MerweScaledSigmaPoints(alpha=0.5, beta=2.0, kappa=3 - n): Merwe's set with Julier and Uhlmann's n + kappa = 3: the command line's tour
+...     print(f"{name:12s} {preset.describe()}\n{'':12s} {preset.doc}")
+merwe        MerweScaledSigmaPoints(alpha=1.0, beta=2.0, kappa=0.0)
+             the UPF's (van der Merwe et al. 2000); Gaussian-sum UKFs; WNN ukf, upf, gsf-ukf
+supf         SphericalSimplexSigmaPoints(alpha=1.0, beta=2.0, w0=0.0)
+             the papers' SUPF (SimplexUnscentedParticleFilter); Gaussian-sum SUKFs
+simplex      SphericalSimplexSigmaPoints(alpha=1.0, beta=0.0, w0=0.0)
+             the unscaled set of Julier (2003); WNN sukf, supf, gsf-sukf
+gpsdr-ukf    MerweScaledSigmaPoints(alpha=0.5, beta=2.0, kappa=0.0)
+             GPSDRFilter kind "ukf"; the DR study's UKF and UPF
+gpsdr-sukf   SphericalSimplexSigmaPoints(alpha=1.0, beta=0.0, w0=0.2)
+             GPSDRFilter kind "sukf"; the DR study's SUKF
+merwe-kappa  MerweScaledSigmaPoints(alpha=0.5, beta=2.0, kappa=3 - n)
+             Julier and Uhlmann's n + kappa = 3; the command line's tour
 
 The WNN trainers' simplex is the unscaled set (``beta = 0``), not the SUPF preset
 (``beta = 2``): it is the set their searched settings and the WNN study's numbers were
@@ -67,7 +73,7 @@ class PointPreset:
         Keyword settings (``alpha``, ``beta``, ``kappa`` or ``w0``); a callable value is
         called with ``n``.
     doc : str
-        What the set is and who uses it (in error messages and :meth:`describe`).
+        Who uses the set (the module docstring lists it).
     """
 
     name: str
@@ -87,9 +93,9 @@ class PointPreset:
         return self.cls(n, **kw)
 
     def describe(self):
-        """``Class(settings): doc``, one line (a setting that depends on ``n`` shows its rule)."""
+        """``Class(settings)``, one line (a setting that depends on ``n`` shows its rule)."""
         settings = ", ".join(f"{k}={v.__doc__ if callable(v) else v}" for k, v in self.settings.items())
-        return f"{self.cls.__name__}({settings}): {self.doc}"
+        return f"{self.cls.__name__}({settings})"
 
 
 def _three_minus_n(n):
@@ -104,22 +110,22 @@ def _preset(name, cls, doc, **settings):
 #: ``{name: PointPreset}``, read-only: every point set the package builds (module docstring).
 POINT_PRESETS = MappingProxyType(dict((
     _preset("merwe", MerweScaledSigmaPoints,
-            "van der Merwe's 2n + 1 points, alpha 1: the UPF's (van der Merwe et al. 2000), the Gaussian-sum "
-            "UKF components', the WNN ukf/upf/gsf-ukf trainers'", alpha=1.0, beta=2.0, kappa=0.0),
+            "the UPF's (van der Merwe et al. 2000); Gaussian-sum UKFs; WNN ukf, upf, gsf-ukf",
+            alpha=1.0, beta=2.0, kappa=0.0),
     _preset("supf", SphericalSimplexSigmaPoints,
-            "the papers' SUPF set (Niu, Wu and Li), beta 2: SimplexUnscentedParticleFilter's default, the "
-            "Gaussian-sum SUKF components'", alpha=1.0, beta=2.0, w0=0.0),
+            "the papers' SUPF (SimplexUnscentedParticleFilter); Gaussian-sum SUKFs",
+            alpha=1.0, beta=2.0, w0=0.0),
     _preset("simplex", SphericalSimplexSigmaPoints,
-            "the unscaled spherical simplex (Julier 2003): the WNN sukf/supf/gsf-sukf trainers'",
+            "the unscaled set of Julier (2003); WNN sukf, supf, gsf-sukf",
             alpha=1.0, beta=0.0, w0=0.0),
     _preset("gpsdr-ukf", MerweScaledSigmaPoints,
-            "Merwe's set, alpha 0.5: the GPS/DR filter's \"ukf\" kind, the DR study's UKF and UPF",
+            'GPSDRFilter kind "ukf"; the DR study\'s UKF and UPF',
             alpha=0.5, beta=2.0, kappa=0.0),
     _preset("gpsdr-sukf", SphericalSimplexSigmaPoints,
-            "the spherical simplex, centre weight 0.2: the GPS/DR filter's \"sukf\" kind, the DR study's SUKF",
+            'GPSDRFilter kind "sukf"; the DR study\'s SUKF',
             alpha=1.0, beta=0.0, w0=0.2),
     _preset("merwe-kappa", MerweScaledSigmaPoints,
-            "Merwe's set with Julier and Uhlmann's n + kappa = 3: the command line's tour",
+            "Julier and Uhlmann's n + kappa = 3; the command line's tour",
             alpha=0.5, beta=2.0, kappa=_three_minus_n),
 )))
 

@@ -91,6 +91,7 @@ __all__ = [
     "SphericalSimplexSigmaPoints",
     "centre_weight",
     "unit_sigma_points",
+    "point_structure",
     "sigma_deviations",
     "batched_sigma_points",
     "unit_transpose_apply",
@@ -220,6 +221,12 @@ class _StaircaseSimplex(MerweScaledSigmaPoints):
         self._a = self.alpha * a
         self._b = self.alpha * b
         self.Z = _staircase(self._a, self._b)
+
+    @property
+    def staircase(self):
+        """``(a, b)``, each of shape ``(n,)``: column ``j`` of ``Z`` holds ``a[j]`` in rows
+        ``1 .. j+1`` and ``b[j]`` in row ``j + 2`` (see :func:`point_structure`)."""
+        return self._a, self._b
 
     def sigma_points(self, x, P):
         """Sigma points of ``N(x, P)`` as ``x + Z @ U`` (``U = sqrt(P)``, upper).
@@ -489,8 +496,6 @@ def unit_sigma_points(points):
 
 def _symmetric_scale(points):
     """``c`` if the set is ``[0, c I, -c I]`` (filterpy's Merwe or Julier points), else None."""
-    if isinstance(points, _StaircaseSimplex):
-        return None
     n = points.n
     if isinstance(points, MerweScaledSigmaPoints):
         lam = points.alpha**2 * (n + points.kappa) - n
@@ -498,6 +503,32 @@ def _symmetric_scale(points):
     if isinstance(points, JulierSigmaPoints):
         return float(np.sqrt(n + points.kappa))
     return None
+
+
+def point_structure(points):
+    """The structure of a set's unit points ``Z``, which the O(n^2) helpers below use.
+
+    A set that has a ``staircase`` attribute ``(a, b)`` (both ``n + 2`` sets here; any set of
+    that form may declare it) is a staircase; filterpy's Merwe and Julier sets are the
+    symmetric ``Z = [0, c I, -c I]``; any other set is dense. The declaration is read first,
+    so a staircase subclass of filterpy's Merwe class is never taken for the symmetric set.
+
+    Returns
+    -------
+    kind : {"staircase", "symmetric", "dense"}
+    detail : tuple of two ndarray of shape (n,), float or None
+        ``(a, b)``, ``c`` or None.
+
+    >>> point_structure(SphericalSimplexSigmaPoints(2))[0]
+    'staircase'
+    >>> point_structure(MerweScaledSigmaPoints(2, alpha=1.0, beta=2.0, kappa=1.0))
+    ('symmetric', 1.7320508075688772)
+    """
+    stairs = getattr(points, "staircase", None)
+    if stairs is not None:
+        return "staircase", stairs
+    c = _symmetric_scale(points)
+    return ("dense", None) if c is None else ("symmetric", c)
 
 
 def sigma_deviations(points, U):
@@ -523,11 +554,11 @@ def sigma_deviations(points, U):
     n = points.n
     if U.ndim < 2 or U.shape[-2:] != (n, n):
         raise ValueError(f"U must have shape (..., {n}, {n}), got {U.shape}")
-    if isinstance(points, _StaircaseSimplex):
-        return staircase_apply(points._a, points._b, U)
-    c = _symmetric_scale(points)
-    if c is not None:
-        n = U.shape[-1]
+    kind, detail = point_structure(points)
+    if kind == "staircase":
+        return staircase_apply(*detail, U)
+    if kind == "symmetric":
+        c = detail
         D = np.zeros(U.shape[:-2] + (2 * n + 1, n))
         D[..., 1 : n + 1, :] = c * U
         D[..., n + 1 :, :] = -c * U
@@ -554,11 +585,11 @@ def batched_sigma_points(points, x, L):
     """
     N, n = x.shape
     U = np.swapaxes(L, -1, -2)
-    if isinstance(points, _StaircaseSimplex):
-        return staircase_sigma_points(points._a, points._b, x, U)
-    c = _symmetric_scale(points)
-    if c is not None and points.num_sigmas() == 2 * n + 1:
-        return symmetric_sigma_points(c, x, U)
+    kind, detail = point_structure(points)
+    if kind == "staircase":
+        return staircase_sigma_points(*detail, x, U)
+    if kind == "symmetric" and points.num_sigmas() == 2 * n + 1:
+        return symmetric_sigma_points(detail, x, U)
     sig = sigma_deviations(points, U)
     sig += x[:, None, :]
     return sig
@@ -572,9 +603,9 @@ def unit_transpose_apply(points, Z, B):
     the dense product.
     """
     n = Z.shape[1]
-    if isinstance(points, _StaircaseSimplex):
-        return staircase_transpose_apply(points._a, points._b, Z, B)
-    c = _symmetric_scale(points)
-    if c is not None and Z.shape[0] == 2 * n + 1:
-        return c * (B[:, 1 : n + 1, :] - B[:, n + 1 :, :])
+    kind, detail = point_structure(points)
+    if kind == "staircase":
+        return staircase_transpose_apply(*detail, Z, B)
+    if kind == "symmetric" and Z.shape[0] == 2 * n + 1:
+        return detail * (B[:, 1 : n + 1, :] - B[:, n + 1 :, :])
     return np.matmul(Z.T, B)

@@ -55,6 +55,7 @@ from ._weighted import ModelAttribute, WeightedMixtureFilter, logsumexp
 from .resampling import get_scheme
 from ..kalman.batched import ExtendedStep, KalmanModel, KalmanPrediction, UnscentedStep, check_callable, repairing
 from ..kalman.presets import make_points
+from ..metrics import kish_ess
 
 __all__ = ["GaussianSumFilter"]
 
@@ -276,7 +277,7 @@ class GaussianSumFilter(WeightedMixtureFilter):
             raise NumericalError(f"all component weights underflowed at step {step}", matrix="weights", step=step)
         new_lw = new_lw - lse
         w = np.exp(new_lw)
-        ess = 1.0 / np.dot(w, w)
+        ess = kish_ess(w)
         M, C = upd.x, upd.P
         self.log_weights = new_lw
         x, P = self._moments(M, C)

@@ -76,6 +76,7 @@ from .proposals import ExtendedKalmanProposal, PriorProposal, ProposalModel, Uns
 from .resampling import get_scheme
 from ..kalman.batched import check_callable
 from ..kalman.presets import make_points
+from ..metrics import kish_ess
 
 __all__ = [
     "DegeneracyWarning",
@@ -520,7 +521,7 @@ class ParticleFilter(WeightedMixtureFilter):
         if log_w is None:
             return
         w = np.exp(log_w)
-        ess = 1.0 / np.dot(w, w)
+        ess = kish_ess(w)
         x, P = self._moments(model, X, w)
         n_distinct = self.n_particles
         resampled = self.ess_threshold >= 1.0 or ess < self.ess_threshold * self.n_particles

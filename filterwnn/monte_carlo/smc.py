@@ -71,6 +71,7 @@ from typing import NamedTuple
 import numpy as np
 
 from .._validation import NumericalError, check_choice, check_positive, check_positive_int, check_rng
+from ..metrics import kish_ess
 from .resampling import effective_sample_size, normalize_log_weights, resample
 
 __all__ = ["RowsTarget", "AddedRowsTarget", "MALAMove", "HMCMove", "SMCResult", "smc_sampler", "make_weight_model_move"]
@@ -461,7 +462,7 @@ def _next_beta(ll, beta, n_target):
 
     def ess(delta):
         w, _ = normalize_log_weights(delta * ll)
-        return 1.0 / np.dot(w, w)
+        return kish_ess(w)
 
     if ess(1.0 - beta) >= n_target:
         return 1.0

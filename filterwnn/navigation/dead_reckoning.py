@@ -75,6 +75,7 @@ from .._validation import (
     check_covariance,
     check_positive,
 )
+from ..angles import angle_mean, angle_residual, wrap
 from ..models import StateSpaceModel, from_model
 
 __all__ = [
@@ -97,9 +98,8 @@ _ACCEL_TERMS = ("kinematic", "paper")
 # --------------------------------------------------------------------------- pure maths
 
 
-def wrap_angle(a):
-    """Wrap angles (rad) to ``[-pi, pi)``; any shape."""
-    return (np.asarray(a, dtype=float) + np.pi) % (2.0 * np.pi) - np.pi
+#: :func:`filterwnn.angles.wrap` (angles in rad to ``[-pi, pi)``, any shape) under its DR name.
+wrap_angle = wrap
 
 
 def transition_matrix(dt, accel_term="kinematic", dim_x=6):
@@ -203,12 +203,10 @@ def dr_residual(a, b):
     """Measurement residual ``a - b`` with the heading (entry 0) wrapped to ``[-pi, pi)``.
 
     Works for the DR measurement ``[theta, s]`` and the GPS/DR one ``[theta, s, e, n]``,
-    on the last axis (``(dim_z,)`` or ``(n_points, dim_z)`` broadcast against a row).
+    on the last axis (``(dim_z,)`` or ``(n_points, dim_z)`` broadcast against a row):
+    :func:`filterwnn.angles.angle_residual` of column 0.
     """
-    d = np.subtract(a, b)
-    d = np.array(d, dtype=float, copy=True)
-    d[..., 0] = wrap_angle(d[..., 0])
-    return d
+    return _heading_residual(a, b)
 
 
 def dr_z_mean(sigmas, Wm):
@@ -223,13 +221,14 @@ def dr_z_mean(sigmas, Wm):
     Returns
     -------
     ndarray of shape (dim_z,)
-        Heading ``atan2(sum W sin, sum W cos)``; the others ``sum W z``.
+        Heading ``atan2(sum W sin, sum W cos)``; the others ``sum W z``
+        (:func:`filterwnn.angles.angle_mean` of column 0).
     """
-    sigmas = np.atleast_2d(np.asarray(sigmas, dtype=float))
-    Wm = np.asarray(Wm, dtype=float)
-    z = Wm @ sigmas
-    z[0] = np.arctan2(Wm @ np.sin(sigmas[:, 0]), Wm @ np.cos(sigmas[:, 0]))
-    return z
+    return _heading_mean(sigmas, Wm)
+
+
+_heading_residual = angle_residual(0)
+_heading_mean = angle_mean(0)
 
 
 def gps_hx(x):

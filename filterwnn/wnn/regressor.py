@@ -133,10 +133,6 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
         with Q = 0 (``process_noise`` must be ``"auto"`` or 0) and the prior matched to the
         start (``initial_covariance`` scales it, ``"auto"``: 1). 5 MALA steps, or 2 HMC steps
         of 10 leapfrog steps (:data:`filterwnn.wnn.trainers.MOVE_SETTINGS`).
-    weighting : None
-        Removed: a value other than None raises ``ValueError`` naming the trainer to use
-        (``"gsf-ekf"``/``"gsf-ukf"``/``"gsf-sukf"`` with ``tempering=0.01`` for the former
-        ``weighting="bank"``; ``"epf"``/``"upf"``/``"supf"`` are the textbook particle filters).
     early_stopping : bool, default False
         Hold out ``validation_fraction`` of the training rows (chosen with
         ``random_state``, the rest kept in order), stop after ``n_iter_no_change`` epochs
@@ -210,7 +206,6 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
         measurement_noise=0.1,
         n_particles=50,
         move=None,
-        weighting=None,
         early_stopping=False,
         validation_fraction=0.1,
         random_state=None,
@@ -232,7 +227,6 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
         self.measurement_noise = measurement_noise
         self.n_particles = n_particles
         self.move = move
-        self.weighting = weighting
         self.early_stopping = early_stopping
         self.validation_fraction = validation_fraction
         self.random_state = random_state
@@ -249,13 +243,6 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
         spec = get_trainer(self.trainer)
         check_choice(self.init, "init", ("scaled", "paper"))
         check_choice(self.wavelet, "wavelet", wnn.WAVELETS)
-        if self.weighting is not None:
-            raise ValueError(
-                f"unknown weighting {self.weighting!r}: the weighting argument was removed (a trainer is named for "
-                "the algorithm it runs): trainer='epf'/'upf'/'supf' are the particle filters with textbook weights "
-                "(add move='mala' or 'hmc' for resample-move), trainer='gsf-ekf'/'gsf-ukf'/'gsf-sukf' the "
-                "Gaussian-sum filters (the former weighting='bank', with tempering=0.01); leave weighting=None"
-            )
         if self.move not in MOVES:
             raise ValueError(f"unknown move {self.move!r}; valid: None, 'hmc', 'mala'")
         check_choice(self.ekf_backend, "ekf_backend", ("rank1", "filterpy"))

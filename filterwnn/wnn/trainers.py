@@ -817,7 +817,7 @@ for _spec in (
     TrainerSpec("supf", _ParticleTrainer, "particle", _qp((1e-5, 0.01), (1e-4, 0.1)),
                 filter=SimplexUnscentedParticleFilter, points=simplex_points, parent="sukf", cost=4,
                 paper=(0.0245, 10.1), paper_settings=_PF_PAPER, label="SUPF (textbook)",
-                doc="particle filter, simplex-UKF proposal"),
+                doc="particle filter, simplex-UKF proposal (the 'simplex' point preset: beta 0, not the SUPF's 2)"),
     # Gaussian sums: the settings the WNN study chose for the former "bank" weighting of epf/upf/supf
     # (which were these filters); ekf-ensemble: the EKF's.
     TrainerSpec("gsf-ekf", _GaussianSumTrainer, "gaussian-sum", _qp((1e-3, 0.1), (1e-2, 0.01)),
