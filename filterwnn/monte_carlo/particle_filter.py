@@ -119,6 +119,15 @@ _MODEL_CALLABLES = ("FJacobian", "HJacobian", "x_mean_fn", "z_mean_fn", "residua
 class ParticleFilter(WeightedMixtureFilter):
     """A particle filter with a pluggable proposal and resampling, filterpy-style.
 
+    The parameters fall in groups that live where they belong: the **model** (``dt``,
+    ``hx``, ``fx``, the Jacobians, mean and residual functions, the densities,
+    ``vectorized``, ``recover``) is one :class:`~filterwnn.monte_carlo.proposals.ProposalModel`
+    that the attributes of the same names read and write (``pf.Q = ...``, ``pf.hx = ...``);
+    the **proposal** carries its own settings (``proposal="unscented", points=pts,
+    carry_covariance=False`` is a shorthand for
+    ``proposal=UnscentedKalmanProposal(pts, carry_covariance=False)``); the **resampling**
+    is ``resampling``, ``ess_threshold`` and ``move``; ``tempering`` weights; ``rng`` draws.
+
     Parameters
     ----------
     dim_x, dim_z : int

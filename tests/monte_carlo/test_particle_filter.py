@@ -664,3 +664,15 @@ def test_the_filter_reads_and_writes_its_model_through_its_attributes(lin_data):
     pf.predict()
     pf.update(lin_data[0][1])
     assert pf._model is model
+
+
+def test_the_proposal_settings_by_name_equal_the_proposal_object(lin_data):
+    """``proposal="unscented", points=..., carry_covariance=False`` is the object's shorthand."""
+    from filterpy.kalman import MerweScaledSigmaPoints
+
+    pts = MerweScaledSigmaPoints(3, 1.0, 2.0, 0.0)
+    by_name = make(ParticleFilter, 50, proposal="unscented", points=pts, carry_covariance=False)
+    by_object = make(ParticleFilter, 50, proposal=UnscentedKalmanProposal(pts, carry_covariance=False))
+    a, _ = by_name.batch_filter(lin_data[0][:5])
+    b, _ = by_object.batch_filter(lin_data[0][:5])
+    assert np.array_equal(a, b) and by_name.proposal.points is pts
