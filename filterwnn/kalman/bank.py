@@ -356,6 +356,7 @@ class UnscentedKalmanFilterBank(_NonlinearBank):
     """
 
     _kind = "ukf"
+    x, P, Q, R = _Bank.x, _Bank.P, _Bank.Q, _Bank.R  # (in this class's namespace, so that its page documents them)
 
     def __init__(self, B, dim_x, dim_z, dt, hx, fx, points, *, x_mean_fn=None, z_mean_fn=None,
                  residual_x=None, residual_z=None, vectorized=True):
@@ -394,6 +395,7 @@ class ExtendedKalmanFilterBank(_NonlinearBank):
     """
 
     _kind = "ekf"
+    x, P, Q, R = _Bank.x, _Bank.P, _Bank.Q, _Bank.R  # (in this class's namespace, so that its page documents them)
 
     def __init__(self, B, dim_x, dim_z, dt, hx, fx, FJacobian, HJacobian, *, residual_z=None, vectorized=True):
         self._setup(B, dim_x, dim_z, dt)
@@ -428,6 +430,7 @@ class KalmanFilterBank(_Bank):
     """
 
     _kind = "kf"
+    x, P, Q, R = _Bank.x, _Bank.P, _Bank.Q, _Bank.R  # (in this class's namespace, so that its page documents them)
 
     def __init__(self, B, dim_x, dim_z, dt=1.0):
         self._setup(B, dim_x, dim_z, dt)
