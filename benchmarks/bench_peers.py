@@ -87,29 +87,24 @@ def _merwe6():
 
 def numpy_ukf_step(x, P, Q, R, z, Wm, Wc, c):
     """The floor: one UKF step of a stack ``x (B, n)``, ``P (B, n, n)``, Merwe points with
-    scale ``c = sqrt(n + lambda)``, written as stacked Cholesky + matmul, no checks."""
-    def sigmas(m, C):
-        L = np.linalg.cholesky(C) * c
-        D = np.swapaxes(L, 1, 2)
-        return np.concatenate([m[:, None, :], m[:, None, :] + D, m[:, None, :] - D], axis=1)
-
+    scale ``c = sqrt(n + lambda)``, as stacked Cholesky + matmul (no checks, no copies):
+    sigma points ``x + Z L^T`` from the unit set ``Z``, ``K^T = S^{-1} P_xz^T``,
+    ``P = P^- - P_xz K^T``."""
     B, n = x.shape
-    S = sigmas(x, P)
-    F = six_fx(S.reshape(-1, n), DT6).reshape(S.shape)
+    Z = np.vstack([np.zeros((1, n)), c * np.eye(n), -c * np.eye(n)])
+    sig = x[:, None, :] + np.matmul(Z, np.swapaxes(np.linalg.cholesky(P), 1, 2))
+    F = six_fx(sig.reshape(-1, n), DT6).reshape(sig.shape)
     xp = np.matmul(Wm, F)
     d = F - xp[:, None, :]
     Pp = np.matmul(np.swapaxes(d * Wc[:, None], 1, 2), d) + Q
-    S = sigmas(xp, Pp)
-    Hs = six_hx(S.reshape(-1, n)).reshape(B, S.shape[1], -1)
+    sig = xp[:, None, :] + np.matmul(Z, np.swapaxes(np.linalg.cholesky(Pp), 1, 2))
+    Hs = six_hx(sig.reshape(-1, n)).reshape(B, sig.shape[1], -1)
     zp = np.matmul(Wm, Hs)
-    dz = Hs - zp[:, None, :]
-    dx = S - xp[:, None, :]
-    Wdz = dz * Wc[:, None]
-    Sz = np.matmul(np.swapaxes(dz, 1, 2), Wdz) + R
-    Pxz = np.matmul(np.swapaxes(dx, 1, 2), Wdz)
-    K = np.swapaxes(np.linalg.solve(Sz, np.swapaxes(Pxz, 1, 2)), 1, 2)
-    xn = xp + np.matmul(K, (z - zp)[:, :, None])[:, :, 0]
-    return xn, Pp - np.matmul(np.matmul(K, Sz), np.swapaxes(K, 1, 2))
+    Wdz = (Hs - zp[:, None, :]) * Wc[:, None]
+    Sz = np.matmul(np.swapaxes(Hs - zp[:, None, :], 1, 2), Wdz) + R
+    Pxz = np.matmul(np.swapaxes(sig - xp[:, None, :], 1, 2), Wdz)
+    Kt = np.linalg.solve(Sz, np.swapaxes(Pxz, 1, 2))
+    return xp + np.matmul((z - zp)[:, None, :], Kt)[:, 0, :], Pp - np.matmul(Pxz, Kt)
 
 
 def _filterpy_six(prob, x):
@@ -127,7 +122,7 @@ def _bank(prob, x):
 def row_bank(B, repeats):
     prob, x, z = _six(B)
     pts = _merwe6()
-    c = np.sqrt(6 + pts.lambda_ if hasattr(pts, "lambda_") else 6.0)
+    c = np.sqrt(6.0)  # sqrt(n + lambda), lambda = alpha^2 (n + kappa) - n = 0 for alpha = 1, kappa = 0
     P0 = np.broadcast_to(prob["P0"], (B, 6, 6)).copy()
 
     bank = _bank(prob, x)

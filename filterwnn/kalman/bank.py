@@ -56,7 +56,7 @@ import numpy as np
 
 from .._linalg import first_not_pd
 from .._validation import NumericalError, cholesky_lower, check_points_protocol, check_positive, check_positive_int
-from .batched import ExtendedStep, KalmanModel, KalmanPrediction, LinearStep, UnscentedStep, check_callable
+from .batched import ExtendedStep, KalmanModel, KalmanPrediction, LinearStep, UnscentedStep, check_callable, repairing
 
 __all__ = ["UnscentedKalmanFilterBank", "ExtendedKalmanFilterBank", "KalmanFilterBank"]
 
@@ -101,6 +101,28 @@ class _Bank:
     """What the banks share: the stacked state, the noise checked when assigned, the step loop."""
 
     _kind = "filter"
+    #: keep copies in ``x_prior``/``P_prior``/``x_post``/``P_post`` (a bank of components does not)
+    _keep_copies = True
+
+    @classmethod
+    def of_components(cls, model, kalman_step, x, P):
+        """A bank around a filter's own ``model`` and batched ``kalman_step`` (the components of a
+        mixture filter): ``x``/``P`` taken as they are, ``Q``/``R`` read from the model (checked
+        by its owner), ``model.recover`` repairing a non-PD covariance with a warning, and no
+        prior/posterior copies kept."""
+        bank = cls.__new__(cls)
+        bank.B, bank.dim_x, bank.dim_z, bank.dt = x.shape[0], model.dim_x, model.dim_z, model.dt
+        bank._model, bank._step = model, kalman_step
+        bank._x, bank._P, bank._Q, bank._R = x, P, None, None
+        bank.step, bank.log_likelihood = 0, np.zeros(bank.B)
+        bank._keep_copies = False
+        bank.x_prior = bank.P_prior = bank.x_post = bank.P_post = None
+        return bank
+
+    def set_state(self, x, P):
+        """Replace every member's ``x (B, n)`` and ``P (B, n, n)`` as they are, unchecked (for an
+        owner that produced them, e.g. a mixture filter resampling its components)."""
+        self._x, self._P = x, P
 
     def _setup(self, B, dim_x, dim_z, dt):
         self.B = check_positive_int(B, "B")
@@ -209,13 +231,15 @@ class _Bank:
         """Advance the step and predict every member; ``fx_args`` go to ``fx`` (and ``FJacobian``)."""
         step = self.step + 1
         try:
-            pred = self._predict(fx_args, step)
+            pred, _ = repairing(self._model, lambda C: self._predict(C, fx_args, step), self._P, step, "posterior",
+                                stacklevel=6)
         except NumericalError as exc:
             raise self._numerical(exc, "predict", self._P, step) from exc
         self._check_finite(pred.x, pred.P, "predict", step, "check fx and Q")
         self._x, self._P = pred
         self.step = step
-        self.x_prior, self.P_prior = self._x.copy(), self._P.copy()
+        if self._keep_copies:
+            self.x_prior, self.P_prior = self._x.copy(), self._P.copy()
 
     def update(self, z, R=None, mask=None, **hx_args):
         """Update every observed member with its measurement.
@@ -234,12 +258,12 @@ class _Bank:
         """
         self.log_likelihood = np.zeros(self.B)
         if z is None:
-            self.x_post, self.P_post = self._x.copy(), self._P.copy()
+            self._posterior()
             return
         z, observed = self._measurements(z, mask)
         R = self._R if R is None else _stack(R, "R", self.B, self.dim_z, kind="pd")
         if observed is not None and not observed.any():
-            self.x_post, self.P_post = self._x.copy(), self._P.copy()
+            self._posterior()
             return
         try:
             upd = self._update(KalmanPrediction(self._x, self._P), z, R, observed, hx_args)
@@ -247,7 +271,11 @@ class _Bank:
             raise self._numerical(exc, "update", self._P, self.step) from exc
         self._check_finite(upd.x, upd.P, "update", self.step, "check hx and R")
         self._x, self._P, self.log_likelihood = upd.x, upd.P, upd.log_likelihood
-        self.x_post, self.P_post = self._x.copy(), self._P.copy()
+        self._posterior()
+
+    def _posterior(self):
+        if self._keep_copies:
+            self.x_post, self.P_post = self._x.copy(), self._P.copy()
 
     def batch_filter(self, zs, fx_args=None, hx_args=None):
         """Run ``predict``/``update`` over a sequence of measurements.
@@ -283,8 +311,8 @@ class _Bank:
 class _NonlinearBank(_Bank):
     """A bank whose step runs the model's callables (unscented or extended)."""
 
-    def _predict(self, fx_args, step):
-        return self._step.predict(self._model, self._x, self._P, fx_args, step, Q=self._Q)
+    def _predict(self, P, fx_args, step):
+        return self._step.predict(self._model, self._x, P, fx_args, step, Q=self._Q)
 
     def _update(self, prediction, z, R, observed, hx_args):
         return self._step.update(self._model, prediction, z, hx_args, self.step, R=R, mask=observed)
@@ -328,6 +356,7 @@ class UnscentedKalmanFilterBank(_NonlinearBank):
     """
 
     _kind = "ukf"
+    x, P, Q, R = _Bank.x, _Bank.P, _Bank.Q, _Bank.R  # (in this class's namespace, so that its page documents them)
 
     def __init__(self, B, dim_x, dim_z, dt, hx, fx, points, *, x_mean_fn=None, z_mean_fn=None,
                  residual_x=None, residual_z=None, vectorized=True):
@@ -366,6 +395,7 @@ class ExtendedKalmanFilterBank(_NonlinearBank):
     """
 
     _kind = "ekf"
+    x, P, Q, R = _Bank.x, _Bank.P, _Bank.Q, _Bank.R  # (in this class's namespace, so that its page documents them)
 
     def __init__(self, B, dim_x, dim_z, dt, hx, fx, FJacobian, HJacobian, *, residual_z=None, vectorized=True):
         self._setup(B, dim_x, dim_z, dt)
@@ -400,6 +430,7 @@ class KalmanFilterBank(_Bank):
     """
 
     _kind = "kf"
+    x, P, Q, R = _Bank.x, _Bank.P, _Bank.Q, _Bank.R  # (in this class's namespace, so that its page documents them)
 
     def __init__(self, B, dim_x, dim_z, dt=1.0):
         self._setup(B, dim_x, dim_z, dt)
@@ -428,10 +459,10 @@ class KalmanFilterBank(_Bank):
                              f"{self.dim_x}), got shape {H.shape}")
         self._H = H
 
-    def _predict(self, fx_args, step):
+    def _predict(self, P, fx_args, step):
         if fx_args:
             raise TypeError(f"KalmanFilterBank.predict takes no keywords (F holds the model), got {sorted(fx_args)}")
-        return self._step.predict(self._model, self._x, self._P, self._F, step, Q=self._Q)
+        return self._step.predict(self._model, self._x, P, self._F, step, Q=self._Q)
 
     def _update(self, prediction, z, R, observed, hx_args):
         if hx_args:

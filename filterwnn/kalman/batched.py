@@ -217,7 +217,7 @@ class KalmanModel:
         As in filterpy's ``UnscentedKalmanFilter`` and ``ExtendedKalmanFilter``.
     recover : bool
         Repair a non-PD covariance (with a warning) instead of raising, where a caller
-        runs the step through :func:`repairing`.
+        runs the step through ``repairing``.
 
     Attributes are plain and may be reassigned.
     """

@@ -82,6 +82,8 @@ class WeightedMixtureFilter:
     def x(self):
         """State estimate, shape ``(dim_x,)``; set it with ``P`` before the first ``predict``
         (a Gaussian start ``N(x, P)``), or use ``initialize``."""
+        if self._x is None:
+            self._settle()
         return self._x
 
     @x.setter
@@ -92,12 +94,17 @@ class WeightedMixtureFilter:
     @property
     def P(self):
         """State covariance, shape ``(dim_x, dim_x)``."""
+        if self._P is None:
+            self._settle()
         return self._P
 
     @P.setter
     def P(self, value):
         self._refuse_mid_run("P")
         self._P = value
+
+    def _settle(self):
+        """Form the moments a subclass left pending (``_x``/``_P`` None until first read)."""
 
     def _refuse_mid_run(self, name):
         if getattr(self, self._members_attr) is not None:

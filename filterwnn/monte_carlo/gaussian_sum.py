@@ -1,9 +1,10 @@
 r"""The Gaussian-sum filter: a weighted bank of Kalman filters (EKF, UKF or SUKF steps).
 
-The posterior is a mixture :math:`\sum_i w_i N(m_i, P_i)`. Each component runs its own
-Kalman step (extended, unscented with Merwe points, or unscented with the reduced
-spherical-simplex points), batched over components, and its weight is multiplied by its
-predictive likelihood, the innovation density (Alspach and Sorenson 1972):
+The posterior is a mixture :math:`\sum_i w_i N(m_i, P_i)`. The components are a filter
+bank (:mod:`filterwnn.kalman.bank`) on this filter's model: each runs its own Kalman step
+(extended, unscented with Merwe points, or unscented with the reduced spherical-simplex
+points) in one batched call, and its weight is multiplied by its predictive likelihood,
+the innovation density (Alspach and Sorenson 1972):
 
 .. math::
     w_i \propto w_i\, N(z_k; \hat z_i, S_i)^{\tau} .
@@ -53,7 +54,8 @@ from .._validation import (NumericalError, as_measurement, as_state, check_choic
                           check_positive, check_positive_int, check_rng)
 from ._weighted import ModelAttribute, WeightedMixtureFilter, logsumexp
 from .resampling import get_scheme
-from ..kalman.batched import ExtendedStep, KalmanModel, KalmanPrediction, UnscentedStep, check_callable, repairing
+from ..kalman.bank import ExtendedKalmanFilterBank, UnscentedKalmanFilterBank
+from ..kalman.batched import ExtendedStep, KalmanModel, UnscentedStep, check_callable
 from ..kalman.presets import make_points
 from ..metrics import kish_ess
 
@@ -154,22 +156,21 @@ class GaussianSumFilter(WeightedMixtureFilter):
                 raise ValueError("component='ekf' needs HJacobian, got None")
             if fx is not None and FJacobian is None:
                 raise ValueError("component='ekf' needs FJacobian when fx is given, got None")
-            self._step = ExtendedStep()
+            self._step, self._bank_cls = ExtendedStep(), ExtendedKalmanFilterBank
         else:
             if points is None:
                 points = make_points("merwe" if component == "ukf" else "supf", self.dim_x)
             if getattr(points, "n", None) != self.dim_x:
                 raise ValueError(f"points.n must equal dim_x={self.dim_x}, got {getattr(points, 'n', None)}")
-            self._step = UnscentedStep(points)
+            self._step, self._bank_cls = UnscentedStep(points), UnscentedKalmanFilterBank
         self.points = points
         self._model = KalmanModel(
             self.dim_x, self.dim_z, self.dt, fx, hx, vectorized=bool(vectorized), FJacobian=FJacobian,
             HJacobian=HJacobian, x_mean_fn=x_mean_fn, z_mean_fn=z_mean_fn, residual_x=residual_x,
             residual_z=residual_z, recover=bool(recover),
         )
-        self.means = None
+        self._bank = None  # the components: a filter bank on this filter's model
         self._filterpy_defaults()
-        self.covariances = None
         self.log_weights = None
         self._predicted = False
         self.step = 0
@@ -183,6 +184,16 @@ class GaussianSumFilter(WeightedMixtureFilter):
     def weights(self):
         """Normalised component weights, shape ``(n_components,)``."""
         return None if self.log_weights is None else np.exp(self.log_weights)
+
+    @property
+    def means(self):
+        """Component means, shape ``(n_components, dim_x)`` (the bank's ``x``)."""
+        return None if self._bank is None else self._bank.x
+
+    @property
+    def covariances(self):
+        """Component covariances, shape ``(n_components, dim_x, dim_x)`` (the bank's ``P``)."""
+        return None if self._bank is None else self._bank.P
 
     @property
     def n_components(self):
@@ -217,7 +228,8 @@ class GaussianSumFilter(WeightedMixtureFilter):
                 raise ValueError(f"weights must be {n} finite non-negative numbers with a positive sum, got {w}")
             with np.errstate(divide="ignore"):
                 lw = np.log(w / w.sum())
-        self.means, self.covariances, self.log_weights = M.copy(), np.array(C), lw
+        self._bank = self._bank_cls.of_components(self._model, self._step, M.copy(), np.array(C))
+        self.log_weights = lw
         self._predicted = False
         self._x, self._P = self._moments(self.means, self.covariances)
         self.x_post, self.P_post = self._x.copy(), self._P.copy()
@@ -240,14 +252,11 @@ class GaussianSumFilter(WeightedMixtureFilter):
 
     def predict(self, **fx_args):
         """Advance the step and every component by its Kalman prediction."""
-        model = self._sync()
+        self._sync()
         step = self.step + 1
-        pred, _ = repairing(model, lambda C: self._step.predict(model, self.means, C, fx_args, step),
-                            self.covariances, step, "posterior", stacklevel=4)
-        if not (np.all(np.isfinite(pred.x)) and np.all(np.isfinite(pred.P))):
-            raise NumericalError(f"non-finite Kalman prediction at step {step} (check fx, FJacobian and Q)",
-                                 matrix="P_prior", step=step)
-        self.means, self.covariances = pred
+        bank = self._bank
+        bank.step = self.step
+        bank.predict(**fx_args)  # every component's step; errors name the component and the step
         self._predicted = True
         self.step = step
         self._x, self._P = self._moments(self.means, self.covariances)
@@ -258,15 +267,19 @@ class GaussianSumFilter(WeightedMixtureFilter):
 
         ``z=None`` skips the measurement (weights unchanged).
         """
-        model = self._sync()
+        self._sync()
         step = self.step
         if z is None:
             self.x_post, self.P_post = self._x.copy(), self._P.copy()
             self._record(self.ess, self.n_components, False)
             return
         z = as_measurement(z, self.dim_z)
-        upd = self._step.update(model, KalmanPrediction(self.means, self.covariances), z, hx_args, step)
-        log_alpha = upd.log_likelihood
+        bank = self._bank
+        prior = bank.x, bank.P
+        bank.step = step
+        bank.update(z, **hx_args)
+        M, C, log_alpha = bank.x, bank.P, bank.log_likelihood
+        bank.set_state(*prior)  # the components change only once their weights are good
         if not np.all(np.isfinite(log_alpha)):
             raise NumericalError(f"non-finite component likelihood at step {step}", matrix="weights", step=step)
         lw_prev = self.log_weights
@@ -278,7 +291,6 @@ class GaussianSumFilter(WeightedMixtureFilter):
         new_lw = new_lw - lse
         w = np.exp(new_lw)
         ess = kish_ess(w)
-        M, C = upd.x, upd.P
         self.log_weights = new_lw
         x, P = self._moments(M, C)
         n = M.shape[0]
@@ -289,7 +301,8 @@ class GaussianSumFilter(WeightedMixtureFilter):
             M, C = M[idx], C[idx]
             new_lw = np.full(n, -np.log(n))
             n_distinct = int(np.count_nonzero(np.bincount(idx, minlength=n)))
-        self.means, self.covariances, self.log_weights = np.ascontiguousarray(M), C, new_lw
+        bank.set_state(np.ascontiguousarray(M), C)
+        self.log_weights = new_lw
         self._predicted = False
         self.log_likelihood = log_lik
         self.log_marginal_likelihood += log_lik

@@ -119,6 +119,15 @@ _MODEL_CALLABLES = ("FJacobian", "HJacobian", "x_mean_fn", "z_mean_fn", "residua
 class ParticleFilter(WeightedMixtureFilter):
     """A particle filter with a pluggable proposal and resampling, filterpy-style.
 
+    The parameters fall in groups that live where they belong: the **model** (``dt``,
+    ``hx``, ``fx``, the Jacobians, mean and residual functions, the densities,
+    ``vectorized``, ``recover``) is one :class:`~filterwnn.monte_carlo.proposals.ProposalModel`
+    that the attributes of the same names read and write (``pf.Q = ...``, ``pf.hx = ...``);
+    the **proposal** carries its own settings (``proposal="unscented", points=pts,
+    carry_covariance=False`` is a shorthand for
+    ``proposal=UnscentedKalmanProposal(pts, carry_covariance=False)``); the **resampling**
+    is ``resampling``, ``ess_threshold`` and ``move``; ``tempering`` weights; ``rng`` draws.
+
     Parameters
     ----------
     dim_x, dim_z : int
@@ -262,6 +271,7 @@ class ParticleFilter(WeightedMixtureFilter):
         self.dim_x = check_positive_int(dim_x, "dim_x")
         self.dim_z = check_positive_int(dim_z, "dim_z")
         self._model = ProposalModel(self.dim_x, self.dim_z)
+        self._pending_prior = None
         self.dt = check_positive(dt, "dt")
         self.hx, self.fx = hx, fx
         self.n_particles = check_positive_int(n_particles, "n_particles")
@@ -341,6 +351,40 @@ class ParticleFilter(WeightedMixtureFilter):
     def weights(self):
         """Normalised weights, ``exp(log_weights)``, shape ``(n_particles,)``."""
         return np.exp(self.log_weights)
+
+    @property
+    def x_prior(self):
+        """Predicted weighted mean after the last ``predict``, shape ``(dim_x,)`` (formed when read)."""
+        self._settle()
+        return self._x_prior
+
+    @x_prior.setter
+    def x_prior(self, value):
+        self._x_prior = value
+
+    @property
+    def P_prior(self):
+        """Predicted covariance after the last ``predict`` (plus ``Q`` for the Kalman proposals)."""
+        self._settle()
+        return self._P_prior
+
+    @P_prior.setter
+    def P_prior(self, value):
+        self._P_prior = value
+
+    def _settle(self):
+        """Form the predicted moments left pending by ``predict`` (the same arithmetic, later)."""
+        pending = self._pending_prior
+        if pending is None:
+            return
+        self._pending_prior = None
+        X, log_w, spread = pending
+        x, P = self._moments(self._model, X, np.exp(log_w))
+        if spread is not None:
+            P = P + spread
+        self._x_prior, self._P_prior = x.copy(), P.copy()
+        if self._x is None:  # between predict and update: the estimate is the prediction
+            self._x, self._P = x, P
 
     @property
     def n_ancestors(self):
@@ -428,6 +472,7 @@ class ParticleFilter(WeightedMixtureFilter):
 
     def _no_measurement(self, model, step):
         """End a step without a measurement: move, keep the weights, the prior is the posterior."""
+        self._settle()
         if self._prediction is not None:
             out = self.proposal.propose(model, self._prediction, None, {}, self.rng, step)
             self.particles, self.covariances = out.particles, out.covariances
@@ -472,13 +517,12 @@ class ParticleFilter(WeightedMixtureFilter):
                 matrix="particles",
                 step=step,
             )
-        x, P = self._moments(model, pred.particles, self.weights)
-        if pred.spread is not None:
-            P = P + pred.spread
         self._prediction = pred
         self.step = step
-        self._x, self._P = x, P
-        self.x_prior, self.P_prior = x.copy(), P.copy()
+        # the predicted moments are formed when first read (x, P, x_prior, P_prior): a filter
+        # that only updates next never pays for them
+        self._pending_prior = (pred.particles, self.log_weights, pred.spread)
+        self._x = self._P = None
 
     def update(self, z, **hx_args):
         """Weight (and resample) the particles with measurement ``z`` at the current step.

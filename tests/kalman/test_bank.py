@@ -243,3 +243,31 @@ def test_constructor_checks():
         ExtendedKalmanFilterBank(2, 3, 2, 1.0, hx, fx, None, HJ)
     with pytest.raises(ValueError, match="B must be"):
         KalmanFilterBank(0, 3, 2)
+
+
+def test_random_walk_bank_and_a_per_update_R_equal_single_filters(problem):
+    x0, P0, Q, R, zs = problem
+    bank = UnscentedKalmanFilterBank(B, 3, 2, DT, hx, None, POINTS[1])
+    bank.x, bank.P, bank.Q = x0, P0, Q
+    bank.predict()
+    bank.update(zs[0], R=R)
+    for i in range(B):
+        f = UnscentedKalmanFilter(3, 2, DT, hx, None, POINTS[1], vectorized=True)
+        f.x, f.P, f.Q, f.R = x0[i].copy(), P0[i].copy(), Q[i], R[i]
+        f.predict()
+        f.update(zs[0, i])
+        np.testing.assert_allclose(bank.x[i], f.x, rtol=0, atol=TOL)
+        np.testing.assert_allclose(bank.P[i], f.P, rtol=0, atol=TOL)
+
+
+def test_a_pickled_bank_continues_identically(problem):
+    import pickle
+
+    x0, P0, Q, R, zs = problem
+    bank = UnscentedKalmanFilterBank(B, 3, 2, DT, hx, fx, POINTS[0])
+    bank.x, bank.P, bank.Q, bank.R = x0, P0, Q, R
+    bank.batch_filter(zs[:3])
+    clone = pickle.loads(pickle.dumps(bank))
+    a, _ = bank.batch_filter(zs[3:])
+    b, _ = clone.batch_filter(zs[3:])
+    assert np.array_equal(a, b) and clone.step == bank.step == N_STEPS

@@ -664,3 +664,29 @@ def test_the_filter_reads_and_writes_its_model_through_its_attributes(lin_data):
     pf.predict()
     pf.update(lin_data[0][1])
     assert pf._model is model
+
+
+def test_the_proposal_settings_by_name_equal_the_proposal_object(lin_data):
+    """``proposal="unscented", points=..., carry_covariance=False`` is the object's shorthand."""
+    from filterpy.kalman import MerweScaledSigmaPoints
+
+    pts = MerweScaledSigmaPoints(3, 1.0, 2.0, 0.0)
+    by_name = make(ParticleFilter, 50, proposal="unscented", points=pts, carry_covariance=False)
+    by_object = make(ParticleFilter, 50, proposal=UnscentedKalmanProposal(pts, carry_covariance=False))
+    a, _ = by_name.batch_filter(lin_data[0][:5])
+    b, _ = by_object.batch_filter(lin_data[0][:5])
+    assert np.array_equal(a, b) and by_name.proposal.points is pts
+
+
+@pytest.mark.parametrize("cls", [BootstrapParticleFilter, UnscentedParticleFilter], ids=lambda c: c.__name__)
+def test_predicted_moments_formed_when_read_are_the_same_numbers(cls, lin_data):
+    """``x``/``P`` right after ``predict`` equal ``x_prior``/``P_prior`` read after ``update``."""
+    a, b = make(cls, 50), make(cls, 50)
+    for z in lin_data[0][:4]:
+        a.predict()
+        x_now, P_now = a.x.copy(), a.P.copy()
+        a.update(z)
+        b.predict()
+        b.update(z)
+        assert np.array_equal(b.x_prior, x_now) and np.array_equal(b.P_prior, P_now)
+        assert np.array_equal(a.x_prior, x_now) and np.array_equal(a.x, b.x)
