@@ -52,6 +52,7 @@ from filterpy.kalman import MerweScaledSigmaPoints
 
 from .._validation import (NumericalError, as_measurement, as_state, check_choice, check_covariance,
                           check_positive, check_positive_int, check_rng)
+from .._state import rolls_back_on_error
 from ._weighted import WeightedMixtureFilter, logsumexp
 from .proposals import ExtendedKalmanProposal, KalmanPrediction, ProposalModel, UnscentedKalmanProposal
 from .resampling import get_scheme
@@ -236,6 +237,7 @@ class GaussianSumFilter(WeightedMixtureFilter):
         P = (d.T * w) @ d + np.tensordot(w, C, axes=1)
         return x, 0.5 * (P + P.T)
 
+    @rolls_back_on_error
     def predict(self, **fx_args):
         """Advance the step and every component by its Kalman prediction."""
         model = self._sync()
@@ -250,6 +252,7 @@ class GaussianSumFilter(WeightedMixtureFilter):
         self._x, self._P = self._moments(self.means, self.covariances)
         self.x_prior, self.P_prior = self._x.copy(), self._P.copy()
 
+    @rolls_back_on_error
     def update(self, z, **hx_args):
         """Kalman-update every component with ``z`` and reweight by its innovation likelihood.
 

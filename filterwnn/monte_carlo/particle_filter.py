@@ -65,13 +65,16 @@ from filterpy.kalman import MerweScaledSigmaPoints
 from .._validation import (
     NumericalError,
     as_measurement,
+    as_real,
     as_state,
     check_choice,
     check_covariance,
     check_positive,
     check_positive_int,
     check_rng,
+    check_scale,
 )
+from .._state import rolls_back_on_error
 from ._weighted import WeightedMixtureFilter, logsumexp
 from .proposals import ExtendedKalmanProposal, PriorProposal, ProposalModel, UnscentedKalmanProposal
 from .resampling import get_scheme
@@ -347,13 +350,14 @@ class ParticleFilter(WeightedMixtureFilter):
             Per-particle covariances for proposals that carry them (default ``P`` for
             every particle); ignored by the others.
         """
-        X = np.asarray(particles, dtype=float)
+        X = as_real(particles, "particles")
         if X.shape != (self.n_particles, self.dim_x):
             raise ValueError(
                 f"particles must have shape ({self.n_particles}, {self.dim_x}), got shape {X.shape}"
             )
         if not np.all(np.isfinite(X)):
             raise ValueError("particles must be finite, got non-finite entries")
+        check_scale(X, "particles")
         C = None
         if self.proposal.carries_covariance:
             C = _stack_covariances(self._P if covariances is None else covariances,
@@ -410,7 +414,7 @@ class ParticleFilter(WeightedMixtureFilter):
                 f"{self.step}: ESS {ess:.3g} of {self.n_particles} particles). Try "
                 f"{self._degeneracy_remedy()}",
                 DegeneracyWarning,
-                stacklevel=3,
+                stacklevel=4,  # the caller of predict/update, past rolls_back_on_error
             )
 
     def _no_measurement(self, model, step):
@@ -427,11 +431,12 @@ class ParticleFilter(WeightedMixtureFilter):
         warnings.warn(
             f"step {step}: the measurement gives {why}; skipped as an outlier (recover=True)",
             RuntimeWarning,
-            stacklevel=3,
+            stacklevel=4,  # the caller of predict/update, past rolls_back_on_error
         )
         self._no_measurement(model, step)
 
     # ------------------------------------------------------------------ filterpy API
+    @rolls_back_on_error
     def predict(self, **fx_args):
         """Advance the time step by one and propagate the particles (the proposal's time
         update); ``fx_args`` go to ``fx`` and ``FJacobian``.
@@ -467,6 +472,7 @@ class ParticleFilter(WeightedMixtureFilter):
         self._x, self._P = x, P
         self.x_prior, self.P_prior = x.copy(), P.copy()
 
+    @rolls_back_on_error
     def update(self, z, **hx_args):
         """Weight (and resample) the particles with measurement ``z`` at the current step.
 

@@ -604,7 +604,7 @@ class _KalmanProposal:
                 f"step {step}: {n_bad} particle proposal covariance(s) not positive definite "
                 f"({exc}); eigenvalues clipped (recover=True)",
                 RuntimeWarning,
-                stacklevel=4,
+                stacklevel=5,  # past rolls_back_on_error
             )
             upd = upd._replace(P=repaired, L_prior=None, LinvPxy=None)
             X, log_q = self.sample(upd, rng, step=step)
@@ -752,7 +752,7 @@ def _repairing(model, fn, C, step, what):
             f"step {step}: {n_bad} particle {what} covariance(s) not positive definite ({exc}); "
             "eigenvalues clipped (recover=True)",
             RuntimeWarning,
-            stacklevel=5,
+            stacklevel=6,  # past rolls_back_on_error
         )
         return fn(C2), C2
 
