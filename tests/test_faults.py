@@ -171,6 +171,24 @@ def test_nothing_in_a_cache_folder_is_executed(tmp_path, kind):
         assert not marker.exists()
 
 
+def test_a_damaged_entry_is_reported_once_and_old_temporaries_are_removed(tmp_path):
+    tasks = [{"x": 2}]
+    runner.run_tasks(tasks, _plain, cache_dir=str(tmp_path))
+    path = _entry(tmp_path, tasks[0], runner.JSON)
+    path.write_text("{")
+    with pytest.warns(runner.CacheEntryWarning):
+        assert runner.load_cached(tasks, str(tmp_path)) == [None]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", runner.CacheEntryWarning)
+        assert runner.load_cached(tasks, str(tmp_path)) == [None]  # the same file, unchanged: said already
+    old, new = tmp_path / ".abc.1.tmp", tmp_path / ".abc.2.tmp"
+    old.write_text("half")
+    new.write_text("half")
+    os.utime(old, (time.time() - 2 * runner.STALE_TEMPORARY_AGE,) * 2)
+    runner.run_tasks(tasks, _plain, cache_dir=str(tmp_path))
+    assert not old.exists() and new.exists()  # a live writer's file is left alone
+
+
 def test_no_pickle_serializer_is_left():
     with pytest.warns(DeprecationWarning, match="never pickled"):
         assert runner.PICKLE is runner.NPZ
@@ -258,7 +276,9 @@ def fresh_table(tmp_path_factory):
 
 
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
-@pytest.mark.parametrize("sig", [signal.SIGKILL, signal.SIGINT], ids=["SIGKILL", "SIGINT"])
+@pytest.mark.parametrize("sig", [signal.SIGKILL, signal.SIGINT,
+                                 pytest.param(signal.SIGTERM, marks=pytest.mark.slow)],  # as SIGINT, exit 143
+                         ids=["SIGKILL", "SIGINT", "SIGTERM"])
 def test_a_study_killed_part_way_resumes_with_the_same_numbers(tmp_path, sig, fresh_table):
     cache = tmp_path / "cache"
     proc = subprocess.Popen(_study(tmp_path, "killed", 2), env=_env(), stdout=subprocess.PIPE,
@@ -269,9 +289,10 @@ def test_a_study_killed_part_way_resumes_with_the_same_numbers(tmp_path, sig, fr
     workers = _descendants(proc.pid)
     proc.send_signal(sig)
     _, err = proc.communicate(timeout=120)
-    if sig == signal.SIGINT:
-        assert proc.returncode == 130 and "Traceback" not in err, err
-        assert err.strip().splitlines()[-1].startswith("filterwnn: interrupted")
+    if sig != signal.SIGKILL:
+        code, line = (130, "filterwnn: interrupted") if sig == signal.SIGINT else (143, "filterwnn: terminated")
+        assert proc.returncode == code and "Traceback" not in err, err
+        assert err.strip().splitlines()[-1].startswith(line)
     else:
         assert proc.returncode == -signal.SIGKILL
     deadline = time.monotonic() + 20
@@ -460,3 +481,17 @@ def test_fuzzed_bad_starting_states_are_refused_before_any_draw(x):
     with pytest.raises((ValueError, TypeError)):
         f.predict()
     assert f.rng.bit_generator.state == state and f.particles is None and f.step == 0
+
+
+_BAD_NUMBER = st.sampled_from([0, -1, 2.5, np.nan, np.inf, 1e300, "3", None, True, 1 + 1j, [3]])
+
+
+@settings(max_examples=80, deadline=None)
+@given(field=st.sampled_from(["dim_x", "dim_z", "dt", "n_particles"]), value=_BAD_NUMBER)
+def test_fuzzed_constructor_arguments_are_refused_with_their_name(field, value):
+    args = dict(dim_x=3, dim_z=2, dt=1.0, n_particles=40)
+    if field == "dt" and value in (2.5, 1e300):  # a valid dt
+        return
+    args[field] = value
+    with pytest.raises((ValueError, TypeError), match=field):
+        BootstrapParticleFilter(args["dim_x"], args["dim_z"], args["dt"], lin_hx, lin_fx, args["n_particles"])
