@@ -33,6 +33,9 @@ __all__ = [
     "check_choice",
     "cholesky_lower",
     "check_points_protocol",
+    "MAX_ABS",
+    "as_real",
+    "check_scale",
 ]
 
 
@@ -59,15 +62,40 @@ class NumericalError(np.linalg.LinAlgError):
         self.step = step
 
 
+#: The largest magnitude a state, particle or measurement entry may have: beyond it the
+#: squares in a covariance overflow to inf (``1e155 ** 2 > 1.8e308``).
+MAX_ABS = 1e150
+
+
+def as_real(value, name, what="array-like of numbers"):
+    """``value`` as a float array; ``TypeError`` naming ``name`` for complex values (a cast
+    would drop the imaginary part silently) or for anything that is not ``what``."""
+    try:
+        is_complex = bool(np.iscomplexobj(value))
+        arr = None if is_complex else np.asarray(value, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise TypeError(f"{name} must be {what}, got {type(value).__name__}") from exc
+    if is_complex:
+        raise TypeError(f"{name} must be real, got complex values (the imaginary part would be dropped)")
+    return arr
+
+
+def check_scale(arr, name, limit=MAX_ABS):
+    """Require ``max|arr| <= limit`` (default :data:`MAX_ABS`); return ``arr``."""
+    big = float(np.max(np.abs(arr))) if np.size(arr) else 0.0
+    if big > limit:
+        raise ValueError(f"{name} must have entries of magnitude <= {limit:.0e} (their squares, in a covariance, "
+                         f"overflow), got max |{name}| = {big:.3g}: rescale the units")
+    return arr
+
+
 def as_state(x, name="x", dim=None):
     """Return ``x`` as a finite 1-D float array, optionally of length ``dim``.
 
-    Scalars become arrays of length 1; column vectors ``(n, 1)`` are flattened.
+    Scalars become arrays of length 1; column vectors ``(n, 1)`` are flattened. Complex
+    values and entries beyond :data:`MAX_ABS` are refused.
     """
-    try:
-        arr = np.asarray(x, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise TypeError(f"{name} must be array-like of numbers, got {type(x).__name__}") from exc
+    arr = as_real(x, name)
     if arr.ndim == 2 and 1 in arr.shape:
         arr = arr.reshape(-1)
     arr = np.atleast_1d(arr)
@@ -77,7 +105,7 @@ def as_state(x, name="x", dim=None):
         raise ValueError(f"{name} must have length {dim}, got shape {arr.shape}")
     if not np.all(np.isfinite(arr)):
         raise ValueError(f"{name} must be finite, got {arr}")
-    return arr
+    return check_scale(arr, name)
 
 
 def as_measurement(z, dim_z, name="z"):
@@ -86,10 +114,7 @@ def as_measurement(z, dim_z, name="z"):
     NaN or infinite entries raise ``ValueError``: a missing measurement is said with
     ``z=None``, never with NaN.
     """
-    try:
-        arr = np.asarray(z, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise TypeError(f"{name} must be array-like of numbers or None, got {type(z).__name__}") from exc
+    arr = as_real(z, name, "array-like of numbers or None")
     arr = np.atleast_1d(arr).reshape(-1) if arr.size == dim_z else arr
     if arr.ndim != 1 or arr.shape[0] != dim_z:
         raise ValueError(f"{name} must have {dim_z} entries, got shape {np.shape(z)}")
@@ -139,10 +164,7 @@ def check_covariance(P, name="P", dim=None, *, allow_scalar=True, require_pd=Tru
     sym_tol : float
         Relative tolerance for symmetry, ``|P - P.T| <= sym_tol * max|P|``.
     """
-    try:
-        arr = np.asarray(P, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise TypeError(f"{name} must be a matrix of numbers, got {type(P).__name__}") from exc
+    arr = as_real(P, name, "a matrix of numbers")
     if arr.ndim == 0:
         if not allow_scalar or dim is None:
             raise ValueError(f"{name} must be a square matrix, got scalar {arr}")
@@ -242,10 +264,7 @@ def check_seed(seed, name="seed"):
 
 def check_weights(weights, name="weights"):
     """Finite, non-negative, positive-sum 1-D weights, returned normalised."""
-    try:
-        w = np.asarray(weights, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise TypeError(f"{name} must be array-like of numbers, got {type(weights).__name__}") from exc
+    w = as_real(weights, name)
     if w.ndim != 1 or w.size == 0:
         raise ValueError(f"{name} must be a non-empty 1-D array, got shape {w.shape}")
     if not np.all(np.isfinite(w)):

@@ -171,6 +171,24 @@ def test_nothing_in_a_cache_folder_is_executed(tmp_path, kind):
         assert not marker.exists()
 
 
+def test_a_damaged_entry_is_reported_once_and_old_temporaries_are_removed(tmp_path):
+    tasks = [{"x": 2}]
+    runner.run_tasks(tasks, _plain, cache_dir=str(tmp_path))
+    path = _entry(tmp_path, tasks[0], runner.JSON)
+    path.write_text("{")
+    with pytest.warns(runner.CacheEntryWarning):
+        assert runner.load_cached(tasks, str(tmp_path)) == [None]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", runner.CacheEntryWarning)
+        assert runner.load_cached(tasks, str(tmp_path)) == [None]  # the same file, unchanged: said already
+    old, new = tmp_path / ".abc.1.tmp", tmp_path / ".abc.2.tmp"
+    old.write_text("half")
+    new.write_text("half")
+    os.utime(old, (time.time() - 2 * runner.STALE_TEMPORARY_AGE,) * 2)
+    runner.run_tasks(tasks, _plain, cache_dir=str(tmp_path))
+    assert not old.exists() and new.exists()  # a live writer's file is left alone
+
+
 def test_no_pickle_serializer_is_left():
     with pytest.warns(DeprecationWarning, match="never pickled"):
         assert runner.PICKLE is runner.NPZ
@@ -258,7 +276,9 @@ def fresh_table(tmp_path_factory):
 
 
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
-@pytest.mark.parametrize("sig", [signal.SIGKILL, signal.SIGINT], ids=["SIGKILL", "SIGINT"])
+@pytest.mark.parametrize("sig", [signal.SIGKILL, signal.SIGINT,
+                                 pytest.param(signal.SIGTERM, marks=pytest.mark.slow)],  # as SIGINT, exit 143
+                         ids=["SIGKILL", "SIGINT", "SIGTERM"])
 def test_a_study_killed_part_way_resumes_with_the_same_numbers(tmp_path, sig, fresh_table):
     cache = tmp_path / "cache"
     proc = subprocess.Popen(_study(tmp_path, "killed", 2), env=_env(), stdout=subprocess.PIPE,
@@ -269,9 +289,10 @@ def test_a_study_killed_part_way_resumes_with_the_same_numbers(tmp_path, sig, fr
     workers = _descendants(proc.pid)
     proc.send_signal(sig)
     _, err = proc.communicate(timeout=120)
-    if sig == signal.SIGINT:
-        assert proc.returncode == 130 and "Traceback" not in err, err
-        assert err.strip().splitlines()[-1].startswith("filterwnn: interrupted")
+    if sig != signal.SIGKILL:
+        code, line = (130, "filterwnn: interrupted") if sig == signal.SIGINT else (143, "filterwnn: terminated")
+        assert proc.returncode == code and "Traceback" not in err, err
+        assert err.strip().splitlines()[-1].startswith(line)
     else:
         assert proc.returncode == -signal.SIGKILL
     deadline = time.monotonic() + 20
@@ -286,3 +307,194 @@ def test_a_study_killed_part_way_resumes_with_the_same_numbers(tmp_path, sig, fr
     assert {p.name: p.stat().st_mtime_ns for p in cache.glob("*.npz") if p.name in done} == done  # not rerun
     assert len(list(cache.glob("*.npz"))) == N_RUNS
     assert _numbers(tmp_path / "resumed" / "dr_table.csv") == fresh_table
+
+
+# --- a rejected call leaves the filter as it was, its RNG included ------------------------
+
+from hypothesis import HealthCheck, given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+from _linear_model import LIN, lin_F, lin_fx, lin_H, lin_hx  # noqa: E402
+from filterwnn import BootstrapParticleFilter, GaussianSumFilter, NumericalError, UnscentedParticleFilter  # noqa: E402
+
+
+def impossible_logpdf(z, x):
+    return np.full(x.shape[0], -np.inf)
+
+
+def nan_fx(x, dt):
+    return np.full_like(x, np.nan)
+
+
+def _pf(cls=BootstrapParticleFilter, **kw):
+    pf = cls(3, 2, 1.0, lin_hx, kw.pop("fx", lin_fx), 40, FJacobian=lin_F, HJacobian=lin_H, vectorized=True,
+             rng=7, **kw)
+    pf.x, pf.P, pf.Q, pf.R = LIN.x0.copy(), LIN.P0.copy(), LIN.Q.copy(), LIN.R.copy()
+    return pf
+
+
+def _gsf(**kw):
+    f = GaussianSumFilter(3, 2, 1.0, lin_hx, kw.pop("fx", lin_fx), component="ekf", FJacobian=lin_F,
+                          HJacobian=lin_H, vectorized=True, ess_threshold=1.0, rng=7, **kw)  # resamples: draws
+    f.Q, f.R = LIN.Q.copy(), LIN.R.copy()
+    means = LIN.x0 + np.random.default_rng(3).standard_normal((8, 3))
+    f.initialize(means, LIN.P0.copy())
+    return f
+
+
+_, ZS = LIN.simulate(12, rng=5)
+
+
+def _run(f, zs):
+    out = []
+    for z in zs:
+        f.predict()
+        f.update(z)
+        out.append(np.array(f.x))
+    return np.array(out)
+
+
+def _upf():
+    return _pf(UnscentedParticleFilter)  # its proposal draws in update, before the weights can fail
+
+
+@pytest.mark.parametrize("make", [_upf, _pf, _gsf], ids=["unscented particle filter", "bootstrap", "Gaussian sum"])
+def test_a_rejected_update_changes_nothing_and_the_run_goes_on_bit_for_bit(make):
+    ref = make()
+    want = _run(ref, ZS)
+    f = make()
+    _run(f, ZS[:4])
+    f.predict()
+    before = (pickle.dumps(f), f.rng.bit_generator.state)
+    with pytest.raises(NumericalError), np.errstate(over="ignore"):  # every weight underflows: it draws, then fails
+        f.update(np.array([1e200, -1e200]))
+    assert (pickle.dumps(f), f.rng.bit_generator.state) == before
+    f.update(ZS[4])
+    np.testing.assert_array_equal(f.x, want[4])
+    np.testing.assert_array_equal(_run(f, ZS[5:]), want[5:])
+
+
+def test_a_rejected_pf_update_from_its_logpdf_keeps_the_rng():
+    f = _pf(measurement_logpdf=impossible_logpdf)
+    f.predict()
+    before = (pickle.dumps(f), f.rng.bit_generator.state)
+    with pytest.raises(NumericalError, match="underflowed"):
+        f.update(ZS[0])
+    assert (pickle.dumps(f), f.rng.bit_generator.state) == before
+
+
+@pytest.mark.parametrize("make", [_pf, _gsf], ids=["particle filter", "Gaussian sum"])
+def test_a_rejected_predict_changes_nothing(make):
+    f = make(fx=nan_fx)  # the particle filter's first predict also draws its cloud from N(x, P)
+
+    def state():  # _model: the proposals' (and the bank's) view of Q and R, factored once and synced at every call
+        d = {k: v for k, v in f.__getstate__().items() if k != "_model"}
+        bank = d.pop("_bank", None)
+        parts = None if bank is None else {k: v for k, v in bank.__dict__.items() if k != "_model"}
+        return pickle.dumps(d), pickle.dumps(parts), f.rng.bit_generator.state
+
+    before = state()
+    with pytest.raises(NumericalError, match="non-finite (Kalman )?(prediction|result)"):
+        f.predict()
+    assert state() == before
+
+
+@pytest.mark.parametrize("make", [_pf, _gsf], ids=["particle filter", "Gaussian sum"])
+def test_histories_are_optional_or_bounded(make):
+    full = make()
+    _run(full, ZS)
+    assert len(full.ess_history) == len(ZS)
+    none, last3 = make(), make()
+    none.keep_history, last3.keep_history = False, 3
+    np.testing.assert_array_equal(_run(none, ZS), _run(last3, ZS))  # the estimates do not depend on it
+    assert none.ess_history == [] and none.ess == full.ess
+    assert last3.ess_history == full.ess_history[-3:] and last3.resampled_history == full.resampled_history[-3:]
+    with pytest.raises(ValueError, match="keep_history must be True, False or an int >= 0"):
+        none.keep_history = -1
+
+
+def test_complex_and_overflowing_inputs_are_refused():
+    from filterwnn._validation import as_measurement, as_state, check_covariance, check_weights
+
+    for call in (lambda: as_state([1 + 2j, 0]), lambda: as_measurement(np.array([1j, 0]), 2),
+                 lambda: check_covariance(np.eye(2) * (1 + 1j)), lambda: check_weights([0.5 + 0j, 0.5])):
+        with pytest.raises(TypeError, match="must be real, got complex"):
+            call()
+    pf = _pf()
+    pf.predict()
+    before = pickle.dumps(pf)
+    with pytest.raises(TypeError, match="z must be real"):
+        pf.update(np.array([1.0 + 1e-3j, 0.0]))
+    assert pickle.dumps(pf) == before
+    with pytest.raises(TypeError, match="particles must be real"):
+        pf.initialize(np.zeros((40, 3), dtype=complex))
+    with pytest.raises(ValueError, match=r"particles must have entries of magnitude <= 1e\+150"):
+        pf.initialize(np.full((40, 3), 1e300))
+    fresh = _pf()
+    fresh.x = np.full(3, 1e300)
+    with pytest.raises(ValueError, match=r"x must have entries of magnitude"):
+        fresh.predict()
+
+
+# hypothesis: bad measurements of every kind; the state before and after must be the same bytes
+_BAD_FLOATS = st.sampled_from([np.nan, np.inf, -np.inf])
+_BAD_Z = st.one_of(
+    st.builds(lambda b, k: np.where(np.arange(2) == k, b, 0.0), _BAD_FLOATS, st.integers(0, 1)),  # non-finite
+    st.integers(0, 5).filter(lambda n: n != 2).map(lambda n: np.zeros(n)),  # wrong length
+    st.integers(1, 3).map(lambda n: np.zeros((2, n)) if n > 1 else np.zeros((2, 2))),  # wrong shape
+    st.sampled_from([np.array([1j, 0]), np.array(["a", "b"]), "zz", object(), [[1.0], [2.0, 3.0]]]),  # dtype
+    st.floats(1e200, 1e300).map(lambda v: np.array([v, -v])),  # huge: every weight underflows
+)
+
+
+@pytest.mark.parametrize("make", [_pf, _upf, _gsf], ids=["bootstrap", "unscented", "Gaussian sum"])
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(z=_BAD_Z)
+def test_fuzzed_bad_measurements_leave_the_state_unchanged(make, z):
+    f = make()
+    f.predict()
+    f.update(ZS[0])
+    f.predict()
+    before = (pickle.dumps(f), f.rng.bit_generator.state)
+    try:
+        with np.errstate(over="ignore"):
+            f.update(z)
+    except (ValueError, TypeError):  # NumericalError is a ValueError
+        pass
+    else:  # a huge but finite z may be accepted by a filter whose weights survive it
+        return
+    assert (pickle.dumps(f), f.rng.bit_generator.state) == before
+    f.update(ZS[1])  # and the filter still works
+
+
+_BAD_ARRAY = st.one_of(
+    st.builds(lambda b: np.full(3, b), _BAD_FLOATS),
+    st.floats(1e151, 1e308).map(lambda v: np.array([v, 0.0, 0.0])),
+    st.integers(0, 5).filter(lambda n: n != 3).map(np.zeros),
+    st.sampled_from([np.zeros(3, dtype=complex) + 1j, "abc", None, [1.0, [2.0]]]),
+)
+
+
+@settings(max_examples=60, deadline=None)
+@given(x=_BAD_ARRAY)
+def test_fuzzed_bad_starting_states_are_refused_before_any_draw(x):
+    f = _pf()
+    f.x = x
+    state = f.rng.bit_generator.state
+    with pytest.raises((ValueError, TypeError)):
+        f.predict()
+    assert f.rng.bit_generator.state == state and f.particles is None and f.step == 0
+
+
+_BAD_NUMBER = st.sampled_from([0, -1, 2.5, np.nan, np.inf, 1e300, "3", None, True, 1 + 1j, [3]])
+
+
+@settings(max_examples=80, deadline=None)
+@given(field=st.sampled_from(["dim_x", "dim_z", "dt", "n_particles"]), value=_BAD_NUMBER)
+def test_fuzzed_constructor_arguments_are_refused_with_their_name(field, value):
+    args = dict(dim_x=3, dim_z=2, dt=1.0, n_particles=40)
+    if field == "dt" and value in (2.5, 1e300):  # a valid dt
+        return
+    args[field] = value
+    with pytest.raises((ValueError, TypeError), match=field):
+        BootstrapParticleFilter(args["dim_x"], args["dim_z"], args["dt"], lin_hx, lin_fx, args["n_particles"])

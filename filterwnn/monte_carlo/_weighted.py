@@ -113,11 +113,31 @@ class WeightedMixtureFilter:
                 f"ignored; {self._restart_hint}"
             )
 
+    _keep_history = True
+
+    @property
+    def keep_history(self):
+        """What ``ess_history``, ``n_distinct_history`` and ``resampled_history`` keep:
+        ``True`` (default) every update's entry, ``False`` none (flat memory on long runs),
+        an int ``n >= 0`` the last ``n``."""
+        return self._keep_history
+
+    @keep_history.setter
+    def keep_history(self, value):
+        if not isinstance(value, (bool, np.bool_)) and (not isinstance(value, (int, np.integer)) or value < 0):
+            raise ValueError(f"keep_history must be True, False or an int >= 0 (the last n entries), got {value!r}")
+        self._keep_history = bool(value) if isinstance(value, (bool, np.bool_)) else int(value)
+
     def _record(self, ess, n_distinct, resampled):
         self.ess, self.n_distinct = float(ess), int(n_distinct)
-        self.ess_history.append(self.ess)
-        self.n_distinct_history.append(self.n_distinct)
-        self.resampled_history.append(bool(resampled))
+        keep = self._keep_history
+        if keep is False:
+            return
+        for hist, v in ((self.ess_history, self.ess), (self.n_distinct_history, self.n_distinct),
+                        (self.resampled_history, bool(resampled))):
+            hist.append(v)
+            if keep is not True and len(hist) > keep:
+                del hist[: len(hist) - keep]
 
     def __getstate__(self):
         state = self.__dict__.copy()

@@ -52,6 +52,7 @@ import numpy as np
 
 from .._validation import (NumericalError, as_measurement, as_state, check_choice, check_covariance,
                           check_positive, check_positive_int, check_rng)
+from .._state import rolls_back_on_error
 from ._weighted import ModelAttribute, WeightedMixtureFilter, logsumexp
 from .resampling import get_scheme
 from ..kalman.bank import ExtendedKalmanFilterBank, UnscentedKalmanFilterBank
@@ -119,6 +120,9 @@ class GaussianSumFilter(WeightedMixtureFilter):
     step : int
         The time step: ``predict`` advances it by one.
     """
+
+    #: stepped in place by predict/update: restored with the filter when a step fails
+    _rollback_parts = ("_bank",)
 
     _members_attr = "means"
     _members_word = "components"
@@ -250,6 +254,7 @@ class GaussianSumFilter(WeightedMixtureFilter):
         P = (d.T * w) @ d + np.tensordot(w, C, axes=1)
         return x, 0.5 * (P + P.T)
 
+    @rolls_back_on_error
     def predict(self, **fx_args):
         """Advance the step and every component by its Kalman prediction."""
         self._sync()
@@ -262,6 +267,7 @@ class GaussianSumFilter(WeightedMixtureFilter):
         self._x, self._P = self._moments(self.means, self.covariances)
         self.x_prior, self.P_prior = self._x.copy(), self._P.copy()
 
+    @rolls_back_on_error
     def update(self, z, **hx_args):
         """Kalman-update every component with ``z`` and reweight by its innovation likelihood.
 
@@ -275,11 +281,14 @@ class GaussianSumFilter(WeightedMixtureFilter):
             return
         z = as_measurement(z, self.dim_z)
         bank = self._bank
-        prior = bank.x, bank.P
-        bank.step = step
-        bank.update(z, **hx_args)
-        M, C, log_alpha = bank.x, bank.P, bank.log_likelihood
-        bank.set_state(*prior)  # the components change only once their weights are good
+        kept = dict(bank.__dict__)  # the bank is restored too if this update fails
+        try:
+            bank.step = step
+            bank.update(z, **hx_args)
+        finally:
+            M, C, log_alpha = bank.x, bank.P, bank.log_likelihood
+            bank.__dict__.clear()
+            bank.__dict__.update(kept)  # the components change only once their weights are good
         if not np.all(np.isfinite(log_alpha)):
             raise NumericalError(f"non-finite component likelihood at step {step}", matrix="weights", step=step)
         lw_prev = self.log_weights

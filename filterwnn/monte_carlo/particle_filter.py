@@ -64,13 +64,16 @@ import numpy as np
 from .._validation import (
     NumericalError,
     as_measurement,
+    as_real,
     as_state,
     check_choice,
     check_covariance,
     check_positive,
     check_positive_int,
     check_rng,
+    check_scale,
 )
+from .._state import rolls_back_on_error
 from ._weighted import ModelAttribute, WeightedMixtureFilter, logsumexp
 from .proposals import ExtendedKalmanProposal, PriorProposal, ProposalModel, UnscentedKalmanProposal
 from .resampling import get_scheme
@@ -406,13 +409,14 @@ class ParticleFilter(WeightedMixtureFilter):
             Per-particle covariances for proposals that carry them (default ``P`` for
             every particle); ignored by the others.
         """
-        X = np.asarray(particles, dtype=float)
+        X = as_real(particles, "particles")
         if X.shape != (self.n_particles, self.dim_x):
             raise ValueError(
                 f"particles must have shape ({self.n_particles}, {self.dim_x}), got shape {X.shape}"
             )
         if not np.all(np.isfinite(X)):
             raise ValueError("particles must be finite, got non-finite entries")
+        check_scale(X, "particles")
         C = None
         if self.proposal.carries_covariance:
             C = _stack_covariances(self._P if covariances is None else covariances,
@@ -467,7 +471,7 @@ class ParticleFilter(WeightedMixtureFilter):
                 f"{self.step}: ESS {ess:.3g} of {self.n_particles} particles). Try "
                 f"{self._degeneracy_remedy()}",
                 DegeneracyWarning,
-                stacklevel=3,
+                stacklevel=4,  # the caller of predict/update, past rolls_back_on_error
             )
 
     def _no_measurement(self, model, step):
@@ -485,11 +489,12 @@ class ParticleFilter(WeightedMixtureFilter):
         warnings.warn(
             f"step {step}: the measurement gives {why}; skipped as an outlier (recover=True)",
             RuntimeWarning,
-            stacklevel=3,
+            stacklevel=4,  # the caller of predict/update, past rolls_back_on_error
         )
         self._no_measurement(model, step)
 
     # ------------------------------------------------------------------ filterpy API
+    @rolls_back_on_error
     def predict(self, **fx_args):
         """Advance the time step by one and propagate the particles (the proposal's time
         update); ``fx_args`` go to ``fx`` and ``FJacobian``.
@@ -524,6 +529,7 @@ class ParticleFilter(WeightedMixtureFilter):
         self._pending_prior = (pred.particles, self.log_weights, pred.spread)
         self._x = self._P = None
 
+    @rolls_back_on_error
     def update(self, z, **hx_args):
         """Weight (and resample) the particles with measurement ``z`` at the current step.
 

@@ -298,7 +298,7 @@ class _KalmanProposal:
         """Every particle's Kalman prediction -> :class:`Prediction` (spread ``Q``)."""
         P = covariances if self.carry_covariance else None
         pred, _ = repairing(model, lambda C: self.kalman_predict(model, particles, C, fx_args, step),
-                            P, step, "posterior")
+                            P, step, "posterior", stacklevel=6)  # past rolls_back_on_error
         Q = _noise(model.Q, "Q", model.dim_x)
         return Prediction(pred.x, pred.P, Q, _KalmanContext(particles, fx_args))
 
@@ -311,7 +311,7 @@ class _KalmanProposal:
         upd, P_prior = repairing(
             model,
             lambda C: self.kalman_update(model, KalmanPrediction(prediction.particles, C), z, hx_args, step),
-            prediction.covariances, step, "predicted",
+            prediction.covariances, step, "predicted", stacklevel=6,  # past rolls_back_on_error
         )
         singular = model.transition_logpdf is None and not model.noise("Q").full_rank
         fx_prev = model.transition_mean(ctx.x_prev, ctx.fx_args) if singular or model.transition_logpdf is None else None
@@ -331,7 +331,7 @@ class _KalmanProposal:
                 f"step {step}: {n_bad} particle proposal covariance(s) not positive definite "
                 f"({exc}); eigenvalues clipped (recover=True)",
                 RuntimeWarning,
-                stacklevel=4,
+                stacklevel=5,  # past rolls_back_on_error
             )
             upd = upd._replace(P=repaired, L_prior=None, LinvPxy=None)
             X, log_q = self.sample(upd, rng, step=step)

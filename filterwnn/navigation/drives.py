@@ -10,8 +10,11 @@ Each reader returns a :class:`~filterwnn.navigation.scenarios.DRRun` built by
 
 from __future__ import annotations
 
+import contextlib
 import csv
 import os
+import re
+import sys
 
 import numpy as np
 
@@ -19,7 +22,7 @@ from .._validation import check_rng
 from .dead_reckoning import wrap_angle
 from .scenarios import DRRun, Scenario, earth_radii, latlon_to_en
 
-__all__ = ["DRIVE_CSV_COLUMNS", "read_drive_csv", "sample_drive_path", "load_car_drive", "CAR_DRIVE", "CAR_DRIVES",
+__all__ = ["DRIVE_CSV_COLUMNS", "PROGRESS_BYTES", "read_drive_csv", "sample_drive_path", "load_car_drive", "CAR_DRIVE", "CAR_DRIVES",
            "MIN_ODOMETER_SPEED"]
 
 #: The columns :func:`read_drive_csv` reads: ``{column: (unit, meaning)}``. ``time``, one of
@@ -43,51 +46,148 @@ DRIVE_CSV_COLUMNS = {
 }
 
 
-def _read_csv(path):
-    """The stripped header and the non-blank rows of a CSV file; ValueError if empty or a
-    column name repeats."""
-    with open(path, newline="") as fh:
-        reader = csv.reader(fh)
-        try:
-            header = [h.strip() for h in next(reader)]
-        except StopIteration:
-            raise ValueError(f"{path}: the file is empty (expected a header row)") from None
-        rows = [r for r in reader if any(c.strip() for c in r)]
-    if len(set(header)) != len(header):
-        raise ValueError(f"{path}: duplicated column names in the header {header}")
-    return header, rows
+_DELIMITERS = (",", ";", "\t")
+#: Files at least this large (bytes) show a progress bar while read when ``progress`` is None.
+PROGRESS_BYTES = 20_000_000
+_CHUNK = 8192  # rows per block of the growing column buffer
 
 
-def _csv_column(path, rows, i, h, allow_empty=False):
-    """Column ``i`` (named ``h``) of ``rows`` as floats; empty cells NaN when ``allow_empty``,
-    else a ValueError naming the row, as is a cell that is not a number."""
-    out = np.empty(len(rows))
-    for r, row in enumerate(rows):
-        cell = row[i].strip() if i < len(row) else ""
-        if cell == "":
-            if not allow_empty:
-                raise ValueError(f"{path}: column {h!r} is empty on data row {r + 1} (line {r + 2})")
-            out[r] = np.nan
-            continue
-        try:
-            out[r] = float(cell)
-        except ValueError:
-            raise ValueError(f"{path}: column {h!r} must hold numbers; data row {r + 1} (line {r + 2}) "
-                             f"has {cell!r}") from None
+def _delimiter(path, first):
+    """The header line's delimiter: comma, else semicolon, else tab (the first one present)."""
+    for d in _DELIMITERS:
+        if d in first:
+            return d
+    if len(first.split()) > 1 or "|" in first:
+        raise ValueError(f"{path}: the header {first.strip()!r} is not split by a comma, semicolon or tab; "
+                         "save the file as CSV with one of those delimiters")
+    return ","
+
+
+def _cell(path, h, cell, row, line):
+    """One cell as a float (NaN when empty); ValueError naming the file, column, row, line and rule."""
+    cell = cell.strip()
+    if cell == "":
+        return np.nan
+    try:
+        v = float(cell)
+    except ValueError:
+        hint = ""
+        if "," in cell:
+            with contextlib.suppress(ValueError):
+                float(cell.replace(",", "."))
+                hint = " (a decimal comma? write 0.1, not 0,1)"
+        raise ValueError(f"{path}: column {h!r} must hold numbers; data row {row} (line {line}) "
+                         f"has {cell!r}{hint}") from None
+    if not np.isfinite(v):
+        raise ValueError(f"{path}: column {h!r} must hold finite numbers; data row {row} (line {line}) "
+                         f"has {cell!r} (leave the "
+                         "cell empty where a row has no value, e.g. no GPS fix)")
+    return v
+
+
+def _lines(fh, path, progress):
+    """The file's lines, with a tqdm bar over its bytes when ``progress`` (None: large files on a terminal)."""
+    size = os.path.getsize(path)
+    if progress is None:
+        progress = size >= PROGRESS_BYTES and sys.stderr.isatty()
+    if not progress:
+        yield from fh
+        return
+    from tqdm.auto import tqdm
+
+    with tqdm(total=size, desc=f"reading {os.path.basename(path)}", unit="B", unit_scale=True) as bar:
+        done = 0
+        for k, line in enumerate(fh):
+            done += len(line)
+            if k % 4096 == 4095:
+                bar.update(done)
+                done = 0
+            yield line
+        bar.update(done)
+
+
+def _read_columns(path, progress=None):
+    """``(header, {column: floats, NaN where empty}, line numbers)`` of a drive CSV's known
+    columns, read row by row (memory: the columns' floats); ValueError naming the file, the
+    column, the line and the rule for an empty file, a repeated column or a bad cell."""
+    try:
+        with open(path, newline="", encoding="utf-8-sig") as fh:  # utf-8-sig: a BOM (Excel) is dropped
+            first = fh.readline()
+            if not first.strip():
+                raise ValueError(f"{path}: the file is empty (expected a header row)")
+            delim = _delimiter(path, first)
+            header = [h.strip() for h in next(csv.reader([first], delimiter=delim))]
+            if len(set(header)) != len(header):
+                raise ValueError(f"{path}: duplicated column names in the header {header}")
+            known = [(i, h) for i, h in enumerate(header) if h in DRIVE_CSV_COLUMNS]
+            idx = [i for i, _ in known]
+            width = len(known) + 1  # the known columns and the line number
+            chunks, buf, n, rows = [], np.empty((_CHUNK, width)), 0, 0
+            for line, row in enumerate(csv.reader(_lines(fh, path, progress), delimiter=delim), start=2):
+                if not any(c.strip() for c in row):
+                    continue
+                rows += 1
+                try:  # the common row: every known cell a number or empty, no nan/inf spelled out
+                    if any("n" in row[i] or "N" in row[i] for i in idx):
+                        raise ValueError
+                    buf[n, :-1] = [float(row[i]) if row[i].strip() else np.nan for i in idx]
+                except (ValueError, IndexError):  # the slow path names the first bad cell, or pads
+                    buf[n, :-1] = [_cell(path, h, row[i] if i < len(row) else "", rows, line) for i, h in known]
+                buf[n, -1] = line
+                n += 1
+                if n == _CHUNK:
+                    chunks.append(buf)
+                    buf, n = np.empty((_CHUNK, width)), 0
+    except UnicodeDecodeError as exc:
+        raise ValueError(f"{path}: not UTF-8 text ({exc.reason} at byte {exc.start}); save it as CSV UTF-8") from None
+    except csv.Error as exc:
+        raise ValueError(f"{path}: not a readable CSV file ({exc})") from None
+    data = np.concatenate(chunks + [buf[:n]]) if chunks else buf[:n]
+    return header, {h: data[:, j] for j, (_, h) in enumerate(known)}, data[:, -1].astype(int)
+
+
+def _csv_column(path, cols, lines, h, allow_empty=False):
+    """Column ``h``; ValueError naming the line of its first empty cell unless ``allow_empty``."""
+    out = cols[h]
+    if not allow_empty and np.isnan(out).any():
+        r = int(np.argmax(np.isnan(out)))
+        raise ValueError(f"{path}: column {h!r} is empty on data row {r + 1} (line {lines[r]})")
     return out
 
 
-def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2):
+def _located(path, exc, lines):
+    """``exc``'s message prefixed by ``path``, with each ``t[k]``-style sample index given its line."""
+    def line_of(m):
+        k = int(m.group(2))
+        return f"{m.group(0)} (line {lines[k]})" if k < len(lines) else m.group(0)
+
+    return ValueError(f"{path}: " + re.sub(r"\b(t|heading|speed|distance)\[(\d+)\]", line_of, str(exc)))
+
+
+def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2, checks=True, progress=None):
     """Read one's own drive from a CSV file with the columns of :data:`DRIVE_CSV_COLUMNS`.
 
     One row per DR sample, a header row with the column names; a GPS fix is the row's
     ``gps_east``/``gps_north`` (or ``gps_lat``/``gps_lon``) at the row's ``time``, empty
     cells where there is none. With ``gps_lat``/``gps_lon`` and ``true_east``/``true_north``
     the truth must be about ``origin`` (default the first fix). Unknown columns are ignored.
+    The delimiter is the header's comma, semicolon or tab; a UTF-8 byte-order mark (Excel's
+    "CSV UTF-8") is dropped; decimal commas, ``nan`` and ``inf`` cells are refused (an empty
+    cell is "no value"). The file is read row by row into the known columns' floats, so
+    memory grows with the rows kept, not the text.
 
     >>> run = read_drive_csv(sample_drive_path())
     >>> run.z_dr.shape[1], run.scenario.dt, run.gps_sigma is not None
     (2, 0.1, True)
+
+    Parameters
+    ----------
+    path : str or path-like
+    origin, name, max_jitter, checks
+        As :meth:`DRRun.from_arrays` (``checks``: the plausibility checks against the fixes).
+    progress : bool, optional
+        A tqdm bar over the file's bytes; default one for files of :data:`PROGRESS_BYTES`
+        or more when stderr is a terminal.
 
     Returns
     -------
@@ -97,11 +197,14 @@ def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2):
     Raises
     ------
     ValueError
-        A missing or duplicated column, a cell that is not a number (row and column
-        named), or anything :meth:`DRRun.from_arrays` refuses.
+        Each naming the file and, where it applies, the column, the line and the rule: a
+        missing or duplicated column, a cell that is not a finite number, fewer than 3
+        rows, a latitude/longitude truth without a fix, or anything
+        :meth:`DRRun.from_arrays` refuses (a failed plausibility check names its likely
+        cause).
     """
     path = str(path)
-    header, rows = _read_csv(path)
+    header, cols, lines = _read_columns(path, progress)
     col = {h: i for i, h in enumerate(header)}
 
     def need(*alts):
@@ -113,9 +216,12 @@ def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2):
     need("time")
     hname = need("heading", "heading_deg")
     dname = need("speed", "odometer")
+    if len(lines) < 3:
+        raise ValueError(f"{path}: {len(lines)} data row{'s' * (len(lines) != 1)}; a drive needs at least 3 "
+                         "(one row per DR sample, after the header)")
 
     def column(h, allow_empty=False):
-        return _csv_column(path, rows, col[h], h, allow_empty)
+        return _csv_column(path, cols, lines, h, allow_empty)
 
     t = column("time")
     heading = column(hname)
@@ -124,8 +230,11 @@ def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2):
     kw = {"distance" if dname == "odometer" else "speed": column(dname)}
     kw.update(_csv_fixes(path, header, col, column, t, origin))
     _csv_truth(path, header, col, column, origin, kw)
-    return DRRun.from_arrays(t, heading, name=name or os.path.splitext(os.path.basename(path))[0],
-                             max_jitter=max_jitter, **kw)
+    try:
+        return DRRun.from_arrays(t, heading, name=name or os.path.splitext(os.path.basename(path))[0],
+                                 max_jitter=max_jitter, checks=checks, **kw)
+    except ValueError as exc:
+        raise _located(path, exc, lines) from None
 
 
 def _csv_fixes(path, header, col, column, t, origin):
@@ -173,7 +282,10 @@ def _csv_truth(path, header, col, column, origin, kw):
     elif "true_lat" in col:
         if "lat" not in kw:
             raise ValueError(f"{path}: true_lat/true_lon need the fixes as gps_lat/gps_lon (one origin)")
-        if origin is None and len(kw["lat"]):
+        if origin is None and not len(kw["lat"]):
+            raise ValueError(f"{path}: true_lat/true_lon are converted to metres about the first GPS fix, and the "
+                             "file has none: give fixes, an origin, or the truth as true_east/true_north")
+        if origin is None:
             kw["origin"] = origin = (kw["lat"][0], kw["lon"][0])
         kw["truth"] = np.stack(latlon_to_en(column("true_lat"), column("true_lon"), *origin), axis=1)
 

@@ -249,7 +249,7 @@ class DRRun(NamedTuple):
     @classmethod
     def from_arrays(cls, t, heading, *, distance=None, speed=None, gps_t=None, east=None, north=None,
                     lat=None, lon=None, gps_sigma=None, truth=None, origin=None, name="drive",
-                    max_jitter=0.2):
+                    max_jitter=0.2, checks=True):
         """One's own drive from arrays: validated, on the DR sample grid, in local metres.
 
         Parameters
@@ -286,6 +286,12 @@ class DRRun(NamedTuple):
             Name of the drive (tables and figures).
         max_jitter : float
             Allowed relative deviation of a sample interval from the median interval.
+        checks : bool
+            Plausibility checks against the GPS fixes (``filterwnn.navigation._plausibility``):
+            refuse a sample interval over 2 s ("time looks like milliseconds"), and a
+            dead-reckoned track whose course or length contradicts the moving fixes
+            ("heading looks like degrees", "speed looks like km/h", "lat and lon look
+            swapped"). ``False`` skips them, for a drive that really is so.
 
         Returns
         -------
@@ -301,7 +307,8 @@ class DRRun(NamedTuple):
             Naming the argument, the rule and the offending value: lengths that differ,
             non-finite values, time not strictly increasing or unevenly sampled, headings
             in degrees, a decreasing odometer, a negative speed, both or neither of
-            ``distance``/``speed``, both or neither of ``east``/``north`` and ``lat``/``lon``.
+            ``distance``/``speed``, both or neither of ``east``/``north`` and ``lat``/``lon``,
+            a failed plausibility check (with its likely cause).
         """
         t = _finite_1d(t, "t")
         n = len(t)
@@ -311,9 +318,9 @@ class DRRun(NamedTuple):
         z_dr = np.stack([wrap_angle(heading[1:]), step], axis=1)
         steps = np.zeros(0, dtype=int)
         z_gps = np.zeros((0, 2))
-        sig = None
+        sig = swapped = None
         if gps_t is not None:
-            steps, z_gps, sig = _gps_fixes(gps_t, east, north, lat, lon, gps_sigma, origin, t, dt)
+            steps, z_gps, sig, swapped = _gps_fixes(gps_t, east, north, lat, lon, gps_sigma, origin, t, dt)
         x_true = None
         if truth is not None:
             x_true, p0 = _truth_states(truth, t)
@@ -321,6 +328,11 @@ class DRRun(NamedTuple):
             p0 = z_gps[0]
         else:
             p0 = np.zeros(2)
+        if checks:
+            from ._plausibility import check_drive
+
+            check_drive(dt, heading, step, steps, z_gps, None if sig is None else float(np.median(sig)),
+                        swapped, None if truth is None else np.asarray(truth, dtype=float))
         x0 = np.array([p0[0], v0 * np.sin(heading[0]), 0.0, p0[1], v0 * np.cos(heading[0]), 0.0])
         sc = _own_drive_scenario(name, n, dt, v0, heading[0], steps, sig)
         R_true = np.tile([np.deg2rad(1.0) ** 2, 0.02**2], (n - 1, 1))
@@ -389,10 +401,12 @@ def _odometer_steps(distance, speed, dts, n):
 
 
 def _gps_fixes(gps_t, east, north, lat, lon, gps_sigma, origin, t, dt):
-    """The GPS fixes on the DR grid: their steps, east/north (m) and sigmas (or None)."""
+    """The GPS fixes on the DR grid: their steps, east/north (m), sigmas (or None) and, for
+    lat/lon fixes, east/north read with lat and lon exchanged (or None)."""
     n = len(t)
     gps_t = _finite_1d(gps_t, "gps_t")
     m = len(gps_t)
+    swapped = None
     en_given = east is not None or north is not None
     ll_given = lat is not None or lon is not None
     if en_given == ll_given:
@@ -407,6 +421,8 @@ def _gps_fixes(gps_t, east, north, lat, lon, gps_sigma, origin, t, dt):
                              f"{np.max(np.abs(la)):g}, max |lon| = {np.max(np.abs(lo)):g}")
         lat0, lon0 = (la[0], lo[0]) if origin is None else (float(origin[0]), float(origin[1]))
         e, nn = latlon_to_en(la, lo, lat0, lon0)
+        if np.all(np.abs(lo) <= 90):  # the fixes read with lat and lon exchanged, for the plausibility check
+            swapped = np.stack(latlon_to_en(lo, la, lon0, lat0), axis=1)
     if gps_sigma is not None:
         gs = np.asarray(gps_sigma, dtype=float)
         gs = np.full(m, float(gs)) if gs.ndim == 0 else _finite_1d(gs, "gps_sigma", m)
@@ -417,7 +433,8 @@ def _gps_fixes(gps_t, east, north, lat, lon, gps_sigma, origin, t, dt):
     keep = (k_fix >= 0) & (k_fix < n - 1)
     k_fix, idx = np.unique(k_fix[keep], return_index=True)
     sel = np.flatnonzero(keep)[idx]
-    return k_fix, np.stack([e[sel], nn[sel]], axis=1), (gs[sel] if gps_sigma is not None else None)
+    return (k_fix, np.stack([e[sel], nn[sel]], axis=1), (gs[sel] if gps_sigma is not None else None),
+            None if swapped is None else swapped[sel])
 
 
 def _truth_states(truth, t):

@@ -270,10 +270,26 @@ def _read_entry(path, task, serializer):
     return result, None
 
 
+_WARNED = set()  # (path, size, mtime, reason) already reported in this process: one line per damaged file
+
+
+def _file_id(path):
+    try:
+        st = os.stat(path)
+        return st.st_size, st.st_mtime_ns
+    except OSError:
+        return None
+
+
 def _warn_rejected(cache_dir, rejected):
-    """One :class:`CacheEntryWarning` line per reason, naming the first file and the count."""
+    """One :class:`CacheEntryWarning` line per reason, naming the first file and the count
+    (a file already reported in this process, unchanged since, is not reported again)."""
     by_reason = {}
     for path, reason in rejected:
+        key = (path, _file_id(path), reason)
+        if key in _WARNED:
+            continue
+        _WARNED.add(key)
         by_reason.setdefault(reason, []).append(path)
     for reason, paths in by_reason.items():
         more = f" and {len(paths) - 1} more" if len(paths) > 1 else ""
@@ -318,6 +334,24 @@ def _save(cache_dir, task, result, serializer):
         raise
 
 
+#: A temporary entry file older than this (s) was left by a writer that was killed.
+STALE_TEMPORARY_AGE = 86400.0
+
+
+def _remove_stale_temporaries(cache_dir):
+    """Delete ``.<key>.*.tmp`` files older than :data:`STALE_TEMPORARY_AGE` (a writer killed
+    mid-write leaves one; a live writer's is seconds old)."""
+    import time
+
+    now = time.time()
+    for name in os.listdir(cache_dir):
+        if name.startswith(".") and name.endswith(".tmp"):
+            path = os.path.join(cache_dir, name)
+            with contextlib.suppress(OSError):
+                if now - os.path.getmtime(path) > STALE_TEMPORARY_AGE:
+                    os.unlink(path)
+
+
 def _indexed(fn, i, task):
     return i, fn(task)
 
@@ -355,6 +389,7 @@ def run_tasks(tasks, fn, n_jobs=1, backend=None, progress=False, cache_dir=None,
     """
     if cache_dir is not None:
         os.makedirs(cache_dir, exist_ok=True)
+        _remove_stale_temporaries(cache_dir)
     out = load_cached(tasks, cache_dir, serializer)
     pending = [] if cached_only else [i for i in range(len(tasks)) if out[i] is None]
     bar = None

@@ -1,0 +1,168 @@
+r"""Plausibility checks of a recorded drive: unit mistakes the data itself can reveal.
+
+A drive file can be well-formed and still wrong: time in milliseconds, a heading in
+degrees that happens to stay under :math:`2\pi`, speed in km/h, latitude and longitude
+swapped. Every such file gives confident, wrong numbers. Where the drive has GPS fixes
+that move, the fixes tell: between two fixes :math:`p_i, p_j` at least :math:`L` apart
+(a *chord*; :math:`L = \max(20\,\mathrm{m}, 8\sigma)` so the fixes' noise is small
+against it), the dead-reckoned displacement
+
+.. math:: d_{ij} = \sum_{s} \ell_s\,(\sin\psi_s, \cos\psi_s)
+
+(odometer steps :math:`\ell_s`, headings :math:`\psi_s` from north, clockwise) must
+point along :math:`p_j - p_i` and the odometer's path length :math:`\sum_s \ell_s` must be
+about :math:`|p_j - p_i|` (at least it, a little more on a bend). :func:`check_drive`
+takes the median over the chords of the angle between the two and of the length ratio;
+a median angle over 30 degrees or a ratio outside [0.6, 1.8] is an error that names the
+likely cause when one of the usual mistakes (degrees, counter-clockwise from east, km/h,
+mph, kilometres, milliseconds, swapped lat/lon) would fit the fixes, and says how to
+override (``checks=False``; ``--no-plausibility`` on the command line). A sample interval
+over 2 s is refused by itself ("time looks like milliseconds"): dead-reckoning sensors
+sample at 1-100 Hz, and fixes a median over :math:`\max(100\,\mathrm{m}, 30\sigma)` from
+a given truth ("the fixes and the truth must share one frame"). Drives whose fixes never
+move by :math:`L` are not judged on course and length.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["check_drive", "MAX_DT", "MAX_ANGLE_DEG", "RATIO_RANGE"]
+
+#: The longest DR sample interval (s) accepted without ``checks=False``.
+MAX_DT = 2.0
+#: The largest median angle (degrees) between the dead-reckoned and the GPS chords.
+MAX_ANGLE_DEG = 30.0
+#: The accepted range of the median odometer path length over the GPS chord length.
+RATIO_RANGE = (0.6, 1.8)
+_MIN_CHORDS = 3
+_OVERRIDE = "; if the drive really is so, pass checks=False (command line: --no-plausibility)"
+#: Length-ratio mistakes: (factor the ratio shows, the likely cause).
+_SCALES = ((3.6, "speed looks like km/h (divide by 3.6 for m/s)"),
+           (1 / 0.44704, "speed looks like mph (multiply by 0.44704 for m/s)"),
+           (1 / 1000.0, "the odometer looks like kilometres (multiply by 1000 for m)"),
+           (1000.0, "time looks like milliseconds (divide by 1000 for s)"))
+
+
+def _chords(steps, z_gps, min_len):
+    """Index pairs ``(i, j)`` of fixes at least ``min_len`` apart, each starting where the last ended."""
+    pairs, i = [], 0
+    for j in range(1, len(steps)):
+        if np.hypot(*(z_gps[j] - z_gps[i])) >= min_len:
+            pairs.append((i, j))
+            i = j
+    return pairs
+
+
+def _scores(heading, step, steps, z_gps, pairs):
+    """Median angle (degrees) between the DR and GPS chords, and median path/chord length ratio."""
+    cum_e = np.r_[0.0, np.cumsum(step * np.sin(heading[1:]))]
+    cum_n = np.r_[0.0, np.cumsum(step * np.cos(heading[1:]))]
+    cum_l = np.r_[0.0, np.cumsum(step)]
+    a = np.array([steps[i] + 1 for i, _ in pairs])  # the fix at step k is sample k + 1
+    b = np.array([steps[j] + 1 for _, j in pairs])
+    dr = np.stack([cum_e[b] - cum_e[a], cum_n[b] - cum_n[a]], axis=1)
+    gps = np.stack([z_gps[j] - z_gps[i] for i, j in pairs])
+    ang = np.arctan2(dr[:, 0], dr[:, 1]) - np.arctan2(gps[:, 0], gps[:, 1])
+    ang = np.abs((ang + np.pi) % (2 * np.pi) - np.pi)
+    ratio = (cum_l[b] - cum_l[a]) / np.hypot(gps[:, 0], gps[:, 1])
+    return float(np.degrees(np.median(ang))), float(np.median(ratio))
+
+
+def _fits(angle, ratio):
+    return angle <= MAX_ANGLE_DEG and RATIO_RANGE[0] <= ratio <= RATIO_RANGE[1]
+
+
+def _badness(angle, ratio):
+    """How far a hypothesis is from fitting: 1 at either limit of :func:`_fits`."""
+    return max(angle / MAX_ANGLE_DEG, abs(np.log(ratio)) / np.log(RATIO_RANGE[1]))
+
+
+def _track_cause(heading, step, steps, z_gps, pairs, swapped):
+    """The usual heading or frame mistake that fits the fixes best, or None.
+
+    Heading counter-clockwise from east and swapped lat/lon both mirror the track about
+    the north-east line; only the swap also stretches it (by the cosine of the latitude),
+    so the better fit of the two names the cause.
+    """
+    tries = [(np.deg2rad(heading), z_gps, "heading looks like degrees (values under 2 pi, but the GPS course "
+                                          "matches them read as degrees: use the heading_deg column or np.deg2rad)"),
+             (np.pi / 2 - heading, z_gps, "heading looks counter-clockwise from east (the GPS course matches "
+                                          "pi/2 - heading; the convention is clockwise from north)")]
+    if swapped is not None:
+        tries.append((heading, swapped, "lat and lon look swapped (the drive matches its fixes with latitude "
+                                        "and longitude exchanged)"))
+    scored = [(_badness(*_scores(h, step, steps, z, pairs)), cause) for h, z, cause in tries]
+    best, cause = min(scored)
+    return cause if best <= 1.0 else None
+
+
+def _ratio_cause(ratio):
+    for factor, cause in _SCALES:
+        if abs(np.log(ratio / factor)) < np.log(1.25):
+            return cause
+    return None
+
+
+def _check_truth(steps, z_gps, truth, sigma):
+    """Refuse fixes that lie far from the truth at their samples (another frame, lat/lon swapped)."""
+    if truth is None or not len(steps):
+        return
+    d = float(np.median(np.hypot(*(z_gps - truth[steps + 1]).T)))
+    if d > max(100.0, 30.0 * sigma):
+        raise ValueError(f"plausibility: the GPS fixes lie a median {d:.4g} m from the truth at their samples: "
+                         "the fixes and the truth must share one frame and origin (lat and lon swapped in one "
+                         f"of them?){_OVERRIDE}")
+
+
+def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth=None):
+    """Refuse a drive whose units or frame contradict its own GPS fixes (see the module docstring).
+
+    Parameters
+    ----------
+    dt : float
+        DR sample interval (s).
+    heading : ndarray of shape (n_samples,)
+        Heading (rad, from north, clockwise).
+    step : ndarray of shape (n_samples - 1,)
+        Odometer distance (m) from sample ``s`` to ``s + 1``.
+    steps : ndarray of int, shape (n_fixes,)
+        Each fix's step (the fix at step ``k`` is sample ``k + 1``), increasing.
+    z_gps : ndarray of shape (n_fixes, 2)
+        The fixes, east/north (m).
+    sigma : float, optional
+        The fixes' typical standard deviation per axis (m; default 3).
+    swapped : ndarray of shape (n_fixes, 2), optional
+        The fixes with latitude and longitude exchanged (east/north, m), when they came
+        as latitude/longitude: tried as a cause.
+    truth : ndarray of shape (n_samples, 2), optional
+        Reference east/north (m): the fixes must lie near it (median within
+        ``max(100 m, 30 sigma)``).
+
+    Raises
+    ------
+    ValueError
+        ``dt`` over :data:`MAX_DT`, or a median chord angle over :data:`MAX_ANGLE_DEG` or
+        length ratio outside :data:`RATIO_RANGE`, with the likely cause.
+    """
+    if dt > MAX_DT:
+        cause = "time looks like milliseconds (divide by 1000 for s)" if dt >= 10 else "resample the drive"
+        raise ValueError(f"plausibility: the DR sample interval is {dt:g} s, longer than {MAX_DT:g} s (dead-"
+                         f"reckoning sensors sample at 1-100 Hz): {cause}{_OVERRIDE}")
+    sigma = 3.0 if sigma is None else float(sigma)
+    _check_truth(steps, z_gps, truth, sigma)
+    pairs = _chords(steps, z_gps, max(20.0, 8.0 * sigma))
+    if len(pairs) < _MIN_CHORDS:
+        return
+    angle, ratio = _scores(heading, step, steps, z_gps, pairs)
+    if _fits(angle, ratio):
+        return
+    found = (f"median over {len(pairs)} moving stretches between GPS fixes: the dead-reckoned track is "
+             f"{angle:.0f} degrees off the fixes' course and {ratio:.3g} times their distance")
+    if angle <= MAX_ANGLE_DEG:
+        cause = _ratio_cause(ratio) or "check the units of speed/odometer and time"
+    else:
+        cause = (_track_cause(heading, step, steps, z_gps, pairs, swapped)
+                 or "check the heading's zero (north) and sign (clockwise), and the fixes' frame")
+    raise ValueError(f"plausibility: {found} (expected at most {MAX_ANGLE_DEG:g} degrees and "
+                     f"{RATIO_RANGE[0]}-{RATIO_RANGE[1]}): {cause}{_OVERRIDE}")

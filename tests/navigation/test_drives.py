@@ -1,0 +1,166 @@
+"""Drive files that are well-formed but wrong, or written by other tools: plausibility checks
+against the GPS fixes, delimiters, a byte-order mark, NaN cells, short files, a large file."""
+
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from filterwnn.navigation.drives import read_drive_csv
+from filterwnn.navigation.scenarios import DRRun, en_to_latlon
+
+LAT0, LON0 = 48.137, 11.575
+COLUMNS = ["time", "heading", "speed", "gps_lat", "gps_lon", "gps_sigma", "true_lat", "true_lon"]
+
+
+def _drive(n=1201, dt=0.1, v=10.0, bearing=0.6, turn=0.02, sigma=3.0, seed=0):
+    """A gently turning drive: 10 Hz heading and speed, 1 Hz fixes (noise ``sigma``), the truth."""
+    rng = np.random.default_rng(seed)
+    t = dt * np.arange(n)
+    h = np.mod(bearing + turn * t, 2 * np.pi)  # a heading in [0, 2 pi), as a gyro reports it
+    e = np.r_[0.0, np.cumsum(v * dt * np.sin(h[1:]))]
+    nn = np.r_[0.0, np.cumsum(v * dt * np.cos(h[1:]))]
+    tlat, tlon = en_to_latlon(e, nn, LAT0, LON0)
+    glat, glon = en_to_latlon(e + sigma * rng.standard_normal(n), nn + sigma * rng.standard_normal(n), LAT0, LON0)
+    fix = np.arange(n) % 10 == 0
+    return {"time": t, "heading": h, "speed": np.full(n, v), "gps_lat": np.where(fix, glat, np.nan),
+            "gps_lon": np.where(fix, glon, np.nan), "gps_sigma": np.where(fix, sigma, np.nan),
+            "true_lat": tlat, "true_lon": tlon}
+
+
+def _write(path, cols, sep=",", bom=False, columns=COLUMNS):
+    lines = [sep.join(columns)]
+    for k in range(len(cols["time"])):
+        lines.append(sep.join("" if np.isnan(cols[c][k]) else repr(float(cols[c][k])) for c in columns))
+    path.write_text(("\ufeff" if bom else "") + "\n".join(lines) + "\n", encoding="utf-8")
+    return str(path)
+
+
+def test_a_plain_drive_passes_and_the_sample_drive_too(tmp_path):
+    run = read_drive_csv(_write(tmp_path / "d.csv", _drive()))
+    assert run.scenario.dt == 0.1 and len(run.gps_steps) == 120
+    from filterwnn.navigation.drives import sample_drive_path
+
+    read_drive_csv(sample_drive_path())  # checks on
+
+
+def _swap(cols, *pairs):
+    out = dict(cols)
+    for a, b in pairs:
+        out[a], out[b] = cols[b], cols[a]
+    return out
+
+
+MISTAKES = {
+    "time in milliseconds": (lambda c: {**c, "time": c["time"] * 1000}, "time looks like milliseconds"),
+    "heading in degrees under 2 pi": (lambda c: {**c, "heading": np.full_like(c["heading"], 3.0)},
+                                      "heading looks like degrees"),
+    "heading counter-clockwise from east": (lambda c: {**c, "heading": np.pi / 2 - c["heading"]},
+                                            "counter-clockwise from east"),
+    "speed in km/h": (lambda c: {**c, "speed": c["speed"] * 3.6}, "speed looks like km/h"),
+    "speed in mph": (lambda c: {**c, "speed": c["speed"] / 0.44704}, "speed looks like mph"),
+    "lat and lon swapped": (lambda c: _swap(c, ("gps_lat", "gps_lon"), ("true_lat", "true_lon")),
+                            "lat and lon look swapped"),
+    "lat and lon swapped in the fixes only": (lambda c: _swap(c, ("gps_lat", "gps_lon")),
+                                              "lat and lon swapped"),
+}
+
+
+@pytest.mark.parametrize("mistake", sorted(MISTAKES))
+def test_a_unit_mistake_is_refused_with_its_likely_cause_and_can_be_overridden(tmp_path, mistake):
+    change, cause = MISTAKES[mistake]
+    # a drive on a 3 degree bearing stays under 2 pi in degrees; counter-clockwise from east
+    # mirrors the heading about 45 degrees: a drive far from that bearing tells
+    kw = {"heading in degrees under 2 pi": dict(bearing=np.deg2rad(3.0), turn=0.0),
+          "heading counter-clockwise from east": dict(bearing=2.0)}.get(mistake, {})
+    cols = _drive(**kw)
+    path = _write(tmp_path / "d.csv", change(cols))
+    with pytest.raises(ValueError, match=cause) as info:
+        read_drive_csv(path)
+    assert str(info.value).startswith(path) and "checks=False" in str(info.value)
+    read_drive_csv(path, checks=False)  # the override reads it
+
+
+def test_from_arrays_checks_too():
+    c = _drive()
+    fix = ~np.isnan(c["gps_lat"])
+    with pytest.raises(ValueError, match="speed looks like km/h"):
+        DRRun.from_arrays(c["time"], c["heading"], speed=3.6 * c["speed"], gps_t=c["time"][fix],
+                          lat=c["gps_lat"][fix], lon=c["gps_lon"][fix])
+    DRRun.from_arrays(c["time"], c["heading"], speed=3.6 * c["speed"], gps_t=c["time"][fix],
+                      lat=c["gps_lat"][fix], lon=c["gps_lon"][fix], checks=False)
+
+
+@pytest.mark.parametrize("sep, bom", [(";", False), ("\t", False), (",", True), (";", True)])
+def test_semicolon_tab_and_a_byte_order_mark_read_the_same(tmp_path, sep, bom):
+    cols = _drive()
+    want = read_drive_csv(_write(tmp_path / "plain.csv", cols))
+    got = read_drive_csv(_write(tmp_path / "other.csv", cols, sep=sep, bom=bom))
+    np.testing.assert_array_equal(got.z_dr, want.z_dr)
+    np.testing.assert_array_equal(got.z_gps, want.z_gps)
+
+
+@pytest.mark.parametrize("text, match", [
+    ("time;heading;speed\n0,0;0,5;1\n0,1;0,5;1\n0,2;0,5;1\n", r"line 2\) has '0,0' \(a decimal comma"),
+    ("time heading speed\n0 0 1\n", "not split by a comma, semicolon or tab"),
+    ("time,heading,speed\n0,0,1\n", "1 data row; a drive needs at least 3"),
+    ("time,heading,speed\n", "0 data rows"),
+    ("", "the file is empty"),
+    ("time,heading,speed,gps_east,gps_north\n0,0,1,,\n0.1,0,1,nan,nan\n0.2,0,1,,\n",
+     r"column 'gps_east' must hold finite numbers; data row 2 \(line 3\) has 'nan' \(leave the cell empty"),
+    ("time,heading,speed,gps_lat,gps_lon,true_lat,true_lon\n" + "".join(
+        f"{0.1 * k:.1f},0,1,,,48.1,11.5\n" for k in range(5)), "true_lat/true_lon are converted .* the file has none"),
+    ("time,heading,speed\n0,0,1\n0.1,0,1\n0.1,0,1\n0.3,0,1\n", r"t must be strictly increasing; t\[2\] \(line 4\)"),
+])
+def test_bad_files_are_refused_naming_the_file_and_the_rule(tmp_path, text, match):
+    path = tmp_path / "d.csv"
+    path.write_text(text)
+    with pytest.raises(ValueError, match=match) as info:
+        read_drive_csv(path)
+    assert str(info.value).startswith(str(path))
+
+
+def test_a_utf16_file_is_refused_with_the_reason(tmp_path):
+    path = tmp_path / "d.csv"
+    path.write_text("time,heading,speed\n0,0,1\n", encoding="utf-16")
+    with pytest.raises(ValueError, match="not UTF-8 text.*save it as CSV UTF-8"):
+        read_drive_csv(path)
+
+
+def test_a_large_drive_reads_in_bounded_memory_with_a_progress_bar(tmp_path, capsys):
+    import tracemalloc
+
+    import tqdm.auto  # noqa: F401 -- imported before tracing: its import is not the reader's memory
+
+    from filterwnn.navigation import drives
+
+    n = 20001
+    path = _write(tmp_path / "big.csv", _drive(n=n, turn=0.001))
+    tracemalloc.start()
+    try:
+        header, cols, lines = drives._read_columns(path, progress=True)
+        _, peak = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+    assert len(lines) == n and set(cols) == set(COLUMNS)
+    arrays = n * (len(COLUMNS) + 1) * 8  # the columns' floats and the line numbers
+    # the columns, their final concatenation and one block; the previous reader kept every
+    # cell's string, about 10 times the floats
+    assert peak < 2 * arrays + drives._CHUNK * (len(COLUMNS) + 1) * 8 + 2**20, (peak, arrays)
+    assert "reading big.csv" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("mistake", ["time in milliseconds", "lat and lon swapped"])
+def test_the_cli_refuses_a_drive_in_one_line_and_can_skip_the_checks(tmp_path, mistake):
+    change, cause = MISTAKES[mistake]
+    path = _write(tmp_path / "d.csv", change(_drive(n=3001)))
+    argv = [sys.executable, "-m", "filterwnn.cli", "study", "dr", "--drive", path, "--out", str(tmp_path / "o"),
+            "--no-figures", "--no-progress", "--outages", "2", "--outage-length", "20"]
+    proc = subprocess.run(argv, capture_output=True, text=True, timeout=300)
+    lines = proc.stderr.strip().splitlines()
+    assert proc.returncode == 2 and len(lines) == 1 and cause in lines[0] and path in lines[0], proc.stderr
+    if mistake == "lat and lon swapped":  # a drive that is so: the flag skips the checks
+        proc = subprocess.run(argv + ["--no-plausibility", "--filters", "EKF"], capture_output=True, text=True,
+                              timeout=300)
+        assert proc.returncode == 0, proc.stderr
