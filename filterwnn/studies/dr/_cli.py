@@ -52,6 +52,10 @@ def add_arguments(parser):
                         help="run the GPS/DR filters on one's own drive, a CSV with the columns of "
                              "filterwnn.navigation.drives.DRIVE_CSV_COLUMNS ('sample' for the shipped sample drive); "
                              "repeatable; with --drive only the drives run, not the simulated scenarios")
+    parser.add_argument("--no-plausibility", action="store_true",
+                        help="with --drive: skip the checks of the drive against its own GPS fixes (sample "
+                             "interval over 2 s, a heading or speed that contradicts the fixes' course or "
+                             "distance, lat/lon swapped), for a drive that really is so")
     parser.add_argument("--outage-length", type=options.positive_float, default=30.0, help="GPS outage length on drives (s)")
     parser.add_argument("--outages", type=options.positive_int, default=20, help="number of outages spread over each drive")
     parser.add_argument("--outage-starts", type=options.float_list, default=None,
@@ -106,11 +110,17 @@ def _run_drives(args, drives, filters):
     fl = tuple(filters) if filters else REAL_FILTERS
     results = []
     for path in drives:
-        run = read_drive_csv(sample_drive_path() if path == "sample" else path)
-        res = real_drive_outages(run, n_placements=args.outages, length=args.outage_length, filters=fl,
-                                 starts=starts, min_speed=args.min_speed,
-                                 use_gps_sigma=run.gps_sigma is not None,
-                                 grade=getattr(args, "grade", None) or "phone")
+        run = read_drive_csv(sample_drive_path() if path == "sample" else path,
+                             checks=not getattr(args, "no_plausibility", False),
+                             progress=None if not getattr(args, "no_progress", False) else False)
+        try:
+            res = real_drive_outages(run, n_placements=args.outages, length=args.outage_length, filters=fl,
+                                     starts=starts, min_speed=args.min_speed,
+                                     use_gps_sigma=run.gps_sigma is not None,
+                                     grade=getattr(args, "grade", None) or "phone")
+        except ValueError as exc:  # name the drive (and the options behind the outages)
+            raise ValueError(f"{path}: {exc} (outages from --outage-length, --outages, --outage-starts, "
+                             "--min-speed)") from None
         results.append(res)
         print(real_drive_table(res))
     paths = write_outputs(None, args.out, figures=not args.no_figures, real_drives=results)
