@@ -236,7 +236,10 @@ class GPSDRFilter:
         cal = np.arange(6, self.model.dim_x)
         self._cal = cal
         self._cal_mean = np.asarray(x0, dtype=float)[cal].copy()
-        self._cal_bound = CALIBRATION_SIGMAS * np.sqrt(np.diag(self.model.P0)[cal])
+        # what the specification allows: the prior (model.P0, model.Q) propagated without measurements
+        self._cal_F = self.model.F[np.ix_(cal, cal)]
+        self._cal_Q = self.model.Q[np.ix_(cal, cal)]
+        self._cal_P = self.model.P0[np.ix_(cal, cal)].copy()
         self._cal_warned = set()
         self._since_cal = np.inf  # distance driven since calibration last learnt (m)
 
@@ -267,6 +270,8 @@ class GPSDRFilter:
     def predict(self):
         """Propagate ``x`` and ``P`` one DR sample interval."""
         self.kf.predict()
+        if self._cal.size:
+            self._cal_P = self._cal_F @ self._cal_P @ self._cal_F.T + self._cal_Q
         return self
 
     def update(self, z_dr, z_gps=None, gps_sigma=None):
@@ -385,14 +390,22 @@ class GPSDRFilter:
         return self._cal
 
     def _bound_calibration(self):
-        """Hold each calibration state within :data:`CALIBRATION_SIGMAS` of its prior (its specification)."""
+        """Hold each calibration state within :data:`CALIBRATION_SIGMAS` of its prior (its specification).
+
+        The prior is the model's ``P0`` propagated by its ``F`` and ``Q`` without measurements
+        (a random walk's spread grows with time; a heading bias driven by a rate bias grows
+        with the rate bias's specification times the time).
+        """
+        if not self._cal.size:
+            return False
         x = self.kf.x
         d = x[self._cal] - self._cal_mean
-        out = np.abs(d) > self._cal_bound
+        bound = CALIBRATION_SIGMAS * np.sqrt(np.diag(self._cal_P))
+        out = np.abs(d) > bound
         if not out.any():
             return False
         x = x.copy()
-        x[self._cal] = self._cal_mean + np.clip(d, -self._cal_bound, self._cal_bound)
+        x[self._cal] = self._cal_mean + np.clip(d, -bound, bound)
         self.kf.x = x
         names = ("odometer scale", "heading bias", "gyro rate bias")
         for i in np.flatnonzero(out):
@@ -401,7 +414,7 @@ class GPSDRFilter:
                 warnings.warn(
                     f"GPSDRFilter: the {names[i]} state ran past {CALIBRATION_SIGMAS:g} sigma of its "
                     f"specification at step {self.step} ({d[i]:+.3g} from its prior mean, bound "
-                    f"{self._cal_bound[i]:.3g}); held at the bound. Check the sensor grade (or the sensor)",
+                    f"{bound[i]:.3g}); held at the bound. Check the sensor grade (or the sensor)",
                     RuntimeWarning, stacklevel=4)
         return True
 
@@ -444,7 +457,16 @@ class GPSDRFilter:
             self.kf.update(z, m.HJacobian, m.hx, R=R, args=args, hx_args=args,
                            residual=np.subtract if kw["velocity"] else dr_residual)
         elif kw["velocity"]:
-            self.kf.update(z, R=R, gps=kw["gps"], velocity=True)
+            # the velocity form's first entry is v_e (m/s), not a heading: a linear mean and a plain
+            # residual (the heading's circular mean and wrap folded the sigma points' v_e into
+            # [-pi, pi): with the spherical-simplex points' wide spread the SUKF lost the speed)
+            kf = self.kf
+            z_mean, residual = kf.z_mean, kf.residual_z
+            kf.z_mean, kf.residual_z = None, np.subtract
+            try:
+                kf.update(z, R=R, gps=kw["gps"], velocity=True)
+            finally:
+                kf.z_mean, kf.residual_z = z_mean, residual
         else:
             self.kf.update(z, R=R, gps=kw["gps"])
 
