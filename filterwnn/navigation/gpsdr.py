@@ -28,14 +28,14 @@ What the filter does when GPS lies (each part a public setting, on by default):
   13.8) is used as it is; up to ``reject_gate`` (default :data:`REJECT_GATE`, the
   1 - 1e-9 point, 41.4) it is down-weighted, its sigma scaled by ``sqrt(NIS / gate)``
   (Huber's weight: it counts as a fix at the gate); above, it is rejected and the step
-  updates from dead reckoning alone. Both are counted (:attr:`GPSDRFilter.n_downweighted`,
-  :attr:`GPSDRFilter.n_rejected`, the steps in :attr:`GPSDRFilter.rejected_steps`);
-  :attr:`GPSDRFilter.fix_status` says what became of the last fix (Bar-Shalom, Li and
+  updates from dead reckoning alone. Both are counted (``n_downweighted``,
+  ``n_rejected``, the steps in ``rejected_steps``);
+  ``fix_status`` says what became of the last fix (Bar-Shalom, Li and
   Kirubarajan 2001, sections 5.4 and 11.2; Huber 1964).
 * **Re-acquisition.** After :data:`REACQUIRE_AFTER` rejections in a row the filter, not the
   fixes, is taken to be lost (a start far off, a wrong heading, a long drift): the position
   variances are raised to the innovation's square (their cross-covariances dropped) and the
-  fix is accepted, counted in :attr:`GPSDRFilter.n_reacquired`.
+  fix is accepted, counted in ``n_reacquired``.
 * **Calibration only where it is observable.** The odometer scale, heading bias and gyro
   rate bias learn from a fix only when it was accepted as it is, the car is moving
   (``motion == "moving"``, at least ``low_speed``: the gyro heading is the track's, the
@@ -46,7 +46,7 @@ What the filter does when GPS lies (each part a public setting, on by default):
   specification) is held at that bound, with a warning naming the step.
 * **Numerical safety.** After every update ``P`` is symmetrised and checked by Cholesky; one
   that is not positive definite is repaired (symmetrised, eigenvalues floored at 1e-12 of the
-  largest), counted in :attr:`GPSDRFilter.n_repairs`, with a warning naming the step.
+  largest), counted in ``n_repairs``, with a warning naming the step.
 * **Consistency monitor.** The mean NIS over the last :data:`NIS_WINDOW` fixes it used is compared
   with the 99.9 % point of its chi-square distribution; above it, a warning names the step
   and the remedy (the fixes' reported accuracy is optimistic, or the grade too good).
