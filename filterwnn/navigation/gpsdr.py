@@ -24,28 +24,30 @@ What the filter does when GPS lies (each part a public setting, on by default):
 * **Integrity gate.** Each fix's innovation ``y = z - [e, n]^-`` is tested against its
   predicted covariance ``S = P^-_{pos} + R_{gps}`` before it is used: the normalised
   innovation squared ``NIS = y^T S^{-1} y`` is chi-square with 2 degrees of freedom for a
-  consistent filter, and a fix with ``NIS > gate`` (default :data:`GATE`, the 99.9 %
-  point, 13.8) is rejected: the step updates from dead reckoning alone. Rejections are
-  counted (:attr:`GPSDRFilter.n_rejected`) and their steps kept
-  (:attr:`GPSDRFilter.rejected_steps`); :attr:`GPSDRFilter.fix_status` says what became of
-  the last fix (Bar-Shalom, Li and Kirubarajan 2001, sections 5.4 and 11.2).
+  consistent filter. A fix with ``NIS <= gate`` (default :data:`GATE`, the 99.9 % point,
+  13.8) is used as it is; up to ``reject_gate`` (default :data:`REJECT_GATE`, the
+  1 - 1e-9 point, 41.4) it is down-weighted, its sigma scaled by ``sqrt(NIS / gate)``
+  (Huber's weight: it counts as a fix at the gate); above, it is rejected and the step
+  updates from dead reckoning alone. Both are counted (``n_downweighted``,
+  ``n_rejected``, the steps in ``rejected_steps``);
+  ``fix_status`` says what became of the last fix (Bar-Shalom, Li and
+  Kirubarajan 2001, sections 5.4 and 11.2; Huber 1964).
 * **Re-acquisition.** After :data:`REACQUIRE_AFTER` rejections in a row the filter, not the
   fixes, is taken to be lost (a start far off, a wrong heading, a long drift): the position
   variances are raised to the innovation's square (their cross-covariances dropped) and the
-  fix is accepted, counted in :attr:`GPSDRFilter.n_reacquired`.
+  fix is accepted, counted in ``n_reacquired``.
 * **Calibration only where it is observable.** The odometer scale, heading bias and gyro
-  rate bias learn from a fix only when it was accepted, the car is moving
-  (``motion == "moving"``: the heading is the track's, the scale multiplies a real speed)
-  and it has driven :data:`CALIBRATION_SPACING` fix sigmas since the last fix they learnt
-  from (a receiver's errors are correlated over seconds, so fixes closer than their own
-  noise carry little new information about a bias). Otherwise they are Schmidt
+  rate bias learn from a fix only when it was accepted as it is, the car is moving
+  (``motion == "moving"``, at least ``low_speed``: the gyro heading is the track's, the
+  scale multiplies a real speed; pulling away or creeping they differ by tens of
+  degrees, and standing they say nothing). Otherwise they are Schmidt
   "consider" states (zero gain, their uncertainty still counted). A calibration state that
   leaves :data:`CALIBRATION_SIGMAS` prior standard deviations of its prior mean (the grade's
   specification) is held at that bound, with a warning naming the step.
-* **Numerical safety.** After every update ``P`` is checked by Cholesky; one that is not
-  positive definite is repaired (symmetrised, eigenvalues floored at 1e-12 of the
-  largest), counted in :attr:`GPSDRFilter.n_repairs`, with a warning naming the step.
-* **Consistency monitor.** The mean NIS over the last :data:`NIS_WINDOW` fixes is compared
+* **Numerical safety.** After every update ``P`` is symmetrised and checked by Cholesky; one
+  that is not positive definite is repaired (symmetrised, eigenvalues floored at 1e-12 of the
+  largest), counted in ``n_repairs``, with a warning naming the step.
+* **Consistency monitor.** The mean NIS over the last :data:`NIS_WINDOW` fixes it used is compared
   with the 99.9 % point of its chi-square distribution; above it, a warning names the step
   and the remedy (the fixes' reported accuracy is optimistic, or the grade too good).
 
@@ -78,8 +80,8 @@ from ..kalman.presets import make_points
 from ..models import from_model
 from ..kalman.unscented import UnscentedKalmanFilter
 
-__all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS", "GATE", "REACQUIRE_AFTER", "NIS_WINDOW",
-           "CALIBRATION_SIGMAS", "CALIBRATION_SPACING"]
+__all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS", "GATE", "REJECT_GATE", "REACQUIRE_AFTER",
+           "NIS_WINDOW", "CALIBRATION_SIGMAS"]
 
 #: Default standstill threshold (m/s) on the odometer speed: 0.05 m/s = 0.11 mph, four
 #: times the creep of a standing car's CAN speed (0.001-0.03 mph).
@@ -91,14 +93,14 @@ KINDS = ("ekf", "ukf", "sukf")
 #: Default integrity gate on a fix's NIS: the 99.9 % point of chi-square with 2 degrees of
 #: freedom, ``-2 ln(0.001) = 13.82`` (a consistent filter rejects one good fix in 1000).
 GATE = float(-2.0 * np.log(1e-3))
+#: Default rejection gate: fixes above :data:`GATE` and up to it are down-weighted, above it rejected.
+REJECT_GATE = float(-2.0 * np.log(1e-9))
 #: Rejected fixes in a row after which the filter re-acquires (takes itself to be lost).
 REACQUIRE_AFTER = 5
 #: Fixes over which the consistency monitor averages the NIS.
 NIS_WINDOW = 30
 #: A calibration state is held within this many prior (specification) sigmas of its prior mean.
 CALIBRATION_SIGMAS = 3.0
-#: Calibration learns from a fix only after this many fix sigmas driven since the last one it learnt from.
-CALIBRATION_SPACING = 2.0
 
 
 class GPSDRFilter:
@@ -148,8 +150,11 @@ class GPSDRFilter:
     points : sigma points, optional
         Override the unscented kinds' points (filterpy protocol).
     gate : float
-        A fix whose NIS exceeds it is rejected (default :data:`GATE`; ``numpy.inf``
+        A fix whose NIS exceeds it is down-weighted (default :data:`GATE`; ``numpy.inf``
         switches the test off).
+    reject_gate : float, optional
+        A fix whose NIS exceeds it is rejected (default :data:`REJECT_GATE`, or ``gate`` when
+        that is larger; ``gate``: no down-weighting).
     reacquire_after : int
         Rejected fixes in a row after which the next one re-acquires (default
         :data:`REACQUIRE_AFTER`).
@@ -165,12 +170,12 @@ class GPSDRFilter:
     step : int
         Updates so far (the step the warnings name is ``step - 1``, counted from 0).
     fix_status : str
-        What became of the last update's fix: ``"none"``, ``"accepted"``, ``"rejected"``
-        or ``"reacquired"``.
+        What became of the last update's fix: ``"none"``, ``"accepted"``,
+        ``"down-weighted"``, ``"rejected"`` or ``"reacquired"``.
     nis : float or None
         The last fix's normalised innovation squared (before the gate).
-    n_fixes, n_rejected, n_reacquired, n_repairs : int
-        Fixes seen, rejected, accepted to re-acquire; covariance repairs.
+    n_fixes, n_downweighted, n_rejected, n_reacquired, n_repairs : int
+        Fixes seen, down-weighted, rejected, accepted to re-acquire; covariance repairs.
     rejected_steps : list of int
         The steps whose fix was rejected.
     nis_accepted : list of float
@@ -181,7 +186,7 @@ class GPSDRFilter:
 
     def __init__(self, model, kind="ekf", *, x0=None, P0=None, standstill_speed=STANDSTILL_SPEED,
                  low_speed=LOW_SPEED, hold_without_gps=True, gps_window=0, points=None, gate=GATE,
-                 reacquire_after=REACQUIRE_AFTER, nis_window=NIS_WINDOW):
+                 reject_gate=None, reacquire_after=REACQUIRE_AFTER, nis_window=NIS_WINDOW):
         if not isinstance(model, GPSDRModel):
             raise TypeError(f"model must be a GPSDRModel, got {type(model).__name__}")
         self.model = model
@@ -206,14 +211,17 @@ class GPSDRFilter:
             # dim_z follows the fix (4 with GPS, 2 without), so the per-point hx is used
             self.kf = from_model(UnscentedKalmanFilter, model, points=points, x0=x0, P0=P0)
         self.motion = None
-        self._init_integrity(gate, reacquire_after, nis_window, self.kf.x)
+        self._init_integrity(gate, reject_gate, reacquire_after, nis_window, self.kf.x)
 
-    def _init_integrity(self, gate, reacquire_after, nis_window, x0):
+    def _init_integrity(self, gate, reject_gate, reacquire_after, nis_window, x0):
         """The gate, the counters, the consistency monitor and the calibration bounds."""
         gate = float(gate)
         if not gate > 0:
             raise ValueError(f"gate must be > 0 (numpy.inf: no gate), got {gate}")
-        self.gate = gate
+        reject_gate = max(REJECT_GATE, gate) if reject_gate is None else float(reject_gate)
+        if not reject_gate >= gate:
+            raise ValueError(f"reject_gate must be >= gate ({gate:.4g}), got {reject_gate}")
+        self.gate, self.reject_gate = gate, max(reject_gate, gate)
         self.reacquire_after = check_positive_int(reacquire_after, "reacquire_after")
         self.nis_window = check_positive_int(nis_window, "nis_window")
         from scipy.stats import chi2
@@ -222,15 +230,17 @@ class GPSDRFilter:
         self._nis_bound = float(chi2.ppf(0.999, 2 * self.nis_window)) / self.nis_window
         self._nis = deque(maxlen=self.nis_window)
         self.step, self.fix_status, self.nis = 0, "none", None
-        self.n_fixes = self.n_rejected = self.n_reacquired = self.n_repairs = 0
+        self.n_fixes = self.n_rejected = self.n_downweighted = self.n_reacquired = self.n_repairs = 0
         self.rejected_steps, self.nis_accepted, self.nis_warnings = [], [], []
         self._in_a_row, self._inconsistent = 0, False
         cal = np.arange(6, self.model.dim_x)
         self._cal = cal
         self._cal_mean = np.asarray(x0, dtype=float)[cal].copy()
-        self._cal_bound = CALIBRATION_SIGMAS * np.sqrt(np.diag(self.model.P0)[cal])
+        # what the specification allows: the prior (model.P0, model.Q) propagated without measurements
+        self._cal_F = self.model.F[np.ix_(cal, cal)]
+        self._cal_Q = self.model.Q[np.ix_(cal, cal)]
+        self._cal_P = self.model.P0[np.ix_(cal, cal)].copy()
         self._cal_warned = set()
-        self._since_cal = np.inf  # distance driven since calibration last learnt (m)
 
     @property
     def nis_mean(self):
@@ -259,6 +269,8 @@ class GPSDRFilter:
     def predict(self):
         """Propagate ``x`` and ``P`` one DR sample interval."""
         self.kf.predict()
+        if self._cal.size:
+            self._cal_P = self._cal_F @ self._cal_P @ self._cal_F.T + self._cal_Q
         return self
 
     def update(self, z_dr, z_gps=None, gps_sigma=None):
@@ -275,7 +287,6 @@ class GPSDRFilter:
         """
         z_dr = as_state(z_dr, "z_dr", 2)
         self.motion = self.classify(z_dr)
-        self._since_cal += float(z_dr[1])
         adapt = self.gps_window > 0 and z_gps is not None and gps_sigma is None
         if adapt:
             # the fix's innovation and its predicted-state part, before the update
@@ -285,10 +296,10 @@ class GPSDRFilter:
                 gps_sigma = self.gps_sigma_est
         self.fix_status = "none"
         if z_gps is not None:  # a noise still being learnt from the innovations cannot judge them yet
-            z_gps = self._check_fix(z_gps, gps_sigma, test=not (adapt and self.gps_sigma_est is None))
+            z_gps, gps_sigma = self._check_fix(z_gps, gps_sigma, test=not (adapt and self.gps_sigma_est is None))
         z, R, kw = self.model.measurement_for(z_dr, z_gps, zupt=self.motion == "still",
                                               low_speed=self.motion == "slow", gps_sigma=gps_sigma)
-        held = self._held_rows(kw["gps"], gps_sigma)
+        held = self._held_rows(kw["gps"])
         if held.size:
             x_pre, P_pre = self.kf.x.copy(), self.kf.P.copy()
         self._update(z, R, kw)
@@ -308,34 +319,44 @@ class GPSDRFilter:
         return self.model.sigma_gps if gps_sigma is None else float(gps_sigma)
 
     def _check_fix(self, z_gps, gps_sigma, test=True):
-        """The integrity gate: the fix, or ``None`` when its NIS exceeds :attr:`gate`.
+        """The integrity test of one fix: ``(fix or None, its sigma)``.
 
-        After :attr:`reacquire_after` rejections in a row a failing fix re-acquires
-        (:meth:`_reacquire`) instead; ``test=False`` accepts it untested (its NIS still counts).
+        ``NIS <= gate``: accepted. ``gate < NIS <= reject_gate``: down-weighted, its sigma
+        scaled by ``sqrt(NIS / gate)`` (Huber's weight on the squared residual: the fix
+        then counts as one at the gate). ``NIS > reject_gate``: rejected (``None``), unless
+        :attr:`reacquire_after` rejections came in a row, when it re-acquires
+        (:meth:`_reacquire`). ``test=False`` accepts it untested (its NIS still counts).
         """
         z_gps = as_state(z_gps, "z_gps", 2)
         pos = [0, 3]
         y = z_gps - self.kf.x[pos]
-        S = self.kf.P[np.ix_(pos, pos)] + check_positive(self._fix_sigma(gps_sigma), "gps_sigma") ** 2 * np.eye(2)
+        sigma = check_positive(self._fix_sigma(gps_sigma), "gps_sigma")
+        S = self.kf.P[np.ix_(pos, pos)] + sigma**2 * np.eye(2)
         self.nis = nis = float(y @ np.linalg.solve(S, y))
         self.n_fixes += 1
-        self._monitor(nis)
+        if nis <= self.reject_gate or not test:  # the fixes it uses: the gate answers for the others
+            self._monitor(min(nis, self.reject_gate))
         if nis <= self.gate or not test:
             self._in_a_row = 0
             self.fix_status = "accepted"
             self.nis_accepted.append(nis)
-            return z_gps
+            return z_gps, gps_sigma
+        if nis <= self.reject_gate:
+            self._in_a_row = 0
+            self.fix_status = "down-weighted"
+            self.n_downweighted += 1
+            return z_gps, sigma * np.sqrt(nis / self.gate)
         if self._in_a_row >= self.reacquire_after:
             self._reacquire(y)
             self._in_a_row = 0
             self.fix_status = "reacquired"
             self.n_reacquired += 1
-            return z_gps
+            return z_gps, gps_sigma
         self._in_a_row += 1
         self.fix_status = "rejected"
         self.n_rejected += 1
         self.rejected_steps.append(self.step)
-        return None
+        return None, gps_sigma
 
     def _reacquire(self, y):
         """Take the filter to be lost: position variances ``+= y^2``, their cross-covariances dropped."""
@@ -351,7 +372,7 @@ class GPSDRFilter:
 
     def _monitor(self, nis):
         """Warn when the mean NIS over the last :attr:`nis_window` fixes leaves its 99.9 % bound."""
-        self._nis.append(min(nis, 10.0 * self.gate))  # one wild fix does not hold the alarm for a window
+        self._nis.append(nis)
         if len(self._nis) < self.nis_window:
             return
         high = float(np.mean(self._nis)) > self._nis_bound
@@ -364,27 +385,33 @@ class GPSDRFilter:
                 "accuracy as gps_sigma, or use a lower grade", RuntimeWarning, stacklevel=4)
         self._inconsistent = high
 
-    def _held_rows(self, gps, gps_sigma):
+    def _held_rows(self, gps):
         """The rows this update must not move: position and calibration without a fix; the
         calibration when it is not observable (see the module docstring)."""
         if not gps:
             return self.held_states if self.hold_without_gps else np.zeros(0, dtype=int)
         if not self._cal.size:
             return self._cal
-        if self.motion == "moving" and self._since_cal >= CALIBRATION_SPACING * self._fix_sigma(gps_sigma):
-            self._since_cal = 0.0
-            return np.zeros(0, dtype=int)
-        return self._cal
+        observable = self.motion == "moving" and self.fix_status == "accepted"
+        return np.zeros(0, dtype=int) if observable else self._cal
 
     def _bound_calibration(self):
-        """Hold each calibration state within :data:`CALIBRATION_SIGMAS` of its prior (its specification)."""
+        """Hold each calibration state within :data:`CALIBRATION_SIGMAS` of its prior (its specification).
+
+        The prior is the model's ``P0`` propagated by its ``F`` and ``Q`` without measurements
+        (a random walk's spread grows with time; a heading bias driven by a rate bias grows
+        with the rate bias's specification times the time).
+        """
+        if not self._cal.size:
+            return False
         x = self.kf.x
         d = x[self._cal] - self._cal_mean
-        out = np.abs(d) > self._cal_bound
+        bound = CALIBRATION_SIGMAS * np.sqrt(np.diag(self._cal_P))
+        out = np.abs(d) > bound
         if not out.any():
             return False
         x = x.copy()
-        x[self._cal] = self._cal_mean + np.clip(d, -self._cal_bound, self._cal_bound)
+        x[self._cal] = self._cal_mean + np.clip(d, -bound, bound)
         self.kf.x = x
         names = ("odometer scale", "heading bias", "gyro rate bias")
         for i in np.flatnonzero(out):
@@ -393,13 +420,16 @@ class GPSDRFilter:
                 warnings.warn(
                     f"GPSDRFilter: the {names[i]} state ran past {CALIBRATION_SIGMAS:g} sigma of its "
                     f"specification at step {self.step} ({d[i]:+.3g} from its prior mean, bound "
-                    f"{self._cal_bound[i]:.3g}); held at the bound. Check the sensor grade (or the sensor)",
+                    f"{bound[i]:.3g}); held at the bound. Check the sensor grade (or the sensor)",
                     RuntimeWarning, stacklevel=4)
         return True
 
     def _repair(self):
         """Keep ``P`` symmetric positive definite (documented repair, counted and warned)."""
-        P, n_bad = repair_pd(self.kf.P[None])
+        P = self.kf.P
+        if not np.array_equal(P, P.T):  # the EKF's Joseph form leaves last-bit asymmetry
+            self.kf.P = P = 0.5 * (P + P.T)
+        P, n_bad = repair_pd(P[None])
         if not n_bad:
             return False
         self.kf.P = P[0]
@@ -436,7 +466,16 @@ class GPSDRFilter:
             self.kf.update(z, m.HJacobian, m.hx, R=R, args=args, hx_args=args,
                            residual=np.subtract if kw["velocity"] else dr_residual)
         elif kw["velocity"]:
-            self.kf.update(z, R=R, gps=kw["gps"], velocity=True)
+            # the velocity form's first entry is v_e (m/s), not a heading: a linear mean and a plain
+            # residual (the heading's circular mean and wrap folded the sigma points' v_e into
+            # [-pi, pi): with the spherical-simplex points' wide spread the SUKF lost the speed)
+            kf = self.kf
+            z_mean, residual = kf.z_mean, kf.residual_z
+            kf.z_mean, kf.residual_z = None, np.subtract
+            try:
+                kf.update(z, R=R, gps=kw["gps"], velocity=True)
+            finally:
+                kf.z_mean, kf.residual_z = z_mean, residual
         else:
             self.kf.update(z, R=R, gps=kw["gps"])
 

@@ -465,6 +465,15 @@ def dr_outage_errors(t, errors, outages=(), title="", bands=None, rtol=None):
 __all__ += ["dr_real_drive"]
 
 
+def _rejected_fixes(ax, integrity):
+    """Mark the fixes the filters' integrity gate rejected (each filter its own marker)."""
+    for i, (name, ig) in enumerate(integrity.items()):
+        xy = ig["rejected_xy"]
+        if len(xy):
+            ax.plot(xy[:, 0], xy[:, 1], ls="none", marker=_DR_MARKERS[i % len(_DR_MARKERS)], mfc="none", ms=5,
+                    color="tab:purple", alpha=0.7, label=f"fix rejected by {name} ({len(xy)})")
+
+
 def dr_real_drive(res, ax=None):
     """A real drive: its track with the GPS outages marked, and each filter's error at the outage ends.
 
@@ -477,7 +486,7 @@ def dr_real_drive(res, ax=None):
     -------
     matplotlib.figure.Figure
         Left: the track (east/north, m), each outage drawn over it with its start marked
-        and numbered. Right: the horizontal error at the end of each outage per filter
+        and numbered, and the fixes each filter rejected (``res["integrity"]``). Right: the horizontal error at the end of each outage per filter
         (log scale) against the outage's start time.
     """
     import matplotlib.pyplot as plt
@@ -494,6 +503,7 @@ def dr_real_drive(res, ax=None):
                  label="GPS outage (overlaps darker)" if j == 0 else None)
         ax1.plot(*tr[k1], "kx", ms=5, label="outage end (scored)" if j == 0 else None)
         ax1.annotate(str(j + 1), tr[k1], xytext=(3, 3), textcoords="offset points", fontsize=7)
+    _rejected_fixes(ax1, res.get("integrity", {}))
     ax1.set_aspect("equal", adjustable="datalim")
     ax1.set_xlabel("east [m]")
     ax1.set_ylabel("north [m]")

@@ -1,5 +1,7 @@
 """Tests of GPSDRFilter: starts and stops handled by default, per-fix GPS sigma, the three kinds."""
 
+import warnings
+
 import numpy as np
 import pytest
 from filterpy.kalman import ExtendedKalmanFilter
@@ -234,3 +236,110 @@ def test_gps_noise_estimated_from_innovations(true_sigma):
     assert GPSDRFilter(GPSDRModel()).gps_sigma_est is None
     with pytest.raises(ValueError, match="gps_window must be >= 0"):
         GPSDRFilter(GPSDRModel(), gps_window=-1)
+
+
+# ----------------------------------------------------------------------------- integrity (issue 23)
+
+
+def _steady(kind="ekf", **kw):
+    """A filter on a straight 14 m/s road, told the truth at the start."""
+    run = simulate_scenario(SCENARIOS["gpsdr"](duration=60.0, outages=()), rng=1)
+    f = GPSDRFilter(GPSDRModel(augmented=True), kind, x0=np.r_[run.x0, 1.0, 0.0], **kw)
+    return run, f
+
+
+def test_gate_defaults_are_chi_square_points():
+    from scipy.stats import chi2
+
+    from filterwnn.navigation.gpsdr import GATE, REJECT_GATE
+
+    assert GATE == pytest.approx(chi2.ppf(0.999, 2)) and REJECT_GATE == pytest.approx(chi2.isf(1e-9, 2))
+    f = GPSDRFilter(GPSDRModel())
+    assert (f.gate, f.reject_gate) == (GATE, REJECT_GATE)
+    assert GPSDRFilter(GPSDRModel(), gate=np.inf).reject_gate == np.inf
+    with pytest.raises(ValueError, match="gate must be > 0"):
+        GPSDRFilter(GPSDRModel(), gate=0.0)
+    with pytest.raises(ValueError, match="reject_gate must be >= gate"):
+        GPSDRFilter(GPSDRModel(), reject_gate=1.0)
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_a_jumped_fix_is_rejected_and_counted(kind):
+    run, f = _steady(kind)
+    gps = run.gps_list()
+    k_jump = int(run.gps_steps[20])
+    for k in range(len(run.t)):
+        f.predict()
+        z = gps[k] if k != k_jump else gps[k] + np.array([60.0, 0.0])
+        f.update(run.z_dr[k], z)
+        if k == k_jump:
+            assert f.fix_status == "rejected" and f.nis > f.reject_gate
+            err = abs(f.x[0] - run.x_true[k, 0])
+            assert err < 3.0  # the 60 m jump did not move the estimate
+    assert f.n_rejected == 1 and f.rejected_steps == [k_jump] and f.n_fixes == len(run.gps_steps)
+    assert 1.0 < f.nis_mean < 3.5  # consistent on the good fixes
+
+
+def test_a_moderate_outlier_is_down_weighted():
+    run, f = _steady()
+    gps = run.gps_list()
+    k_out = int(run.gps_steps[20])
+    for k in range(k_out + 1):
+        f.predict()
+        if k == k_out:  # NIS between the gates: a fix about 5 sigma off
+            sd = np.sqrt(f.P[0, 0] + f.model.sigma_gps**2)
+            gps[k] = f.x[[0, 3]] + np.array([5.0 * sd, 0.0])
+        f.update(run.z_dr[k], gps[k])
+    assert f.fix_status == "down-weighted" and f.gate < f.nis <= f.reject_gate and f.n_downweighted == 1
+
+
+def test_a_run_of_rejections_reacquires():
+    """The filter starts 200 m off with a tight P: it rejects the first fixes, then re-acquires."""
+    run, _ = _steady()
+    x0 = np.r_[run.x0, 1.0, 0.0]
+    x0[0] += 200.0
+    f = GPSDRFilter(GPSDRModel(augmented=True), x0=x0)
+    est = f.batch_filter(run.z_dr, run.gps_list())
+    assert f.n_rejected == f.reacquire_after and f.n_reacquired >= 1
+    assert abs(est[-1, 0] - run.x_true[-1, 0]) < 5.0
+
+
+def test_calibration_holds_while_standing_and_is_bounded_by_its_specification():
+    run, f = _steady()
+    f.update([0.3, 0.0], f.x[[0, 3]] + [1.0, -1.0])  # standing: a fix says nothing about scale or bias
+    assert f.motion == "still" and f.fix_status == "accepted"
+    np.testing.assert_array_equal(f.x[6:], [1.0, 0.0])
+    g = GPSDRFilter(GPSDRModel(augmented=True, sd_bias=np.deg2rad(1.0)))
+    x = g.x.copy()
+    x[7] = np.deg2rad(10.0)
+    g.kf.x = x
+    with pytest.warns(RuntimeWarning, match=r"heading bias state ran past 3 sigma of its specification at step 0"):
+        g.predict().update([0.0, 1.0])
+    assert abs(g.x[7]) <= 3 * np.sqrt(g._cal_P[1, 1]) + 1e-12
+
+
+@pytest.mark.parametrize("kind", KINDS)
+@pytest.mark.parametrize("dt", [0.05, 1.0])
+def test_P_stays_positive_definite_at_any_rate(kind, dt):
+    sc = FROM_REST.with_(dt=dt, duration=120.0)
+    run = simulate_scenario(sc, rng=2)
+    for grade in ("survey", "phone"):
+        m = GPSDRModel.from_grade(grade, dt)
+        f = GPSDRFilter(m, kind, x0=np.r_[run.x0, m.x0[6:]])
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            est = f.batch_filter(run.z_dr, run.gps_list())
+        assert np.all(np.isfinite(est))
+        np.linalg.cholesky(f.P)
+        np.testing.assert_array_equal(f.P, f.P.T)
+        assert _end_error(run, est) < 10.0, (grade, kind, dt)
+
+
+def test_the_consistency_monitor_warns_with_the_step_and_a_remedy():
+    run, f = _steady(nis_window=10)
+    fixes = [None if g is None else g + 3.0 * np.random.default_rng(k).standard_normal(2) * 2.0
+             for k, g in enumerate(run.gps_list())]  # noise 3x what the model says
+    with pytest.warns(RuntimeWarning, match=r"inconsistent at step \d+: the mean NIS of the last 10 fixes .* "
+                                            r"pass the receiver's accuracy as gps_sigma"):
+        f.batch_filter(run.z_dr, fixes)
+    assert f.nis_warnings

@@ -171,3 +171,23 @@ def test_cli_cache_and_backend_options(tmp_path):
                               "--cache", str(tmp_path / "cache")])
     assert dr.run(args) == 0
     assert len(list((tmp_path / "cache").glob("*.npz"))) == 1
+
+
+def test_drive_table_separates_the_causes():
+    """Issue 23: the error at the outage start, its growth, the fixes rejected and the NIS per filter."""
+    from filterwnn.navigation.drives import read_drive_csv, sample_drive_path
+
+    run = read_drive_csv(sample_drive_path())
+    res = dr.real_drive_outages(run, starts=[40.0, 100.0], filters=("DR-mech", "EKF-8"), use_gps_sigma=True,
+                                grade="phone")
+    np.testing.assert_array_equal(res["start_err"]["DR-mech"], 0.0)
+    assert np.all(res["start_err"]["EKF-8"] >= 0) and res["start_err"]["EKF-8"].shape == (2,)
+    ig = res["integrity"]["EKF-8"]
+    assert ig["n_fixes"] == len(run.gps_steps) and ig["rejected_xy"].shape == (ig["n_rejected"], 2)
+    table = dr.real_drive_table(res)
+    assert "median at start | median growth | fixes rejected / down-weighted / re-acquired | mean NIS" in table
+    row = next(line for line in table.splitlines() if line.startswith("| EKF-8 |"))
+    cells = [c.strip() for c in row.strip("|").split("|")]
+    e, s = res["EKF-8"], res["start_err"]["EKF-8"]
+    assert cells[6] == f"{np.median(s):.2f}" and cells[7] == f"{np.median(e - s):.2f}"
+    assert cells[8].endswith(f"of {ig['n_fixes']}") and cells[9] == f"{ig['nis_mean']:.2f}"

@@ -73,8 +73,14 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         ``starts (n,)``, ``length``, ``moved (n,)`` (distance driven during each outage, m),
         ``end_steps (n,)`` (the scored step of each outage), ``reference`` ("truth" or
         "withheld GPS"), ``name``, ``track (n_steps, 2)`` (truth, else the fixes
-        interpolated), ``end_xy {filter: (n, 2)}``, and per filter ``(n,)`` end-of-outage
-        horizontal errors (m); NaN never appears (a non-finite estimate raises).
+        interpolated), ``end_xy {filter: (n, 2)}``, ``start_err {filter: (n,)}`` (the
+        horizontal error when each outage starts, against the same reference as the
+        ends; 0 for ``DR-mech``, which starts there), ``integrity {filter: dict}`` (over the
+        whole drive with GPS: ``n_fixes``, ``n_rejected``, ``n_downweighted``,
+        ``n_reacquired``, ``nis_mean``,
+        the NIS of the accepted fixes (2 when consistent), ``rejected_xy (m, 2)``, the
+        rejected fixes), and per filter ``(n,)`` end-of-outage horizontal errors (m); NaN
+        never appears (a non-finite estimate raises).
     """
     bad = [f for f in filters if f not in REAL_FILTERS]
     if bad:
@@ -88,15 +94,19 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
     truth = run.x_true is not None
     out = {"starts": starts, "length": length, "moved": moved, "end_steps": np.array(k1s),
            "reference": "truth" if truth else "withheld GPS", "name": run.scenario.name,
-           "track": track, "t": run.t, "end_xy": {}}
+           "track": track, "t": run.t, "end_xy": {}, "start_err": {}, "integrity": {}}
     gps = run.gps_list()
     sig = run.gps_sigma_list() if use_gps_sigma else [None] * len(run.t)
+    starts_ref = _start_refs(run, k0s, track if not truth else None)
     for name in filters:
         if name == "DR-mech":
             ends = _dr_mech_ends(run, k0s, k1s, track if not truth else None)
+            out["start_err"][name] = np.zeros(len(k0s))
         else:
             f = _real_drive_filter(name, run, grade, model_kwargs, kw, gps_window, slow_speed)
-            ends = _outage_ends(f, name, run, k0s, k1s, starts, gps, sig)
+            ends, begins = _outage_ends(f, name, run, k0s, k1s, starts, gps, sig)
+            out["start_err"][name] = np.hypot(*(begins - starts_ref).T)
+            out["integrity"][name] = _integrity(f, run)
         out["end_xy"][name] = ends
         out[name] = np.hypot(*(ends - refs).T)
     return out
@@ -149,55 +159,81 @@ def _real_drive_filter(name, run, grade, model_kwargs, kw, gps_window, slow_spee
     return GPSDRFilter(model, _KIND[name], x0=x0, P0=P0, gps_window=gps_window, **low)
 
 
-_REAL_META = ("starts", "moved", "length", "end_steps", "reference", "name", "track", "t", "end_xy")
+_REAL_META = ("starts", "moved", "length", "end_steps", "reference", "name", "track", "t", "end_xy", "start_err",
+              "integrity")
+
+
+def _start_refs(run, k0s, track=None):
+    """The reference east/north just before each outage's first step ``k0`` (the truth, else ``track``)."""
+    ref = run.x_true[:, [0, 3]] if track is None else track
+    return np.array([ref[k0 - 1] if k0 > 0 else run.x0[[0, 3]] for k0 in k0s])
 
 
 def _dr_mech_ends(run, k0s, k1s, track=None):
     """Mechanised dead reckoning over each outage ``k0..k1``: ``s [sin theta, cos theta]``
     summed from the reference position before it (the truth, else ``track``)."""
-    ends = np.empty((len(k0s), 2))
+    ends = _start_refs(run, k0s, track)
     for j, (k0, k1) in enumerate(zip(k0s, k1s)):
-        if track is None:
-            p = run.x_true[k0 - 1, [0, 3]] if k0 > 0 else run.x0[[0, 3]]
-        else:
-            p = track[k0 - 1] if k0 > 0 else run.x0[[0, 3]]
         z = run.z_dr[k0:k1 + 1]
-        ends[j] = p + np.sum(z[:, 1:2] * np.stack([np.sin(z[:, 0]), np.cos(z[:, 0])], axis=1), axis=0)
+        ends[j] += np.sum(z[:, 1:2] * np.stack([np.sin(z[:, 0]), np.cos(z[:, 0])], axis=1), axis=0)
     return ends
 
 
+def _integrity(f, run):
+    """What the filter ``f`` did with the drive's fixes (see :func:`real_drive_outages`)."""
+    rej = np.isin(run.gps_steps, f.rejected_steps)
+    return {"n_fixes": f.n_fixes, "n_rejected": f.n_rejected, "n_downweighted": f.n_downweighted,
+            "n_reacquired": f.n_reacquired,
+            "nis_mean": f.nis_mean, "rejected_xy": run.z_gps[rej]}
+
+
 def _outage_ends(f, name, run, k0s, k1s, starts, gps, sig):
-    """The east/north of filter ``f`` at the end of each outage: one pass with GPS, a
-    snapshot at each outage start, then each outage alone (DR only)."""
-    ends = np.empty((len(k0s), 2))
+    """The east/north of filter ``f`` at the start (before step ``k0``) and the end of each
+    outage: one pass with GPS over the whole drive, a snapshot at each outage start, then
+    each outage alone (DR only)."""
+    ends, begins = np.empty((len(k0s), 2)), np.empty((len(k0s), 2))
     snaps = {}
-    for k in range(max(k0s) + 1):
+    for k in range(len(run.t)):
         if k in k0s:
             snaps[k] = copy.deepcopy(f)
         f.predict()
         f.update(run.z_dr[k], gps[k], sig[k])
     for j, (k0, k1) in enumerate(zip(k0s, k1s)):
         g = copy.deepcopy(snaps[k0])
+        begins[j] = g.x[[0, 3]]
         for k in range(k0, k1 + 1):
             g.predict()
             g.update(run.z_dr[k], None)
         if not np.all(np.isfinite(g.x)):
             raise FloatingPointError(f"{name}: non-finite state at step {k1} (outage at {starts[j]:.1f} s)")
         ends[j] = g.x[[0, 3]]
-    return ends
+    return ends, begins
 
 
 def real_drive_table(res, min_moved=100.0):
-    """Markdown: median/p90/max end-of-outage error over all placements and moving ones."""
+    """Markdown: median/p90/max end-of-outage error over all placements and moving ones, the
+    error at the outage starts and its growth over them (medians), what each filter did with
+    the drive's fixes (rejected / down-weighted / re-acquired of those it saw) and its mean NIS
+    of the accepted ones."""
     mv = res["moved"] >= min_moved
     names = [k for k in res if k not in _REAL_META]
     lines = [f"### real drive {res.get('name', CAR_DRIVE)}: {len(res['starts'])} GPS outages of {res['length']:g} s "
              f"({int(mv.sum())} with >= {min_moved:g} m driven), error at the outage ends against the "
              f"{res.get('reference', 'truth')} (m)", "",
-             "| filter | median all | p90 all | max all | median moving | max moving |", "|---|---|---|---|---|---|"]
+             "| filter | median all | p90 all | max all | median moving | max moving | median at start | "
+             "median growth | fixes rejected / down-weighted / re-acquired | mean NIS (2: consistent) |", "|---|---|---|---|---|---|---|---|---|---|"]
     for n in names:
         e = res[n]
         em = e[mv] if mv.any() else np.array([np.nan])
+        s = res.get("start_err", {}).get(n, np.full(len(e), np.nan))
         lines.append(f"| {n} | {np.median(e):.2f} | {np.percentile(e, 90):.2f} | {e.max():.2f} | "
-                     f"{np.median(em):.2f} | {em.max():.2f} |")
+                     f"{np.median(em):.2f} | {em.max():.2f} | {np.median(s):.2f} | {np.median(e - s):.2f} | "
+                     + _integrity_cells(res.get("integrity", {}).get(n)) + " |")
     return "\n".join(lines) + "\n"
+
+
+def _integrity_cells(ig):
+    if ig is None:
+        return "- | -"
+    nis = "-" if ig["nis_mean"] is None else f"{ig['nis_mean']:.2f}"
+    return f"{ig['n_rejected']} / {ig['n_downweighted']} / {ig['n_reacquired']} of {ig['n_fixes']} | {nis}"
