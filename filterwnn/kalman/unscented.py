@@ -72,6 +72,7 @@ import numpy as np
 from filterpy.kalman import UnscentedKalmanFilter as _FilterpyUKF
 from filterpy.kalman import unscented_transform
 from scipy.linalg import cho_factor, cho_solve, cholesky
+from scipy.linalg.lapack import dpotrf, dpotrs
 
 from .._linalg import cholesky as checked_cholesky
 from .._linalg import cholesky_lower, not_pd_error
@@ -305,15 +306,17 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             if np.shape(M) != (n, n):
                 raise ValueError(f"{name} must have shape ({n}, {n}), got {np.shape(M)}; "
                                  + _SHAPE_FIX[name].format(n=n))
-        if not (np.isfinite(x).all() and np.isfinite(P).all()):
+        # Finiteness and symmetry cost full passes: check what the user set, not what we
+        # produced. What the filter last produced or checked is kept by content, not
+        # identity, so an edit in place (P *= 4, P[0, 2] += 0.5) is seen like an
+        # assignment; it also makes the cached factor and the update's sigma points stale
+        # (both modes redraw them).
+        P_same = self._unchanged("P", P)
+        if not (np.isfinite(x).all() and (P_same or np.isfinite(P).all())):
             raise NumericalError(
                 f"x and P must be finite {when}; set them again (x_post and P_post hold the "
                 "last update's values)", matrix="P", step=self.step)
-        # Symmetry costs a full pass: check what the user set, not what we produced. What
-        # the filter last produced or checked is kept by content, not identity, so an edit
-        # in place (P *= 4, P[0, 2] += 0.5) is seen like an assignment; it also makes the
-        # cached factor and the update's sigma points stale (both modes redraw them).
-        if not self._unchanged("P", P):
+        if not P_same:
             _with_fix(check_symmetric, P, "P")
             self._chol = None
             self._sigmas_stale = True
@@ -682,12 +685,13 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         Pxz = dx.T @ (dz * self.Wc[:, None])
         S = 0.5 * (S + S.T)
         self.S = S
-        try:
-            cf = cho_factor(S, lower=True, check_finite=True)
-        except (np.linalg.LinAlgError, ValueError) as exc:
-            raise self._not_pd("S", S) from exc
-        self.SI = cho_solve(cf, np.eye(S.shape[0]))
-        self.K = cho_solve(cf, Pxz.T).T
+        # scipy's cho_factor and cho_solve are these LAPACK calls; their wrappers' checks
+        # cost more than the work for a small S (a WNN's is 1x1)
+        c, info = dpotrf(S, lower=1, clean=0)
+        if info != 0 or not np.isfinite(S).all():
+            raise self._not_pd("S", S)
+        self.SI = dpotrs(c, np.eye(S.shape[0]), lower=1)[0]
+        self.K = dpotrs(c, Pxz.T, lower=1)[0].T
         self.y = self.residual_z(z.reshape(np.shape(zp)), zp)
         self.x = self.state_add(self.x, self.K @ self.y)
         if S.shape == (1, 1):  # rank-1 downdate, symmetric by construction

@@ -21,7 +21,11 @@ The marginal log-likelihood :math:`\log p(z_k \mid z_{1:k-1}) \approx \log \sum_
 \alpha_i` is kept per step (``log_likelihood``) and summed (``log_marginal_likelihood``).
 
 When the weights collapse (ESS below 2 for 3 consecutive updates) the filter warns once
-with a :class:`DegeneracyWarning` naming the step, the ESS and what to try.
+with a :class:`DegeneracyWarning` naming the step, the ESS and what to try. With the prior
+(bootstrap) proposal and the Gaussian likelihood a collapse counts only while the best
+particle cannot explain the measurement (its Mahalanobis distance :math:`d^2` beyond the
+0.999 quantile of :math:`\chi^2_{\dim z}`): a sharp likelihood that singles out a
+particle close to the measurement is the filter working, not a risk.
 
 The particle filters are *not* the Gaussian-sum filter: a bank of Kalman filters weighted
 by their innovation likelihoods, never sampled, is :class:`filterwnn.GaussianSumFilter`,
@@ -60,6 +64,7 @@ import inspect
 import warnings
 
 import numpy as np
+from scipy.special import chdtri
 
 from .._validation import (
     NumericalError,
@@ -72,6 +77,7 @@ from .._validation import (
     check_positive_int,
     check_rng,
     check_scale,
+    check_weights,
 )
 from .._state import rolls_back_on_error
 from ._weighted import ModelAttribute, WeightedMixtureFilter, logsumexp
@@ -352,8 +358,23 @@ class ParticleFilter(WeightedMixtureFilter):
 
     @property
     def weights(self):
-        """Normalised weights, ``exp(log_weights)``, shape ``(n_particles,)``."""
-        return np.exp(self.log_weights)
+        """Normalised weights, ``exp(log_weights)``, shape ``(n_particles,)``.
+
+        Read-only: an edit in place (filterpy's ``weights.fill(1 / N)``) raises instead of
+        changing a copy. Assign instead, ``pf.weights = w`` (non-negative, positive sum,
+        normalised here; ``log_weights`` follows).
+        """
+        w = np.exp(self.log_weights)
+        w.flags.writeable = False
+        return w
+
+    @weights.setter
+    def weights(self, w):
+        w = check_weights(w)
+        if w.shape != (self.n_particles,):
+            raise ValueError(f"weights must have shape ({self.n_particles},), got {w.shape}")
+        with np.errstate(divide="ignore"):
+            self.log_weights = np.log(w)
 
     @property
     def x_prior(self):
@@ -461,14 +482,28 @@ class ParticleFilter(WeightedMixtureFilter):
                     "proposal), more particles, or filterwnn.GaussianSumFilter")
         return "more particles, a wider proposal (a larger Q in the proposal), or filterwnn.GaussianSumFilter"
 
-    def _watch_degeneracy(self, ess):
-        self._low_ess_run = self._low_ess_run + 1 if ess < _DEGENERATE_ESS else 0
+    def _unexplained(self, log_lik):
+        """Best particle's ``d^2`` if no particle explains ``z`` (bootstrap, Gaussian R), else None.
+
+        Where this cannot be judged (other proposals, a custom likelihood) it returns
+        ``inf``, so the ESS rule alone decides.
+        """
+        if log_lik is None or not isinstance(self.proposal, PriorProposal) or self.measurement_logpdf is not None:
+            return np.inf
+        peak = float(self._model.noise("R", check=False).logpdf(np.zeros((1, self.dim_z)))[0])
+        d2 = 2.0 * (peak - float(np.max(log_lik)))
+        return d2 if d2 > chdtri(self.dim_z, 1e-3) else None  # the chi^2 0.999 quantile
+
+    def _watch_degeneracy(self, ess, log_lik=None):
+        d2 = self._unexplained(log_lik) if ess < _DEGENERATE_ESS else None
+        self._low_ess_run = self._low_ess_run + 1 if d2 is not None else 0
         if self._low_ess_run >= _DEGENERATE_RUN and not self._warned_degenerate:
             self._warned_degenerate = True
             warnings.warn(
                 f"{type(self).__name__}: the particle weights collapsed: the effective sample size "
                 f"stayed below {_DEGENERATE_ESS:g} for {_DEGENERATE_RUN} consecutive updates (step "
-                f"{self.step}: ESS {ess:.3g} of {self.n_particles} particles). Try "
+                f"{self.step}: ESS {ess:.3g} of {self.n_particles} particles"
+                f"{'' if d2 == np.inf else f', and the best particle d^2 = {d2:.3g} cannot explain z'}). Try "
                 f"{self._degeneracy_remedy()}",
                 DegeneracyWarning,
                 stacklevel=4,  # the caller of predict/update, past rolls_back_on_error
@@ -589,7 +624,7 @@ class ParticleFilter(WeightedMixtureFilter):
         self._x, self._P = x, P
         self.x_post, self.P_post = x.copy(), P.copy()
         self._record(ess, n_distinct, resampled)
-        self._watch_degeneracy(ess)
+        self._watch_degeneracy(ess, log_lik)
 
     def _add_weights(self, model, step, log_alpha, log_lik):
         """New normalised log-weights from the increment (None when skipped as an outlier).
