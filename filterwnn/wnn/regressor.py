@@ -128,11 +128,14 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
         Particles of the particle-filter trainers and ``smc``; components of the Gaussian sums
         and members of ``ekf-ensemble``.
     move : {None, "mala", "hmc"}, default None
-        MCMC move after each resampling of the particle-filter trainers (``spf``, ``epf``,
-        ``upf``, ``supf``; an error for the others): resample-move on the static posterior,
-        with Q = 0 (``process_noise`` must be ``"auto"`` or 0) and the prior matched to the
-        start (``initial_covariance`` scales it, ``"auto"``: 1). 5 MALA steps, or 2 HMC steps
-        of 10 leapfrog steps (:data:`filterwnn.wnn.trainers.MOVE_SETTINGS`).
+        MCMC move after each resampling of the bootstrap filter (``trainer="spf"``): IBIS
+        (iterated batch importance sampling, Chopin 2002) on the static posterior, with Q = 0
+        (``process_noise`` must be ``"auto"`` or 0) and the prior matched to the start
+        (``initial_covariance`` scales it, ``"auto"``: 1). 5 MALA steps, or 2 HMC steps of 10
+        leapfrog steps (:data:`filterwnn.wnn.trainers.MOVE_SETTINGS`). Refused for ``epf``,
+        ``upf``, ``supf`` (at Q = 0 their Kalman proposals never move a particle: they ran
+        the same IBIS, bit for bit) and for the non-particle trainers. The predictive variance is
+        the cloud's spread plus R.
     weighting : None
         Removed: a value other than None raises ``ValueError`` naming the trainer to use
         (``"gsf-ekf"``/``"gsf-ukf"``/``"gsf-sukf"`` with ``tempering=0.01`` for the former
@@ -307,6 +310,12 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
             raise ValueError(
                 f"process_noise must be 0 (or 'auto') with move={self.move!r}: the move targets the static "
                 f"posterior p(theta | rows), got {self.process_noise!r}"
+            )
+        if spec.points is not None or spec.jacobian:
+            raise ValueError(
+                f"move={self.move!r} with trainer={self.trainer!r}: at Q = 0 its Kalman proposal never moves a "
+                "particle (what runs is IBIS, the bootstrap step's reweighting with the move, at the cost of "
+                f"unused Kalman updates); use trainer='spf' with move={self.move!r}"
             )
         s["P0"] = MOVE_SETTINGS["P0"] if self.initial_covariance == "auto" else s["P0"]
         s["output_scale"] = MOVE_SETTINGS["output_scale"]

@@ -4,10 +4,10 @@ Training a WNN with a filter is running the filter on the weight-state model of
 :mod:`filterwnn.wnn.weight_model` (``theta_k = theta_{k-1} + u_k``, ``y_k = WNN(theta_k, x_k) + v_k``),
 one training sample per step, epoch after epoch (Niu, Wu and Li, Sec. 4). A trainer is one
 :class:`TrainerSpec` entry: its class, its family (what the estimator resolves for it), the
-filter class, points and Jacobian it builds, its ``"auto"`` settings per start, the WNN
-study's search grid, cost and row, and the paper's Table 1 row. :class:`filterwnn.WNNRegressor`
-and :mod:`filterwnn.studies.wnn` read only this table; :func:`register_trainer` adds one. The
-trainers, by name:
+filter class, points and Jacobian it builds and its ``"auto"`` settings per start: how to
+train, nothing more (the WNN study's rows, grids, costs, labels and the paper's Table 1 live in
+the study, :data:`filterwnn.studies.wnn.rows.STUDY`). :class:`filterwnn.WNNRegressor` reads only
+this table; :func:`register_trainer` adds one. The trainers, by name:
 
 ``"bp"``
     back-propagation: per-sample gradient descent on the squared error (the baseline).
@@ -67,8 +67,8 @@ does not work literally (UKF/SUKF end worse than the mean predictor).
 >>> sorted(TRAINERS)[:4]
 ['bp', 'ekf', 'ekf-ensemble', 'epf']
 >>> spec = TRAINERS["upf"]
->>> spec.family, spec.filter.__name__, spec.points.__name__, spec.parent
-('particle', 'UnscentedParticleFilter', 'merwe_points', 'ukf')
+>>> spec.family, spec.filter.__name__, spec.points.__name__
+('particle', 'UnscentedParticleFilter', 'merwe_points')
 >>> AUTO_SETTINGS[("upf", "scaled")]
 {'Q': 1e-05, 'P0': 0.01}
 
@@ -145,7 +145,8 @@ def simplex_points(n, alpha=1.0):
 
 @dataclass(frozen=True, eq=False)
 class TrainerSpec:
-    """One trainer: everything the estimator, the search and the study read about it.
+    """One trainer: how to train (what the estimator reads); the WNN study's rows, grids, costs,
+    labels and the paper's numbers live in the study (:data:`filterwnn.studies.wnn.rows.STUDY`).
 
     Frozen; compared and hashed by identity (an entry is one registration).
 
@@ -174,25 +175,6 @@ class TrainerSpec:
         Gaussian sums: weight the components, or average them without weights.
     options : tuple of str
         Estimator parameters passed through into the settings (``("ekf_backend",)``).
-    grid : tuple of dict
-        The WNN study's candidates (``WNNRegressor`` keywords); empty: not searched on a grid.
-    parent : str, optional
-        Search Q around the value chosen for this trainer (its P0 kept) instead of a grid.
-    copy_settings : str, optional
-        Copy this trainer's chosen settings and epochs in the study instead of searching.
-    cost : float
-        Rough seconds per epoch and particle (the study schedules long tasks first).
-    paper : (float, float), optional
-        The paper's Table 1 row: test MSE, training time (s).
-    paper_settings : dict, optional
-        Keywords over :data:`PAPER_SETTINGS` for the study's paper-settings table; ``None``
-        leaves the trainer out of that table.
-    label : str, optional
-        The study's row label (``{N}``: the number of particles); default the name.
-    study : dict
-        Fixed ``WNNRegressor`` keywords of the study's row (``{"tempering": 0.01}``).
-    study_epochs : int, optional
-        Fixed epochs of the study's row (not searched).
     doc : str
         One line on what the trainer runs.
     """
@@ -207,15 +189,6 @@ class TrainerSpec:
     component: str = None
     combine: str = "mixture"
     options: tuple = ()
-    grid: tuple = ()
-    parent: str = None
-    copy_settings: str = None
-    cost: float = 1.0
-    paper: tuple = None
-    paper_settings: dict = None
-    label: str = None
-    study: dict = field(default_factory=dict)
-    study_epochs: int = None
     doc: str = ""
 
     @property
@@ -706,10 +679,6 @@ def _check_spec(spec):
             raise ValueError(f"auto[{init!r}] of trainer {spec.name!r} must set {missing}, got {auto!r}")
     if spec.family in ("particle", "gaussian-sum") and spec.filter is None:
         raise ValueError(f"a {spec.family} trainer needs its filter class, got filter=None for {spec.name!r}")
-    for attr in ("parent", "copy_settings"):
-        other = getattr(spec, attr)
-        if other is not None and other not in TRAINERS:
-            raise ValueError(f"{attr} of trainer {spec.name!r} must be a registered trainer, got {other!r}")
 
 
 def register_trainer(spec, replace=False):
@@ -730,7 +699,7 @@ def register_trainer(spec, replace=False):
     ------
     ValueError
         For a duplicate name (without ``replace``), an unknown family, ``auto`` settings that
-        lack the family's keys, or a ``parent``/``copy_settings`` that is not registered.
+        lack the family's keys.
 
     Examples
     --------
@@ -738,7 +707,7 @@ def register_trainer(spec, replace=False):
     the WNN study accept its name once it is registered.
 
     >>> from dataclasses import replace
-    >>> spec = register_trainer(replace(TRAINERS["ukf"], name="ukf-copy", label="UKF (copy)"))
+    >>> spec = register_trainer(replace(TRAINERS["ukf"], name="ukf-copy"))
     >>> AUTO_SETTINGS[("ukf-copy", "scaled")]
     {'Q': 1e-06, 'P0': 0.01}
     >>> register_trainer(spec)
@@ -786,12 +755,6 @@ def _qp(scaled, paper):
     return {"scaled": {"Q": scaled[0], "P0": scaled[1]}, "paper": {"Q": paper[0], "P0": paper[1]}}
 
 
-def _grid(qs, p0s):
-    return tuple({"process_noise": q, "initial_covariance": p} for q in qs for p in p0s)
-
-
-_PF_PAPER = {"ess_threshold": 1.0, "tempering": 1.0}  # the paper resamples at every step
-_GSF = {"tempering": 0.01}
 # smc: a static posterior (Q = 0); P0 multiplies the prior matched to the start (kernel "mala": n_moves
 # MALA steps per rung; "hmc": n_moves HMC steps of n_leapfrog leapfrog steps). Scaled: chosen on
 # validation rows (benchmarks/smc_siso.py --validate, seeds 0-2, 80/20 split of the training rows): HMC
@@ -802,47 +765,35 @@ _SMC = {"Q": 0.0, "P0": 1.0, "output_scale": 1.0, "n_moves": 6, "ess_fraction": 
 
 for _spec in (
     TrainerSpec("bp", _BPTrainer, "gradient", {"scaled": {"learning_rate": 0.1}, "paper": {"learning_rate": 0.05}},
-                grid=tuple({"learning_rate": lr} for lr in (0.02, 0.05, 0.1, 0.2, 0.5)), cost=1,
-                paper=(1.6605, 7.9), paper_settings={}, label="BP", doc="back-propagation (the baseline)"),
+                doc="back-propagation (the baseline)"),
     TrainerSpec("ekf", _EKFTrainer, "single", _qp((1e-3, 0.1), (1e-2, 0.01)), filter=ExtendedKalmanFilter,
-                options=("ekf_backend",), grid=_grid((1e-5, 1e-4, 1e-3, 1e-2), (0.01, 0.1, 1.0)), cost=1,
-                paper=(0.2672, 9.8), paper_settings={}, label="EKF", doc="extended Kalman filter (rank-1)"),
+                options=("ekf_backend",), doc="extended Kalman filter (rank-1)"),
     TrainerSpec("ukf", _UKFTrainer, "single", _qp((1e-6, 0.01), (1e-4, 0.1)), filter=UnscentedKalmanFilter,
-                points=merwe_points, grid=_grid((1e-8, 1e-7, 1e-6, 1e-5, 1e-4), (0.01, 0.1)), cost=6,
-                paper=(0.1258, 12.4), paper_settings={}, label="UKF", doc="UKF, Merwe's 2n + 1 points"),
+                points=merwe_points, doc="UKF, Merwe's 2n + 1 points"),
     TrainerSpec("sukf", _UKFTrainer, "single", _qp((1e-6, 0.01), (1e-4, 0.1)), filter=UnscentedKalmanFilter,
-                points=simplex_points, grid=_grid((1e-8, 1e-7, 1e-6, 1e-5, 1e-4), (0.01, 0.1)), cost=6,
-                paper_settings={}, label="SUKF (simplex points)", doc="UKF, n + 2 spherical simplex points"),
+                points=simplex_points, doc="UKF, n + 2 spherical simplex points"),
     TrainerSpec("spf", _ParticleTrainer, "particle", _qp((1e-5, 0.01), (1e-4, 0.1)), filter=BootstrapParticleFilter,
-                grid=_grid((1e-7, 1e-6, 1e-5, 1e-4, 1e-3), (0.01,)), cost=0.4, paper=(0.0859, 7.6),
-                paper_settings={"ess_threshold": 1.0}, label="SPF (bootstrap)", doc="bootstrap particle filter"),
+                doc="bootstrap particle filter"),
     TrainerSpec("epf", _ParticleTrainer, "particle", _qp((1e-3, 0.1), (1e-2, 0.01)),
-                filter=ExtendedKalmanParticleFilter, jacobian=True, parent="ekf", cost=1.2, paper=(0.0601, 8.4),
-                paper_settings=_PF_PAPER, label="EPF (textbook)", doc="particle filter, EKF proposal"),
+                filter=ExtendedKalmanParticleFilter, jacobian=True, doc="particle filter, EKF proposal"),
     TrainerSpec("upf", _ParticleTrainer, "particle", _qp((1e-5, 0.01), (1e-4, 0.1)), filter=UnscentedParticleFilter,
-                points=merwe_points, parent="ukf", cost=4, paper=(0.0226, 17.9), paper_settings=_PF_PAPER,
-                label="UPF (textbook)", doc="particle filter, UKF proposal"),
+                points=merwe_points, doc="particle filter, UKF proposal"),
     TrainerSpec("supf", _ParticleTrainer, "particle", _qp((1e-5, 0.01), (1e-4, 0.1)),
-                filter=SimplexUnscentedParticleFilter, points=simplex_points, parent="sukf", cost=4,
-                paper=(0.0245, 10.1), paper_settings=_PF_PAPER, label="SUPF (textbook)",
+                filter=SimplexUnscentedParticleFilter, points=simplex_points,
                 doc="particle filter, simplex-UKF proposal"),
     # Gaussian sums: the settings the WNN study chose for the former "bank" weighting of epf/upf/supf
     # (which were these filters); ekf-ensemble: the EKF's.
     TrainerSpec("gsf-ekf", _GaussianSumTrainer, "gaussian-sum", _qp((1e-3, 0.1), (1e-2, 0.01)),
-                filter=GaussianSumFilter, jacobian=True, component="ekf", parent="ekf", cost=1, study=_GSF,
-                label="Gaussian-sum filter of {N} EKFs (tempering 0.01)", doc="Gaussian sum of EKFs"),
+                filter=GaussianSumFilter, jacobian=True, component="ekf", doc="Gaussian sum of EKFs"),
     TrainerSpec("gsf-ukf", _GaussianSumTrainer, "gaussian-sum", _qp((1e-5, 0.01), (1e-4, 0.1)),
-                filter=GaussianSumFilter, points=merwe_points, component="ukf", parent="ukf", cost=4, study=_GSF,
-                label="Gaussian-sum filter of {N} UKFs (tempering 0.01)", doc="Gaussian sum of UKFs"),
+                filter=GaussianSumFilter, points=merwe_points, component="ukf", doc="Gaussian sum of UKFs"),
     TrainerSpec("gsf-sukf", _GaussianSumTrainer, "gaussian-sum", _qp((1e-5, 0.01), (1e-4, 0.1)),
-                filter=GaussianSumFilter, points=simplex_points, component="sukf", parent="sukf", cost=3,
-                study=_GSF, label="Gaussian-sum filter of {N} SUKFs (tempering 0.01)", doc="Gaussian sum of SUKFs"),
+                filter=GaussianSumFilter, points=simplex_points, component="sukf", doc="Gaussian sum of SUKFs"),
     TrainerSpec("ekf-ensemble", _GaussianSumTrainer, "gaussian-sum", _qp((1e-3, 0.1), (1e-2, 0.01)),
                 filter=GaussianSumFilter, jacobian=True, component="ekf", combine="mean",
-                copy_settings="gsf-ekf", cost=1, label="{N} independent EKFs, averaged",
                 doc="independent EKFs, averaged without weights"),
-    TrainerSpec("smc", _SMCTrainer, "smc", {"scaled": dict(_SMC), "paper": dict(_SMC)}, cost=40, study_epochs=1,
-                label="SMC sampler (HMC moves)", doc="tempered SMC sampler with HMC moves"),
+    TrainerSpec("smc", _SMCTrainer, "smc", {"scaled": dict(_SMC), "paper": dict(_SMC)},
+                doc="tempered SMC sampler with HMC moves"),
 ):
     register_trainer(_spec)
 del _spec

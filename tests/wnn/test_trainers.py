@@ -40,13 +40,14 @@ class MeanTrainer(BaseTrainer):
 
 
 AUTO = {"Q": 0.0, "P0": 1.0}
-TOY = TrainerSpec("toy", MeanTrainer, "single", {"scaled": AUTO, "paper": AUTO}, paper_settings={},
-                  label="mean predictor", doc="predicts the training mean")
+TOY = TrainerSpec("toy", MeanTrainer, "single", {"scaled": AUTO, "paper": AUTO}, doc="predicts the training mean")
 
 
 @pytest.fixture
-def toy():
-    """The toy trainer, registered in this one place for one test and removed after it."""
+def toy(monkeypatch):
+    """The toy trainer, registered in this one place for one test and removed after it, with its
+    study row (label, and a place in the paper-settings table) in the study's own table."""
+    monkeypatch.setitem(study.STUDY, "toy", study.StudyEntry(label="mean predictor", paper_settings={}))
     spec = register_trainer(TOY)
     try:
         yield spec
@@ -98,7 +99,6 @@ def test_register_refuses_duplicates_and_bad_entries():
         (dict(auto={"scaled": {"Q": 1.0}, "paper": AUTO}), r"auto\['scaled'\] of trainer 'x' must set \['P0'\]"),
         (dict(family="gradient"), r"auto\['scaled'\] of trainer 'x' must set \['learning_rate'\]"),
         (dict(family="particle"), "a particle trainer needs its filter class"),
-        (dict(parent="nope"), "parent of trainer 'x' must be a registered trainer, got 'nope'"),
         (dict(name="x+y"), "name must be a non-empty string without '\\+', got 'x\\+y'"),
     ]
     for change, match in bad:
@@ -118,10 +118,14 @@ def test_the_table_is_what_the_estimator_and_the_study_read():
         assert AUTO_SETTINGS[(name, "scaled")] is spec.auto["scaled"]
         if spec.family in ("particle", "gaussian-sum"):
             assert spec.filter is not None, name
-    assert study.PAPER_TABLE1 == {n: s.paper for n, s in TRAINERS.items() if s.paper}
-    assert study.PROPOSAL_PARENT == {n: s.parent for n, s in TRAINERS.items() if s.parent}
-    assert set(study.TUNING_GRID) == {n for n, s in TRAINERS.items() if s.grid}
-    assert study._cost()["upf"] == TRAINERS["upf"].cost
+    # the study's data live in the study's table, keyed by row; a spec says only how to train
+    assert study.PAPER_TABLE1 == {n: e.paper for n, e in study.STUDY.items() if e.paper}
+    assert study.PROPOSAL_PARENT == {n: e.parent for n, e in study.STUDY.items() if e.parent}
+    assert set(study.TUNING_GRID) == {n for n, e in study.STUDY.items() if e.grid}
+    assert study._cost()["upf"] == study.STUDY["upf"].cost
+    for gone in ("grid", "parent", "copy_settings", "cost", "paper", "paper_settings", "label", "study",
+                 "study_epochs"):
+        assert not hasattr(TRAINERS["upf"], gone), gone
     # one class per way of training, no class that only names a trainer
     assert len({s.trainer for s in TRAINERS.values()}) == 6
 

@@ -2,10 +2,13 @@
 
 ``filterwnn study wnn`` trains a 5-20-1 Morlet wavelet network on the SISO benchmark of
 the paper's eq. (12) (:func:`filterwnn.make_siso_benchmark`) with the rows of ``ROWS`` (one per
-trainer of :data:`filterwnn.wnn.trainers.TRAINERS`, plus the move rows of ``MOVE_ROWS``),
-each named for the algorithm it runs: the paper's seven trainers plus the SUKF (``bp, ekf,
-ukf, sukf, spf, epf, upf, supf``; the particle filters with textbook weights), the UPF with a
-MALA move after each resampling (``upf+mala``), the Gaussian-sum filters of N EKFs, UKFs and
+trainer of :data:`filterwnn.wnn.trainers.TRAINERS`, plus the study-only rows of
+:data:`~filterwnn.studies.wnn.rows.STUDY`, the table of the study's own data), each named for the
+algorithm it runs: the paper's seven trainers plus the SUKF (``bp, ekf, ukf, sukf, spf, epf,
+upf, supf``; the particle filters with textbook weights), IBIS with MALA moves (``ibis-mala``:
+the bootstrap step at Q = 0 reweights by each row's likelihood, a MALA move after each
+resampling; ``ibis-hmc`` with HMC moves is opt-in; the former ``upf+mala`` ran this, its UKF
+proposal never moving a particle at Q = 0), the Gaussian-sum filters of N EKFs, UKFs and
 SUKFs at tempering 0.01 (``gsf-ekf, gsf-ukf, gsf-sukf``: the paper's Kalman-proposal
 trainers at their working settings, formerly "bank"), N independent EKFs averaged without
 weights (``ekf-ensemble``) and the SMC sampler (``smc``), over independent runs, and writes
@@ -87,7 +90,11 @@ from .plan import StudyResult, candidates, run_seeds, select_settings, tune_seed
 from .rows import (
     ALL_TRAINERS,
     COPY_SETTINGS,
-    MOVE_ROWS,
+    RENAMED_ROWS,
+    STUDY,
+    StudyEntry,
+    check_row,
+    study_entry,
     PAPER_TABLE1,
     PARTICLE_TRAINERS,
     PROPOSAL_PARENT,
@@ -111,6 +118,9 @@ from .tables import is_reduced, markdown_table, tuning_table, write_outputs
 
 __all__ = [
     "ALL_TRAINERS",
+    "STUDY",
+    "StudyEntry",
+    "RENAMED_ROWS",
     "PARTICLE_TRAINERS",
     "PAPER_TABLE1",
     "REFERENCES",

@@ -16,7 +16,7 @@ from ...wnn.trainers import PAPER_SETTINGS, TRAINERS
 from .. import runner
 from .plan import (StudyResult, _child, _plan, _study_tasks, _task_cost, candidates, select_settings,
                    tune_seeds)
-from .rows import (ALL_TRAINERS, REFERENCES, VALIDATION_FRACTION, Z90, _cost, _rows, _specs_with, _sweep_rows,
+from .rows import (ALL_TRAINERS, study_entry, REFERENCES, VALIDATION_FRACTION, Z90, _cost, _rows, _specs_with, _sweep_rows,
                    _uses_particles, row_label)
 
 __all__ = [
@@ -101,7 +101,7 @@ def _params(table, trainer):
         if not spec.noise_settings:
             p.pop("process_noise")
             p.pop("initial_covariance")
-        p.update(spec.paper_settings or {})
+        p.update(study_entry(trainer).paper_settings or {})
         return p
     return {"init": "scaled"}
 
@@ -136,7 +136,7 @@ def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_
     Parameters
     ----------
     trainer : str
-        A key of ``ROWS``: a trainer of :data:`filterwnn.wnn.trainers.TRAINERS`, or a row of ``MOVE_ROWS``.
+        A key of ``ROWS``: a trainer of :data:`filterwnn.wnn.trainers.TRAINERS`, or a study-only row of ``STUDY``.
     run_seed : (entropy, spawn_key)
         From :func:`run_seeds`.
     n_epochs, n_particles : int
@@ -302,7 +302,7 @@ def summarize(runs):
     for table, trainer, _ in keys:
         rs = [r for r in runs if r["table"] == table and r["trainer"] == trainer]
         mse = [r["test_mse"] for r in rs]
-        paper = TRAINERS[trainer].paper if trainer in TRAINERS else None
+        paper = study_entry(trainer).paper if trainer in _rows() else None
         paper = paper or (float("nan"), float("nan"))
         # an unweighted average (combine="mean") has no weights whose ESS would mean anything
         weighted = trainer not in TRAINERS or TRAINERS[trainer].combine != "mean"
