@@ -29,7 +29,7 @@ between calls (:meth:`WNNRegressor.partial_fit`):
 >>> WNNRegressor(trainer="adam").fit(X, y)
 Traceback (most recent call last):
 ...
-ValueError: unknown trainer 'adam'; valid: 'bp', 'ekf', 'ekf-ensemble', 'epf', 'gsf-ekf', 'gsf-sukf', 'gsf-ukf', 'smc', 'spf', 'sukf', 'supf', 'ukf', 'upf'
+ValueError: unknown trainer 'adam'; valid: 'bp', 'ekf', 'ekf-ensemble', 'epf', 'gsf-ekf', 'gsf-sukf', 'gsf-ukf', 'smc', 'smc-noise', 'spf', 'sukf', 'supf', 'ukf', 'upf'
 """
 
 from __future__ import annotations
@@ -524,9 +524,33 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
     def predict(self, X, return_std=False):
         """Network output, optionally with the predictive standard deviation.
 
-        The std is ``sqrt(J P J^T + R)`` from the filter's covariance ``P`` (Jacobian
-        ``J`` of the output at each row); particle trainers add the weighted spread of the
-        particles' outputs; ``bp`` has no covariance and reports the training RMSE.
+        What the variance holds, per trainer (each trainer's ``predict`` says the same):
+
+        ``bp``
+            the training rows' mean squared residual (no weight uncertainty at all);
+        ``ekf``, ``ukf``, ``sukf``
+            ``J P J^T + R``: the filter's weight covariance ``P`` through the output's
+            Jacobian ``J`` at each row, plus the noise R. With a random-walk ``Q > 0``, ``P``
+            is not a posterior covariance: every step adds ``Q``, so the weight part grows
+            with the number of rows and epochs (the WNN study measured it at 9-91 against
+            R = 0.1 for the EKF). ``anneal_epochs`` (see the class) brings ``Q`` to 0 over
+            the last epochs so that ``P`` is the static-weight posterior's, linearised;
+        ``spf``, ``epf``, ``upf``, ``supf`` (and ``move=``: IBIS)
+            the particles' weighted spread of outputs, plus for the Kalman proposals the
+            weighted ``J P_i J^T`` of each particle's carried covariance ``P_i`` (which
+            accumulates Q as the EKF's does), plus R; with a move (Q = 0, no carried
+            covariance) the cloud's spread plus R;
+        ``gsf-*``, ``ekf-ensemble``
+            the components' weighted (or, for the ensemble, equal-weight) spread of outputs,
+            plus their weighted ``J P_i J^T``, plus R;
+        ``smc``
+            the posterior sample's spread of outputs, plus R (fixed by ``measurement_noise``);
+        ``smc-noise``
+            the spread of outputs plus each particle's own learned noise ``exp(s_i)``,
+            averaged over the particles: the posterior predictive with R learned.
+
+        The returned std is the square root of that variance; a Gaussian with it is what the
+        WNN study scores (coverage at 50 / 90 / 95 % and the negative log predictive density).
 
         Parameters
         ----------

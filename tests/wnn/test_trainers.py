@@ -127,7 +127,7 @@ def test_the_table_is_what_the_estimator_and_the_study_read():
                  "study_epochs"):
         assert not hasattr(TRAINERS["upf"], gone), gone
     # one class per way of training, no class that only names a trainer
-    assert len({s.trainer for s in TRAINERS.values()}) == 6
+    assert len({s.trainer for s in TRAINERS.values()}) == 7
 
 
 def test_each_particle_trainer_builds_its_entrys_filter_and_points():
@@ -142,3 +142,43 @@ def test_each_particle_trainer_builds_its_entrys_filter_and_points():
         assert type(tr.pf) is spec.filter and tr.name == name
         if spec.points is not None:
             assert type(tr.pf.proposal.points) is type(spec.points(model.dim_x)), name
+
+
+def test_smc_noise_target_gradients_and_its_fixed_noise_special_case():
+    """s = log R joins the weights: the gradients match finite differences, and at s = log R the
+    likelihood is the weight model's."""
+    from filterwnn.wnn.trainers import _LearnedNoise
+    from filterwnn.wnn.weight_model import WNNWeightModel
+
+    X, y, _, _ = make_siso_benchmark(rng=0)
+    X, y = X[:15], y[:15]
+    model = WNNWeightModel(5, 2, Q=0.0, R=0.1, P0=0.5)
+    target = _LearnedNoise(model, np.log(0.1), 2.0)
+    th = np.random.default_rng(0).normal(size=(3, target.dim_x)) * 0.5
+    for fn in (lambda t: target.log_likelihood_and_grad(t, X, y), target.log_prior_and_grad):
+        value, grad = fn(th)
+        num = np.zeros_like(th)
+        for j in range(th.shape[1]):
+            e = np.zeros_like(th)
+            e[:, j] = 1e-6
+            num[:, j] = (fn(th + e)[0] - fn(th - e)[0]) / 2e-6
+        np.testing.assert_allclose(num, grad, rtol=1e-5, atol=1e-6)
+    th[:, -1] = np.log(0.1)
+    np.testing.assert_allclose(target.log_likelihood(th, X, y), model.log_likelihood(th[:, :-1], X, y))
+
+
+def test_smc_noise_learns_r_and_predicts_with_it():
+    X, y, X_test, _ = make_siso_benchmark(rng=1)
+    reg = WNNRegressor(trainer="smc-noise", n_hidden=2, n_particles=10, n_epochs=1, random_state=0).fit(X, y)
+    tr = reg._final
+    assert tr.particles.shape[1] == reg.theta_.size + 1 and np.all(tr.noise > 0)
+    mean, std = reg.predict(X_test, return_std=True)
+    Y = np.stack([wnn_forward(p, X_test) for p in tr.particles[:, :-1]])
+    np.testing.assert_allclose(std**2, Y.var(axis=0) + tr.noise.mean())
+    assert "noise_prior_sd" in reg.settings_ and reg.settings_["noise_prior_mean"] == 0.1
+
+
+def wnn_forward(theta, X):
+    from filterwnn.wnn import network
+
+    return network.forward(theta, X, "morlet")

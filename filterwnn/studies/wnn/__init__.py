@@ -26,8 +26,12 @@ weights (``ekf-ensemble``) and the SMC sampler (``smc``), over independent runs,
     ``algorithm``, ``settings`` (weighting, tempering, move), test MSE median and quartiles,
     ``fit_time_median``, ``mean_ess``, ``distinct_particles`` and ``distinct_ancestors`` (means
     over runs at the end: distinct particles, and distinct initial particles they descend from;
-    empty for non-particle rows) and ``coverage90`` (median over runs of the share of test
-    targets inside mean +- 1.645 std of ``predict(return_std=True)``; the GP's std included);
+    empty for non-particle rows), ``coverage50``, ``coverage90``, ``coverage95`` (medians over
+    runs of the share of test targets inside the central 50 / 90 / 95 % interval of
+    ``predict(return_std=True)``'s Gaussian; the GP's std included) and ``nlpd`` (median over
+    runs of the mean negative log predictive density; :func:`predictive_scores`). What each
+    row's variance holds is in its trainer's ``predict`` (see
+    :meth:`filterwnn.WNNRegressor.predict`);
 ``runs.csv``
     one line per (table, trainer, run): test/train MSE, fit time, ESS, distinct particles;
 ``tuning.md``, ``tuning.csv``
@@ -79,7 +83,7 @@ protocol that finishes in a few minutes on 2 cores, and says so in its output;
 >>> [row["trainer"] for row in res.table]
 ['ekf', 'spf']
 >>> res.table[1]["algorithm"], sorted(res.table[0])[:3]
-('SPF (bootstrap)', ['algorithm', 'coverage90', 'distinct_ancestors'])
+('SPF (bootstrap)', ['algorithm', 'coverage50', 'coverage90'])
 """
 
 from __future__ import annotations
@@ -106,13 +110,16 @@ from .rows import (
     TABLE_COLUMNS,
     TUNING_GRID,
     VALIDATION_FRACTION,
+    Z50,
     Z90,
+    Z95,
+    SCORE_COLUMNS,
     StudyRow,
     _cost,
     _rows,
     row_label,
 )
-from .runs import fit_reference, fit_run, run_study, run_tasks, summarize, tune_run
+from .runs import fit_reference, fit_run, predictive_scores, run_study, run_tasks, summarize, tune_run
 from .figures import write_figures
 from .tables import is_reduced, markdown_table, tuning_table, write_outputs
 
@@ -125,6 +132,7 @@ __all__ = [
     "PAPER_TABLE1",
     "REFERENCES",
     "TABLE_COLUMNS",
+    "SCORE_COLUMNS",
     "TUNING_GRID",
     "PROPOSAL_PARENT",
     "StudyResult",
@@ -134,6 +142,7 @@ __all__ = [
     "tune_run",
     "select_settings",
     "fit_run",
+    "predictive_scores",
     "fit_reference",
     "run_tasks",
     "summarize",

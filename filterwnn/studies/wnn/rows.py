@@ -34,7 +34,10 @@ __all__ = [
     "PROPOSAL_PARENT",
     "Q_FACTORS",
     "SMOOTHING_WINDOW",
+    "Z50",
     "Z90",
+    "Z95",
+    "SCORE_COLUMNS",
     "VALIDATION_FRACTION",
     "PAPER_TABLE1",
     "row_label",
@@ -124,6 +127,7 @@ STUDY = {
     "gsf-sukf": StudyEntry(label=_GSF_LABEL % "SUKF", fixed=_GSF, parent="sukf", cost=3),
     "ekf-ensemble": StudyEntry(label="{N} independent EKFs, averaged", copy_settings="gsf-ekf", cost=1),
     "smc": StudyEntry(label="SMC sampler (HMC moves)", epochs=1, cost=40),
+    "smc-noise": StudyEntry(label="SMC sampler, noise R learned (HMC moves)", epochs=1, cost=40),
 }
 
 #: Former row keys -> the row that runs what they ran (:func:`check_row` names it).
@@ -223,10 +227,25 @@ COPY_SETTINGS = _specs_with("copy_settings")
 REFERENCES = ("MLPRegressor", "GaussianProcessRegressor")
 
 
+#: Half-width of the central 50 % interval of a normal, in standard deviations.
+Z50 = 0.6744897501960817
+
+#: Half-width of the central 90 % interval of a normal, in standard deviations.
+Z90 = 1.6448536269514722
+
+#: Half-width of the central 95 % interval of a normal, in standard deviations.
+Z95 = 1.959963984540054
+
+#: The predictive distribution's scores of every run and row (medians over runs in the table):
+#: coverage of the central 50, 90 and 95 % intervals and the mean negative log predictive density
+#: (:func:`~filterwnn.studies.wnn.runs.predictive_scores`).
+SCORE_COLUMNS = ("coverage50", "coverage90", "coverage95", "nlpd")
+
+
 #: The columns of ``table1.csv`` and of :attr:`StudyResult.table` rows, in order.
 TABLE_COLUMNS = (
     "trainer", "algorithm", "settings", "test_mse_median", "test_mse_q1", "test_mse_q3", "fit_time_median",
-    "mean_ess", "distinct_particles", "distinct_ancestors", "coverage90",
+    "mean_ess", "distinct_particles", "distinct_ancestors", *SCORE_COLUMNS,
 )
 
 
@@ -254,10 +273,6 @@ Q_FACTORS = (0.01, 0.1, 1.0, 10.0, 100.0)
 
 #: Window of the running median that smooths the validation curve before its minimum is taken.
 SMOOTHING_WINDOW = 5
-
-
-#: Half-width of the central 90 % interval of a normal, in standard deviations.
-Z90 = 1.6448536269514722
 
 
 #: Fraction of a tuning run's training rows (the last ones) held out for validation.

@@ -16,10 +16,11 @@ from ...wnn.trainers import PAPER_SETTINGS, TRAINERS
 from .. import runner
 from .plan import (StudyResult, _child, _plan, _study_tasks, _task_cost, candidates, select_settings,
                    tune_seeds)
-from .rows import (ALL_TRAINERS, study_entry, REFERENCES, VALIDATION_FRACTION, Z90, _cost, _rows, _specs_with, _sweep_rows,
+from .rows import (ALL_TRAINERS, study_entry, REFERENCES, VALIDATION_FRACTION, Z50, Z90, Z95, SCORE_COLUMNS, _cost, _rows, _specs_with, _sweep_rows,
                    _uses_particles, row_label)
 
 __all__ = [
+    "predictive_scores",
     "tune_run",
     "fit_run",
     "fit_reference",
@@ -130,6 +131,31 @@ def _regressor(trainer, table, run_seed, n_epochs, n_particles, params):
                         **kw)
 
 
+def predictive_scores(mean, std, y):
+    """How well a Gaussian predictive ``N(mean, std**2)`` describes the targets ``y``.
+
+    Returns
+    -------
+    dict
+        ``coverage50``, ``coverage90``, ``coverage95``: the share of targets inside the central
+        50 / 90 / 95 % interval ``mean +- z std`` (calibrated: 0.50 / 0.90 / 0.95; a width measure
+        alone says nothing of calibration, so all three are reported), and ``nlpd``: the mean
+        negative log predictive density ``log(2 pi std**2) / 2 + (y - mean)**2 / (2 std**2)``
+        (lower is better; a proper scoring rule that punishes intervals too wide and too narrow,
+        Gneiting and Raftery 2007). All NaN when ``mean`` is None (no predictive distribution).
+
+    >>> s = predictive_scores(np.zeros(4), np.ones(4), np.array([0.1, -0.5, 1.0, 3.0]))
+    >>> s["coverage50"], s["coverage95"], round(s["nlpd"], 3)
+    (0.5, 0.75, 2.201)
+    """
+    if mean is None:
+        return {k: float("nan") for k in ("coverage50", "coverage90", "coverage95", "nlpd")}
+    z = np.abs(np.asarray(y, dtype=float) - mean) / std
+    out = {f"coverage{c}": float(np.mean(z <= q)) for c, q in zip((50, 90, 95), (Z50, Z90, Z95))}
+    out["nlpd"] = float(np.mean(0.5 * np.log(2.0 * np.pi * std**2) + 0.5 * z**2))
+    return out
+
+
 def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_test=True, run=0, params=None):
     """Train one WNN in one run and score it on that run's test set.
 
@@ -166,11 +192,12 @@ def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_
                 reg.fit(X, y)
             mean, std = reg.predict(X_test, return_std=True)
             test_mse = float(np.mean((mean - y_test) ** 2))
-            coverage = float(np.mean(np.abs(y_test - mean) <= Z90 * std))
+            scores = predictive_scores(mean, std, y_test)
             train_mse = reg.loss_curve_[-1]
         except np.linalg.LinAlgError as exc:  # NumericalError included: a failed run is a result
             status = f"failed: {exc}"
-            test_mse = train_mse = coverage = float("nan")
+            test_mse = train_mse = float("nan")
+            scores = predictive_scores(None, None, y_test)
             if not hasattr(reg, "fit_time_"):
                 reg.fit_time_ = float("nan")
         return {
@@ -181,7 +208,7 @@ def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_
             "train_mse": float(train_mse),
             "fit_time": float(reg.fit_time_),
             **_particle_fields(reg),
-            "coverage90": coverage,
+            **scores,
             "var_test": float(np.var(y_test)),
             "curve_train": list(getattr(reg, "loss_curve_", [])),
             "curve_test": curve_test,
@@ -224,10 +251,9 @@ def fit_reference(name, run_seed, run=0):
             model.fit(X, y)
         fit_time = time.perf_counter() - t0
         if name == "GaussianProcessRegressor":  # predictive std, the fitted white noise included
-            mean, std = model.predict(X_test, return_std=True)
-            coverage = float(np.mean(np.abs(y_test - mean) <= Z90 * std))
+            scores = predictive_scores(*model.predict(X_test, return_std=True), y_test)
         else:
-            coverage = float("nan")
+            scores = predictive_scores(None, None, y_test)
         return {
             "table": "reference",
             "trainer": name,
@@ -237,7 +263,7 @@ def fit_reference(name, run_seed, run=0):
             "fit_time": fit_time,
             "mean_ess": float("nan"),
             "distinct": 0,
-            "coverage90": coverage,
+            **scores,
             "var_test": float(np.var(y_test)),
             "curve_train": [],
             "curve_test": [],
@@ -309,7 +335,6 @@ def summarize(runs):
         ess = [r["mean_ess"] for r in rs if np.isfinite(r["mean_ess"]) and weighted]
         distinct = [r["distinct"] for r in rs if r["distinct"] > 0]
         ancestors = [r["ancestors"] for r in rs if r.get("ancestors", -1) > 0]  # absent from older caches
-        cover = [r.get("coverage90", float("nan")) for r in rs]
         rows.append({
             "table": table,
             "trainer": trainer,
@@ -323,7 +348,7 @@ def summarize(runs):
             "distinct_median": float(np.median(distinct)) if distinct else float("nan"),
             "distinct_particles": float(np.mean(distinct)) if distinct else float("nan"),
             "distinct_ancestors": float(np.mean(ancestors)) if ancestors else float("nan"),
-            "coverage90": _q(cover, 0.5),
+            **{k: _q([r.get(k, float("nan")) for r in rs], 0.5) for k in SCORE_COLUMNS},
             "n_runs": len(rs),
             "epochs": max(r.get("epochs", 0) for r in rs),
             "n_failed": sum(r["status"] != "ok" for r in rs),
