@@ -161,7 +161,8 @@ def test_rows_name_the_algorithm_and_fixed_rows_are_not_searched():
     assert study.row_label("ekf-ensemble", 20) == "20 independent EKFs, averaged"
     assert study.row_label("upf", 20) == "UPF (textbook)"
     assert study.candidates("ibis-mala") == [{}] and study.candidates("ekf-ensemble") == [{}]
-    assert len(study.candidates("gsf-ukf")) == len(study.Q_FACTORS)
+    assert len(study.candidates("gsf-ukf")) == len(study.Q_FACTORS) + 1  # widened upward (protocol 3)
+    assert len(study.candidates("upf")) == len(study.Q_FACTORS)
     for key, (trainer, fixed, _, _) in study.ROWS.items():
         assert trainer in study.TRAINERS, key
     for col in ("algorithm", "distinct_particles", "coverage90"):
@@ -183,7 +184,7 @@ def test_new_rows_report_coverage_and_distinct_particles():
 
 def test_particle_candidates_centre_on_their_proposal_filter():
     got = study.candidates("epf", {"ekf": {"process_noise": 1e-3, "initial_covariance": 0.1}})
-    assert [c["process_noise"] for c in got] == [1e-5, 1e-4, 1e-3, 1e-2, 1e-1]
+    assert [c["process_noise"] for c in got] == [1e-6, 1e-5, 1e-4, 1e-3, 1e-2, 1e-1]  # x 0.001 added
     assert {c["initial_covariance"] for c in got} == {0.1}
     auto = study.candidates("supf")  # parent not searched: its AUTO_SETTINGS
     assert auto[2]["process_noise"] == study.AUTO_SETTINGS[("sukf", "scaled")]["Q"]

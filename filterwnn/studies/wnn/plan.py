@@ -107,7 +107,7 @@ def candidates(trainer, chosen=None):
         base = {"process_noise": auto["Q"], "initial_covariance": auto["P0"]}
     q = base["process_noise"]
     return [{"process_noise": float(f"{q * f:.3g}"), "initial_covariance": base["initial_covariance"]}
-            for f in Q_FACTORS]
+            for f in (entry.q_factors or Q_FACTORS)]
 
 
 def _running_median(curve, window):

@@ -64,6 +64,8 @@ class StudyEntry:
         Search Q around the value chosen for this row (its P0 kept) instead of a grid.
     copy_settings : str, optional
         Copy this row's chosen settings and epochs instead of searching.
+    q_factors : tuple of float, optional
+        With ``parent``: the factors applied to the parent's chosen Q (default :data:`Q_FACTORS`).
     cost : float
         Rough seconds per epoch and particle (long tasks are scheduled first).
     paper : (float, float), optional
@@ -82,10 +84,15 @@ class StudyEntry:
     grid: tuple = ()
     parent: str = None
     copy_settings: str = None
+    q_factors: tuple = None
     cost: float = 1.0
     paper: tuple = None
     paper_settings: dict = None
     default: bool = True
+
+
+#: Factors applied to the parent's chosen Q by default (a row's ``q_factors`` widens them; :func:`~filterwnn.studies.wnn.candidates`).
+Q_FACTORS = (0.01, 0.1, 1.0, 10.0, 100.0)
 
 
 def _grid(qs, p0s):
@@ -102,15 +109,16 @@ _GSF_LABEL = "Gaussian-sum filter of {N} %ss (tempering 0.01)"
 STUDY = {
     "bp": StudyEntry(label="BP", grid=tuple({"learning_rate": lr} for lr in (0.02, 0.05, 0.1, 0.2, 0.5)), cost=1,
                      paper=(1.6605, 7.9), paper_settings={}),
-    "ekf": StudyEntry(label="EKF", grid=_grid((1e-5, 1e-4, 1e-3, 1e-2), (0.01, 0.1, 1.0)), cost=1,
+    "ekf": StudyEntry(label="EKF", grid=_grid((1e-5, 1e-4, 1e-3, 1e-2, 1e-1), (0.01, 0.1, 1.0, 10.0)), cost=1,
                       paper=(0.2672, 9.8), paper_settings={}),
     "ukf": StudyEntry(label="UKF", grid=_grid((1e-8, 1e-7, 1e-6, 1e-5, 1e-4), (0.01, 0.1)), cost=6,
                       paper=(0.1258, 12.4), paper_settings={}),
     "sukf": StudyEntry(label="SUKF (simplex points)", grid=_grid((1e-8, 1e-7, 1e-6, 1e-5, 1e-4), (0.01, 0.1)),
                        cost=6, paper_settings={}),
-    "spf": StudyEntry(label="SPF (bootstrap)", grid=_grid((1e-7, 1e-6, 1e-5, 1e-4, 1e-3), (0.01,)), cost=0.4,
+    "spf": StudyEntry(label="SPF (bootstrap)", grid=_grid((1e-7, 1e-6, 1e-5, 1e-4, 1e-3, 1e-2), (0.01,)), cost=0.4,
                       paper=(0.0859, 7.6), paper_settings={"ess_threshold": 1.0}),
-    "epf": StudyEntry(label="EPF (textbook)", parent="ekf", cost=1.2, paper=(0.0601, 8.4), paper_settings=_PF_PAPER),
+    "epf": StudyEntry(label="EPF (textbook)", parent="ekf", q_factors=(1e-3,) + Q_FACTORS, cost=1.2, paper=(0.0601, 8.4),
+                      paper_settings=_PF_PAPER),
     "upf": StudyEntry(label="UPF (textbook)", parent="ukf", cost=4, paper=(0.0226, 17.9), paper_settings=_PF_PAPER),
     "supf": StudyEntry(label="SUPF (textbook)", parent="sukf", cost=4, paper=(0.0245, 10.1),
                        paper_settings=_PF_PAPER),
@@ -123,8 +131,9 @@ STUDY = {
                            epochs=1, cost=5, default=False),
     # Gaussian sums: the settings the study chose for the former "bank" weighting of epf/upf/supf
     "gsf-ekf": StudyEntry(label=_GSF_LABEL % "EKF", fixed=_GSF, parent="ekf", cost=1),
-    "gsf-ukf": StudyEntry(label=_GSF_LABEL % "UKF", fixed=_GSF, parent="ukf", cost=4),
-    "gsf-sukf": StudyEntry(label=_GSF_LABEL % "SUKF", fixed=_GSF, parent="sukf", cost=3),
+    "gsf-ukf": StudyEntry(label=_GSF_LABEL % "UKF", fixed=_GSF, parent="ukf", q_factors=Q_FACTORS + (1e3,), cost=4),
+    "gsf-sukf": StudyEntry(label=_GSF_LABEL % "SUKF", fixed=_GSF, parent="sukf", q_factors=Q_FACTORS + (1e3,),
+                           cost=3),
     "ekf-ensemble": StudyEntry(label="{N} independent EKFs, averaged", copy_settings="gsf-ekf", cost=1),
     "smc": StudyEntry(label="SMC sampler (HMC moves)", epochs=1, cost=40),
     "smc-noise": StudyEntry(label="SMC sampler, noise R learned (HMC moves)", epochs=1, cost=40),
@@ -265,10 +274,6 @@ TUNING_GRID = {name: [dict(c) for c in grid] for name, grid in _specs_with("grid
 #: The single filter whose step each particle filter's proposal (or Gaussian sum's component) runs
 #: (the entries' ``parent``).
 PROPOSAL_PARENT = _specs_with("parent")
-
-
-#: Factors applied to the parent's chosen Q (:func:`~filterwnn.studies.wnn.candidates`).
-Q_FACTORS = (0.01, 0.1, 1.0, 10.0, 100.0)
 
 
 #: Window of the running median that smooths the validation curve before its minimum is taken.
