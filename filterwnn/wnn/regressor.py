@@ -438,6 +438,44 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
         self.diagnostics_ = {k: list(v) for k, v in self._final.diagnostics.items()}
 
     # ------------------------------------------------------------------ API
+    def anneal(self, X, y, n_epochs=5):
+        """After training, ``n_epochs`` more epochs with Q falling linearly to 0 (the last at Q = 0).
+
+        For the Kalman trainers (``ekf``, ``ukf``, ``sukf``). Their random-walk ``Q > 0`` adds
+        to ``P`` at every step, so after training ``P`` is not a posterior covariance (the WNN
+        study measured its weight part at 9-91 against R = 0.1 for the EKF). With Q annealed to
+        0 the last passes are the filter of static weights, whose ``P`` is the linearised
+        posterior covariance given the rows of those passes, starting from the trained state:
+        a documented way to get ``predict(return_std=True)`` intervals from a posterior
+        covariance (an approximation: the rows are counted again by each pass). What it
+        measures is in ``benchmarks/anneal_kalman.py``.
+
+        Parameters
+        ----------
+        X : array-like of shape (n_samples, n_features)
+        y : array-like of shape (n_samples,)
+        n_epochs : int, default 5
+            Epochs at ``Q (n - k) / n`` for ``k = 1 .. n``.
+
+        Returns
+        -------
+        self
+        """
+        check_is_fitted(self, "theta_")
+        tr = self._final
+        if not hasattr(tr, "scale_process_noise"):
+            raise ValueError(
+                f"anneal is for the Kalman trainers ('ekf', 'ukf', 'sukf'), got trainer={self.trainer!r}; "
+                "the SMC sampler's spread is already a posterior's ('smc', 'smc-noise')"
+            )
+        n = check_positive_int(n_epochs, "n_epochs")
+        X, y = validate_data(self, X, y, reset=False, y_numeric=True)
+        self._trainer, self._best = tr, None  # continue from the kept (best) state
+        for k in range(1, n + 1):
+            tr.scale_process_noise((n - k) / n)
+            self._run_epochs(1, (X, y, None, None), show_bar=False)
+        return self
+
     def fit(self, X, y):
         """Train for ``n_epochs`` epochs (or continue, with ``warm_start``).
 
@@ -533,8 +571,8 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
             Jacobian ``J`` at each row, plus the noise R. With a random-walk ``Q > 0``, ``P``
             is not a posterior covariance: every step adds ``Q``, so the weight part grows
             with the number of rows and epochs (the WNN study measured it at 9-91 against
-            R = 0.1 for the EKF). ``anneal_epochs`` (see the class) brings ``Q`` to 0 over
-            the last epochs so that ``P`` is the static-weight posterior's, linearised;
+            R = 0.1 for the EKF). :meth:`anneal` brings ``Q`` to 0 over extra epochs so that
+            ``P`` is the static-weight filter's, linearised;
         ``spf``, ``epf``, ``upf``, ``supf`` (and ``move=``: IBIS)
             the particles' weighted spread of outputs, plus for the Kalman proposals the
             weighted ``J P_i J^T`` of each particle's carried covariance ``P_i`` (which

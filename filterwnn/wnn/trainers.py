@@ -312,6 +312,7 @@ class _BPTrainer(BaseTrainer):
         self.resid_var = max(float(np.mean((y - wnn.forward(x, X, wav)) ** 2)), 1e-12)
 
     def predict(self, X):
+        """The output; variance: the training rows' mean squared residual (no weight uncertainty)."""
         return wnn.forward(self.x, X, self.model.wavelet), np.full(len(X), self.resid_var)
 
 
@@ -359,7 +360,7 @@ class _EKFTrainer(BaseTrainer):
                 kf.update(np.array([yk]), _Bound(m.HJacobian, xk), _Bound(m.hx, xk))
             return
         x, P = self.x, self.P_lower
-        Q, r, qd = m.Q, float(m.R[0, 0]), self.q_diag
+        Q, r, qd = getattr(self, "_Q", m.Q), float(m.R[0, 0]), self.q_diag
         idx = np.diag_indices_from(P)
         wav = m.wavelet
         # theta = [W, v, a, b] and dy/dv = psi(t): the output psi(t) v is read off the
@@ -379,10 +380,22 @@ class _EKFTrainer(BaseTrainer):
             P = dsyr(-1.0 / s, Ph, a=P, lower=1, overwrite_a=1)
         self.x, self.P_lower = x, P
 
+    def scale_process_noise(self, factor):
+        """Run the next epochs with ``factor * Q`` (``WNNRegressor.anneal``: down to 0)."""
+        Q = self.model.Q * float(factor)
+        self._Q = Q
+        if self.q_diag is not None:
+            self.q_diag = np.diag(Q).copy()
+        if self.backend == "filterpy":
+            self.kf.Q = Q.copy()
+
     def predict_mean(self, X):
         return wnn.forward(self.theta, X, self.model.wavelet)
 
     def predict(self, X):
+        """The output at the mean weights; variance ``J P J^T + R`` (the weight covariance through
+        the output's Jacobian, plus the noise): with Q > 0, ``P`` holds the random walk's
+        accumulated Q, not a posterior covariance (``WNNRegressor.anneal`` brings Q to 0)."""
         J = wnn.jacobian(self.theta, X, self.model.wavelet)
         var = np.sum((J @ self.cov) * J, axis=1)
         return wnn.forward(self.theta, X, self.model.wavelet), var + float(self.model.R[0, 0])
@@ -423,10 +436,15 @@ class _UKFTrainer(BaseTrainer):
             kf.update(np.array([yk]), x=xk)
         kf.P = 0.5 * (kf.P + kf.P.T)
 
+    def scale_process_noise(self, factor):
+        """Run the next epochs with ``factor * Q`` (``WNNRegressor.anneal``: down to 0)."""
+        self.kf.Q = self.model.Q * float(factor)
+
     def predict_mean(self, X):
         return wnn.forward(self.kf.x, X, self.model.wavelet)
 
     def predict(self, X):
+        """The output at the mean weights; variance ``J P J^T + R`` as the EKF trainer's."""
         J = wnn.jacobian(self.kf.x, X, self.model.wavelet)
         var = np.sum((J @ self.kf.P) * J, axis=1)
         return wnn.forward(self.kf.x, X, self.model.wavelet), var + float(self.model.R[0, 0])
@@ -521,6 +539,9 @@ class _ParticleTrainer(BaseTrainer):
         self.check_finite(len(self.diagnostics["mean_ess"]), self.particles)
 
     def predict(self, X):
+        """The weighted mean output; variance: the particles' (or components') weighted spread of
+        outputs, plus their weighted ``J P_i J^T`` where they carry covariances (the Kalman
+        proposals and the Gaussian sums: Q accumulates there as in the EKF), plus R."""
         w = self.weights
         wav = self.model.wavelet
         Y = wnn.forward(self.particles, X, wav)  # (N, n)

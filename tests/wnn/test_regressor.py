@@ -335,3 +335,19 @@ def test_particle_trainer_with_a_move_resumes_from_a_pickle_exactly(data):
     resumed = pickle.loads(pickle.dumps(part)).fit(X, y)
     np.testing.assert_array_equal(resumed.predict(X_test), full.predict(X_test))
     assert resumed._trainer.move.target.n_rows == 2 * len(X)  # each pass counts the rows once more
+
+
+@pytest.mark.parametrize("trainer", ["ekf", "ukf"])
+def test_anneal_brings_q_to_zero_and_shrinks_the_weight_covariance(data, trainer):
+    X, y, X_test, _ = data
+    reg = WNNRegressor(trainer=trainer, n_hidden=2, n_epochs=3, process_noise=1e-2, random_state=0).fit(X, y)
+    before = reg.predict(X_test, return_std=True)[1]
+    n_iter = reg.n_iter_
+    assert reg.anneal(X, y, n_epochs=3) is reg and reg.n_iter_ == n_iter + 3
+    tr = reg._final
+    Q = tr._Q if trainer == "ekf" else tr.kf.Q
+    assert np.all(Q == 0)  # the last pass ran at Q = 0
+    after = reg.predict(X_test, return_std=True)[1]
+    assert np.median(after) < np.median(before)  # no more accumulated Q in P
+    with pytest.raises(ValueError, match="anneal is for the Kalman trainers.*got trainer='spf'"):
+        WNNRegressor(trainer="spf", n_hidden=2, n_particles=3, n_epochs=1, random_state=0).fit(X, y).anneal(X, y)
