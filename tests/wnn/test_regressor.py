@@ -140,6 +140,11 @@ def test_particle_trainer_with_a_move_targets_the_rows_seen(data, move):
     assert reg.diagnostics_["distinct"][-1] > 1  # moved particles are distinct after resampling
     mean, std = reg.predict(X_test, return_std=True)
     assert np.all(np.isfinite(mean)) and np.all(std > 0)
+    # IBIS's predictive: the cloud's weighted spread plus R (no Kalman covariance in the particles)
+    from filterwnn.wnn import network
+
+    Y, w = network.forward(tr.particles, X_test, "morlet"), tr.weights
+    np.testing.assert_allclose(std**2, w @ (Y - w @ Y) ** 2 + reg.settings_["R"])
 
 
 def test_move_and_weighting_errors(data):
