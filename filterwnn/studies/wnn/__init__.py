@@ -31,7 +31,7 @@ weights (``ekf-ensemble``) and the SMC sampler (``smc``), over independent runs,
     ``predict(return_std=True)``'s Gaussian; the GP's std included) and ``nlpd`` (median over
     runs of the mean negative log predictive density; :func:`predictive_scores`). What each
     row's variance holds is in its trainer's ``predict`` (see
-    :meth:`filterwnn.WNNRegressor.predict`);
+    :meth:`filterwnn.wnn.regressor.WNNRegressor.predict`);
 ``runs.csv``
     one line per (table, trainer, run): test/train MSE, fit time, ESS, distinct particles;
 ``tuning.md``, ``tuning.csv``

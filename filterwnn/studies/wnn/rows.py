@@ -65,7 +65,7 @@ class StudyEntry:
     copy_settings : str, optional
         Copy this row's chosen settings and epochs instead of searching.
     q_factors : tuple of float, optional
-        With ``parent``: the factors applied to the parent's chosen Q (default :data:`Q_FACTORS`).
+        With ``parent``: the factors applied to the parent's chosen Q (default :data:`~filterwnn.studies.wnn.rows.Q_FACTORS`).
     cost : float
         Rough seconds per epoch and particle (long tasks are scheduled first).
     paper : (float, float), optional
@@ -74,7 +74,7 @@ class StudyEntry:
         Keywords over :data:`~filterwnn.wnn.trainers.PAPER_SETTINGS` for the paper-settings
         table; ``None`` leaves the row out of that table.
     default : bool
-        Whether the study runs the row by default (:data:`ALL_TRAINERS`).
+        Whether the study runs the row by default (:data:`~filterwnn.studies.wnn.rows.ALL_TRAINERS`).
     """
 
     trainer: str = None
@@ -247,7 +247,7 @@ Z95 = 1.959963984540054
 
 #: The predictive distribution's scores of every run and row (medians over runs in the table):
 #: coverage of the central 50, 90 and 95 % intervals and the mean negative log predictive density
-#: (:func:`~filterwnn.studies.wnn.runs.predictive_scores`).
+#: (:func:`~filterwnn.studies.wnn.predictive_scores`).
 SCORE_COLUMNS = ("coverage50", "coverage90", "coverage95", "nlpd")
 
 
