@@ -694,10 +694,16 @@ class _LearnedNoise:
         self.P0[:-1, :-1], self.P0[-1, -1] = prior.P0, self.s_sd**2
 
     def log_prior_and_grad(self, thetas):
-        lp, gp = self.prior.log_prior_and_grad(thetas[:, :-1])
-        u = (thetas[:, -1] - self.s_mean) / self.s_sd
+        # a leapfrog step that overflowed (s far below its prior makes exp(-s) huge) leaves
+        # non-finite rows: their density is 0 (log -inf, rejected), their gradient 0
+        bad = ~np.all(np.isfinite(thetas), axis=1)
+        safe = np.where(bad[:, None], self.x0, thetas)
+        lp, gp = self.prior.log_prior_and_grad(safe[:, :-1])
+        u = (safe[:, -1] - self.s_mean) / self.s_sd
         lps = -0.5 * u * u - np.log(self.s_sd * np.sqrt(2.0 * np.pi))
-        return lp + lps, np.column_stack([gp, -u / self.s_sd])
+        grad = np.column_stack([gp, -u / self.s_sd])
+        grad[bad] = 0.0
+        return np.where(bad, -np.inf, lp + lps), grad
 
     def _residuals(self, thetas, X, y):
         return np.asarray(y, dtype=float) - wnn.forward(thetas[:, :-1], X, self.wavelet)  # (N, n)

@@ -182,3 +182,15 @@ def wnn_forward(theta, X):
     from filterwnn.wnn import network
 
     return network.forward(theta, X, "morlet")
+
+
+def test_smc_noise_prior_rejects_non_finite_rows():
+    """A leapfrog step that overflowed leaves non-finite rows: density 0, gradient 0 (no ValueError)."""
+    from filterwnn.wnn.trainers import _LearnedNoise
+    from filterwnn.wnn.weight_model import WNNWeightModel
+
+    target = _LearnedNoise(WNNWeightModel(5, 2, Q=0.0, P0=0.5), np.log(0.1), 2.0)
+    th = np.zeros((2, target.dim_x))
+    th[1, 3] = np.nan
+    lp, grad = target.log_prior_and_grad(th)
+    assert np.isfinite(lp[0]) and lp[1] == -np.inf and np.all(grad[1] == 0)
