@@ -80,7 +80,9 @@ def _settings_text(table, trainer, reg):
     if "learning_rate" in s:
         txt = f"init={s['init']}, lr={s['learning_rate']:g}"
     else:
-        txt = f"init={s['init']}, Q={s['Q']:g}, P0={s['P0']:g}, R={s['R']:g}"
+        noise = (f"R learned (log R ~ N(log {s['noise_prior_mean']:g}, {s['noise_prior_sd']:g}^2))"
+                 if "noise_prior_mean" in s else f"R={s['R']:g}")
+        txt = f"init={s['init']}, Q={s['Q']:g}, P0={s['P0']:g}, {noise}"
     if s.get("weighting") == "unweighted average":
         txt += f", N={s['n_particles']}, weighting=none (unweighted average)"
     elif "weighting" in s:
