@@ -84,7 +84,7 @@ A new trainer is one :func:`register_trainer` call (see ``tests/wnn/test_trainer
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 from filterpy.kalman import ExtendedKalmanFilter, MerweScaledSigmaPoints

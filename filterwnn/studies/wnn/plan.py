@@ -10,8 +10,8 @@ import numpy as np
 from ..._validation import check_positive_int, check_seed
 from ...wnn.trainers import AUTO_SETTINGS
 from .. import runner
-from .rows import (Q_FACTORS, check_row, study_entry, SMOOTHING_WINDOW, _in_paper_table, _rows, _specs_with, _sweep_rows,
-                   _uses_particles)
+from .rows import (Q_FACTORS, SMOOTHING_WINDOW, _in_paper_table, _rows, _specs_with, _sweep_rows, _uses_particles,
+                   check_row, study_entry)
 
 __all__ = [
     "StudyResult",
@@ -203,7 +203,6 @@ def _plan(n_runs, n_epochs, pf_epochs, n_particles, trainers, seed, paper_runs, 
     n_epochs = check_positive_int(n_epochs, "n_epochs")
     pf_epochs = n_epochs if pf_epochs is None else check_positive_int(pf_epochs, "pf_epochs")
     n_particles = check_positive_int(n_particles, "n_particles")
-    rows = _rows()
     for t in trainers:
         check_row(t)
     paper_runs = n_runs if paper_runs is None else check_positive_int(paper_runs, "paper_runs", minimum=0)

@@ -65,7 +65,8 @@ class StudyEntry:
     copy_settings : str, optional
         Copy this row's chosen settings and epochs instead of searching.
     q_factors : tuple of float, optional
-        With ``parent``: the factors applied to the parent's chosen Q (default :data:`~filterwnn.studies.wnn.rows.Q_FACTORS`).
+        With ``parent``: the factors applied to the parent's chosen Q (default
+        :data:`~filterwnn.studies.wnn.rows.Q_FACTORS`).
     cost : float
         Rough seconds per epoch and particle (long tasks are scheduled first).
     paper : (float, float), optional
@@ -91,7 +92,8 @@ class StudyEntry:
     default: bool = True
 
 
-#: Factors applied to the parent's chosen Q by default (a row's ``q_factors`` widens them; :func:`~filterwnn.studies.wnn.candidates`).
+#: Factors applied to the parent's chosen Q by default (a row's ``q_factors`` widens them;
+#: :func:`~filterwnn.studies.wnn.candidates`).
 Q_FACTORS = (0.01, 0.1, 1.0, 10.0, 100.0)
 
 
@@ -117,8 +119,8 @@ STUDY = {
                        cost=6, paper_settings={}),
     "spf": StudyEntry(label="SPF (bootstrap)", grid=_grid((1e-7, 1e-6, 1e-5, 1e-4, 1e-3, 1e-2), (0.01,)), cost=0.4,
                       paper=(0.0859, 7.6), paper_settings={"ess_threshold": 1.0}),
-    "epf": StudyEntry(label="EPF (textbook)", parent="ekf", q_factors=(1e-3,) + Q_FACTORS, cost=1.2, paper=(0.0601, 8.4),
-                      paper_settings=_PF_PAPER),
+    "epf": StudyEntry(label="EPF (textbook)", parent="ekf", q_factors=(1e-3,) + Q_FACTORS, cost=1.2,
+                      paper=(0.0601, 8.4), paper_settings=_PF_PAPER),
     "upf": StudyEntry(label="UPF (textbook)", parent="ukf", cost=4, paper=(0.0226, 17.9), paper_settings=_PF_PAPER),
     "supf": StudyEntry(label="SUPF (textbook)", parent="sukf", cost=4, paper=(0.0245, 10.1),
                        paper_settings=_PF_PAPER),

@@ -16,8 +16,8 @@ from ...wnn.trainers import PAPER_SETTINGS, TRAINERS
 from .. import runner
 from .plan import (StudyResult, _child, _plan, _study_tasks, _task_cost, candidates, select_settings,
                    tune_seeds)
-from .rows import (ALL_TRAINERS, study_entry, REFERENCES, VALIDATION_FRACTION, Z50, Z90, Z95, SCORE_COLUMNS, _cost, _rows, _specs_with, _sweep_rows,
-                   _uses_particles, row_label)
+from .rows import (ALL_TRAINERS, REFERENCES, SCORE_COLUMNS, VALIDATION_FRACTION, Z50, Z90, Z95, _cost, _rows,
+                   _specs_with, _sweep_rows, _uses_particles, row_label, study_entry)
 
 __all__ = [
     "predictive_scores",
@@ -178,10 +178,9 @@ def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_
     Returns
     -------
     dict
-        See :class:`StudyResult` ``runs``.
+        See :class:`StudyResult` ``runs`` (and :func:`predictive_scores`).
     """
     from threadpoolctl import threadpool_limits
-
     with threadpool_limits(limits=1), warnings.catch_warnings():
         warnings.simplefilter("ignore", DegeneracyWarning)  # reported as ESS and distinct particles
         X, y, X_test, y_test = make_siso_benchmark(rng=_child(run_seed, 0))
@@ -197,8 +196,7 @@ def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_
             scores = predictive_scores(mean, std, y_test)
             train_mse = reg.loss_curve_[-1]
         except np.linalg.LinAlgError as exc:  # NumericalError included: a failed run is a result
-            status = f"failed: {exc}"
-            test_mse = train_mse = float("nan")
+            status, test_mse, train_mse = f"failed: {exc}", float("nan"), float("nan")
             scores = predictive_scores(None, None, y_test)
             if not hasattr(reg, "fit_time_"):
                 reg.fit_time_ = float("nan")
