@@ -29,7 +29,7 @@ between calls (:meth:`WNNRegressor.partial_fit`):
 >>> WNNRegressor(trainer="adam").fit(X, y)
 Traceback (most recent call last):
 ...
-ValueError: unknown trainer 'adam'; valid: 'bp', 'ekf', 'ekf-ensemble', 'epf', 'gsf-ekf', 'gsf-sukf', 'gsf-ukf', 'smc', 'spf', 'sukf', 'supf', 'ukf', 'upf'
+ValueError: unknown trainer 'adam'; valid: 'bp', 'ekf', 'ekf-ensemble', 'epf', 'gsf-ekf', 'gsf-sukf', 'gsf-ukf', 'smc', 'smc-noise', 'spf', 'sukf', 'supf', 'ukf', 'upf'
 """
 
 from __future__ import annotations
@@ -128,11 +128,14 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
         Particles of the particle-filter trainers and ``smc``; components of the Gaussian sums
         and members of ``ekf-ensemble``.
     move : {None, "mala", "hmc"}, default None
-        MCMC move after each resampling of the particle-filter trainers (``spf``, ``epf``,
-        ``upf``, ``supf``; an error for the others): resample-move on the static posterior,
-        with Q = 0 (``process_noise`` must be ``"auto"`` or 0) and the prior matched to the
-        start (``initial_covariance`` scales it, ``"auto"``: 1). 5 MALA steps, or 2 HMC steps
-        of 10 leapfrog steps (:data:`filterwnn.wnn.trainers.MOVE_SETTINGS`).
+        MCMC move after each resampling of the bootstrap filter (``trainer="spf"``): IBIS
+        (iterated batch importance sampling, Chopin 2002) on the static posterior, with Q = 0
+        (``process_noise`` must be ``"auto"`` or 0) and the prior matched to the start
+        (``initial_covariance`` scales it, ``"auto"``: 1). 5 MALA steps, or 2 HMC steps of 10
+        leapfrog steps (:data:`filterwnn.wnn.trainers.MOVE_SETTINGS`). Refused for ``epf``,
+        ``upf``, ``supf`` (at Q = 0 their Kalman proposals never move a particle: they ran
+        the same IBIS, bit for bit) and for the non-particle trainers. The predictive variance is
+        the cloud's spread plus R.
     early_stopping : bool, default False
         Hold out ``validation_fraction`` of the training rows (chosen with
         ``random_state``, the rest kept in order), stop after ``n_iter_no_change`` epochs
@@ -295,6 +298,12 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
                 f"process_noise must be 0 (or 'auto') with move={self.move!r}: the move targets the static "
                 f"posterior p(theta | rows), got {self.process_noise!r}"
             )
+        if spec.points is not None or spec.jacobian:
+            raise ValueError(
+                f"move={self.move!r} with trainer={self.trainer!r}: at Q = 0 its Kalman proposal never moves a "
+                "particle (what runs is IBIS, the bootstrap step's reweighting with the move, at the cost of "
+                f"unused Kalman updates); use trainer='spf' with move={self.move!r}"
+            )
         s["P0"] = MOVE_SETTINGS["P0"] if self.initial_covariance == "auto" else s["P0"]
         s["output_scale"] = MOVE_SETTINGS["output_scale"]
         s.update(MOVE_SETTINGS[self.move])
@@ -416,6 +425,44 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
         self.diagnostics_ = {k: list(v) for k, v in self._final.diagnostics.items()}
 
     # ------------------------------------------------------------------ API
+    def anneal(self, X, y, n_epochs=5):
+        """After training, ``n_epochs`` more epochs with Q falling linearly to 0 (the last at Q = 0).
+
+        For the Kalman trainers (``ekf``, ``ukf``, ``sukf``). Their random-walk ``Q > 0`` adds
+        to ``P`` at every step, so after training ``P`` is not a posterior covariance (the WNN
+        study measured its weight part at 9-91 against R = 0.1 for the EKF). With Q annealed to
+        0 the last passes are the filter of static weights, whose ``P`` is the linearised
+        posterior covariance given the rows of those passes, starting from the trained state:
+        a documented way to get ``predict(return_std=True)`` intervals from a posterior
+        covariance (an approximation: the rows are counted again by each pass). What it
+        measures is in ``benchmarks/anneal_kalman.py``.
+
+        Parameters
+        ----------
+        X : array-like of shape (n_samples, n_features)
+        y : array-like of shape (n_samples,)
+        n_epochs : int, default 5
+            Epochs at ``Q (n - k) / n`` for ``k = 1 .. n``.
+
+        Returns
+        -------
+        self
+        """
+        check_is_fitted(self, "theta_")
+        tr = self._final
+        if not hasattr(tr, "scale_process_noise"):
+            raise ValueError(
+                f"anneal is for the Kalman trainers ('ekf', 'ukf', 'sukf'), got trainer={self.trainer!r}; "
+                "the SMC sampler's spread is already a posterior's ('smc', 'smc-noise')"
+            )
+        n = check_positive_int(n_epochs, "n_epochs")
+        X, y = validate_data(self, X, y, reset=False, y_numeric=True)
+        self._trainer, self._best = tr, None  # continue from the kept (best) state
+        for k in range(1, n + 1):
+            tr.scale_process_noise((n - k) / n)
+            self._run_epochs(1, (X, y, None, None), show_bar=False)
+        return self
+
     def fit(self, X, y):
         """Train for ``n_epochs`` epochs (or continue, with ``warm_start``).
 
@@ -502,9 +549,33 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
     def predict(self, X, return_std=False):
         """Network output, optionally with the predictive standard deviation.
 
-        The std is ``sqrt(J P J^T + R)`` from the filter's covariance ``P`` (Jacobian
-        ``J`` of the output at each row); particle trainers add the weighted spread of the
-        particles' outputs; ``bp`` has no covariance and reports the training RMSE.
+        What the variance holds, per trainer (each trainer's ``predict`` says the same):
+
+        ``bp``
+            the training rows' mean squared residual (no weight uncertainty at all);
+        ``ekf``, ``ukf``, ``sukf``
+            ``J P J^T + R``: the filter's weight covariance ``P`` through the output's
+            Jacobian ``J`` at each row, plus the noise R. With a random-walk ``Q > 0``, ``P``
+            is not a posterior covariance: every step adds ``Q``, so the weight part grows
+            with the number of rows and epochs (the WNN study measured it at 9-91 against
+            R = 0.1 for the EKF). :meth:`anneal` brings ``Q`` to 0 over extra epochs so that
+            ``P`` is the static-weight filter's, linearised;
+        ``spf``, ``epf``, ``upf``, ``supf`` (and ``move=``: IBIS)
+            the particles' weighted spread of outputs, plus for the Kalman proposals the
+            weighted ``J P_i J^T`` of each particle's carried covariance ``P_i`` (which
+            accumulates Q as the EKF's does), plus R; with a move (Q = 0, no carried
+            covariance) the cloud's spread plus R;
+        ``gsf-*``, ``ekf-ensemble``
+            the components' weighted (or, for the ensemble, equal-weight) spread of outputs,
+            plus their weighted ``J P_i J^T``, plus R;
+        ``smc``
+            the posterior sample's spread of outputs, plus R (fixed by ``measurement_noise``);
+        ``smc-noise``
+            the spread of outputs plus each particle's own learned noise ``exp(s_i)``,
+            averaged over the particles: the posterior predictive with R learned.
+
+        The returned std is the square root of that variance; a Gaussian with it is what the
+        WNN study scores (coverage at 50 / 90 / 95 % and the negative log predictive density).
 
         Parameters
         ----------

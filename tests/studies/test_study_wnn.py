@@ -1,6 +1,7 @@
 """Tests of filterwnn.studies.wnn: reproducibility across workers and backends, outputs."""
 
 import csv
+import re
 
 import numpy as np
 import pytest
@@ -159,8 +160,9 @@ def test_rows_name_the_algorithm_and_fixed_rows_are_not_searched():
     assert study.row_label("gsf-ekf", 20) == "Gaussian-sum filter of 20 EKFs (tempering 0.01)"
     assert study.row_label("ekf-ensemble", 20) == "20 independent EKFs, averaged"
     assert study.row_label("upf", 20) == "UPF (textbook)"
-    assert study.candidates("upf+mala") == [{}] and study.candidates("ekf-ensemble") == [{}]
-    assert len(study.candidates("gsf-ukf")) == len(study.Q_FACTORS)
+    assert study.candidates("ibis-mala") == [{}] and study.candidates("ekf-ensemble") == [{}]
+    assert len(study.candidates("gsf-ukf")) == len(study.Q_FACTORS) + 1  # widened upward (protocol 3)
+    assert len(study.candidates("upf")) == len(study.Q_FACTORS)
     for key, (trainer, fixed, _, _) in study.ROWS.items():
         assert trainer in study.TRAINERS, key
     for col in ("algorithm", "distinct_particles", "coverage90"):
@@ -170,19 +172,19 @@ def test_rows_name_the_algorithm_and_fixed_rows_are_not_searched():
 def test_new_rows_report_coverage_and_distinct_particles():
     res = study.run_study(n_runs=1, n_epochs=2, pf_epochs=1, n_particles=3, seed=3, paper_table=False,
                           references=("GaussianProcessRegressor",), sweep_particles=(), tune_runs=1,
-                          trainers=["gsf-ekf", "ekf-ensemble", "upf+mala"])
+                          trainers=["gsf-ekf", "ekf-ensemble", "ibis-mala"])
     rows = {r["trainer"]: r for r in res.table}
     ens, gsf = rows["ekf-ensemble"], rows["gsf-ekf"]
     assert ens["epochs"] == gsf["epochs"]  # the ensemble copies the Gaussian sum's settings and epochs
-    assert "tempering=0.01" in gsf["settings"] and "move=mala" in rows["upf+mala"]["settings"]
-    assert np.isnan(gsf["distinct_particles"]) and rows["upf+mala"]["distinct_particles"] >= 1
+    assert "tempering=0.01" in gsf["settings"] and "move=mala" in rows["ibis-mala"]["settings"]
+    assert np.isnan(gsf["distinct_particles"]) and rows["ibis-mala"]["distinct_particles"] >= 1
     for r in res.table:  # every row here has a predictive distribution, the GP included
         assert 0 <= r["coverage90"] <= 1, r["trainer"]
 
 
 def test_particle_candidates_centre_on_their_proposal_filter():
     got = study.candidates("epf", {"ekf": {"process_noise": 1e-3, "initial_covariance": 0.1}})
-    assert [c["process_noise"] for c in got] == [1e-5, 1e-4, 1e-3, 1e-2, 1e-1]
+    assert [c["process_noise"] for c in got] == [1e-6, 1e-5, 1e-4, 1e-3, 1e-2, 1e-1]  # x 0.001 added
     assert {c["initial_covariance"] for c in got} == {0.1}
     auto = study.candidates("supf")  # parent not searched: its AUTO_SETTINGS
     assert auto[2]["process_noise"] == study.AUTO_SETTINGS[("sukf", "scaled")]["Q"]
@@ -191,3 +193,11 @@ def test_particle_candidates_centre_on_their_proposal_filter():
 def test_no_search_uses_auto_settings_and_all_epochs():
     res = study.run_study(**{**TINY, "paper_table": False, "sweep_particles": (), "tune_runs": 0})
     assert res.tuning == [] and all(r["epochs"] == (2 if r["trainer"] != "spf" else 1) for r in res.table)
+
+
+def test_renamed_rows_fail_naming_the_row_that_runs_what_they_ran():
+    for old, new in (("upf+mala", "ibis-mala"), ("supf+mala", "ibis-mala"), ("upf+hmc", "ibis-hmc")):
+        with pytest.raises(ValueError, match=rf"row '{re.escape(old)}' is now '{new}'.*IBIS"):
+            study.run_study(**{**TINY, "trainers": [old]})
+    assert study.ROWS["ibis-mala"].trainer == "spf" and study.ROWS["ibis-mala"].fixed == {"move": "mala"}
+    assert "ibis-mala" in study.ALL_TRAINERS and "ibis-hmc" not in study.ALL_TRAINERS

@@ -86,11 +86,11 @@ def test_grid_search(data):
 def test_unknown_trainer_lists_valid_names(data):
     X, y, _, _ = data
     with pytest.raises(ValueError, match="valid: 'bp', 'ekf', 'ekf-ensemble', 'epf', 'gsf-ekf', 'gsf-sukf', "
-                       "'gsf-ukf', 'smc', 'spf', 'sukf', 'supf', 'ukf', 'upf'"):
+                       "'gsf-ukf', 'smc', 'smc-noise', 'spf', 'sukf', 'supf', 'ukf', 'upf'"):
         WNNRegressor(trainer="lbfgs").fit(X, y)
     with pytest.raises(ValueError, match="trainer"):
         make_trainer("nope", None, None, {})
-    assert set(TRAINERS) == set(SINGLE + PARTICLE + GAUSSIAN_SUM + ["smc"])  # smc: tests/monte_carlo/test_smc.py
+    assert set(TRAINERS) == set(SINGLE + PARTICLE + GAUSSIAN_SUM + ["smc", "smc-noise"])  # smc-noise: test_trainers.py
 
 
 def test_gaussian_sum_trainers_lower_training_mse_and_are_gaussian_sum_filters(data):
@@ -132,16 +132,19 @@ def test_ekf_ensemble_is_the_plain_average_of_standalone_ekf_fits(data):
 @pytest.mark.parametrize("move", ["mala", "hmc"])
 def test_particle_trainer_with_a_move_targets_the_rows_seen(data, move):
     X, y, X_test, y_test = data
-    reg = WNNRegressor(n_hidden=3, trainer="upf", move=move, n_epochs=1, n_particles=8, random_state=0).fit(X, y)
+    reg = WNNRegressor(n_hidden=3, trainer="spf", move=move, n_epochs=1, n_particles=8, random_state=0).fit(X, y)
     tr = reg._trainer
     assert tr.pf.move is tr.move and tr.move.target.n_rows == len(X)  # every row, added before its update
     assert np.all(tr.pf.Q == 0) and reg.settings_["Q"] == 0.0 and reg.settings_["move"] == move
     assert 0 < reg.diagnostics_["acceptance"][-1] < 1  # the move ran and moved
     assert reg.diagnostics_["distinct"][-1] > 1  # moved particles are distinct after resampling
-    plain = WNNRegressor(n_hidden=3, trainer="upf", n_epochs=1, n_particles=8, random_state=0).fit(X, y)
-    assert plain.diagnostics_["distinct"][-1] < reg.diagnostics_["distinct"][-1]
     mean, std = reg.predict(X_test, return_std=True)
     assert np.all(np.isfinite(mean)) and np.all(std > 0)
+    # IBIS's predictive: the cloud's weighted spread plus R (no Kalman covariance in the particles)
+    from filterwnn.wnn import network
+
+    Y, w = network.forward(tr.particles, X_test, "morlet"), tr.weights
+    np.testing.assert_allclose(std**2, w @ (Y - w @ Y) ** 2 + reg.settings_["R"])
 
 
 def test_move_and_weighting_errors(data):
@@ -149,7 +152,10 @@ def test_move_and_weighting_errors(data):
     with pytest.raises(ValueError, match="move is for the particle-filter trainers"):
         WNNRegressor(trainer="ekf", move="mala").fit(X, y)
     with pytest.raises(ValueError, match="process_noise must be 0"):
-        WNNRegressor(trainer="upf", move="mala", process_noise=1e-4).fit(X, y)
+        WNNRegressor(trainer="spf", move="mala", process_noise=1e-4).fit(X, y)
+    for kalman in ("epf", "upf", "supf"):  # at Q = 0 the Kalman proposal never moves a particle: IBIS
+        with pytest.raises(ValueError, match=rf"trainer='{kalman}'.*IBIS.*use trainer='spf' with move='hmc'"):
+            WNNRegressor(trainer=kalman, move="hmc").fit(X, y)
     with pytest.raises(ValueError, match="unknown move 'gibbs'"):
         WNNRegressor(trainer="upf", move="gibbs").fit(X, y)
     with pytest.raises(TypeError, match="unexpected keyword argument 'weighting'"):  # removed: use gsf-*
@@ -334,3 +340,19 @@ def test_particle_trainer_with_a_move_resumes_from_a_pickle_exactly(data):
     resumed = pickle.loads(pickle.dumps(part)).fit(X, y)
     np.testing.assert_array_equal(resumed.predict(X_test), full.predict(X_test))
     assert resumed._trainer.move.target.n_rows == 2 * len(X)  # each pass counts the rows once more
+
+
+@pytest.mark.parametrize("trainer", ["ekf", "ukf"])
+def test_anneal_brings_q_to_zero_and_shrinks_the_weight_covariance(data, trainer):
+    X, y, X_test, _ = data
+    reg = WNNRegressor(trainer=trainer, n_hidden=2, n_epochs=3, process_noise=1e-2, random_state=0).fit(X, y)
+    before = reg.predict(X_test, return_std=True)[1]
+    n_iter = reg.n_iter_
+    assert reg.anneal(X, y, n_epochs=3) is reg and reg.n_iter_ == n_iter + 3
+    tr = reg._final
+    Q = tr._Q if trainer == "ekf" else tr.kf.Q
+    assert np.all(Q == 0)  # the last pass ran at Q = 0
+    after = reg.predict(X_test, return_std=True)[1]
+    assert np.median(after) < np.median(before)  # no more accumulated Q in P
+    with pytest.raises(ValueError, match="anneal is for the Kalman trainers.*got trainer='spf'"):
+        WNNRegressor(trainer="spf", n_hidden=2, n_particles=3, n_epochs=1, random_state=0).fit(X, y).anneal(X, y)

@@ -40,13 +40,14 @@ class MeanTrainer(BaseTrainer):
 
 
 AUTO = {"Q": 0.0, "P0": 1.0}
-TOY = TrainerSpec("toy", MeanTrainer, "single", {"scaled": AUTO, "paper": AUTO}, paper_settings={},
-                  label="mean predictor", doc="predicts the training mean")
+TOY = TrainerSpec("toy", MeanTrainer, "single", {"scaled": AUTO, "paper": AUTO}, doc="predicts the training mean")
 
 
 @pytest.fixture
-def toy():
-    """The toy trainer, registered in this one place for one test and removed after it."""
+def toy(monkeypatch):
+    """The toy trainer, registered in this one place for one test and removed after it, with its
+    study row (label, and a place in the paper-settings table) in the study's own table."""
+    monkeypatch.setitem(study.STUDY, "toy", study.StudyEntry(label="mean predictor", paper_settings={}))
     spec = register_trainer(TOY)
     try:
         yield spec
@@ -98,7 +99,6 @@ def test_register_refuses_duplicates_and_bad_entries():
         (dict(auto={"scaled": {"Q": 1.0}, "paper": AUTO}), r"auto\['scaled'\] of trainer 'x' must set \['P0'\]"),
         (dict(family="gradient"), r"auto\['scaled'\] of trainer 'x' must set \['learning_rate'\]"),
         (dict(family="particle"), "a particle trainer needs its filter class"),
-        (dict(parent="nope"), "parent of trainer 'x' must be a registered trainer, got 'nope'"),
         (dict(name="x+y"), "name must be a non-empty string without '\\+', got 'x\\+y'"),
     ]
     for change, match in bad:
@@ -118,12 +118,16 @@ def test_the_table_is_what_the_estimator_and_the_study_read():
         assert AUTO_SETTINGS[(name, "scaled")] is spec.auto["scaled"]
         if spec.family in ("particle", "gaussian-sum"):
             assert spec.filter is not None, name
-    assert study.PAPER_TABLE1 == {n: s.paper for n, s in TRAINERS.items() if s.paper}
-    assert study.PROPOSAL_PARENT == {n: s.parent for n, s in TRAINERS.items() if s.parent}
-    assert set(study.TUNING_GRID) == {n for n, s in TRAINERS.items() if s.grid}
-    assert study._cost()["upf"] == TRAINERS["upf"].cost
+    # the study's data live in the study's table, keyed by row; a spec says only how to train
+    assert study.PAPER_TABLE1 == {n: e.paper for n, e in study.STUDY.items() if e.paper}
+    assert study.PROPOSAL_PARENT == {n: e.parent for n, e in study.STUDY.items() if e.parent}
+    assert set(study.TUNING_GRID) == {n for n, e in study.STUDY.items() if e.grid}
+    assert study._cost()["upf"] == study.STUDY["upf"].cost
+    for gone in ("grid", "parent", "copy_settings", "cost", "paper", "paper_settings", "label", "study",
+                 "study_epochs"):
+        assert not hasattr(TRAINERS["upf"], gone), gone
     # one class per way of training, no class that only names a trainer
-    assert len({s.trainer for s in TRAINERS.values()}) == 6
+    assert len({s.trainer for s in TRAINERS.values()}) == 7
 
 
 def test_each_particle_trainer_builds_its_entrys_filter_and_points():
@@ -138,3 +142,55 @@ def test_each_particle_trainer_builds_its_entrys_filter_and_points():
         assert type(tr.pf) is spec.filter and tr.name == name
         if spec.points is not None:
             assert type(tr.pf.proposal.points) is type(spec.points(model.dim_x)), name
+
+
+def test_smc_noise_target_gradients_and_its_fixed_noise_special_case():
+    """s = log R joins the weights: the gradients match finite differences, and at s = log R the
+    likelihood is the weight model's."""
+    from filterwnn.wnn.trainers import _LearnedNoise
+    from filterwnn.wnn.weight_model import WNNWeightModel
+
+    X, y, _, _ = make_siso_benchmark(rng=0)
+    X, y = X[:15], y[:15]
+    model = WNNWeightModel(5, 2, Q=0.0, R=0.1, P0=0.5)
+    target = _LearnedNoise(model, np.log(0.1), 2.0)
+    th = np.random.default_rng(0).normal(size=(3, target.dim_x)) * 0.5
+    for fn in (lambda t: target.log_likelihood_and_grad(t, X, y), target.log_prior_and_grad):
+        value, grad = fn(th)
+        num = np.zeros_like(th)
+        for j in range(th.shape[1]):
+            e = np.zeros_like(th)
+            e[:, j] = 1e-6
+            num[:, j] = (fn(th + e)[0] - fn(th - e)[0]) / 2e-6
+        np.testing.assert_allclose(num, grad, rtol=1e-5, atol=1e-6)
+    th[:, -1] = np.log(0.1)
+    np.testing.assert_allclose(target.log_likelihood(th, X, y), model.log_likelihood(th[:, :-1], X, y))
+
+
+def test_smc_noise_learns_r_and_predicts_with_it():
+    X, y, X_test, _ = make_siso_benchmark(rng=1)
+    reg = WNNRegressor(trainer="smc-noise", n_hidden=2, n_particles=10, n_epochs=1, random_state=0).fit(X, y)
+    tr = reg._final
+    assert tr.particles.shape[1] == reg.theta_.size + 1 and np.all(tr.noise > 0)
+    mean, std = reg.predict(X_test, return_std=True)
+    Y = np.stack([wnn_forward(p, X_test) for p in tr.particles[:, :-1]])
+    np.testing.assert_allclose(std**2, Y.var(axis=0) + tr.noise.mean())
+    assert "noise_prior_sd" in reg.settings_ and reg.settings_["noise_prior_mean"] == 0.1
+
+
+def wnn_forward(theta, X):
+    from filterwnn.wnn import network
+
+    return network.forward(theta, X, "morlet")
+
+
+def test_smc_noise_prior_rejects_non_finite_rows():
+    """A leapfrog step that overflowed leaves non-finite rows: density 0, gradient 0 (no ValueError)."""
+    from filterwnn.wnn.trainers import _LearnedNoise
+    from filterwnn.wnn.weight_model import WNNWeightModel
+
+    target = _LearnedNoise(WNNWeightModel(5, 2, Q=0.0, P0=0.5), np.log(0.1), 2.0)
+    th = np.zeros((2, target.dim_x))
+    th[1, 3] = np.nan
+    lp, grad = target.log_prior_and_grad(th)
+    assert np.isfinite(lp[0]) and lp[1] == -np.inf and np.all(grad[1] == 0)

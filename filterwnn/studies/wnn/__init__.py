@@ -2,10 +2,13 @@
 
 ``filterwnn study wnn`` trains a 5-20-1 Morlet wavelet network on the SISO benchmark of
 the paper's eq. (12) (:func:`filterwnn.make_siso_benchmark`) with the rows of ``ROWS`` (one per
-trainer of :data:`filterwnn.wnn.trainers.TRAINERS`, plus the move rows of ``MOVE_ROWS``),
-each named for the algorithm it runs: the paper's seven trainers plus the SUKF (``bp, ekf,
-ukf, sukf, spf, epf, upf, supf``; the particle filters with textbook weights), the UPF with a
-MALA move after each resampling (``upf+mala``), the Gaussian-sum filters of N EKFs, UKFs and
+trainer of :data:`filterwnn.wnn.trainers.TRAINERS`, plus the study-only rows of
+:data:`~filterwnn.studies.wnn.rows.STUDY`, the table of the study's own data), each named for the
+algorithm it runs: the paper's seven trainers plus the SUKF (``bp, ekf, ukf, sukf, spf, epf,
+upf, supf``; the particle filters with textbook weights), IBIS with MALA moves (``ibis-mala``:
+the bootstrap step at Q = 0 reweights by each row's likelihood, a MALA move after each
+resampling; ``ibis-hmc`` with HMC moves is opt-in; the former ``upf+mala`` ran this, its UKF
+proposal never moving a particle at Q = 0), the Gaussian-sum filters of N EKFs, UKFs and
 SUKFs at tempering 0.01 (``gsf-ekf, gsf-ukf, gsf-sukf``: the paper's Kalman-proposal
 trainers at their working settings, formerly "bank"), N independent EKFs averaged without
 weights (``ekf-ensemble``) and the SMC sampler (``smc``), over independent runs, and writes
@@ -23,8 +26,12 @@ weights (``ekf-ensemble``) and the SMC sampler (``smc``), over independent runs,
     ``algorithm``, ``settings`` (weighting, tempering, move), test MSE median and quartiles,
     ``fit_time_median``, ``mean_ess``, ``distinct_particles`` and ``distinct_ancestors`` (means
     over runs at the end: distinct particles, and distinct initial particles they descend from;
-    empty for non-particle rows) and ``coverage90`` (median over runs of the share of test
-    targets inside mean +- 1.645 std of ``predict(return_std=True)``; the GP's std included);
+    empty for non-particle rows), ``coverage50``, ``coverage90``, ``coverage95`` (medians over
+    runs of the share of test targets inside the central 50 / 90 / 95 % interval of
+    ``predict(return_std=True)``'s Gaussian; the GP's std included) and ``nlpd`` (median over
+    runs of the mean negative log predictive density; :func:`predictive_scores`). What each
+    row's variance holds is in its trainer's ``predict`` (see
+    :meth:`filterwnn.wnn.regressor.WNNRegressor.predict`);
 ``runs.csv``
     one line per (table, trainer, run): test/train MSE, fit time, ESS, distinct particles;
 ``tuning.md``, ``tuning.csv``
@@ -76,7 +83,7 @@ protocol that finishes in a few minutes on 2 cores, and says so in its output;
 >>> [row["trainer"] for row in res.table]
 ['ekf', 'spf']
 >>> res.table[1]["algorithm"], sorted(res.table[0])[:3]
-('SPF (bootstrap)', ['algorithm', 'coverage90', 'distinct_ancestors'])
+('SPF (bootstrap)', ['algorithm', 'coverage50', 'coverage90'])
 """
 
 from __future__ import annotations
@@ -87,7 +94,11 @@ from .plan import StudyResult, candidates, run_seeds, select_settings, tune_seed
 from .rows import (
     ALL_TRAINERS,
     COPY_SETTINGS,
-    MOVE_ROWS,
+    RENAMED_ROWS,
+    STUDY,
+    StudyEntry,
+    check_row,
+    study_entry,
     PAPER_TABLE1,
     PARTICLE_TRAINERS,
     PROPOSAL_PARENT,
@@ -99,22 +110,29 @@ from .rows import (
     TABLE_COLUMNS,
     TUNING_GRID,
     VALIDATION_FRACTION,
+    Z50,
     Z90,
+    Z95,
+    SCORE_COLUMNS,
     StudyRow,
     _cost,
     _rows,
     row_label,
 )
-from .runs import fit_reference, fit_run, run_study, run_tasks, summarize, tune_run
+from .runs import fit_reference, fit_run, predictive_scores, run_study, run_tasks, summarize, tune_run
 from .figures import write_figures
 from .tables import is_reduced, markdown_table, tuning_table, write_outputs
 
 __all__ = [
     "ALL_TRAINERS",
+    "STUDY",
+    "StudyEntry",
+    "RENAMED_ROWS",
     "PARTICLE_TRAINERS",
     "PAPER_TABLE1",
     "REFERENCES",
     "TABLE_COLUMNS",
+    "SCORE_COLUMNS",
     "TUNING_GRID",
     "PROPOSAL_PARENT",
     "StudyResult",
@@ -124,6 +142,7 @@ __all__ = [
     "tune_run",
     "select_settings",
     "fit_run",
+    "predictive_scores",
     "fit_reference",
     "run_tasks",
     "summarize",

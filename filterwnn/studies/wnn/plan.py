@@ -7,11 +7,11 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..._validation import check_choice, check_positive_int, check_seed
-from ...wnn.trainers import AUTO_SETTINGS, TRAINERS
+from ..._validation import check_positive_int, check_seed
+from ...wnn.trainers import AUTO_SETTINGS
 from .. import runner
-from .rows import (Q_FACTORS, SMOOTHING_WINDOW, _in_paper_table, _rows, _specs_with, _sweep_rows,
-                   _uses_particles)
+from .rows import (Q_FACTORS, SMOOTHING_WINDOW, _in_paper_table, _rows, _specs_with, _sweep_rows, _uses_particles,
+                   check_row, study_entry)
 
 __all__ = [
     "StudyResult",
@@ -88,17 +88,17 @@ def candidates(trainer, chosen=None):
 
     >>> [c["process_noise"] for c in candidates("upf", {"ukf": {"process_noise": 1e-5, "initial_covariance": 0.01}})]
     [1e-07, 1e-06, 1e-05, 0.0001, 0.001]
-    >>> candidates("upf+mala")
+    >>> candidates("ibis-mala")
     [{}]
     """
     rows = _rows()
-    check_choice(trainer, "trainer", rows)
-    spec = TRAINERS.get(trainer)
-    if rows[trainer].epochs is not None or spec is None or spec.copy_settings:  # fixed settings: nothing to search
+    check_row(trainer)
+    entry = study_entry(trainer)
+    if rows[trainer].epochs is not None or entry.copy_settings:  # fixed settings: nothing to search
         return [{}]
-    if spec.grid:
-        return [dict(c) for c in spec.grid]
-    parent = spec.parent
+    if entry.grid:
+        return [dict(c) for c in entry.grid]
+    parent = entry.parent
     if parent is None:  # neither a grid nor a parent: nothing to search
         return [{}]
     base = (chosen or {}).get(parent)
@@ -107,7 +107,7 @@ def candidates(trainer, chosen=None):
         base = {"process_noise": auto["Q"], "initial_covariance": auto["P0"]}
     q = base["process_noise"]
     return [{"process_noise": float(f"{q * f:.3g}"), "initial_covariance": base["initial_covariance"]}
-            for f in Q_FACTORS]
+            for f in (entry.q_factors or Q_FACTORS)]
 
 
 def _running_median(curve, window):
@@ -203,9 +203,8 @@ def _plan(n_runs, n_epochs, pf_epochs, n_particles, trainers, seed, paper_runs, 
     n_epochs = check_positive_int(n_epochs, "n_epochs")
     pf_epochs = n_epochs if pf_epochs is None else check_positive_int(pf_epochs, "pf_epochs")
     n_particles = check_positive_int(n_particles, "n_particles")
-    rows = _rows()
     for t in trainers:
-        check_choice(t, "trainer", rows)
+        check_row(t)
     paper_runs = n_runs if paper_runs is None else check_positive_int(paper_runs, "paper_runs", minimum=0)
     sweep_runs = n_runs if sweep_runs is None else check_positive_int(sweep_runs, "sweep_runs")
     tune_runs = check_positive_int(tune_runs, "tune_runs", minimum=0)

@@ -16,10 +16,11 @@ from ...wnn.trainers import PAPER_SETTINGS, TRAINERS
 from .. import runner
 from .plan import (StudyResult, _child, _plan, _study_tasks, _task_cost, candidates, select_settings,
                    tune_seeds)
-from .rows import (ALL_TRAINERS, REFERENCES, VALIDATION_FRACTION, Z90, _cost, _rows, _specs_with, _sweep_rows,
-                   _uses_particles, row_label)
+from .rows import (ALL_TRAINERS, REFERENCES, SCORE_COLUMNS, VALIDATION_FRACTION, Z50, Z90, Z95, _cost, _rows,
+                   _specs_with, _sweep_rows, _uses_particles, row_label, study_entry)
 
 __all__ = [
+    "predictive_scores",
     "tune_run",
     "fit_run",
     "fit_reference",
@@ -79,7 +80,9 @@ def _settings_text(table, trainer, reg):
     if "learning_rate" in s:
         txt = f"init={s['init']}, lr={s['learning_rate']:g}"
     else:
-        txt = f"init={s['init']}, Q={s['Q']:g}, P0={s['P0']:g}, R={s['R']:g}"
+        noise = (f"R learned (log R ~ N(log {s['noise_prior_mean']:g}, {s['noise_prior_sd']:g}^2))"
+                 if "noise_prior_mean" in s else f"R={s['R']:g}")
+        txt = f"init={s['init']}, Q={s['Q']:g}, P0={s['P0']:g}, {noise}"
     if s.get("weighting") == "unweighted average":
         txt += f", N={s['n_particles']}, weighting=none (unweighted average)"
     elif "weighting" in s:
@@ -101,7 +104,7 @@ def _params(table, trainer):
         if not spec.noise_settings:
             p.pop("process_noise")
             p.pop("initial_covariance")
-        p.update(spec.paper_settings or {})
+        p.update(study_entry(trainer).paper_settings or {})
         return p
     return {"init": "scaled"}
 
@@ -130,13 +133,38 @@ def _regressor(trainer, table, run_seed, n_epochs, n_particles, params):
                         **kw)
 
 
+def predictive_scores(mean, std, y):
+    """How well a Gaussian predictive ``N(mean, std**2)`` describes the targets ``y``.
+
+    Returns
+    -------
+    dict
+        ``coverage50``, ``coverage90``, ``coverage95``: the share of targets inside the central
+        50 / 90 / 95 % interval ``mean +- z std`` (calibrated: 0.50 / 0.90 / 0.95; a width measure
+        alone says nothing of calibration, so all three are reported), and ``nlpd``: the mean
+        negative log predictive density ``log(2 pi std**2) / 2 + (y - mean)**2 / (2 std**2)``
+        (lower is better; a proper scoring rule that punishes intervals too wide and too narrow,
+        Gneiting and Raftery 2007). All NaN when ``mean`` is None (no predictive distribution).
+
+    >>> s = predictive_scores(np.zeros(4), np.ones(4), np.array([0.1, -0.5, 1.0, 3.0]))
+    >>> s["coverage50"], s["coverage95"], round(s["nlpd"], 3)
+    (0.5, 0.75, 2.201)
+    """
+    if mean is None:
+        return {k: float("nan") for k in ("coverage50", "coverage90", "coverage95", "nlpd")}
+    z = np.abs(np.asarray(y, dtype=float) - mean) / std
+    out = {f"coverage{c}": float(np.mean(z <= q)) for c, q in zip((50, 90, 95), (Z50, Z90, Z95))}
+    out["nlpd"] = float(np.mean(0.5 * np.log(2.0 * np.pi * std**2) + 0.5 * z**2))
+    return out
+
+
 def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_test=True, run=0, params=None):
     """Train one WNN in one run and score it on that run's test set.
 
     Parameters
     ----------
     trainer : str
-        A key of ``ROWS``: a trainer of :data:`filterwnn.wnn.trainers.TRAINERS`, or a row of ``MOVE_ROWS``.
+        A key of ``ROWS``: a trainer of :data:`filterwnn.wnn.trainers.TRAINERS`, or a study-only row of ``STUDY``.
     run_seed : (entropy, spawn_key)
         From :func:`run_seeds`.
     n_epochs, n_particles : int
@@ -150,10 +178,9 @@ def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_
     Returns
     -------
     dict
-        See :class:`StudyResult` ``runs``.
+        See :class:`StudyResult` ``runs`` (and :func:`predictive_scores`).
     """
     from threadpoolctl import threadpool_limits
-
     with threadpool_limits(limits=1), warnings.catch_warnings():
         warnings.simplefilter("ignore", DegeneracyWarning)  # reported as ESS and distinct particles
         X, y, X_test, y_test = make_siso_benchmark(rng=_child(run_seed, 0))
@@ -166,11 +193,11 @@ def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_
                 reg.fit(X, y)
             mean, std = reg.predict(X_test, return_std=True)
             test_mse = float(np.mean((mean - y_test) ** 2))
-            coverage = float(np.mean(np.abs(y_test - mean) <= Z90 * std))
+            scores = predictive_scores(mean, std, y_test)
             train_mse = reg.loss_curve_[-1]
         except np.linalg.LinAlgError as exc:  # NumericalError included: a failed run is a result
-            status = f"failed: {exc}"
-            test_mse = train_mse = coverage = float("nan")
+            status, test_mse, train_mse = f"failed: {exc}", float("nan"), float("nan")
+            scores = predictive_scores(None, None, y_test)
             if not hasattr(reg, "fit_time_"):
                 reg.fit_time_ = float("nan")
         return {
@@ -181,7 +208,7 @@ def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_
             "train_mse": float(train_mse),
             "fit_time": float(reg.fit_time_),
             **_particle_fields(reg),
-            "coverage90": coverage,
+            **scores,
             "var_test": float(np.var(y_test)),
             "curve_train": list(getattr(reg, "loss_curve_", [])),
             "curve_test": curve_test,
@@ -224,10 +251,9 @@ def fit_reference(name, run_seed, run=0):
             model.fit(X, y)
         fit_time = time.perf_counter() - t0
         if name == "GaussianProcessRegressor":  # predictive std, the fitted white noise included
-            mean, std = model.predict(X_test, return_std=True)
-            coverage = float(np.mean(np.abs(y_test - mean) <= Z90 * std))
+            scores = predictive_scores(*model.predict(X_test, return_std=True), y_test)
         else:
-            coverage = float("nan")
+            scores = predictive_scores(None, None, y_test)
         return {
             "table": "reference",
             "trainer": name,
@@ -237,7 +263,7 @@ def fit_reference(name, run_seed, run=0):
             "fit_time": fit_time,
             "mean_ess": float("nan"),
             "distinct": 0,
-            "coverage90": coverage,
+            **scores,
             "var_test": float(np.var(y_test)),
             "curve_train": [],
             "curve_test": [],
@@ -302,14 +328,13 @@ def summarize(runs):
     for table, trainer, _ in keys:
         rs = [r for r in runs if r["table"] == table and r["trainer"] == trainer]
         mse = [r["test_mse"] for r in rs]
-        paper = TRAINERS[trainer].paper if trainer in TRAINERS else None
+        paper = study_entry(trainer).paper if trainer in _rows() else None
         paper = paper or (float("nan"), float("nan"))
         # an unweighted average (combine="mean") has no weights whose ESS would mean anything
         weighted = trainer not in TRAINERS or TRAINERS[trainer].combine != "mean"
         ess = [r["mean_ess"] for r in rs if np.isfinite(r["mean_ess"]) and weighted]
         distinct = [r["distinct"] for r in rs if r["distinct"] > 0]
         ancestors = [r["ancestors"] for r in rs if r.get("ancestors", -1) > 0]  # absent from older caches
-        cover = [r.get("coverage90", float("nan")) for r in rs]
         rows.append({
             "table": table,
             "trainer": trainer,
@@ -323,7 +348,7 @@ def summarize(runs):
             "distinct_median": float(np.median(distinct)) if distinct else float("nan"),
             "distinct_particles": float(np.mean(distinct)) if distinct else float("nan"),
             "distinct_ancestors": float(np.mean(ancestors)) if ancestors else float("nan"),
-            "coverage90": _q(cover, 0.5),
+            **{k: _q([r.get(k, float("nan")) for r in rs], 0.5) for k in SCORE_COLUMNS},
             "n_runs": len(rs),
             "epochs": max(r.get("epochs", 0) for r in rs),
             "n_failed": sum(r["status"] != "ok" for r in rs),

@@ -58,8 +58,8 @@ def markdown_table(result):
     lines += ["", f"Timings: median seconds per fit with {c['n_jobs']} joblib worker(s) ({c['backend']}), "
               "one BLAS thread each; parallel workers contend for memory bandwidth."]
     head = ("| algorithm | settings | epochs | test MSE median | q1 | q3 | fit time (s) | mean ESS | distinct particles "
-            "| distinct ancestors | 90 % coverage | runs | paper MSE | paper time (s) |")
-    sep = "|---" * 14 + "|"
+            "| distinct ancestors | coverage 50 / 90 / 95 % | NLPD | runs | paper MSE | paper time (s) |")
+    sep = "|---" * 15 + "|"
     if c.get("tune_runs"):
         working_title = (f"Working settings (scaled start; Q, P0 or learning rate and the epochs chosen on a "
                          f"validation split of {c['tune_runs']} separate tuning run(s), never on test data)")
@@ -83,7 +83,8 @@ def markdown_table(result):
                 f"{_fmt(r['test_mse_median'])}{failed} | "
                 f"{_fmt(r['test_mse_q1'])} | {_fmt(r['test_mse_q3'])} | {_fmt(r['fit_time_median'])} | "
                 f"{_fmt(r['mean_ess'])} | {_fmt(r['distinct_particles'])} | {_fmt(r['distinct_ancestors'])} | "
-                f"{_fmt(r['coverage90'])} | {r['n_runs']} | "
+                f"{_fmt(r['coverage50'], 2)} / {_fmt(r['coverage90'], 2)} / {_fmt(r['coverage95'], 2)} | "
+                f"{_fmt(r['nlpd'])} | {r['n_runs']} | "
                 f"{_fmt(r['paper_mse'], 4)} | {_fmt(r['paper_time'])} |"
             )
     if result.sweep:
@@ -123,7 +124,7 @@ def tuning_table(result):
 
 #: Columns of ``runs.csv`` (one line per table, trainer and run).
 RUNS_COLUMNS = ("table", "trainer", "run", "n_particles", "epochs", "test_mse", "train_mse", "fit_time", "mean_ess",
-                "distinct", "ancestors", "coverage90", "var_test", "status", "settings")
+                "distinct", "ancestors", "coverage50", "coverage90", "coverage95", "nlpd", "var_test", "status", "settings")
 #: Columns of ``tuning.csv`` (one line per trainer and candidate).
 TUNING_COLUMNS = ("trainer", "candidate", "settings", "best_epoch", "val_mse", "val_mse_last", "n_runs", "n_failed",
                   "chosen")
