@@ -494,9 +494,8 @@ class UnscentedKalmanProposal(_KalmanProposal):
     Parameters
     ----------
     points : sigma-point object
-        Any filterpy-protocol set (``n``, ``Wm``, ``Wc``, ``num_sigmas()``,
-        ``sigma_points(x, P)``); Merwe, Julier and the package's staircase sets are
-        built in O(n^2) per particle.
+        The set of the step (:class:`~filterwnn.kalman.batched.UnscentedStep`: any
+        filterpy-protocol set, the structured ones built in O(n^2) per particle).
     carry_covariance : bool, default True
 
     Notes
