@@ -42,6 +42,19 @@ def lazy_exports(package, exports):
     return __getattr__, __dir__
 
 
+def module_exports(names_by_module):
+    """The ``exports`` of :func:`lazy_exports` from ``{module: names}``: each name as
+    ``"module:name"``, after every module itself under its own name (``"module"``).
+
+    >>> module_exports({"angles": ("wrap",)})
+    {'angles': 'angles', 'wrap': 'angles:wrap'}
+    """
+    exports = {mod: mod for mod in names_by_module}
+    for mod, names in names_by_module.items():
+        exports.update((name, f"{mod}:{name}") for name in names)
+    return exports
+
+
 class _MovedLoader(importlib.abc.Loader):
     """An old path: the new module itself, or a module that reads through several new homes."""
 

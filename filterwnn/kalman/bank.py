@@ -97,6 +97,52 @@ def _of_member(M, i):
     return f" (member {int(i)})" if np.ndim(M) == 3 else ""
 
 
+class _Checked:
+    """A bank attribute kept as ``_<name>`` and checked when assigned: ``bank.<name> = value``
+    stores ``check(bank, value)`` (which raises ``ValueError`` naming the attribute)."""
+
+    def __init__(self, check, doc=None):
+        self.check = check
+        self.__doc__ = doc
+
+    def __set_name__(self, owner, name):
+        self.slot = "_" + name
+
+    def __get__(self, obj, objtype=None):
+        return self if obj is None else getattr(obj, self.slot)
+
+    def __set__(self, obj, value):
+        setattr(obj, self.slot, self.check(obj, value))
+
+
+def _member_states(bank, value):
+    """``x`` as ``(B, dim_x)`` finite floats (one ``(dim_x,)`` for all members); the error names the member."""
+    X = np.asarray(value, dtype=float)
+    if X.shape == (bank.dim_x,):
+        X = np.broadcast_to(X, (bank.B, bank.dim_x))
+    if X.shape != (bank.B, bank.dim_x):
+        raise ValueError(f"x must have shape ({bank.B}, {bank.dim_x}) or ({bank.dim_x},), got shape {X.shape}")
+    bad = ~np.isfinite(X).all(axis=1)
+    if bad.any():
+        raise ValueError(f"x must be finite, got non-finite entries (member {int(np.argmax(bad))})")
+    return np.array(X)
+
+
+def _member_covariances(bank, value):
+    """``P`` as ``(B, dim_x, dim_x)`` positive-definite matrices (one shared is copied to every member)."""
+    P = _stack(value, "P", bank.B, bank.dim_x, kind="pd")
+    return np.array(np.broadcast_to(P, (bank.B, bank.dim_x, bank.dim_x)))
+
+
+def _measurement_matrix(bank, value):
+    """``H`` as a finite ``(dim_z, dim_x)`` (shared) or ``(B, dim_z, dim_x)`` array."""
+    H = np.asarray(value, dtype=float)
+    if H.shape not in ((bank.dim_z, bank.dim_x), (bank.B, bank.dim_z, bank.dim_x)) or not np.isfinite(H).all():
+        raise ValueError(f"H must be finite of shape ({bank.dim_z}, {bank.dim_x}) or ({bank.B}, {bank.dim_z}, "
+                         f"{bank.dim_x}), got shape {H.shape}")
+    return H
+
+
 class _Bank:
     """What the banks share: the stacked state, the noise checked when assigned, the step loop."""
 
@@ -139,52 +185,16 @@ class _Bank:
         self.x_post, self.P_post = self._x.copy(), self._P.copy()
 
     # --- the state, checked when assigned --------------------------------------------------
-    @property
-    def x(self):
-        """Member states, shape ``(B, dim_x)``; assign ``(B, dim_x)`` or one ``(dim_x,)`` for all."""
-        return self._x
-
-    @x.setter
-    def x(self, value):
-        X = np.asarray(value, dtype=float)
-        if X.shape == (self.dim_x,):
-            X = np.broadcast_to(X, (self.B, self.dim_x))
-        if X.shape != (self.B, self.dim_x):
-            raise ValueError(f"x must have shape ({self.B}, {self.dim_x}) or ({self.dim_x},), got shape {X.shape}")
-        bad = ~np.isfinite(X).all(axis=1)
-        if bad.any():
-            raise ValueError(f"x must be finite, got non-finite entries (member {int(np.argmax(bad))})")
-        self._x = np.array(X)
-
-    @property
-    def P(self):
-        """Member covariances, shape ``(B, dim_x, dim_x)``; assign one per member or one for all."""
-        return self._P
-
-    @P.setter
-    def P(self, value):
-        P = _stack(value, "P", self.B, self.dim_x, kind="pd")
-        self._P = np.array(np.broadcast_to(P, (self.B, self.dim_x, self.dim_x)))
-
-    @property
-    def Q(self):
-        """Process noise, ``(dim_x, dim_x)`` shared or ``(B, dim_x, dim_x)``; checked (symmetric,
-        positive semi-definite) when assigned. Replace it rather than edit it in place."""
-        return self._Q
-
-    @Q.setter
-    def Q(self, value):
-        self._Q = _stack(value, "Q", self.B, self.dim_x, kind="psd")
-
-    @property
-    def R(self):
-        """Measurement noise, ``(dim_z, dim_z)`` shared or ``(B, dim_z, dim_z)``; checked (symmetric,
-        positive definite) when assigned."""
-        return self._R
-
-    @R.setter
-    def R(self, value):
-        self._R = _stack(value, "R", self.B, self.dim_z, kind="pd")
+    x = _Checked(_member_states, "Member states, shape ``(B, dim_x)``; assign ``(B, dim_x)`` or one "
+                 "``(dim_x,)`` for all.")
+    P = _Checked(_member_covariances, "Member covariances, shape ``(B, dim_x, dim_x)``; assign one per "
+                 "member or one for all.")
+    Q = _Checked(lambda bank, value: _stack(value, "Q", bank.B, bank.dim_x, kind="psd"),
+                 """Process noise, ``(dim_x, dim_x)`` shared or ``(B, dim_x, dim_x)``; checked (symmetric,
+        positive semi-definite) when assigned. Replace it rather than edit it in place.""")
+    R = _Checked(lambda bank, value: _stack(value, "R", bank.B, bank.dim_z, kind="pd"),
+                 """Measurement noise, ``(dim_z, dim_z)`` shared or ``(B, dim_z, dim_z)``; checked (symmetric,
+        positive definite) when assigned.""")
 
     # --- errors that name the member -------------------------------------------------------
     def _numerical(self, exc, stage, P, step):
@@ -439,25 +449,8 @@ class KalmanFilterBank(_Bank):
         self._F = np.eye(self.dim_x)
         self._H = np.zeros((self.dim_z, self.dim_x))
 
-    @property
-    def F(self):
-        return self._F
-
-    @F.setter
-    def F(self, value):
-        self._F = _stack(value, "F", self.B, self.dim_x, kind="any")
-
-    @property
-    def H(self):
-        return self._H
-
-    @H.setter
-    def H(self, value):
-        H = np.asarray(value, dtype=float)
-        if H.shape not in ((self.dim_z, self.dim_x), (self.B, self.dim_z, self.dim_x)) or not np.isfinite(H).all():
-            raise ValueError(f"H must be finite of shape ({self.dim_z}, {self.dim_x}) or ({self.B}, {self.dim_z}, "
-                             f"{self.dim_x}), got shape {H.shape}")
-        self._H = H
+    F = _Checked(lambda bank, value: _stack(value, "F", bank.B, bank.dim_x, kind="any"))
+    H = _Checked(_measurement_matrix)
 
     def _predict(self, P, fx_args, step):
         if fx_args:

@@ -78,8 +78,32 @@ __all__ = [
 # ---------------------------------------------------------------------------
 
 
-def _rows(f, X, out_dim, vectorized, name, args=(), kwargs=None):
-    """``f`` on every row of ``X (m, n)`` -> ``(m, out_dim)``; one call when vectorized."""
+def apply_rows(f, X, out_dim, vectorized, name, args=(), kwargs=None):
+    """``f`` on every row of ``X (m, n)`` -> ``(m, out_dim)``; one call when vectorized.
+
+    Parameters
+    ----------
+    f : callable
+        ``f(X, *args, **kwargs)`` on all rows at once when ``vectorized``, else ``f(x, ...)``
+        on one row ``x (n,)``.
+    X : ndarray of shape (m, n)
+    out_dim : int
+        Length of each output row.
+    vectorized : bool
+    name : str
+        The model function's name (``"fx"``, ``"hx"``), used in the error messages.
+    args : tuple, optional
+    kwargs : dict, optional
+
+    Returns
+    -------
+    ndarray of shape (m, out_dim)
+
+    Raises
+    ------
+    ValueError
+        If ``f`` returns the wrong number of values (checked on the first row in the loop).
+    """
     kwargs = {} if kwargs is None else kwargs
     m = X.shape[0]
     if vectorized:
@@ -150,8 +174,12 @@ def _jacobians(J, X, shape, vectorized, name, args, kwargs):
     return out
 
 
-def _noise(M, name, dim):
-    """A noise covariance as a float ``(dim, dim)`` array (a scalar means ``M * I``)."""
+def noise_matrix(M, name, dim):
+    """A noise covariance as a float ``(dim, dim)`` array (a scalar means ``M * I``).
+
+    ``name`` (``"Q"``, ``"R"``) is named in the ``ValueError`` raised for a wrong shape or a
+    non-finite entry. Symmetry and definiteness are the caller's to check.
+    """
     M = np.asarray(M, dtype=float)
     if M.ndim == 0:
         M = float(M) * np.eye(dim)
@@ -164,7 +192,7 @@ def _noise(M, name, dim):
     return M
 
 
-def _solve_lower(L, B):
+def solve_lower(L, B):
     """``L^{-1} B`` for stacked lower-triangular ``L (N, n, n)`` and ``B (N, n, m)``.
 
     Forward substitution vectorized over the stack (``n`` small steps) for small ``n``,
@@ -258,7 +286,7 @@ class KalmanModel:
             elif np.shape(M) == hit[0].shape and np.array_equal(hit[0], M):
                 return hit[1]
         dim = self.dim_x if name == "Q" else self.dim_z
-        A = check_symmetric(_noise(M, name, dim), name)
+        A = check_symmetric(noise_matrix(M, name, dim), name)
         if name == "R":
             check_covariance(A, "R", dim)
         factor = NoiseFactor(A, name)
@@ -271,11 +299,11 @@ class KalmanModel:
         """``fx(x_prev)`` on every row -> ``(N, dim_x)`` (``x_prev`` for a random walk)."""
         if self.fx is None:
             return x_prev
-        return _rows(self.fx, x_prev, self.dim_x, self.vectorized, "fx", (self.dt,), fx_args)
+        return apply_rows(self.fx, x_prev, self.dim_x, self.vectorized, "fx", (self.dt,), fx_args)
 
     def measure(self, X, hx_args):
         """``hx`` on every row -> ``(N, dim_z)``."""
-        return _rows(self.hx, X, self.dim_z, self.vectorized, "hx", (), hx_args)
+        return apply_rows(self.hx, X, self.dim_z, self.vectorized, "hx", (), hx_args)
 
     def residual_x_rows(self, a, b):
         """``residual_x(a, b)`` broadcast over rows (``a - b`` by default)."""
@@ -367,7 +395,7 @@ def finish_update(model, x_prior, P_prior, z, z_pred, S, Pxy, L_prior, step, Lin
     ``(N, dim_z)``; ``R`` is ``(dim_z, dim_z)`` or ``(N, dim_z, dim_z)`` (the model's by
     default).
     """
-    R = _noise(model.R, "R", model.dim_z) if R is None else R
+    R = noise_matrix(model.R, "R", model.dim_z) if R is None else R
     S = S + R
     y = _residual(model.residual_z, _as_z(z, x_prior.shape[0], model.dim_z), z_pred, model.vectorized)
     if model.dim_z == 1:
@@ -386,7 +414,7 @@ def finish_update(model, x_prior, P_prior, z, z_pred, S, Pxy, L_prior, step, Lin
     Kt = np.linalg.solve(S, np.swapaxes(Pxy, -1, -2))  # (N, m, n)
     x = x_prior + np.matmul(y[:, None, :], Kt)[:, 0, :]
     P = P_prior - np.matmul(Pxy, Kt)
-    e = _solve_lower(Ls, y[:, :, None])[:, :, 0]
+    e = solve_lower(Ls, y[:, :, None])[:, :, 0]
     loglik = (
         -0.5 * np.sum(e * e, axis=1)
         - np.sum(np.log(np.diagonal(Ls, axis1=1, axis2=2)), axis=1)
@@ -501,12 +529,12 @@ class ExtendedStep(_Step):
     def predict(self, model, x, P, fx_args=None, step=None, *, Q=None):
         """Predicted ``(x (N, n), P (N, n, n))`` from ``x (N, n)``, ``P (N, n, n)``."""
         fx_args = {} if fx_args is None else fx_args
-        Q = _noise(model.Q, "Q", model.dim_x) if Q is None else Q
+        Q = noise_matrix(model.Q, "Q", model.dim_x) if Q is None else Q
         if model.fx is None:
             return KalmanPrediction(x.copy(), P + Q)
         n = model.dim_x
         F = _jacobians(model.FJacobian, x, (n, n), model.vectorized, "FJacobian", (model.dt,), fx_args)
-        xp = _rows(model.fx, x, n, model.vectorized, "fx", (model.dt,), fx_args)
+        xp = apply_rows(model.fx, x, n, model.vectorized, "fx", (model.dt,), fx_args)
         Pp = np.matmul(np.matmul(F, P), np.swapaxes(F, -1, -2)) + Q
         return KalmanPrediction(xp, 0.5 * (Pp + np.swapaxes(Pp, -1, -2)))
 
@@ -514,7 +542,7 @@ class ExtendedStep(_Step):
         xp, Pp = prediction
         n, m = model.dim_x, model.dim_z
         H = _jacobians(model.HJacobian, xp, (m, n), model.vectorized, "HJacobian", (), hx_args)
-        zp = _rows(model.hx, xp, m, model.vectorized, "hx", (), hx_args)
+        zp = apply_rows(model.hx, xp, m, model.vectorized, "hx", (), hx_args)
         Pxy = np.matmul(Pp, np.swapaxes(H, -1, -2))
         S = np.matmul(H, Pxy)
         return finish_update(model, xp, Pp, z, zp, S, Pxy, None, step, H=H, R=R)
@@ -534,7 +562,7 @@ class LinearStep(_Step):
 
     def predict(self, model, x, P, F, step=None, *, Q=None):
         """``x^- = F x``, ``P^- = F P F^T + Q`` for every member."""
-        Q = _noise(model.Q, "Q", model.dim_x) if Q is None else Q
+        Q = noise_matrix(model.Q, "Q", model.dim_x) if Q is None else Q
         xp = np.matmul(F, x[:, :, None])[:, :, 0] if F.ndim == 3 else x @ F.T
         Pp = np.matmul(np.matmul(F, P), np.swapaxes(F, -1, -2)) + Q
         return KalmanPrediction(xp, 0.5 * (Pp + np.swapaxes(Pp, -1, -2)))
@@ -593,13 +621,13 @@ class UnscentedStep(_Step):
         """Predicted ``(x (N, n), P (N, n, n))`` by the unscented transform through ``fx``."""
         fx_args = {} if fx_args is None else fx_args
         self.check(model.dim_x)
-        Q = _noise(model.Q, "Q", model.dim_x) if Q is None else Q
+        Q = noise_matrix(model.Q, "Q", model.dim_x) if Q is None else Q
         if model.fx is None:
             return KalmanPrediction(x.copy(), P + Q)
         N, n = x.shape
         _, sig = self._sigmas(x, P, step, "P")
         S_ = sig.shape[1]
-        F = _rows(model.fx, sig.reshape(N * S_, n), n, model.vectorized, "fx", (model.dt,), fx_args)
+        F = apply_rows(model.fx, sig.reshape(N * S_, n), n, model.vectorized, "fx", (model.dt,), fx_args)
         F = F.reshape(N, S_, n)
         Wm, Wc = self.points.Wm, self.points.Wc
         xp = _weighted_mean(model.x_mean_fn, F, Wm)
@@ -614,7 +642,7 @@ class UnscentedStep(_Step):
         m = model.dim_z
         L, sig = self._sigmas(xp, Pp, step, "P_prior")
         S_ = sig.shape[1]
-        Hs = _rows(model.hx, sig.reshape(N * S_, n), m, model.vectorized, "hx", (), hx_args).reshape(N, S_, m)
+        Hs = apply_rows(model.hx, sig.reshape(N * S_, n), m, model.vectorized, "hx", (), hx_args).reshape(N, S_, m)
         Wm, Wc = self.points.Wm, self.points.Wc
         zp = _weighted_mean(model.z_mean_fn, Hs, Wm)
         dY = _residual(model.residual_z, Hs, zp[:, None, :], model.vectorized)

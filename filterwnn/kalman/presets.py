@@ -103,31 +103,25 @@ def _three_minus_n(n):
     return 3.0 - n
 
 
-def _preset(name, cls, doc, **settings):
-    return name, PointPreset(name, cls, settings, doc)
-
+#: What each preset is for: the paper or filter that specifies it, and its users in the package.
+_USES = {
+    "merwe": "the UPF's (van der Merwe et al. 2000); Gaussian-sum UKFs; WNN ukf, upf, gsf-ukf",
+    "supf": "the papers' SUPF (SimplexUnscentedParticleFilter); Gaussian-sum SUKFs",
+    "simplex": "the unscaled set of Julier (2003); WNN sukf, supf, gsf-sukf",
+    "gpsdr-ukf": 'GPSDRFilter kind "ukf"; the DR study\'s UKF and UPF',
+    "gpsdr-sukf": 'GPSDRFilter kind "sukf"; the DR study\'s SUKF',
+    "merwe-kappa": "Julier and Uhlmann's n + kappa = 3; the command line's tour",
+}
 
 #: ``{name: PointPreset}``, read-only: every point set the package builds (module docstring).
-POINT_PRESETS = MappingProxyType(dict((
-    _preset("merwe", MerweScaledSigmaPoints,
-            "the UPF's (van der Merwe et al. 2000); Gaussian-sum UKFs; WNN ukf, upf, gsf-ukf",
-            alpha=1.0, beta=2.0, kappa=0.0),
-    _preset("supf", SphericalSimplexSigmaPoints,
-            "the papers' SUPF (SimplexUnscentedParticleFilter); Gaussian-sum SUKFs",
-            alpha=1.0, beta=2.0, w0=0.0),
-    _preset("simplex", SphericalSimplexSigmaPoints,
-            "the unscaled set of Julier (2003); WNN sukf, supf, gsf-sukf",
-            alpha=1.0, beta=0.0, w0=0.0),
-    _preset("gpsdr-ukf", MerweScaledSigmaPoints,
-            'GPSDRFilter kind "ukf"; the DR study\'s UKF and UPF',
-            alpha=0.5, beta=2.0, kappa=0.0),
-    _preset("gpsdr-sukf", SphericalSimplexSigmaPoints,
-            'GPSDRFilter kind "sukf"; the DR study\'s SUKF',
-            alpha=1.0, beta=0.0, w0=0.2),
-    _preset("merwe-kappa", MerweScaledSigmaPoints,
-            "Julier and Uhlmann's n + kappa = 3; the command line's tour",
-            alpha=0.5, beta=2.0, kappa=_three_minus_n),
-)))
+POINT_PRESETS = MappingProxyType({name: PointPreset(name, cls, settings, _USES[name]) for name, cls, settings in (
+    ("merwe", MerweScaledSigmaPoints, dict(alpha=1.0, beta=2.0, kappa=0.0)),
+    ("supf", SphericalSimplexSigmaPoints, dict(alpha=1.0, beta=2.0, w0=0.0)),
+    ("simplex", SphericalSimplexSigmaPoints, dict(alpha=1.0, beta=0.0, w0=0.0)),
+    ("gpsdr-ukf", MerweScaledSigmaPoints, dict(alpha=0.5, beta=2.0, kappa=0.0)),
+    ("gpsdr-sukf", SphericalSimplexSigmaPoints, dict(alpha=1.0, beta=0.0, w0=0.2)),
+    ("merwe-kappa", MerweScaledSigmaPoints, dict(alpha=0.5, beta=2.0, kappa=_three_minus_n)),
+)})
 
 
 def make_points(name, n, **overrides):

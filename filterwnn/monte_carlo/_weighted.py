@@ -56,6 +56,37 @@ class ModelAttribute:
         setattr(obj._model, self.name, value if self.check is None else self.check(value, self.name))
 
 
+class SettledAttribute:
+    """A moment a filter forms when it is read: ``obj.<name>`` is ``obj._<name>``.
+
+    On read, ``obj._settle()`` first forms what ``predict`` left pending (every read, or with
+    ``when_missing=True`` only while ``obj._<name>`` is None); ``obj.<name> = value`` stores
+    ``value``, after ``obj._refuse_mid_run(name)`` with ``guarded=True`` (a starting state set
+    once the members exist would be ignored, so it raises instead).
+    """
+
+    def __init__(self, doc, *, when_missing=False, guarded=False):
+        self.__doc__ = doc
+        self.when_missing = when_missing
+        self.guarded = guarded
+
+    def __set_name__(self, owner, name):
+        self.name = name
+        self.slot = "_" + name
+
+    def __get__(self, obj, objtype=None):
+        if obj is None:
+            return self
+        if not self.when_missing or getattr(obj, self.slot) is None:
+            obj._settle()
+        return getattr(obj, self.slot)
+
+    def __set__(self, obj, value):
+        if self.guarded:
+            obj._refuse_mid_run(self.name)
+        setattr(obj, self.slot, value)
+
+
 class WeightedMixtureFilter:
     """Base of the weighted-mixture filters (no constructor: the subclasses set the state).
 
@@ -78,30 +109,9 @@ class WeightedMixtureFilter:
         self.x_prior, self.P_prior = self._x.copy(), self._P.copy()
         self.x_post, self.P_post = self._x.copy(), self._P.copy()
 
-    @property
-    def x(self):
-        """State estimate, shape ``(dim_x,)``; set it with ``P`` before the first ``predict``
-        (a Gaussian start ``N(x, P)``), or use ``initialize``."""
-        if self._x is None:
-            self._settle()
-        return self._x
-
-    @x.setter
-    def x(self, value):
-        self._refuse_mid_run("x")
-        self._x = value
-
-    @property
-    def P(self):
-        """State covariance, shape ``(dim_x, dim_x)``."""
-        if self._P is None:
-            self._settle()
-        return self._P
-
-    @P.setter
-    def P(self, value):
-        self._refuse_mid_run("P")
-        self._P = value
+    x = SettledAttribute("""State estimate, shape ``(dim_x,)``; set it with ``P`` before the first
+        ``predict`` (a Gaussian start ``N(x, P)``), or use ``initialize``.""", when_missing=True, guarded=True)
+    P = SettledAttribute("State covariance, shape ``(dim_x, dim_x)``.", when_missing=True, guarded=True)
 
     def _settle(self):
         """Form the moments a subclass left pending (``_x``/``_P`` None until first read)."""

@@ -80,7 +80,7 @@ from .._validation import (
     check_weights,
 )
 from .._state import rolls_back_on_error
-from ._weighted import ModelAttribute, WeightedMixtureFilter, logsumexp
+from ._weighted import ModelAttribute, SettledAttribute, WeightedMixtureFilter, logsumexp
 from .proposals import ExtendedKalmanProposal, PriorProposal, ProposalModel, UnscentedKalmanProposal
 from .resampling import get_scheme
 from ..kalman.batched import check_callable
@@ -376,25 +376,10 @@ class ParticleFilter(WeightedMixtureFilter):
         with np.errstate(divide="ignore"):
             self.log_weights = np.log(w)
 
-    @property
-    def x_prior(self):
-        """Predicted weighted mean after the last ``predict``, shape ``(dim_x,)`` (formed when read)."""
-        self._settle()
-        return self._x_prior
-
-    @x_prior.setter
-    def x_prior(self, value):
-        self._x_prior = value
-
-    @property
-    def P_prior(self):
-        """Predicted covariance after the last ``predict`` (plus ``Q`` for the Kalman proposals)."""
-        self._settle()
-        return self._P_prior
-
-    @P_prior.setter
-    def P_prior(self, value):
-        self._P_prior = value
+    x_prior = SettledAttribute("Predicted weighted mean after the last ``predict``, shape ``(dim_x,)`` "
+                               "(formed when read).")
+    P_prior = SettledAttribute("Predicted covariance after the last ``predict`` (plus ``Q`` for the Kalman "
+                               "proposals).")
 
     def _settle(self):
         """Form the predicted moments left pending by ``predict`` (the same arithmetic, later)."""

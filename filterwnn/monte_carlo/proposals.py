@@ -97,8 +97,8 @@ import numpy as np
 
 from .._linalg import LOG_2PI, cholesky, repair_pd
 from .._validation import NumericalError
-from ..kalman.batched import (ExtendedStep, KalmanModel, KalmanPrediction, KalmanUpdate, UnscentedStep, _noise,
-                              _rows, _solve_lower, repairing)
+from ..kalman.batched import (ExtendedStep, KalmanModel, KalmanPrediction, KalmanUpdate, UnscentedStep,
+                              apply_rows, noise_matrix, repairing, solve_lower)
 
 __all__ = [
     "ProposalModel",
@@ -163,7 +163,7 @@ class ProposalModel(KalmanModel):
         with ``w ~ N(0, Q)`` (``Q`` may be singular).
         """
         if self.process_sampler is not None:
-            return _rows(self.process_sampler, x_prev, self.dim_x, self.vectorized, "process_sampler",
+            return apply_rows(self.process_sampler, x_prev, self.dim_x, self.vectorized, "process_sampler",
                          (rng,), fx_args)
         mean = self.transition_mean(x_prev, fx_args)
         A = self.noise("Q", check=False).sqrt
@@ -299,7 +299,7 @@ class _KalmanProposal:
         P = covariances if self.carry_covariance else None
         pred, _ = repairing(model, lambda C: self.kalman_predict(model, particles, C, fx_args, step),
                             P, step, "posterior", stacklevel=6)  # past rolls_back_on_error
-        Q = _noise(model.Q, "Q", model.dim_x)
+        Q = noise_matrix(model.Q, "Q", model.dim_x)
         return Prediction(pred.x, pred.P, Q, _KalmanContext(particles, fx_args))
 
     def propose(self, model, prediction, z, hx_args, rng, step=None):
@@ -348,8 +348,8 @@ class _KalmanProposal:
         N, n = upd.x.shape
         r = G.shape[1]
         Lp = cholesky(upd.P, "P", step)
-        B = _solve_lower(Lp, np.broadcast_to(G, (N, n, r)))
-        c = _solve_lower(Lp, (upd.x - fx_prev)[:, :, None])
+        B = solve_lower(Lp, np.broadcast_to(G, (N, n, r)))
+        c = solve_lower(Lp, (upd.x - fx_prev)[:, :, None])
         A = np.matmul(np.swapaxes(B, -1, -2), B)  # precision of v under q
         b = np.matmul(np.swapaxes(B, -1, -2), c)[:, :, 0]
         LA = cholesky(A, "noise-space proposal precision", step)
@@ -367,7 +367,7 @@ class _KalmanProposal:
         ``P^- = Q``, a broadcast view)."""
         self.kalman_step.check(model.dim_x)
         if P is None:
-            Q = _noise(model.Q, "Q", model.dim_x)
+            Q = noise_matrix(model.Q, "Q", model.dim_x)
             return KalmanPrediction(model.transition_mean(x, fx_args), np.broadcast_to(Q, (x.shape[0],) + Q.shape))
         return self.kalman_step.predict(model, x, P, fx_args, step)
 
@@ -391,7 +391,7 @@ class _KalmanProposal:
             if upd.H is not None:
                 LinvPxy = np.matmul(np.swapaxes(upd.L_prior, -1, -2), np.swapaxes(upd.H, -1, -2))
             else:
-                LinvPxy = _solve_lower(upd.L_prior, upd.Pxy)
+                LinvPxy = solve_lower(upd.L_prior, upd.Pxy)
             upd = upd._replace(LinvPxy=LinvPxy)
         return upd
 
@@ -456,13 +456,13 @@ class _KalmanProposal:
         if upd.S.shape[-1] == 1 and (upd.L_prior is not None or P_prior is not None):
             upd = self._with_factor(upd, P_prior, step)
             L, u, r2 = self._rank1(upd, step)
-            e = _solve_lower(L, d[:, :, None])[:, :, 0]
+            e = solve_lower(L, d[:, :, None])[:, :, 0]
             ue = np.sum(u * e, axis=1)
             maha = np.sum(e * e, axis=1) + ue * ue / (1.0 - r2)
             logdet = 2.0 * np.sum(np.log(np.diagonal(L, axis1=1, axis2=2)), axis=1) + np.log1p(-r2)
         else:
             Lp = cholesky(upd.P, "P", step)
-            e = _solve_lower(Lp, d[:, :, None])[:, :, 0]
+            e = solve_lower(Lp, d[:, :, None])[:, :, 0]
             maha = np.sum(e * e, axis=1)
             logdet = 2.0 * np.sum(np.log(np.diagonal(Lp, axis1=1, axis2=2)), axis=1)
         return -0.5 * (maha + logdet + n * LOG_2PI)
@@ -494,9 +494,8 @@ class UnscentedKalmanProposal(_KalmanProposal):
     Parameters
     ----------
     points : sigma-point object
-        Any filterpy-protocol set (``n``, ``Wm``, ``Wc``, ``num_sigmas()``,
-        ``sigma_points(x, P)``); Merwe, Julier and the package's staircase sets are
-        built in O(n^2) per particle.
+        The set of the step (:class:`~filterwnn.kalman.batched.UnscentedStep`: any
+        filterpy-protocol set, the structured ones built in O(n^2) per particle).
     carry_covariance : bool, default True
 
     Notes

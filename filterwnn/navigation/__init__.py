@@ -7,32 +7,14 @@ scenarios and the run object (:mod:`.scenarios`) and the readers of recorded dri
 onavdata, the shipped sample (:mod:`.drives`).
 """
 
-from .._lazy import lazy_exports
+from .._lazy import lazy_exports, module_exports
 
-_EXPORTS = {
-    "dead_reckoning": "dead_reckoning",
-    "gpsdr": "gpsdr",
-    "neural_filter": "neural_filter",
-    "scenarios": "scenarios",
-    "drives": "drives",
-    "DRModel": "dead_reckoning:DRModel",
-    "GPSDRModel": "dead_reckoning:GPSDRModel",
-    "SENSOR_GRADES": "dead_reckoning:SENSOR_GRADES",
-    "dr_residual": "dead_reckoning:dr_residual",
-    "dr_z_mean": "dead_reckoning:dr_z_mean",
-    "wrap_angle": "dead_reckoning:wrap_angle",
-    "GPSDRFilter": "gpsdr:GPSDRFilter",
-    "NeuralFilter": "neural_filter:NeuralFilter",
-    "Scenario": "scenarios:Scenario",
-    "SCENARIOS": "scenarios:SCENARIOS",
-    "DRRun": "scenarios:DRRun",
-    "simulate_scenario": "scenarios:simulate_scenario",
-    "read_drive_csv": "drives:read_drive_csv",
-    "DRIVE_CSV_COLUMNS": "drives:DRIVE_CSV_COLUMNS",
-    "sample_drive_path": "drives:sample_drive_path",
-    "load_car_drive": "drives:load_car_drive",
-    "outage_starts": "scenarios:outage_starts",
-    "with_outage": "scenarios:with_outage",
-}
+_EXPORTS = module_exports({
+    "dead_reckoning": ("DRModel", "GPSDRModel", "SENSOR_GRADES", "dr_residual", "dr_z_mean", "wrap_angle"),
+    "gpsdr": ("GPSDRFilter",),
+    "neural_filter": ("NeuralFilter",),
+    "scenarios": ("Scenario", "SCENARIOS", "DRRun", "simulate_scenario", "outage_starts", "with_outage"),
+    "drives": ("read_drive_csv", "DRIVE_CSV_COLUMNS", "sample_drive_path", "load_car_drive"),
+})
 __getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
-__all__ = [k for k in _EXPORTS if k not in ("dead_reckoning", "gpsdr", "neural_filter", "scenarios", "drives")]
+__all__ = [name for name, target in _EXPORTS.items() if ":" in target]

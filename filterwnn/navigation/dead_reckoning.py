@@ -375,6 +375,27 @@ class DRModel(StateSpaceModel):
         return from_model(ExtendedKalmanFilter, self, x0=x0, P0=P0, R=R)
 
 
+def _grade_settings(spec, rate):
+    """:class:`GPSDRModel` keyword arguments from a grade's specification ``spec``, one line per
+    number (the mapping of :meth:`GPSDRModel.from_grade`); ``rate``: with a rate-bias state."""
+    arw = np.deg2rad(spec["gyro_arw_deg_rt_h"]) / 60.0
+    w = np.deg2rad(spec["gyro_bias_deg_s"])
+    kw = dict(
+        q=spec["vehicle_jerk_sd"] ** 2,
+        sigma_heading=np.deg2rad(spec["heading_noise_deg"]),
+        sigma_odometer=spec["odometer_noise_m"],
+        sigma_gps=spec["gps_sigma_m"],
+        sd_scale=spec["odometer_scale_sd"],
+        q_scale=spec["odometer_scale_drift"],
+        sd_bias=np.deg2rad(spec["heading_bias_sd_deg"]),
+        q_bias=arw**2 + (0.0 if rate else w**2 * 30.0),
+    )
+    if rate:
+        kw.update(sd_rate=max(w, 1e-9),
+                  q_rate=(np.deg2rad(spec["gyro_bias_instability_deg_h"]) / 3600.0) ** 2 / 100.0)
+    return kw
+
+
 class GPSDRModel(StateSpaceModel):
     r"""GPS/DR: the DR model plus GPS position fixes, optionally with sensor calibration states.
 
@@ -471,8 +492,17 @@ class GPSDRModel(StateSpaceModel):
         self.sigma_low_speed = check_positive(sigma_low_speed, "sigma_low_speed", strict=False)
         self.accel_term = check_choice(accel_term, "accel_term", _ACCEL_TERMS)
         self.min_speed = check_positive(min_speed, "min_speed")
+        self.F = transition_matrix(self.dt, accel_term, self.dim_x)
+        self.Q = self._process_Q()
+        self.R = np.diag(
+            [self.sigma_heading**2, self.sigma_odometer**2, self.sigma_gps**2, self.sigma_gps**2]
+        )
+        self._set_prior(x0, P0, sd_scale, sd_bias, sd_rate)
+
+    def _process_Q(self):
+        """The process noise: the kinematic block, then the scale, heading-bias and rate-bias
+        random walks (``q_* dt`` each) when those states are present."""
         n = self.dim_x
-        self.F = transition_matrix(self.dt, accel_term, n)
         Q = np.zeros((n, n))
         Q[:6, :6] = _kinematic_Q(self.dt, self.q)
         if self.augmented:
@@ -480,10 +510,12 @@ class GPSDRModel(StateSpaceModel):
             Q[7, 7] = self.q_bias * self.dt
         if self.rate_bias:
             Q[8, 8] = self.q_rate * self.dt
-        self.Q = Q
-        self.R = np.diag(
-            [self.sigma_heading**2, self.sigma_odometer**2, self.sigma_gps**2, self.sigma_gps**2]
-        )
+        return Q
+
+    def _set_prior(self, x0, P0, sd_scale, sd_bias, sd_rate):
+        """``x0`` and ``P0``: the given ones (checked), or the defaults, with the prior spreads
+        ``sd_scale``, ``sd_bias``, ``sd_rate`` on the states the model has."""
+        n = self.dim_x
         x0_default = ([0.0, 10.0, 0.0, 0.0, 10.0, 0.0] + ([self.zeta, 0.0] if self.augmented else [])
                       + ([0.0] if self.rate_bias else []))
         self.x0 = np.array(x0_default) if x0 is None else as_state(x0, "x0", n)
@@ -543,21 +575,7 @@ class GPSDRModel(StateSpaceModel):
         """
         spec = _grade(grade)
         rate = bool(spec["rate_bias"]) if rate_bias is None else bool(rate_bias)
-        arw = np.deg2rad(spec["gyro_arw_deg_rt_h"]) / 60.0
-        w = np.deg2rad(spec["gyro_bias_deg_s"])
-        kw = dict(
-            q=spec["vehicle_jerk_sd"] ** 2,
-            sigma_heading=np.deg2rad(spec["heading_noise_deg"]),
-            sigma_odometer=spec["odometer_noise_m"],
-            sigma_gps=spec["gps_sigma_m"],
-            sd_scale=spec["odometer_scale_sd"],
-            q_scale=spec["odometer_scale_drift"],
-            sd_bias=np.deg2rad(spec["heading_bias_sd_deg"]),
-            q_bias=arw**2 + (0.0 if rate else w**2 * 30.0),
-        )
-        if rate:
-            kw.update(sd_rate=max(w, 1e-9),
-                      q_rate=(np.deg2rad(spec["gyro_bias_instability_deg_h"]) / 3600.0) ** 2 / 100.0)
+        kw = _grade_settings(spec, rate)
         kw.update(overrides)
         return cls(dt, augmented=augmented or rate, rate_bias=rate, **kw)
 

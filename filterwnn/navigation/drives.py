@@ -205,6 +205,26 @@ def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2, checks=True,
     """
     path = str(path)
     header, cols, lines = _read_columns(path, progress)
+    col, hname, dname = _csv_layout(path, header, lines)
+
+    def column(h, allow_empty=False):
+        return _csv_column(path, cols, lines, h, allow_empty)
+
+    t = column("time")
+    heading = np.deg2rad(column(hname)) if hname == "heading_deg" else column(hname)
+    kw = {"distance" if dname == "odometer" else "speed": column(dname)}
+    kw.update(_csv_fixes(path, header, col, column, t, origin))
+    _csv_truth(path, header, col, column, origin, kw)
+    try:
+        return DRRun.from_arrays(t, heading, name=name or os.path.splitext(os.path.basename(path))[0],
+                                 max_jitter=max_jitter, checks=checks, **kw)
+    except ValueError as exc:
+        raise _located(path, exc, lines) from None
+
+
+def _csv_layout(path, header, lines):
+    """``{column: index}`` of a drive CSV's ``header`` and the names of its heading and odometer
+    columns; a ``ValueError`` when a required column is missing or doubled, or under 3 rows."""
     col = {h: i for i, h in enumerate(header)}
 
     def need(*alts):
@@ -219,22 +239,7 @@ def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2, checks=True,
     if len(lines) < 3:
         raise ValueError(f"{path}: {len(lines)} data row{'s' * (len(lines) != 1)}; a drive needs at least 3 "
                          "(one row per DR sample, after the header)")
-
-    def column(h, allow_empty=False):
-        return _csv_column(path, cols, lines, h, allow_empty)
-
-    t = column("time")
-    heading = column(hname)
-    if hname == "heading_deg":
-        heading = np.deg2rad(heading)
-    kw = {"distance" if dname == "odometer" else "speed": column(dname)}
-    kw.update(_csv_fixes(path, header, col, column, t, origin))
-    _csv_truth(path, header, col, column, origin, kw)
-    try:
-        return DRRun.from_arrays(t, heading, name=name or os.path.splitext(os.path.basename(path))[0],
-                                 max_jitter=max_jitter, checks=checks, **kw)
-    except ValueError as exc:
-        raise _located(path, exc, lines) from None
+    return col, hname, dname
 
 
 def _csv_fixes(path, header, col, column, t, origin):

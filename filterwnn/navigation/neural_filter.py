@@ -285,6 +285,51 @@ class NeuralFilter:
         g_h = (g_out @ p["W2"]) * Hh * (1.0 - Hh)
         return {"W1": g_h.T @ U, "b1": g_h.sum(axis=0), "W2": gW2, "b2": gb2}
 
+    @staticmethod
+    def _check_triples(X_prior, Z, X_true):
+        """The phase-1 training triples as float arrays, with their count ``n``; a ``ValueError``
+        names the shapes or the non-finite input."""
+        Xp = np.asarray(X_prior, dtype=float)
+        Z = np.asarray(Z, dtype=float)
+        Xt = np.asarray(X_true, dtype=float)
+        n = Xp.shape[0] if Xp.ndim == 2 else -1
+        if Xp.shape != (n, 6) or Xt.shape != (n, 6) or Z.shape != (n, 2):
+            raise ValueError(
+                "X_prior, Z, X_true must have shapes (n, 6), (n, 2), (n, 6); "
+                f"got {Xp.shape}, {Z.shape}, {Xt.shape}"
+            )
+        if not (np.all(np.isfinite(Xp)) and np.all(np.isfinite(Z)) and np.all(np.isfinite(Xt))):
+            raise ValueError("X_prior, Z and X_true must be finite")
+        return Xp, Z, Xt, n
+
+    def _epoch(self, U, T, mask, p, order, bs):
+        """One SGD pass over the inputs ``U`` and scaled targets ``T`` in ``order``, updating the
+        weights ``p`` in place; returns the summed half squared error of the pass."""
+        total = 0.0
+        lr = self.learning_rate
+        if bs == 1:  # per-sample SGD, written out (the hot loop of phase 1)
+            W1, b1, W2, b2 = p["W1"], p["b1"], p["W2"], p["b2"]  # updated in place
+            for i in order:
+                u = U[i]
+                h = 0.5 * (1.0 + np.tanh(0.5 * (W1 @ u + b1)))
+                g = (W2 @ h + b2 - T[i]) * mask
+                total += 0.5 * float(g @ g)
+                gh = (g @ W2) * h * (1.0 - h)
+                W2 -= lr * np.outer(g, h)
+                b2 -= lr * g
+                W1 -= lr * np.outer(gh, u)
+                b1 -= lr * gh
+            return total
+        for i in range(0, len(order), bs):
+            idx = order[i:i + bs]
+            out, Hh = self._forward(U[idx], p)
+            g = (out - T[idx]) * mask
+            total += 0.5 * float(np.sum(g * g))
+            grads = self._backward(U[idx], Hh, g / len(idx), p)
+            for k in p:
+                p[k] -= lr * grads[k]
+        return total
+
     # ----------------------------------------------------------------- phase 1
     def fit(self, X_prior, Z, X_true):
         """Phase 1: supervised SGD on ``(prediction, measurement) -> state`` triples.
@@ -299,48 +344,16 @@ class NeuralFilter:
         -------
         self
         """
-        Xp = np.asarray(X_prior, dtype=float)
-        Z = np.asarray(Z, dtype=float)
-        Xt = np.asarray(X_true, dtype=float)
-        n = Xp.shape[0] if Xp.ndim == 2 else -1
-        if Xp.shape != (n, 6) or Xt.shape != (n, 6) or Z.shape != (n, 2):
-            raise ValueError(
-                "X_prior, Z, X_true must have shapes (n, 6), (n, 2), (n, 6); "
-                f"got {Xp.shape}, {Z.shape}, {Xt.shape}"
-            )
-        if not (np.all(np.isfinite(Xp)) and np.all(np.isfinite(Z)) and np.all(np.isfinite(Xt))):
-            raise ValueError("X_prior, Z and X_true must be finite")
+        Xp, Z, Xt, n = self._check_triples(X_prior, Z, X_true)
         U, off = self._inputs(Xp, Z)
         T = (Xt - off) / self.state_scale
         mask = self._output_mask()
         p = self._init_params(U.shape[1])
         self.loss_curve_ = []
         bs = min(self.batch_size, n)
-        W1, b1, W2, b2 = p["W1"], p["b1"], p["W2"], p["b2"]  # updated in place
-        lr = self.learning_rate
         for _ in range(self.n_epochs):
             order = self.rng.permutation(n)
-            total = 0.0
-            if bs == 1:  # per-sample SGD, written out (the hot loop of phase 1)
-                for i in order:
-                    u = U[i]
-                    h = 0.5 * (1.0 + np.tanh(0.5 * (W1 @ u + b1)))
-                    g = (W2 @ h + b2 - T[i]) * mask
-                    total += 0.5 * float(g @ g)
-                    gh = (g @ W2) * h * (1.0 - h)
-                    W2 -= lr * np.outer(g, h)
-                    b2 -= lr * g
-                    W1 -= lr * np.outer(gh, u)
-                    b1 -= lr * gh
-            else:
-                for i in range(0, n, bs):
-                    idx = order[i:i + bs]
-                    out, Hh = self._forward(U[idx], p)
-                    g = (out - T[idx]) * mask
-                    total += 0.5 * float(np.sum(g * g))
-                    grads = self._backward(U[idx], Hh, g / len(idx), p)
-                    for k in p:
-                        p[k] -= lr * grads[k]
+            total = self._epoch(U, T, mask, p, order, bs)
             self.loss_curve_.append(total / n)
             if not (np.isfinite(total) and all(np.all(np.isfinite(v)) for v in p.values())):
                 epoch = len(self.loss_curve_)

@@ -255,31 +255,29 @@ class DRRun(NamedTuple):
         Parameters
         ----------
         t : array-like of shape (n_samples,)
-            DR sample times (s), strictly increasing and evenly spaced (each interval
-            within ``max_jitter`` of the median interval, which becomes ``dt``).
+            DR sample times (s), strictly increasing and evenly spaced (each interval within
+            ``max_jitter`` of the median interval, which becomes ``dt``).
         heading : array-like of shape (n_samples,)
-            Gyro (or fused) heading in **radians**, from north, clockwise positive. Values
-            beyond ``+-2 pi`` are taken for degrees and refused.
+            Gyro (or fused) heading in **radians**, from north, clockwise positive (values beyond
+            ``+-2 pi`` are taken for degrees and refused).
         distance : array-like of shape (n_samples,), optional
             Cumulative odometer reading (m), non-decreasing. Give this or ``speed``.
         speed : array-like of shape (n_samples,), optional
-            Odometer (wheel / CAN) speed (m/s), ``>= 0``; the distance of step ``k`` is
-            ``speed[k] * (t[k] - t[k-1])``.
+            Odometer (wheel / CAN) speed (m/s), ``>= 0``; step ``k`` covers ``speed[k] * (t[k] - t[k-1])``.
         gps_t : array-like of shape (n_fixes,), optional
-            GPS fix times (s, same clock as ``t``); each fix goes to the nearest sample
-            (fixes more than half an interval outside the samples are dropped).
+            GPS fix times (s, same clock as ``t``), each to the nearest sample (fixes over half an
+            interval outside the samples are dropped).
         east, north : array-like of shape (n_fixes,), optional
             Fix positions (m) in a local frame. Or:
         lat, lon : array-like of shape (n_fixes,), optional
-            Fix latitude/longitude (degrees, WGS84), converted by :func:`latlon_to_en`
-            about ``origin`` (default the first fix).
+            Fix latitude/longitude (degrees, WGS84), converted by :func:`latlon_to_en` about
+            ``origin`` (default the first fix).
         gps_sigma : float or array-like of shape (n_fixes,), optional
-            Each fix's standard deviation per axis (m), e.g. the receiver's reported
-            horizontal accuracy. Kept in ``run.gps_sigma`` for the filters.
+            Each fix's standard deviation per axis (m), e.g. the receiver's reported horizontal
+            accuracy; kept in ``run.gps_sigma`` for the filters.
         truth : array-like of shape (n_samples, 2), optional
-            Reference east/north (m, same frame as the fixes; with ``lat``/``lon`` fixes,
-            give the truth as east/north about the same ``origin``). Without it the study
-            scores against the withheld GPS fixes.
+            Reference east/north (m, the fixes' frame; with ``lat``/``lon`` fixes, east/north about
+            the same ``origin``). Without it the study scores against the withheld GPS fixes.
         origin : (lat0, lon0), optional
             Origin of the local frame (degrees) for ``lat``/``lon``.
         name : str
@@ -287,56 +285,61 @@ class DRRun(NamedTuple):
         max_jitter : float
             Allowed relative deviation of a sample interval from the median interval.
         checks : bool
-            Plausibility checks against the GPS fixes (``filterwnn.navigation._plausibility``):
-            refuse a sample interval over 2 s ("time looks like milliseconds"), and a
-            dead-reckoned track whose course or length contradicts the moving fixes
-            ("heading looks like degrees", "speed looks like km/h", "lat and lon look
-            swapped"). ``False`` skips them, for a drive that really is so.
+            Plausibility checks against the GPS fixes (``filterwnn.navigation._plausibility``): refuse
+            a sample interval over 2 s ("time looks like milliseconds") and a dead-reckoned track whose
+            course or length contradicts the moving fixes ("heading looks like degrees", "speed looks
+            like km/h", "lat and lon look swapped"). ``False`` skips them, for a drive that really is so.
 
         Returns
         -------
         DRRun
-            ``t`` from ``dt`` (the first sample is ``t = 0`` and gives ``x0``: position
-            the truth's or the first fix's, velocity from the first speed and heading),
-            ``x_true`` ``None`` without truth, ``R_true`` the nominal DR variances (1
-            degree, 2 cm), ``scenario`` a :class:`Scenario` describing the drive.
+            ``t`` from ``dt`` (the first sample is ``t = 0`` and gives ``x0``: position the truth's or
+            the first fix's, velocity from the first speed and heading), ``x_true`` ``None`` without
+            truth, ``R_true`` the nominal DR variances (1 degree, 2 cm), ``scenario`` the drive's.
 
         Raises
         ------
         ValueError
-            Naming the argument, the rule and the offending value: lengths that differ,
-            non-finite values, time not strictly increasing or unevenly sampled, headings
-            in degrees, a decreasing odometer, a negative speed, both or neither of
-            ``distance``/``speed``, both or neither of ``east``/``north`` and ``lat``/``lon``,
-            a failed plausibility check (with its likely cause).
+            Naming the argument, the rule and the value: lengths that differ, non-finite values, time
+            not strictly increasing or unevenly sampled, headings in degrees, a decreasing odometer, a
+            negative speed, both or neither of ``distance``/``speed``, both or neither of
+            ``east``/``north`` and ``lat``/``lon``, a failed plausibility check (with its likely cause).
         """
-        t = _finite_1d(t, "t")
-        n = len(t)
-        dts, dt = _sample_grid(t, max_jitter)
-        heading = _heading_radians(heading, n)
-        step, v0 = _odometer_steps(distance, speed, dts, n)
-        z_dr = np.stack([wrap_angle(heading[1:]), step], axis=1)
-        steps = np.zeros(0, dtype=int)
-        z_gps = np.zeros((0, 2))
-        sig = swapped = None
-        if gps_t is not None:
-            steps, z_gps, sig, swapped = _gps_fixes(gps_t, east, north, lat, lon, gps_sigma, origin, t, dt)
-        x_true = None
-        if truth is not None:
-            x_true, p0 = _truth_states(truth, t)
-        elif len(z_gps):
-            p0 = z_gps[0]
-        else:
-            p0 = np.zeros(2)
-        if checks:
-            from ._plausibility import check_drive
+        return cls(*_drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps_sigma,
+                                  truth, origin, name, max_jitter, checks))
 
-            check_drive(dt, heading, step, steps, z_gps, None if sig is None else float(np.median(sig)),
-                        swapped, None if truth is None else np.asarray(truth, dtype=float))
-        x0 = np.array([p0[0], v0 * np.sin(heading[0]), 0.0, p0[1], v0 * np.cos(heading[0]), 0.0])
-        sc = _own_drive_scenario(name, n, dt, v0, heading[0], steps, sig)
-        R_true = np.tile([np.deg2rad(1.0) ** 2, 0.02**2], (n - 1, 1))
-        return cls(dt * np.arange(1, n), x0, x_true, z_dr, steps, z_gps, R_true, sc, sig)
+
+def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps_sigma, truth, origin, name,
+                  max_jitter, checks):
+    """The :class:`DRRun` fields of one's own drive (the work of :meth:`DRRun.from_arrays`, whose
+    arguments these are): checked arrays, the GPS fixes on the sample grid, ``x0`` and the scenario."""
+    t = _finite_1d(t, "t")
+    n = len(t)
+    dts, dt = _sample_grid(t, max_jitter)
+    heading = _heading_radians(heading, n)
+    step, v0 = _odometer_steps(distance, speed, dts, n)
+    z_dr = np.stack([wrap_angle(heading[1:]), step], axis=1)
+    steps = np.zeros(0, dtype=int)
+    z_gps = np.zeros((0, 2))
+    sig = swapped = None
+    if gps_t is not None:
+        steps, z_gps, sig, swapped = _gps_fixes(gps_t, east, north, lat, lon, gps_sigma, origin, t, dt)
+    x_true = None
+    if truth is not None:
+        x_true, p0 = _truth_states(truth, t)
+    elif len(z_gps):
+        p0 = z_gps[0]
+    else:
+        p0 = np.zeros(2)
+    if checks:
+        from ._plausibility import check_drive
+
+        check_drive(dt, heading, step, steps, z_gps, None if sig is None else float(np.median(sig)),
+                    swapped, None if truth is None else np.asarray(truth, dtype=float))
+    x0 = np.array([p0[0], v0 * np.sin(heading[0]), 0.0, p0[1], v0 * np.cos(heading[0]), 0.0])
+    sc = _own_drive_scenario(name, n, dt, v0, heading[0], steps, sig)
+    R_true = np.tile([np.deg2rad(1.0) ** 2, 0.02**2], (n - 1, 1))
+    return (dt * np.arange(1, n), x0, x_true, z_dr, steps, z_gps, R_true, sc, sig)
 
 
 def _heading_radians(heading, n):

@@ -340,31 +340,18 @@ def dr_position_errors(t, errors, t_switch=None, title="", single=_DR_PAPER_PAIR
     n_runs = errors[names[0]].shape[0]
     style = _styles(names)
     rms = {j: {n: np.sqrt(np.mean(errors[n][:, :, j] ** 2, axis=0)) for n in names} for j in (0, 1)}
-    out = sorted(set(split_outliers(rms[0])) | set(split_outliers(rms[1])), key=names.index)
-    main = [n for n in names if n not in out]
-    if bands is None:   # the paper's pair when both are in range, else the EKF alone (no smear)
-        bands = [n for n in single[:2] if n in main]
-        bands = bands if len(bands) == 2 else bands[:1]
-    bands = [n for n in bands if n in names][:3] if n_runs > 1 else []
+    main, out = _main_and_outliers(rms, names)
+    bands = _band_names(bands, single, main, names, n_runs)
     n_rows = 3 if out else 2
     fig, axes = plt.subplots(n_rows, 2, figsize=(13.5, 3.3 * n_rows + 0.6), sharex=True, squeeze=False)
     for j, axis in enumerate(("east", "north")):
         _one_run_panel(axes[0, j], t, errors, single, style, run, j, axis)
-        band = {}
-        for n in bands:
-            e = np.abs(errors[n][:, :, j])
-            lo, hi = np.percentile(e, [10, 90], axis=0)
-            band[n] = (np.maximum(lo, 1e-3), hi)
+        band = _percentile_bands(errors, bands, j)
         for row, members in ((1, main), (2, out)):
-            if not members:
-                continue
-            ax = axes[row, j]
-            cur = {n: rms[j][n] for n in members}
-            _draw_groups(ax, t, cur, style, band, rtol)
-            ax.set_ylabel("RMS |error| [m]" if n_runs > 1 else "|error| [m]")
-            what = "filters far off the scale above" if row == 2 else (
-                "RMS over runs" if n_runs > 1 else "|error|")
-            ax.set_title(f"{axis}: {what} ({n_runs} run{'s' * (n_runs > 1)})")
+            if members:
+                _rms_panel(axes[row, j], t, {n: rms[j][n] for n in members}, style, band, rtol, n_runs,
+                           f"{axis}: " + ("filters far off the scale above" if row == 2 else (
+                               "RMS over runs" if n_runs > 1 else "|error|")))
         axes[-1, j].set_xlabel("time [s]")
         for ax in axes[:, j]:
             if t_switch is not None:
@@ -374,6 +361,40 @@ def dr_position_errors(t, errors, t_switch=None, title="", single=_DR_PAPER_PAIR
     fig.suptitle(f"Dead-reckoning position error: {title}")
     fig.tight_layout()
     return fig
+
+
+def _main_and_outliers(rms, names):
+    """The filters in the main range and those far off it on either axis (:func:`split_outliers`),
+    each in the order of ``names``."""
+    out = sorted(set(split_outliers(rms[0])) | set(split_outliers(rms[1])), key=names.index)
+    return [n for n in names if n not in out], out
+
+
+def _band_names(bands, single, main, names, n_runs):
+    """The filters drawn with a 10-90 % band: ``bands`` as given (at most three), else the paper's
+    pair when both are in the main range, else the first alone (no smear); none for one run."""
+    if bands is None:
+        bands = [n for n in single[:2] if n in main]
+        bands = bands if len(bands) == 2 else bands[:1]
+    return [n for n in bands if n in names][:3] if n_runs > 1 else []
+
+
+def _percentile_bands(errors, bands, j):
+    """``{name: (lo, hi)}``, the 10 and 90 % points over runs of the absolute error along axis ``j``
+    (``lo`` floored at 1 mm for the log scale)."""
+    band = {}
+    for n in bands:
+        e = np.abs(errors[n][:, :, j])
+        lo, hi = np.percentile(e, [10, 90], axis=0)
+        band[n] = (np.maximum(lo, 1e-3), hi)
+    return band
+
+
+def _rms_panel(ax, t, cur, style, band, rtol, n_runs, what):
+    """One RMS panel of :func:`dr_position_errors`: the series ``cur`` (coinciding ones as one line)."""
+    _draw_groups(ax, t, cur, style, band, rtol)
+    ax.set_ylabel("RMS |error| [m]" if n_runs > 1 else "|error| [m]")
+    ax.set_title(f"{what} ({n_runs} run{'s' * (n_runs > 1)})")
 
 
 def _one_run_panel(ax, t, errors, single, style, run, j, axis):

@@ -146,7 +146,8 @@ def _upf_steps(run, x0, rng, context, n_particles=UPF_PARTICLES):
     return _Steps(pf.predict, lambda k: pf.update(run.z_dr[k]), lambda: pf.x)
 
 
-_KIND = {"EKF": "ekf", "EKF-8": "ekf", "DR-only": "ekf", "UKF-8": "ukf", "SUKF-8": "sukf"}
+#: ``{GPS/DR filter name: GPSDRFilter kind}`` (``"ekf"``, ``"ukf"``, ``"sukf"``), read by the real-drive runs.
+FILTER_KIND = {"EKF": "ekf", "EKF-8": "ekf", "DR-only": "ekf", "UKF-8": "ukf", "SUKF-8": "sukf"}
 
 
 def _gpsdr_steps(run, x0, rng, context, kind="ekf", augmented=False, gps=True):
@@ -189,7 +190,9 @@ OPT_IN = tuple(dict.fromkeys(f.name for f in FILTER_TABLE if f.opt_in))
 ORACLE = {f.scenario: f.name for f in FILTER_TABLE if f.oracle}
 
 
-def _scenario_kind(scenario):
+def scenario_kind(scenario):
+    """``"gpsdr"`` for a scenario with GPS fixes (``gps_rate > 0``), else ``"dr"``: the key of
+    :data:`FILTER_TABLE` rows and :data:`ORACLE`."""
     return "gpsdr" if scenario.gps_rate > 0 else "dr"
 
 

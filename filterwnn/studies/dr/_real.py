@@ -16,7 +16,7 @@ from ...navigation.dead_reckoning import GPSDRModel
 from ...navigation.drives import CAR_DRIVE
 from ...navigation.gpsdr import GPSDRFilter
 from ...navigation.scenarios import outage_starts
-from ._filters import _KIND
+from ._filters import FILTER_KIND
 
 #: GPS/DR model settings for the real drive (a car's manoeuvres need a larger jerk PSD,
 #: the receiver's fixes are about 1 m, and the gyro's heading drifts: a random-walk bias).
@@ -33,13 +33,12 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
                        use_gps_sigma=False, grade=None, gps_window=0):
     """Cut GPS outages of ``length`` s into a drive and score each filter at each outage end.
 
-    Placements: ``starts`` as given, or ``n_placements`` spread evenly over the windows
-    whose mean odometer speed is at least ``min_speed`` (:func:`~filterwnn.navigation.scenarios.outage_starts`;
-    with the default 0 the first one starts before the car moves). ``EKF``/``EKF-8``/
-    ``UKF-8``/``SUKF-8`` are :class:`~filterwnn.navigation.gpsdr.GPSDRFilter` s (6 or 8 states; the filter
-    decides standstill and low speed itself); ``DR-mech`` integrates
-    ``s [sin theta, cos theta]`` from the reference position at the outage start (dead
-    reckoning without a filter).
+    Placements: ``starts`` as given, or ``n_placements`` spread evenly over the windows whose mean
+    odometer speed is at least ``min_speed`` (:func:`~filterwnn.navigation.scenarios.outage_starts`; with the
+    default 0 the first one starts before the car moves). ``EKF``/``EKF-8``/``UKF-8``/``SUKF-8`` are
+    :class:`~filterwnn.navigation.gpsdr.GPSDRFilter` s (6 or 8 states; the filter decides standstill and low
+    speed itself); ``DR-mech`` integrates ``s [sin theta, cos theta]`` from the reference position at the
+    outage start (dead reckoning without a filter).
 
     The reference is the truth when the drive has one (``run.x_true``); otherwise the
     GPS fix withheld last in the outage, so the score then includes that fix's own error.
@@ -70,46 +69,58 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
     Returns
     -------
     dict
-        ``starts (n,)``, ``length``, ``moved (n,)`` (distance driven during each outage, m),
-        ``end_steps (n,)`` (the scored step of each outage), ``reference`` ("truth" or
-        "withheld GPS"), ``name``, ``track (n_steps, 2)`` (truth, else the fixes
-        interpolated), ``end_xy {filter: (n, 2)}``, ``start_err {filter: (n,)}`` (the
-        horizontal error when each outage starts, against the same reference as the
-        ends; 0 for ``DR-mech``, which starts there), ``integrity {filter: dict}`` (over the
-        whole drive with GPS: ``n_fixes``, ``n_rejected``, ``n_downweighted``,
-        ``n_reacquired``, ``nis_mean``,
-        the NIS of the accepted fixes (2 when consistent), ``rejected_xy (m, 2)``, the
-        rejected fixes), and per filter ``(n,)`` end-of-outage horizontal errors (m); NaN
-        never appears (a non-finite estimate raises).
+        ``starts (n,)``, ``length``, ``moved (n,)`` (distance driven during each outage, m), ``end_steps
+        (n,)`` (the scored step of each outage), ``reference`` ("truth" or "withheld GPS"), ``name``,
+        ``track (n_steps, 2)`` (truth, else the fixes interpolated), ``end_xy {filter: (n, 2)}``,
+        ``start_err {filter: (n,)}`` (the horizontal error when each outage starts, against the same
+        reference as the ends; 0 for ``DR-mech``, which starts there), ``integrity {filter: dict}`` (over
+        the whole drive with GPS: ``n_fixes``, ``n_rejected``, ``n_downweighted``, ``n_reacquired``,
+        ``nis_mean``, the NIS of the accepted fixes (2 when consistent), ``rejected_xy (m, 2)``, the
+        rejected fixes), and per filter ``(n,)`` end-of-outage horizontal errors (m); NaN never appears
+        (a non-finite estimate raises).
     """
     bad = [f for f in filters if f not in REAL_FILTERS]
     if bad:
         raise ValueError(f"unknown real-drive filters {bad}; valid: {', '.join(REAL_FILTERS)}")
-    kw = dict(REAL_MODEL, **(model_kwargs or {}))
-    t_end = float(run.t[-1])
+    out, windows = _outage_plan(run, length, starts, n_placements, min_speed)
+    settings = dict(grade=grade, model_kwargs=model_kwargs, gps_window=gps_window, slow_speed=slow_speed)
+    for name in filters:
+        _score_filter(out, name, run, windows, use_gps_sigma, settings)
+    return out
+
+
+def _outage_plan(run, length, starts, n_placements, min_speed):
+    """The outages' placements and windows: the result dict without scores (see
+    :func:`real_drive_outages`) and ``(k0s, k1s, refs)``, each outage's first and scored step
+    and its reference east/north."""
     if starts is None and min_speed == 0.0:
-        starts = np.linspace(0.0, t_end - length - 1.0, n_placements)
+        starts = np.linspace(0.0, float(run.t[-1]) - length - 1.0, n_placements)
     starts = outage_starts(run, length, starts=starts, n=n_placements, min_speed=min_speed)
     k0s, k1s, refs, moved, track = _outage_windows(run, starts, length)
-    truth = run.x_true is not None
     out = {"starts": starts, "length": length, "moved": moved, "end_steps": np.array(k1s),
-           "reference": "truth" if truth else "withheld GPS", "name": run.scenario.name,
+           "reference": "truth" if run.x_true is not None else "withheld GPS", "name": run.scenario.name,
            "track": track, "t": run.t, "end_xy": {}, "start_err": {}, "integrity": {}}
-    gps = run.gps_list()
-    sig = run.gps_sigma_list() if use_gps_sigma else [None] * len(run.t)
-    starts_ref = _start_refs(run, k0s, track if not truth else None)
-    for name in filters:
-        if name == "DR-mech":
-            ends = _dr_mech_ends(run, k0s, k1s, track if not truth else None)
-            out["start_err"][name] = np.zeros(len(k0s))
-        else:
-            f = _real_drive_filter(name, run, grade, model_kwargs, kw, gps_window, slow_speed)
-            ends, begins = _outage_ends(f, name, run, k0s, k1s, starts, gps, sig)
-            out["start_err"][name] = np.hypot(*(begins - starts_ref).T)
-            out["integrity"][name] = _integrity(f, run)
-        out["end_xy"][name] = ends
-        out[name] = np.hypot(*(ends - refs).T)
-    return out
+    return out, (k0s, k1s, refs)
+
+
+def _score_filter(out, name, run, windows, use_gps_sigma, settings):
+    """Run filter ``name`` over the drive and write its outage-end positions, errors against the
+    references, start errors and (for a GPS/DR filter) integrity counts into ``out``."""
+    k0s, k1s, refs = windows
+    track = out["track"] if run.x_true is None else None
+    if name == "DR-mech":
+        ends = _dr_mech_ends(run, k0s, k1s, track)
+        out["start_err"][name] = np.zeros(len(k0s))
+    else:
+        kw = dict(REAL_MODEL, **(settings["model_kwargs"] or {}))
+        f = _real_drive_filter(name, run, settings["grade"], settings["model_kwargs"], kw,
+                               settings["gps_window"], settings["slow_speed"])
+        sig = run.gps_sigma_list() if use_gps_sigma else [None] * len(run.t)
+        ends, begins = _outage_ends(f, name, run, k0s, k1s, out["starts"], run.gps_list(), sig)
+        out["start_err"][name] = np.hypot(*(begins - _start_refs(run, k0s, track)).T)
+        out["integrity"][name] = _integrity(f, run)
+    out["end_xy"][name] = ends
+    out[name] = np.hypot(*(ends - refs).T)
 
 
 def _outage_windows(run, starts, length):
@@ -156,7 +167,7 @@ def _real_drive_filter(name, run, grade, model_kwargs, kw, gps_window, slow_spee
     P0 = model.P0.copy()
     P0[0, 0] = P0[3, 3] = 1.0
     low = {} if slow_speed is None else {"low_speed": slow_speed}
-    return GPSDRFilter(model, _KIND[name], x0=x0, P0=P0, gps_window=gps_window, **low)
+    return GPSDRFilter(model, FILTER_KIND[name], x0=x0, P0=P0, gps_window=gps_window, **low)
 
 
 _REAL_META = ("starts", "moved", "length", "end_steps", "reference", "name", "track", "t", "end_xy", "start_err",

@@ -22,7 +22,7 @@ from ._filters import (
     FILTERS,
     GPSDR_FILTERS,
     ORACLE,
-    _scenario_kind,
+    scenario_kind,
     run_filter,
     train_general_nn,
 )
@@ -52,7 +52,7 @@ def run_one(scenario, filters, seed_seq, nn_cache=None):
         ``"x_true" (n_steps, 6)``, ``"t" (n_steps,)``, ``"est" {filter: (n_steps, 6)}``,
         ``"seconds" {filter: float}``.
     """
-    kind = _scenario_kind(scenario)
+    kind = scenario_kind(scenario)
     entries = []
     for name in filters:
         if (kind, name) not in FILTERS:
@@ -95,7 +95,7 @@ class StudyResult(NamedTuple):
 
 def summarize(scenario, t, errs, vel_errs, secs, n_steps):
     """Score one scenario: rows of dict, one per filter (see the module docstring)."""
-    kind = _scenario_kind(scenario)
+    kind = scenario_kind(scenario)
     oracle = ORACLE[kind] if ORACLE[kind] in errs else None
     horiz = {f: np.hypot(e[..., 0], e[..., 1]) for f, e in errs.items()}
     env = None
@@ -220,7 +220,7 @@ def _plan(scenarios, filters, factor, n_steps):
     scs, flist = {}, {}
     for name in scenarios:
         scs[name] = sc = _scenario(name, factor, n_steps)
-        kind = _scenario_kind(sc)
+        kind = scenario_kind(sc)
         flist[name] = [f.name for f in FILTER_TABLE if f.scenario == kind
                        and (f.name in want if want is not None else not f.opt_in)]
     return scs, flist

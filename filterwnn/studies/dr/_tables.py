@@ -12,7 +12,7 @@ import csv
 import os
 
 from .. import runner
-from ._filters import ORACLE, _scenario_kind
+from ._filters import ORACLE, scenario_kind
 from ._real import real_drive_table
 from ._run import DIV_FACTOR
 
@@ -43,7 +43,7 @@ def markdown_table(result):
             head += f"noise x{sc.factor:g} at {sc.t_switch:g} s" + (
                 f", {sc.outlier_prob:.0%} heading outliers of {sc.outlier_deg:g} deg" if sc.outlier_prob else "")
         n = rows[0]["runs"] if rows else 0
-        oracle = ORACLE[_scenario_kind(sc)]
+        oracle = ORACLE[scenario_kind(sc)]
         lines += [head + f" ({n} runs, positions in m; div: error > {DIV_FACTOR:g}x {oracle} RMS envelope)", ""]
         lines.append("| " + " | ".join(c[1] for c in cols) + " |")
         lines.append("|" + "---|" * len(cols))
