@@ -264,6 +264,13 @@ class UnscentedKalmanFilter(_FilterpyUKF):
     filterpy 2.0 re-draws the sigma points from the predicted ``(x, P)`` at the end of
     ``predict``; this class does the same (lazily, in ``update``) in both modes, so the
     numbers agree with filterpy's at every step.
+
+    With ``vectorized=True`` and Merwe or Julier points, ``sigmas_f`` is one of two
+    arrays the filter keeps and refills in turn (no fresh ``(2n + 1, n)`` array a step):
+    copy it to keep it past the next two draws, as with filterpy, whose ``predict``
+    fills ``sigmas_f`` in place. ``x``, ``P``, ``Q`` and ``R`` are validated when their
+    values change (compared with private copies, so an edit in place is seen like an
+    assignment), not on every step.
     """
 
     def __init__(self, dim_x, dim_z, dt, hx, fx, points, sqrt_fn=None, x_mean_fn=None, z_mean_fn=None,
