@@ -120,7 +120,7 @@ def main(argv=None):
     row = {"filterwnn UKF (this checkout)": Timed(ours, N_STEPS)}
     if args.against:
         other, g = filter_steps(load_against(args.against), pb)
-        row[f"filterwnn UKF ({args.against})"] = Timed(other, N_STEPS)
+        row["filterwnn UKF (--against)"] = Timed(other, N_STEPS)
     arith, state = arithmetic_steps(pb)
     sig = pb["theta0"] + pb["P0"][:1] * np.zeros((2 * pb["n"] + 1, 1))
     row.update({"the same arithmetic, no checks": Timed(arith, N_STEPS),
@@ -131,6 +131,8 @@ def main(argv=None):
     floor = med["floor (1 Cholesky + rank-1)"]
     print(f"bench_ukf_step: 160-weight UKF step, median of {args.repeats} repeats x {N_STEPS} steps, "
           f"variants in turn; 1 BLAS thread; python {platform.python_version()}, numpy {np.__version__}")
+    if args.against:
+        print(f"--against: {args.against}")
     print(f"{'variant':60s} {'us/step':>9s} {'/ floor':>8s}")
     for k, v in med.items():
         print(f"{k:60s} {1e6 * v:9.1f} {v / floor:7.2f}x")
