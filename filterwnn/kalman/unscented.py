@@ -85,7 +85,7 @@ from .._validation import (
     check_symmetric,
 )
 from . import _filterpy_arithmetic as fpa
-from .sigma_points import sigma_deviations
+from .sigma_points import point_structure, sigma_deviations
 
 __all__ = ["UnscentedKalmanFilter", "fast_unscented_transform"]
 
@@ -264,6 +264,13 @@ class UnscentedKalmanFilter(_FilterpyUKF):
     filterpy 2.0 re-draws the sigma points from the predicted ``(x, P)`` at the end of
     ``predict``; this class does the same (lazily, in ``update``) in both modes, so the
     numbers agree with filterpy's at every step.
+
+    With ``vectorized=True`` and Merwe or Julier points, ``sigmas_f`` is one of two
+    arrays the filter keeps and refills in turn (no fresh ``(2n + 1, n)`` array a step):
+    copy it to keep it past the next two draws, as with filterpy, whose ``predict``
+    fills ``sigmas_f`` in place. ``x``, ``P``, ``Q`` and ``R`` are validated when their
+    values change (compared with private copies, so an edit in place is seen like an
+    assignment), not on every step.
     """
 
     def __init__(self, dim_x, dim_z, dt, hx, fx, points, sqrt_fn=None, x_mean_fn=None, z_mean_fn=None,
@@ -287,6 +294,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         self._trusted = {}  # copies of the x, P and Q last checked (or produced) here
         self._chol = None  # (P_prior object, its lower Cholesky factor), vectorized mode
         self._checked = {}  # role -> the residual/mean callable already checked on arrays
+        self._work = {}  # constant-shaped work arrays of the vectorized step (see _sigmas)
 
     # ------------------------------------------------------------------ helpers
     def _fast_points(self):
@@ -335,15 +343,26 @@ class UnscentedKalmanFilter(_FilterpyUKF):
     def _unchanged(self, name, M):
         """True when ``M`` holds what the filter last produced or checked as ``name``.
 
-        Compared by bytes (one ``memcmp``): a ``-0.0`` for ``0.0`` or an integer array
-        only costs one more check.
+        The filter keeps a private copy of each (:meth:`_mark`) and compares values
+        (``!=`` into a kept boolean array, then ``any``): an assignment and an edit in
+        place (``P *= 4``, ``P[0, 2] += 0.5``) are seen alike, a NaN never compares
+        equal, and a ``-0.0`` for ``0.0`` is the same matrix. Nothing is allocated: at
+        n = 160 a fresh 200 kB buffer per check (``tobytes``) cost about 100 us a step
+        in page faults, more than the comparison itself.
         """
         seen = self._trusted.get(name)
-        return seen is not None and type(M) is np.ndarray and seen[0] == M.shape and seen[1] == M.tobytes()
+        if seen is None or type(M) is not np.ndarray or M.dtype != float or M.shape != seen[0].shape:
+            return False
+        return not np.not_equal(M, seen[0], out=seen[1]).any()
 
     def _mark(self, name, M):
+        """Keep a copy of ``M`` as ``name``'s checked value (into the kept array when it fits)."""
+        seen = self._trusted.get(name)
         M = np.asarray(M, dtype=float)
-        self._trusted[name] = (M.shape, M.tobytes())  # a copy: later edits in place show
+        if seen is not None and seen[0].shape == M.shape:
+            np.copyto(seen[0], M)  # a copy: later edits in place show
+        else:
+            self._trusted[name] = (M.copy(), np.empty(M.shape, dtype=bool))
 
     def _sigmas(self, x, P, what):
         """Sigma points of N(x, P); NumericalError naming ``what`` if P is not PD."""
@@ -352,9 +371,9 @@ class UnscentedKalmanFilter(_FilterpyUKF):
                 L = self._chol[1]  # factored at predict (P_prior's check)
             else:
                 L = self._cholesky(P, what)
-            D = sigma_deviations(self.points_fn, L.T)
+            D = self._deviations_of(L.T)
             self._deviations = D
-            return x + D
+            return np.add(x, D, out=self._sigma_buffer(D.shape))
         self._deviations = None
         try:
             if fpa.is_plain_merwe(self.points_fn) and type(P) is np.ndarray and P.dtype == float:
@@ -362,6 +381,41 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             return np.asarray(self.points_fn.sigma_points(x, P), dtype=float)
         except np.linalg.LinAlgError as exc:
             raise self._not_pd(what, P) from exc
+
+    def _deviations_of(self, U):
+        """``sigma_deviations(points, U)`` written into a work array kept by the filter.
+
+        For the symmetric sets (Merwe, Julier: ``D = [0, c U, -c U]``) the rows are
+        overwritten in place each step, the same numbers as :func:`sigma_deviations` (row
+        0 stays zero), without a fresh ``(2n + 1, n)`` array: at n = 160 a fresh one costs
+        more than filling it (page faults). ``D`` is private: only the update that drew
+        it reads it. Other sets get :func:`sigma_deviations`.
+        """
+        n = U.shape[0]
+        kind, c = point_structure(self.points_fn)
+        if kind != "symmetric" or self.points_fn.num_sigmas() != 2 * n + 1:
+            return sigma_deviations(self.points_fn, U)
+        D = self._work.get("D")
+        if D is None or D.shape != (2 * n + 1, n):
+            D = self._work["D"] = np.zeros((2 * n + 1, n))
+        np.multiply(c, U, out=D[1 : n + 1])
+        np.negative(D[1 : n + 1], out=D[n + 1 :])  # -(c U) == (-c) U exactly
+        return D
+
+    def _sigma_buffer(self, shape):
+        """One of two kept arrays for the sigma points, never the one ``sigmas_f`` holds.
+
+        Two take turns, so a call that raises and restores ``sigmas_f`` gets its points
+        back intact; a reference to ``sigmas_f`` kept by the caller is overwritten two
+        draws later (filterpy's own ``predict`` fills ``sigmas_f`` in place every step).
+        """
+        bufs = self._work.setdefault("sigmas", [])
+        for b in bufs:
+            if b is not self.sigmas_f and b.shape == shape:
+                return b
+        b = np.empty(shape)
+        bufs[:] = [b] + [o for o in bufs if o is self.sigmas_f and o.shape == shape]
+        return b
 
     def _cholesky(self, P, what):
         """Lower Cholesky factor of ``P``; NumericalError naming ``what`` if it fails."""
@@ -695,11 +749,19 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         self.y = self.residual_z(z.reshape(np.shape(zp)), zp)
         self.x = self.state_add(self.x, self.K @ self.y)
         if S.shape == (1, 1):  # rank-1 downdate, symmetric by construction
-            self.P = self.P - S[0, 0] * np.outer(self.K[:, 0], self.K[:, 0])
+            self.P = self.P - self._scaled_outer(S[0, 0], self.K[:, 0])
         else:
             P = self.P - self.K @ S @ self.K.T
             self.P = 0.5 * (P + P.T)
         self._store_posterior(z)
+
+    def _scaled_outer(self, s, k):
+        """``s * np.outer(k, k)`` (the same numbers) in a kept ``(n, n)`` work array."""
+        W = self._work.get("outer")
+        if W is None or W.shape != (k.size, k.size):
+            W = self._work["outer"] = np.empty((k.size, k.size))
+        np.multiply.outer(k, k, out=W)
+        return np.multiply(s, W, out=W)
 
     def _rows_residual(self, A, b):
         """``residual_x`` of every row of ``A`` against ``b``, in either mode."""

@@ -384,3 +384,24 @@ def test_a_Q_edited_in_place_is_checked_again(vectorized):
     ukf.Q *= -1
     with pytest.raises(ValueError, match="Q must be positive semi-definite"):
         ukf.predict()
+
+
+def test_kept_sigma_buffers_leave_a_restored_sigmas_f_intact():
+    # the vectorized step draws Merwe sigma points into two kept arrays that take turns:
+    # a failed update restores sigmas_f with its points unchanged, and the numbers are
+    # those of fresh arrays (x + sigma_deviations)
+    from filterwnn.kalman.sigma_points import sigma_deviations
+
+    pts = MerweScaledSigmaPoints(3, 1.0, 2.0, 0.0)
+    ukf = UnscentedKalmanFilter(3, 1, 1.0, lambda X: X[:, :1], None, pts, vectorized=True)
+    ukf.Q = np.eye(3) * 0.1
+    ukf.predict(); ukf.update(np.array([0.3]))
+    kept, before = ukf.sigmas_f, ukf.sigmas_f.copy()
+    ukf.predict()
+    prior_x, prior_P = ukf.x.copy(), ukf.P.copy()
+    with pytest.raises(NumericalError, match="S is not positive definite"):
+        ukf.update(np.array([0.3]), R=-10 * np.eye(1))
+    assert ukf.sigmas_f is kept and np.array_equal(ukf.sigmas_f, before)
+    ukf.update(np.array([0.2]))
+    want = prior_x + sigma_deviations(pts, np.linalg.cholesky(prior_P).T)
+    assert ukf.sigmas_f is not kept and np.array_equal(ukf.sigmas_f, want)
