@@ -439,7 +439,8 @@ class _UKFTrainer(BaseTrainer):
 
     def scale_process_noise(self, factor):
         """Run the next epochs with ``factor * Q`` (``WNNRegressor.anneal``: down to 0)."""
-        self.kf.Q = self.model.Q * float(factor)
+        Q_scaled = float(factor) * self.model.Q  # a scaled copy, not the model's wiring
+        self.kf.Q = Q_scaled
 
     def predict_mean(self, X):
         return wnn.forward(self.kf.x, X, self.model.wavelet)
