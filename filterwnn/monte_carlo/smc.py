@@ -477,18 +477,8 @@ def _next_beta(ll, beta, n_target):
     return beta + max(lo, 1e-12 * (1.0 - beta), np.finfo(float).eps)
 
 
-def smc_sampler(
-    target,
-    n_particles=50,
-    rng=None,
-    *,
-    move=None,
-    n_moves=30,
-    ess_fraction=0.5,
-    resampling="systematic",
-    max_rungs=500,
-    particles=None,
-):
+def smc_sampler(target, n_particles=50, rng=None, *, move=None, n_moves=30, ess_fraction=0.5, resampling="systematic",
+                max_rungs=500, particles=None):
     """Sample the posterior with a tempered SMC sampler (Del Moral, Doucet and Jasra 2006).
 
     Parameters
@@ -524,12 +514,7 @@ def smc_sampler(
     RuntimeError
         When the ladder exceeds ``max_rungs``.
     """
-    rng = check_rng(rng)
-    n_particles = check_positive_int(n_particles, "n_particles", minimum=2)
-    ess_fraction = float(ess_fraction)
-    if not 0.0 < ess_fraction < 1.0:
-        raise ValueError(f"ess_fraction must be in (0, 1), got {ess_fraction}")
-    max_rungs = check_positive_int(max_rungs, "max_rungs")
+    rng, n_particles, ess_fraction, max_rungs = _sampler_settings(rng, n_particles, ess_fraction, max_rungs)
     if move is None:
         move = MALAMove(target, n_steps=n_moves)
     state = _State(target, _initial_particles(target, particles, n_particles, rng))
@@ -546,13 +531,17 @@ def smc_sampler(
         out["step_sizes"].append(move.step_size)
         out["distinct_particles"].append(int(np.unique(state.x, axis=0).shape[0]))
         out["distinct_ancestors"].append(int(np.unique(ancestors).size))
-    return SMCResult(
-        particles=state.x,
-        log_likelihood=state.ll,
-        ancestors=ancestors,
-        log_evidence=float(log_z),
-        **out,
-    )
+    return SMCResult(particles=state.x, log_likelihood=state.ll, ancestors=ancestors, log_evidence=float(log_z), **out)
+
+
+def _sampler_settings(rng, n_particles, ess_fraction, max_rungs):
+    """The sampler's checked generator, particle count, ESS fraction and rung limit."""
+    rng = check_rng(rng)
+    n_particles = check_positive_int(n_particles, "n_particles", minimum=2)
+    ess_fraction = float(ess_fraction)
+    if not 0.0 < ess_fraction < 1.0:
+        raise ValueError(f"ess_fraction must be in (0, 1), got {ess_fraction}")
+    return rng, n_particles, ess_fraction, check_positive_int(max_rungs, "max_rungs")
 
 
 def _initial_particles(target, particles, n_particles, rng):

@@ -74,7 +74,7 @@ import numpy as np
 from filterpy.kalman import ExtendedKalmanFilter
 
 from .._linalg import repair_pd
-from .._validation import as_state, check_choice, check_covariance, check_positive, check_positive_int
+from .._validation import as_state, check_choice, check_covariance, check_positive, check_positive_int, check_scale
 from .dead_reckoning import GPSDRModel, dr_residual
 from ..kalman.presets import make_points
 from ..models import from_model
@@ -285,7 +285,7 @@ class GPSDRFilter:
         gps_sigma : float, optional
             This fix's standard deviation per axis (m); default the model's ``sigma_gps``.
         """
-        z_dr = as_state(z_dr, "z_dr", 2)
+        z_dr = check_scale(as_state(z_dr, "z_dr", 2), "z_dr")  # a distance of 1e308 would give x = inf
         self.motion = self.classify(z_dr)
         adapt = self.gps_window > 0 and z_gps is not None and gps_sigma is None
         if adapt:
@@ -327,7 +327,7 @@ class GPSDRFilter:
         :attr:`reacquire_after` rejections came in a row, when it re-acquires
         (:meth:`_reacquire`). ``test=False`` accepts it untested (its NIS still counts).
         """
-        z_gps = as_state(z_gps, "z_gps", 2)
+        z_gps = check_scale(as_state(z_gps, "z_gps", 2), "z_gps")
         pos = [0, 3]
         y = z_gps - self.kf.x[pos]
         sigma = check_positive(self._fix_sigma(gps_sigma), "gps_sigma")

@@ -343,3 +343,18 @@ def test_the_consistency_monitor_warns_with_the_step_and_a_remedy():
                                             r"pass the receiver's accuracy as gps_sigma"):
         f.batch_filter(run.z_dr, fixes)
     assert f.nis_warnings
+
+
+@pytest.mark.parametrize("kind", ["ekf", "ukf", "sukf"])
+def test_an_overflowing_distance_or_fix_is_refused_and_changes_nothing(kind):
+    """A DR distance of 1e308 used to give x = inf silently; now a ValueError, the state unchanged."""
+    model = GPSDRModel.from_grade("phone", 0.1)
+    f = GPSDRFilter(model, kind)
+    f.predict()
+    x, P = f.x.copy(), f.P.copy()
+    with pytest.raises(ValueError, match="z_dr must have entries of magnitude"):
+        f.update(np.array([0.1, 1e308]))
+    with pytest.raises(ValueError, match="z_gps must have entries of magnitude"):
+        f.update(np.array([0.1, 1.0]), np.array([1e200, 0.0]), 3.0)
+    np.testing.assert_array_equal(f.x, x)
+    np.testing.assert_array_equal(f.P, P)

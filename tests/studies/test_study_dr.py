@@ -191,3 +191,14 @@ def test_drive_table_separates_the_causes():
     e, s = res["EKF-8"], res["start_err"]["EKF-8"]
     assert cells[6] == f"{np.median(s):.2f}" and cells[7] == f"{np.median(e - s):.2f}"
     assert cells[8].endswith(f"of {ig['n_fixes']}") and cells[9] == f"{ig['nis_mean']:.2f}"
+
+
+def test_a_new_scenario_is_one_entry_of_scenarios(monkeypatch):
+    """A scenario is added in one place (an entry of ``SCENARIOS``) and the study runs it."""
+    from filterwnn.navigation.scenarios import SCENARIOS, Scenario
+
+    monkeypatch.setitem(SCENARIOS, "slow-turn", lambda **kw: Scenario(
+        **{"name": "slow-turn", "title": "a slow turn", "figure": "dr_slow_turn", "factor": 5.0,
+           "turns": ((2.0, 6.0, 5.0),), **kw}))
+    res = dr.run_study(scenarios=["slow-turn"], n_runs=1, filters=["EKF"], n_steps=80, seed=3)
+    assert "slow-turn" in res.scenarios and np.all(np.isfinite(res.errors["slow-turn"]["filters"]["EKF"]))
