@@ -281,14 +281,11 @@ class GaussianSumFilter(WeightedMixtureFilter):
             return
         z = as_measurement(z, self.dim_z)
         bank = self._bank
-        kept = dict(bank.__dict__)  # the bank is restored too if this update fails
-        try:
-            bank.step = step
-            bank.update(z, **hx_args)
-        finally:
-            M, C, log_alpha = bank.x, bank.P, bank.log_likelihood
-            bank.__dict__.clear()
-            bank.__dict__.update(kept)  # the components change only once their weights are good
+        prior = bank.x, bank.P
+        bank.step = step
+        bank.update(z, **hx_args)  # a failure restores the bank with the filter (_rollback_parts)
+        M, C, log_alpha = bank.x, bank.P, bank.log_likelihood
+        bank.set_state(*prior)  # the components change only once their weights are good
         if not np.all(np.isfinite(log_alpha)):
             raise NumericalError(f"non-finite component likelihood at step {step}", matrix="weights", step=step)
         lw_prev = self.log_weights

@@ -15,16 +15,7 @@ TOL = 1e-12  # the issue's: a bank agrees with B independent filters
 B, N_STEPS, DT = 5, 12, 0.1
 
 
-def fx(x, dt):  # on the last axis: one point (n,) or rows (m, n)
-    out = np.empty_like(x)
-    out[..., 0] = x[..., 0] + dt * x[..., 1]
-    out[..., 1] = x[..., 1] + dt * np.sin(x[..., 0]) * 0.5
-    out[..., 2] = 0.9 * x[..., 2] + 0.1 * x[..., 0] * x[..., 1]
-    return out
-
-
-def hx(x):
-    return np.stack([np.sqrt(1.0 + x[..., 0] ** 2 + x[..., 2] ** 2), np.arctan(x[..., 1])], axis=-1)
+from _nonlinear_model import fx, hx  # noqa: E402  (on the last axis: one point or rows)
 
 
 def FJ(x, dt):
