@@ -59,6 +59,7 @@ from scipy.linalg import solve_triangular
 
 from .._linalg import LOG_2PI, NoiseFactor, cholesky, repair_pd
 from .._validation import NumericalError, check_covariance, check_points_protocol, check_symmetric
+from ._rowcheck import CALL_ERRORS, on_single_rows, one_point_error, rows_differ
 from .sigma_points import batched_sigma_points, unit_sigma_points, unit_transpose_apply
 
 __all__ = [
@@ -78,7 +79,7 @@ __all__ = [
 # ---------------------------------------------------------------------------
 
 
-def apply_rows(f, X, out_dim, vectorized, name, args=(), kwargs=None):
+def apply_rows(f, X, out_dim, vectorized, name, args=(), kwargs=None, checked=None):
     """``f`` on every row of ``X (m, n)`` -> ``(m, out_dim)``; one call when vectorized.
 
     Parameters
@@ -94,6 +95,10 @@ def apply_rows(f, X, out_dim, vectorized, name, args=(), kwargs=None):
         The model function's name (``"fx"``, ``"hx"``), used in the error messages.
     args : tuple, optional
     kwargs : dict, optional
+    checked : dict, optional
+        ``{name: function}`` of the functions already checked (a model's
+        :attr:`KalmanModel.rows_checked`): a vectorized ``f`` not in it is compared, on this
+        first call, with ``f`` on a few single rows (:mod:`filterwnn.kalman._rowcheck`).
 
     Returns
     -------
@@ -102,18 +107,32 @@ def apply_rows(f, X, out_dim, vectorized, name, args=(), kwargs=None):
     Raises
     ------
     ValueError
-        If ``f`` returns the wrong number of values (checked on the first row in the loop).
+        If ``f`` returns the wrong number of values (checked on the first row in the loop),
+        or, on its first vectorized call, if it is written for one point: the message names
+        it, says what differed and shows the fix.
     """
     kwargs = {} if kwargs is None else kwargs
     m = X.shape[0]
     if vectorized:
-        Y = np.asarray(f(X, *args, **kwargs), dtype=float)
+        first = checked is not None and checked.get(name) is not f
+        try:
+            Y = np.asarray(f(X, *args, **kwargs), dtype=float)
+        except CALL_ERRORS as exc:
+            if first and on_single_rows(f, X, [0], out_dim, args, kwargs) is not None:
+                raise one_point_error(name, f"on all {m} points it raised {type(exc).__name__}: {exc}") from exc
+            raise
         if Y.size != m * out_dim:
             raise ValueError(
                 f"{name} with vectorized=True must return one row per point, shape "
                 f"({m}, {out_dim}), got shape {Y.shape}"
             )
-        return Y.reshape(m, out_dim)
+        Y = Y.reshape(m, out_dim)
+        if first and np.isfinite(Y).all():  # non-finite output: the step's own check names it first
+            detail = rows_differ(Y, X, f, args, kwargs)
+            if detail is not None:
+                raise one_point_error(name, detail)
+            checked[name] = f
+        return Y
     Y = np.empty((m, out_dim))
     if m == 0:
         return Y
@@ -299,11 +318,21 @@ class KalmanModel:
         """``fx(x_prev)`` on every row -> ``(N, dim_x)`` (``x_prev`` for a random walk)."""
         if self.fx is None:
             return x_prev
-        return apply_rows(self.fx, x_prev, self.dim_x, self.vectorized, "fx", (self.dt,), fx_args)
+        return apply_rows(self.fx, x_prev, self.dim_x, self.vectorized, "fx", (self.dt,), fx_args,
+                          self.rows_checked)
 
     def measure(self, X, hx_args):
         """``hx`` on every row -> ``(N, dim_z)``."""
-        return apply_rows(self.hx, X, self.dim_z, self.vectorized, "hx", (), hx_args)
+        return apply_rows(self.hx, X, self.dim_z, self.vectorized, "hx", (), hx_args, self.rows_checked)
+
+    @property
+    def rows_checked(self):
+        """``{name: function}``: the vectorized model functions whose first call was checked
+        row by row (:func:`apply_rows`); a function assigned later is checked again."""
+        checked = self.__dict__.get("_rows_checked")
+        if checked is None:
+            checked = self._rows_checked = {}
+        return checked
 
     def residual_x_rows(self, a, b):
         """``residual_x(a, b)`` broadcast over rows (``a - b`` by default)."""
@@ -534,7 +563,7 @@ class ExtendedStep(_Step):
             return KalmanPrediction(x.copy(), P + Q)
         n = model.dim_x
         F = _jacobians(model.FJacobian, x, (n, n), model.vectorized, "FJacobian", (model.dt,), fx_args)
-        xp = apply_rows(model.fx, x, n, model.vectorized, "fx", (model.dt,), fx_args)
+        xp = apply_rows(model.fx, x, n, model.vectorized, "fx", (model.dt,), fx_args, model.rows_checked)
         Pp = np.matmul(np.matmul(F, P), np.swapaxes(F, -1, -2)) + Q
         return KalmanPrediction(xp, 0.5 * (Pp + np.swapaxes(Pp, -1, -2)))
 
@@ -542,7 +571,7 @@ class ExtendedStep(_Step):
         xp, Pp = prediction
         n, m = model.dim_x, model.dim_z
         H = _jacobians(model.HJacobian, xp, (m, n), model.vectorized, "HJacobian", (), hx_args)
-        zp = apply_rows(model.hx, xp, m, model.vectorized, "hx", (), hx_args)
+        zp = apply_rows(model.hx, xp, m, model.vectorized, "hx", (), hx_args, model.rows_checked)
         Pxy = np.matmul(Pp, np.swapaxes(H, -1, -2))
         S = np.matmul(H, Pxy)
         return finish_update(model, xp, Pp, z, zp, S, Pxy, None, step, H=H, R=R)
@@ -627,7 +656,8 @@ class UnscentedStep(_Step):
         N, n = x.shape
         _, sig = self._sigmas(x, P, step, "P")
         S_ = sig.shape[1]
-        F = apply_rows(model.fx, sig.reshape(N * S_, n), n, model.vectorized, "fx", (model.dt,), fx_args)
+        F = apply_rows(model.fx, sig.reshape(N * S_, n), n, model.vectorized, "fx", (model.dt,), fx_args,
+                       model.rows_checked)
         F = F.reshape(N, S_, n)
         Wm, Wc = self.points.Wm, self.points.Wc
         xp = _weighted_mean(model.x_mean_fn, F, Wm)
@@ -642,7 +672,8 @@ class UnscentedStep(_Step):
         m = model.dim_z
         L, sig = self._sigmas(xp, Pp, step, "P_prior")
         S_ = sig.shape[1]
-        Hs = apply_rows(model.hx, sig.reshape(N * S_, n), m, model.vectorized, "hx", (), hx_args).reshape(N, S_, m)
+        Hs = apply_rows(model.hx, sig.reshape(N * S_, n), m, model.vectorized, "hx", (), hx_args,
+                        model.rows_checked).reshape(N, S_, m)
         Wm, Wc = self.points.Wm, self.points.Wc
         zp = _weighted_mean(model.z_mean_fn, Hs, Wm)
         dY = _residual(model.residual_z, Hs, zp[:, None, :], model.vectorized)

@@ -85,6 +85,7 @@ from .._validation import (
     check_symmetric,
 )
 from . import _filterpy_arithmetic as fpa
+from ._rowcheck import CALL_ERRORS, ONE_POINT_FIX, on_single_rows, one_point_error, rows_differ
 from .sigma_points import point_structure, sigma_deviations
 
 __all__ = ["UnscentedKalmanFilter", "fast_unscented_transform"]
@@ -104,70 +105,6 @@ _PD_FIX = {
                "or a larger Q",
     "S": "S = (transformed P) + R: make R positive definite, e.g. R = np.diag(variances)",
 }
-
-
-# What a function written for one point should become in vectorized mode.
-_LAST_AXIS = "index the last axis (x[..., 1], not x[1])"
-_ONE_POINT_FIX = {
-    "fx": f"{_LAST_AXIS}: out = np.empty_like(x); out[..., 0] = x[..., 0] + dt * x[..., 1]; ...",
-    "hx": f"{_LAST_AXIS} and return shape (n_sigmas, dim_z), e.g. "
-          "np.stack([np.hypot(x[..., 0], x[..., 2]), np.arctan2(x[..., 2], x[..., 0])], axis=-1)",
-    "residual_x": "wrap on the last axis (y = a - b; y[..., 2] = wrap(y[..., 2]), not y[2] = ...) or use "
-                  "filterwnn.angles.angle_residual(columns)",
-    "residual_z": "wrap on the last axis (y = a - b; y[..., 1] = wrap(y[..., 1]), not y[1] = ...) or use "
-                  "filterwnn.angles.angle_residual(columns)",
-}
-_CALL_ERRORS = (IndexError, ValueError, TypeError)  # what a one-point function raises on a batch
-
-
-def _one_point_error(role, detail):
-    return ValueError(
-        f"vectorized {role} looks written for one point: {detail}. With vectorized=True it receives "
-        "all sigma points as one (n_sigmas, dim) array, so an index such as x[1] selects a sigma "
-        f"point, not a column. Fix: {_ONE_POINT_FIX[role]}; or use vectorized=False"
-    )
-
-
-def _on_single_rows(fn, X, rows, size, args=(), kwargs=None):
-    """``fn`` on single rows of ``X``, each given as ``(1, d)`` or else as ``(d,)``.
-
-    Returns ``(outputs, one_d)``: the flattened outputs of ``size`` entries and whether
-    the ``(d,)`` form was needed (a function written for one point), or ``None`` when
-    ``fn`` takes neither form (it needs the whole batch: nothing to compare).
-    """
-    kwargs = kwargs or {}
-    outs, one_d = [], False
-    for i in rows:
-        for flat, arg in ((False, X[i : i + 1]), (True, X[i])):
-            try:
-                v = np.asarray(fn(arg.copy(), *args, **kwargs), dtype=float).reshape(-1)
-            except _CALL_ERRORS:
-                continue
-            if v.size == size:
-                outs.append(v)
-                one_d |= flat
-                break
-        else:
-            return None
-    return outs, one_d
-
-
-def _rows_differ(batch, X, fn, args=(), kwargs=None):
-    """The first of a few rows where ``batch`` differs from ``fn`` on that row alone, or None."""
-    S = X.shape[0]
-    rows = sorted({0, min(1, S - 1), S - 1})
-    got = _on_single_rows(fn, X, rows, batch[0].size, args, kwargs)
-    if got is None:
-        return None
-    for i, v in zip(rows, got[0]):
-        b = batch[i].reshape(-1)
-        bad = ~np.isclose(b, v, rtol=1e-9, atol=1e-12 * max(1.0, float(np.max(np.abs(v), initial=0.0))),
-                          equal_nan=True)
-        if bad.any():
-            j = int(np.argmax(bad))
-            return (f"row {i}, entry {j} of the batch is {b[j]:.6g}, but {v[j]:.6g} when that "
-                    "row is passed alone")
-    return None
 
 
 def _with_fix(check, M, name, *args, **kwargs):
@@ -450,9 +387,9 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         first = self._checked.get(name) is not fn
         try:
             out = np.asarray(fn(sigmas, *args, **kwargs), dtype=float)
-        except _CALL_ERRORS as exc:
-            if first and _on_single_rows(fn, sigmas, [0], dim_out, args, kwargs) is not None:
-                raise _one_point_error(name, f"on all {sigmas.shape[0]} sigma points it raised "
+        except CALL_ERRORS as exc:
+            if first and on_single_rows(fn, sigmas, [0], dim_out, args, kwargs) is not None:
+                raise one_point_error(name, f"on all {sigmas.shape[0]} sigma points it raised "
                                              f"{type(exc).__name__}: {exc}") from exc
             raise
         if out.ndim == 1 and dim_out == 1:
@@ -460,14 +397,14 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         if out.shape != (sigmas.shape[0], dim_out):
             msg = (f"vectorized {name} must map ({sigmas.shape[0]}, {sigmas.shape[1]}) sigma "
                    f"points to shape ({sigmas.shape[0]}, {dim_out}), got {out.shape}")
-            got = _on_single_rows(fn, sigmas, [0], dim_out, args, kwargs) if first else None
+            got = on_single_rows(fn, sigmas, [0], dim_out, args, kwargs) if first else None
             if got is not None and got[1]:
-                raise _one_point_error(name, msg)
+                raise one_point_error(name, msg)
             raise ValueError(msg)
         if first:
-            detail = _rows_differ(out, sigmas, fn, args, kwargs)
+            detail = rows_differ(out, sigmas, fn, args, kwargs)
             if detail is not None:
-                raise _one_point_error(name, detail)
+                raise one_point_error(name, detail)
             self._checked[name] = fn
         return out
 
@@ -493,22 +430,22 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         b = np.copy(b)
         try:
             out = np.asarray(fn(A.copy(), b.copy()), dtype=float)
-        except _CALL_ERRORS as exc:
-            if _on_single_rows(fn, A, [0], A.shape[1], (b,)) is not None:
-                raise _one_point_error(role, f"on all {A.shape[0]} sigma points it raised "
+        except CALL_ERRORS as exc:
+            if on_single_rows(fn, A, [0], A.shape[1], (b,)) is not None:
+                raise one_point_error(role, f"on all {A.shape[0]} sigma points it raised "
                                              f"{type(exc).__name__}: {exc}") from exc
             raise
         if out.shape != A.shape:
             raise ValueError(
                 f"vectorized {role} must map sigma points of shape {A.shape} and a mean of "
-                f"shape {np.shape(b)} to shape {A.shape}, got {out.shape}; {_ONE_POINT_FIX[role]}"
+                f"shape {np.shape(b)} to shape {A.shape}, got {out.shape}; {ONE_POINT_FIX[role]}"
             )
         probe = np.asarray(b, dtype=float) + 4.0 * (1.0 + np.arange(A.size).reshape(A.shape))
         for label, X in (("sigma points", A), ("a probe with residuals above pi", probe)):
             vec = out if X is A else np.asarray(fn(X.copy(), b.copy()), dtype=float)
-            detail = _rows_differ(vec, X, fn, (b,))
+            detail = rows_differ(vec, X, fn, (b,))
             if detail is not None:
-                raise _one_point_error(role, f"on {label}, {detail}")
+                raise one_point_error(role, f"on {label}, {detail}")
         self._checked[role] = fn
         return out
 

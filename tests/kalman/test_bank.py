@@ -262,3 +262,19 @@ def test_a_pickled_bank_continues_identically(problem):
     a, _ = bank.batch_filter(zs[3:])
     b, _ = clone.batch_filter(zs[3:])
     assert np.array_equal(a, b) and clone.step == bank.step == N_STEPS
+
+
+def test_a_one_point_fx_is_caught_on_its_first_call(problem):
+    """The book's habit (``out[0] = x[0] + ...``) on all members' sigma points is silently wrong
+    without the check (it ran to 1.8e7 on a 4-state tracker); it must name fx and the fix."""
+    x0, P0, Q, R, zs = problem
+
+    def fx_one(x, dt):
+        out = np.empty_like(x)
+        out[0], out[1], out[2] = x[0] + dt * x[1], x[1], 0.9 * x[2]
+        return out
+
+    bank = UnscentedKalmanFilterBank(B, 3, 2, DT, hx, fx_one, POINTS[0])
+    bank.x, bank.P, bank.Q, bank.R = x0, P0, Q, R
+    with pytest.raises(ValueError, match=r"vectorized fx looks written for one point: .*Fix: index the last axis"):
+        bank.predict()

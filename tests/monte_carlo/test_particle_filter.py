@@ -690,3 +690,15 @@ def test_predicted_moments_formed_when_read_are_the_same_numbers(cls, lin_data):
         b.update(z)
         assert np.array_equal(b.x_prior, x_now) and np.array_equal(b.P_prior, P_now)
         assert np.array_equal(a.x_prior, x_now) and np.array_equal(a.x, b.x)
+
+
+def test_a_one_point_hx_is_caught_on_the_first_vectorized_call():
+    """A measurement function written for one particle (``x[0]``) reads a particle, not a column."""
+    from filterwnn import BootstrapParticleFilter
+
+    pf = BootstrapParticleFilter(2, 1, 1.0, lambda x: np.array([x[0]]).reshape(-1, 1)[:1].repeat(len(x), 0),
+                                 lambda X, dt: X, 50, vectorized=True, rng=0)
+    pf.x, pf.P, pf.Q, pf.R = np.zeros(2), np.eye(2), 0.01 * np.eye(2), np.eye(1)
+    pf.predict()
+    with pytest.raises(ValueError, match="vectorized hx looks written for one point"):
+        pf.update(np.array([0.3]))
