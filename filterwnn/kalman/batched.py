@@ -328,7 +328,7 @@ class KalmanModel:
     @property
     def rows_checked(self):
         """``{name: function}``: the vectorized model functions whose first call was checked
-        row by row (:func:`apply_rows`); a function assigned later is checked again."""
+        row by row (``apply_rows``); a function assigned later is checked again."""
         checked = self.__dict__.get("_rows_checked")
         if checked is None:
             checked = self._rows_checked = {}
