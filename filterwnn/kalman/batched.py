@@ -57,7 +57,7 @@ from typing import NamedTuple, Optional
 import numpy as np
 from scipy.linalg import solve_triangular
 
-from .._linalg import LOG_2PI, NoiseFactor, cholesky, repair_pd
+from .._linalg import LOG_2PI, NoiseFactor, cholesky, columns_layout, repair_pd, solve_lower_columns
 from .._validation import NumericalError, check_covariance, check_points_protocol, check_symmetric
 from ._rowcheck import CALL_ERRORS, on_single_rows, one_point_error, rows_differ
 from .sigma_points import batched_sigma_points, unit_sigma_points, unit_transpose_apply
@@ -164,10 +164,11 @@ def _residual(fn, a, b, vectorized):
 
 
 def _weighted_mean(fn, pts, W):
-    """Weighted mean of ``pts (N, S, d)`` over axis 1 -> ``(N, d)``, or ``fn(pts_i, W)``."""
+    """Weighted mean of ``pts (S, N, d)`` (sigma point, member, value) over the sigma points ->
+    ``(N, d)``, or ``fn(pts_i, W)`` on each member's ``(S, d)``."""
     if fn is None:
-        return np.matmul(W, pts)
-    return np.array([np.asarray(fn(p, W), dtype=float).reshape(pts.shape[-1]) for p in pts])
+        return np.tensordot(W, pts, axes=1)
+    return np.array([np.asarray(fn(p, W), dtype=float).reshape(pts.shape[-1]) for p in pts.transpose(1, 0, 2)])
 
 
 def _jacobians(J, X, shape, vectorized, name, args, kwargs):
@@ -216,9 +217,13 @@ def solve_lower(L, B):
 
     Forward substitution vectorized over the stack (``n`` small steps) for small ``n``,
     where scipy's batched ``solve_triangular`` (a Python loop over the stack) is slow;
-    scipy's for large ``n``.
+    scipy's for large ``n``. A stack that ``filterwnn._linalg.columns_layout`` factors by
+    columns is solved by columns (``solve_lower_columns``, the member axis last).
     """
     N, n, m = B.shape
+    if columns_layout(N, n):
+        X = solve_lower_columns(L.transpose(1, 2, 0), np.ascontiguousarray(B.transpose(1, 2, 0)))
+        return X.transpose(2, 0, 1)
     if n > 64:
         return solve_triangular(L, B, lower=True, check_finite=False)
     X = np.empty(B.shape)
@@ -280,9 +285,6 @@ class KalmanModel:
         self.FJacobian, self.HJacobian = FJacobian, HJacobian
         self.x_mean_fn, self.z_mean_fn = x_mean_fn, z_mean_fn
         self.residual_x, self.residual_z = residual_x, residual_z
-        self.recover = recover
-        self._factors = {}
-
         self.recover = recover
         self._factors = {}
 
@@ -418,11 +420,14 @@ def _as_z(z, N, m):
 
 
 def finish_update(model, x_prior, P_prior, z, z_pred, S, Pxy, L_prior, step, LinvPxy=None, H=None, R=None):
-    """Gain, posterior and innovation likelihood from the batched moments -> :class:`KalmanUpdate`.
+    r"""Gain, posterior and innovation likelihood from the batched moments -> :class:`KalmanUpdate`.
 
     ``S`` is the predicted measurement spread *without* ``R``; ``z`` is ``(dim_z,)`` or
     ``(N, dim_z)``; ``R`` is ``(dim_z, dim_z)`` or ``(N, dim_z, dim_z)`` (the model's by
-    default).
+    default). With ``dim_z > 1`` one Cholesky factor :math:`S = L_S L_S^T` and one forward
+    substitution give :math:`G = L_S^{-1} P_{xy}^T` and :math:`e = L_S^{-1} y`, and then
+    :math:`\hat x = x^- + G^T e`, :math:`\hat P = P^- - G^T G` (exactly symmetric) and
+    :math:`\log N = -\tfrac12 |e|^2 - \sum \log L_{S,jj} - \tfrac m2 \log 2\pi`.
     """
     R = noise_matrix(model.R, "R", model.dim_z) if R is None else R
     S = S + R
@@ -440,16 +445,19 @@ def finish_update(model, x_prior, P_prior, z, z_pred, S, Pxy, L_prior, step, Lin
         loglik = -0.5 * (y[:, 0] ** 2 / s + np.log(s) + LOG_2PI)
         return KalmanUpdate(x, P, z_pred, S, Pxy, loglik, L_prior, LinvPxy, H)
     Ls = cholesky(S, "S", step)
-    Kt = np.linalg.solve(S, np.swapaxes(Pxy, -1, -2))  # (N, m, n)
-    x = x_prior + np.matmul(y[:, None, :], Kt)[:, 0, :]
-    P = P_prior - np.matmul(Pxy, Kt)
-    e = solve_lower(Ls, y[:, :, None])[:, :, 0]
+    N, n = x_prior.shape
+    rhs = np.empty((N, model.dim_z, n + 1))
+    rhs[:, :, :n] = np.swapaxes(Pxy, -1, -2)
+    rhs[:, :, n] = y
+    E = solve_lower(Ls, rhs)  # [L_S^{-1} Pxy^T | L_S^{-1} y]
+    G, e = E[:, :, :n], E[:, :, n]
+    x = x_prior + np.matmul(e[:, None, :], G)[:, 0, :]
+    P = P_prior - np.matmul(np.swapaxes(G, -1, -2), G)
     loglik = (
         -0.5 * np.sum(e * e, axis=1)
         - np.sum(np.log(np.diagonal(Ls, axis1=1, axis2=2)), axis=1)
         - 0.5 * model.dim_z * LOG_2PI
     )
-    P = 0.5 * (P + np.swapaxes(P, -1, -2))
     return KalmanUpdate(x, P, z_pred, S, Pxy, loglik, L_prior, LinvPxy, H)
 
 
@@ -643,8 +651,26 @@ class UnscentedStep(_Step):
             raise ValueError(f"points.n must equal dim_x={dim_x}, got {self.points.n}")
 
     def _sigmas(self, x, P, step, name):
+        """Factors and sigma points of every member -> ``(L (N, n, n), rows, by_point)``.
+
+        ``rows (N * S, n)`` are what the model is called on; ``by_point(Y)`` views its rows
+        ``(N * S, d)`` as ``(S, N, d)`` (sigma point, member, value). A stack that
+        ``filterwnn._linalg.columns_layout`` factors by columns (small ``n``, many members)
+        gets ``x + Z L^T`` as one product per state component on the factors stored member
+        axis last, and ``rows`` is the transposed view of that ``(n, S * N)`` array (point
+        ``s`` of member ``b`` is row ``s N + b``); any other, member-major rows from
+        :func:`~filterwnn.kalman.sigma_points.batched_sigma_points`.
+        """
+        N, n = x.shape
         L = cholesky(P, name, step)
-        return L, batched_sigma_points(self.points, x, L)
+        if columns_layout(N, n):
+            sig = np.matmul(self._Z, L.transpose(1, 2, 0))  # (n, S, N): sum_j Z[s, j] L_b[i, j]
+            sig += x.T[:, None, :]
+            S_ = sig.shape[1]
+            return L, sig.reshape(n, S_ * N).T, lambda Y: Y.reshape(S_, N, -1)
+        sig = batched_sigma_points(self.points, x, L)
+        S_ = sig.shape[1]
+        return L, sig.reshape(N * S_, n), lambda Y: Y.reshape(N, S_, -1).transpose(1, 0, 2)
 
     def predict(self, model, x, P, fx_args=None, step=None, *, Q=None):
         """Predicted ``(x (N, n), P (N, n, n))`` by the unscented transform through ``fx``."""
@@ -653,32 +679,27 @@ class UnscentedStep(_Step):
         Q = noise_matrix(model.Q, "Q", model.dim_x) if Q is None else Q
         if model.fx is None:
             return KalmanPrediction(x.copy(), P + Q)
-        N, n = x.shape
-        _, sig = self._sigmas(x, P, step, "P")
-        S_ = sig.shape[1]
-        F = apply_rows(model.fx, sig.reshape(N * S_, n), n, model.vectorized, "fx", (model.dt,), fx_args,
-                       model.rows_checked)
-        F = F.reshape(N, S_, n)
+        n = model.dim_x
+        _, rows, by_point = self._sigmas(x, P, step, "P")
+        F = by_point(apply_rows(model.fx, rows, n, model.vectorized, "fx", (model.dt,), fx_args,
+                                model.rows_checked))
         Wm, Wc = self.points.Wm, self.points.Wc
         xp = _weighted_mean(model.x_mean_fn, F, Wm)
-        dX = _residual(model.residual_x, F, xp[:, None, :], model.vectorized)
-        Pp = np.matmul(np.swapaxes(dX * Wc[:, None], -1, -2), dX) + Q
+        dX = _residual(model.residual_x, F, xp[None], model.vectorized)
+        Pp = np.matmul((dX * Wc[:, None, None]).transpose(1, 2, 0), dX.transpose(1, 0, 2)) + Q
         return KalmanPrediction(xp, 0.5 * (Pp + np.swapaxes(Pp, -1, -2)))
 
     def _update(self, model, prediction, z, hx_args, step, R):
         self.check(model.dim_x)
         xp, Pp = prediction
-        N, n = xp.shape
         m = model.dim_z
-        L, sig = self._sigmas(xp, Pp, step, "P_prior")
-        S_ = sig.shape[1]
-        Hs = apply_rows(model.hx, sig.reshape(N * S_, n), m, model.vectorized, "hx", (), hx_args,
-                        model.rows_checked).reshape(N, S_, m)
+        L, rows, by_point = self._sigmas(xp, Pp, step, "P_prior")
+        Hs = by_point(apply_rows(model.hx, rows, m, model.vectorized, "hx", (), hx_args, model.rows_checked))
         Wm, Wc = self.points.Wm, self.points.Wc
         zp = _weighted_mean(model.z_mean_fn, Hs, Wm)
-        dY = _residual(model.residual_z, Hs, zp[:, None, :], model.vectorized)
-        WdY = dY * Wc[:, None]
-        S = np.matmul(np.swapaxes(dY, -1, -2), WdY)
+        dY = _residual(model.residual_z, Hs, zp[None], model.vectorized)
+        WdY = (dY * Wc[:, None, None]).transpose(1, 0, 2)  # (N, S, m)
+        S = np.matmul(dY.transpose(1, 2, 0), WdY)
         # Pxy = D^T (Wc dY) = L (Z^T (Wc dY)); the bracket is L^{-1} Pxy for the sampling
         LinvPxy = unit_transpose_apply(self.points, self._Z, WdY)
         Pxy = np.matmul(L, LinvPxy)
