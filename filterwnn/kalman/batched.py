@@ -164,11 +164,10 @@ def _residual(fn, a, b, vectorized):
 
 
 def _weighted_mean(fn, pts, W):
-    """Weighted mean of ``pts (S, N, d)`` (sigma point, member, value) over the sigma points ->
-    ``(N, d)``, or ``fn(pts_i, W)`` on each member's ``(S, d)``."""
+    """Weighted mean of ``pts (N, S, d)`` over axis 1 -> ``(N, d)``, or ``fn(pts_i, W)``."""
     if fn is None:
-        return np.tensordot(W, pts, axes=1)
-    return np.array([np.asarray(fn(p, W), dtype=float).reshape(pts.shape[-1]) for p in pts.transpose(1, 0, 2)])
+        return np.matmul(W, pts)
+    return np.array([np.asarray(fn(p, W), dtype=float).reshape(pts.shape[-1]) for p in pts])
 
 
 def _jacobians(J, X, shape, vectorized, name, args, kwargs):
@@ -651,26 +650,21 @@ class UnscentedStep(_Step):
             raise ValueError(f"points.n must equal dim_x={dim_x}, got {self.points.n}")
 
     def _sigmas(self, x, P, step, name):
-        """Factors and sigma points of every member -> ``(L (N, n, n), rows, by_point)``.
+        """Factors and sigma points of every member -> ``(L (N, n, n), sig (N, S, n))``.
 
-        ``rows (N * S, n)`` are what the model is called on; ``by_point(Y)`` views its rows
-        ``(N * S, d)`` as ``(S, N, d)`` (sigma point, member, value). A stack that
-        ``filterwnn._linalg.columns_layout`` factors by columns (small ``n``, many members)
-        gets ``x + Z L^T`` as one product per state component on the factors stored member
-        axis last, and ``rows`` is the transposed view of that ``(n, S * N)`` array (point
-        ``s`` of member ``b`` is row ``s N + b``); any other, member-major rows from
+        A stack that ``filterwnn._linalg.columns_layout`` factors by columns (small ``n``,
+        many members) gets ``x + Z L^T`` as one matrix product per state component on the
+        factors stored member axis last: ``sig`` is then a view of an ``(n, N, S)`` array
+        (its ``reshape(N * S, n)`` a view too, no copy), else the C-ordered array of
         :func:`~filterwnn.kalman.sigma_points.batched_sigma_points`.
         """
-        N, n = x.shape
         L = cholesky(P, name, step)
-        if columns_layout(N, n):
-            sig = np.matmul(self._Z, L.transpose(1, 2, 0))  # (n, S, N): sum_j Z[s, j] L_b[i, j]
-            sig += x.T[:, None, :]
-            S_ = sig.shape[1]
-            return L, sig.reshape(n, S_ * N).T, lambda Y: Y.reshape(S_, N, -1)
-        sig = batched_sigma_points(self.points, x, L)
-        S_ = sig.shape[1]
-        return L, sig.reshape(N * S_, n), lambda Y: Y.reshape(N, S_, -1).transpose(1, 0, 2)
+        N, n = x.shape
+        if not columns_layout(N, n):
+            return L, batched_sigma_points(self.points, x, L)
+        sig = np.matmul(L.transpose(1, 0, 2), self._Z.T)  # (n, N, S): sum_j L_b[i, j] Z[s, j], BLAS
+        sig += x.T[:, :, None]
+        return L, sig.transpose(1, 2, 0)
 
     def predict(self, model, x, P, fx_args=None, step=None, *, Q=None):
         """Predicted ``(x (N, n), P (N, n, n))`` by the unscented transform through ``fx``."""
@@ -679,27 +673,32 @@ class UnscentedStep(_Step):
         Q = noise_matrix(model.Q, "Q", model.dim_x) if Q is None else Q
         if model.fx is None:
             return KalmanPrediction(x.copy(), P + Q)
-        n = model.dim_x
-        _, rows, by_point = self._sigmas(x, P, step, "P")
-        F = by_point(apply_rows(model.fx, rows, n, model.vectorized, "fx", (model.dt,), fx_args,
-                                model.rows_checked))
+        N, n = x.shape
+        _, sig = self._sigmas(x, P, step, "P")
+        S_ = sig.shape[1]
+        F = apply_rows(model.fx, sig.reshape(N * S_, n), n, model.vectorized, "fx", (model.dt,), fx_args,
+                       model.rows_checked)
+        F = F.reshape(N, S_, n)
         Wm, Wc = self.points.Wm, self.points.Wc
         xp = _weighted_mean(model.x_mean_fn, F, Wm)
-        dX = _residual(model.residual_x, F, xp[None], model.vectorized)
-        Pp = np.matmul((dX * Wc[:, None, None]).transpose(1, 2, 0), dX.transpose(1, 0, 2)) + Q
+        dX = _residual(model.residual_x, F, xp[:, None, :], model.vectorized)
+        Pp = np.matmul(np.swapaxes(dX * Wc[:, None], -1, -2), dX) + Q
         return KalmanPrediction(xp, 0.5 * (Pp + np.swapaxes(Pp, -1, -2)))
 
     def _update(self, model, prediction, z, hx_args, step, R):
         self.check(model.dim_x)
         xp, Pp = prediction
+        N, n = xp.shape
         m = model.dim_z
-        L, rows, by_point = self._sigmas(xp, Pp, step, "P_prior")
-        Hs = by_point(apply_rows(model.hx, rows, m, model.vectorized, "hx", (), hx_args, model.rows_checked))
+        L, sig = self._sigmas(xp, Pp, step, "P_prior")
+        S_ = sig.shape[1]
+        Hs = apply_rows(model.hx, sig.reshape(N * S_, n), m, model.vectorized, "hx", (), hx_args,
+                        model.rows_checked).reshape(N, S_, m)
         Wm, Wc = self.points.Wm, self.points.Wc
         zp = _weighted_mean(model.z_mean_fn, Hs, Wm)
-        dY = _residual(model.residual_z, Hs, zp[None], model.vectorized)
-        WdY = (dY * Wc[:, None, None]).transpose(1, 0, 2)  # (N, S, m)
-        S = np.matmul(dY.transpose(1, 2, 0), WdY)
+        dY = _residual(model.residual_z, Hs, zp[:, None, :], model.vectorized)
+        WdY = dY * Wc[:, None]
+        S = np.matmul(np.swapaxes(dY, -1, -2), WdY)
         # Pxy = D^T (Wc dY) = L (Z^T (Wc dY)); the bracket is L^{-1} Pxy for the sampling
         LinvPxy = unit_transpose_apply(self.points, self._Z, WdY)
         Pxy = np.matmul(L, LinvPxy)
