@@ -206,6 +206,8 @@ class _Bank:
                               matrix=exc.matrix, step=step)
 
     def _check_finite(self, x, P, stage, step, remedy):
+        if np.isfinite(x).all() and np.isfinite(P).all():  # one pass each; the member is found only on failure
+            return
         bad = ~(np.isfinite(x).all(axis=1) & np.isfinite(P).all(axis=(1, 2)))
         if bad.any():
             raise NumericalError(f"{type(self).__name__}.{stage} at step {step}: non-finite result for member "
