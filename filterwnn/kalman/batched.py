@@ -453,18 +453,19 @@ def finish_update(model, x_prior, P_prior, z, z_pred, S, Pxy, L_prior, step, Lin
         return KalmanUpdate(x, P, z_pred, S, Pxy, loglik, L_prior, LinvPxy, H)
     Ls = cholesky(S, "S", step)
     N, n = x_prior.shape
-    rhs = np.empty((N, model.dim_z, n + 1))
-    rhs[:, :, :n] = np.swapaxes(Pxy, -1, -2)
-    rhs[:, :, n] = y
-    E = solve_lower(Ls, rhs)  # [L_S^{-1} Pxy^T | L_S^{-1} y]
-    G, e = E[:, :, :n], E[:, :, n]
-    x = x_prior + np.matmul(e[:, None, :], G)[:, 0, :]
-    P = P_prior - np.matmul(np.swapaxes(G, -1, -2), G)
-    loglik = (
-        -0.5 * np.sum(e * e, axis=1)
-        - np.sum(np.log(np.diagonal(Ls, axis1=1, axis2=2)), axis=1)
-        - 0.5 * model.dim_z * LOG_2PI
-    )
+    m = model.dim_z
+    rhs = np.empty((m, n + 1, N))  # member axis last: one long vector operation per entry
+    rhs[:, :n] = Pxy.transpose(2, 1, 0)
+    rhs[:, n] = y.T
+    E = solve_lower_columns(Ls.transpose(1, 2, 0), rhs)  # [L_S^{-1} Pxy^T | L_S^{-1} y]
+    G, e = E[:, :n], E[:, n]
+    x = x_prior + (G * e[:, None]).sum(axis=0).T
+    GtG = G[0, :, None] * G[0]
+    for k in range(1, m):
+        GtG += G[k, :, None] * G[k]
+    P = P_prior - GtG.transpose(2, 0, 1)
+    log_det = np.sum(np.log(np.diagonal(Ls, axis1=1, axis2=2)), axis=1)
+    loglik = -0.5 * np.sum(e * e, axis=0) - log_det - 0.5 * m * LOG_2PI
     return KalmanUpdate(x, P, z_pred, S, Pxy, loglik, L_prior, LinvPxy, H)
 
 
