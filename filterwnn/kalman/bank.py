@@ -223,6 +223,8 @@ class _Bank:
                 raise ValueError(f"z must have shape ({self.B}, {self.dim_z}) (one per member) or "
                                  f"({self.dim_z},) (shared), got shape {z.shape}")
         rows = z.reshape(-1, self.dim_z)
+        if mask is None and np.isfinite(rows).all():  # the usual case in one pass: every member observed
+            return z, None
         nan = np.isnan(rows)
         part = nan.any(axis=1) & ~nan.all(axis=1)
         if part.any() or np.isinf(rows).any():
