@@ -349,3 +349,17 @@ def test_errors_name_the_member_on_both_paths(n_members):
     with pytest.raises(NumericalError, match=r"update at step 1, a member: S is not positive definite at step 1 "
                                              r"\(particle 2\)"):
         bank3.update(z)
+
+
+def test_a_long_bank_with_per_point_callables_equals_the_vectorized_one():
+    x0, P0, Q, R, zs = _long_problem(6)
+    out = []
+    for vectorized in (True, False):
+        bank = UnscentedKalmanFilterBank(B_LONG, 3, 2, DT, hx, fx, POINTS[1], vectorized=vectorized)
+        bank.x, bank.P, bank.Q, bank.R = x0, P0, Q, R
+        for z in zs[:2]:
+            bank.predict()
+            bank.update(z)
+        out.append((bank.x, bank.P, bank.log_likelihood))
+    for a, b in zip(*out):
+        np.testing.assert_allclose(a, b, rtol=0, atol=TOL)
