@@ -168,7 +168,7 @@ def _residual(fn, a, b, vectorized):
         if a.ndim == 3 and np.ndim(b) == 3 and b.shape[1] == 1 and a.flags.c_contiguous:
             N, S, d = a.shape
             rows = np.matmul(b[:, 0, :], np.tile(np.eye(d), S))
-            return (a.reshape(N, S * d) - rows).reshape(N, S, d)
+            return np.subtract(a.reshape(N, S * d), rows, out=rows).reshape(N, S, d)
         return a - b
     if vectorized:
         return np.asarray(fn(a, b), dtype=float).reshape(np.broadcast_shapes(np.shape(a), np.shape(b)))
@@ -710,8 +710,11 @@ class UnscentedStep(_Step):
         Wm, Wc = self.points.Wm, self.points.Wc
         xp = _weighted_mean(model.x_mean_fn, F, Wm)
         dX = _residual(model.residual_x, F, xp[:, None, :], model.vectorized)
-        Pp = np.matmul(np.swapaxes(_times_weights(dX, Wc), -1, -2), dX) + Q
-        return KalmanPrediction(xp, 0.5 * (Pp + np.swapaxes(Pp, -1, -2)))
+        Pp = np.matmul(np.swapaxes(_times_weights(dX, Wc), -1, -2), dX)
+        Pp += Q
+        P_sym = Pp + np.swapaxes(Pp, -1, -2)
+        P_sym *= 0.5
+        return KalmanPrediction(xp, P_sym)
 
     def _update(self, model, prediction, z, hx_args, step, R):
         self.check(model.dim_x)
