@@ -165,7 +165,7 @@ def _residual(fn, a, b, vectorized):
     paired runs; unchanged at 10,000).
     """
     if fn is None or fn is np.subtract:
-        if a.ndim == 3 and np.ndim(b) == 3 and b.shape[1] == 1 and a.flags.c_contiguous:
+        if a.ndim == 3 and np.shape(b) == (a.shape[0], 1, a.shape[2]) and a.flags.c_contiguous:
             N, S, d = a.shape
             rows = np.matmul(b[:, 0, :], np.tile(np.eye(d), S))
             return np.subtract(a.reshape(N, S * d), rows, out=rows).reshape(N, S, d)
