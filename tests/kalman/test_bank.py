@@ -363,3 +363,18 @@ def test_a_long_bank_with_per_point_callables_equals_the_vectorized_one():
         out.append((bank.x, bank.P, bank.log_likelihood))
     for a, b in zip(*out):
         np.testing.assert_allclose(a, b, rtol=0, atol=TOL)
+
+
+def test_the_steps_row_helpers_equal_the_plain_broadcasts_bit_for_bit():
+    from filterwnn.kalman.batched import _residual, _times_weights
+
+    g = np.random.default_rng(7)
+    a = g.normal(0.0, 1e3, (40, 13, 6))
+    b = g.normal(0.0, 1e3, (40, 1, 6))
+    W = g.normal(0.0, 1.0, 13)
+    assert np.array_equal(_residual(None, a, b, True), a - b)  # the repeated-rows path is exact
+    assert np.array_equal(_residual(None, a, b[:1], True), a - b[:1])  # a shared b: the plain broadcast
+    assert np.array_equal(_times_weights(a, W), a * W[:, None])
+    bad = b.copy()
+    bad[3, 0, 2] = np.nan
+    assert np.isnan(_residual(None, a, bad, True)[3]).any() and np.isfinite(_residual(None, a, bad, True)[4]).all()
