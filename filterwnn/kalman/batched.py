@@ -57,6 +57,7 @@ CUED/F-INFENG/TR 380, 2000 (one such step per particle).
 from __future__ import annotations
 
 import warnings
+from functools import cached_property
 from typing import NamedTuple, Optional
 
 import numpy as np
@@ -668,7 +669,12 @@ class UnscentedStep(_Step):
         check_points_protocol(points, ("n", "Wm", "Wc", "num_sigmas", "sigma_points"))
         self.points = points
         self._Z = unit_sigma_points(points)
-        self._Zx = np.vstack([self._Z.T, np.ones(self._Z.shape[0])])  # [Z | 1]^T, for x + Z L^T in one product
+
+    @cached_property
+    def _Zx(self):
+        """``[Z | 1]^T`` ``(n + 1, S)``: ``x + Z L^T`` in one product (derived, so a step pickled
+        before it existed still loads)."""
+        return np.vstack([self._Z.T, np.ones(self._Z.shape[0])])
 
     def check(self, dim_x):
         """Raise ``ValueError`` unless ``points.n == dim_x``."""
