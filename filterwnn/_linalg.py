@@ -68,12 +68,13 @@ LOG_2PI = float(np.log(2.0 * np.pi))
 #: axis last, each entry one vector operation over the whole stack) when the matrices are
 #: at most ``COLUMNS_MAX_N`` wide and the stack holds at least ``COLUMNS_MIN_STACK`` of them;
 #: else by LAPACK (``numpy.linalg.cholesky``, one call per matrix inside NumPy). Chosen by
-#: timing both paths in turn (``benchmarks/bench_columns.py``, 1 BLAS thread, stored in
-#: ``bench_columns_results.txt``): a bank's unscented step took 0.86-0.99x the LAPACK path's
-#: time at N = 256 for n <= 8 and 1.03-1.16x at N = 128 for n >= 4; at n = 12 and 16 it
-#: gains 4-12 % only from N = 1,000 and the factor alone is then slower (1.04x, 1.53x at
-#: N = 4,000). The column code costs about 5 NumPy calls per column: it wins once the stack
-#: pays for them and n keeps them few.
+#: timing both paths in turn (``benchmarks/bench_columns.py``, 1 BLAS thread, two runs in
+#: ``bench_columns_results.txt``): a bank's unscented step took 0.82-0.99x the LAPACK path's
+#: time at N = 256 for n <= 8 (0.89-0.99x at N = 128 in the second run, 0.94-1.08x in the
+#: first); at n = 12 it gains only from N = 512-1,000, at n = 16 little or nothing. The
+#: factor alone pays from N = 256-512 (1.14-1.37x LAPACK's time at N = 256 in run 2), so the
+#: gate is set for the step, its main user. The column code costs about 5 NumPy calls per
+#: column: it wins once the stack pays for them and n keeps them few.
 COLUMNS_MAX_N = 8
 COLUMNS_MIN_STACK = 256
 
