@@ -206,6 +206,8 @@ class _Bank:
                               matrix=exc.matrix, step=step)
 
     def _check_finite(self, x, P, stage, step, remedy):
+        if np.isfinite(x).all() and np.isfinite(P).all():  # one pass each; the member is found only on failure
+            return
         bad = ~(np.isfinite(x).all(axis=1) & np.isfinite(P).all(axis=(1, 2)))
         if bad.any():
             raise NumericalError(f"{type(self).__name__}.{stage} at step {step}: non-finite result for member "
@@ -221,6 +223,8 @@ class _Bank:
                 raise ValueError(f"z must have shape ({self.B}, {self.dim_z}) (one per member) or "
                                  f"({self.dim_z},) (shared), got shape {z.shape}")
         rows = z.reshape(-1, self.dim_z)
+        if mask is None and np.isfinite(rows).all():  # the usual case in one pass: every member observed
+            return z, None
         nan = np.isnan(rows)
         part = nan.any(axis=1) & ~nan.all(axis=1)
         if part.any() or np.isinf(rows).any():

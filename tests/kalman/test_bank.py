@@ -278,3 +278,103 @@ def test_a_one_point_fx_is_caught_on_its_first_call(problem):
     bank.x, bank.P, bank.Q, bank.R = x0, P0, Q, R
     with pytest.raises(ValueError, match=r"vectorized fx looks written for one point: .*Fix: index the last axis"):
         bank.predict()
+
+
+# --- a long bank: the column path (small n, many members) --------------------------------------
+
+from filterwnn._linalg import COLUMNS_MIN_STACK, columns_layout  # noqa: E402
+
+B_LONG = COLUMNS_MIN_STACK + 8  # one member missing still leaves a stack on the column path
+
+
+def _long_problem(seed=5):
+    g = np.random.default_rng(seed)
+    x0 = g.normal(0.0, 0.5, (B_LONG, 3))
+    A = g.normal(0.0, 0.3, (B_LONG, 3, 3))
+    P0 = np.matmul(A, np.swapaxes(A, 1, 2)) + 0.2 * np.eye(3)
+    zs = g.normal(0.0, 0.3, (3, B_LONG, 2)) + np.array([1.2, 0.0])
+    zs[1, 17] = np.nan
+    return x0, P0, np.eye(3) * 2e-3, np.diag([0.05, 0.02]), zs
+
+
+@pytest.mark.parametrize("points", POINTS, ids=["ukf-merwe", "sukf-simplex"])
+def test_a_long_bank_on_the_column_path_equals_independent_filterpy_ukfs(points):
+    assert columns_layout(B_LONG - 1, 3)  # else this test would not reach the column path
+    x0, P0, Q, R, zs = _long_problem()
+    bank = UnscentedKalmanFilterBank(B_LONG, 3, 2, DT, hx, fx, points)
+    bank.x, bank.P, bank.Q, bank.R = x0, P0, Q, R
+    got = []
+    for z in zs:
+        bank.predict()
+        bank.update(z)
+        got.append((bank.x.copy(), bank.P.copy(), bank.log_likelihood.copy()))
+    for i in range(B_LONG):
+        f = FilterpyUKF(3, 2, DT, hx, fx, points)
+        f.x, f.P, f.Q, f.R = x0[i].copy(), P0[i].copy(), Q, R
+        for k, z in enumerate(zs):
+            f.predict()
+            if not np.isnan(z[i, 0]):
+                f.update(z[i])
+            x, P, ll = got[k]
+            np.testing.assert_allclose(x[i], f.x, rtol=0, atol=TOL)
+            np.testing.assert_allclose(P[i], f.P, rtol=0, atol=TOL)
+            assert abs(ll[i] - (f.log_likelihood if not np.isnan(z[i, 0]) else 0.0)) <= TOL
+
+
+@pytest.mark.parametrize("n_members", [B, B_LONG], ids=["lapack", "columns"])
+def test_errors_name_the_member_on_both_paths(n_members):
+    x0, P0, Q, R, zs = _long_problem()
+    x0, P0, z = x0[:n_members], P0[:n_members], zs[0, :n_members]
+    bank = UnscentedKalmanFilterBank(n_members, 3, 2, DT, hx, fx, POINTS[0])
+    bank.x, bank.P = x0, P0
+    bank._P[3] = -np.eye(3)  # corrupted, not through the checked setter
+    with pytest.raises(NumericalError, match=r"UnscentedKalmanFilterBank.predict at step 1, member 3: P is not "
+                                             r"positive definite at step 1 \(particle 3\); check Q"):
+        bank.predict()
+    bank.P = P0
+    bank.predict()
+    bank._P[4] = np.nan
+    with pytest.raises(NumericalError, match=r"update at step 1, member 4: P_prior is not positive definite"):
+        bank.update(z)
+    # a model that returns NaN for one member (by its value, not its row) is named, never passed on
+    far = lambda X, dt: np.where(X[:, :1] > 50.0, np.nan, fx(X, dt))  # noqa: E731
+    bank2 = UnscentedKalmanFilterBank(n_members, 3, 2, DT, hx, far, POINTS[0])
+    bank2.x, bank2.P = np.where(np.arange(n_members)[:, None] == 2, 100.0, x0), P0
+    with pytest.raises(NumericalError, match=r"predict at step 1: non-finite result for member 2 \(check fx"):
+        bank2.predict()
+    nan_hx = lambda X: np.where(X[:, :1] > 50.0, np.nan, hx(X))  # noqa: E731
+    bank3 = UnscentedKalmanFilterBank(n_members, 3, 2, DT, nan_hx, None, POINTS[0])
+    bank3.x, bank3.P = np.where(np.arange(n_members)[:, None] == 2, 100.0, x0), P0
+    bank3.predict()
+    with pytest.raises(NumericalError, match=r"update at step 1, a member: S is not positive definite at step 1 "
+                                             r"\(particle 2\)"):
+        bank3.update(z)
+
+
+def test_a_long_bank_with_per_point_callables_equals_the_vectorized_one():
+    x0, P0, Q, R, zs = _long_problem(6)
+    out = []
+    for vectorized in (True, False):
+        bank = UnscentedKalmanFilterBank(B_LONG, 3, 2, DT, hx, fx, POINTS[1], vectorized=vectorized)
+        bank.x, bank.P, bank.Q, bank.R = x0, P0, Q, R
+        for z in zs[:2]:
+            bank.predict()
+            bank.update(z)
+        out.append((bank.x, bank.P, bank.log_likelihood))
+    for a, b in zip(*out):
+        np.testing.assert_allclose(a, b, rtol=0, atol=TOL)
+
+
+def test_the_steps_row_helpers_equal_the_plain_broadcasts_bit_for_bit():
+    from filterwnn.kalman.batched import _residual, _times_weights
+
+    g = np.random.default_rng(7)
+    a = g.normal(0.0, 1e3, (40, 13, 6))
+    b = g.normal(0.0, 1e3, (40, 1, 6))
+    W = g.normal(0.0, 1.0, 13)
+    assert np.array_equal(_residual(None, a, b, True), a - b)  # the repeated-rows path is exact
+    assert np.array_equal(_residual(None, a, b[:1], True), a - b[:1])  # a shared b: the plain broadcast
+    assert np.array_equal(_times_weights(a, W), a * W[:, None])
+    bad = b.copy()
+    bad[3, 0, 2] = np.nan
+    assert np.isnan(_residual(None, a, bad, True)[3]).any() and np.isfinite(_residual(None, a, bad, True)[4]).all()
