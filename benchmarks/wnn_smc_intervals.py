@@ -6,8 +6,9 @@ MSE printed must equal the study's ``runs.csv``), and splits the predictive vari
 inputs into its parts: the cloud's spread of outputs and the noise term (the learned
 ``mean exp(s_i)`` for ``smc-noise*``, R for ``smc``). Beside them, the residuals it is meant to
 cover: the training rows' and the test rows' squared error of the mean prediction (median and
-mean: a Gaussian's squared errors have mean / median 2.2), and the 90 % coverage of each part
-alone. The SISO plant has no measurement noise (``datasets.siso_plant``): every residual is the
+mean: a Gaussian's squared errors have mean / median 2.2), the particles' own training error
+averaged over the particles (what each particle's ``s_i`` sees), and the 90 % coverage of each
+part alone. The SISO plant has no measurement noise (``datasets.siso_plant``): every residual is the
 network's error. Diagnostics only: nothing here chooses a setting.
 
     PYTHONPATH=. OPENBLAS_NUM_THREADS=1 python benchmarks/wnn_smc_intervals.py smc-noise-10x10 60 10
@@ -40,6 +41,7 @@ def one(row, seed, n_particles):
         cloud = Y.var(axis=0)
         out[f"{part}_mse"], out[f"{part}_r2_median"] = float(r2.mean()), float(np.median(r2))
         out[f"{part}_cloud"] = float(np.median(cloud))
+        out[f"{part}_mse_particles"] = float(np.mean((Y - ys) ** 2))  # each particle's own error, averaged
         out[f"{part}_cov90"] = float(np.mean(r2 <= Z90**2 * (cloud + noise)))
         out[f"{part}_cov90_cloud"] = float(np.mean(r2 <= Z90**2 * cloud))
         out[f"{part}_cov90_noise"] = float(np.mean(r2 <= Z90**2 * noise))
@@ -49,7 +51,8 @@ def one(row, seed, n_particles):
 
 
 def main(row, n_particles, n_runs):
-    cols = ("test_mse", "noise", "noise_spread", "test_cloud", "train_cloud", "train_mse", "train_r2_median",
+    cols = ("test_mse", "noise", "noise_spread", "test_cloud", "train_cloud", "train_mse", "train_mse_particles",
+            "train_r2_median",
             "test_r2_median", "test_cov90", "test_cov90_cloud", "test_cov90_noise", "train_cov90")
     print(f"# {row}, N = {n_particles}, runs 0-{n_runs - 1} of seed 2026 (the study's fits); medians over "
           "inputs within a run; noise = mean exp(s_i) (smc: R); noise_spread = sd of s_i over particles")
