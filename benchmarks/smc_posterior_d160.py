@@ -11,7 +11,16 @@ the posterior's; 1 is right, below 1 too narrow), ``mean z`` (median over coordi
 distinct ancestors and the rungs. Seeds 0-2, medians.
 
     PYTHONPATH=. OPENBLAS_NUM_THREADS=1 python benchmarks/smc_posterior_d160.py
+
+``--choose BUDGET`` (issue 24, protocol 4) compares, at one fixed budget of particle-gradient
+evaluations per rung set before the run, HMC at N = 20, 40, 60 (10 leapfrogs), HMC at N = 20
+with 5 and 20 leapfrogs, and MALA at N = 20, on seeds 0-4 (medians), and writes the choice
+rule's pick: the largest var ratio, mean z as the tie-break (within 0.02 of the best ratio):
+
+    PYTHONPATH=. OPENBLAS_NUM_THREADS=1 python benchmarks/smc_posterior_d160.py --choose 6000
 """
+
+import sys
 
 import time
 
@@ -44,14 +53,14 @@ def posterior(X, y):
     return S @ X.T @ y / NOISE, S
 
 
-def one(seed, n, kernel, budget=BUDGET):
+def one(seed, n, kernel, budget=BUDGET, n_leapfrog=10):
     rng = np.random.default_rng(seed)
     X = rng.standard_normal((N_ROWS, D))
     y = X @ rng.standard_normal(D) + np.sqrt(NOISE) * rng.standard_normal(N_ROWS)
     mu, S = posterior(X, y)
     target = RowsTarget(BayesianRegression(D), X, y)
     if kernel == "hmc":
-        move = HMCMove(target, n_steps=max(1, budget // (10 * n)), n_leapfrog=10)
+        move = HMCMove(target, n_steps=max(1, budget // (n_leapfrog * n)), n_leapfrog=n_leapfrog)
     else:
         move = MALAMove(target, n_steps=max(1, budget // n))
     t0 = time.process_time()
@@ -84,5 +93,31 @@ def main():
               f"| {m['cpu']:.1f} |", flush=True)
 
 
+def choose(budget, seeds=range(5)):
+    """At ``budget`` particle-gradient evaluations per rung: each candidate's medians, and the pick."""
+    candidates = [("hmc", 20, 10), ("hmc", 40, 10), ("hmc", 60, 10), ("hmc", 20, 5), ("hmc", 20, 20), ("mala", 20, 1)]
+    print(f"# budget {budget} particle-gradient evaluations per rung; d = 160, 100 rows; medians over seeds "
+          f"{seeds.start}-{seeds.stop - 1}")
+    print("| kernel | N | leapfrogs | steps per rung | var ratio | mean z (iid) | distinct ancestors | rungs | CPU s |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    rows = []
+    for kernel, n, lf in candidates:
+        rs = [one(s, n, kernel, budget, lf) for s in seeds]
+        m = {k: float(np.median([r[k] for r in rs])) for k in rs[0]}
+        steps = max(1, budget // (lf * n))
+        rows.append((kernel, n, lf, steps, m))
+        print(f"| {kernel} | {n} | {lf if kernel == 'hmc' else '-'} | {steps} | {m['var_ratio']:.3f} "
+              f"| {m['mean_z']:.3f} ({0.67 / np.sqrt(n):.3f}) | {m['ancestors']:.0f} | {m['rungs']:.0f} "
+              f"| {m['cpu']:.1f} |", flush=True)
+    best = max(r[4]["var_ratio"] for r in rows)
+    pick = min((r for r in rows if r[4]["var_ratio"] >= best - 0.02), key=lambda r: r[4]["mean_z"])
+    print(f"\npick (largest var ratio; within 0.02 of it, smallest mean z): {pick[0]} N = {pick[1]}, "
+          f"{pick[3]} steps x {pick[2]} leapfrogs per rung (var ratio {pick[4]['var_ratio']:.3f}, "
+          f"mean z {pick[4]['mean_z']:.3f})")
+
+
 if __name__ == "__main__":
-    main()
+    if len(sys.argv) == 3 and sys.argv[1] == "--choose":
+        choose(int(sys.argv[2]))
+    else:
+        main()

@@ -29,7 +29,7 @@ between calls (:meth:`WNNRegressor.partial_fit`):
 >>> WNNRegressor(trainer="adam").fit(X, y)
 Traceback (most recent call last):
 ...
-ValueError: unknown trainer 'adam'; valid: 'bp', 'ekf', 'ekf-ensemble', 'epf', 'gsf-ekf', 'gsf-sukf', 'gsf-ukf', 'smc', 'smc-noise', 'spf', 'sukf', 'supf', 'ukf', 'upf'
+ValueError: unknown trainer 'adam'; valid: 'bp', 'ekf', 'ekf-ensemble', 'epf', 'gsf-ekf', 'gsf-sukf', 'gsf-ukf', 'smc', 'smc-noise', 'smc-noise-10x10', 'spf', 'sukf', 'supf', 'ukf', 'upf'
 """
 
 from __future__ import annotations
@@ -570,7 +570,7 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
             plus their weighted ``J P_i J^T``, plus R;
         ``smc``
             the posterior sample's spread of outputs, plus R (fixed by ``measurement_noise``);
-        ``smc-noise``
+        ``smc-noise``, ``smc-noise-10x10``
             the spread of outputs plus each particle's own learned noise ``exp(s_i)``,
             averaged over the particles: the posterior predictive with R learned.
 

@@ -64,6 +64,12 @@ this table; :func:`register_trainer` adds one. The trainers, by name:
     state, with the prior ``N(log 0.1, 2^2)``, and the particles sample the joint posterior of
     the weights and R (``measurement_noise`` is not used). Predictive variance: the spread of
     the particles' outputs plus their mean ``exp(s_i)``.
+``"smc-noise-10x10"``
+    ``"smc-noise"`` with 10 HMC steps of 10 leapfrogs per rung (not 6): the moves that
+    ``benchmarks/smc_posterior_d160.py --choose 6000`` picked with N = 60 at a fixed budget of
+    6000 particle-gradient evaluations per rung (the cloud holds 0.80 of a known d = 160
+    posterior's variance there; 0.39 at ``"smc"``'s N = 20 x 6 steps). Use it with
+    ``n_particles=60``.
 
 ``"auto"`` noise settings (``process_noise`` Q, ``initial_covariance`` P0) are per trainer and
 start (:data:`AUTO_SETTINGS`, from each entry's ``auto``): for the scaled start, what the WNN study chose on a validation
@@ -860,6 +866,9 @@ _SMC = {"Q": 0.0, "P0": 1.0, "output_scale": 1.0, "n_moves": 6, "ess_fraction": 
 # smc-noise: the same sampler with s = log R in the state, prior N(log 0.1, 2^2) (the issue's
 # specification: the paper's R as the median, two e-folds of spread either way); nothing searched
 _SMC_NOISE = dict(_SMC, noise_prior_mean=0.1, noise_prior_sd=2.0)
+# smc-noise-10x10: 10 HMC steps per rung, picked with N = 60 on the d = 160 known posterior at 6000
+# particle-gradient evaluations per rung (benchmarks/smc_posterior_d160_choose6000_results.txt)
+_SMC_NOISE_10X10 = dict(_SMC_NOISE, n_moves=10)
 
 for _spec in (
     TrainerSpec("bp", _BPTrainer, "gradient", {"scaled": {"learning_rate": 0.1}, "paper": {"learning_rate": 0.05}},
@@ -894,6 +903,9 @@ for _spec in (
                 doc="tempered SMC sampler with HMC moves"),
     TrainerSpec("smc-noise", _SMCNoiseTrainer, "smc", {"scaled": dict(_SMC_NOISE), "paper": dict(_SMC_NOISE)},
                 doc="tempered SMC sampler with HMC moves, the noise R learned with the weights"),
+    TrainerSpec("smc-noise-10x10", _SMCNoiseTrainer, "smc",
+                {"scaled": dict(_SMC_NOISE_10X10), "paper": dict(_SMC_NOISE_10X10)},
+                doc="smc-noise with 10 HMC steps of 10 leapfrogs per rung (chosen with N = 60 at d = 160)"),
 ):
     register_trainer(_spec)
 del _spec

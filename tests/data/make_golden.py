@@ -22,7 +22,7 @@ DR_CONFIG = dict(scenarios=("straight", "gpsdr"), n_runs=2, seed=3, n_steps=300)
 def wnn_numbers():
     from filterwnn.studies import wnn
 
-    trainers = [k for k in wnn.ROWS if k not in ("ibis-hmc",)]
+    trainers = list(wnn.ALL_TRAINERS)  # the default rows: the opt-in ibis-hmc and smc-noise-10x10 left out
     res = wnn.run_study(trainers=trainers, **WNN_CONFIG)
     drop = {"fit_time", "fit_time_median", "curve_train", "curve_test"}
     return {

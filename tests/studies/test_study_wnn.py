@@ -201,3 +201,18 @@ def test_renamed_rows_fail_naming_the_row_that_runs_what_they_ran():
             study.run_study(**{**TINY, "trainers": [old]})
     assert study.ROWS["ibis-mala"].trainer == "spf" and study.ROWS["ibis-mala"].fixed == {"move": "mala"}
     assert "ibis-mala" in study.ALL_TRAINERS and "ibis-hmc" not in study.ALL_TRAINERS
+
+
+def test_cli_runs_opt_in_rows_by_name_and_leaves_them_out_by_default():
+    """ibis-hmc and smc-noise-10x10 are opt-in: `--trainers` accepts them, its default omits them."""
+    import argparse
+
+    from filterwnn.studies.wnn.cli import add_arguments
+
+    parser = argparse.ArgumentParser()
+    add_arguments(parser)
+    assert parser.parse_args(["--trainers", "smc-noise-10x10,ibis-hmc"]).trainers == ["smc-noise-10x10", "ibis-hmc"]
+    default = parser.parse_args([]).trainers
+    assert "smc-noise" in default and "smc-noise-10x10" not in default and "ibis-hmc" not in default
+    with pytest.raises(SystemExit):
+        parser.parse_args(["--trainers", "smc-noise-6x10"])

@@ -194,3 +194,19 @@ def test_smc_noise_prior_rejects_non_finite_rows():
     th[1, 3] = np.nan
     lp, grad = target.log_prior_and_grad(th)
     assert np.isfinite(lp[0]) and lp[1] == -np.inf and np.all(grad[1] == 0)
+
+
+def test_smc_noise_10x10_is_smc_noise_with_10_hmc_steps_per_rung():
+    """The protocol-4 row runs smc-noise's sampler with 10 HMC steps of 10 leapfrogs per rung,
+    every other setting smc-noise's (its name promises the moves, nothing else)."""
+    X, y, _, _ = make_siso_benchmark(rng=1)
+    kw = dict(n_hidden=2, n_particles=6, n_epochs=1, random_state=0)
+    long = WNNRegressor(trainer="smc-noise-10x10", **kw).fit(X[:30], y[:30])
+    base = WNNRegressor(trainer="smc-noise", **kw).fit(X[:30], y[:30])
+    assert type(long._final) is type(base._final)
+    assert {k: v for k, v in long.settings_.items() if base.settings_.get(k) != v} == {
+        "n_moves": 10, "trainer": "smc-noise-10x10"}
+    move = long._final.move
+    assert (move.n_steps, move.n_leapfrog) == (10, 10) and base._final.move.n_steps == 6
+    # opt-in: the default study (docs/study-outputs/wnn-default) does not run it
+    assert "smc" in study.ALL_TRAINERS and "smc-noise-10x10" not in study.ALL_TRAINERS

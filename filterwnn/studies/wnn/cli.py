@@ -7,7 +7,7 @@ import time
 
 from .. import options
 from .. import runner
-from .rows import ALL_TRAINERS
+from .rows import ALL_TRAINERS, ROWS
 from .runs import run_study
 from .tables import is_reduced, markdown_table, write_outputs
 
@@ -37,8 +37,10 @@ def add_arguments(parser):
     parser.add_argument("--tune-runs", type=options.nonnegative_int, default=2,
                         help="tuning runs of the settings search on a validation split (default 2; 0: use the "
                              "regressor's AUTO_SETTINGS and all epochs)")
-    parser.add_argument("--trainers", type=options.name_list(ALL_TRAINERS), default=",".join(ALL_TRAINERS),
-                        help=f"comma-separated subset of {', '.join(ALL_TRAINERS)}")
+    opt_in = [k for k in ROWS if k not in ALL_TRAINERS]
+    parser.add_argument("--trainers", type=options.name_list(tuple(ROWS)), default=",".join(ALL_TRAINERS),
+                        help=f"comma-separated rows of {', '.join(ALL_TRAINERS)} (the default), "
+                             f"and the opt-in {', '.join(opt_in)}")
     parser.add_argument("--seed", type=options.seed, default=2026,
                         help="root seed, an integer >= 0 (run i uses SeedSequence(seed).spawn(runs)[i])")
     parser.add_argument("--jobs", type=options.joblib_jobs, default=-1,

@@ -139,6 +139,9 @@ STUDY = {
     "ekf-ensemble": StudyEntry(label="{N} independent EKFs, averaged", copy_settings="gsf-ekf", cost=1),
     "smc": StudyEntry(label="SMC sampler (HMC moves)", epochs=1, cost=40),
     "smc-noise": StudyEntry(label="SMC sampler, noise R learned (HMC moves)", epochs=1, cost=40),
+    # protocol 4 (docs/study-outputs/wnn-protocol4): the moves chosen on the d = 160 known posterior
+    "smc-noise-10x10": StudyEntry(label="SMC sampler, noise R learned (10 HMC steps x 10 leapfrogs per rung)",
+                                  epochs=1, cost=70, default=False),
 }
 
 #: Former row keys -> the row that runs what they ran (:func:`check_row` names it).
