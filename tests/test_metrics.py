@@ -16,3 +16,34 @@ def test_kish_ess_is_the_checked_ess_of_normalised_weights():
 def test_only_the_checked_form_refuses_bad_weights():
     with pytest.raises(ValueError, match="weights must be non-negative"):
         effective_sample_size([0.5, -0.1, 0.6])
+
+
+def _ar1(phi, n, rng):
+    """Unit-variance AR(1) 2-vectors of lag-one correlation ``phi``."""
+    out = [rng.standard_normal(2)]
+    for e in rng.standard_normal((n - 1, 2)):
+        out.append(phi * out[-1] + np.sqrt(1 - phi * phi) * e)
+    return out
+
+
+def test_integrated_autocorrelation_is_1_for_white_and_near_theory_for_ar1():
+    from filterwnn.metrics import integrated_autocorrelation
+
+    rng = np.random.default_rng(1)
+    assert integrated_autocorrelation(list(rng.standard_normal((200, 2)))) == 1.0
+    # AR(1) with phi = 0.8: (1 + phi) / (1 - phi) = 9 (the truncated sum falls a little short)
+    c = integrated_autocorrelation(_ar1(0.8, 2000, rng))
+    assert 6.0 < c < 10.0, c
+
+
+def test_integrated_autocorrelation_pairs_nothing_across_a_break():
+    from filterwnn.metrics import integrated_autocorrelation
+
+    rng = np.random.default_rng(2)
+    # the same vector repeated within each block is perfectly correlated; blocks of 1 are not
+    one_each = []
+    for v in rng.standard_normal((120, 2)):
+        one_each += [v, None]
+    assert integrated_autocorrelation(one_each) == 1.0
+    assert integrated_autocorrelation([None, None, None]) == 1.0
+    assert integrated_autocorrelation([]) == 1.0

@@ -13,7 +13,9 @@ against it), the dead-reckoned displacement
 point along :math:`p_j - p_i` and the odometer's path length :math:`\sum_s \ell_s` must be
 about :math:`|p_j - p_i|` (at least it, a little more on a bend). :func:`check_drive`
 takes the median over the chords of the angle between the two and of the length ratio;
-a median angle over 30 degrees or a ratio outside [0.6, 1.8] is an error that names the
+a median angle over 30 degrees (unless a gyro's drift explains it: a heading right at the
+start whose error grows steadily, by at most 1 deg/s, with the chords within 30 degrees of
+that line) or a ratio outside [0.6, 1.8] is an error that names the
 likely cause when one of the usual mistakes (degrees, counter-clockwise from east, km/h,
 mph, kilometres, milliseconds, swapped lat/lon) would fit the fixes, and says how to
 override (``checks=False``; ``--no-plausibility`` on the command line). A sample interval
@@ -27,12 +29,15 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["check_drive", "MAX_DT", "MAX_ANGLE_DEG", "RATIO_RANGE"]
+__all__ = ["check_drive", "MAX_DT", "MAX_ANGLE_DEG", "MAX_DRIFT_DEG_S", "RATIO_RANGE"]
 
 #: The longest DR sample interval (s) accepted without ``checks=False``.
 MAX_DT = 2.0
 #: The largest median angle (degrees) between the dead-reckoned and the GPS chords.
 MAX_ANGLE_DEG = 30.0
+#: The fastest heading drift (deg/s) taken for a gyro's rate bias rather than a wrong heading:
+#: a MEMS gyro's turn-on bias reaches about 0.7 deg/s.
+MAX_DRIFT_DEG_S = 1.0
 #: The accepted range of the median odometer path length over the GPS chord length.
 RATIO_RANGE = (0.6, 1.8)
 _MIN_CHORDS = 3
@@ -56,6 +61,13 @@ def _chords(steps, z_gps, min_len):
 
 def _scores(heading, step, steps, z_gps, pairs):
     """Median angle (degrees) between the DR and GPS chords, and median path/chord length ratio."""
+    ang, ratio = _chord_angles(heading, step, steps, z_gps, pairs)
+    return float(np.degrees(np.median(np.abs(ang)))), float(np.median(ratio))
+
+
+def _chord_angles(heading, step, steps, z_gps, pairs):
+    """Per chord, the signed angle (rad, in ``[-pi, pi)``) from the GPS chord to the DR one, and
+    the path/chord length ratio."""
     cum_e = np.r_[0.0, np.cumsum(step * np.sin(heading[1:]))]
     cum_n = np.r_[0.0, np.cumsum(step * np.cos(heading[1:]))]
     cum_l = np.r_[0.0, np.cumsum(step)]
@@ -64,9 +76,21 @@ def _scores(heading, step, steps, z_gps, pairs):
     dr = np.stack([cum_e[b] - cum_e[a], cum_n[b] - cum_n[a]], axis=1)
     gps = np.stack([z_gps[j] - z_gps[i] for i, j in pairs])
     ang = np.arctan2(dr[:, 0], dr[:, 1]) - np.arctan2(gps[:, 0], gps[:, 1])
-    ang = np.abs((ang + np.pi) % (2 * np.pi) - np.pi)
     ratio = (cum_l[b] - cum_l[a]) / np.hypot(gps[:, 0], gps[:, 1])
-    return float(np.degrees(np.median(ang))), float(np.median(ratio))
+    return (ang + np.pi) % (2 * np.pi) - np.pi, ratio
+
+
+def _drifting_gyro(heading, step, steps, z_gps, pairs, dt):
+    """Whether a gyro's drift explains the chords' angles: a heading right at the start whose
+    error grows at a steady rate (an integrated rate bias, up to :data:`MAX_DRIFT_DEG_S`),
+    about which the chords scatter by at most :data:`MAX_ANGLE_DEG` (median)."""
+    ang, _ = _chord_angles(heading, step, steps, z_gps, pairs)
+    ang = np.unwrap(ang)
+    t = dt * np.array([0.5 * (steps[i] + steps[j]) for i, j in pairs])
+    rate, offset = np.polyfit(t - t[0], ang, 1)
+    resid = np.degrees(np.median(np.abs(ang - offset - rate * (t - t[0]))))
+    return (abs(np.degrees(offset)) <= MAX_ANGLE_DEG and abs(np.degrees(rate)) <= MAX_DRIFT_DEG_S
+            and resid <= MAX_ANGLE_DEG)
 
 
 def _fits(angle, ratio):
@@ -155,7 +179,7 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
     if len(pairs) < _MIN_CHORDS:
         return
     angle, ratio = _scores(heading, step, steps, z_gps, pairs)
-    if _fits(angle, ratio):
+    if _fits(angle, ratio) or (_fits(0.0, ratio) and _drifting_gyro(heading, step, steps, z_gps, pairs, dt)):
         return
     found = (f"median over {len(pairs)} moving stretches between GPS fixes: the dead-reckoned track is "
              f"{angle:.0f} degrees off the fixes' course and {ratio:.3g} times their distance")

@@ -45,6 +45,17 @@ def test_a_plain_drive_passes_and_the_sample_drive_too(tmp_path):
     read_drive_csv(sample_drive_path())  # checks on
 
 
+def test_a_drifting_gyro_passes_and_a_wrong_heading_zero_does_not(tmp_path):
+    """21 minutes of a 0.05 deg/s rate bias integrated (63 degrees at the end, a median chord
+    angle over 30) is a gyro's drift the filters estimate; a constant 60 degree offset is not."""
+    cols = _drive(n=1261, dt=1.0, turn=0.02)
+    drift = {**cols, "heading": np.mod(cols["heading"] + np.deg2rad(0.05) * cols["time"], 2 * np.pi)}
+    read_drive_csv(_write(tmp_path / "drift.csv", drift))
+    wrong = {**cols, "heading": np.mod(cols["heading"] + np.deg2rad(60.0), 2 * np.pi)}
+    with pytest.raises(ValueError, match="degrees off the fixes' course"):
+        read_drive_csv(_write(tmp_path / "zero.csv", wrong))
+
+
 def _swap(cols, *pairs):
     out = dict(cols)
     for a, b in pairs:
