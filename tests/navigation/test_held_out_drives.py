@@ -71,11 +71,11 @@ def scored(request, tmp_path_factory):
 @pytest.mark.parametrize("kind", KINDS8)
 def test_every_8_state_kind_meets_the_issue_threshold(scored, kind):
     name, res = scored
-    if (name, kind) in MISSED:
-        pytest.xfail(MISSED[name, kind])
     med, worst = TARGETS[name]
     e = res[kind]
     assert np.all(np.isfinite(res["end_xy"][kind]))
+    if (name, kind) in MISSED and not (np.median(e) <= med and e.max() <= worst):
+        pytest.xfail(MISSED[name, kind])  # still missed: said with its number; met, it passes
     assert np.median(e) <= med, (name, kind, np.median(e))
     assert e.max() <= worst, (name, kind, e.max())
 
