@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import numpy as np
 from scipy.linalg import solve_triangular
+from scipy.linalg.lapack import dpotrf
 
 from ._validation import NumericalError, cholesky_lower
 
@@ -39,6 +40,7 @@ __all__ = [
     "STAIRCASE_LOOP_ABOVE_N",
     "cholesky",
     "cholesky_lower",
+    "cholesky_lower_raw",
     "first_not_pd",
     "not_pd_error",
     "smallest_eigenvalue",
@@ -119,6 +121,31 @@ def cholesky(P, name, step=None, remedy=None):
     L = cholesky_lower(P)
     if L is None:
         raise not_pd_error(name, P, step, remedy)
+    return L
+
+
+def cholesky_lower_raw(P, name, step=None, remedy=None):
+    """LAPACK's lower Cholesky factor of one ``(n, n)`` ``P``, uncleaned, or :class:`NumericalError`.
+
+    One ``dpotrf`` call: numpy's ``cholesky`` and scipy's ``clean=True`` then zero the
+    strict upper triangle, a strided pass that at n = 160 costs about as much as the
+    factorisation. Here it is left as it was: the result (F-ordered) holds ``L`` in its
+    lower triangle and ``P``'s entries above it, so read its lower triangle only (its
+    ``.T`` is the upper factor in C order, to be read above the diagonal).
+
+    LAPACK stops at a non-positive pivot but lets a NaN through. Every entry of row ``i``
+    enters the pivot as a square (``L_ii^2 = P_ii - sum_k L_ik^2``), so a NaN or an
+    infinity anywhere in ``L`` stops the factorisation or makes a pivot NaN: checking the
+    diagonal checks the factor, in O(n). The error is :func:`cholesky`'s.
+
+    >>> L = cholesky_lower_raw(np.array([[4.0, 2.0], [2.0, 5.0]]), "P")
+    >>> np.tril(L)
+    array([[2., 0.],
+           [1., 2.]])
+    """
+    L, info = dpotrf(P, lower=1, clean=0)
+    if info != 0 or not np.isfinite(np.diagonal(L)).all():
+        raise not_pd_error(name, np.asarray(P, dtype=float), step, remedy)
     return L
 
 

@@ -396,3 +396,19 @@ def test_kept_sigma_buffers_leave_a_restored_sigmas_f_intact():
     ukf.update(np.array([0.2]))
     want = prior_x + sigma_deviations(pts, np.linalg.cholesky(prior_P).T)
     assert ukf.sigmas_f is not kept and np.array_equal(ukf.sigmas_f, want)
+
+
+@pytest.mark.parametrize("name", ["merwe", "simplex"])
+def test_update_after_compute_process_sigmas_uses_the_propagated_points(name):
+    # filterpy's update takes P_xz from sigmas_f - x; after compute_process_sigmas with an fx
+    # the vectorized step's kept deviations are those of the unpropagated points, and the
+    # gain differed from loop mode's by up to 0.19 before they were dropped there
+    Ks = []
+    for vectorized in (False, True):
+        ukf = make(UnscentedKalmanFilter, POINTS[name](), vectorized)
+        ukf.predict()
+        ukf.update(np.array([1.0, 0.5]))
+        ukf.compute_process_sigmas(ukf._dt)
+        ukf.update(np.array([1.2, 0.4]))
+        Ks.append(ukf.K)
+    np.testing.assert_allclose(Ks[1], Ks[0], rtol=1e-10, atol=1e-12)
