@@ -171,15 +171,21 @@ def repair_pd(C):
     return C, n_bad
 
 
-def gaussian_logpdf_chol(d, L):
-    """``log N(d_i; 0, L L^T)`` for the rows of ``d (m, k)`` and one lower factor ``L (k, k)``."""
+def gaussian_logpdf_chol(d, L, half_logdet=None):
+    """``log N(d_i; 0, L L^T)`` for the rows of ``d (m, k)`` and one lower factor ``L (k, k)``.
+
+    ``half_logdet``, when given, is ``np.sum(np.log(np.diag(L)))`` computed once (a factor
+    kept across steps, :class:`NoiseFactor`): the same number, not recomputed per call.
+    """
     k = d.shape[1]
     if k == 1:
         e2 = (d[:, 0] / L[0, 0]) ** 2
     else:
         e = solve_triangular(L, d.T, lower=True, check_finite=False)
         e2 = np.sum(e * e, axis=0)
-    return -0.5 * e2 - np.sum(np.log(np.diag(L))) - 0.5 * k * LOG_2PI
+    if half_logdet is None:
+        half_logdet = np.sum(np.log(np.diag(L)))
+    return -0.5 * e2 - half_logdet - 0.5 * k * LOG_2PI
 
 
 class NoiseFactor:
@@ -213,6 +219,7 @@ class NoiseFactor:
         self.L = cholesky_lower(M)
         if self.L is not None:
             self.rank, self.full_rank, self.sqrt, self.G = n, True, self.L, self.L
+            self._half_logdet = np.sum(np.log(np.diag(self.L)))
             return
         ev, V = np.linalg.eigh(0.5 * (M + M.T))
         top = max(float(ev.max()), 0.0)
@@ -236,7 +243,7 @@ class NoiseFactor:
         Raises :class:`NumericalError` naming the step when a row lies off the support.
         """
         if self.full_rank:
-            return gaussian_logpdf_chol(d, self.L)
+            return gaussian_logpdf_chol(d, self.L, getattr(self, "_half_logdet", None))  # (older pickles)
         c = d @ self._V  # (m, r) coordinates on the support
         off = d - c @ self._V.T
         off_norm = np.sqrt(np.sum(off * off, axis=1))

@@ -9,6 +9,8 @@ unpickling and run ``batch_filter`` the same way.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from .resampling import get_scheme
@@ -25,10 +27,10 @@ def logsumexp(a):
     >>> logsumexp(np.log([1.0, 3.0]))
     1.3862943611198906
     """
-    m = np.max(a)
-    if not np.isfinite(m):
+    m = a.max()  # the array methods: the same reductions without numpy's Python wrappers
+    if not math.isfinite(m):
         return float(m)
-    return float(m + np.log(np.sum(np.exp(a - m))))
+    return float(m + np.log(np.exp(a - m).sum()))
 
 
 class ModelAttribute:

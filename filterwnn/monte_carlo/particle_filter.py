@@ -109,6 +109,17 @@ class DegeneracyWarning(RuntimeWarning):
     what to try."""
 
 
+_UNIFORM = {}  # n -> the kept np.full(n, -log n) that _uniform_log_weights copies
+
+
+def _uniform_log_weights(n):
+    """``np.full(n, -np.log(n))`` (equal weights), a copy of an array kept per ``n``."""
+    kept = _UNIFORM.get(n)
+    if kept is None:
+        kept = _UNIFORM[n] = np.full(n, -np.log(n))
+    return kept.copy()
+
+
 def _flag(value, name):
     if not isinstance(value, (bool, np.bool_)):
         raise TypeError(f"{name} must be a bool, got {type(value).__name__}")
@@ -298,7 +309,7 @@ class ParticleFilter(WeightedMixtureFilter):
         self._filterpy_defaults()
         self.particles = None
         self.covariances = None
-        self.log_weights = np.full(self.n_particles, -np.log(self.n_particles))
+        self.log_weights = _uniform_log_weights(self.n_particles)
         self._prediction = None
         self.step = 0
         self.log_likelihood = np.nan
@@ -430,7 +441,7 @@ class ParticleFilter(WeightedMixtureFilter):
         self.particles = X.copy()
         self.covariances = C
         self.ancestors = np.arange(self.n_particles)
-        self.log_weights = np.full(self.n_particles, -np.log(self.n_particles))
+        self.log_weights = _uniform_log_weights(self.n_particles)
         self._prediction = None
         self._x, self._P = self._moments(self._sync_model(), self.particles, self.weights)
         self.x_post, self.P_post = self._x.copy(), self._P.copy()
@@ -455,7 +466,9 @@ class ParticleFilter(WeightedMixtureFilter):
         x = model.mean_x(X, w)
         d = model.residual_x_rows(X, x[None, :])
         P = (d.T * w) @ d
-        return x, 0.5 * (P + P.T)
+        if P.shape[0] > 1:  # a 1x1 P is its own symmetric part, bit for bit
+            P = 0.5 * (P + P.T)
+        return x, P
 
     def _degeneracy_remedy(self):
         if isinstance(self.proposal, PriorProposal):
@@ -599,7 +612,7 @@ class ParticleFilter(WeightedMixtureFilter):
             idx = self._resample(w, self.rng, self.n_particles)
             X = X[idx]
             covs = None if covs is None else covs[idx]
-            log_w = np.full(self.n_particles, -np.log(self.n_particles))
+            log_w = _uniform_log_weights(self.n_particles)
             n_distinct = int(np.count_nonzero(np.bincount(idx, minlength=self.n_particles)))
             self.ancestors = self.ancestors[idx]
             if self.move is not None:
