@@ -684,10 +684,10 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         """
         given = R is not None
         R = self.R if R is None else R
-        if isinstance(R, numbers.Real):
+        if type(R) is not np.ndarray and isinstance(R, numbers.Real):  # (an ABC check: skipped for arrays)
             R = np.eye(self._dim_z if not given else np.size(z)) * R
         R = np.asarray(R, dtype=float)
-        z = np.atleast_1d(z)
+        z = z.reshape(1) if z.ndim == 0 else z  # np.atleast_1d of the array update made
         m = self._dim_z if not given else (R.shape[0] if R.ndim == 2 else self._dim_z)
         if z.size == m and z.ndim > 1:
             z = z.reshape(m)
