@@ -43,7 +43,9 @@ def rolls_back_on_error(method):
     Restored: every attribute's binding (``self.__dict__``), the bindings of the parts the
     class names in ``_rollback_parts`` (owned objects it steps, e.g. a filter bank), the length
     of every list attribute (appended entries are removed; entries changed in place are not
-    undone) and the state of ``self.rng``'s bit generator when there is one.
+    undone) and the state of ``self.rng``'s bit generator when there is one. A class that
+    names its list attributes in ``_rollback_lists`` (its histories) has only those
+    truncated, without a scan of every attribute per call.
     """
 
     @functools.wraps(method)
@@ -52,7 +54,11 @@ def rolls_back_on_error(method):
         names = getattr(self, "_rollback_parts", ())
         parts = {name: dict(saved[name].__dict__) for name in names
                  if getattr(saved.get(name), "__dict__", None) is not None} if names else {}
-        lengths = [(v, len(v)) for v in saved.values() if isinstance(v, list)]
+        lists = getattr(self, "_rollback_lists", None)
+        if lists is None:
+            lengths = [(v, len(v)) for v in saved.values() if isinstance(v, list)]
+        else:
+            lengths = [(v, len(v)) for v in map(saved.get, lists) if isinstance(v, list)]
         bits = getattr(saved.get("rng"), "bit_generator", None)
         rng_state = None if bits is None else bits.state
         try:

@@ -126,6 +126,8 @@ class WeightedMixtureFilter:
             )
 
     _keep_history = True
+    #: The list attributes a failed step truncates back (``filterwnn._state.rolls_back_on_error``).
+    _rollback_lists = ("ess_history", "n_distinct_history", "resampled_history")
 
     @property
     def keep_history(self):
