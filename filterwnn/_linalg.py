@@ -29,6 +29,8 @@ filterwnn._validation.NumericalError: a particle lies off the support of the sin
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from scipy.linalg import solve_triangular
 from scipy.linalg.lapack import dpotrf
@@ -136,7 +138,9 @@ def cholesky_lower_raw(P, name, step=None, remedy=None):
     LAPACK stops at a non-positive pivot but lets a NaN through. Every entry of row ``i``
     enters the pivot as a square (``L_ii^2 = P_ii - sum_k L_ik^2``), so a NaN or an
     infinity anywhere in ``L`` stops the factorisation or makes a pivot NaN: checking the
-    diagonal checks the factor, in O(n). The error is :func:`cholesky`'s.
+    diagonal checks the factor, in O(n), here by its trace (each pivot is positive and at most
+    ``sqrt`` of the largest float, so the sum is finite exactly when every pivot is). The
+    error is :func:`cholesky`'s.
 
     >>> L = cholesky_lower_raw(np.array([[4.0, 2.0], [2.0, 5.0]]), "P")
     >>> np.tril(L)
@@ -144,7 +148,7 @@ def cholesky_lower_raw(P, name, step=None, remedy=None):
            [1., 2.]])
     """
     L, info = dpotrf(P, lower=1, clean=0)
-    if info != 0 or not np.isfinite(np.diagonal(L)).all():
+    if info != 0 or not math.isfinite(L.trace()):
         raise not_pd_error(name, np.asarray(P, dtype=float), step, remedy)
     return L
 
