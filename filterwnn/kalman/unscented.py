@@ -720,7 +720,8 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             zp, S = UT(self.sigmas_h, self.Wm, self.Wc, R, self.z_mean, self.residual_z)
             dz = self._residual("residual_z", self.residual_z, self.sigmas_h, zp)
         Pxz = self._cross_covariance(sig, dz)
-        S = 0.5 * (S + S.T)
+        if S.shape != (1, 1):  # a 1x1 S is its own symmetric part, bit for bit
+            S = 0.5 * (S + S.T)
         self.S = S
         self.SI, self.K, u = self._gain(S, Pxz)
         self.y = self.residual_z(z.reshape(np.shape(zp)), zp)
