@@ -176,6 +176,37 @@ def fast_unscented_transform(sigmas, Wm, Wc, noise_cov=None):
     return x, P
 
 
+class _Watched:
+    """``x`` and ``P`` of :class:`UnscentedKalmanFilter`: compared only when they may have changed.
+
+    The value lives in ``_<name>_now``; ``_<name>_out`` says whether anyone outside the filter
+    may hold it (it was assigned, or read since the filter made it). A value the filter made
+    in its last step and nobody has read since cannot have been edited, so the next step skips
+    its comparison. Its first read keeps a copy (``_mark``) before handing it out, so an edit in
+    place through that reference is seen at the next step like an assignment.
+    """
+
+    def __set_name__(self, owner, name):
+        self.name, self.now, self.out = name, f"_{name}_now", f"_{name}_out"
+
+    def __get__(self, obj, objtype=None):
+        if obj is None:
+            return self
+        d = obj.__dict__
+        try:
+            value = d[self.now]
+        except KeyError:
+            raise AttributeError(self.name) from None
+        if not d.get(self.out, True):
+            obj._mark(self.name, value)
+            d[self.out] = True
+        return value
+
+    def __set__(self, obj, value):
+        obj.__dict__[self.now] = value
+        obj.__dict__[self.out] = True
+
+
 class UnscentedKalmanFilter(_FilterpyUKF):
     """filterpy's ``UnscentedKalmanFilter`` with ``vectorized=``, ``fx=None`` and clear errors.
 
@@ -220,8 +251,12 @@ class UnscentedKalmanFilter(_FilterpyUKF):
     copy it to keep it past the next two draws, as with filterpy, whose ``predict``
     fills ``sigmas_f`` in place. ``x``, ``P``, ``Q`` and ``R`` are validated when their
     values change (compared with private copies, so an edit in place is seen like an
-    assignment), not on every step.
+    assignment), not on every step; an ``x`` or ``P`` the vectorized step made and nobody
+    has read since is not even compared (it cannot have changed).
     """
+
+    x = _Watched()
+    P = _Watched()
 
     def __init__(self, dim_x, dim_z, dt, hx, fx, points, sqrt_fn=None, x_mean_fn=None, z_mean_fn=None,
                  residual_x=None, residual_z=None, state_add=None, vectorized=False):
@@ -247,6 +282,12 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         self._checked = {}  # role -> the residual/mean callable already checked on arrays
         self._work = {}  # constant-shaped work arrays of the vectorized step (see _sigmas)
 
+    def __setstate__(self, state):
+        for name in ("x", "P"):  # a pickle from before x and P were watched
+            if name in state:
+                state[f"_{name}_now"], state[f"_{name}_out"] = state.pop(name), True
+        self.__dict__.update(state)
+
     # ------------------------------------------------------------------ helpers
     def _fast_points(self):
         """True when sigma points may be built as x + sigma_deviations(chol(P))."""
@@ -258,7 +299,8 @@ class UnscentedKalmanFilter(_FilterpyUKF):
 
     def _check_state(self, when, check_Q=False):
         """Shapes, finiteness and symmetry of ``x``, ``P`` (and ``Q``); ``when`` is for messages."""
-        x, P, n = self.x, self.P, self._dim_x
+        d = self.__dict__  # the values themselves: reading x or P would hand them out
+        x, P, n = d["_x_now"], d["_P_now"], self._dim_x
         if np.shape(x) != (n,):
             raise ValueError(f"x must have shape ({n},), got {np.shape(x)}")
         for name, M in (("P", P), ("Q", self.Q)):
@@ -270,7 +312,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         # identity, so an edit in place (P *= 4, P[0, 2] += 0.5) is seen like an
         # assignment; it also makes the cached factor and the update's sigma points stale
         # (both modes redraw them).
-        P_same = self._unchanged("P", P)
+        P_same = not d["_P_out"] or self._unchanged("P", P)
         if not (np.isfinite(x).all() and (P_same or np.isfinite(P).all())):
             raise NumericalError(
                 f"x and P must be finite {when}; set them again (x_post and P_post hold the "
@@ -280,7 +322,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             self._chol = None
             self._sigmas_stale = True
             self._mark("P", P)
-        if not self._unchanged("x", x):
+        if d["_x_out"] and not self._unchanged("x", x):
             self._sigmas_stale = True
             self._mark("x", x)
         if check_Q and not self._unchanged("Q", self.Q):
@@ -408,8 +450,8 @@ class UnscentedKalmanFilter(_FilterpyUKF):
     # References suffice: this class never writes into these arrays in place, it rebinds
     # them (its predict does not call filterpy's, which fills sigmas_f in place); the kept
     # buffers (_sigma_buffer, _draw) are refilled only by a draw, which a restore marks stale.
-    _SNAPSHOT = ("x", "P", "x_prior", "P_prior", "x_post", "P_post", "sigmas_f", "sigmas_h",
-                 "K", "y", "z", "S", "SI", "_sigmas_stale", "_deviations", "_half",
+    _SNAPSHOT = ("_x_now", "_P_now", "_x_out", "_P_out", "x_prior", "P_prior", "x_post", "P_post",
+                 "sigmas_f", "sigmas_h", "K", "y", "z", "S", "SI", "_sigmas_stale", "_deviations", "_half",
                  "_log_likelihood", "_likelihood", "_mahalanobis", "step", "_chol")
     _GET_SNAPSHOT = operator.attrgetter(*_SNAPSHOT)  # one C call: a tuple in that order
 
@@ -535,13 +577,14 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         dt = self._dt if dt is None else check_positive(dt, "dt")
         fx = self.fx if fx is None else fx
         snap = self._snapshot()
+        before = (self._x_now, self._P_now)
         self.step += 1
         try:
             if fx is None:  # random walk: no sigma points here
-                self.P = self.P + self.Q
-                self.x = self.x.copy()
+                self.P = self._P_now + self.Q
+                self.x = self._x_now.copy()
             else:
-                sigmas = self._sigmas(self.x, self.P, "P")
+                sigmas = self._sigmas(self._x_now, self._P_now, "P")
                 self.sigmas_f = self._call(fx, sigmas, "fx", self._dim_x, dt, **fx_args)
                 if self.vectorized and UT is None:
                     self.x, self.P, _ = self._vectorized_ut(
@@ -573,13 +616,13 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             raise
         self.x_prior = np.copy(self.x)
         self.P_prior = np.copy(self.P)
-        self._mark("P", self.P)
-        self._mark("x", self.x)
+        made = self.vectorized and UT is None and self.x_mean is None  # this class's arithmetic made x
+        self._settle_state(before, fx is None or made, fx is None or self.vectorized)
 
     def compute_process_sigmas(self, dt, fx=None, **fx_args):
         """filterpy's helper: ``sigmas_f`` = the sigma points passed through ``fx``."""
         fx = self.fx if fx is None else fx
-        sigmas = self._sigmas(self.x, self.P, "P")
+        sigmas = self._sigmas(self._x_now, self._P_now, "P")
         if fx is None:
             self.sigmas_f = sigmas
         else:  # the draw's deviations are not those of fx's points: the update uses sigmas_f - x
@@ -599,8 +642,8 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         """
         if z is None:
             self.z = np.array([[None] * self._dim_z]).T
-            self.x_post = self.x.copy()
-            self.P_post = self.P.copy()
+            self.x_post = self._x_now.copy()
+            self.P_post = self._P_now.copy()
             return
         try:
             z_arr = np.asarray(z, dtype=float)
@@ -613,9 +656,10 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         self._check_state(f"at step {self.step} (update)")
         z_arr, R = self._check_measurement(z_arr, R)
         snap = self._snapshot()
+        before = (self._x_now, self._P_now)
         try:
             if self._sigmas_stale:
-                self.sigmas_f = self._sigmas(self.x, self.P, "P")
+                self.sigmas_f = self._sigmas(self._x_now, self._P_now, "P")
                 self._sigmas_stale = False
             if not self.vectorized:
                 hx = self.hx if hx is None else hx
@@ -641,8 +685,19 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             raise
         self._sigmas_stale = True
         self._chol = None
-        self._mark("P", self.P)
-        self._mark("x", self.x)
+        self._settle_state(before, self.vectorized and self.state_add is np.add, self.vectorized)
+
+    def _settle_state(self, before, fresh_x, fresh_P):
+        """After a step: an ``x`` or ``P`` it made (``fresh_*``, not ``before``'s object) is
+        held by nobody outside, so the next step skips its comparison (:class:`_Watched`);
+        any other is kept as a copy to compare with."""
+        d = self.__dict__
+        for name, fresh, old in (("x", fresh_x, before[0]), ("P", fresh_P, before[1])):
+            value = d[f"_{name}_now"]
+            if fresh and value is not old:
+                d[f"_{name}_out"] = False
+            else:
+                self._mark(name, value)
 
     def _loop_update(self, z, R, hx, **hx_args):
         """filterpy's ``update`` (UT and cross variance at their defaults): the same
@@ -725,11 +780,11 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         self.S = S
         self.SI, self.K, u = self._gain(S, Pxz)
         self.y = self.residual_z(z.reshape(np.shape(zp)), zp)
-        self.x = self.state_add(self.x, self.K @ self.y)
+        self.x = self.state_add(self._x_now, self.K @ self.y)
         if u is not None:  # 1x1 S: K S K^T = u u^T, a rank-1 downdate symmetric by construction
-            self.P = _downdate(self.P, u)
+            self.P = _downdate(self._P_now, u)
         else:
-            P = self.P - self.K @ S @ self.K.T
+            P = self._P_now - self.K @ S @ self.K.T
             self.P = 0.5 * (P + P.T)
         self._store_posterior(z)
 
@@ -741,7 +796,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             return self._half.T @ (wdz[1 : n + 1] - wdz[n + 1 :])
         if self.residual_x is np.subtract and self._deviations is not None:
             return self._deviations.T @ wdz
-        return self._residual("residual_x", self.residual_x, sig, self.x).T @ wdz
+        return self._residual("residual_x", self.residual_x, sig, self._x_now).T @ wdz
 
     def _gain(self, S, Pxz):
         """``(S^-1, K = P_xz S^-1, u)``, ``u = P_xz / sqrt(s)`` for a 1x1 ``S = [[s]]`` (else None).

@@ -412,3 +412,32 @@ def test_update_after_compute_process_sigmas_uses_the_propagated_points(name):
         ukf.update(np.array([1.2, 0.4]))
         Ks.append(ukf.K)
     np.testing.assert_allclose(Ks[1], Ks[0], rtol=1e-10, atol=1e-12)
+
+
+@pytest.mark.parametrize("vectorized", [False, True])
+def test_an_edit_through_a_reference_kept_across_a_failed_update_is_seen(vectorized):
+    # the vectorized step skips comparing an x or P nobody read since it made them; a read
+    # hands the value out, and a failed update must not forget that it was
+    ukf = make(UnscentedKalmanFilter, POINTS["merwe"](), vectorized)
+    ukf.predict(); ukf.update(np.array([1.2, 0.1]))
+    ukf.predict()
+    P = ukf.P
+    with pytest.raises(NumericalError, match="S is not positive definite"):
+        ukf.update(np.array([1.2, 0.1]), R=-10 * np.eye(2))
+    P[0, 2] += 0.5
+    with pytest.raises(ValueError, match=r"P must be symmetric; max \|P - P.T\| = 0.5"):
+        ukf.update(np.array([1.2, 0.1]))
+
+
+def test_a_pickle_from_before_x_and_P_were_watched_loads():
+    ukf = make(UnscentedKalmanFilter, POINTS["merwe"](), True)
+    ukf.predict(); ukf.update(np.array([1.2, 0.1]))
+    state = pickle.loads(pickle.dumps(ukf)).__dict__.copy()
+    for name in ("x", "P"):  # the old layout: plain attributes
+        state[name] = state.pop(f"_{name}_now")
+        del state[f"_{name}_out"]
+    old = UnscentedKalmanFilter.__new__(UnscentedKalmanFilter)
+    old.__setstate__(state)
+    old.predict(); old.update(np.array([1.0, 0.2]))
+    ukf.predict(); ukf.update(np.array([1.0, 0.2]))
+    np.testing.assert_array_equal(old.x, ukf.x)
