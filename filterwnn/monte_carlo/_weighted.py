@@ -147,11 +147,13 @@ class WeightedMixtureFilter:
         keep = self._keep_history
         if keep is False:
             return
-        for hist, v in ((self.ess_history, self.ess), (self.n_distinct_history, self.n_distinct),
-                        (self.resampled_history, bool(resampled))):
-            hist.append(v)
-            if keep is not True and len(hist) > keep:
-                del hist[: len(hist) - keep]
+        self.ess_history.append(self.ess)
+        self.n_distinct_history.append(self.n_distinct)
+        self.resampled_history.append(bool(resampled))
+        if keep is not True:
+            for hist in (self.ess_history, self.n_distinct_history, self.resampled_history):
+                if len(hist) > keep:
+                    del hist[: len(hist) - keep]
 
     def __getstate__(self):
         state = self.__dict__.copy()

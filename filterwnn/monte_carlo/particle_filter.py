@@ -61,6 +61,7 @@ dynamic Bayesian models", JRSS B 63, 2001.
 from __future__ import annotations
 
 import inspect
+import math
 import warnings
 
 import numpy as np
@@ -632,8 +633,8 @@ class ParticleFilter(WeightedMixtureFilter):
         """
         lw_prev = self.log_weights
         new_lw = lw_prev + log_alpha if self.tempering == 1.0 else lw_prev + self.tempering * log_alpha
-        lse = logsumexp(new_lw)
-        if not np.isfinite(lse):
+        lse = logsumexp(new_lw)  # a float
+        if not math.isfinite(lse):
             if self._weights_failed(model, step, log_alpha, log_lik):
                 return None
         log_lik_step = lse if self.tempering == 1.0 else logsumexp(lw_prev + log_alpha)
