@@ -176,8 +176,11 @@ def fast_unscented_transform(sigmas, Wm, Wc, noise_cov=None):
     return x, P
 
 
-class _Watched:
+class _Watched(property):
     """``x`` and ``P`` of :class:`UnscentedKalmanFilter`: compared only when they may have changed.
+
+    A ``property`` (subclass), so that tools which look for a filter's properties, as
+    filterpy's ``Saver``, still record ``x`` and ``P``.
 
     The value lives in ``_<name>_now``; ``_<name>_out`` says whether anyone outside the filter
     may hold it (it was assigned, or read since the filter made it). A value the filter made

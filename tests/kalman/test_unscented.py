@@ -441,3 +441,18 @@ def test_a_pickle_from_before_x_and_P_were_watched_loads():
     old.predict(); old.update(np.array([1.0, 0.2]))
     ukf.predict(); ukf.update(np.array([1.0, 0.2]))
     np.testing.assert_array_equal(old.x, ukf.x)
+
+
+@pytest.mark.parametrize("vectorized", [False, True])
+def test_filterpys_saver_records_x_and_P_at_every_step(vectorized):
+    from filterpy.common import Saver
+
+    ukf = make(UnscentedKalmanFilter, POINTS["merwe"](), vectorized)
+    saver, xs, Ps = Saver(ukf), [], []
+    for z in simulate(5):
+        ukf.predict(); ukf.update(z)
+        saver.save()
+        xs.append(ukf.x.copy()); Ps.append(ukf.P.copy())
+    saver.to_array()
+    np.testing.assert_array_equal(saver.x, np.array(xs))
+    np.testing.assert_array_equal(saver.P, np.array(Ps))
