@@ -29,8 +29,11 @@ filterwnn._validation.NumericalError: a particle lies off the support of the sin
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from scipy.linalg import solve_triangular
+from scipy.linalg.lapack import dpotrf
 
 from ._validation import NumericalError, cholesky_lower
 
@@ -42,6 +45,7 @@ __all__ = [
     "cholesky",
     "cholesky_columns",
     "cholesky_lower",
+    "cholesky_lower_raw",
     "columns_layout",
     "first_not_pd",
     "not_pd_error",
@@ -204,6 +208,33 @@ def cholesky(P, name, step=None, remedy=None):
     return L
 
 
+def cholesky_lower_raw(P, name, step=None, remedy=None):
+    """LAPACK's lower Cholesky factor of one ``(n, n)`` ``P``, uncleaned, or :class:`NumericalError`.
+
+    One ``dpotrf`` call: numpy's ``cholesky`` and scipy's ``clean=True`` then zero the
+    strict upper triangle, a strided pass that at n = 160 costs about as much as the
+    factorisation. Here it is left as it was: the result (F-ordered) holds ``L`` in its
+    lower triangle and ``P``'s entries above it, so read its lower triangle only (its
+    ``.T`` is the upper factor in C order, to be read above the diagonal).
+
+    LAPACK stops at a non-positive pivot but lets a NaN through. Every entry of row ``i``
+    enters the pivot as a square (``L_ii^2 = P_ii - sum_k L_ik^2``), so a NaN or an
+    infinity anywhere in ``L`` stops the factorisation or makes a pivot NaN: checking the
+    diagonal checks the factor, in O(n), here by its trace (each pivot is positive and at most
+    ``sqrt`` of the largest float, so the sum is finite exactly when every pivot is). The
+    error is :func:`cholesky`'s.
+
+    >>> L = cholesky_lower_raw(np.array([[4.0, 2.0], [2.0, 5.0]]), "P")
+    >>> np.tril(L)
+    array([[2., 0.],
+           [1., 2.]])
+    """
+    L, info = dpotrf(P, lower=1, clean=0)
+    if info != 0 or not math.isfinite(L.trace()):
+        raise not_pd_error(name, np.asarray(P, dtype=float), step, remedy)
+    return L
+
+
 def repair_pd(C):
     """Copy of the stack ``C (N, n, n)`` with every non-PD matrix's eigenvalues clipped to
     ``1e-12`` times the largest. Returns the repaired stack and the number changed."""
@@ -226,15 +257,21 @@ def repair_pd(C):
     return C, n_bad
 
 
-def gaussian_logpdf_chol(d, L):
-    """``log N(d_i; 0, L L^T)`` for the rows of ``d (m, k)`` and one lower factor ``L (k, k)``."""
+def gaussian_logpdf_chol(d, L, half_logdet=None):
+    """``log N(d_i; 0, L L^T)`` for the rows of ``d (m, k)`` and one lower factor ``L (k, k)``.
+
+    ``half_logdet``, when given, is ``np.sum(np.log(np.diag(L)))`` computed once (a factor
+    kept across steps, :class:`NoiseFactor`): the same number, not recomputed per call.
+    """
     k = d.shape[1]
     if k == 1:
         e2 = (d[:, 0] / L[0, 0]) ** 2
     else:
         e = solve_triangular(L, d.T, lower=True, check_finite=False)
         e2 = np.sum(e * e, axis=0)
-    return -0.5 * e2 - np.sum(np.log(np.diag(L))) - 0.5 * k * LOG_2PI
+    if half_logdet is None:
+        half_logdet = np.sum(np.log(np.diag(L)))
+    return -0.5 * e2 - half_logdet - 0.5 * k * LOG_2PI
 
 
 class NoiseFactor:
@@ -268,6 +305,7 @@ class NoiseFactor:
         self.L = cholesky_lower(M)
         if self.L is not None:
             self.rank, self.full_rank, self.sqrt, self.G = n, True, self.L, self.L
+            self._half_logdet = np.sum(np.log(np.diag(self.L)))
             return
         ev, V = np.linalg.eigh(0.5 * (M + M.T))
         top = max(float(ev.max()), 0.0)
@@ -291,7 +329,7 @@ class NoiseFactor:
         Raises :class:`NumericalError` naming the step when a row lies off the support.
         """
         if self.full_rank:
-            return gaussian_logpdf_chol(d, self.L)
+            return gaussian_logpdf_chol(d, self.L, getattr(self, "_half_logdet", None))  # (older pickles)
         c = d @ self._V  # (m, r) coordinates on the support
         off = d - c @ self._V.T
         off_norm = np.sqrt(np.sum(off * off, axis=1))

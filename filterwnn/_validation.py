@@ -114,11 +114,14 @@ def as_measurement(z, dim_z, name="z"):
     NaN or infinite entries raise ``ValueError``: a missing measurement is said with
     ``z=None``, never with NaN.
     """
-    arr = as_real(z, name, "array-like of numbers or None")
-    arr = np.atleast_1d(arr).reshape(-1) if arr.size == dim_z else arr
-    if arr.ndim != 1 or arr.shape[0] != dim_z:
-        raise ValueError(f"{name} must have {dim_z} entries, got shape {np.shape(z)}")
-    if not np.all(np.isfinite(arr)):
+    if type(z) is np.ndarray and z.dtype == np.float64 and z.shape == (dim_z,):
+        arr = z  # the usual case (a filter's inner loop): as_real would return it as it is
+    else:
+        arr = as_real(z, name, "array-like of numbers or None")
+        arr = np.atleast_1d(arr).reshape(-1) if arr.size == dim_z else arr
+        if arr.ndim != 1 or arr.shape[0] != dim_z:
+            raise ValueError(f"{name} must have {dim_z} entries, got shape {np.shape(z)}")
+    if not np.isfinite(arr).all():
         raise ValueError(
             f"{name} must be finite (use z=None for a missing measurement), got {arr}"
         )

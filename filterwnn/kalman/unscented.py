@@ -66,16 +66,19 @@ ValueError: z must be finite (use z=None for a missing measurement), got [nan]
 
 from __future__ import annotations
 
+import math
 import numbers
+import operator
 
 import numpy as np
 from filterpy.kalman import UnscentedKalmanFilter as _FilterpyUKF
 from filterpy.kalman import unscented_transform
 from scipy.linalg import cho_factor, cho_solve, cholesky
+from scipy.linalg.blas import dger
 from scipy.linalg.lapack import dpotrf, dpotrs
 
 from .._linalg import cholesky as checked_cholesky
-from .._linalg import cholesky_lower, not_pd_error
+from .._linalg import cholesky_lower, cholesky_lower_raw, not_pd_error
 from .._validation import (
     NumericalError,
     check_covariance,
@@ -138,6 +141,16 @@ def _positive_definite(S):
     return cholesky_lower(S) is not None
 
 
+def _downdate(P, u):
+    """``P - u u^T`` in a fresh array: a copy and BLAS ``dger`` (half numpy's outer product).
+
+    ``alpha = -1`` is exact, so entry ``(i, j)`` is ``P_ij - u_i u_j`` rounded exactly as
+    ``(j, i)`` is: a symmetric ``P`` stays symmetric.
+    """
+    out = np.array(P, dtype=float, order="C")
+    return dger(-1.0, u, u, a=out.T, overwrite_a=1).T
+
+
 def fast_unscented_transform(sigmas, Wm, Wc, noise_cov=None):
     """Unscented transform for linear residuals, as matrix products.
 
@@ -161,6 +174,40 @@ def fast_unscented_transform(sigmas, Wm, Wc, noise_cov=None):
     if noise_cov is not None:
         P = P + noise_cov
     return x, P
+
+
+class _Watched(property):
+    """``x`` and ``P`` of :class:`UnscentedKalmanFilter`: compared only when they may have changed.
+
+    A ``property`` (subclass), so that tools which look for a filter's properties, as
+    filterpy's ``Saver``, still record ``x`` and ``P``.
+
+    The value lives in ``_<name>_now``; ``_<name>_out`` says whether anyone outside the filter
+    may hold it (it was assigned, or read since the filter made it). A value the filter made
+    in its last step and nobody has read since cannot have been edited, so the next step skips
+    its comparison. Its first read keeps a copy (``_mark``) before handing it out, so an edit in
+    place through that reference is seen at the next step like an assignment.
+    """
+
+    def __set_name__(self, owner, name):
+        self.name, self.now, self.out = name, f"_{name}_now", f"_{name}_out"
+
+    def __get__(self, obj, objtype=None):
+        if obj is None:
+            return self
+        d = obj.__dict__
+        try:
+            value = d[self.now]
+        except KeyError:
+            raise AttributeError(self.name) from None
+        if not d.get(self.out, True):
+            obj._mark(self.name, value)
+            d[self.out] = True
+        return value
+
+    def __set__(self, obj, value):
+        obj.__dict__[self.now] = value
+        obj.__dict__[self.out] = True
 
 
 class UnscentedKalmanFilter(_FilterpyUKF):
@@ -207,8 +254,12 @@ class UnscentedKalmanFilter(_FilterpyUKF):
     copy it to keep it past the next two draws, as with filterpy, whose ``predict``
     fills ``sigmas_f`` in place. ``x``, ``P``, ``Q`` and ``R`` are validated when their
     values change (compared with private copies, so an edit in place is seen like an
-    assignment), not on every step.
+    assignment), not on every step; an ``x`` or ``P`` the vectorized step made and nobody
+    has read since is not even compared (it cannot have changed).
     """
+
+    x = _Watched()
+    P = _Watched()
 
     def __init__(self, dim_x, dim_z, dt, hx, fx, points, sqrt_fn=None, x_mean_fn=None, z_mean_fn=None,
                  residual_x=None, residual_z=None, state_add=None, vectorized=False):
@@ -227,11 +278,18 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         self.vectorized = bool(vectorized)
         self.step = 0
         self._sigmas_stale = True  # sigmas_f must be drawn from (x, P) before update
-        self._deviations = None
+        self._deviations = None  # the dense deviations D of the last draw (sigmas = x + D)
+        self._half = None  # or, for the symmetric sets, their scaled factor c U (D = [0, cU, -cU])
         self._trusted = {}  # copies of the x, P and Q last checked (or produced) here
-        self._chol = None  # (P_prior object, its lower Cholesky factor), vectorized mode
+        self._chol = None  # (P_prior object, its factor from _factor), vectorized mode
         self._checked = {}  # role -> the residual/mean callable already checked on arrays
         self._work = {}  # constant-shaped work arrays of the vectorized step (see _sigmas)
+
+    def __setstate__(self, state):
+        for name in ("x", "P"):  # a pickle from before x and P were watched
+            if name in state:
+                state[f"_{name}_now"], state[f"_{name}_out"] = state.pop(name), True
+        self.__dict__.update(state)
 
     # ------------------------------------------------------------------ helpers
     def _fast_points(self):
@@ -244,7 +302,8 @@ class UnscentedKalmanFilter(_FilterpyUKF):
 
     def _check_state(self, when, check_Q=False):
         """Shapes, finiteness and symmetry of ``x``, ``P`` (and ``Q``); ``when`` is for messages."""
-        x, P, n = self.x, self.P, self._dim_x
+        d = self.__dict__  # the values themselves: reading x or P would hand them out
+        x, P, n = d["_x_now"], d["_P_now"], self._dim_x
         if np.shape(x) != (n,):
             raise ValueError(f"x must have shape ({n},), got {np.shape(x)}")
         for name, M in (("P", P), ("Q", self.Q)):
@@ -256,7 +315,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         # identity, so an edit in place (P *= 4, P[0, 2] += 0.5) is seen like an
         # assignment; it also makes the cached factor and the update's sigma points stale
         # (both modes redraw them).
-        P_same = self._unchanged("P", P)
+        P_same = not d["_P_out"] or self._unchanged("P", P)
         if not (np.isfinite(x).all() and (P_same or np.isfinite(P).all())):
             raise NumericalError(
                 f"x and P must be finite {when}; set them again (x_post and P_post hold the "
@@ -266,7 +325,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             self._chol = None
             self._sigmas_stale = True
             self._mark("P", P)
-        if not self._unchanged("x", x):
+        if d["_x_out"] and not self._unchanged("x", x):
             self._sigmas_stale = True
             self._mark("x", x)
         if check_Q and not self._unchanged("Q", self.Q):
@@ -301,17 +360,21 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         else:
             self._trusted[name] = (M.copy(), np.empty(M.shape, dtype=bool))
 
-    def _sigmas(self, x, P, what):
-        """Sigma points of N(x, P); NumericalError naming ``what`` if P is not PD."""
+    def _sigmas(self, x, P, what, fresh=False):
+        """Sigma points of N(x, P); NumericalError naming ``what`` if P is not PD.
+
+        ``fresh=True`` (the smoother) returns a new array and leaves the kept draw alone.
+        """
         if self.vectorized and self._fast_points():
+            if fresh:
+                return x + sigma_deviations(self.points_fn, self._cholesky(P, what).T)
             if self._chol is not None and self._chol[0] is P:
                 L = self._chol[1]  # factored at predict (P_prior's check)
             else:
-                L = self._cholesky(P, what)
-            D = self._deviations_of(L.T)
-            self._deviations = D
-            return np.add(x, D, out=self._sigma_buffer(D.shape))
-        self._deviations = None
+                L = self._factor(P, what)
+            return self._draw(x, L)
+        if not fresh:
+            self._deviations = self._half = None
         try:
             if fpa.is_plain_merwe(self.points_fn) and type(P) is np.ndarray and P.dtype == float:
                 return fpa.merwe_sigma_points(self.points_fn, np.asarray(x, dtype=float), P)
@@ -319,25 +382,51 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         except np.linalg.LinAlgError as exc:
             raise self._not_pd(what, P) from exc
 
-    def _deviations_of(self, U):
-        """``sigma_deviations(points, U)`` written into a work array kept by the filter.
-
-        For the symmetric sets (Merwe, Julier: ``D = [0, c U, -c U]``) the rows are
-        overwritten in place each step, the same numbers as :func:`sigma_deviations` (row
-        0 stays zero), without a fresh ``(2n + 1, n)`` array: at n = 160 a fresh one costs
-        more than filling it (page faults). ``D`` is private: only the update that drew
-        it reads it. Other sets get :func:`sigma_deviations`.
-        """
-        n = U.shape[0]
+    def _symmetric_scale(self):
+        """``c`` when the points are ``[0, c I, -c I]`` (Merwe, Julier) at this size, else None."""
         kind, c = point_structure(self.points_fn)
-        if kind != "symmetric" or self.points_fn.num_sigmas() != 2 * n + 1:
-            return sigma_deviations(self.points_fn, U)
-        D = self._work.get("D")
-        if D is None or D.shape != (2 * n + 1, n):
-            D = self._work["D"] = np.zeros((2 * n + 1, n))
-        np.multiply(c, U, out=D[1 : n + 1])
-        np.negative(D[1 : n + 1], out=D[n + 1 :])  # -(c U) == (-c) U exactly
-        return D
+        if kind != "symmetric" or self.points_fn.num_sigmas() != 2 * self._dim_x + 1:
+            return None
+        return c
+
+    def _factor(self, P, what):
+        """Lower Cholesky factor of ``P`` for :meth:`_draw`; NumericalError naming ``what``.
+
+        The symmetric sets read one triangle of it, so they take LAPACK's uncleaned factor
+        (:func:`~filterwnn._linalg.cholesky_lower_raw`: no zeroing pass); others numpy's.
+        """
+        if self._symmetric_scale() is not None:
+            return cholesky_lower_raw(P, what, self.step, _PD_FIX[what])
+        return self._cholesky(P, what)
+
+    def _draw(self, x, L):
+        """``x + Z L^T`` into a kept buffer (:meth:`_sigma_buffer`), the deviations kept too.
+
+        For the symmetric sets (``Z = [0, c I, -c I]``) the rows are ``x``, ``x + c U_i`` and
+        ``x - c U_i`` (``U = L^T``): ``c U`` is written from ``L``'s lower triangle only into
+        a kept ``(n, n)`` array whose strict lower triangle stays zero, and kept as
+        ``_half`` for the cross covariance. ``x - cU`` is ``x + (-(cU))`` exactly: the numbers
+        of ``x + sigma_deviations(points, U)``, without the ``(2n + 1, n)`` array ``D``
+        (at n = 160 its fill cost more than the sigma points). Other sets keep ``D``.
+        ``_half`` and ``D`` are private: only the update that drew them reads them.
+        """
+        c = self._symmetric_scale()
+        if c is None:
+            D = sigma_deviations(self.points_fn, L.T)
+            self._deviations, self._half = D, None
+            return np.add(x, D, out=self._sigma_buffer(D.shape))
+        n = L.shape[0]
+        work = self._work.get("half")
+        if work is None or work[0].shape != (n, n):
+            work = self._work["half"] = (np.zeros((n, n)), np.triu(np.ones((n, n), dtype=bool)))
+        cU, upper = work
+        np.multiply(c, L.T, out=cU, where=upper)
+        sig = self._sigma_buffer((2 * n + 1, n))
+        sig[0] = x
+        np.add(x, cU, out=sig[1 : n + 1])
+        np.subtract(x, cU, out=sig[n + 1 :])
+        self._deviations, self._half = None, cU
+        return sig
 
     def _sigma_buffer(self, shape):
         """One of two kept arrays for the sigma points, never the one ``sigmas_f`` holds.
@@ -361,17 +450,19 @@ class UnscentedKalmanFilter(_FilterpyUKF):
     def _not_pd(self, what, M):
         return not_pd_error(what, M, self.step, _PD_FIX[what])
 
+    # References suffice: this class never writes into these arrays in place, it rebinds
+    # them (its predict does not call filterpy's, which fills sigmas_f in place); the kept
+    # buffers (_sigma_buffer, _draw) are refilled only by a draw, which a restore marks stale.
+    _SNAPSHOT = ("_x_now", "_P_now", "_x_out", "_P_out", "x_prior", "P_prior", "x_post", "P_post",
+                 "sigmas_f", "sigmas_h", "K", "y", "z", "S", "SI", "_sigmas_stale", "_deviations", "_half",
+                 "_log_likelihood", "_likelihood", "_mahalanobis", "step", "_chol")
+    _GET_SNAPSHOT = operator.attrgetter(*_SNAPSHOT)  # one C call: a tuple in that order
+
     def _snapshot(self):
-        # References suffice: this class never writes into these arrays in place, it
-        # rebinds them (its predict does not call filterpy's, which fills sigmas_f in place).
-        return {k: getattr(self, k) for k in (
-            "x", "P", "x_prior", "P_prior", "x_post", "P_post", "sigmas_f", "sigmas_h",
-            "K", "y", "z", "S", "SI", "_sigmas_stale", "_deviations",
-            "_log_likelihood", "_likelihood", "_mahalanobis", "step", "_chol",
-        )}
+        return self._GET_SNAPSHOT(self)
 
     def _restore(self, snap):
-        for k, v in snap.items():
+        for k, v in zip(self._SNAPSHOT, snap):
             setattr(self, k, v)
 
     def _call(self, fn, sigmas, name, dim_out, *args, **kwargs):
@@ -489,13 +580,14 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         dt = self._dt if dt is None else check_positive(dt, "dt")
         fx = self.fx if fx is None else fx
         snap = self._snapshot()
+        before = (self._x_now, self._P_now)
         self.step += 1
         try:
             if fx is None:  # random walk: no sigma points here
-                self.P = self.P + self.Q
-                self.x = self.x.copy()
+                self.P = self._P_now + self.Q
+                self.x = self._x_now.copy()
             else:
-                sigmas = self._sigmas(self.x, self.P, "P")
+                sigmas = self._sigmas(self._x_now, self._P_now, "P")
                 self.sigmas_f = self._call(fx, sigmas, "fx", self._dim_x, dt, **fx_args)
                 if self.vectorized and UT is None:
                     self.x, self.P, _ = self._vectorized_ut(
@@ -517,7 +609,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
                     self.P = 0.5 * (self.P + self.P.T)
                 # P_prior must be positive definite, as loop mode checks by drawing the
                 # sigma points; the factor is kept for the update's sigma points
-                self._chol = (self.P, self._cholesky(self.P, "P_prior"))
+                self._chol = (self.P, self._factor(self.P, "P_prior"))
                 self._sigmas_stale = True  # filterpy 2.0 re-draws sigmas from the prior
             else:  # as filterpy 2.0: the update's sigma points are the prior's
                 self.sigmas_f = self._sigmas(self.x, self.P, "P_prior")
@@ -527,14 +619,18 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             raise
         self.x_prior = np.copy(self.x)
         self.P_prior = np.copy(self.P)
-        self._mark("P", self.P)
-        self._mark("x", self.x)
+        made = self.vectorized and UT is None and self.x_mean is None  # this class's arithmetic made x
+        self._settle_state(before, fx is None or made, fx is None or self.vectorized)
 
     def compute_process_sigmas(self, dt, fx=None, **fx_args):
         """filterpy's helper: ``sigmas_f`` = the sigma points passed through ``fx``."""
         fx = self.fx if fx is None else fx
-        sigmas = self._sigmas(self.x, self.P, "P")
-        self.sigmas_f = sigmas if fx is None else self._call(fx, sigmas, "fx", self._dim_x, dt, **fx_args)
+        sigmas = self._sigmas(self._x_now, self._P_now, "P")
+        if fx is None:
+            self.sigmas_f = sigmas
+        else:  # the draw's deviations are not those of fx's points: the update uses sigmas_f - x
+            self.sigmas_f = self._call(fx, sigmas, "fx", self._dim_x, dt, **fx_args)
+            self._deviations = self._half = None
         self._sigmas_stale = False
 
     # ------------------------------------------------------------------ update
@@ -549,8 +645,8 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         """
         if z is None:
             self.z = np.array([[None] * self._dim_z]).T
-            self.x_post = self.x.copy()
-            self.P_post = self.P.copy()
+            self.x_post = self._x_now.copy()
+            self.P_post = self._P_now.copy()
             return
         try:
             z_arr = np.asarray(z, dtype=float)
@@ -563,9 +659,10 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         self._check_state(f"at step {self.step} (update)")
         z_arr, R = self._check_measurement(z_arr, R)
         snap = self._snapshot()
+        before = (self._x_now, self._P_now)
         try:
             if self._sigmas_stale:
-                self.sigmas_f = self._sigmas(self.x, self.P, "P")
+                self.sigmas_f = self._sigmas(self._x_now, self._P_now, "P")
                 self._sigmas_stale = False
             if not self.vectorized:
                 hx = self.hx if hx is None else hx
@@ -591,8 +688,19 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             raise
         self._sigmas_stale = True
         self._chol = None
-        self._mark("P", self.P)
-        self._mark("x", self.x)
+        self._settle_state(before, self.vectorized and self.state_add is np.add, self.vectorized)
+
+    def _settle_state(self, before, fresh_x, fresh_P):
+        """After a step: an ``x`` or ``P`` it made (``fresh_*``, not ``before``'s object) is
+        held by nobody outside, so the next step skips its comparison (:class:`_Watched`);
+        any other is kept as a copy to compare with."""
+        d = self.__dict__
+        for name, fresh, old in (("x", fresh_x, before[0]), ("P", fresh_P, before[1])):
+            value = d[f"_{name}_now"]
+            if fresh and value is not old:
+                d[f"_{name}_out"] = False
+            else:
+                self._mark(name, value)
 
     def _loop_update(self, z, R, hx, **hx_args):
         """filterpy's ``update`` (UT and cross variance at their defaults): the same
@@ -634,10 +742,10 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         """
         given = R is not None
         R = self.R if R is None else R
-        if isinstance(R, numbers.Real):
+        if type(R) is not np.ndarray and isinstance(R, numbers.Real):  # (an ABC check: skipped for arrays)
             R = np.eye(self._dim_z if not given else np.size(z)) * R
         R = np.asarray(R, dtype=float)
-        z = np.atleast_1d(z)
+        z = z.reshape(1) if z.ndim == 0 else z  # np.atleast_1d of the array update made
         m = self._dim_z if not given else (R.shape[0] if R.ndim == 2 else self._dim_z)
         if z.size == m and z.ndim > 1:
             z = z.reshape(m)
@@ -669,36 +777,46 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         else:
             zp, S = UT(self.sigmas_h, self.Wm, self.Wc, R, self.z_mean, self.residual_z)
             dz = self._residual("residual_z", self.residual_z, self.sigmas_h, zp)
-        if self._deviations is not None and self.residual_x is np.subtract:
-            dx = self._deviations
-        else:
-            dx = self._residual("residual_x", self.residual_x, sig, self.x)
-        Pxz = dx.T @ (dz * self.Wc[:, None])
-        S = 0.5 * (S + S.T)
+        Pxz = self._cross_covariance(sig, dz)
+        if S.shape != (1, 1):  # a 1x1 S is its own symmetric part, bit for bit
+            S = 0.5 * (S + S.T)
         self.S = S
-        # scipy's cho_factor and cho_solve are these LAPACK calls; their wrappers' checks
-        # cost more than the work for a small S (a WNN's is 1x1)
-        c, info = dpotrf(S, lower=1, clean=0)
-        if info != 0 or not np.isfinite(S).all():
-            raise self._not_pd("S", S)
-        self.SI = dpotrs(c, np.eye(S.shape[0]), lower=1)[0]
-        self.K = dpotrs(c, Pxz.T, lower=1)[0].T
+        self.SI, self.K, u = self._gain(S, Pxz)
         self.y = self.residual_z(z.reshape(np.shape(zp)), zp)
-        self.x = self.state_add(self.x, self.K @ self.y)
-        if S.shape == (1, 1):  # rank-1 downdate, symmetric by construction
-            self.P = self.P - self._scaled_outer(S[0, 0], self.K[:, 0])
+        self.x = self.state_add(self._x_now, self.K @ self.y)
+        if u is not None:  # 1x1 S: K S K^T = u u^T, a rank-1 downdate symmetric by construction
+            self.P = _downdate(self._P_now, u)
         else:
-            P = self.P - self.K @ S @ self.K.T
+            P = self._P_now - self.K @ S @ self.K.T
             self.P = 0.5 * (P + P.T)
         self._store_posterior(z)
 
-    def _scaled_outer(self, s, k):
-        """``s * np.outer(k, k)`` (the same numbers) in a kept ``(n, n)`` work array."""
-        W = self._work.get("outer")
-        if W is None or W.shape != (k.size, k.size):
-            W = self._work["outer"] = np.empty((k.size, k.size))
-        np.multiply.outer(k, k, out=W)
-        return np.multiply(s, W, out=W)
+    def _cross_covariance(self, sig, dz):
+        """``P_xz = sum_i Wc_i (chi_i - x)(h_i - z_hat)^T``, from the draw's deviations if kept."""
+        wdz = dz * self.Wc[:, None]
+        if self.residual_x is np.subtract and self._half is not None:  # D = [0, cU, -cU]
+            n = self._half.shape[0]
+            return self._half.T @ (wdz[1 : n + 1] - wdz[n + 1 :])
+        if self.residual_x is np.subtract and self._deviations is not None:
+            return self._deviations.T @ wdz
+        return self._residual("residual_x", self.residual_x, sig, self._x_now).T @ wdz
+
+    def _gain(self, S, Pxz):
+        """``(S^-1, K = P_xz S^-1, u)``, ``u = P_xz / sqrt(s)`` for a 1x1 ``S = [[s]]`` (else None).
+
+        A 1x1 ``S`` is divided by (LAPACK's wrappers cost more than the work: a WNN's ``S``
+        is 1x1); a larger one is factored and solved (scipy's ``cho_factor``/``cho_solve``
+        are these LAPACK calls, without their checks). NumericalError if ``S`` is not PD.
+        """
+        if S.shape == (1, 1):
+            s = float(S[0, 0])
+            if not (math.isfinite(s) and s > 0):
+                raise self._not_pd("S", S)
+            return np.array([[1.0 / s]]), Pxz / s, Pxz[:, 0] / math.sqrt(s)
+        c, info = dpotrf(S, lower=1, clean=0)
+        if info != 0 or not np.isfinite(S).all():
+            raise self._not_pd("S", S)
+        return dpotrs(c, np.eye(S.shape[0]), lower=1)[0], dpotrs(c, Pxz.T, lower=1)[0].T, None
 
     def _rows_residual(self, A, b):
         """``residual_x`` of every row of ``A`` against ``b``, in either mode."""
@@ -733,7 +851,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         xs, ps = Xs.copy(), np.array(Ps, dtype=float)
         Ks = np.zeros((n, dim_x, dim_x))
         for k in reversed(range(n - 1)):
-            sigmas = self._sigmas(xs[k], ps[k], "P")
+            sigmas = self._sigmas(xs[k], ps[k], "P", fresh=True)
             if self.fx is None:
                 sigmas_f = sigmas
             else:

@@ -9,6 +9,8 @@ unpickling and run ``batch_filter`` the same way.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from .resampling import get_scheme
@@ -25,10 +27,10 @@ def logsumexp(a):
     >>> logsumexp(np.log([1.0, 3.0]))
     1.3862943611198906
     """
-    m = np.max(a)
-    if not np.isfinite(m):
+    m = a.max()  # the array methods: the same reductions without numpy's Python wrappers
+    if not math.isfinite(m):
         return float(m)
-    return float(m + np.log(np.sum(np.exp(a - m))))
+    return float(m + np.log(np.exp(a - m).sum()))
 
 
 class ModelAttribute:
@@ -124,6 +126,8 @@ class WeightedMixtureFilter:
             )
 
     _keep_history = True
+    #: The list attributes a failed step truncates back (``filterwnn._state.rolls_back_on_error``).
+    _rollback_lists = ("ess_history", "n_distinct_history", "resampled_history")
 
     @property
     def keep_history(self):
@@ -143,11 +147,13 @@ class WeightedMixtureFilter:
         keep = self._keep_history
         if keep is False:
             return
-        for hist, v in ((self.ess_history, self.ess), (self.n_distinct_history, self.n_distinct),
-                        (self.resampled_history, bool(resampled))):
-            hist.append(v)
-            if keep is not True and len(hist) > keep:
-                del hist[: len(hist) - keep]
+        self.ess_history.append(self.ess)
+        self.n_distinct_history.append(self.n_distinct)
+        self.resampled_history.append(bool(resampled))
+        if keep is not True:
+            for hist in (self.ess_history, self.n_distinct_history, self.resampled_history):
+                if len(hist) > keep:
+                    del hist[: len(hist) - keep]
 
     def __getstate__(self):
         state = self.__dict__.copy()

@@ -61,6 +61,7 @@ dynamic Bayesian models", JRSS B 63, 2001.
 from __future__ import annotations
 
 import inspect
+import math
 import warnings
 
 import numpy as np
@@ -107,6 +108,17 @@ class DegeneracyWarning(RuntimeWarning):
     """The particle weights collapsed: the effective sample size stayed below 2 for 3
     consecutive updates. Raised once per filter; the message names the step, the ESS and
     what to try."""
+
+
+_UNIFORM = {}  # n -> the kept np.full(n, -log n) that _uniform_log_weights copies
+
+
+def _uniform_log_weights(n):
+    """``np.full(n, -np.log(n))`` (equal weights), a copy of an array kept per ``n``."""
+    kept = _UNIFORM.get(n)
+    if kept is None:
+        kept = _UNIFORM[n] = np.full(n, -np.log(n))
+    return kept.copy()
 
 
 def _flag(value, name):
@@ -298,7 +310,7 @@ class ParticleFilter(WeightedMixtureFilter):
         self._filterpy_defaults()
         self.particles = None
         self.covariances = None
-        self.log_weights = np.full(self.n_particles, -np.log(self.n_particles))
+        self.log_weights = _uniform_log_weights(self.n_particles)
         self._prediction = None
         self.step = 0
         self.log_likelihood = np.nan
@@ -430,7 +442,7 @@ class ParticleFilter(WeightedMixtureFilter):
         self.particles = X.copy()
         self.covariances = C
         self.ancestors = np.arange(self.n_particles)
-        self.log_weights = np.full(self.n_particles, -np.log(self.n_particles))
+        self.log_weights = _uniform_log_weights(self.n_particles)
         self._prediction = None
         self._x, self._P = self._moments(self._sync_model(), self.particles, self.weights)
         self.x_post, self.P_post = self._x.copy(), self._P.copy()
@@ -455,7 +467,9 @@ class ParticleFilter(WeightedMixtureFilter):
         x = model.mean_x(X, w)
         d = model.residual_x_rows(X, x[None, :])
         P = (d.T * w) @ d
-        return x, 0.5 * (P + P.T)
+        if P.shape[0] > 1:  # a 1x1 P is its own symmetric part, bit for bit
+            P = 0.5 * (P + P.T)
+        return x, P
 
     def _degeneracy_remedy(self):
         if isinstance(self.proposal, PriorProposal):
@@ -599,7 +613,7 @@ class ParticleFilter(WeightedMixtureFilter):
             idx = self._resample(w, self.rng, self.n_particles)
             X = X[idx]
             covs = None if covs is None else covs[idx]
-            log_w = np.full(self.n_particles, -np.log(self.n_particles))
+            log_w = _uniform_log_weights(self.n_particles)
             n_distinct = int(np.count_nonzero(np.bincount(idx, minlength=self.n_particles)))
             self.ancestors = self.ancestors[idx]
             if self.move is not None:
@@ -619,8 +633,8 @@ class ParticleFilter(WeightedMixtureFilter):
         """
         lw_prev = self.log_weights
         new_lw = lw_prev + log_alpha if self.tempering == 1.0 else lw_prev + self.tempering * log_alpha
-        lse = logsumexp(new_lw)
-        if not np.isfinite(lse):
+        lse = logsumexp(new_lw)  # a float
+        if not math.isfinite(lse):
             if self._weights_failed(model, step, log_alpha, log_lik):
                 return None
         log_lik_step = lse if self.tempering == 1.0 else logsumexp(lw_prev + log_alpha)

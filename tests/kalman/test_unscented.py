@@ -396,3 +396,63 @@ def test_kept_sigma_buffers_leave_a_restored_sigmas_f_intact():
     ukf.update(np.array([0.2]))
     want = prior_x + sigma_deviations(pts, np.linalg.cholesky(prior_P).T)
     assert ukf.sigmas_f is not kept and np.array_equal(ukf.sigmas_f, want)
+
+
+@pytest.mark.parametrize("name", ["merwe", "simplex"])
+def test_update_after_compute_process_sigmas_uses_the_propagated_points(name):
+    # filterpy's update takes P_xz from sigmas_f - x; after compute_process_sigmas with an fx
+    # the vectorized step's kept deviations are those of the unpropagated points, and the
+    # gain differed from loop mode's by up to 0.19 before they were dropped there
+    Ks = []
+    for vectorized in (False, True):
+        ukf = make(UnscentedKalmanFilter, POINTS[name](), vectorized)
+        ukf.predict()
+        ukf.update(np.array([1.0, 0.5]))
+        ukf.compute_process_sigmas(ukf._dt)
+        ukf.update(np.array([1.2, 0.4]))
+        Ks.append(ukf.K)
+    np.testing.assert_allclose(Ks[1], Ks[0], rtol=1e-10, atol=1e-12)
+
+
+@pytest.mark.parametrize("vectorized", [False, True])
+def test_an_edit_through_a_reference_kept_across_a_failed_update_is_seen(vectorized):
+    # the vectorized step skips comparing an x or P nobody read since it made them; a read
+    # hands the value out, and a failed update must not forget that it was
+    ukf = make(UnscentedKalmanFilter, POINTS["merwe"](), vectorized)
+    ukf.predict(); ukf.update(np.array([1.2, 0.1]))
+    ukf.predict()
+    P = ukf.P
+    with pytest.raises(NumericalError, match="S is not positive definite"):
+        ukf.update(np.array([1.2, 0.1]), R=-10 * np.eye(2))
+    P[0, 2] += 0.5
+    with pytest.raises(ValueError, match=r"P must be symmetric; max \|P - P.T\| = 0.5"):
+        ukf.update(np.array([1.2, 0.1]))
+
+
+def test_a_pickle_from_before_x_and_P_were_watched_loads():
+    ukf = make(UnscentedKalmanFilter, POINTS["merwe"](), True)
+    ukf.predict(); ukf.update(np.array([1.2, 0.1]))
+    state = pickle.loads(pickle.dumps(ukf)).__dict__.copy()
+    for name in ("x", "P"):  # the old layout: plain attributes
+        state[name] = state.pop(f"_{name}_now")
+        del state[f"_{name}_out"]
+    old = UnscentedKalmanFilter.__new__(UnscentedKalmanFilter)
+    old.__setstate__(state)
+    old.predict(); old.update(np.array([1.0, 0.2]))
+    ukf.predict(); ukf.update(np.array([1.0, 0.2]))
+    np.testing.assert_array_equal(old.x, ukf.x)
+
+
+@pytest.mark.parametrize("vectorized", [False, True])
+def test_filterpys_saver_records_x_and_P_at_every_step(vectorized):
+    from filterpy.common import Saver
+
+    ukf = make(UnscentedKalmanFilter, POINTS["merwe"](), vectorized)
+    saver, xs, Ps = Saver(ukf), [], []
+    for z in simulate(5):
+        ukf.predict(); ukf.update(z)
+        saver.save()
+        xs.append(ukf.x.copy()); Ps.append(ukf.P.copy())
+    saver.to_array()
+    np.testing.assert_array_equal(saver.x, np.array(xs))
+    np.testing.assert_array_equal(saver.P, np.array(Ps))
