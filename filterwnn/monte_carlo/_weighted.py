@@ -30,7 +30,8 @@ def logsumexp(a):
     m = a.max()  # the array methods: the same reductions without numpy's Python wrappers
     if not math.isfinite(m):
         return float(m)
-    return float(m + np.log(np.exp(a - m).sum()))
+    e = a - m
+    return float(m + np.log(np.exp(e, out=e).sum()))  # exp in place: one temporary, not two
 
 
 class ModelAttribute:

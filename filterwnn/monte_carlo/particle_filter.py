@@ -640,7 +640,8 @@ class ParticleFilter(WeightedMixtureFilter):
         log_lik_step = lse if self.tempering == 1.0 else logsumexp(lw_prev + log_alpha)
         self.log_likelihood = float(log_lik_step)
         self.log_marginal_likelihood += float(log_lik_step)
-        return new_lw - lse
+        new_lw -= lse  # a fresh array: normalised in place
+        return new_lw
 
     def _weights_failed(self, model, step, log_alpha, log_lik):
         """The weights cannot be normalised: skip as an outlier (``recover``, True) or raise."""
