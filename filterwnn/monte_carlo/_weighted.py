@@ -31,7 +31,8 @@ def logsumexp(a):
     if not math.isfinite(m):
         return float(m)
     e = a - m
-    return float(m + np.log(np.exp(e, out=e).sum()))  # exp in place: one temporary, not two
+    e = np.exp(e, out=e) if e.dtype.kind == "f" else np.exp(e)  # in place: one temporary, not two
+    return float(m + np.log(e.sum()))
 
 
 class ModelAttribute:
