@@ -265,13 +265,18 @@ def gaussian_logpdf_chol(d, L, half_logdet=None):
     """
     k = d.shape[1]
     if k == 1:
-        e2 = (d[:, 0] / L[0, 0]) ** 2
+        e2 = d[:, 0] / L[0, 0]
+        np.square(e2, out=e2)
     else:
         e = solve_triangular(L, d.T, lower=True, check_finite=False)
         e2 = np.sum(e * e, axis=0)
     if half_logdet is None:
         half_logdet = np.sum(np.log(np.diag(L)))
-    return -0.5 * e2 - half_logdet - 0.5 * k * LOG_2PI
+    # -0.5 * e2 - half_logdet - 0.5 * k * LOG_2PI, the same operations in place on e2 (a fresh array)
+    e2 *= -0.5
+    e2 -= half_logdet
+    e2 -= 0.5 * k * LOG_2PI
+    return e2
 
 
 class NoiseFactor:

@@ -37,6 +37,12 @@ import functools
 __all__ = ["rolls_back_on_error"]
 
 
+def _part_dicts(saved, names):
+    """``[(part, copy of its __dict__)]`` for the named attributes of ``saved`` that have one."""
+    return [(saved[name], dict(saved[name].__dict__)) for name in names
+            if getattr(saved.get(name), "__dict__", None) is not None]
+
+
 def rolls_back_on_error(method):
     """Decorate a method so that, when it raises, the instance is restored (see the module docstring).
 
@@ -51,24 +57,23 @@ def rolls_back_on_error(method):
     @functools.wraps(method)
     def wrapper(self, *args, **kwargs):
         saved = self.__dict__.copy()  # references: what the step rebinds needs no copy
-        names = getattr(self, "_rollback_parts", ())
-        parts = {name: dict(saved[name].__dict__) for name in names
-                 if getattr(saved.get(name), "__dict__", None) is not None} if names else {}
+        names = getattr(self, "_rollback_parts", None)
+        parts = _part_dicts(saved, names) if names else None
         lists = getattr(self, "_rollback_lists", None)
-        if lists is None:
-            lengths = [(v, len(v)) for v in saved.values() if isinstance(v, list)]
-        else:
-            lengths = [(v, len(v)) for v in map(saved.get, lists) if isinstance(v, list)]
-        bits = getattr(saved.get("rng"), "bit_generator", None)
+        values = saved.values() if lists is None else map(saved.get, lists)
+        lengths = [(v, len(v)) for v in values if isinstance(v, list)]
+        rng = saved.get("rng")
+        bits = None if rng is None else getattr(rng, "bit_generator", None)
         rng_state = None if bits is None else bits.state
         try:
             return method(self, *args, **kwargs)
         except BaseException:
             self.__dict__.clear()
             self.__dict__.update(saved)
-            for name, attrs in parts.items():
-                saved[name].__dict__.clear()
-                saved[name].__dict__.update(attrs)
+            if parts:
+                for obj, attrs in parts:
+                    obj.__dict__.clear()
+                    obj.__dict__.update(attrs)
             for v, n in lengths:
                 del v[n:]
             if rng_state is not None:

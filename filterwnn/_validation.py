@@ -16,6 +16,7 @@ ValueError: P must be positive definite (Cholesky failed); smallest eigenvalue -
 
 from __future__ import annotations
 
+import math
 import numbers
 
 import numpy as np
@@ -121,7 +122,8 @@ def as_measurement(z, dim_z, name="z"):
         arr = np.atleast_1d(arr).reshape(-1) if arr.size == dim_z else arr
         if arr.ndim != 1 or arr.shape[0] != dim_z:
             raise ValueError(f"{name} must have {dim_z} entries, got shape {np.shape(z)}")
-    if not np.isfinite(arr).all():
+    finite = all(map(math.isfinite, arr.tolist())) if dim_z <= 8 else np.isfinite(arr).all()  # small z: no ufunc
+    if not finite:
         raise ValueError(
             f"{name} must be finite (use z=None for a missing measurement), got {arr}"
         )

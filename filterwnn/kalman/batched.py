@@ -272,6 +272,9 @@ def check_callable(f, name, allow_none=True):
 # ---------------------------------------------------------------------------
 
 
+_FLOAT64 = np.dtype(np.float64)  # native float64 (another byte order takes the array_equal path)
+
+
 class KalmanModel:
     """What a batched Kalman step uses of a state-space model: a small object, not a filter.
 
@@ -325,7 +328,7 @@ class KalmanModel:
         if hit is not None:
             if not check:
                 return hit[1]
-            if type(M) is np.ndarray and M.dtype == np.float64:  # the usual case: compare the bytes
+            if type(M) is np.ndarray and M.dtype is _FLOAT64:  # the usual case: compare the bytes
                 if M.shape == hit[0].shape and M.tobytes() == hit[2]:
                     return hit[1]
             elif np.shape(M) == hit[0].shape and np.array_equal(hit[0], M):

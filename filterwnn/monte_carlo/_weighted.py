@@ -30,7 +30,9 @@ def logsumexp(a):
     m = a.max()  # the array methods: the same reductions without numpy's Python wrappers
     if not math.isfinite(m):
         return float(m)
-    return float(m + np.log(np.exp(a - m).sum()))
+    e = a - m
+    e = np.exp(e, out=e) if e.dtype.kind == "f" else np.exp(e)  # in place: one temporary, not two
+    return float(m + np.log(e.sum()))
 
 
 class ModelAttribute:

@@ -54,7 +54,7 @@ from .._validation import (NumericalError, as_measurement, as_state, check_choic
                           check_positive, check_positive_int, check_rng)
 from .._state import rolls_back_on_error
 from ._weighted import ModelAttribute, WeightedMixtureFilter, logsumexp
-from .resampling import get_scheme
+from .resampling import count_distinct, get_scheme
 from ..kalman.bank import ExtendedKalmanFilterBank, UnscentedKalmanFilterBank
 from ..kalman.batched import ExtendedStep, KalmanModel, UnscentedStep, check_callable
 from ..kalman.presets import make_points
@@ -306,7 +306,7 @@ class GaussianSumFilter(WeightedMixtureFilter):
             idx = self._resample(w, self.rng, n)
             M, C = M[idx], C[idx]
             new_lw = np.full(n, -np.log(n))
-            n_distinct = int(np.count_nonzero(np.bincount(idx, minlength=n)))
+            n_distinct = count_distinct(idx, n, self._resample)
         bank.set_state(np.ascontiguousarray(M), C)
         self.log_weights = new_lw
         self._predicted = False

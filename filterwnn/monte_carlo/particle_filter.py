@@ -83,7 +83,7 @@ from .._validation import (
 from .._state import rolls_back_on_error
 from ._weighted import ModelAttribute, SettledAttribute, WeightedMixtureFilter, logsumexp
 from .proposals import ExtendedKalmanProposal, PriorProposal, ProposalModel, UnscentedKalmanProposal
-from .resampling import get_scheme
+from .resampling import count_distinct, get_scheme
 from ..kalman.batched import check_callable
 from ..kalman.presets import make_points
 from ..metrics import kish_ess
@@ -614,7 +614,7 @@ class ParticleFilter(WeightedMixtureFilter):
             X = X[idx]
             covs = None if covs is None else covs[idx]
             log_w = _uniform_log_weights(self.n_particles)
-            n_distinct = int(np.count_nonzero(np.bincount(idx, minlength=self.n_particles)))
+            n_distinct = count_distinct(idx, self.n_particles, self._resample)
             self.ancestors = self.ancestors[idx]
             if self.move is not None:
                 X = self._apply_move(X, step)
@@ -640,7 +640,8 @@ class ParticleFilter(WeightedMixtureFilter):
         log_lik_step = lse if self.tempering == 1.0 else logsumexp(lw_prev + log_alpha)
         self.log_likelihood = float(log_lik_step)
         self.log_marginal_likelihood += float(log_lik_step)
-        return new_lw - lse
+        new_lw -= lse  # a fresh array: normalised in place
+        return new_lw
 
     def _weights_failed(self, model, step, log_alpha, log_lik):
         """The weights cannot be normalised: skip as an outlier (``recover``, True) or raise."""

@@ -84,6 +84,7 @@ __all__ = [
     "SCHEMES",
     "register",
     "get_scheme",
+    "count_distinct",
     "effective_sample_size",
     "normalize_log_weights",
 ]
@@ -131,9 +132,13 @@ _DOC = """{title} resampling.
     """
 
 
-def register(name, title, extra=""):
+def register(name, title, extra="", *, sorted_indices=False):
     """Decorator: register the unvalidated scheme ``impl(w, rng, n)`` under ``name`` and
-    return its public, validating version ``scheme(weights, rng, n=None)``."""
+    return its public, validating version ``scheme(weights, rng, n=None)``.
+
+    ``sorted_indices=True`` promises indices in non-decreasing order (kept as
+    ``impl.sorted_indices``; :func:`count_distinct` then compares neighbours; the tests hold
+    every registered scheme to its promise)."""
 
     def deco(impl):
         def scheme(weights, rng, n=None):
@@ -143,6 +148,7 @@ def register(name, title, extra=""):
         scheme.__name__ = scheme.__qualname__ = name
         scheme.__doc__ = _DOC.format(title=title, extra=extra)
         scheme.impl = impl
+        impl.sorted_indices = bool(sorted_indices)
         SCHEMES[name] = scheme
         return scheme
 
@@ -152,18 +158,19 @@ def register(name, title, extra=""):
 # --- the schemes (registered where defined) ----------------------------------------------
 
 
-@register("multinomial", "Multinomial", "Indices come out sorted.")
+@register("multinomial", "Multinomial", "Indices come out sorted.", sorted_indices=True)
 def multinomial(w, rng, n):
     return np.sort(_search(w, rng.random(n)))
 
 
-@register("stratified", "Stratified", "Indices come out sorted.")
+@register("stratified", "Stratified", "Indices come out sorted.", sorted_indices=True)
 def stratified(w, rng, n):
     return _search(w, (np.arange(n) + rng.random(n)) / n)
 
 
 @register("systematic", "Systematic",
-          "Indices come out sorted; equal weights with ``n = n_particles`` keep every particle.")
+          "Indices come out sorted; equal weights with ``n = n_particles`` keep every particle.",
+          sorted_indices=True)
 def systematic(w, rng, n):
     # point k = (k + u) / n goes to the first i with k + u < n c_i, so the points below c_i
     # number ceil(n c_i - u): counts are their differences (O(n), no binary search)
@@ -180,7 +187,8 @@ def systematic(w, rng, n):
 
 
 @register("residual", "Residual (correct, unlike filterpy's: its issue #290)",
-          "Indices come out sorted; particle ``i`` gets at least ``floor(n * w_i)`` copies.")
+          "Indices come out sorted; particle ``i`` gets at least ``floor(n * w_i)`` copies.",
+          sorted_indices=True)
 def residual(w, rng, n):
     nw = n * w
     counts = np.floor(nw).astype(np.intp)
@@ -287,6 +295,23 @@ def _from_callable(fn):
         return np.asarray(fn(w, rng, n), dtype=np.intp)
 
     return scheme
+
+
+def count_distinct(indices, n, scheme=None):
+    """How many distinct particles ``indices`` (ints in ``[0, n)``, a resampling's output) keep.
+
+    For a ``scheme`` (an implementation from :func:`get_scheme`) that promises sorted
+    indices, one comparison of neighbours (at n = 10,000 a fifth of a ``bincount``'s time);
+    otherwise ``bincount``.
+
+    >>> count_distinct(np.array([0, 0, 2, 3, 3]), 5, get_scheme("systematic"))
+    3
+    >>> count_distinct(np.array([3, 0, 3]), 4)
+    2
+    """
+    if getattr(scheme, "sorted_indices", False) and indices.size:
+        return 1 + int(np.count_nonzero(indices[1:] != indices[:-1]))
+    return int(np.count_nonzero(np.bincount(indices, minlength=n)))
 
 
 def get_scheme(name):

@@ -262,3 +262,19 @@ def test_filterpy_named_residual_is_unbiased_where_filterpys_is_not(global_state
     sd = np.sqrt(5 * w * (1 - w) / n_runs)  # a multinomial bound on the count's standard error
     assert np.all(np.abs(ours - 5 * w) < 4 * sd)
     assert np.any(np.abs(theirs - 5 * w) > 8 * sd)
+
+
+@pytest.mark.parametrize("name", sorted(resampling.SCHEMES))
+def test_a_scheme_promising_sorted_indices_keeps_it_and_count_distinct_agrees(name):
+    impl = resampling.get_scheme(name)
+    rng = np.random.default_rng(7)
+    for n_out in (1, 5, 50, 400):
+        w = rng.random(50) ** 6  # uneven: many particles dropped, some copied
+        w /= w.sum()
+        idx = impl(w, rng, n_out)
+        if impl.sorted_indices:
+            assert np.all(np.diff(idx) >= 0)
+        expected = int(np.unique(idx).size)
+        assert resampling.count_distinct(idx, 50, impl) == expected
+        assert resampling.count_distinct(idx, 50) == expected
+    assert resampling.count_distinct(np.array([2, 0, 2], dtype=np.intp), 3, lambda w, r, n: None) == 2
