@@ -134,7 +134,9 @@ class GPSDRFilter:
     kind : {"ekf", "ukf", "sukf"}
         filterpy's ``ExtendedKalmanFilter`` with the analytic Jacobian, or the unscented
         filter with Merwe points (``alpha=0.5, beta=2, kappa=0``) or spherical-simplex
-        points (``w0=0.2``); every kind wraps the heading residual and averages headings
+        points with the same settings (on the same sphere, with the same centre weights;
+        the presets ``"gpsdr-ukf"`` and ``"gpsdr-sukf"``, :mod:`filterwnn.kalman.presets`);
+        every kind wraps the heading residual and averages headings
         circularly.
     x0, P0 : array-like, optional
         Prior, default ``model.x0``, ``model.P0``.

@@ -36,7 +36,7 @@ def test_every_preset_reproduces_mean_and_covariance(name, n):
     ("merwe-kappa", MerweScaledSigmaPoints, dict(alpha=0.5, beta=2.0, kappa=-1.0)),
     ("supf", SphericalSimplexSigmaPoints, dict(alpha=1.0, beta=2.0, w0=0.0)),
     ("simplex", SphericalSimplexSigmaPoints, dict(alpha=1.0, beta=0.0, w0=0.0)),
-    ("gpsdr-sukf", SphericalSimplexSigmaPoints, dict(alpha=1.0, beta=0.0, w0=0.2)),
+    ("gpsdr-sukf", SphericalSimplexSigmaPoints, dict(alpha=0.5, beta=2.0, kappa=0.0)),
 ])
 def test_presets_are_the_documented_settings_bit_for_bit(name, cls, settings):
     pts, ref = make_points(name, 4), cls(4, **settings)
@@ -44,6 +44,16 @@ def test_presets_are_the_documented_settings_bit_for_bit(name, cls, settings):
     np.testing.assert_array_equal(pts.Wm, ref.Wm)
     np.testing.assert_array_equal(pts.Wc, ref.Wc)
     np.testing.assert_array_equal(pts.sigma_points(np.ones(4), np.eye(4)), ref.sigma_points(np.ones(4), np.eye(4)))
+
+
+@pytest.mark.parametrize("n", [6, 8, 9])
+def test_the_gpsdr_sukf_points_lie_on_the_gpsdr_ukf_sphere_with_its_centre_weights(n):
+    # the GPS/DR SUKF and UKF spread their points equally far (Merwe's radius alpha sqrt(n))
+    sukf, ukf = make_points("gpsdr-sukf", n), make_points("gpsdr-ukf", n)
+    radius = lambda p: np.linalg.norm(p.sigma_points(np.zeros(n), np.eye(n))[1:], axis=1)  # noqa: E731
+    np.testing.assert_allclose(radius(sukf), ukf.alpha * np.sqrt(n), rtol=1e-12)
+    np.testing.assert_allclose(radius(ukf).max(), ukf.alpha * np.sqrt(n), rtol=1e-12)
+    np.testing.assert_allclose([sukf.Wm[0], sukf.Wc[0]], [ukf.Wm[0], ukf.Wc[0]], rtol=1e-12)
 
 
 def test_the_particle_filters_default_to_the_presets():
