@@ -541,7 +541,7 @@ class GPSDRFilter:
         elif kw["velocity"]:
             # the velocity form's first entry is v_e (m/s), not a heading: a linear mean and a plain
             # residual (the heading's circular mean and wrap folded the sigma points' v_e into
-            # [-pi, pi): with the spherical-simplex points' wide spread the SUKF lost the speed)
+            # [-pi, pi): with widely spread points, as the SUKF's former preset had, it lost the speed)
             kf = self.kf
             z_mean, residual = kf.z_mean, kf.residual_z
             kf.z_mean, kf.residual_z = None, np.subtract
