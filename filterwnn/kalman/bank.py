@@ -30,7 +30,11 @@ are assigned (not on every step). ``update(z)`` takes one measurement per member
 ``z=None`` for all) leaves that member at its prediction with ``log_likelihood[i] = 0``.
 ``fx``/``hx`` with ``vectorized=True`` (the default) receive every member's sigma points
 at once, one row per point, ``(B * n_sigmas, dim_x)``; ``vectorized=False`` calls them
-once per point (filterpy's signature). Errors name the member and the step.
+once per point (filterpy's signature). For a bank of small filters (``n <= 8``, 256 members or more)
+the rows are a strided view of an array stored state-component first, not a C-ordered
+copy: NumPy code reads it the same; code that needs C order (numba with a C layout,
+``.view``) should call ``np.ascontiguousarray`` first. Write the result to a new array,
+not into the rows. Errors name the member and the step.
 
 A bank agrees with B independent filterpy (or filterwnn) filters to 1e-12 (see
 ``tests/kalman/test_bank.py``).
