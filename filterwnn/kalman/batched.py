@@ -118,31 +118,43 @@ def apply_rows(f, X, out_dim, vectorized, name, args=(), kwargs=None, checked=No
         it, says what differed and shows the fix.
     """
     kwargs = {} if kwargs is None else kwargs
-    m = X.shape[0]
     if vectorized:
-        first = checked is not None and checked.get(name) is not f
-        try:
-            Y = np.asarray(f(X, *args, **kwargs), dtype=float)
-        except CALL_ERRORS as exc:
-            if first and on_single_rows(f, X, [0], out_dim, args, kwargs) is not None:
-                raise one_point_error(name, f"on all {m} points it raised {type(exc).__name__}: {exc}") from exc
-            raise
-        if Y.size != m * out_dim:
-            raise ValueError(
-                f"{name} with vectorized=True must return one row per point, shape "
-                f"({m}, {out_dim}), got shape {Y.shape}"
-            )
-        Y = Y.reshape(m, out_dim)
-        if first and np.isfinite(Y).all():  # non-finite output: the step's own check names it first
-            detail = rows_differ(Y, X, f, args, kwargs)
-            if detail is not None:
-                raise one_point_error(name, detail)
-            checked[name] = f
-        return Y
+        return _apply_vectorized(f, X, out_dim, name, args, kwargs, checked)
+    return _apply_loop(f, X, out_dim, name, args, kwargs)
+
+
+def _apply_vectorized(f, X, out_dim, name, args, kwargs, checked):
+    """:func:`apply_rows` with ``vectorized=True``: one call, its shape checked, and on the
+    first call of ``f`` (not yet in ``checked``) its rows compared with single-row calls."""
+    m = X.shape[0]
+    first = checked is not None and checked.get(name) is not f
+    try:
+        Y = np.asarray(f(X, *args, **kwargs), dtype=float)
+    except CALL_ERRORS as exc:
+        if first and on_single_rows(f, X, [0], out_dim, args, kwargs) is not None:
+            raise one_point_error(name, f"on all {m} points it raised {type(exc).__name__}: {exc}") from exc
+        raise
+    if Y.size != m * out_dim:
+        raise ValueError(
+            f"{name} with vectorized=True must return one row per point, shape "
+            f"({m}, {out_dim}), got shape {Y.shape}"
+        )
+    Y = Y.reshape(m, out_dim)
+    if first and np.isfinite(Y).all():  # non-finite output: the step's own check names it first
+        detail = rows_differ(Y, X, f, args, kwargs)
+        if detail is not None:
+            raise one_point_error(name, detail)
+        checked[name] = f
+    return Y
+
+
+def _apply_loop(f, X, out_dim, name, args, kwargs):
+    """:func:`apply_rows` with ``vectorized=False``: ``f`` once per row, the first row's
+    output checked fully, the rest assigned without per-call checks (the hot loop)."""
+    m = X.shape[0]
     Y = np.empty((m, out_dim))
     if m == 0:
         return Y
-    # check the first point fully, then assign without per-call checks (hot loop)
     y0 = np.asarray(f(X[0], *args, **kwargs), dtype=float)
     if y0.size != out_dim:
         raise ValueError(f"{name} must return {out_dim} values, got shape {y0.shape}")
@@ -153,7 +165,6 @@ def apply_rows(f, X, out_dim, vectorized, name, args=(), kwargs=None, checked=No
     except ValueError as exc:
         raise ValueError(f"{name} must return {out_dim} values for every point: {exc}") from exc
     return Y
-
 
 
 def _residual(fn, a, b, vectorized):
