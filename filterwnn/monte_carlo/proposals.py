@@ -167,9 +167,13 @@ class ProposalModel(KalmanModel):
                          (rng,), fx_args)
         mean = self.transition_mean(x_prev, fx_args)
         A = self.noise("Q", check=False).sqrt
+        e = rng.standard_normal(mean.shape)
         if self.dim_x == 1:
-            return mean + rng.standard_normal(mean.shape) * A[0, 0]
-        return mean + rng.standard_normal(mean.shape) @ A.T
+            e *= A[0, 0]
+        else:
+            e = e @ A.T
+        e += mean  # mean + e, bit for bit (addition commutes), in e's storage: no temporary
+        return e
 
     def log_transition(self, x, x_prev, fx_args, fx_prev=None, step=None):
         """``log p(x_i | x_prev_i)`` for every row -> ``(N,)``.

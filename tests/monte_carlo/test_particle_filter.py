@@ -1,6 +1,7 @@
 """Particle filters: pinned to the Kalman filter, a UPF benchmark, reproducibility, errors."""
 
 import pickle
+import warnings
 
 import numpy as np
 import pytest
@@ -239,6 +240,29 @@ def test_nan_weights_raise_numerical_error(lin_data):
     pf.predict()
     with pytest.raises(NumericalError, match="non-finite particle weight at step 1"):
         pf.update(lin_data[0][0])
+
+
+@pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf, None])
+def test_prediction_finite_check(bad):
+    """The prediction's finite check: huge finite particles (whose squares would overflow, the
+    trap of a sum-of-squares shortcut) pass without a warning; a NaN or infinite one raises,
+    naming it, and the filter is left as it was."""
+    pf = BootstrapParticleFilter(1, 1, 1.0, lambda X: X, lambda X, dt: X, 5, vectorized=True, rng=0)
+    pf.Q = np.array([[1e-300]])
+    X = np.full((5, 1), 1e300)
+    if bad is not None:
+        X[3, 0] = bad
+    pf.initialize(np.full((5, 1), 1.0))
+    pf.particles = X
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        if bad is None:
+            pf.predict()
+            assert pf.step == 1
+        else:
+            with pytest.raises(NumericalError, match=r"non-finite prediction at step 1 \(particle 3"):
+                pf.predict()
+            assert pf.step == 0 and pf.particles is X
 
 
 def test_particle_covariance_not_positive_definite_raises(lin_data):
