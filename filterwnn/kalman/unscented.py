@@ -125,6 +125,11 @@ def _with_fix(check, M, name, *args, **kwargs):
         raise ValueError(f"{msg}; {fix}") from exc
 
 
+def _shape(M):
+    """``np.shape(M)``, without its wrapper for an array (the step's checks call it on each)."""
+    return M.shape if type(M) is np.ndarray else np.shape(M)
+
+
 def _each_row(residual, A, b):
     """``residual(A[i], b)`` for every row, as filterpy's loops call it (one array op for np.subtract)."""
     if residual is np.subtract:
@@ -354,19 +359,20 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         """Shapes, finiteness and symmetry of ``x``, ``P`` (and ``Q``); ``when`` is for messages."""
         d = self.__dict__  # the values themselves: reading x or P would hand them out
         x, P, n = d["_x_now"], d["_P_now"], self._dim_x
-        if np.shape(x) != (n,):
+        if _shape(x) != (n,):
             raise ValueError(f"x must have shape ({n},), got {np.shape(x)}")
         for name, M in (("P", P), ("Q", self.Q)):
-            if np.shape(M) != (n, n):
+            if _shape(M) != (n, n):
                 raise ValueError(f"{name} must have shape ({n}, {n}), got {np.shape(M)}; "
                                  + _SHAPE_FIX[name].format(n=n))
         # Finiteness and symmetry cost full passes: check what the user set, not what we
         # produced. What the filter last produced or checked is kept by content, not
         # identity, so an edit in place (P *= 4, P[0, 2] += 0.5) is seen like an
         # assignment; it also makes the cached factor and the update's sigma points stale
-        # (both modes redraw them).
+        # (both modes redraw them). An x the filter made and nobody has read was finite
+        # when made (each step checks the x it makes), and cannot have changed.
         P_same = not d["_P_out"] or self._unchanged("P", P)
-        if not (np.isfinite(x).all() and (P_same or np.isfinite(P).all())):
+        if not ((not d["_x_out"] or np.isfinite(x).all()) and (P_same or np.isfinite(P).all())):
             raise NumericalError(
                 f"x and P must be finite {when}; set them again (x_post and P_post hold the "
                 "last update's values)", matrix="P", step=self.step)
@@ -399,6 +405,8 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         seen = self._trusted.get(name)
         if seen is None or type(M) is not np.ndarray or M.dtype != float or M.shape != seen[0].shape:
             return False
+        if M.size == 1:  # a 1x1 R: the same comparison on the Python floats (NaN != NaN too)
+            return M.item() == seen[0].item()
         return not np.not_equal(M, seen[0], out=seen[1]).any()
 
     def _mark(self, name, M):
@@ -667,7 +675,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         except Exception:
             self._restore(snap)
             raise
-        self.x_prior = np.copy(self.x)
+        self.x_prior = np.array(self.x)  # np.copy's numbers, without its wrapper
         made = self.vectorized and UT is None and self.x_mean is None  # this class's arithmetic made x
         self._settle_state(before, fx is None or made, fx is None or self.vectorized, "_P_prior_now")
 
@@ -701,7 +709,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             z_arr = np.asarray(z, dtype=float)
         except (TypeError, ValueError) as exc:
             raise TypeError(f"z must be array-like of numbers or None, got {type(z).__name__}") from exc
-        if not np.isfinite(z_arr).all():
+        if not (math.isfinite(z_arr.item()) if z_arr.size == 1 else np.isfinite(z_arr).all()):
             raise ValueError(
                 f"z must be finite (use z=None for a missing measurement), got {np.ravel(z_arr)}"
             )
