@@ -494,14 +494,19 @@ def unit_sigma_points(points):
     return np.asarray(points.sigma_points(np.zeros(n), np.eye(n)), dtype=float)
 
 
+def _sqrt(v):
+    """``float(np.sqrt(v))`` (NaN and numpy's warning below 0), by ``math.sqrt`` for a scalar ``v >= 0``."""
+    return math.sqrt(v) if v >= 0 else float(np.sqrt(v))
+
+
 def _symmetric_scale(points):
     """``c`` if the set is ``[0, c I, -c I]`` (filterpy's Merwe or Julier points), else None."""
     n = points.n
     if isinstance(points, MerweScaledSigmaPoints):
         lam = points.alpha**2 * (n + points.kappa) - n
-        return float(np.sqrt(lam + n))
+        return _sqrt(lam + n)
     if isinstance(points, JulierSigmaPoints):
-        return float(np.sqrt(n + points.kappa))
+        return _sqrt(n + points.kappa)
     return None
 
 

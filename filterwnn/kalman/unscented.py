@@ -125,6 +125,11 @@ def _with_fix(check, M, name, *args, **kwargs):
         raise ValueError(f"{msg}; {fix}") from exc
 
 
+def _shape(M):
+    """``np.shape(M)``, without its wrapper for an array (the step's checks call it on each)."""
+    return M.shape if type(M) is np.ndarray else np.shape(M)
+
+
 def _each_row(residual, A, b):
     """``residual(A[i], b)`` for every row, as filterpy's loops call it (one array op for np.subtract)."""
     if residual is np.subtract:
@@ -149,6 +154,18 @@ def _downdate(P, u):
     """
     out = np.array(P, dtype=float, order="C")
     return dger(-1.0, u, u, a=out.T, overwrite_a=1).T
+
+
+def _downdate_finite(P, u):
+    """Whether ``P - u u^T`` is finite, known in O(n) when ``P`` passed a Cholesky this step.
+
+    A symmetric positive definite ``P`` has ``|P_ij| <= max_k P_kk`` (up to rounding and the
+    package's symmetry tolerance, ``1e-8`` relative: a factor 2 covers both), so no entry of
+    the downdate can overflow while ``2 max_k P_kk + max_i u_i^2`` is far below the largest
+    float; a NaN in ``u`` fails the comparison. False means unknown: the caller scans.
+    """
+    b = float(np.abs(u).max())
+    return 2.0 * float(P.diagonal().max()) + b * b < 1e300
 
 
 def fast_unscented_transform(sigmas, Wm, Wc, noise_cov=None):
@@ -202,12 +219,45 @@ class _Watched(property):
             raise AttributeError(self.name) from None
         if not d.get(self.out, True):
             obj._mark(self.name, value)
+            for kept in _Kept.NAMES:  # P_prior or P_post may be this very array: theirs is a copy
+                if d.get(kept) is value:
+                    d[kept] = value.copy()
             d[self.out] = True
         return value
 
     def __set__(self, obj, value):
         obj.__dict__[self.now] = value
         obj.__dict__[self.out] = True
+
+
+class _Kept(property):
+    """``P_prior`` and ``P_post`` of :class:`UnscentedKalmanFilter`: copies of ``P``, made when needed.
+
+    A step that made ``P`` (held by nobody outside, see :class:`_Watched`) stores that array
+    itself here, since the filter never writes into its arrays in place; the copy filterpy's
+    users get is made when either is first handed out: at a read of this attribute, or at
+    the first read of ``P``. So an edit in place of one never shows in the other.
+    """
+
+    NAMES = ("_P_prior_now", "_P_post_now")
+
+    def __set_name__(self, owner, name):
+        self.name, self.now = name, f"_{name}_now"
+
+    def __get__(self, obj, objtype=None):
+        if obj is None:
+            return self
+        d = obj.__dict__
+        try:
+            value = d[self.now]
+        except KeyError:
+            raise AttributeError(self.name) from None
+        if value is d.get("_P_now"):
+            value = d[self.now] = value.copy()
+        return value
+
+    def __set__(self, obj, value):
+        obj.__dict__[self.now] = value
 
 
 class UnscentedKalmanFilter(_FilterpyUKF):
@@ -260,6 +310,8 @@ class UnscentedKalmanFilter(_FilterpyUKF):
 
     x = _Watched()
     P = _Watched()
+    P_prior = _Kept()
+    P_post = _Kept()
 
     def __init__(self, dim_x, dim_z, dt, hx, fx, points, sqrt_fn=None, x_mean_fn=None, z_mean_fn=None,
                  residual_x=None, residual_z=None, state_add=None, vectorized=False):
@@ -289,6 +341,9 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         for name in ("x", "P"):  # a pickle from before x and P were watched
             if name in state:
                 state[f"_{name}_now"], state[f"_{name}_out"] = state.pop(name), True
+        for name in ("P_prior", "P_post"):  # ... or P_prior and P_post kept
+            if name in state:
+                state[f"_{name}_now"] = state.pop(name)
         self.__dict__.update(state)
 
     # ------------------------------------------------------------------ helpers
@@ -304,19 +359,20 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         """Shapes, finiteness and symmetry of ``x``, ``P`` (and ``Q``); ``when`` is for messages."""
         d = self.__dict__  # the values themselves: reading x or P would hand them out
         x, P, n = d["_x_now"], d["_P_now"], self._dim_x
-        if np.shape(x) != (n,):
+        if _shape(x) != (n,):
             raise ValueError(f"x must have shape ({n},), got {np.shape(x)}")
         for name, M in (("P", P), ("Q", self.Q)):
-            if np.shape(M) != (n, n):
+            if _shape(M) != (n, n):
                 raise ValueError(f"{name} must have shape ({n}, {n}), got {np.shape(M)}; "
                                  + _SHAPE_FIX[name].format(n=n))
         # Finiteness and symmetry cost full passes: check what the user set, not what we
         # produced. What the filter last produced or checked is kept by content, not
         # identity, so an edit in place (P *= 4, P[0, 2] += 0.5) is seen like an
         # assignment; it also makes the cached factor and the update's sigma points stale
-        # (both modes redraw them).
+        # (both modes redraw them). An x the filter made and nobody has read was finite
+        # when made (each step checks the x it makes), and cannot have changed.
         P_same = not d["_P_out"] or self._unchanged("P", P)
-        if not (np.isfinite(x).all() and (P_same or np.isfinite(P).all())):
+        if not ((not d["_x_out"] or np.isfinite(x).all()) and (P_same or np.isfinite(P).all())):
             raise NumericalError(
                 f"x and P must be finite {when}; set them again (x_post and P_post hold the "
                 "last update's values)", matrix="P", step=self.step)
@@ -349,6 +405,8 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         seen = self._trusted.get(name)
         if seen is None or type(M) is not np.ndarray or M.dtype != float or M.shape != seen[0].shape:
             return False
+        if M.size == 1:  # a 1x1 R: the same comparison on the Python floats (NaN != NaN too)
+            return M.item() == seen[0].item()
         return not np.not_equal(M, seen[0], out=seen[1]).any()
 
     def _mark(self, name, M):
@@ -453,7 +511,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
     # References suffice: this class never writes into these arrays in place, it rebinds
     # them (its predict does not call filterpy's, which fills sigmas_f in place); the kept
     # buffers (_sigma_buffer, _draw) are refilled only by a draw, which a restore marks stale.
-    _SNAPSHOT = ("_x_now", "_P_now", "_x_out", "_P_out", "x_prior", "P_prior", "x_post", "P_post",
+    _SNAPSHOT = ("_x_now", "_P_now", "_x_out", "_P_out", "x_prior", "_P_prior_now", "x_post", "_P_post_now",
                  "sigmas_f", "sigmas_h", "K", "y", "z", "S", "SI", "_sigmas_stale", "_deviations", "_half",
                  "_log_likelihood", "_likelihood", "_mahalanobis", "step", "_chol")
     _GET_SNAPSHOT = operator.attrgetter(*_SNAPSHOT)  # one C call: a tuple in that order
@@ -617,10 +675,9 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         except Exception:
             self._restore(snap)
             raise
-        self.x_prior = np.copy(self.x)
-        self.P_prior = np.copy(self.P)
+        self.x_prior = np.array(self.x)  # np.copy's numbers, without its wrapper
         made = self.vectorized and UT is None and self.x_mean is None  # this class's arithmetic made x
-        self._settle_state(before, fx is None or made, fx is None or self.vectorized)
+        self._settle_state(before, fx is None or made, fx is None or self.vectorized, "_P_prior_now")
 
     def compute_process_sigmas(self, dt, fx=None, **fx_args):
         """filterpy's helper: ``sigmas_f`` = the sigma points passed through ``fx``."""
@@ -652,7 +709,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             z_arr = np.asarray(z, dtype=float)
         except (TypeError, ValueError) as exc:
             raise TypeError(f"z must be array-like of numbers or None, got {type(z).__name__}") from exc
-        if not np.isfinite(z_arr).all():
+        if not (math.isfinite(z_arr.item()) if z_arr.size == 1 else np.isfinite(z_arr).all()):
             raise ValueError(
                 f"z must be finite (use z=None for a missing measurement), got {np.ravel(z_arr)}"
             )
@@ -677,9 +734,10 @@ class UnscentedKalmanFilter(_FilterpyUKF):
                 # filterpy inverts S without asking whether it is positive definite
                 if np.isfinite(self.S).any() and not _positive_definite(self.S):
                     raise self._not_pd("S", self.S)
+                P_finite = False
             else:
-                self._vectorized_update(z_arr, R, UT, hx, **hx_args)
-            if not (np.isfinite(self.x).all() and np.isfinite(self.P).all()):
+                P_finite = self._vectorized_update(z_arr, R, UT, hx, **hx_args)
+            if not (np.isfinite(self.x).all() and (P_finite or np.isfinite(self.P).all())):
                 raise NumericalError(
                     f"the update produced non-finite x or P at step {self.step}", matrix="P", step=self.step
                 )
@@ -688,12 +746,14 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             raise
         self._sigmas_stale = True
         self._chol = None
-        self._settle_state(before, self.vectorized and self.state_add is np.add, self.vectorized)
+        self._settle_state(before, self.vectorized and self.state_add is np.add, self.vectorized, "_P_post_now")
 
-    def _settle_state(self, before, fresh_x, fresh_P):
+    def _settle_state(self, before, fresh_x, fresh_P, kept):
         """After a step: an ``x`` or ``P`` it made (``fresh_*``, not ``before``'s object) is
         held by nobody outside, so the next step skips its comparison (:class:`_Watched`);
-        any other is kept as a copy to compare with."""
+        any other is kept as a copy to compare with. ``kept`` (``P_prior``'s or ``P_post``'s
+        slot) gets ``P`` itself when it was made here (:class:`_Kept` copies it when needed),
+        else a copy."""
         d = self.__dict__
         for name, fresh, old in (("x", fresh_x, before[0]), ("P", fresh_P, before[1])):
             value = d[f"_{name}_now"]
@@ -701,6 +761,8 @@ class UnscentedKalmanFilter(_FilterpyUKF):
                 d[f"_{name}_out"] = False
             else:
                 self._mark(name, value)
+        P = d["_P_now"]
+        d[kept] = P if not d["_P_out"] else P.copy()
 
     def _loop_update(self, z, R, hx, **hx_args):
         """filterpy's ``update`` (UT and cross variance at their defaults): the same
@@ -718,8 +780,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
 
     def _store_posterior(self, z):
         self.z = z.copy()
-        self.x_post = self.x.copy()
-        self.P_post = self.P.copy()
+        self.x_post = self.x.copy()  # P_post: at _settle_state
         self._log_likelihood = None
         self._likelihood = None
         self._mahalanobis = None
@@ -764,6 +825,7 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         return z, R
 
     def _vectorized_update(self, z, R, UT, hx, **hx_args):
+        """The vectorized update; returns True when the new ``P`` is known to be finite."""
         hx = self.hx if hx is None else hx
         sig = self.sigmas_f
         # z may change size between sensors (filterpy allows it): the size is R's
@@ -784,12 +846,17 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         self.SI, self.K, u = self._gain(S, Pxz)
         self.y = self.residual_z(z.reshape(np.shape(zp)), zp)
         self.x = self.state_add(self._x_now, self.K @ self.y)
+        P_prior = self._P_now
         if u is not None:  # 1x1 S: K S K^T = u u^T, a rank-1 downdate symmetric by construction
-            self.P = _downdate(self._P_now, u)
+            self.P = _downdate(P_prior, u)
         else:
-            P = self._P_now - self.K @ S @ self.K.T
+            P = P_prior - self.K @ S @ self.K.T
             self.P = 0.5 * (P + P.T)
         self._store_posterior(z)
+        # whether P is known finite without a scan: the points were drawn from P_prior's
+        # Cholesky factor (so it is positive definite) and the downdate cannot overflow
+        drawn = self._half is not None or self._deviations is not None
+        return u is not None and drawn and _downdate_finite(P_prior, u)
 
     def _cross_covariance(self, sig, dz):
         """``P_xz = sum_i Wc_i (chi_i - x)(h_i - z_hat)^T``, from the draw's deviations if kept."""

@@ -456,3 +456,34 @@ def test_filterpys_saver_records_x_and_P_at_every_step(vectorized):
     saver.to_array()
     np.testing.assert_array_equal(saver.x, np.array(xs))
     np.testing.assert_array_equal(saver.P, np.array(Ps))
+
+
+@pytest.mark.parametrize("f", [fx, None])
+@pytest.mark.parametrize("first", ["P", "kept"])
+def test_P_prior_and_P_post_are_arrays_of_their_own(f, first):
+    # the step stores the P it made as P_prior / P_post until either is handed out:
+    # an edit in place of one, whichever is read first, must not show in the other
+    ukf = make(UnscentedKalmanFilter, POINTS["merwe"](), True, f=f)
+    for step in ("predict", "update"):
+        ukf.predict() if step == "predict" else ukf.update(np.array([1.2, 0.1]))
+        name = "P_prior" if step == "predict" else "P_post"
+        a, b = (ukf.P, getattr(ukf, name)) if first == "P" else (getattr(ukf, name), ukf.P)
+        assert a is not b
+        np.testing.assert_array_equal(a, b)
+        saved = b.copy()
+        a[0, 0] += 1.0
+        np.testing.assert_array_equal(b, saved)
+        a[0, 0] -= 1.0
+
+
+def test_a_pickle_from_before_P_prior_and_P_post_were_kept_loads():
+    ukf = make(UnscentedKalmanFilter, POINTS["merwe"](), True)
+    ukf.predict(); ukf.update(np.array([1.2, 0.1]))
+    state = pickle.loads(pickle.dumps(ukf)).__dict__.copy()
+    for name in ("P_prior", "P_post"):  # the old layout: plain attributes
+        state[name] = state.pop(f"_{name}_now")
+    old = UnscentedKalmanFilter.__new__(UnscentedKalmanFilter)
+    old.__setstate__(state)
+    np.testing.assert_array_equal(old.P_post, ukf.P_post)
+    old.predict(); ukf.predict()
+    np.testing.assert_array_equal(old.P_prior, ukf.P_prior)
