@@ -193,6 +193,16 @@ def fast_unscented_transform(sigmas, Wm, Wc, noise_cov=None):
     return x, P
 
 
+def _stored(obj, attr):
+    """``(obj.__dict__, the value behind attr)`` for :class:`_Watched` and :class:`_Kept`
+    (stored under ``attr.now``); an unset one is an ``AttributeError`` naming ``attr.name``."""
+    d = obj.__dict__
+    try:
+        return d, d[attr.now]
+    except KeyError:
+        raise AttributeError(attr.name) from None
+
+
 class _Watched(property):
     """``x`` and ``P`` of :class:`UnscentedKalmanFilter`: compared only when they may have changed.
 
@@ -212,11 +222,7 @@ class _Watched(property):
     def __get__(self, obj, objtype=None):
         if obj is None:
             return self
-        d = obj.__dict__
-        try:
-            value = d[self.now]
-        except KeyError:
-            raise AttributeError(self.name) from None
+        d, value = _stored(obj, self)
         if not d.get(self.out, True):
             obj._mark(self.name, value)
             for kept in _Kept.NAMES:  # P_prior or P_post may be this very array: theirs is a copy
@@ -247,11 +253,7 @@ class _Kept(property):
     def __get__(self, obj, objtype=None):
         if obj is None:
             return self
-        d = obj.__dict__
-        try:
-            value = d[self.now]
-        except KeyError:
-            raise AttributeError(self.name) from None
+        d, value = _stored(obj, self)
         if value is d.get("_P_now"):
             value = d[self.now] = value.copy()
         return value

@@ -429,15 +429,23 @@ def test_an_edit_through_a_reference_kept_across_a_failed_update_is_seen(vectori
         ukf.update(np.array([1.2, 0.1]))
 
 
+def _in_old_layout(ukf, names, watched):
+    """``ukf`` pickled and restored with ``names`` as plain attributes (the layout before they
+    were descriptors; ``watched`` ones also carried an ``_<name>_out`` flag)."""
+    state = pickle.loads(pickle.dumps(ukf)).__dict__.copy()
+    for name in names:
+        state[name] = state.pop(f"_{name}_now")
+        if watched:
+            del state[f"_{name}_out"]
+    old = UnscentedKalmanFilter.__new__(UnscentedKalmanFilter)
+    old.__setstate__(state)
+    return old
+
+
 def test_a_pickle_from_before_x_and_P_were_watched_loads():
     ukf = make(UnscentedKalmanFilter, POINTS["merwe"](), True)
     ukf.predict(); ukf.update(np.array([1.2, 0.1]))
-    state = pickle.loads(pickle.dumps(ukf)).__dict__.copy()
-    for name in ("x", "P"):  # the old layout: plain attributes
-        state[name] = state.pop(f"_{name}_now")
-        del state[f"_{name}_out"]
-    old = UnscentedKalmanFilter.__new__(UnscentedKalmanFilter)
-    old.__setstate__(state)
+    old = _in_old_layout(ukf, ("x", "P"), watched=True)
     old.predict(); old.update(np.array([1.0, 0.2]))
     ukf.predict(); ukf.update(np.array([1.0, 0.2]))
     np.testing.assert_array_equal(old.x, ukf.x)
@@ -479,11 +487,7 @@ def test_P_prior_and_P_post_are_arrays_of_their_own(f, first):
 def test_a_pickle_from_before_P_prior_and_P_post_were_kept_loads():
     ukf = make(UnscentedKalmanFilter, POINTS["merwe"](), True)
     ukf.predict(); ukf.update(np.array([1.2, 0.1]))
-    state = pickle.loads(pickle.dumps(ukf)).__dict__.copy()
-    for name in ("P_prior", "P_post"):  # the old layout: plain attributes
-        state[name] = state.pop(f"_{name}_now")
-    old = UnscentedKalmanFilter.__new__(UnscentedKalmanFilter)
-    old.__setstate__(state)
+    old = _in_old_layout(ukf, ("P_prior", "P_post"), watched=False)
     np.testing.assert_array_equal(old.P_post, ukf.P_post)
     old.predict(); ukf.predict()
     np.testing.assert_array_equal(old.P_prior, ukf.P_prior)
