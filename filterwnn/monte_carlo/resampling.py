@@ -213,8 +213,11 @@ _FILTERPY_DOC = """{title} resampling with filterpy's signature: ``{name}_resamp
     weights : array-like of shape (n_particles,)
         Non-negative weights with a positive sum.
     rng : None, numpy.random.RandomState, or any ``rng`` of :func:`{name}`
-        ``None`` (default): the global state (``np.random.random``); a ``RandomState``
-        is used as given; anything else is normalised with
+        ``None`` (default): the global state (``np.random.random``), filterpy's habit, kept
+        so that filterpy code swapped over repeats under ``np.random.seed``; new code
+        should pass ``rng=np.random.default_rng(seed)`` (the package's filters never touch
+        the global state). A ``RandomState`` is used as given (``RandomState(s)`` draws what
+        ``np.random.seed(s)`` does); anything else is normalised with
         :func:`numpy.random.default_rng`.
 
     Returns
