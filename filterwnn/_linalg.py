@@ -149,7 +149,12 @@ def first_not_pd(P):
 
 
 def smallest_eigenvalue(M):
-    """Smallest eigenvalue of the symmetric part of the square matrix ``M`` (None if it fails)."""
+    """Smallest eigenvalue of the symmetric part of the square matrix ``M``.
+
+    None if it fails or if ``M`` holds a NaN or an infinity (no eigenvalue means anything then).
+    """
+    if not np.isfinite(M).all():
+        return None
     try:
         return float(np.linalg.eigvalsh(0.5 * (M + np.swapaxes(M, -1, -2))).min())
     except (np.linalg.LinAlgError, ValueError):
@@ -160,7 +165,11 @@ def not_pd_error(name, P, step=None, remedy=None):
     """The :class:`NumericalError` for a matrix ``P`` (or stack) that is not positive definite.
 
     The message names the matrix, the step, the first failing particle of a stack, the
-    smallest eigenvalue of a single matrix, and the remedy when one is given.
+    smallest eigenvalue of a single matrix (or, where it holds a NaN or an infinity, the
+    first such entry instead), and the remedy when one is given.
+
+    >>> print(not_pd_error("P", np.array([[1.0, 0.0], [0.0, np.nan]]), step=4))
+    P is not positive definite at step 4; P[1, 1] is nan
     """
     msg = f"{name} is not positive definite"
     if step is not None:
@@ -172,6 +181,9 @@ def not_pd_error(name, P, step=None, remedy=None):
         ev = smallest_eigenvalue(P)
         if ev is not None:
             msg += f"; smallest eigenvalue {ev:.3g}"
+        elif not np.isfinite(P).all():
+            i, j = np.argwhere(~np.isfinite(P))[0]
+            msg += f"; {name}[{i}, {j}] is {P[i, j]}"
     if remedy:
         msg += f"; {remedy}"
     return NumericalError(msg, matrix=name, step=step)

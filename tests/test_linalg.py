@@ -3,6 +3,7 @@ forward substitution (member axis last) against NumPy's LAPACK, and the errors o
 
 import numpy as np
 import pytest
+from filterwnn._linalg import not_pd_error, smallest_eigenvalue
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -95,3 +96,12 @@ def test_cholesky_names_the_first_member_that_is_not_pd_on_either_path(N):
     with pytest.raises(NumericalError, match=r"^S is not positive definite at step 9 \(particle 5\); check R$") as e:
         cholesky(P, "S", step=9, remedy="check R")
     assert e.value.matrix == "S" and e.value.step == 9
+
+
+@pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
+def test_not_pd_error_names_a_non_finite_entry_instead_of_an_eigenvalue(bad):
+    P = np.eye(3)
+    P[1, 2] = bad
+    msg = str(not_pd_error("P", P, step=7, remedy="reset P"))
+    assert msg == f"P is not positive definite at step 7; P[1, 2] is {bad}; reset P"
+    assert smallest_eigenvalue(P) is None
