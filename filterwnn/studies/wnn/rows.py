@@ -225,7 +225,8 @@ def _in_paper_table(key):
 ROWS = _rows()
 
 
-#: The rows run by default: those whose :class:`StudyEntry` says ``default`` (all but ``ibis-hmc``).
+#: The rows run by default: those whose :class:`StudyEntry` says ``default`` (all but the opt-in
+#: ``ibis-hmc``, ``smc-noise-10x10`` and ``smc-student-10x10``).
 ALL_TRAINERS = tuple(k for k in ROWS if study_entry(k).default)
 
 
