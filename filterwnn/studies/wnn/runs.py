@@ -177,7 +177,7 @@ def distribution_scores(dist, y):
     ----------
     dist : GaussianPredictive or StudentTMixture or None
         A predictive of :mod:`filterwnn.wnn.predictive` (what
-        :meth:`~filterwnn.WNNRegressor.predictive` returns); None: no predictive distribution.
+        :meth:`~filterwnn.wnn.regressor.WNNRegressor.predictive` returns); None: no predictive distribution.
     y : array-like of shape (n,)
 
     Returns
