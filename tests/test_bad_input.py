@@ -354,7 +354,7 @@ REGRESSOR_ROWS = [
     row(lambda: fit_reg(n_epochs=0), ValueError, r"n_epochs must be >= 1, got 0", "reg-epochs-zero"),
     row(lambda: fit_reg(n_epochs=-1), ValueError, r"n_epochs must be >= 1, got -1", "reg-epochs-neg"),
     row(lambda: fit_reg(n_epochs=2.5), TypeError, r"n_epochs must be an integer, got float 2.5", "reg-epochs-float"),
-    row(lambda: fit_reg(trainer="adam"), ValueError, r"unknown trainer 'adam'; valid: 'bp', 'ekf', 'ekf-ensemble', 'epf', 'gsf-ekf', 'gsf-sukf', 'gsf-ukf', 'smc', 'smc-noise', 'smc-noise-10x10', 'spf', 'sukf', 'supf', 'ukf', 'upf'", "reg-trainer"),
+    row(lambda: fit_reg(trainer="adam"), ValueError, r"unknown trainer 'adam'; valid: 'bp', 'ekf', 'ekf-ensemble', 'epf', 'gsf-ekf', 'gsf-sukf', 'gsf-ukf', 'smc', 'smc-noise', 'smc-noise-10x10', 'smc-student-10x10', 'spf', 'sukf', 'supf', 'ukf', 'upf'", "reg-trainer"),
     row(lambda: fit_reg(wavelet="haar"), ValueError, r"unknown wavelet 'haar'; valid: 'mexican_hat', 'morlet'", "reg-wavelet"),
     row(lambda: fit_reg(init="zeros"), ValueError, r"unknown init 'zeros'; valid: 'paper', 'scaled'", "reg-init"),
     row(lambda: fit_reg(trainer="spf", n_particles=0), ValueError, r"n_particles must be >= 1, got 0", "reg-particles"),

@@ -86,7 +86,8 @@ class RowsTarget:
     Parameters
     ----------
     model : object
-        Supplies ``dim_x``, the Gaussian prior ``x0``, ``P0``, ``log_prior_and_grad(thetas)``,
+        Supplies ``dim_x``, the prior's mean ``x0`` and covariance ``P0`` (the prior is ``N(x0, P0)``
+        unless the model has ``sample_prior(n, rng)``), ``log_prior_and_grad(thetas)``,
         ``log_likelihood(thetas, X, y)`` and ``log_likelihood_and_grad(thetas, X, y)`` batched
         over particles ``(n_particles, dim_x)`` (e.g. :class:`~filterwnn.wnn.weight_model.WNNWeightModel`).
     X : array-like of shape (n_rows, n_inputs), optional
@@ -134,9 +135,12 @@ class RowsTarget:
             self.X, self.y = np.vstack([self.X, x]), np.concatenate([self.y, y])
 
     def sample_prior(self, n, rng=None):
-        """``n`` draws from ``N(x0, P0)``: ``(n, dim)``."""
+        """``n`` draws from the prior, ``(n, dim)``: the model's own ``sample_prior(n, rng)`` when it
+        has one (a prior that is not Gaussian), else ``N(x0, P0)``."""
         n = check_positive_int(n, "n")
         rng = check_rng(rng)
+        if hasattr(self.model, "sample_prior"):
+            return np.asarray(self.model.sample_prior(n, rng), dtype=float)
         L = np.linalg.cholesky(np.asarray(self.model.P0, dtype=float))
         return np.asarray(self.model.x0, dtype=float) + rng.standard_normal((n, self.dim)) @ L.T
 

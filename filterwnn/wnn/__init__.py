@@ -3,7 +3,8 @@
 The network itself (:mod:`.network`: wavelets, ``forward``, ``jacobian``, ``pack``/``unpack``,
 initialisations; its functions are also exported here, so ``filterwnn.wnn.forward`` works as
 it always has), its weight vector as a filter state (:mod:`.weight_model`), the trainers
-(:mod:`.trainers`: how each filter trains the weights) and the scikit-learn estimator
+(:mod:`.trainers`: how each filter trains the weights), their predictive distributions
+(:mod:`.predictive`) and the scikit-learn estimator
 :class:`~filterwnn.wnn.regressor.WNNRegressor` (:mod:`.regressor`; scikit-learn is imported
 on first use).
 """
@@ -29,6 +30,7 @@ _EXPORTS = {
     "network": "network",
     "weight_model": "weight_model",
     "trainers": "trainers",
+    "predictive": "predictive",
     "regressor": "regressor",
     "WNNWeightModel": "weight_model:WNNWeightModel",
     "WNNRegressor": "regressor:WNNRegressor",

@@ -29,7 +29,7 @@ between calls (:meth:`WNNRegressor.partial_fit`):
 >>> WNNRegressor(trainer="adam").fit(X, y)
 Traceback (most recent call last):
 ...
-ValueError: unknown trainer 'adam'; valid: 'bp', 'ekf', 'ekf-ensemble', 'epf', 'gsf-ekf', 'gsf-sukf', 'gsf-ukf', 'smc', 'smc-noise', 'smc-noise-10x10', 'spf', 'sukf', 'supf', 'ukf', 'upf'
+ValueError: unknown trainer 'adam'; valid: 'bp', 'ekf', 'ekf-ensemble', 'epf', 'gsf-ekf', 'gsf-sukf', 'gsf-ukf', 'smc', 'smc-noise', 'smc-noise-10x10', 'smc-student-10x10', 'spf', 'sukf', 'supf', 'ukf', 'upf'
 """
 
 from __future__ import annotations
@@ -572,10 +572,18 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
             the posterior sample's spread of outputs, plus R (fixed by ``measurement_noise``);
         ``smc-noise``, ``smc-noise-10x10``
             the spread of outputs plus each particle's own learned noise ``exp(s_i)``,
-            averaged over the particles: the posterior predictive with R learned.
+            averaged over the particles: the posterior predictive with R learned;
+        ``smc-student-10x10``
+            the variance of its predictive, a mixture of Student-t's (:meth:`predictive`): the
+            spread of outputs plus the mean of ``sigma_i^2 nu_i / (nu_i - 2)``; ``inf`` when any
+            particle has ``nu_i <= 2`` (a t's variance exists only for ``nu > 2``). Its
+            intervals are not ``mean +- z std``: use :meth:`predict_interval`.
 
-        The returned std is the square root of that variance; a Gaussian with it is what the
-        WNN study scores (coverage at 50 / 90 / 95 % and the negative log predictive density).
+        The returned std is the square root of that variance. For every trainer but
+        ``smc-student-10x10`` the predictive is the Gaussian with it; :meth:`predictive`,
+        :meth:`predict_interval` and :meth:`predict_log_density` give each trainer's own
+        predictive, which the WNN study scores (coverage at 50 / 90 / 95 % and the negative log
+        predictive density).
 
         Parameters
         ----------
@@ -593,3 +601,70 @@ class WNNRegressor(RegressorMixin, BaseEstimator):
         if return_std:
             return mean, np.sqrt(np.maximum(var, 0.0))
         return mean
+
+    def predictive(self, X):
+        """The predictive distribution at the rows ``X`` (:mod:`filterwnn.wnn.predictive`).
+
+        A :class:`~filterwnn.wnn.predictive.GaussianPredictive` ``N(mean, var)`` with
+        :meth:`predict`'s mean and variance for every trainer but ``smc-student-10x10``, whose
+        predictive is the particles' mixture of Student-t's
+        (:class:`~filterwnn.wnn.predictive.StudentTMixture`). Each has ``mean``, ``var``,
+        ``interval(level)`` and ``logpdf(y)``.
+
+        Parameters
+        ----------
+        X : array-like of shape (n_samples, n_features)
+
+        Returns
+        -------
+        GaussianPredictive or StudentTMixture
+        """
+        check_is_fitted(self, "theta_")
+        X = validate_data(self, X, reset=False)
+        return self._final.predictive(X)
+
+    def predict_interval(self, X, level=0.9):
+        """The predictive's own central ``level`` interval at each row.
+
+        Gaussian predictives: ``mean -+ z std``, ``z = Phi^{-1}((1 + level) / 2)``; the Student-t
+        mixture: the mixture's ``(1 - level) / 2`` and ``(1 + level) / 2`` quantiles.
+
+        Parameters
+        ----------
+        X : array-like of shape (n_samples, n_features)
+        level : float in (0, 1), default 0.9
+
+        Returns
+        -------
+        lower, upper : ndarray of shape (n_samples,)
+
+        Examples
+        --------
+        >>> from filterwnn.datasets import make_siso_benchmark
+        >>> X, y, X_test, y_test = make_siso_benchmark(rng=0)
+        >>> reg = WNNRegressor(n_epochs=2, random_state=0).fit(X, y)
+        >>> lo, hi = reg.predict_interval(X_test[:3], level=0.9)
+        >>> mean, std = reg.predict(X_test[:3], return_std=True)
+        >>> bool(np.allclose(hi - mean, 1.6448536269514722 * std))
+        True
+        """
+        return self.predictive(X).interval(level)
+
+    def predict_log_density(self, X, y):
+        """The predictive's log-density at the targets ``y``, one value per row.
+
+        Parameters
+        ----------
+        X : array-like of shape (n_samples, n_features)
+        y : array-like of shape (n_samples,)
+
+        Returns
+        -------
+        ndarray of shape (n_samples,)
+            ``log p(y_i | x_i, training rows)``; minus its mean is the NLPD.
+        """
+        y = np.asarray(y, dtype=float).reshape(-1)
+        dist = self.predictive(X)
+        if y.shape != dist.mean.shape:
+            raise ValueError(f"y must have one target per row of X ({dist.mean.shape[0]}), got shape {y.shape}")
+        return dist.logpdf(y)

@@ -70,6 +70,15 @@ this table; :func:`register_trainer` adds one. The trainers, by name:
     6000 particle-gradient evaluations per rung (the cloud holds 0.80 of a known d = 160
     posterior's variance there; 0.39 at ``"smc"``'s N = 20 x 6 steps). Use it with
     ``n_particles=60``.
+``"smc-student-10x10"``
+    ``"smc-noise-10x10"``'s sampler (10 HMC steps of 10 leapfrogs per rung; use it with
+    ``n_particles=60``) with a Student-t likelihood ``y_k ~ t_nu(WNN(theta, x_k), sigma^2)``:
+    ``s = log sigma^2`` (prior ``N(log 0.1, 2^2)``, as ``"smc-noise"``'s ``log R``) and
+    ``u = log nu`` (prior ``nu ~ Gamma(2, rate 0.1)``, Juarez and Steel 2010) join the weights
+    in the state. For a plant whose residuals are the network's heavy-tailed error, not
+    Gaussian noise. Its predictive is the particles' mixture of t's
+    (:class:`filterwnn.wnn.predictive.StudentTMixture`): intervals from the mixture's quantiles,
+    density from the mixture.
 
 ``"auto"`` noise settings (``process_noise`` Q, ``initial_covariance`` P0) are per trainer and
 start (:data:`AUTO_SETTINGS`, from each entry's ``auto``): for the scaled start, what the WNN study chose on a validation
@@ -95,6 +104,7 @@ from dataclasses import dataclass
 import numpy as np
 from filterpy.kalman import ExtendedKalmanFilter
 from scipy.linalg.blas import dsymv, dsyr
+from scipy.special import gammaln, polygamma, psi
 
 from ..monte_carlo import smc
 from . import network as wnn
@@ -109,6 +119,7 @@ from ..monte_carlo.particle_filter import (
 from ..kalman.presets import make_points
 from ..models import from_model
 from ..kalman.unscented import UnscentedKalmanFilter
+from .predictive import GaussianPredictive, StudentTMixture
 from .weight_model import WNNWeightModel, scaled_prior
 
 __all__ = [
@@ -290,6 +301,12 @@ class BaseTrainer:
     def predict_mean(self, X):
         """The predictive mean alone (the loss curve needs no variance)."""
         return self.predict(X)[0]
+
+    def predictive(self, X):
+        """The predictive distribution at the rows ``X``: by default the Gaussian
+        :class:`~filterwnn.wnn.predictive.GaussianPredictive` with ``predict(X)``'s mean and variance
+        (a trainer whose predictive is not Gaussian overrides this)."""
+        return GaussianPredictive(*self.predict(X))
 
     def check_finite(self, epoch, *arrays):
         """Raise :class:`~filterwnn.NumericalError` if any of ``arrays`` is not finite after ``epoch``."""
@@ -748,6 +765,137 @@ class _SMCNoiseTrainer(_SMCTrainer):
 
 
 
+class _StudentNoise:
+    r"""The weights, ``s = log sigma^2`` and ``u = log nu`` as one static parameter, for a Student-t
+    likelihood ``y_k ~ t_nu(WNN(theta, x_k), sigma^2)`` (what :class:`filterwnn.monte_carlo.smc.RowsTarget`
+    reads, batched over particles, with gradients).
+
+    Prior: the weight model's ``N(x0, P0)`` (Q = 0), ``s ~ N(s_mean, s_sd^2)`` and
+    ``nu ~ Gamma(df_shape, rate=df_rate)`` (Juarez and Steel 2010's weakly informative prior for
+    ``(2, 0.1)``: mean 20, 1.8 % of its mass below ``nu = 2``), carried to ``u`` with the Jacobian
+    ``nu``: ``log p(u) = df_shape u - df_rate e^u + const``. :meth:`sample_prior` draws that prior
+    exactly (the Gamma by ``rng.gamma``); ``x0``/``P0`` hold its means and variances (``u``'s:
+    ``E log nu = psi(df_shape) - log df_rate``, ``Var log nu = psi'(df_shape)``), which the
+    moves read only for their preconditioner's floor.
+
+    Per row, with ``r = y - f``, ``a = r^2 / sigma^2`` and ``w = (nu + 1) / (nu + a)``:
+    ``d/df = w r / sigma^2``, ``d/ds = (w a - 1) / 2`` and
+    ``d/du = nu [psi((nu+1)/2)/2 - psi(nu/2)/2 - 1/(2 nu) - log(1 + a/nu)/2 + w a / (2 nu)]``.
+    """
+
+    def __init__(self, prior, s_mean, s_sd, df_shape, df_rate):
+        self.prior, self.wavelet = prior, prior.wavelet
+        self.s_mean, self.s_sd = float(s_mean), float(s_sd)
+        self.df_shape, self.df_rate = float(df_shape), float(df_rate)
+        self.dim_x = prior.dim_x + 2
+        u_mean = float(psi(self.df_shape) - np.log(self.df_rate))
+        self.x0 = np.concatenate([prior.x0, [self.s_mean, u_mean]])
+        self.P0 = np.zeros((self.dim_x, self.dim_x))
+        self.P0[:-2, :-2] = prior.P0
+        self.P0[-2, -2], self.P0[-1, -1] = self.s_sd**2, float(polygamma(1, self.df_shape))
+
+    def sample_prior(self, n, rng):
+        """``n`` draws of the prior, shape ``(n, dim_x)``: Gaussian weights and ``s``, ``log`` of a Gamma ``nu``."""
+        L = np.linalg.cholesky(np.asarray(self.P0[:-1, :-1], dtype=float))
+        ws = self.x0[:-1] + rng.standard_normal((n, self.dim_x - 1)) @ L.T
+        return np.column_stack([ws, np.log(rng.gamma(self.df_shape, 1.0 / self.df_rate, size=n))])
+
+    def log_prior_and_grad(self, thetas):
+        bad = ~np.all(np.isfinite(thetas), axis=1)
+        safe = np.where(bad[:, None], self.x0, thetas)
+        lp, gp = self.prior.log_prior_and_grad(safe[:, :-2])
+        v = (safe[:, -2] - self.s_mean) / self.s_sd
+        lps = -0.5 * v * v - np.log(self.s_sd * np.sqrt(2.0 * np.pi))
+        k, b, u = self.df_shape, self.df_rate, safe[:, -1]
+        with np.errstate(over="ignore"):
+            e_u = np.exp(u)
+        lpu = k * np.log(b) - gammaln(k) + k * u - b * e_u
+        grad = np.column_stack([gp, -v / self.s_sd, k - b * e_u])
+        lp = lp + lps + lpu
+        bad |= ~np.isfinite(lp) | ~np.all(np.isfinite(grad), axis=1)
+        grad[bad] = 0.0
+        return np.where(bad, -np.inf, lp), grad
+
+    def _parts(self, thetas, X, y):
+        resid = np.asarray(y, dtype=float) - wnn.forward(thetas[:, :-2], X, self.wavelet)  # (N, n)
+        s, nu = thetas[:, -2], np.exp(thetas[:, -1])
+        a = resid * resid * np.exp(-s)[:, None]
+        log1p = np.log1p(a / nu[:, None])
+        return resid, s, nu, a, log1p
+
+    def _ll(self, s, nu, log1p, n):
+        const = gammaln(0.5 * (nu + 1.0)) - gammaln(0.5 * nu) - 0.5 * np.log(np.pi * nu) - 0.5 * s
+        return n * const - 0.5 * (nu + 1.0) * np.sum(log1p, axis=1)
+
+    def log_likelihood(self, thetas, X, y):
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+            _, s, nu, _, log1p = self._parts(thetas, X, y)
+            ll = self._ll(s, nu, log1p, len(y))
+        return np.where(np.isfinite(ll), ll, -np.inf)
+
+    def log_likelihood_and_grad(self, thetas, X, y):
+        n = len(y)
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+            resid, s, nu, a, log1p = self._parts(thetas, X, y)
+            ll = self._ll(s, nu, log1p, n)
+            w = (nu[:, None] + 1.0) / (nu[:, None] + a)
+            J = wnn.jacobian(thetas[:, :-2], X, self.wavelet)  # (N, n, d)
+            g_w = np.matmul((w * resid)[:, None, :], J)[:, 0, :] * np.exp(-s)[:, None]
+            g_s = 0.5 * np.sum(w * a, axis=1) - 0.5 * n
+            d_nu = (n * (0.5 * psi(0.5 * (nu + 1.0)) - 0.5 * psi(0.5 * nu) - 0.5 / nu)
+                    - 0.5 * np.sum(log1p, axis=1) + np.sum(w * a, axis=1) / (2.0 * nu))
+            grad = np.column_stack([g_w, g_s, nu * d_nu])
+        bad = ~np.isfinite(ll) | ~np.all(np.isfinite(grad), axis=1)
+        grad[bad] = 0.0
+        return np.where(bad, -np.inf, ll), grad
+
+
+class _SMCStudentTrainer(_SMCTrainer):
+    r"""The SMC sampler with a Student-t likelihood, its scale and degrees of freedom learned:
+    ``y_k ~ t_nu(WNN(theta, x_k), sigma^2)``, with ``s = log sigma^2`` and ``u = log nu`` in the state
+    (:class:`_StudentNoise`; priors ``s ~ N(log noise_prior_mean, noise_prior_sd^2)`` and
+    ``nu ~ Gamma(df_prior_shape, rate=df_prior_rate)``). R (``measurement_noise``) is not used.
+    Its predictive is the particles' mixture of t's (:class:`~filterwnn.wnn.predictive.StudentTMixture`)."""
+
+    def _prior_model(self, X):
+        s = self.settings
+        return _StudentNoise(super()._prior_model(X), np.log(s["noise_prior_mean"]), s["noise_prior_sd"],
+                             s["df_prior_shape"], s["df_prior_rate"])
+
+    @property
+    def theta(self):
+        """The weights of the particle of largest posterior density (its ``s`` and ``u`` left out)."""
+        return super().theta[:-2]
+
+    @property
+    def noise(self):
+        """The particles' learned squared scales ``sigma_i^2 = exp(s_i)``, shape ``(n_particles,)``."""
+        return np.exp(self.particles[:, -2])
+
+    @property
+    def df(self):
+        """The particles' learned degrees of freedom ``nu_i = exp(u_i)``, shape ``(n_particles,)``."""
+        return np.exp(self.particles[:, -1])
+
+    def epoch(self, X, y):
+        super().epoch(X, y)
+        self._record("noise_scale2", float(np.median(self.noise)))
+        self._record("noise_df", float(np.median(self.df)))
+
+    def predictive(self, X):
+        """The posterior predictive: the particles' equally weighted mixture of ``t_{nu_i}(WNN(theta_i, x), sigma_i^2)``."""
+        Y = wnn.forward(self.particles[:, :-2], X, self.model.wavelet)  # (N, n)
+        return StudentTMixture(Y, self.noise, self.df)
+
+    def predict(self, X):
+        """The mixture's mean (the particles' mean output) and variance: the outputs' spread plus the
+        mean of ``sigma_i^2 nu_i / (nu_i - 2)``; ``inf`` when any particle has ``nu_i <= 2`` (a t's
+        variance exists only for ``nu > 2``). Intervals and density: :meth:`predictive`."""
+        p = self.predictive(X)
+        return p.mean, p.var
+
+
+
 # ---------------------------------------------------------------------------- the table
 #: The trainer table: name -> :class:`TrainerSpec`, in registration order (the study's row order).
 #: Add to it with :func:`register_trainer`.
@@ -869,6 +1017,10 @@ _SMC_NOISE = dict(_SMC, noise_prior_mean=0.1, noise_prior_sd=2.0)
 # smc-noise-10x10: 10 HMC steps per rung, picked with N = 60 on the d = 160 known posterior at 6000
 # particle-gradient evaluations per rung (benchmarks/smc_posterior_d160_choose6000_results.txt)
 _SMC_NOISE_10X10 = dict(_SMC_NOISE, n_moves=10)
+# smc-student-10x10: smc-noise-10x10's sampler (N = 60, 10 x 10 HMC, the same prior on s = log sigma^2)
+# with a Student-t likelihood, nu learned with the prior Gamma(2, rate 0.1) of Juarez and Steel (2010),
+# fixed in protocol 5 (docs/study-outputs/wnn-protocol5) before its run; nothing searched
+_SMC_STUDENT_10X10 = dict(_SMC_NOISE_10X10, df_prior_shape=2.0, df_prior_rate=0.1)
 
 for _spec in (
     TrainerSpec("bp", _BPTrainer, "gradient", {"scaled": {"learning_rate": 0.1}, "paper": {"learning_rate": 0.05}},
@@ -906,6 +1058,9 @@ for _spec in (
     TrainerSpec("smc-noise-10x10", _SMCNoiseTrainer, "smc",
                 {"scaled": dict(_SMC_NOISE_10X10), "paper": dict(_SMC_NOISE_10X10)},
                 doc="smc-noise with 10 HMC steps of 10 leapfrogs per rung (chosen with N = 60 at d = 160)"),
+    TrainerSpec("smc-student-10x10", _SMCStudentTrainer, "smc",
+                {"scaled": dict(_SMC_STUDENT_10X10), "paper": dict(_SMC_STUDENT_10X10)},
+                doc="smc-noise-10x10's sampler with a Student-t likelihood, its scale and nu learned"),
 ):
     register_trainer(_spec)
 del _spec

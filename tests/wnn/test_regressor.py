@@ -86,11 +86,11 @@ def test_grid_search(data):
 def test_unknown_trainer_lists_valid_names(data):
     X, y, _, _ = data
     with pytest.raises(ValueError, match="valid: 'bp', 'ekf', 'ekf-ensemble', 'epf', 'gsf-ekf', 'gsf-sukf', "
-                       "'gsf-ukf', 'smc', 'smc-noise', 'smc-noise-10x10', 'spf', 'sukf', 'supf', 'ukf', 'upf'"):
+                       "'gsf-ukf', 'smc', 'smc-noise', 'smc-noise-10x10', 'smc-student-10x10', 'spf', 'sukf', 'supf', 'ukf', 'upf'"):
         WNNRegressor(trainer="lbfgs").fit(X, y)
     with pytest.raises(ValueError, match="trainer"):
         make_trainer("nope", None, None, {})
-    assert set(TRAINERS) == set(SINGLE + PARTICLE + GAUSSIAN_SUM + ["smc", "smc-noise", "smc-noise-10x10"])  # smc-noise: test_trainers.py
+    assert set(TRAINERS) == set(SINGLE + PARTICLE + GAUSSIAN_SUM + ["smc", "smc-noise", "smc-noise-10x10", "smc-student-10x10"])  # smc-noise: test_trainers.py
 
 
 def test_gaussian_sum_trainers_lower_training_mse_and_are_gaussian_sum_filters(data):

@@ -27,13 +27,18 @@ weights (``ekf-ensemble``) and the SMC sampler (``smc``), over independent runs,
     ``fit_time_median``, ``mean_ess``, ``distinct_particles`` and ``distinct_ancestors`` (means
     over runs at the end: distinct particles, and distinct initial particles they descend from;
     empty for non-particle rows), ``coverage50``, ``coverage90``, ``coverage95`` (medians over
-    runs of the share of test targets inside the central 50 / 90 / 95 % interval of
-    ``predict(return_std=True)``'s Gaussian; the GP's std included) and ``nlpd`` (median over
-    runs of the mean negative log predictive density; :func:`predictive_scores`). What each
-    row's variance holds is in its trainer's ``predict`` (see
+    runs of the share of test targets inside the central 50 / 90 / 95 % interval of the row's
+    own predictive, :meth:`filterwnn.wnn.regressor.WNNRegressor.predictive`: for every row but
+    ``smc-student-10x10`` the Gaussian of ``predict(return_std=True)``, whose interval is
+    ``mean +- z std``; for that row the particles' mixture of Student-t's, whose interval is
+    made of the mixture's quantiles; the GP's Gaussian std included) and ``nlpd`` (median over
+    runs of the mean negative log density of that predictive; :func:`distribution_scores`).
+    What each row's variance holds is in its trainer's ``predict`` (see
     :meth:`filterwnn.wnn.regressor.WNNRegressor.predict`);
 ``runs.csv``
-    one line per (table, trainer, run): test/train MSE, fit time, ESS, distinct particles;
+    one line per (table, trainer, run): test/train MSE, fit time, ESS, distinct particles,
+    the predictive's scores; for ``smc-student-10x10`` also the learned noise
+    (``noise_scale2``, ``noise_df``: the particles' median squared scale and degrees of freedom);
 ``tuning.md``, ``tuning.csv``
     every candidate setting tried on the validation split, its best epoch and validation
     MSE, and which one was chosen;
@@ -119,7 +124,8 @@ from .rows import (
     _rows,
     row_label,
 )
-from .runs import fit_reference, fit_run, predictive_scores, run_study, run_tasks, summarize, tune_run
+from .runs import (distribution_scores, fit_reference, fit_run, predictive_scores, run_study, run_tasks, summarize,
+                   tune_run)
 from .figures import write_figures
 from .tables import is_reduced, markdown_table, tuning_table, write_outputs
 
@@ -143,6 +149,7 @@ __all__ = [
     "select_settings",
     "fit_run",
     "predictive_scores",
+    "distribution_scores",
     "fit_reference",
     "run_tasks",
     "summarize",

@@ -142,6 +142,10 @@ STUDY = {
     # protocol 4 (docs/study-outputs/wnn-protocol4): the moves chosen on the d = 160 known posterior
     "smc-noise-10x10": StudyEntry(label="SMC sampler, noise R learned (10 HMC steps x 10 leapfrogs per rung)",
                                   epochs=1, cost=70, default=False),
+    # protocol 5 (docs/study-outputs/wnn-protocol5): smc-noise-10x10's sampler, Student-t likelihood
+    "smc-student-10x10": StudyEntry(label="SMC sampler, Student-t likelihood, scale and nu learned "
+                                          "(10 HMC steps x 10 leapfrogs per rung)",
+                                    epochs=1, cost=70, default=False),
 }
 
 #: Former row keys -> the row that runs what they ran (:func:`check_row` names it).
@@ -221,7 +225,8 @@ def _in_paper_table(key):
 ROWS = _rows()
 
 
-#: The rows run by default: those whose :class:`StudyEntry` says ``default`` (all but ``ibis-hmc``).
+#: The rows run by default: those whose :class:`StudyEntry` says ``default`` (all but the opt-in
+#: ``ibis-hmc``, ``smc-noise-10x10`` and ``smc-student-10x10``).
 ALL_TRAINERS = tuple(k for k in ROWS if study_entry(k).default)
 
 

@@ -11,16 +11,18 @@ import numpy as np
 from ..._validation import check_choice
 from ...datasets import make_siso_benchmark
 from ...monte_carlo.particle_filter import DegeneracyWarning
+from ...wnn.predictive import GaussianPredictive
 from ...wnn.regressor import WNNRegressor
 from ...wnn.trainers import PAPER_SETTINGS, TRAINERS
 from .. import runner
 from .plan import (StudyResult, _child, _plan, _study_tasks, _task_cost, candidates, select_settings,
                    tune_seeds)
-from .rows import (ALL_TRAINERS, REFERENCES, SCORE_COLUMNS, VALIDATION_FRACTION, Z50, Z90, Z95, _cost, _rows,
+from .rows import (ALL_TRAINERS, REFERENCES, SCORE_COLUMNS, VALIDATION_FRACTION, _cost, _rows,
                    _specs_with, _sweep_rows, _uses_particles, row_label, study_entry)
 
 __all__ = [
     "predictive_scores",
+    "distribution_scores",
     "tune_run",
     "fit_run",
     "fit_reference",
@@ -82,6 +84,9 @@ def _settings_text(table, trainer, reg):
     else:
         noise = (f"R learned (log R ~ N(log {s['noise_prior_mean']:g}, {s['noise_prior_sd']:g}^2))"
                  if "noise_prior_mean" in s else f"R={s['R']:g}")
+        if "df_prior_shape" in s:
+            noise = (f"Student-t likelihood, scale and nu learned (log scale^2 ~ N(log {s['noise_prior_mean']:g}, "
+                     f"{s['noise_prior_sd']:g}^2), nu ~ Gamma({s['df_prior_shape']:g}, rate {s['df_prior_rate']:g}))")
         txt = f"init={s['init']}, Q={s['Q']:g}, P0={s['P0']:g}, {noise}"
     if s.get("weighting") == "unweighted average":
         txt += f", N={s['n_particles']}, weighting=none (unweighted average)"
@@ -133,6 +138,16 @@ def _regressor(trainer, table, run_seed, n_epochs, n_particles, params):
                         **kw)
 
 
+def _noise_fields(reg):
+    """A fit's learned noise, for the rows that learn a Student-t's (``noise_scale2``: the
+    particles' median squared scale; ``noise_df``: their median degrees of freedom); none for
+    the other rows, so that their records are as before."""
+    diag = getattr(reg, "diagnostics_", {}) or {}
+    if "noise_df" not in diag:
+        return {}
+    return {"noise_scale2": float(diag["noise_scale2"][-1]), "noise_df": float(diag["noise_df"][-1])}
+
+
 def predictive_scores(mean, std, y):
     """How well a Gaussian predictive ``N(mean, std**2)`` describes the targets ``y``.
 
@@ -151,10 +166,39 @@ def predictive_scores(mean, std, y):
     (0.5, 0.75, 2.201)
     """
     if mean is None:
-        return {k: float("nan") for k in ("coverage50", "coverage90", "coverage95", "nlpd")}
-    z = np.abs(np.asarray(y, dtype=float) - mean) / std
-    out = {f"coverage{c}": float(np.mean(z <= q)) for c, q in zip((50, 90, 95), (Z50, Z90, Z95))}
-    out["nlpd"] = float(np.mean(0.5 * np.log(2.0 * np.pi * std**2) + 0.5 * z**2))
+        return distribution_scores(None, y)
+    return distribution_scores(GaussianPredictive(mean, std=std), y)
+
+
+def distribution_scores(dist, y):
+    """How well a predictive distribution describes the targets ``y``, from its own intervals and density.
+
+    Parameters
+    ----------
+    dist : GaussianPredictive or StudentTMixture or None
+        A predictive of :mod:`filterwnn.wnn.predictive` (what
+        :meth:`~filterwnn.wnn.regressor.WNNRegressor.predictive` returns); None: no predictive distribution.
+    y : array-like of shape (n,)
+
+    Returns
+    -------
+    dict
+        ``coverage50``, ``coverage90``, ``coverage95``: the share of targets inside the
+        predictive's own central 50 / 90 / 95 % interval (for a Gaussian ``mean +- z std``,
+        for the Student-t mixture its quantiles); ``nlpd``: minus the mean of its log-density at
+        the targets. All NaN for ``dist=None``. For a Gaussian these are the numbers of
+        :func:`predictive_scores`, to the last digit.
+
+    >>> from filterwnn.wnn.predictive import StudentTMixture
+    >>> t = StudentTMixture(np.zeros((1, 4)), np.ones(1), np.array([1.0]))   # a Cauchy
+    >>> distribution_scores(t, np.array([0.1, -0.5, 1.0, 3.0]))["coverage50"]
+    0.75
+    """
+    if dist is None:
+        return {k: float("nan") for k in SCORE_COLUMNS}
+    y = np.asarray(y, dtype=float)
+    out = {f"coverage{c}": float(np.mean(dist.covers(y, c / 100.0))) for c in (50, 90, 95)}
+    out["nlpd"] = float(np.mean(-dist.logpdf(y)))
     return out
 
 
@@ -191,9 +235,9 @@ def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_
                 _train_tracked(reg, X, y, X_test, y_test, n_epochs, curve_test)
             else:
                 reg.fit(X, y)
-            mean, std = reg.predict(X_test, return_std=True)
-            test_mse = float(np.mean((mean - y_test) ** 2))
-            scores = predictive_scores(mean, std, y_test)
+            dist = reg.predictive(X_test)
+            test_mse = float(np.mean((dist.mean - y_test) ** 2))
+            scores = distribution_scores(dist, y_test)
             train_mse = reg.loss_curve_[-1]
         except np.linalg.LinAlgError as exc:  # NumericalError included: a failed run is a result
             status, test_mse, train_mse = f"failed: {exc}", float("nan"), float("nan")
@@ -208,6 +252,7 @@ def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_
             "train_mse": float(train_mse),
             "fit_time": float(reg.fit_time_),
             **_particle_fields(reg),
+            **_noise_fields(reg),
             **scores,
             "var_test": float(np.var(y_test)),
             "curve_train": list(getattr(reg, "loss_curve_", [])),

@@ -124,7 +124,8 @@ def tuning_table(result):
 
 #: Columns of ``runs.csv`` (one line per table, trainer and run).
 RUNS_COLUMNS = ("table", "trainer", "run", "n_particles", "epochs", "test_mse", "train_mse", "fit_time", "mean_ess",
-                "distinct", "ancestors", "coverage50", "coverage90", "coverage95", "nlpd", "var_test", "status", "settings")
+                "distinct", "ancestors", "coverage50", "coverage90", "coverage95", "nlpd", "var_test", "status", "settings",
+                "noise_scale2", "noise_df")
 #: Columns of ``tuning.csv`` (one line per trainer and candidate).
 TUNING_COLUMNS = ("trainer", "candidate", "settings", "best_epoch", "val_mse", "val_mse_last", "n_runs", "n_failed",
                   "chosen")
