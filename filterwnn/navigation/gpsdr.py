@@ -96,6 +96,7 @@ from __future__ import annotations
 
 import warnings
 from collections import deque
+from statistics import NormalDist
 
 import numpy as np
 from filterpy.kalman import ExtendedKalmanFilter
@@ -143,7 +144,7 @@ SCALE_WINDOW = NIS_WINDOW
 #: divided by :attr:`GPSDRFilter.gps_correlation` (correlated fixes carry that much less evidence),
 #: exceeds this: the one-sided 0.1 % point of chi-square with 1 degree of freedom (the consistency
 #: monitor's level), so honest fixes keep their reported sigma in 999 windows of 1000.
-SCALE_TEST = 9.549536
+SCALE_TEST = NormalDist().inv_cdf(1.0 - 1e-3) ** 2  # = chi2.ppf(1 - 2e-3, 1) = 9.55
 
 
 def gps_scale_mle(y, P, R, scale=1.0, iterations=20, rtol=1e-6):
@@ -269,14 +270,15 @@ class GPSDRFilter:
     scale_window : int
         Fixes over which the scale of their reported covariance is estimated (:attr:`gps_scale`;
         :data:`SCALE_WINDOW` = 30 is the window to use). Default 0: off, every fix's covariance
-        as reported. Off by default because it hurt a recorded drive: on onavdata's
-        2021-04-27C drive (survey grade, the receiver's accuracy) the innovations also carry
-        the model's own errors (from innovations alone a wrong ``Q`` and a wrong ``R`` look
-        alike: covariance matching finds ``R`` only when ``Q`` is right, Mehra 1972), a scale taken for the fixes' made the filter trust them less, its
-        innovations grew and the scale with them (a mean of 5.35 over the fixes for the 8-state
-        EKF, 467 for the 6-state one), and the 30 s outages ended at a median of 1.96 m (8-state EKF; 1.65 m
-        off) and 10.82 m (6-state; 1.59 m off). On the simulated drives it changes nothing
-        measurable (see :attr:`gps_scale`).
+        as reported. Off by default because it hurt a recorded drive: on onavdata's 2021-04-27C
+        drive (survey grade, the receiver's accuracy) the innovations also carry the model's own
+        errors (from innovations alone a wrong ``Q`` and a wrong ``R`` look alike: covariance
+        matching finds ``R`` only when ``Q`` is right, Mehra 1972), a scale taken for the fixes'
+        made the filter trust them less, its innovations grew and the scale with them (a mean of
+        5.35 over the fixes for the 8-state EKF, 467 for the 6-state one), and the 30 s outages
+        ended at a median of 1.96 m (8-state EKF; 1.65 m off) and 10.82 m (6-state; 1.59 m off).
+        On the simulated drives it stayed at 1 and changed almost nothing (the README's "When
+        GPS lies": one 1 Hz analog's SUKF-8 median 2.73 -> 2.84 m).
 
     Attributes
     ----------

@@ -437,6 +437,11 @@ def test_gps_scale_mle_is_the_maximum_likelihood_scale():
 
 
 def test_gps_scale_is_off_by_default_and_checked():
+    from scipy.stats import chi2
+
+    from filterwnn.navigation.gpsdr import SCALE_TEST
+
+    assert SCALE_TEST == pytest.approx(chi2.ppf(1 - 2e-3, 1), rel=1e-9)  # the one-sided 0.1 % point
     f = GPSDRFilter(GPSDRModel(augmented=True))
     assert f.scale_window == 0 and f.gps_scale == 1.0 and f.gps_scale_mean is None
     with pytest.raises(ValueError, match="scale_window must be >= 0"):
