@@ -64,8 +64,8 @@ What the filter does when GPS lies (each part a public setting, on by default):
   ``y_i ~ N(0, P_i + lam R_i)`` with ``lam = 4``. Over the last :data:`SCALE_WINDOW` fixes used
   (accepted or down-weighted, each clipped at the gate; rejected ones never enter) the filter
   takes the maximum-likelihood ``lam`` (:func:`gps_scale_mle`) and scales the next fix's
-  reported covariance by it, :attr:`gps_scale`, when it is above 1 and the window's
-  likelihood-ratio statistic against ``lam = 1``, over :attr:`gps_correlation`, exceeds
+  reported covariance by it, ``gps_scale``, when it is above 1 and the window's
+  likelihood-ratio statistic against ``lam = 1``, over ``gps_correlation``, exceeds
   :data:`SCALE_TEST` (the one-sided 0.1 % point); otherwise 1. Honest fixes keep their
   sigma bit for bit; fixes whose innovations are smaller than reported (a filter that follows
   their correlated errors, as in an urban canyon) too. From innovations alone a wrong ``Q`` and a
@@ -141,7 +141,7 @@ WHITENESS_WINDOW = 60
 #: most ``(GATE - 2) / (2 SCALE_WINDOW)`` = 0.2, for ``SCALE_WINDOW`` fixes only.
 SCALE_WINDOW = NIS_WINDOW
 #: The scale departs from 1 only when the window's likelihood-ratio statistic for it against 1,
-#: divided by :attr:`GPSDRFilter.gps_correlation` (correlated fixes carry that much less evidence),
+#: divided by ``GPSDRFilter.gps_correlation`` (correlated fixes carry that much less evidence),
 #: exceeds this: the one-sided 0.1 % point of chi-square with 1 degree of freedom (the consistency
 #: monitor's level), so honest fixes keep their reported sigma in 999 windows of 1000.
 SCALE_TEST = NormalDist().inv_cdf(1.0 - 1e-3) ** 2  # = chi2.ppf(1 - 2e-3, 1) = 9.55
@@ -268,7 +268,7 @@ class GPSDRFilter:
         Fixes over which the innovations' autocorrelation is estimated (default
         :data:`WHITENESS_WINDOW`; 0 takes every fix for independent).
     scale_window : int
-        Fixes over which the scale of their reported covariance is estimated (:attr:`gps_scale`;
+        Fixes over which the scale of their reported covariance is estimated (``gps_scale``;
         :data:`SCALE_WINDOW` = 30 is the window to use). Default 0: off, every fix's covariance
         as reported. Off by default because it hurt a recorded drive: on onavdata's 2021-04-27C
         drive (survey grade, the receiver's accuracy) the innovations also carry the model's own
@@ -306,9 +306,9 @@ class GPSDRFilter:
         fixes (1: white); the heading bias and rate bias take ``1 / gps_correlation`` of their gain.
     gps_scale : float
         The factor (>= 1) on the next fix's reported covariance: the maximum-likelihood scale of the
-        last :attr:`scale_window` fixes' covariance (:func:`gps_scale_mle`), held at 1 when below it;
+        last ``scale_window`` fixes' covariance (:func:`gps_scale_mle`), held at 1 when below it;
         1 until the window is full, while the window does not tell it from 1 (its likelihood-ratio
-        statistic over :attr:`gps_correlation` under :data:`SCALE_TEST`), and always 1 with
+        statistic over ``gps_correlation`` under :data:`SCALE_TEST`), and always 1 with
         ``scale_window=0``.
     gps_scales : list of float
         The factor each tested fix got (:attr:`gps_scale_mean` is their mean).
@@ -476,7 +476,7 @@ class GPSDRFilter:
         (Huber's weight on the squared residual: the fix then counts as one at the gate).
         ``NIS > reject_gate``: rejected (``None``), unless :attr:`reacquire_after` rejections came
         in a row, when it re-acquires (:meth:`_reacquire`). ``test=False`` accepts it untested
-        (its NIS still counts). Fixes accepted or down-weighted then update :attr:`gps_scale`.
+        (its NIS still counts). Fixes accepted or down-weighted then update ``gps_scale``.
         """
         z_gps = check_scale(as_state(z_gps, "z_gps", 2), "z_gps")
         pos = [0, 3]
@@ -522,7 +522,7 @@ class GPSDRFilter:
         return None, gps_sigma
 
     def _update_scale(self, y, P_pos, reported, nis):
-        """Add a used fix to the scale's window and re-estimate :attr:`gps_scale`.
+        """Add a used fix to the scale's window and re-estimate ``gps_scale``.
 
         The innovation enters clipped at the gate (``y sqrt(gate / NIS)`` above it: a fix counts
         at most as one at the gate, as the Huber down-weighting has it; a rejected fix does not
@@ -531,7 +531,7 @@ class GPSDRFilter:
         as it is; then it is the window's maximum-likelihood scale (:func:`gps_scale_mle`, started
         from the last one) when that is above 1 and the window tells it from 1: the
         likelihood-ratio statistic ``2 (l(lam) - l(1))`` (:func:`gps_scale_loglik`), divided by
-        :attr:`gps_correlation` (the fixes' worth in independent fixes), exceeds
+        ``gps_correlation`` (the fixes' worth in independent fixes), exceeds
         :data:`SCALE_TEST`. Otherwise 1: honest fixes keep their reported sigma (a max(1, lam)
         alone would inflate them by its noise, 6-12 % on average over 30 fixes), and so do fixes
         whose innovations are smaller than reported (a filter that follows their correlated errors).
