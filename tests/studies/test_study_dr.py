@@ -191,6 +191,12 @@ def test_drive_table_separates_the_causes():
     e, s = res["EKF-8"], res["start_err"]["EKF-8"]
     assert cells[6] == f"{np.median(s):.2f}" and cells[7] == f"{np.median(e - s):.2f}"
     assert cells[8].endswith(f"of {ig['n_fixes']}") and cells[9] == f"{ig['nis_mean']:.2f}"
+    assert cells[10] == "-" and ig["gps_scale_mean"] is None  # the covariance scale is not estimated by default
+    res = dr.real_drive_outages(run, starts=[40.0], filters=("EKF-8",), use_gps_sigma=True, grade="phone",
+                                scale_window=30)
+    ig = res["integrity"]["EKF-8"]
+    row = next(line for line in dr.real_drive_table(res).splitlines() if line.startswith("| EKF-8 |"))
+    assert row.strip("|").split("|")[10].strip() == f"{ig['gps_scale_mean']:.2f}" and ig["gps_scale_mean"] >= 1.0
 
 
 def test_a_new_scenario_is_one_entry_of_scenarios(monkeypatch):

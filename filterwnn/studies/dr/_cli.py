@@ -62,6 +62,9 @@ def add_arguments(parser):
                         help="comma-separated outage start times (s) on --drive drives, instead of spreading them")
     parser.add_argument("--min-speed", type=options.nonnegative_float, default=0.0,
                         help="spread outages only over windows with at least this mean speed (m/s)")
+    parser.add_argument("--gps-scale-window", type=options.nonnegative_int, default=0, metavar="N",
+                        help="estimate the scale of the fixes' reported covariance from the last N fixes' "
+                             "innovations (GPSDRFilter's scale_window; 30 is the window to use; default 0: off)")
     parser.add_argument("--grade", choices=sorted(SENSOR_GRADES), default=None,
                         help="sensor grade for the GPS/DR settings (survey, phone; see "
                              "filterwnn.navigation.dead_reckoning.SENSOR_GRADES); default phone for --drive, survey for --real")
@@ -87,7 +90,8 @@ def run(args):
             except ImportError as exc:
                 print(f"skipping the real drives: {exc}")
                 break
-            rd = real_drive_outages(drive, grade=grade, use_gps_sigma=True)
+            rd = real_drive_outages(drive, grade=grade, use_gps_sigma=True,
+                                    scale_window=getattr(args, "gps_scale_window", 0))
             results.append(rd)
             texts.append(real_drive_table(rd))
             print(texts[-1])
@@ -117,7 +121,8 @@ def _run_drives(args, drives, filters):
             res = real_drive_outages(run, n_placements=args.outages, length=args.outage_length, filters=fl,
                                      starts=starts, min_speed=args.min_speed,
                                      use_gps_sigma=run.gps_sigma is not None,
-                                     grade=getattr(args, "grade", None) or "phone")
+                                     grade=getattr(args, "grade", None) or "phone",
+                                     scale_window=getattr(args, "gps_scale_window", 0))
         except ValueError as exc:  # name the drive (and the options behind the outages)
             raise ValueError(f"{path}: {exc} (outages from --outage-length, --outages, --outage-starts, "
                              "--min-speed)") from None

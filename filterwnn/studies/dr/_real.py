@@ -30,7 +30,7 @@ REAL_FILTERS = ("DR-mech", "EKF", "EKF-8", "UKF-8", "SUKF-8")
 
 def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "EKF", "EKF-8"),
                        model_kwargs=None, slow_speed=None, starts=None, min_speed=0.0,
-                       use_gps_sigma=False, grade=None, gps_window=0):
+                       use_gps_sigma=False, grade=None, gps_window=0, scale_window=0):
     """Cut GPS outages of ``length`` s into a drive and score each filter at each outage end.
 
     Placements: ``starts`` as given, or ``n_placements`` spread evenly over the windows whose mean
@@ -40,14 +40,13 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
     speed itself); ``DR-mech`` integrates ``s [sin theta, cos theta]`` from the reference position at the
     outage start (dead reckoning without a filter).
 
-    The reference is the truth when the drive has one (``run.x_true``); otherwise the
-    GPS fix withheld last in the outage, so the score then includes that fix's own error.
+    The reference is the truth when the drive has one (``run.x_true``); otherwise the GPS fix
+    withheld last in the outage, so the score then includes that fix's own error.
 
     Parameters
     ----------
     run : DRRun
-    n_placements, length, starts, min_speed
-        Where the outages go (see above).
+    n_placements, length, starts, min_speed : where the outages go (see above)
     filters : sequence of str
         Subset of :data:`REAL_FILTERS`.
     model_kwargs : dict, optional
@@ -62,9 +61,9 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         The filters' low-speed threshold (m/s; default :data:`filterwnn.navigation.gpsdr.LOW_SPEED`).
     use_gps_sigma : bool
         Use each fix's reported accuracy (``run.gps_sigma``) as its noise.
-    gps_window : int
-        Estimate the noise of fixes without an accuracy from the GPS innovations over
-        this many fixes (:class:`~filterwnn.navigation.gpsdr.GPSDRFilter`; 0: the model's ``sigma_gps``).
+    gps_window, scale_window : int
+        :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`'s: the noise of fixes without an accuracy, and the
+        scale of the fixes' reported covariance, estimated over this many fixes (0, the defaults: neither).
 
     Returns
     -------
@@ -75,15 +74,16 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         ``start_err {filter: (n,)}`` (the horizontal error when each outage starts, against the same
         reference as the ends; 0 for ``DR-mech``, which starts there), ``integrity {filter: dict}`` (over
         the whole drive with GPS: ``n_fixes``, ``n_rejected``, ``n_downweighted``, ``n_reacquired``,
-        ``nis_mean``, the NIS of the accepted fixes (2 when consistent), ``rejected_xy (m, 2)``, the
-        rejected fixes), and per filter ``(n,)`` end-of-outage horizontal errors (m); NaN never appears
-        (a non-finite estimate raises).
+        ``nis_mean``, the NIS of the accepted fixes (2 when consistent), ``gps_scale_mean`` and ``gps_scale``,
+        the mean and last factor on the fixes' covariance (mean None: not estimated), ``rejected_xy (m, 2)``,
+        the rejected fixes), and per filter ``(n,)`` end-of-outage errors (m; a non-finite estimate raises).
     """
     bad = [f for f in filters if f not in REAL_FILTERS]
     if bad:
         raise ValueError(f"unknown real-drive filters {bad}; valid: {', '.join(REAL_FILTERS)}")
     out, windows = _outage_plan(run, length, starts, n_placements, min_speed)
-    settings = dict(grade=grade, model_kwargs=model_kwargs, gps_window=gps_window, slow_speed=slow_speed)
+    settings = dict(grade=grade, model_kwargs=model_kwargs, gps_window=gps_window, slow_speed=slow_speed,
+                    scale_window=scale_window)
     for name in filters:
         _score_filter(out, name, run, windows, use_gps_sigma, settings)
     return out
@@ -114,7 +114,7 @@ def _score_filter(out, name, run, windows, use_gps_sigma, settings):
     else:
         kw = dict(REAL_MODEL, **(settings["model_kwargs"] or {}))
         f = _real_drive_filter(name, run, settings["grade"], settings["model_kwargs"], kw,
-                               settings["gps_window"], settings["slow_speed"])
+                               settings["gps_window"], settings["slow_speed"], settings["scale_window"])
         sig = run.gps_sigma_list() if use_gps_sigma else [None] * len(run.t)
         ends, begins = _outage_ends(f, name, run, k0s, k1s, out["starts"], run.gps_list(), sig)
         out["start_err"][name] = np.hypot(*(begins - _start_refs(run, k0s, track)).T)
@@ -153,7 +153,7 @@ def _outage_windows(run, starts, length):
     return k0s, k1s, np.array(refs), np.array(moved), track
 
 
-def _real_drive_filter(name, run, grade, model_kwargs, kw, gps_window, slow_speed):
+def _real_drive_filter(name, run, grade, model_kwargs, kw, gps_window, slow_speed, scale_window=0):
     """The :class:`~filterwnn.navigation.gpsdr.GPSDRFilter` ``name`` for a real drive, set from ``grade``
     (or the settings ``kw``), started at the drive's first state with 1 m position sigma."""
     aug = name.endswith("-8")
@@ -167,7 +167,8 @@ def _real_drive_filter(name, run, grade, model_kwargs, kw, gps_window, slow_spee
     P0 = model.P0.copy()
     P0[0, 0] = P0[3, 3] = 1.0
     low = {} if slow_speed is None else {"low_speed": slow_speed}
-    return GPSDRFilter(model, FILTER_KIND[name], x0=x0, P0=P0, gps_window=gps_window, **low)
+    return GPSDRFilter(model, FILTER_KIND[name], x0=x0, P0=P0, gps_window=gps_window, scale_window=scale_window,
+                       **low)
 
 
 _REAL_META = ("starts", "moved", "length", "end_steps", "reference", "name", "track", "t", "end_xy", "start_err",
@@ -195,7 +196,8 @@ def _integrity(f, run):
     rej = np.isin(run.gps_steps, f.rejected_steps)
     return {"n_fixes": f.n_fixes, "n_rejected": f.n_rejected, "n_downweighted": f.n_downweighted,
             "n_reacquired": f.n_reacquired,
-            "nis_mean": f.nis_mean, "rejected_xy": run.z_gps[rej]}
+            "nis_mean": f.nis_mean, "gps_scale_mean": f.gps_scale_mean if f.scale_window else None,
+            "gps_scale": f.gps_scale, "rejected_xy": run.z_gps[rej]}
 
 
 def _outage_ends(f, name, run, k0s, k1s, starts, gps, sig):
@@ -224,15 +226,16 @@ def _outage_ends(f, name, run, k0s, k1s, starts, gps, sig):
 def real_drive_table(res, min_moved=100.0):
     """Markdown: median/p90/max end-of-outage error over all placements and moving ones, the
     error at the outage starts and its growth over them (medians), what each filter did with
-    the drive's fixes (rejected / down-weighted / re-acquired of those it saw) and its mean NIS
-    of the accepted ones."""
+    the drive's fixes (rejected / down-weighted / re-acquired of those it saw), its mean NIS
+    of the accepted ones and the mean factor on the fixes' reported covariance ("-": not estimated)."""
     mv = res["moved"] >= min_moved
     names = [k for k in res if k not in _REAL_META]
     lines = [f"### real drive {res.get('name', CAR_DRIVE)}: {len(res['starts'])} GPS outages of {res['length']:g} s "
              f"({int(mv.sum())} with >= {min_moved:g} m driven), error at the outage ends against the "
              f"{res.get('reference', 'truth')} (m)", "",
              "| filter | median all | p90 all | max all | median moving | max moving | median at start | "
-             "median growth | fixes rejected / down-weighted / re-acquired | mean NIS (2: consistent) |", "|---|---|---|---|---|---|---|---|---|---|"]
+             "median growth | fixes rejected / down-weighted / re-acquired | mean NIS (2: consistent) | "
+             "mean GPS covariance scale (1: as reported) |", "|---|---|---|---|---|---|---|---|---|---|---|"]
     for n in names:
         e = res[n]
         em = e[mv] if mv.any() else np.array([np.nan])
@@ -245,6 +248,7 @@ def real_drive_table(res, min_moved=100.0):
 
 def _integrity_cells(ig):
     if ig is None:
-        return "- | -"
+        return "- | - | -"
     nis = "-" if ig["nis_mean"] is None else f"{ig['nis_mean']:.2f}"
-    return f"{ig['n_rejected']} / {ig['n_downweighted']} / {ig['n_reacquired']} of {ig['n_fixes']} | {nis}"
+    scale = "-" if ig.get("gps_scale_mean") is None else f"{ig['gps_scale_mean']:.2f}"
+    return f"{ig['n_rejected']} / {ig['n_downweighted']} / {ig['n_reacquired']} of {ig['n_fixes']} | {nis} | {scale}"
