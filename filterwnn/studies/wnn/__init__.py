@@ -31,7 +31,10 @@ weights (``ekf-ensemble``) and the SMC sampler (``smc``), over independent runs,
     own predictive, :meth:`filterwnn.wnn.regressor.WNNRegressor.predictive`: for every row but
     ``smc-student-10x10`` the Gaussian of ``predict(return_std=True)``, whose interval is
     ``mean +- z std``; for that row the particles' mixture of Student-t's, whose interval is
-    made of the mixture's quantiles; the GP's Gaussian std included) and ``nlpd`` (median over
+    made of the mixture's quantiles; for ``smc-noise-10x10-recal`` ``smc-noise-10x10``'s
+    Gaussian with its std multiplied by the split-conformal factor fitted on the tuning runs'
+    validation split, :func:`~filterwnn.wnn.predictive.recalibrate`; the GP's Gaussian std
+    included) and ``nlpd`` (median over
     runs of the mean negative log density of that predictive; :func:`distribution_scores`).
     What each row's variance holds is in its trainer's ``predict`` (see
     :meth:`filterwnn.wnn.regressor.WNNRegressor.predict`);
@@ -39,6 +42,11 @@ weights (``ekf-ensemble``) and the SMC sampler (``smc``), over independent runs,
     one line per (table, trainer, run): test/train MSE, fit time, ESS, distinct particles,
     the predictive's scores; for ``smc-student-10x10`` also the learned noise
     (``noise_scale2``, ``noise_df``: the particles' median squared scale and degrees of freedom);
+    for a recalibrated row the factor (``recal_factor``) and the scores before recalibration
+    (``coverage50_base`` ... ``nlpd_base``);
+``calibration.csv``
+    for the recalibrated rows (``smc-noise-10x10-recal``): the width factor, its level, the
+    number of validation residuals it was fitted on and the validation fits' median MSE;
 ``tuning.md``, ``tuning.csv``
     every candidate setting tried on the validation split, its best epoch and validation
     MSE, and which one was chosen;
@@ -124,8 +132,8 @@ from .rows import (
     _rows,
     row_label,
 )
-from .runs import (distribution_scores, fit_reference, fit_run, predictive_scores, run_study, run_tasks, summarize,
-                   tune_run)
+from .runs import (calibration_run, distribution_scores, fit_reference, fit_run, predictive_scores, run_study,
+                   run_tasks, summarize, tune_run)
 from .figures import write_figures
 from .tables import is_reduced, markdown_table, tuning_table, write_outputs
 
@@ -146,6 +154,7 @@ __all__ = [
     "tune_seeds",
     "candidates",
     "tune_run",
+    "calibration_run",
     "select_settings",
     "fit_run",
     "predictive_scores",

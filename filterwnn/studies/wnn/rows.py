@@ -76,6 +76,10 @@ class StudyEntry:
         table; ``None`` leaves the row out of that table.
     default : bool
         Whether the study runs the row by default (:data:`~filterwnn.studies.wnn.rows.ALL_TRAINERS`).
+    recalibrate : float, optional
+        The row's Gaussian predictive is rescaled by one factor fitted at this central level on
+        the tuning runs' validation split (:func:`~filterwnn.wnn.predictive.conformal_factor`;
+        the fit itself is ``trainer``'s, unchanged); None: not recalibrated.
     """
 
     trainer: str = None
@@ -90,6 +94,7 @@ class StudyEntry:
     paper: tuple = None
     paper_settings: dict = None
     default: bool = True
+    recalibrate: float = None
 
 
 #: Factors applied to the parent's chosen Q by default (a row's ``q_factors`` widens them;
@@ -146,6 +151,12 @@ STUDY = {
     "smc-student-10x10": StudyEntry(label="SMC sampler, Student-t likelihood, scale and nu learned "
                                           "(10 HMC steps x 10 leapfrogs per rung)",
                                     epochs=1, cost=70, default=False),
+    # protocol 6 (docs/study-outputs/wnn-protocol6): smc-noise-10x10's fits, its Gaussian's width
+    # rescaled by one split-conformal factor fitted at 90 % on the tuning runs' validation split
+    "smc-noise-10x10-recal": StudyEntry(trainer="smc-noise-10x10",
+                                        label="SMC sampler, noise R learned (10 HMC steps x 10 leapfrogs per rung), "
+                                              "intervals recalibrated on the tuning runs' validation split",
+                                        epochs=1, cost=70, default=False, recalibrate=0.9),
 }
 
 #: Former row keys -> the row that runs what they ran (:func:`check_row` names it).
@@ -226,7 +237,7 @@ ROWS = _rows()
 
 
 #: The rows run by default: those whose :class:`StudyEntry` says ``default`` (all but the opt-in
-#: ``ibis-hmc``, ``smc-noise-10x10`` and ``smc-student-10x10``).
+#: ``ibis-hmc``, ``smc-noise-10x10``, ``smc-student-10x10`` and ``smc-noise-10x10-recal``).
 ALL_TRAINERS = tuple(k for k in ROWS if study_entry(k).default)
 
 

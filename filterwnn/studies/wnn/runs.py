@@ -11,7 +11,7 @@ import numpy as np
 from ..._validation import check_choice
 from ...datasets import make_siso_benchmark
 from ...monte_carlo.particle_filter import DegeneracyWarning
-from ...wnn.predictive import GaussianPredictive
+from ...wnn.predictive import GaussianPredictive, conformal_factor, recalibrate
 from ...wnn.regressor import WNNRegressor
 from ...wnn.trainers import PAPER_SETTINGS, TRAINERS
 from .. import runner
@@ -24,6 +24,7 @@ __all__ = [
     "predictive_scores",
     "distribution_scores",
     "tune_run",
+    "calibration_run",
     "fit_run",
     "fit_reference",
     "run_tasks",
@@ -67,6 +68,35 @@ def tune_run(trainer, tune_seed, n_epochs, n_particles=50, params=None, candidat
         "curve_val": curve, "fit_time": float(getattr(reg, "fit_time_", float("nan"))), "status": status,
         "n_particles": n_particles if _uses_particles(trainer) else 0,
     }
+
+
+def calibration_run(trainer, tune_seed, n_particles=50, run=0):
+    """Standardized residuals of row ``trainer``'s fit on a tuning run's validation split.
+
+    The row's estimator (its trainer, fixed settings and epochs; seeded with the tuning run's
+    training stream) is trained on the first 80 % of the tuning run's training rows, and its
+    predictive is read on the last 20 % (the plant's later steps, as the test rows are). The
+    tuning run's test rows are drawn and discarded unseen.
+
+    Returns
+    -------
+    dict
+        ``table`` ("calibration"), ``trainer``, ``run``, ``residuals`` (``(y - mean) / std`` on
+        the validation rows), ``val_mse``, ``fit_time``, ``status``.
+    """
+    from threadpoolctl import threadpool_limits
+
+    with threadpool_limits(limits=1), warnings.catch_warnings():
+        warnings.simplefilter("ignore", DegeneracyWarning)
+        X, y, _, _ = make_siso_benchmark(rng=_child(tune_seed, 0))  # test rows unused
+        n_val = int(round(VALIDATION_FRACTION * len(X)))
+        reg = _regressor(trainer, "working", tune_seed, _rows()[trainer].epochs or 1, n_particles, None)
+        reg.fit(X[:-n_val], y[:-n_val])
+        dist = reg.predictive(X[-n_val:])
+        residuals = (y[-n_val:] - dist.mean) / dist.std
+    return {"table": "calibration", "trainer": trainer, "run": run, "residuals": [float(r) for r in residuals],
+            "val_mse": float(np.mean((dist.mean - y[-n_val:]) ** 2)), "fit_time": float(reg.fit_time_),
+            "status": "ok"}
 
 
 def _train_tracked(reg, X, y, X_eval, y_eval, n_epochs, curve):
@@ -202,7 +232,8 @@ def distribution_scores(dist, y):
     return out
 
 
-def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_test=True, run=0, params=None):
+def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_test=True, run=0, params=None,
+            recal_factor=None):
     """Train one WNN in one run and score it on that run's test set.
 
     Parameters
@@ -218,6 +249,10 @@ def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_
         Record the test MSE after every epoch (``curve_test``).
     params : dict, optional
         Extra :class:`~filterwnn.WNNRegressor` parameters.
+    recal_factor : float, optional
+        Score the predictive recalibrated by this width factor
+        (:func:`~filterwnn.wnn.predictive.recalibrate`; fitted on other data by the caller); the
+        unrecalibrated scores are kept as ``coverage50_base`` ... ``nlpd_base``.
 
     Returns
     -------
@@ -238,6 +273,10 @@ def fit_run(trainer, run_seed, n_epochs, n_particles=50, table="working", track_
             dist = reg.predictive(X_test)
             test_mse = float(np.mean((dist.mean - y_test) ** 2))
             scores = distribution_scores(dist, y_test)
+            if recal_factor is not None:
+                base = {f"{k}_base": v for k, v in scores.items()}
+                scores = dict(distribution_scores(recalibrate(dist, recal_factor), y_test), **base,
+                              recal_factor=float(recal_factor))
             train_mse = reg.loss_curve_[-1]
         except np.linalg.LinAlgError as exc:  # NumericalError included: a failed run is a result
             status, test_mse, train_mse = f"failed: {exc}", float("nan"), float("nan")
@@ -325,6 +364,8 @@ def _task(task):
         return fit_reference(*args, **kwargs)
     if kind == "tune":
         return tune_run(*args, **kwargs)
+    if kind == "calibration":
+        return calibration_run(*args, **kwargs)
     return fit_run(*args, **kwargs)
 
 
@@ -334,8 +375,8 @@ def run_tasks(tasks, n_jobs=1, backend=None, progress=False, cache_dir=None, cac
     Parameters
     ----------
     tasks : list of (kind, args, kwargs)
-        ``kind`` "fit" (:func:`fit_run`), "tune" (:func:`tune_run`) or "reference"
-        (:func:`fit_reference`).
+        ``kind`` "fit" (:func:`fit_run`), "tune" (:func:`tune_run`), "calibration"
+        (:func:`calibration_run`) or "reference" (:func:`fit_reference`).
     n_jobs : int
         joblib workers (``-1``: all cores).
     backend : str, optional
@@ -444,6 +485,36 @@ def _search(trainers, plan, seed, run_kw):
     return chosen, tuning, complete
 
 
+def _calibrate(trainers, plan, seed, run_kw):
+    """The recalibrated rows' width factors, each fitted on the tuning runs' validation split.
+
+    For every row with a ``recalibrate`` level, the row's trainer is fitted on each tuning run
+    (:func:`calibration_run`), the standardized validation residuals of all tuning runs are pooled
+    and :func:`~filterwnn.wnn.predictive.conformal_factor` gives the factor at that level.
+
+    Returns
+    -------
+    dict
+        ``row -> {"factor", "level", "n_residuals", "val_mse_median"}`` (only the rows whose
+        calibration runs all finished).
+    """
+    rows = {t: study_entry(t).recalibrate for t in trainers if study_entry(t).recalibrate is not None}
+    if rows and not plan.tune_runs:
+        raise ValueError(f"tune_runs must be >= 1 for the recalibrated rows {sorted(rows)} (their factor is "
+                         f"fitted on the tuning runs' validation split), got {plan.tune_runs}")
+    tseeds = tune_seeds(seed, plan.tune_runs)
+    tasks = [("calibration", (t, tseeds[j], plan.n_particles), {"run": j}) for t in rows for j in range(plan.tune_runs)]
+    results = run_tasks(tasks, **run_kw) if tasks else []
+    out = {}
+    for t, level in rows.items():
+        rs = [r for r in results if r is not None and r["trainer"] == t]
+        if len(rs) == plan.tune_runs:
+            res = np.concatenate([r["residuals"] for r in rs])
+            out[t] = {"factor": conformal_factor(res, level), "level": level, "n_residuals": int(res.size),
+                      "val_mse_median": _q([r["val_mse"] for r in rs], 0.5)}
+    return out
+
+
 def _run_scheduled(tasks, run_kw):
     """Run ``tasks``: the working table run by run (so an interrupted study has whole runs), then
     references, paper table and sweep, longest first inside each; results in task order."""
@@ -529,7 +600,12 @@ def run_study(n_runs=3, n_epochs=30, pf_epochs=None, n_particles=10, trainers=AL
     if plan.tune_runs and not complete:  # cached_only with an unfinished search: the rows that need none
         copy = _specs_with("copy_settings")
         trainers = [t for t in trainers if t in chosen or candidates(t) == [{}] and t not in copy]
+    calibration = _calibrate(trainers, plan, seed, run_kw)
+    trainers = [t for t in trainers if study_entry(t).recalibrate is None or t in calibration]
     tasks, n_main = _study_tasks(trainers, plan, chosen, references, paper_table, sweep_particles)
+    for kind, args, kwargs in tasks:
+        if kind == "fit" and args[0] in calibration:
+            kwargs["recal_factor"] = calibration[args[0]]["factor"]
     out = _run_scheduled(tasks, run_kw)
     main, swept = [r for r in out[:n_main] if r is not None], [r for r in out[n_main:] if r is not None]
     config = dict(
@@ -537,6 +613,7 @@ def run_study(n_runs=3, n_epochs=30, pf_epochs=None, n_particles=10, trainers=AL
         seed=seed, trainers=list(trainers), paper_runs=plan.paper_runs if paper_table else 0,
         paper_pf_epochs=plan.paper_pf_epochs, sweep_particles=list(sweep_particles), sweep_runs=plan.sweep_runs,
         n_jobs=n_jobs, backend=backend or "loky", n_tasks=len(out), n_done=sum(r is not None for r in out),
-        tune_runs=plan.tune_runs, validation_fraction=VALIDATION_FRACTION, tuning_complete=complete)
+        tune_runs=plan.tune_runs, validation_fraction=VALIDATION_FRACTION, tuning_complete=complete,
+        calibration=calibration)
     return StudyResult(runs=main + swept, table=summarize(main), sweep=_sweep_table(main, swept, trainers,
                        sweep_particles, plan), config=config, tuning=tuning)

@@ -87,6 +87,11 @@ def markdown_table(result):
                 f"{_fmt(r['nlpd'])} | {r['n_runs']} | "
                 f"{_fmt(r['paper_mse'], 4)} | {_fmt(r['paper_time'])} |"
             )
+    for t, cal in (c.get("calibration") or {}).items():
+        lines += ["", f"Recalibrated row `{t}`: its Gaussian's standard deviation multiplied by "
+                  f"{_fmt(cal['factor'], 4)}, the split-conformal factor at {cal['level']:.0%} from "
+                  f"{cal['n_residuals']} standardized residuals of the tuning runs' validation split "
+                  "(runs.csv: the scores before recalibration as `*_base`)."]
     if result.sweep:
         lines += ["", "## Particle sweep (Figs. 3-4)", "", "| trainer | particles | test MSE median | fit time (s) | runs |",
                   "|---|---|---|---|---|"]
@@ -125,7 +130,8 @@ def tuning_table(result):
 #: Columns of ``runs.csv`` (one line per table, trainer and run).
 RUNS_COLUMNS = ("table", "trainer", "run", "n_particles", "epochs", "test_mse", "train_mse", "fit_time", "mean_ess",
                 "distinct", "ancestors", "coverage50", "coverage90", "coverage95", "nlpd", "var_test", "status", "settings",
-                "noise_scale2", "noise_df")
+                "noise_scale2", "noise_df", "recal_factor", "coverage50_base", "coverage90_base", "coverage95_base",
+                "nlpd_base")
 #: Columns of ``tuning.csv`` (one line per trainer and candidate).
 TUNING_COLUMNS = ("trainer", "candidate", "settings", "best_epoch", "val_mse", "val_mse_last", "n_runs", "n_failed",
                   "chosen")
@@ -148,7 +154,8 @@ def _write_csv(path, fields, rows, paths):
 
 def write_outputs(result, out, figures=True):
     """Write ``table1.md``, ``table1.csv``, ``runs.csv``, the search's ``tuning.md`` and
-    ``tuning.csv`` (when it ran) and the figures (:func:`write_figures`)
+    ``tuning.csv`` (when it ran), the recalibrated rows' ``calibration.csv`` (when there are
+    any) and the figures (:func:`write_figures`)
     into ``out``.
 
     Returns
@@ -165,6 +172,10 @@ def write_outputs(result, out, figures=True):
         _write_text(os.path.join(out, "tuning.md"), tuning_table(result), paths)
         rows = [dict(r, settings=_params_text(r["params"])) for r in result.tuning]
         _write_csv(os.path.join(out, "tuning.csv"), TUNING_COLUMNS, rows, paths)
+    calibration = result.config.get("calibration") or {}
+    if calibration:
+        _write_csv(os.path.join(out, "calibration.csv"), ("trainer", "factor", "level", "n_residuals", "val_mse_median"),
+                   [dict(v, trainer=k) for k, v in calibration.items()], paths)
     if figures:
         from .figures import write_figures
 
