@@ -111,17 +111,26 @@ def cholesky_columns(A):
     >>> L[:, :, 0].tolist(), ok.tolist()
     ([[2.0, 0.0], [1.0, 2.0]], [True, False])
     """
+    L, d = _columns_factor(A)
+    return L, ((d > 0) & (d < np.inf)).all(axis=0)
+
+
+def _columns_factor(A):
+    """:func:`cholesky_columns`' factor ``L (n, n, N)`` and a view of its diagonals ``(n, N)``
+    (every pivot positive and finite: the whole stack is PD)."""
     n = A.shape[0]
     L = np.zeros(A.shape)
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         for j in range(n):
-            r = A[j:, j] - (L[j:, :j] * L[j, :j]).sum(axis=1) if j else A[:, 0]
+            if j:  # the products summed over k in order, as (L[j:, :j] * L[j, :j]).sum(axis=1), without the temporary
+                r = np.einsum("ikb,kb->ib", L[j:, :j], L[j, :j])
+                np.subtract(A[j:, j], r, out=r)
+            else:
+                r = A[:, 0]
             np.sqrt(r[0], out=L[j, j])
             if j < n - 1:
                 np.divide(r[1:], L[j, j], out=L[j + 1 :, j])
-        d = L.reshape(n * n, -1)[:: n + 1]  # the diagonals, (n, N), a view
-        ok = ((d > 0) & (d < np.inf)).all(axis=0)
-    return L, ok
+    return L, L.reshape(n * n, -1)[:: n + 1]  # the diagonals, (n, N), a view
 
 
 def solve_lower_columns(L, B):
@@ -198,8 +207,8 @@ def cholesky(P, name, step=None, remedy=None):
     if P.ndim == 3 and P.shape[0] > 1 and P.strides[0] == 0:
         return np.broadcast_to(cholesky(P[:1], name, step, remedy), P.shape)
     if P.ndim == 3 and columns_layout(P.shape[0], P.shape[1]):
-        Lc, ok = cholesky_columns(np.ascontiguousarray(P.transpose(1, 2, 0)))
-        if not ok.all():
+        Lc, d = _columns_factor(P.transpose(1, 2, 0))  # read in place: each entry once
+        if not (d.min() > 0 and d.max() < np.inf):  # two reductions for the stack (NaN fails both)
             raise not_pd_error(name, P, step, remedy)
         return Lc.transpose(2, 0, 1)
     L = cholesky_lower(P)

@@ -179,7 +179,7 @@ def _residual(fn, a, b, vectorized):
     if fn is None or fn is np.subtract:
         if a.ndim == 3 and np.shape(b) == (a.shape[0], 1, a.shape[2]) and a.flags.c_contiguous:
             N, S, d = a.shape
-            rows = np.matmul(b[:, 0, :], np.tile(np.eye(d), S))
+            rows = np.matmul(b[:, 0, :], _repeater(d, S))
             return np.subtract(a.reshape(N, S * d), rows, out=rows).reshape(N, S, d)
         return a - b
     if vectorized:
@@ -189,6 +189,19 @@ def _residual(fn, a, b, vectorized):
     A, B = a.reshape(-1, d), b.reshape(-1, d)
     out = np.array([fn(A[i], B[i]) for i in range(A.shape[0])], dtype=float)
     return out.reshape(a.shape)
+
+
+_REPEATERS = {}  # (d, S) -> [I I ... I], read-only
+
+
+def _repeater(d, S):
+    """``np.tile(np.eye(d), S)``, ``(d, S * d)``, made once per shape (read-only)."""
+    E = _REPEATERS.get((d, S))
+    if E is None:
+        E = np.tile(np.eye(d), S)
+        E.flags.writeable = False
+        _REPEATERS[(d, S)] = E
+    return E
 
 
 def _weighted_mean(fn, pts, W):
