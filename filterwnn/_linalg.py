@@ -115,11 +115,12 @@ def cholesky_columns(A):
     return L, ((d > 0) & (d < np.inf)).all(axis=0)
 
 
-def _columns_factor(A):
+def _columns_factor(A, out=None):
     """:func:`cholesky_columns`' factor ``L (n, n, N)`` and a view of its diagonals ``(n, N)``
-    (every pivot positive and finite: the whole stack is PD)."""
+    (every pivot positive and finite: the whole stack is PD). ``out``, when given, is a
+    zeroed ``(n, n, N)`` array (or view) that receives ``L``."""
     n = A.shape[0]
-    L = np.zeros(A.shape)
+    L = np.zeros(A.shape) if out is None else out
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         for j in range(n):
             if j:  # the products summed over k in order, as (L[j:, :j] * L[j, :j]).sum(axis=1), without the temporary
@@ -130,7 +131,7 @@ def _columns_factor(A):
             np.sqrt(r[0], out=L[j, j])
             if j < n - 1:
                 np.divide(r[1:], L[j, j], out=L[j + 1 :, j])
-    return L, L.reshape(n * n, -1)[:: n + 1]  # the diagonals, (n, N), a view
+    return L, L.diagonal(0, 0, 1).T  # the diagonals, (n, N), a view
 
 
 def solve_lower_columns(L, B):
@@ -186,7 +187,7 @@ def not_pd_error(name, P, step=None, remedy=None):
     return NumericalError(msg, matrix=name, step=step)
 
 
-def cholesky(P, name, step=None, remedy=None):
+def cholesky(P, name, step=None, remedy=None, out=None):
     """Stacked lower Cholesky factors of ``P (..., n, n)``, or :class:`NumericalError`.
 
     The error (:func:`not_pd_error`) names the matrix, the step, the first failing
@@ -194,7 +195,9 @@ def cholesky(P, name, step=None, remedy=None):
     factored once. A stack of small matrices (:func:`columns_layout`) is factored by
     :func:`cholesky_columns`; the factors are then returned as a view
     ``L.transpose(2, 0, 1)`` of its member-axis-last array, whose ``transpose(1, 2, 0)`` is
-    that array again (no copy for a caller that works by columns).
+    that array again (no copy for a caller that works by columns). ``out`` (a zeroed
+    ``(n, n, N)`` array or view, for a stack ``P (N, n, n)`` on that path) receives that
+    array, so that a caller which stores the factors beside other columns copies nothing.
 
     >>> cholesky(np.diag([4.0, 9.0]), "P")
     array([[2., 0.],
@@ -205,9 +208,13 @@ def cholesky(P, name, step=None, remedy=None):
     filterwnn._validation.NumericalError: P is not positive definite at step 2; smallest eigenvalue -1; make P positive definite
     """
     if P.ndim == 3 and P.shape[0] > 1 and P.strides[0] == 0:
-        return np.broadcast_to(cholesky(P[:1], name, step, remedy), P.shape)
+        L = np.broadcast_to(cholesky(P[:1], name, step, remedy), P.shape)
+        if out is None:
+            return L
+        out[...] = L.transpose(1, 2, 0)
+        return out.transpose(2, 0, 1)
     if P.ndim == 3 and columns_layout(P.shape[0], P.shape[1]):
-        Lc, d = _columns_factor(P.transpose(1, 2, 0))  # read in place: each entry once
+        Lc, d = _columns_factor(P.transpose(1, 2, 0), out)  # read in place: each entry once
         if not (d.min() > 0 and d.max() < np.inf):  # two reductions for the stack (NaN fails both)
             raise not_pd_error(name, P, step, remedy)
         return Lc.transpose(2, 0, 1)
