@@ -423,3 +423,28 @@ def test_a_bank_pickled_with_plain_prior_and_posterior_attributes_loads(problem)
     old.__setstate__(state)
     for name, value in want.items():
         assert np.array_equal(getattr(old, name), value), name
+
+
+def test_a_long_bank_with_one_measurement_on_the_column_path_equals_filterpy_ukfs():
+    """``dim_z = 1`` on the column path (P_xy a view of the solve's right-hand side, the rank-1
+    downdate): every member as filterpy's UKF, to 1e-12."""
+    x0, P0, Q, R, zs = _long_problem(seed=6)
+    hx1 = lambda X: hx(X)[..., :1]  # noqa: E731
+    bank = UnscentedKalmanFilterBank(B_LONG, 3, 1, DT, hx1, fx, POINTS[0])
+    bank.x, bank.P, bank.Q, bank.R = x0, P0, Q, R[:1, :1]
+    got = []
+    for z in zs[:, :, :1]:
+        bank.predict()
+        bank.update(z)
+        got.append((bank.x.copy(), bank.P.copy(), bank.log_likelihood.copy()))
+    for i in range(0, B_LONG, 7):
+        f = FilterpyUKF(3, 1, DT, hx1, fx, POINTS[0])
+        f.x, f.P, f.Q, f.R = x0[i].copy(), P0[i].copy(), Q, R[:1, :1]
+        for k, z in enumerate(zs[:, :, :1]):
+            f.predict()
+            if not np.isnan(z[i, 0]):
+                f.update(z[i])
+            x, P, ll = got[k]
+            np.testing.assert_allclose(x[i], f.x, rtol=0, atol=TOL)
+            np.testing.assert_allclose(P[i], f.P, rtol=0, atol=TOL)
+            assert abs(ll[i] - (f.log_likelihood if not np.isnan(z[i, 0]) else 0.0)) <= TOL
