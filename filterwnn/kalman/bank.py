@@ -224,7 +224,7 @@ class _Bank:
     x = _Live(_member_states, "Member states, shape ``(B, dim_x)``; assign ``(B, dim_x)`` or one "
               "``(dim_x,)`` for all.")
     P = _Live(_member_covariances, "Member covariances, shape ``(B, dim_x, dim_x)``; assign one per "
-                 "member or one for all.")
+              "member or one for all.")
     Q = _Checked(lambda bank, value: _stack(value, "Q", bank.B, bank.dim_x, kind="psd"),
                  """Process noise, ``(dim_x, dim_x)`` shared or ``(B, dim_x, dim_x)``; checked (symmetric,
         positive semi-definite) when assigned. Replace it rather than edit it in place.""")
@@ -420,7 +420,7 @@ class UnscentedKalmanFilterBank(_NonlinearBank):
     Q, R : ndarray of shape (n, n) or (B, n, n)
         Identity by default (filterpy's); checked when assigned.
     x_prior, P_prior, x_post, P_post : ndarray
-        After the last ``predict`` / ``update``.
+        After the last ``predict`` / ``update`` (copies, made when first read).
     log_likelihood : ndarray of shape (B,)
         ``log N(z_i; z_pred_i, S_i)`` at the last update (0 for members not observed).
     step : int

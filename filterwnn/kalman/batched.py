@@ -523,9 +523,11 @@ def _cross_columns(L, LinvPxy):
     into the right-hand side of :func:`finish_update`'s solve, ``rhs (m, n + 1, N)``, as
     :math:`P_{xy}^T` in ``rhs[:, :n]`` -> ``(Pxy (N, n, m), a view; rhs)``.
 
-    One ``einsum`` over the member axis (the products summed over ``j`` in order:
-    ``np.matmul(L, LinvPxy)``'s numbers) in place of a batched product of small matrices
-    and a transposed copy.
+    One ``einsum`` over the member axis (the products summed over ``j`` in order) in place
+    of a batched product of small matrices and a transposed copy: NumPy 1.x's ``np.matmul``
+    numbers bit for bit; NumPy 2.x's batched product goes through BLAS (fused multiply-adds),
+    so there the two differ in the last bit (the bank's agreement with filterpy's UKF, 1e-12,
+    is tested).
     """
     N, n, m = LinvPxy.shape
     rhs = np.empty((m, n + 1, N))
