@@ -480,7 +480,7 @@ def finish_update(model, x_prior, P_prior, z, z_pred, S, Pxy, L_prior, step, Lin
     substitution give :math:`G = L_S^{-1} P_{xy}^T` and :math:`e = L_S^{-1} y`, and then
     :math:`\hat x = x^- + G^T e`, :math:`\hat P = P^- - G^T G` (exactly symmetric) and
     :math:`\log N = -\tfrac12 |e|^2 - \sum \log L_{S,jj} - \tfrac m2 \log 2\pi`.
-    ``rhs`` (from a caller on the column path, :func:`_cross_columns`) is that solve's
+    ``rhs`` (from a caller on the column path, ``_cross_columns``) is that solve's
     right-hand side ``(dim_z, n + 1, N)`` with :math:`P_{xy}^T` already in ``[:, :n]``
     (``Pxy`` a view of it).
     """
