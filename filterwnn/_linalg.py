@@ -111,17 +111,27 @@ def cholesky_columns(A):
     >>> L[:, :, 0].tolist(), ok.tolist()
     ([[2.0, 0.0], [1.0, 2.0]], [True, False])
     """
+    L, d = _columns_factor(A)
+    return L, ((d > 0) & (d < np.inf)).all(axis=0)
+
+
+def _columns_factor(A, out=None):
+    """:func:`cholesky_columns`' factor ``L (n, n, N)`` and a view of its diagonals ``(n, N)``
+    (every pivot positive and finite: the whole stack is PD). ``out``, when given, is a
+    zeroed ``(n, n, N)`` array (or view) that receives ``L``."""
     n = A.shape[0]
-    L = np.zeros(A.shape)
+    L = np.zeros(A.shape) if out is None else out
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         for j in range(n):
-            r = A[j:, j] - (L[j:, :j] * L[j, :j]).sum(axis=1) if j else A[:, 0]
+            if j:  # the products summed over k in order, as (L[j:, :j] * L[j, :j]).sum(axis=1), without the temporary
+                r = np.einsum("ikb,kb->ib", L[j:, :j], L[j, :j])
+                np.subtract(A[j:, j], r, out=r)
+            else:
+                r = A[:, 0]
             np.sqrt(r[0], out=L[j, j])
             if j < n - 1:
                 np.divide(r[1:], L[j, j], out=L[j + 1 :, j])
-        d = L.reshape(n * n, -1)[:: n + 1]  # the diagonals, (n, N), a view
-        ok = ((d > 0) & (d < np.inf)).all(axis=0)
-    return L, ok
+    return L, L.diagonal(0, 0, 1).T  # the diagonals, (n, N), a view
 
 
 def solve_lower_columns(L, B):
@@ -189,7 +199,7 @@ def not_pd_error(name, P, step=None, remedy=None):
     return NumericalError(msg, matrix=name, step=step)
 
 
-def cholesky(P, name, step=None, remedy=None):
+def cholesky(P, name, step=None, remedy=None, out=None):
     """Stacked lower Cholesky factors of ``P (..., n, n)``, or :class:`NumericalError`.
 
     The error (:func:`not_pd_error`) names the matrix, the step, the first failing
@@ -197,7 +207,9 @@ def cholesky(P, name, step=None, remedy=None):
     factored once. A stack of small matrices (:func:`columns_layout`) is factored by
     :func:`cholesky_columns`; the factors are then returned as a view
     ``L.transpose(2, 0, 1)`` of its member-axis-last array, whose ``transpose(1, 2, 0)`` is
-    that array again (no copy for a caller that works by columns).
+    that array again (no copy for a caller that works by columns). ``out`` (a zeroed
+    ``(n, n, N)`` array or view, for a stack ``P (N, n, n)`` on that path) receives that
+    array, so that a caller which stores the factors beside other columns copies nothing.
 
     >>> cholesky(np.diag([4.0, 9.0]), "P")
     array([[2., 0.],
@@ -208,10 +220,14 @@ def cholesky(P, name, step=None, remedy=None):
     filterwnn._validation.NumericalError: P is not positive definite at step 2; smallest eigenvalue -1; make P positive definite
     """
     if P.ndim == 3 and P.shape[0] > 1 and P.strides[0] == 0:
-        return np.broadcast_to(cholesky(P[:1], name, step, remedy), P.shape)
+        L = np.broadcast_to(cholesky(P[:1], name, step, remedy), P.shape)
+        if out is None:
+            return L
+        out[...] = L.transpose(1, 2, 0)
+        return out.transpose(2, 0, 1)
     if P.ndim == 3 and columns_layout(P.shape[0], P.shape[1]):
-        Lc, ok = cholesky_columns(np.ascontiguousarray(P.transpose(1, 2, 0)))
-        if not ok.all():
+        Lc, d = _columns_factor(P.transpose(1, 2, 0), out)  # read in place: each entry once
+        if not (d.min() > 0 and d.max() < np.inf):  # two reductions for the stack (NaN fails both)
             raise not_pd_error(name, P, step, remedy)
         return Lc.transpose(2, 0, 1)
     L = cholesky_lower(P)

@@ -3,13 +3,12 @@ forward substitution (member axis last) against NumPy's LAPACK, and the errors o
 
 import numpy as np
 import pytest
-from filterwnn._linalg import not_pd_error, smallest_eigenvalue
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from filterwnn import NumericalError
 from filterwnn._linalg import (COLUMNS_MAX_N, COLUMNS_MIN_STACK, cholesky, cholesky_columns, columns_layout,
-                               solve_lower_columns)
+                               not_pd_error, smallest_eigenvalue, solve_lower_columns)
 
 TOL = 1e-12  # relative to the matrices' scale
 
@@ -96,6 +95,35 @@ def test_cholesky_names_the_first_member_that_is_not_pd_on_either_path(N):
     with pytest.raises(NumericalError, match=r"^S is not positive definite at step 9 \(particle 5\); check R$") as e:
         cholesky(P, "S", step=9, remedy="check R")
     assert e.value.matrix == "S" and e.value.step == 9
+
+
+@pytest.mark.parametrize("spoil", ["negative", "singular", "nan_lower", "inf_diagonal", "nan_diagonal",
+                                   "zero_last_pivot", "inf_last"])
+def test_cholesky_on_the_column_path_rejects_the_stacks_lapack_rejects(spoil):
+    """The column path decides for the whole stack from two reductions of the pivots (their
+    minimum positive, their maximum finite): every spoilt member raises, naming it, as the
+    per-member check does; ``zero_last_pivot`` is the one that no later pivot would catch."""
+    N, n = COLUMNS_MIN_STACK + 3, 4
+    P = _pd_stack(5, N, n)
+    k = N - 1
+    if spoil == "negative":
+        P[k] = -np.eye(n)
+    elif spoil == "singular":
+        P[k] = np.ones((n, n))
+    elif spoil == "nan_lower":
+        P[k, 3, 1] = P[k, 1, 3] = np.nan
+    elif spoil == "inf_diagonal":
+        P[k, 2, 2] = np.inf
+    elif spoil == "nan_diagonal":
+        P[k, 0, 0] = np.nan
+    elif spoil == "zero_last_pivot":
+        P[k] = np.diag([1.0, 2.0, 3.0, 0.0])
+    else:
+        P[k] = np.diag([1.0, 1.0, 1.0, np.inf])  # an overflow upstream
+    lapack = [bool(np.all(np.isfinite(Pi))) and np.all(np.linalg.eigvalsh(Pi) > 0) for Pi in P]
+    assert not lapack[k] and all(lapack[:k])
+    with pytest.raises(NumericalError, match=rf"^P is not positive definite at step 2 \(particle {k}\)"):
+        cholesky(P, "P", step=2)
 
 
 @pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])

@@ -147,6 +147,37 @@ def _measurement_matrix(bank, value):
     return H
 
 
+class _Copy:
+    """``x_prior``/``P_prior``/``x_post``/``P_post``: the step keeps a reference (``bank._pending``),
+    copied at the first read of any of them or of ``x``/``P`` (:meth:`_Bank._settle`), so a
+    bank whose copies nobody reads never makes them; what a reader sees is the eager copy."""
+
+    def __set_name__(self, owner, name):
+        self.name, self.slot = name, "_" + name
+
+    def __get__(self, obj, objtype=None):
+        if obj is None:
+            return self
+        obj._settle()
+        return obj.__dict__.get(self.slot)
+
+    def __set__(self, obj, value):
+        obj._settle()
+        obj.__dict__[self.slot] = value
+
+
+class _Live(_Checked):
+    """``x``/``P``: as :class:`_Checked`, and a read first makes the copies the step left pending
+    (an edit in place of the array read must not reach ``x_prior`` and the others)."""
+
+    def __get__(self, obj, objtype=None):
+        if obj is None:
+            return self
+        if obj.__dict__.get("_pending"):
+            obj._settle()
+        return getattr(obj, self.slot)
+
+
 class _Bank:
     """What the banks share: the stacked state, the noise checked when assigned, the step loop."""
 
@@ -185,20 +216,44 @@ class _Bank:
         self._R = np.eye(self.dim_z)
         self.step = 0
         self.log_likelihood = np.zeros(self.B)
+        self._pending = None
         self.x_prior, self.P_prior = self._x.copy(), self._P.copy()
         self.x_post, self.P_post = self._x.copy(), self._P.copy()
 
     # --- the state, checked when assigned --------------------------------------------------
-    x = _Checked(_member_states, "Member states, shape ``(B, dim_x)``; assign ``(B, dim_x)`` or one "
-                 "``(dim_x,)`` for all.")
-    P = _Checked(_member_covariances, "Member covariances, shape ``(B, dim_x, dim_x)``; assign one per "
-                 "member or one for all.")
+    x = _Live(_member_states, "Member states, shape ``(B, dim_x)``; assign ``(B, dim_x)`` or one "
+              "``(dim_x,)`` for all.")
+    P = _Live(_member_covariances, "Member covariances, shape ``(B, dim_x, dim_x)``; assign one per "
+              "member or one for all.")
     Q = _Checked(lambda bank, value: _stack(value, "Q", bank.B, bank.dim_x, kind="psd"),
                  """Process noise, ``(dim_x, dim_x)`` shared or ``(B, dim_x, dim_x)``; checked (symmetric,
         positive semi-definite) when assigned. Replace it rather than edit it in place.""")
     R = _Checked(lambda bank, value: _stack(value, "R", bank.B, bank.dim_z, kind="pd"),
                  """Measurement noise, ``(dim_z, dim_z)`` shared or ``(B, dim_z, dim_z)``; checked (symmetric,
         positive definite) when assigned.""")
+
+    x_prior, P_prior, x_post, P_post = _Copy(), _Copy(), _Copy(), _Copy()
+
+    def _keep(self, which):
+        """After a step: ``x_<which>``/``P_<which>`` are to be copies of ``x``/``P`` (made when read)."""
+        if self._keep_copies:
+            pending = self.__dict__.get("_pending") or {}
+            pending[which] = (self._x, self._P)
+            self._pending = pending
+
+    def __setstate__(self, state):
+        for name in ("x_prior", "P_prior", "x_post", "P_post"):  # pickled when they were plain attributes
+            if name in state:
+                state["_" + name] = state.pop(name)
+        self.__dict__.update(state)
+
+    def _settle(self):
+        """Make the copies the steps left pending (see :class:`_Copy`)."""
+        pending = self.__dict__.get("_pending")
+        if pending:
+            self._pending = None
+            for which, (x, P) in pending.items():
+                self.__dict__["_x_" + which], self.__dict__["_P_" + which] = x.copy(), P.copy()
 
     # --- errors that name the member -------------------------------------------------------
     def _numerical(self, exc, stage, P, step):
@@ -256,8 +311,7 @@ class _Bank:
         self._check_finite(pred.x, pred.P, "predict", step, "check fx and Q")
         self._x, self._P = pred
         self.step = step
-        if self._keep_copies:
-            self.x_prior, self.P_prior = self._x.copy(), self._P.copy()
+        self._keep("prior")
 
     def update(self, z, R=None, mask=None, **hx_args):
         """Update every observed member with its measurement.
@@ -292,8 +346,7 @@ class _Bank:
         self._posterior()
 
     def _posterior(self):
-        if self._keep_copies:
-            self.x_post, self.P_post = self._x.copy(), self._P.copy()
+        self._keep("post")
 
     def batch_filter(self, zs, fx_args=None, hx_args=None):
         """Run ``predict``/``update`` over a sequence of measurements.
@@ -367,7 +420,7 @@ class UnscentedKalmanFilterBank(_NonlinearBank):
     Q, R : ndarray of shape (n, n) or (B, n, n)
         Identity by default (filterpy's); checked when assigned.
     x_prior, P_prior, x_post, P_post : ndarray
-        After the last ``predict`` / ``update``.
+        After the last ``predict`` / ``update`` (copies, made when first read).
     log_likelihood : ndarray of shape (B,)
         ``log N(z_i; z_pred_i, S_i)`` at the last update (0 for members not observed).
     step : int

@@ -179,7 +179,7 @@ def _residual(fn, a, b, vectorized):
     if fn is None or fn is np.subtract:
         if a.ndim == 3 and np.shape(b) == (a.shape[0], 1, a.shape[2]) and a.flags.c_contiguous:
             N, S, d = a.shape
-            rows = np.matmul(b[:, 0, :], np.tile(np.eye(d), S))
+            rows = np.matmul(b[:, 0, :], _repeater(d, S))
             return np.subtract(a.reshape(N, S * d), rows, out=rows).reshape(N, S, d)
         return a - b
     if vectorized:
@@ -189,6 +189,19 @@ def _residual(fn, a, b, vectorized):
     A, B = a.reshape(-1, d), b.reshape(-1, d)
     out = np.array([fn(A[i], B[i]) for i in range(A.shape[0])], dtype=float)
     return out.reshape(a.shape)
+
+
+_REPEATERS = {}  # (d, S) -> [I I ... I], read-only
+
+
+def _repeater(d, S):
+    """``np.tile(np.eye(d), S)``, ``(d, S * d)``, made once per shape (read-only)."""
+    E = _REPEATERS.get((d, S))
+    if E is None:
+        E = np.tile(np.eye(d), S)
+        E.flags.writeable = False
+        _REPEATERS[(d, S)] = E
+    return E
 
 
 def _weighted_mean(fn, pts, W):
@@ -457,7 +470,8 @@ def _as_z(z, N, m):
     return z
 
 
-def finish_update(model, x_prior, P_prior, z, z_pred, S, Pxy, L_prior, step, LinvPxy=None, H=None, R=None):
+def finish_update(model, x_prior, P_prior, z, z_pred, S, Pxy, L_prior, step, LinvPxy=None, H=None, R=None,
+                  rhs=None):
     r"""Gain, posterior and innovation likelihood from the batched moments -> :class:`KalmanUpdate`.
 
     ``S`` is the predicted measurement spread *without* ``R``; ``z`` is ``(dim_z,)`` or
@@ -466,6 +480,9 @@ def finish_update(model, x_prior, P_prior, z, z_pred, S, Pxy, L_prior, step, Lin
     substitution give :math:`G = L_S^{-1} P_{xy}^T` and :math:`e = L_S^{-1} y`, and then
     :math:`\hat x = x^- + G^T e`, :math:`\hat P = P^- - G^T G` (exactly symmetric) and
     :math:`\log N = -\tfrac12 |e|^2 - \sum \log L_{S,jj} - \tfrac m2 \log 2\pi`.
+    ``rhs`` (from a caller on the column path, ``_cross_columns``) is that solve's
+    right-hand side ``(dim_z, n + 1, N)`` with :math:`P_{xy}^T` already in ``[:, :n]``
+    (``Pxy`` a view of it).
     """
     R = noise_matrix(model.R, "R", model.dim_z) if R is None else R
     S = S + R
@@ -485,12 +502,13 @@ def finish_update(model, x_prior, P_prior, z, z_pred, S, Pxy, L_prior, step, Lin
     Ls = cholesky(S, "S", step)
     N, n = x_prior.shape
     m = model.dim_z
-    rhs = np.empty((m, n + 1, N))  # member axis last: one long vector operation per entry
-    rhs[:, :n] = Pxy.transpose(2, 1, 0)
+    if rhs is None:
+        rhs = np.empty((m, n + 1, N))  # member axis last: one long vector operation per entry
+        rhs[:, :n] = Pxy.transpose(2, 1, 0)
     rhs[:, n] = y.T
     E = solve_lower_columns(Ls.transpose(1, 2, 0), rhs)  # [L_S^{-1} Pxy^T | L_S^{-1} y]
     G, e = E[:, :n], E[:, n]
-    x = x_prior + (G * e[:, None]).sum(axis=0).T
+    x = x_prior + np.einsum("kib,kb->ib", G, e).T  # (G * e[:, None]).sum(axis=0).T's sums, no temporary
     GtG = G[0, :, None] * G[0]
     for k in range(1, m):
         GtG += G[k, :, None] * G[k]
@@ -498,6 +516,24 @@ def finish_update(model, x_prior, P_prior, z, z_pred, S, Pxy, L_prior, step, Lin
     log_det = np.sum(np.log(np.diagonal(Ls, axis1=1, axis2=2)), axis=1)
     loglik = -0.5 * np.sum(e * e, axis=0) - log_det - 0.5 * m * LOG_2PI
     return KalmanUpdate(x, P, z_pred, S, Pxy, loglik, L_prior, LinvPxy, H)
+
+
+def _cross_columns(L, LinvPxy):
+    """``P_xy = L (L^{-1} P_xy)`` for factors ``L (N, n, n)`` stored member axis last, written
+    into the right-hand side of :func:`finish_update`'s solve, ``rhs (m, n + 1, N)``, as
+    :math:`P_{xy}^T` in ``rhs[:, :n]`` -> ``(Pxy (N, n, m), a view; rhs)``.
+
+    One ``einsum`` over the member axis (the products summed over ``j`` in order) in place
+    of a batched product of small matrices and a transposed copy: NumPy 1.x's ``np.matmul``
+    numbers bit for bit; NumPy 2.x's batched product goes through BLAS (fused multiply-adds),
+    so there the two differ in the last bit (the bank's agreement with filterpy's UKF, 1e-12,
+    is tested).
+    """
+    N, n, m = LinvPxy.shape
+    rhs = np.empty((m, n + 1, N))
+    np.einsum("ijb,jkb->kib", L.transpose(1, 2, 0), np.ascontiguousarray(LinvPxy.transpose(1, 2, 0)),
+              out=rhs[:, :n])
+    return rhs[:, :n].transpose(2, 1, 0), rhs
 
 
 def _observed(mask, N):
@@ -704,12 +740,12 @@ class UnscentedStep(_Step):
         (its ``reshape(N * S, n)`` a view too, no copy), else the C-ordered array of
         :func:`~filterwnn.kalman.sigma_points.batched_sigma_points`.
         """
-        L = cholesky(P, name, step)
         N, n = x.shape
         if not columns_layout(N, n):
+            L = cholesky(P, name, step)
             return L, batched_sigma_points(self.points, x, L)
-        Lx = np.empty((n, n + 1, N))  # [L_b | x_b] per component, member axis last
-        Lx[:, :n] = L.transpose(1, 2, 0)
+        Lx = np.zeros((n, n + 1, N))  # [L_b | x_b] per component, member axis last
+        L = cholesky(P, name, step, out=Lx[:, :n])  # the factors written in place (L: a view of Lx)
         Lx[:, n] = x.T
         sig = np.matmul(Lx.transpose(0, 2, 1), self._Zx)  # (n, N, S): x_b[i] + sum_j L_b[i, j] Z[s, j]
         return L, sig.transpose(1, 2, 0)
@@ -756,6 +792,9 @@ class UnscentedStep(_Step):
         S = np.matmul(np.swapaxes(dY, -1, -2), WdY)
         # Pxy = D^T (Wc dY) = L (Z^T (Wc dY)); the bracket is L^{-1} Pxy for the sampling
         LinvPxy = unit_transpose_apply(self.points, self._Z, WdY)
+        if columns_layout(N, n):  # L: a view of the factors stored member axis last (_sigmas)
+            Pxy, rhs = _cross_columns(L, LinvPxy)
+            return finish_update(model, xp, Pp, z, zp, S, Pxy, L, step, LinvPxy=LinvPxy, R=R, rhs=rhs)
         Pxy = np.matmul(L, LinvPxy)
         return finish_update(model, xp, Pp, z, zp, S, Pxy, L, step, LinvPxy=LinvPxy, R=R)
 

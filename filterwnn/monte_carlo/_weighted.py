@@ -190,5 +190,5 @@ class WeightedMixtureFilter:
         for k, z in enumerate(zs):
             self.predict(**fx_args)
             self.update(z, **hx_args)
-            means[k], covs[k] = self._x, self._P
+            means[k], covs[k] = self.x, self.P  # (formed here if the update left them pending)
         return means, covs

@@ -378,3 +378,73 @@ def test_the_steps_row_helpers_equal_the_plain_broadcasts_bit_for_bit():
     bad = b.copy()
     bad[3, 0, 2] = np.nan
     assert np.isnan(_residual(None, a, bad, True)[3]).any() and np.isfinite(_residual(None, a, bad, True)[4]).all()
+
+
+def test_prior_and_posterior_copies_made_when_read_are_the_eager_ones(problem):
+    """``x_prior``/``P_prior``/``x_post``/``P_post`` are copied at their first read (or that of
+    ``x``/``P``): read every step or only at the end, they hold the values of that moment, and
+    an edit in place of one array never reaches another."""
+    x0, P0, Q, R, zs = problem
+    seen = UnscentedKalmanFilterBank(B, 3, 2, DT, hx, fx, POINTS[0])
+    late = UnscentedKalmanFilterBank(B, 3, 2, DT, hx, fx, POINTS[0])
+    for bank in (seen, late):
+        bank.x, bank.P, bank.Q, bank.R = x0, P0, Q, R
+    for k in range(4):
+        seen.predict()
+        xp, Pp = seen.x_prior, seen.P_prior
+        assert np.array_equal(xp, seen.x) and xp is not seen.x and Pp is not seen.P
+        seen.update(zs[k])
+        assert np.array_equal(seen.x_post, seen.x) and np.array_equal(seen.P_post, seen.P)
+        assert np.array_equal(seen.x_prior, xp) and np.array_equal(seen.P_prior, Pp)
+        late.predict()
+        late.update(zs[k])
+    for name in ("x_prior", "P_prior", "x_post", "P_post", "x", "P"):
+        assert np.array_equal(getattr(late, name), getattr(seen, name)), name
+    late.x[0] += 1.0  # an edit in place of x reaches neither copy
+    late.x_post[1] += 2.0
+    assert np.array_equal(late.x_post[0], seen.x_post[0]) and np.array_equal(late.x[1], seen.x[1])
+    late.predict()
+    late.x_prior[0] = 0.0  # nor an edit of a copy the state
+    assert not np.array_equal(late.x[0], late.x_prior[0])
+
+
+def test_a_bank_pickled_with_plain_prior_and_posterior_attributes_loads(problem):
+    x0, P0, Q, R, zs = problem
+    bank = UnscentedKalmanFilterBank(B, 3, 2, DT, hx, fx, POINTS[0])
+    bank.x, bank.P, bank.Q, bank.R = x0, P0, Q, R
+    bank.predict()
+    bank.update(zs[0])
+    want = {name: getattr(bank, name).copy() for name in ("x_prior", "P_prior", "x_post", "P_post")}
+    state = dict(bank.__dict__)
+    for name in want:  # the layout before these were copied when read
+        state[name] = state.pop("_" + name)
+    state.pop("_pending")
+    old = UnscentedKalmanFilterBank.__new__(UnscentedKalmanFilterBank)
+    old.__setstate__(state)
+    for name, value in want.items():
+        assert np.array_equal(getattr(old, name), value), name
+
+
+def test_a_long_bank_with_one_measurement_on_the_column_path_equals_filterpy_ukfs():
+    """``dim_z = 1`` on the column path (P_xy a view of the solve's right-hand side, the rank-1
+    downdate): every member as filterpy's UKF, to 1e-12."""
+    x0, P0, Q, R, zs = _long_problem(seed=6)
+    hx1 = lambda X: hx(X)[..., :1]  # noqa: E731
+    bank = UnscentedKalmanFilterBank(B_LONG, 3, 1, DT, hx1, fx, POINTS[0])
+    bank.x, bank.P, bank.Q, bank.R = x0, P0, Q, R[:1, :1]
+    got = []
+    for z in zs[:, :, :1]:
+        bank.predict()
+        bank.update(z)
+        got.append((bank.x.copy(), bank.P.copy(), bank.log_likelihood.copy()))
+    for i in range(0, B_LONG, 7):
+        f = FilterpyUKF(3, 1, DT, hx1, fx, POINTS[0])
+        f.x, f.P, f.Q, f.R = x0[i].copy(), P0[i].copy(), Q, R[:1, :1]
+        for k, z in enumerate(zs[:, :, :1]):
+            f.predict()
+            if not np.isnan(z[i, 0]):
+                f.update(z[i])
+            x, P, ll = got[k]
+            np.testing.assert_allclose(x[i], f.x, rtol=0, atol=TOL)
+            np.testing.assert_allclose(P[i], f.P, rtol=0, atol=TOL)
+            assert abs(ll[i] - (f.log_likelihood if not np.isnan(z[i, 0]) else 0.0)) <= TOL

@@ -726,3 +726,64 @@ def test_a_one_point_hx_is_caught_on_the_first_vectorized_call():
     pf.predict()
     with pytest.raises(ValueError, match="vectorized hx looks written for one point"):
         pf.update(np.array([0.3]))
+
+
+def _xmean_default(X, w):  # the model's default mean, as a user function: forces the eager moments
+    return w @ X
+
+
+@pytest.mark.parametrize("resampling", ["systematic", "stratified", "residual", "multinomial"])
+def test_posterior_moments_formed_when_read_equal_the_eager_ones(resampling, lin_data):
+    """``x``/``P``/``x_post``/``P_post`` after ``update``, formed at the first read, are the
+    numbers of the eager path (a user ``x_mean_fn`` keeps the moments eager), read at once, after a
+    following ``predict`` (``x_post`` keeps the posterior, ``x`` is the prediction) or never."""
+    lazy = make(BootstrapParticleFilter, 60, resampling=resampling)
+    eager = make(BootstrapParticleFilter, 60, resampling=resampling, x_mean_fn=_xmean_default)
+    never = make(BootstrapParticleFilter, 60, resampling=resampling)
+    twin = make(BootstrapParticleFilter, 60, resampling=resampling, x_mean_fn=_xmean_default)
+    for k, z in enumerate(lin_data[0][:8]):
+        for pf in (never, twin):
+            pf.predict()
+            pf.update(z)
+        for pf in (lazy, eager):
+            pf.predict()
+            pf.update(z)
+        assert lazy._pending_post is not None and eager._pending_post is None
+        if k % 2:
+            lazy.predict()
+            eager.predict()
+            assert np.array_equal(lazy.x, eager.x) and np.array_equal(lazy.P, eager.P)  # the prediction
+        for name in ("x_post", "P_post", "x", "P", "x_prior", "P_prior"):
+            assert np.array_equal(getattr(lazy, name), getattr(eager, name)), (k, name)
+        assert lazy.x_post is not lazy.x  # separate arrays, as the eager path keeps them
+    for name in ("x_post", "P_post", "x", "P"):
+        assert np.array_equal(getattr(never, name), getattr(twin, name)), name
+    assert np.array_equal(never.particles, twin.particles)
+
+
+def test_a_failed_update_keeps_the_pending_posterior_of_the_last_one(lin_data):
+    """An update that raises leaves the posterior of the update before it, still formed when read."""
+    a, b = make(BootstrapParticleFilter, 40), make(BootstrapParticleFilter, 40)
+    for pf in (a, b):
+        pf.predict()
+        pf.update(lin_data[0][0])
+    a.measurement_logpdf = impossible_logpdf
+    with pytest.raises(NumericalError, match="underflowed"):
+        a.update(lin_data[0][1])
+    assert a._pending_post is not None
+    for name in ("x", "P", "x_post", "P_post", "log_weights", "particles"):
+        assert np.array_equal(getattr(a, name), getattr(b, name)), name
+
+
+def test_a_filter_pickled_with_eager_posterior_attributes_loads():
+    """A pickle from before ``x_post``/``P_post`` were formed when read (plain attributes) loads."""
+    pf = make(BootstrapParticleFilter, 30)
+    pf.predict()
+    pf.update(np.zeros(2))
+    x_post, P_post = pf.x_post.copy(), pf.P_post.copy()
+    state = pf.__getstate__()
+    state["x_post"], state["P_post"] = state.pop("_x_post"), state.pop("_P_post")
+    state.pop("_pending_post")
+    old = BootstrapParticleFilter.__new__(BootstrapParticleFilter)
+    old.__setstate__(state)
+    assert np.array_equal(old.x_post, x_post) and np.array_equal(old.P_post, P_post)
