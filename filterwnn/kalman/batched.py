@@ -56,6 +56,7 @@ CUED/F-INFENG/TR 380, 2000 (one such step per particle).
 
 from __future__ import annotations
 
+import math
 import warnings
 from functools import cached_property
 from typing import NamedTuple, Optional
@@ -184,7 +185,7 @@ def _residual(fn, a, b, vectorized, work=None, name=None):
             if work is None:
                 rows = np.matmul(b[:, 0, :], _repeater(d, S))
             else:
-                rows = np.matmul(b[:, 0, :], _repeater(d, S), out=work.empty(name, (N, S * d)))
+                rows = np.matmul(b[:, 0, :], _repeater(d, S), out=work.slot(name, (N, S * d)))
             return np.subtract(a.reshape(N, S * d), rows, out=rows).reshape(N, S, d)
         return a - b
     if vectorized:
@@ -237,6 +238,15 @@ class Workspace:
                 del self._arrays[next(iter(self._arrays))]
             a = self._arrays[key] = np.zeros(shape)
         return a
+
+    def slot(self, name, shape):
+        """A C-ordered ``shape`` view of the front of the kept flat array ``name`` (grown when too
+        small): arrays whose lives do not overlap share one slot (less memory touched per step)."""
+        size = math.prod(shape)
+        flat = self._arrays.get(name)
+        if flat is None or flat.size < size:
+            flat = self._arrays[name] = np.empty(size)
+        return flat[:size].reshape(shape)
 
     def __len__(self):
         return len(self._arrays)
@@ -551,11 +561,11 @@ def finish_update(model, x_prior, P_prior, z, z_pred, S, Pxy, L_prior, step, Lin
         rhs = np.empty((m, n + 1, N))  # member axis last: one long vector operation per entry
         rhs[:, :n] = Pxy.transpose(2, 1, 0)
     rhs[:, n] = y.T
-    E = solve_lower_columns(Ls.transpose(1, 2, 0), rhs, out=None if work is None else work.empty("E", rhs.shape))
+    E = solve_lower_columns(Ls.transpose(1, 2, 0), rhs, out=None if work is None else work.slot("dev", rhs.shape))
     G, e = E[:, :n], E[:, n]  # [L_S^{-1} Pxy^T | L_S^{-1} y]
     x = x_prior + np.einsum("kib,kb->ib", G, e).T  # (G * e[:, None]).sum(axis=0).T's sums, no temporary
-    GtG = np.multiply(G[0, :, None], G[0], out=_empty(work, "GtG", (n, n, N)))
-    term = _empty(work, "GtG_k", (n, n, N)) if m > 1 else None
+    GtG = np.multiply(G[0, :, None], G[0], out=np.empty((n, n, N)) if work is None else work.slot("wdev", (n, n, N)))
+    term = (np.empty((n, n, N)) if work is None else work.slot("cov", (n, n, N))) if m > 1 else None
     for k in range(1, m):
         GtG += np.multiply(G[k, :, None], G[k], out=term)
     P = P_prior - GtG.transpose(2, 0, 1)
@@ -580,7 +590,7 @@ def _cross_columns(L, LinvPxy, work=None):
     if work is None:
         B = np.ascontiguousarray(LinvPxy.transpose(1, 2, 0))
     else:
-        B = work.empty("LinvPxy_columns", (n, m, N))
+        B = work.slot("wdev", (n, m, N))
         B[...] = LinvPxy.transpose(1, 2, 0)
     np.einsum("ijb,jkb->kib", L.transpose(1, 2, 0), B, out=rhs[:, :n])
     return rhs[:, :n].transpose(2, 1, 0), rhs
@@ -833,10 +843,10 @@ class UnscentedStep(_Step):
         del sig  # dead temporaries go back at once: a lower peak, fewer fresh pages per step
         Wm, Wc = self.points.Wm, self.points.Wc
         xp = _weighted_mean(model.x_mean_fn, F, Wm)
-        dX = _residual(model.residual_x, F, xp[:, None, :], model.vectorized, work, "dX")
+        dX = _residual(model.residual_x, F, xp[:, None, :], model.vectorized, work, "dev")
         del F
-        WdX = _times_weights(dX, Wc, out=None if work is None else work.empty("WdX", (N, S_ * n)))
-        Pp = np.matmul(np.swapaxes(WdX, -1, -2), dX, out=None if work is None else work.empty("Pp", (N, n, n)))
+        WdX = _times_weights(dX, Wc, out=None if work is None else work.slot("wdev", (N, S_ * n)))
+        Pp = np.matmul(np.swapaxes(WdX, -1, -2), dX, out=None if work is None else work.slot("cov", (N, n, n)))
         Pp += Q
         P_sym = Pp + np.swapaxes(Pp, -1, -2)
         P_sym *= 0.5
@@ -854,10 +864,10 @@ class UnscentedStep(_Step):
         del sig  # as in predict
         Wm, Wc = self.points.Wm, self.points.Wc
         zp = _weighted_mean(model.z_mean_fn, Hs, Wm)
-        dY = _residual(model.residual_z, Hs, zp[:, None, :], model.vectorized, work, "dY")
+        dY = _residual(model.residual_z, Hs, zp[:, None, :], model.vectorized, work, "dev")
         del Hs
-        WdY = _times_weights(dY, Wc, out=None if work is None else work.empty("WdY", (N, S_ * m)))
-        S = np.matmul(np.swapaxes(dY, -1, -2), WdY, out=None if work is None else work.empty("Syy", (N, m, m)))
+        WdY = _times_weights(dY, Wc, out=None if work is None else work.slot("wdev", (N, S_ * m)))
+        S = np.matmul(np.swapaxes(dY, -1, -2), WdY, out=None if work is None else work.slot("cov", (N, m, m)))
         # Pxy = D^T (Wc dY) = L (Z^T (Wc dY)); the bracket is L^{-1} Pxy for the sampling
         LinvPxy = unit_transpose_apply(self.points, self._Z, WdY)
         if columns_layout(N, n):  # L: a view of the factors stored member axis last (_sigmas)
