@@ -8,7 +8,7 @@ process's CPU clock and its minor page faults counted. Two settings: the banks s
 alone, and each step right after one call of the benchmark's NumPy floor (as inside
 ``bench_peers.py``, where the floor's arrays come and go between the bank's steps).
 
-    OPENBLAS_NUM_THREADS=1 python benchmarks/bench_bank_work.py --repeats 60
+    OPENBLAS_NUM_THREADS=1 python benchmarks/bank_work/bench_bank_work.py --repeats 60
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from bench_peers import _bank, _merwe6, _six, numpy_ukf_step  # noqa: E402
 
 import filterwnn  # noqa: E402
