@@ -117,9 +117,8 @@ def cholesky_columns(A):
 
 def _columns_factor(A, out=None):
     """:func:`cholesky_columns`' factor ``L (n, n, N)`` and a view of its diagonals ``(n, N)``
-    (every pivot positive and finite: the whole stack is PD). ``out``, when given, is an
-    ``(n, n, N)`` array (or view) zero above the diagonal that receives ``L`` (its lower
-    triangle is written whole, nothing above it)."""
+    (every pivot positive and finite: the whole stack is PD). ``out``, when given, is a
+    zeroed ``(n, n, N)`` array (or view) that receives ``L``."""
     n = A.shape[0]
     L = np.zeros(A.shape) if out is None else out
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
@@ -135,15 +134,14 @@ def _columns_factor(A, out=None):
     return L, L.diagonal(0, 0, 1).T  # the diagonals, (n, N), a view
 
 
-def solve_lower_columns(L, B, out=None):
+def solve_lower_columns(L, B):
     """``L^{-1} B`` for lower factors stored member axis last, ``L (n, n, N)``, ``B (n, m, N)``.
 
     Forward substitution, one row of every member's system per step; ``L`` is taken to
-    be a valid factor (from :func:`cholesky_columns` with every member ``ok``). ``out``, when
-    given, is an array of ``B``'s shape (not ``B`` itself) that receives the solution.
+    be a valid factor (from :func:`cholesky_columns` with every member ``ok``).
     """
     n = L.shape[0]
-    X = np.empty(B.shape) if out is None else out
+    X = np.empty(B.shape)
     for j in range(n):
         r = B[j] - (L[j, :j, None] * X[:j]).sum(axis=0) if j else B[0]
         np.divide(r, L[j, j], out=X[j])
@@ -209,9 +207,8 @@ def cholesky(P, name, step=None, remedy=None, out=None):
     factored once. A stack of small matrices (:func:`columns_layout`) is factored by
     :func:`cholesky_columns`; the factors are then returned as a view
     ``L.transpose(2, 0, 1)`` of its member-axis-last array, whose ``transpose(1, 2, 0)`` is
-    that array again (no copy for a caller that works by columns). ``out`` (an
-    ``(n, n, N)`` array or view zero above the diagonal, for a stack ``P (N, n, n)`` on that
-    path: the factor writes its lower triangle whole and nothing above it) receives that
+    that array again (no copy for a caller that works by columns). ``out`` (a zeroed
+    ``(n, n, N)`` array or view, for a stack ``P (N, n, n)`` on that path) receives that
     array, so that a caller which stores the factors beside other columns copies nothing.
 
     >>> cholesky(np.diag([4.0, 9.0]), "P")

@@ -34,10 +34,7 @@ once per point (filterpy's signature). For a bank of small filters (``n <= 8``, 
 the rows are a strided view of an array stored state-component first, not a C-ordered
 copy: NumPy code reads it the same; code that needs C order (numba with a C layout,
 ``.view``) should call ``np.ascontiguousarray`` first. Write the result to a new array,
-not into the rows, and copy the rows to keep them: they are the bank's work array, rewritten
-at its next step (as are the step's other scratch arrays, kept per bank and never pickled;
-``x``, ``P``, the copies and the log-likelihoods are new arrays every step). Errors name the
-member and the step.
+not into the rows. Errors name the member and the step.
 
 A bank agrees with B independent filterpy (or filterwnn) filters to 1e-12 (see
 ``tests/kalman/test_bank.py``).
@@ -63,8 +60,7 @@ import numpy as np
 
 from .._linalg import first_not_pd
 from .._validation import NumericalError, cholesky_lower, check_points_protocol, check_positive, check_positive_int
-from .batched import (ExtendedStep, KalmanModel, KalmanPrediction, LinearStep, UnscentedStep, Workspace, check_callable,
-                      repairing)
+from .batched import ExtendedStep, KalmanModel, KalmanPrediction, LinearStep, UnscentedStep, check_callable, repairing
 
 __all__ = ["UnscentedKalmanFilterBank", "ExtendedKalmanFilterBank", "KalmanFilterBank"]
 
@@ -245,22 +241,6 @@ class _Bank:
             pending[which] = (self._x, self._P)
             self._pending = pending
 
-    def _workspace(self):
-        """The bank's :class:`~filterwnn.kalman.batched.Workspace` (made at the first step: a
-        bank unpickled, copied or made by :meth:`of_components` gets its own), or None for a
-        step that takes none."""
-        if not getattr(self._step, "uses_work", False):
-            return None
-        work = self.__dict__.get("_work")
-        if work is None:
-            work = self._work = Workspace()
-        return work
-
-    def __getstate__(self):
-        state = dict(self.__dict__)
-        state.pop("_work", None)  # scratch: not pickled, not shared by copies
-        return state
-
     def __setstate__(self, state):
         for name in ("x_prior", "P_prior", "x_post", "P_post"):  # pickled when they were plain attributes
             if name in state:
@@ -403,14 +383,10 @@ class _NonlinearBank(_Bank):
     """A bank whose step runs the model's callables (unscented or extended)."""
 
     def _predict(self, P, fx_args, step):
-        work = self._workspace()
-        if work is None:
-            return self._step.predict(self._model, self._x, P, fx_args, step, Q=self._Q)
-        return self._step.predict(self._model, self._x, P, fx_args, step, Q=self._Q, work=work)
+        return self._step.predict(self._model, self._x, P, fx_args, step, Q=self._Q)
 
     def _update(self, prediction, z, R, observed, hx_args):
-        return self._step.update(self._model, prediction, z, hx_args, self.step, R=R, mask=observed,
-                                 work=self._workspace())
+        return self._step.update(self._model, prediction, z, hx_args, self.step, R=R, mask=observed)
 
 
 class UnscentedKalmanFilterBank(_NonlinearBank):

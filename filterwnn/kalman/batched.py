@@ -56,7 +56,6 @@ CUED/F-INFENG/TR 380, 2000 (one such step per particle).
 
 from __future__ import annotations
 
-import math
 import warnings
 from functools import cached_property
 from typing import NamedTuple, Optional
@@ -76,7 +75,6 @@ __all__ = [
     "UnscentedStep",
     "ExtendedStep",
     "LinearStep",
-    "Workspace",
     "batched_step",
     "finish_update",
 ]
@@ -169,23 +167,19 @@ def _apply_loop(f, X, out_dim, name, args, kwargs):
     return Y
 
 
-def _residual(fn, a, b, vectorized, work=None, name=None):
+def _residual(fn, a, b, vectorized):
     """``fn(a, b)`` broadcasting ``b`` against ``a (..., d)``; ``a - b`` when ``fn`` is None.
 
     Deviations from a mean, ``a (N, S, d)`` less ``b (N, 1, d)``: ``b`` is first repeated
     along each row by one BLAS product with ``[I I ... I]`` (exact: one unit term per
     entry), so that the subtraction runs over rows of ``S d`` values; the broadcast ran
     NumPy's inner loop over ``d`` only (the bank step 0.88-0.95x the time at B = 1,000,
-    paired runs; unchanged at 10,000). With a :class:`Workspace` that path writes into its
-    array ``name`` (scratch: valid until the next step that uses it).
+    paired runs; unchanged at 10,000).
     """
     if fn is None or fn is np.subtract:
         if a.ndim == 3 and np.shape(b) == (a.shape[0], 1, a.shape[2]) and a.flags.c_contiguous:
             N, S, d = a.shape
-            if work is None:
-                rows = np.matmul(b[:, 0, :], _repeater(d, S))
-            else:
-                rows = np.matmul(b[:, 0, :], _repeater(d, S), out=work.slot(name, (N, S * d)))
+            rows = np.matmul(b[:, 0, :], _repeater(d, S))
             return np.subtract(a.reshape(N, S * d), rows, out=rows).reshape(N, S, d)
         return a - b
     if vectorized:
@@ -210,53 +204,6 @@ def _repeater(d, S):
     return E
 
 
-class Workspace:
-    """Scratch arrays of a batched step kept across steps, one per name and shape.
-
-    A bank (:mod:`filterwnn.kalman.bank`) passes its own to every step, so that the
-    step's large temporaries (sigma points, deviations, products; 0.1-6 MB each at
-    1,000-10,000 members) are written into the same memory each step instead of being
-    allocated and given back (fresh pages, page faults). Only arrays that no caller sees
-    after the step go here; what a step returns that a user may keep is always fresh.
-    At most :attr:`MAX_ARRAYS` are kept (the oldest dropped first), so that a stack
-    whose size changes every step (a different set of observed members) does not grow it.
-    """
-
-    #: arrays kept at most (a step uses about a dozen names, at two stack sizes when members are missing)
-    MAX_ARRAYS = 32
-
-    def __init__(self):
-        self._arrays = {}
-
-    def empty(self, name, shape):
-        """The kept float array ``name`` of ``shape`` (its contents left from the last use), or
-        a new one, zeroed when first made (a caller may rely on entries it never writes staying 0)."""
-        key = (name, shape)
-        a = self._arrays.get(key)
-        if a is None:
-            if len(self._arrays) >= self.MAX_ARRAYS:
-                del self._arrays[next(iter(self._arrays))]
-            a = self._arrays[key] = np.zeros(shape)
-        return a
-
-    def slot(self, name, shape):
-        """A C-ordered ``shape`` view of the front of the kept flat array ``name`` (grown when too
-        small): arrays whose lives do not overlap share one slot (less memory touched per step)."""
-        size = math.prod(shape)
-        flat = self._arrays.get(name)
-        if flat is None or flat.size < size:
-            flat = self._arrays[name] = np.empty(size)
-        return flat[:size].reshape(shape)
-
-    def __len__(self):
-        return len(self._arrays)
-
-
-def _empty(work, name, shape):
-    """``work.empty(name, shape)``, or a new array without a workspace."""
-    return np.empty(shape) if work is None else work.empty(name, shape)
-
-
 def _weighted_mean(fn, pts, W):
     """Weighted mean of ``pts (N, S, d)`` over axis 1 -> ``(N, d)``, or ``fn(pts_i, W)``."""
     if fn is None:
@@ -264,13 +211,12 @@ def _weighted_mean(fn, pts, W):
     return np.array([np.asarray(fn(p, W), dtype=float).reshape(pts.shape[-1]) for p in pts])
 
 
-def _times_weights(d, W, out=None):
+def _times_weights(d, W):
     """``d (N, S, k)`` times the sigma weights ``W (S,)`` along axis 1, computed on the
     ``(N, S * k)`` view: NumPy's inner loop then runs over ``S * k`` values, not ``k``
-    (a ``W[:, None]`` broadcast; about 2.5x faster for ``k = 6``, ``N = 1,000``); into
-    ``out (N, S * k)`` when given."""
+    (a ``W[:, None]`` broadcast; about 2.5x faster for ``k = 6``, ``N = 1,000``)."""
     N, S, k = d.shape
-    return np.multiply(d.reshape(N, S * k), np.repeat(W, k), out=out).reshape(N, S, k)
+    return (d.reshape(N, S * k) * np.repeat(W, k)).reshape(N, S, k)
 
 
 def _jacobians(J, X, shape, vectorized, name, args, kwargs):
@@ -525,7 +471,7 @@ def _as_z(z, N, m):
 
 
 def finish_update(model, x_prior, P_prior, z, z_pred, S, Pxy, L_prior, step, LinvPxy=None, H=None, R=None,
-                  rhs=None, work=None):
+                  rhs=None):
     r"""Gain, posterior and innovation likelihood from the batched moments -> :class:`KalmanUpdate`.
 
     ``S`` is the predicted measurement spread *without* ``R``; ``z`` is ``(dim_z,)`` or
@@ -536,8 +482,7 @@ def finish_update(model, x_prior, P_prior, z, z_pred, S, Pxy, L_prior, step, Lin
     :math:`\log N = -\tfrac12 |e|^2 - \sum \log L_{S,jj} - \tfrac m2 \log 2\pi`.
     ``rhs`` (from a caller on the column path, ``_cross_columns``) is that solve's
     right-hand side ``(dim_z, n + 1, N)`` with :math:`P_{xy}^T` already in ``[:, :n]``
-    (``Pxy`` a view of it). ``work`` (a :class:`Workspace`) holds the solve's and the
-    downdate's scratch arrays; the posterior ``x``, ``P`` and the log-likelihood are always new.
+    (``Pxy`` a view of it).
     """
     R = noise_matrix(model.R, "R", model.dim_z) if R is None else R
     S = S + R
@@ -561,20 +506,19 @@ def finish_update(model, x_prior, P_prior, z, z_pred, S, Pxy, L_prior, step, Lin
         rhs = np.empty((m, n + 1, N))  # member axis last: one long vector operation per entry
         rhs[:, :n] = Pxy.transpose(2, 1, 0)
     rhs[:, n] = y.T
-    E = solve_lower_columns(Ls.transpose(1, 2, 0), rhs, out=None if work is None else work.slot("dev", rhs.shape))
-    G, e = E[:, :n], E[:, n]  # [L_S^{-1} Pxy^T | L_S^{-1} y]
+    E = solve_lower_columns(Ls.transpose(1, 2, 0), rhs)  # [L_S^{-1} Pxy^T | L_S^{-1} y]
+    G, e = E[:, :n], E[:, n]
     x = x_prior + np.einsum("kib,kb->ib", G, e).T  # (G * e[:, None]).sum(axis=0).T's sums, no temporary
-    GtG = np.multiply(G[0, :, None], G[0], out=np.empty((n, n, N)) if work is None else work.slot("wdev", (n, n, N)))
-    term = (np.empty((n, n, N)) if work is None else work.slot("cov", (n, n, N))) if m > 1 else None
+    GtG = G[0, :, None] * G[0]
     for k in range(1, m):
-        GtG += np.multiply(G[k, :, None], G[k], out=term)
+        GtG += G[k, :, None] * G[k]
     P = P_prior - GtG.transpose(2, 0, 1)
     log_det = np.sum(np.log(np.diagonal(Ls, axis1=1, axis2=2)), axis=1)
     loglik = -0.5 * np.sum(e * e, axis=0) - log_det - 0.5 * m * LOG_2PI
     return KalmanUpdate(x, P, z_pred, S, Pxy, loglik, L_prior, LinvPxy, H)
 
 
-def _cross_columns(L, LinvPxy, work=None):
+def _cross_columns(L, LinvPxy):
     """``P_xy = L (L^{-1} P_xy)`` for factors ``L (N, n, n)`` stored member axis last, written
     into the right-hand side of :func:`finish_update`'s solve, ``rhs (m, n + 1, N)``, as
     :math:`P_{xy}^T` in ``rhs[:, :n]`` -> ``(Pxy (N, n, m), a view; rhs)``.
@@ -583,16 +527,12 @@ def _cross_columns(L, LinvPxy, work=None):
     of a batched product of small matrices and a transposed copy: NumPy 1.x's ``np.matmul``
     numbers bit for bit; NumPy 2.x's batched product goes through BLAS (fused multiply-adds),
     so there the two differ in the last bit (the bank's agreement with filterpy's UKF, 1e-12,
-    is tested). ``work`` (a :class:`Workspace`) holds ``rhs`` and the transposed copy.
+    is tested).
     """
     N, n, m = LinvPxy.shape
-    rhs = _empty(work, "rhs", (m, n + 1, N))
-    if work is None:
-        B = np.ascontiguousarray(LinvPxy.transpose(1, 2, 0))
-    else:
-        B = work.slot("wdev", (n, m, N))
-        B[...] = LinvPxy.transpose(1, 2, 0)
-    np.einsum("ijb,jkb->kib", L.transpose(1, 2, 0), B, out=rhs[:, :n])
+    rhs = np.empty((m, n + 1, N))
+    np.einsum("ijb,jkb->kib", L.transpose(1, 2, 0), np.ascontiguousarray(LinvPxy.transpose(1, 2, 0)),
+              out=rhs[:, :n])
     return rhs[:, :n].transpose(2, 1, 0), rhs
 
 
@@ -650,13 +590,11 @@ class _Step:
     """The shared half of a batched Kalman step: ``update`` with a mask, on top of ``_update``."""
 
     kind = None
-    #: the step takes a :class:`Workspace` (``work=``) for its scratch arrays
-    uses_work = False
 
     def check(self, dim_x):
         """Raise ``ValueError`` when the step does not fit a ``dim_x`` state."""
 
-    def update(self, model, prediction, z, hx_args=None, step=None, *, R=None, mask=None, work=None):
+    def update(self, model, prediction, z, hx_args=None, step=None, *, R=None, mask=None):
         """Batched update of every member with ``z (dim_z,)`` or ``(N, dim_z)`` -> :class:`KalmanUpdate`.
 
         Parameters
@@ -674,23 +612,17 @@ class _Step:
         mask : array-like of bool, shape (N,), optional
             True where the member is observed; the others keep their prediction (their
             ``z`` rows are not read).
-        work : Workspace, optional
-            Scratch arrays kept across steps (a step with :attr:`uses_work`; the others
-            ignore it). The result's ``Pxy``, ``LinvPxy`` and ``L_prior`` may then be views of
-            them, valid until the next step with the same workspace; ``x``, ``P`` and the
-            log-likelihood are always new arrays.
         """
-        return self._masked(model, prediction, z, {} if hx_args is None else hx_args, step, R, mask, work)
+        return self._masked(model, prediction, z, {} if hx_args is None else hx_args, step, R, mask)
 
-    def _masked(self, model, prediction, z, arg, step, R, mask, work=None):
+    def _masked(self, model, prediction, z, arg, step, R, mask):
         xp = prediction[0]
         idx = _observed(mask, xp.shape[0])
         if idx is None:
-            return self._update(model, prediction, z, arg, step, R, work)
+            return self._update(model, prediction, z, arg, step, R)
         sub_pred = KalmanPrediction(xp[idx], prediction[1][idx])
         z = np.asarray(z, dtype=float)
-        sub = self._update(model, sub_pred, z if z.ndim == 1 else z[idx], _take(arg, idx), step, _take(R, idx),
-                           work)
+        sub = self._update(model, sub_pred, z if z.ndim == 1 else z[idx], _take(arg, idx), step, _take(R, idx))
         return _scatter(prediction, idx, sub)
 
 
@@ -718,7 +650,7 @@ class ExtendedStep(_Step):
         Pp = np.matmul(np.matmul(F, P), np.swapaxes(F, -1, -2)) + Q
         return KalmanPrediction(xp, 0.5 * (Pp + np.swapaxes(Pp, -1, -2)))
 
-    def _update(self, model, prediction, z, hx_args, step, R, work=None):
+    def _update(self, model, prediction, z, hx_args, step, R):
         xp, Pp = prediction
         n, m = model.dim_x, model.dim_z
         H = _jacobians(model.HJacobian, xp, (m, n), model.vectorized, "HJacobian", (), hx_args)
@@ -752,7 +684,7 @@ class LinearStep(_Step):
         :meth:`ExtendedStep.update`."""
         return self._masked(model, prediction, z, np.asarray(H, dtype=float), step, R, mask)
 
-    def _update(self, model, prediction, z, H, step, R, work=None):
+    def _update(self, model, prediction, z, H, step, R):
         xp, Pp = prediction
         zp = np.matmul(H, xp[:, :, None])[:, :, 0] if H.ndim == 3 else xp @ H.T
         Pxy = np.matmul(Pp, np.swapaxes(H, -1, -2))
@@ -782,7 +714,6 @@ class UnscentedStep(_Step):
     """
 
     kind = "ukf"
-    uses_work = True
 
     def __init__(self, points):
         check_points_protocol(points, ("n", "Wm", "Wc", "num_sigmas", "sigma_points"))
@@ -800,42 +731,34 @@ class UnscentedStep(_Step):
         if self.points.n != dim_x:
             raise ValueError(f"points.n must equal dim_x={dim_x}, got {self.points.n}")
 
-    def _sigmas(self, x, P, step, name, work=None):
+    def _sigmas(self, x, P, step, name):
         """Factors and sigma points of every member -> ``(L (N, n, n), sig (N, S, n))``.
 
         A stack that ``filterwnn._linalg.columns_layout`` factors by columns (small ``n``,
         many members) gets ``x + Z L^T`` as one matrix product per state component on the
         factors stored member axis last: ``sig`` is then a view of an ``(n, N, S)`` array
         (its ``reshape(N * S, n)`` a view too, no copy), else the C-ordered array of
-        :func:`~filterwnn.kalman.sigma_points.batched_sigma_points`. On the column path
-        ``work`` (a :class:`Workspace`) holds both (the factors' array is zero above the
-        diagonal when made and only its lower triangle is written after).
+        :func:`~filterwnn.kalman.sigma_points.batched_sigma_points`.
         """
         N, n = x.shape
         if not columns_layout(N, n):
             L = cholesky(P, name, step)
             return L, batched_sigma_points(self.points, x, L)
-        # [L_b | x_b] per component, member axis last
-        Lx = np.zeros((n, n + 1, N)) if work is None else work.empty("Lx", (n, n + 1, N))
+        Lx = np.zeros((n, n + 1, N))  # [L_b | x_b] per component, member axis last
         L = cholesky(P, name, step, out=Lx[:, :n])  # the factors written in place (L: a view of Lx)
         Lx[:, n] = x.T
-        S = self._Zx.shape[1]  # (n, N, S): x_b[i] + sum_j L_b[i, j] Z[s, j]
-        sig = np.matmul(Lx.transpose(0, 2, 1), self._Zx, out=None if work is None else work.empty("sig", (n, N, S)))
+        sig = np.matmul(Lx.transpose(0, 2, 1), self._Zx)  # (n, N, S): x_b[i] + sum_j L_b[i, j] Z[s, j]
         return L, sig.transpose(1, 2, 0)
 
-    def predict(self, model, x, P, fx_args=None, step=None, *, Q=None, work=None):
-        """Predicted ``(x (N, n), P (N, n, n))`` by the unscented transform through ``fx``.
-
-        ``work`` (a :class:`Workspace`) holds the scratch arrays (the sigma points handed to
-        ``fx`` among them); the returned ``x`` and ``P`` are new arrays.
-        """
+    def predict(self, model, x, P, fx_args=None, step=None, *, Q=None):
+        """Predicted ``(x (N, n), P (N, n, n))`` by the unscented transform through ``fx``."""
         fx_args = {} if fx_args is None else fx_args
         self.check(model.dim_x)
         Q = noise_matrix(model.Q, "Q", model.dim_x) if Q is None else Q
         if model.fx is None:
             return KalmanPrediction(x.copy(), P + Q)
         N, n = x.shape
-        _, sig = self._sigmas(x, P, step, "P", work)
+        _, sig = self._sigmas(x, P, step, "P")
         S_ = sig.shape[1]
         F = apply_rows(model.fx, sig.reshape(N * S_, n), n, model.vectorized, "fx", (model.dt,), fx_args,
                        model.rows_checked)
@@ -843,36 +766,35 @@ class UnscentedStep(_Step):
         del sig  # dead temporaries go back at once: a lower peak, fewer fresh pages per step
         Wm, Wc = self.points.Wm, self.points.Wc
         xp = _weighted_mean(model.x_mean_fn, F, Wm)
-        dX = _residual(model.residual_x, F, xp[:, None, :], model.vectorized, work, "dev")
+        dX = _residual(model.residual_x, F, xp[:, None, :], model.vectorized)
         del F
-        WdX = _times_weights(dX, Wc, out=None if work is None else work.slot("wdev", (N, S_ * n)))
-        Pp = np.matmul(np.swapaxes(WdX, -1, -2), dX, out=None if work is None else work.slot("cov", (N, n, n)))
+        Pp = np.matmul(np.swapaxes(_times_weights(dX, Wc), -1, -2), dX)
         Pp += Q
         P_sym = Pp + np.swapaxes(Pp, -1, -2)
         P_sym *= 0.5
         return KalmanPrediction(xp, P_sym)
 
-    def _update(self, model, prediction, z, hx_args, step, R, work=None):
+    def _update(self, model, prediction, z, hx_args, step, R):
         self.check(model.dim_x)
         xp, Pp = prediction
         N, n = xp.shape
         m = model.dim_z
-        L, sig = self._sigmas(xp, Pp, step, "P_prior", work)
+        L, sig = self._sigmas(xp, Pp, step, "P_prior")
         S_ = sig.shape[1]
         Hs = apply_rows(model.hx, sig.reshape(N * S_, n), m, model.vectorized, "hx", (), hx_args,
                         model.rows_checked).reshape(N, S_, m)
         del sig  # as in predict
         Wm, Wc = self.points.Wm, self.points.Wc
         zp = _weighted_mean(model.z_mean_fn, Hs, Wm)
-        dY = _residual(model.residual_z, Hs, zp[:, None, :], model.vectorized, work, "dev")
+        dY = _residual(model.residual_z, Hs, zp[:, None, :], model.vectorized)
         del Hs
-        WdY = _times_weights(dY, Wc, out=None if work is None else work.slot("wdev", (N, S_ * m)))
-        S = np.matmul(np.swapaxes(dY, -1, -2), WdY, out=None if work is None else work.slot("cov", (N, m, m)))
+        WdY = _times_weights(dY, Wc)
+        S = np.matmul(np.swapaxes(dY, -1, -2), WdY)
         # Pxy = D^T (Wc dY) = L (Z^T (Wc dY)); the bracket is L^{-1} Pxy for the sampling
         LinvPxy = unit_transpose_apply(self.points, self._Z, WdY)
         if columns_layout(N, n):  # L: a view of the factors stored member axis last (_sigmas)
-            Pxy, rhs = _cross_columns(L, LinvPxy, work)
-            return finish_update(model, xp, Pp, z, zp, S, Pxy, L, step, LinvPxy=LinvPxy, R=R, rhs=rhs, work=work)
+            Pxy, rhs = _cross_columns(L, LinvPxy)
+            return finish_update(model, xp, Pp, z, zp, S, Pxy, L, step, LinvPxy=LinvPxy, R=R, rhs=rhs)
         Pxy = np.matmul(L, LinvPxy)
         return finish_update(model, xp, Pp, z, zp, S, Pxy, L, step, LinvPxy=LinvPxy, R=R)
 

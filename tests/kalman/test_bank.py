@@ -450,7 +450,7 @@ def test_a_long_bank_with_one_measurement_on_the_column_path_equals_filterpy_ukf
             assert abs(ll[i] - (f.log_likelihood if not np.isnan(z[i, 0]) else 0.0)) <= TOL
 
 
-# --- the step's kept work arrays (batched.Workspace) ------------------------------------------
+# --- what a user holds: a later step never changes it (guards any reuse of arrays) ----------
 
 
 def _long_bank(points=POINTS[0], n=B_LONG, seed=5):
@@ -462,10 +462,10 @@ def _long_bank(points=POINTS[0], n=B_LONG, seed=5):
 
 @pytest.mark.parametrize("points", POINTS, ids=["ukf-merwe", "sukf-simplex"])
 def test_results_held_from_a_step_are_never_changed_by_later_steps(points):
-    """The work arrays are scratch: x, P, the prior and posterior copies and the log-likelihoods
-    a user holds after a step (every member observed, or some missing) keep their values."""
+    """x, P, the prior and posterior copies and the log-likelihoods a user holds after a step
+    (every member observed, or some missing) keep their values through later steps."""
     bank, zs = _long_bank(points)
-    assert columns_layout(B_LONG, 3)  # the path with the work arrays
+    assert columns_layout(B_LONG, 3)  # the column path
     held = []
     for k in range(6):
         bank.predict()
@@ -483,57 +483,9 @@ def test_results_held_from_a_step_are_never_changed_by_later_steps(points):
             assert np.array_equal(h[name], v[name]), name
 
 
-def test_work_arrays_are_per_bank_and_follow_the_stack_size():
-    """Banks of different sizes stepped in turn give what each gives alone (their work arrays
-    are their own), and a bank whose observed set changes size every step keeps at most
-    ``Workspace.MAX_ARRAYS`` of them."""
-    from filterwnn.kalman.batched import Workspace
-
-    def run(banks, zs, order):
-        for k in range(3):
-            for i in order:
-                banks[i].predict()
-                banks[i].update(zs[i][k])
-        return [(b.x.copy(), b.P.copy(), b.log_likelihood.copy()) for b in banks]
-
-    pairs = [_long_bank(n=B_LONG), _long_bank(POINTS[1], n=B_LONG - 5, seed=8)]
-    together = run([p[0] for p in pairs], [p[1] for p in pairs], [0, 1])
-    alone = [run([b], [zs], [0])[0] for b, zs in (_long_bank(n=B_LONG), _long_bank(POINTS[1], n=B_LONG - 5, seed=8))]
-    for a, b in zip(together, alone):
-        for u, v in zip(a, b):
-            assert np.array_equal(u, v)
-    assert pairs[0][0]._work is not pairs[1][0]._work
-    bank, zs = _long_bank()
-    for k in range(40):  # a different number of observed members each step
-        z = zs[k % 3].copy()
-        z[: k % 7] = np.nan
-        bank.predict()
-        bank.update(z)
-    assert 0 < len(bank._work) <= Workspace.MAX_ARRAYS
-
-
-def test_a_bank_pickles_and_copies_without_its_work_arrays():
-    import copy
-    import pickle
-
-    bank, zs = _long_bank()
-    bank.predict()
-    bank.update(zs[0])
-    assert len(bank._work) > 0
-    clone = pickle.loads(pickle.dumps(bank))
-    twin = copy.deepcopy(bank)
-    assert "_work" not in clone.__dict__ and "_work" not in twin.__dict__
-    for b in (bank, clone, twin):
-        b.predict()
-        b.update(zs[1])
-    assert np.array_equal(clone.x, bank.x) and np.array_equal(twin.P, bank.P)
-    assert clone._work is not bank._work and twin._work is not bank._work
-
-
-def test_a_failed_step_with_work_arrays_leaves_the_bank_as_it_was():
-    """A step that fails after the work arrays were written (a non-PD P_prior of one member)
-    changes nothing a user holds, and the next good step gives what a bank that never failed
-    gives."""
+def test_a_failed_update_on_the_column_path_leaves_the_bank_as_it_was():
+    """An update that fails (a non-PD P_prior of one member) changes neither x nor P, and the
+    next good step gives what a bank that never failed gives, bit for bit."""
     bank, zs = _long_bank()
     ref, _ = _long_bank()
     for b in (bank, ref):
