@@ -448,3 +448,61 @@ def test_a_long_bank_with_one_measurement_on_the_column_path_equals_filterpy_ukf
             np.testing.assert_allclose(x[i], f.x, rtol=0, atol=TOL)
             np.testing.assert_allclose(P[i], f.P, rtol=0, atol=TOL)
             assert abs(ll[i] - (f.log_likelihood if not np.isnan(z[i, 0]) else 0.0)) <= TOL
+
+
+# --- what a user holds: a later step never changes it (guards any reuse of arrays) ----------
+
+
+def _long_bank(points=POINTS[0], n=B_LONG, seed=5):
+    x0, P0, Q, R, zs = _long_problem(seed)
+    bank = UnscentedKalmanFilterBank(n, 3, 2, DT, hx, fx, points)
+    bank.x, bank.P, bank.Q, bank.R = x0[:n], P0[:n], Q, R
+    return bank, zs[:, :n]
+
+
+@pytest.mark.parametrize("points", POINTS, ids=["ukf-merwe", "sukf-simplex"])
+def test_results_held_from_a_step_are_never_changed_by_later_steps(points):
+    """x, P, the prior and posterior copies and the log-likelihoods a user holds after a step
+    (every member observed, or some missing) keep their values through later steps."""
+    bank, zs = _long_bank(points)
+    assert columns_layout(B_LONG, 3)  # the column path
+    held = []
+    for k in range(6):
+        bank.predict()
+        held.append({"x_prior": bank.x_prior, "P_prior": bank.P_prior, "x": bank.x, "P": bank.P})
+        bank.update(zs[k % 3])
+        held.append({"x": bank.x, "P": bank.P, "x_post": bank.x_post, "P_post": bank.P_post,
+                     "log_likelihood": bank.log_likelihood})
+        held.append({"x": bank._x, "P": bank._P})  # the arrays themselves, not read through the properties
+    values = [{k: v.copy() for k, v in h.items()} for h in held]
+    for _ in range(3):
+        bank.predict()
+        bank.update(zs[1])
+    for h, v in zip(held, values):
+        for name in h:
+            assert np.array_equal(h[name], v[name]), name
+
+
+def test_a_failed_update_on_the_column_path_leaves_the_bank_as_it_was():
+    """An update that fails (a non-PD P_prior of one member) changes neither x nor P, and the
+    next good step gives what a bank that never failed gives, bit for bit."""
+    bank, zs = _long_bank()
+    ref, _ = _long_bank()
+    for b in (bank, ref):
+        b.predict()
+        b.update(zs[0])
+        b.predict()
+    x, P = bank.x.copy(), bank.P.copy()
+    good = bank._P
+    bad = good.copy()
+    bad[7] = -np.eye(3)
+    bank._P = bad
+    with pytest.raises(NumericalError, match=r"update at step 2, member 7"):
+        bank.update(zs[1])
+    assert bank._P is bad and np.array_equal(bank.x, x)
+    bank._P = good
+    assert np.array_equal(bank.P, P)
+    bank.update(zs[1])
+    ref.update(zs[1])
+    assert np.array_equal(bank.x, ref.x) and np.array_equal(bank.P, ref.P)
+    assert np.array_equal(bank.log_likelihood, ref.log_likelihood)
