@@ -327,14 +327,18 @@ class _Bank:
             False for members not observed now.
         **hx_args
             Passed to ``hx`` (and ``HJacobian``).
+
+        An update that is refused (a bad ``z``, ``R`` or ``mask``) or fails (``NumericalError``
+        naming the member and the step) leaves ``x``, ``P`` and ``log_likelihood`` as they were.
         """
-        self.log_likelihood = np.zeros(self.B)
         if z is None:
+            self.log_likelihood = np.zeros(self.B)
             self._posterior()
             return
         z, observed = self._measurements(z, mask)
         R = self._R if R is None else _stack(R, "R", self.B, self.dim_z, kind="pd")
         if observed is not None and not observed.any():
+            self.log_likelihood = np.zeros(self.B)
             self._posterior()
             return
         try:

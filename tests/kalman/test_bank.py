@@ -484,15 +484,17 @@ def test_results_held_from_a_step_are_never_changed_by_later_steps(points):
 
 
 def test_a_failed_update_on_the_column_path_leaves_the_bank_as_it_was():
-    """An update that fails (a non-PD P_prior of one member) changes neither x nor P, and the
-    next good step gives what a bank that never failed gives, bit for bit."""
+    """An update that fails (a non-PD P_prior of one member) or is refused (a z of the wrong
+    shape) changes neither x, P nor the last log-likelihoods, and the next good step gives what
+    a bank that never failed gives, bit for bit."""
     bank, zs = _long_bank()
     ref, _ = _long_bank()
     for b in (bank, ref):
         b.predict()
         b.update(zs[0])
         b.predict()
-    x, P = bank.x.copy(), bank.P.copy()
+    x, P, ll = bank.x.copy(), bank.P.copy(), bank.log_likelihood.copy()
+    assert np.all(ll != 0.0)
     good = bank._P
     bad = good.copy()
     bad[7] = -np.eye(3)
@@ -500,6 +502,10 @@ def test_a_failed_update_on_the_column_path_leaves_the_bank_as_it_was():
     with pytest.raises(NumericalError, match=r"update at step 2, member 7"):
         bank.update(zs[1])
     assert bank._P is bad and np.array_equal(bank.x, x)
+    assert np.array_equal(bank.log_likelihood, ll)  # the last good update's, not zeros
+    with pytest.raises(ValueError):
+        bank.update(np.ones((bank.B, bank.dim_z + 1)))  # a refused z leaves it too
+    assert np.array_equal(bank.log_likelihood, ll)
     bank._P = good
     assert np.array_equal(bank.P, P)
     bank.update(zs[1])
