@@ -227,11 +227,20 @@ _FILTERPY_DOC = """{title} resampling with filterpy's signature: ``{name}_resamp
 
     Examples
     --------
+    New code passes its own generator (the same seed, the same indices):
+
     >>> import numpy as np
-    >>> np.random.seed(3); a = {name}_resample([0.1, 0.2, 0.3, 0.4])
-    >>> np.random.seed(3); b = {name}_resample([0.1, 0.2, 0.3, 0.4])
+    >>> a = {name}_resample([0.1, 0.2, 0.3, 0.4], rng=np.random.default_rng(3))
+    >>> b = {name}_resample([0.1, 0.2, 0.3, 0.4], rng=np.random.default_rng(3))
     >>> bool(np.array_equal(a, b)), a.shape
     (True, (4,))
+
+    A ``RandomState(s)`` draws what ``np.random.seed(s)`` followed by the call without
+    ``rng`` draws (filterpy's way), without touching the global state:
+
+    >>> c = {name}_resample([0.1, 0.2, 0.3, 0.4], rng=np.random.RandomState(3))
+    >>> c.shape
+    (4,)
     """
 
 _FILTERPY_NOTE = {
