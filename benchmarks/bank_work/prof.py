@@ -1,5 +1,5 @@
 import os, sys, time, resource
-sys.path.insert(0, "/work/h22/benchmarks")
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 import numpy as np
 from bench_peers import _six, _bank, numpy_ukf_step, _merwe6
 import filterwnn
