@@ -301,15 +301,23 @@ def _long_problem(seed=5):
 def test_a_long_bank_on_the_column_path_equals_independent_filterpy_ukfs(points):
     assert columns_layout(B_LONG - 1, 3)  # else this test would not reach the column path
     x0, P0, Q, R, zs = _long_problem()
-    bank = UnscentedKalmanFilterBank(B_LONG, 3, 2, DT, hx, fx, points)
+    _assert_bank_equals_filterpy(hx, points, x0, P0, Q, R, zs, range(B_LONG))
+
+
+def _assert_bank_equals_filterpy(h, points, x0, P0, Q, R, zs, members):
+    """Run a bank of ``len(x0)`` UKFs over ``zs (n_steps, B, dim_z)`` (NaN rows: not observed) and
+    check each of ``members`` against filterpy's UKF on its own data: x, P and the
+    log-likelihood (0 where not observed) after every step, to ``TOL``."""
+    dim_z = zs.shape[-1]
+    bank = UnscentedKalmanFilterBank(len(x0), 3, dim_z, DT, h, fx, points)
     bank.x, bank.P, bank.Q, bank.R = x0, P0, Q, R
     got = []
     for z in zs:
         bank.predict()
         bank.update(z)
         got.append((bank.x.copy(), bank.P.copy(), bank.log_likelihood.copy()))
-    for i in range(B_LONG):
-        f = FilterpyUKF(3, 2, DT, hx, fx, points)
+    for i in members:
+        f = FilterpyUKF(3, dim_z, DT, h, fx, points)
         f.x, f.P, f.Q, f.R = x0[i].copy(), P0[i].copy(), Q, R
         for k, z in enumerate(zs):
             f.predict()
@@ -430,24 +438,7 @@ def test_a_long_bank_with_one_measurement_on_the_column_path_equals_filterpy_ukf
     downdate): every member as filterpy's UKF, to 1e-12."""
     x0, P0, Q, R, zs = _long_problem(seed=6)
     hx1 = lambda X: hx(X)[..., :1]  # noqa: E731
-    bank = UnscentedKalmanFilterBank(B_LONG, 3, 1, DT, hx1, fx, POINTS[0])
-    bank.x, bank.P, bank.Q, bank.R = x0, P0, Q, R[:1, :1]
-    got = []
-    for z in zs[:, :, :1]:
-        bank.predict()
-        bank.update(z)
-        got.append((bank.x.copy(), bank.P.copy(), bank.log_likelihood.copy()))
-    for i in range(0, B_LONG, 7):
-        f = FilterpyUKF(3, 1, DT, hx1, fx, POINTS[0])
-        f.x, f.P, f.Q, f.R = x0[i].copy(), P0[i].copy(), Q, R[:1, :1]
-        for k, z in enumerate(zs[:, :, :1]):
-            f.predict()
-            if not np.isnan(z[i, 0]):
-                f.update(z[i])
-            x, P, ll = got[k]
-            np.testing.assert_allclose(x[i], f.x, rtol=0, atol=TOL)
-            np.testing.assert_allclose(P[i], f.P, rtol=0, atol=TOL)
-            assert abs(ll[i] - (f.log_likelihood if not np.isnan(z[i, 0]) else 0.0)) <= TOL
+    _assert_bank_equals_filterpy(hx1, POINTS[0], x0, P0, Q, R[:1, :1], zs[:, :, :1], range(0, B_LONG, 7))
 
 
 # --- what a user holds: a later step never changes it (guards any reuse of arrays) ----------
