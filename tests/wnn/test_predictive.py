@@ -1,6 +1,9 @@
 """Tests of filterwnn.wnn.predictive and the Student-t SMC row: the t likelihood and its gradient,
 the mixture's quantiles and density, and the Gaussian rows' scores unchanged."""
 
+import os
+import sys
+
 import numpy as np
 import pytest
 from scipy import stats
@@ -12,6 +15,9 @@ from filterwnn.wnn import network
 from filterwnn.wnn.predictive import GaussianPredictive, StudentTMixture
 from filterwnn.wnn.trainers import _StudentNoise, _weight_prior
 from filterwnn.wnn.weight_model import WNNWeightModel
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from _gradcheck import assert_rows_gradient  # noqa: E402
 
 
 @pytest.fixture(scope="module")
@@ -35,13 +41,7 @@ def test_student_log_likelihood_is_scipy_t(student_model):
 def test_student_gradients_match_finite_differences(student_model, part):
     model, X, y, th = student_model
     fn = (lambda t: model.log_likelihood_and_grad(t, X, y)) if part == "likelihood" else model.log_prior_and_grad
-    grad = fn(th)[1]
-    num = np.zeros_like(th)
-    for j in range(th.shape[1]):
-        e = np.zeros_like(th)
-        e[:, j] = 1e-6
-        num[:, j] = (fn(th + e)[0] - fn(th - e)[0]) / 2e-6
-    np.testing.assert_allclose(num, grad, rtol=1e-5, atol=1e-6)
+    assert_rows_gradient(fn, th)
 
 
 def test_student_prior_on_log_nu_is_a_gamma_on_nu(student_model):

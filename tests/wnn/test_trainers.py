@@ -1,5 +1,8 @@
 """Tests of filterwnn.wnn.trainers: the trainer table, registration, and a toy trainer run end to end."""
 
+import os
+import sys
+
 import numpy as np
 import pytest
 
@@ -16,6 +19,9 @@ from filterwnn.wnn.trainers import (
     register_trainer,
     unregister_trainer,
 )
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from _gradcheck import assert_rows_gradient  # noqa: E402
 
 
 class MeanTrainer(BaseTrainer):
@@ -156,13 +162,7 @@ def test_smc_noise_target_gradients_and_its_fixed_noise_special_case():
     target = _LearnedNoise(model, np.log(0.1), 2.0)
     th = np.random.default_rng(0).normal(size=(3, target.dim_x)) * 0.5
     for fn in (lambda t: target.log_likelihood_and_grad(t, X, y), target.log_prior_and_grad):
-        value, grad = fn(th)
-        num = np.zeros_like(th)
-        for j in range(th.shape[1]):
-            e = np.zeros_like(th)
-            e[:, j] = 1e-6
-            num[:, j] = (fn(th + e)[0] - fn(th - e)[0]) / 2e-6
-        np.testing.assert_allclose(num, grad, rtol=1e-5, atol=1e-6)
+        assert_rows_gradient(fn, th)
     th[:, -1] = np.log(0.1)
     np.testing.assert_allclose(target.log_likelihood(th, X, y), model.log_likelihood(th[:, :-1], X, y))
 
