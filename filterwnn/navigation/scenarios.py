@@ -342,11 +342,17 @@ def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps
     return (dt * np.arange(1, n), x0, x_true, z_dr, steps, z_gps, R_true, sc, sig)
 
 
+#: How far past ``2 pi`` a heading in radians may read: a heading just under ``2 pi`` written
+#: with a few decimals rounds up past it (6.2832 to four decimals, 6.3 to one: 0.017 over).
+HEADING_ROUNDING = 0.02
+
+
 def _heading_radians(heading, n):
-    """``heading`` as ``n`` finite floats; ValueError when it looks like degrees (beyond ``+-2 pi``)."""
+    """``heading`` as ``n`` finite floats; ValueError when it looks like degrees (beyond ``+-2 pi``,
+    give or take the rounding of a written value, :data:`HEADING_ROUNDING`)."""
     heading = _finite_1d(heading, "heading", n)
     big = float(np.max(np.abs(heading)))
-    if big > 2 * np.pi + 1e-6:
+    if big > 2 * np.pi + HEADING_ROUNDING:
         raise ValueError(f"heading must be in radians (|heading| <= 2 pi); max |heading| = {big:g} looks like "
                          "degrees: pass np.deg2rad(heading)")
     return heading

@@ -64,6 +64,18 @@ def test_from_arrays_refuses_bad_input(kwargs, match):
         DRRun.from_arrays(args.pop("t"), args.pop("heading"), **args)
 
 
+@pytest.mark.parametrize("written", [6.2832, 6.28319, 6.3])
+def test_a_heading_rounded_up_past_two_pi_is_radians(written):
+    """A heading just under 2 pi written with a few decimals reads past it (the analog phone
+    drive of seed 7, written to four decimals, was refused as degrees); it is still radians."""
+    t, h, v, e, n = _straight(heading=2 * np.pi - 1e-5)
+    h[50] = written
+    run = DRRun.from_arrays(t, h, speed=v, gps_t=t[::10], east=e[::10], north=n[::10])
+    assert run.z_dr[49, 0] == pytest.approx(written % (2 * np.pi), abs=1e-12)
+    with pytest.raises(ValueError, match="looks like degrees"):
+        DRRun.from_arrays(t, np.full(len(t), 6.31), speed=v, gps_t=t[::10], east=e[::10], north=n[::10])
+
+
 def test_latlon_round_trip_and_scale():
     lat, lon = en_to_latlon(np.array([0.0, 1000.0, -250.0]), np.array([0.0, 500.0, 2000.0]), 48.1, 11.5)
     e, n = latlon_to_en(lat, lon, 48.1, 11.5)
