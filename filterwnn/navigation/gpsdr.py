@@ -70,7 +70,8 @@ What the filter does when GPS lies (each part a public setting, on by default):
   sigma bit for bit; fixes whose innovations are smaller than reported (a filter that follows
   their correlated errors, as in an urban canyon) too. From innovations alone a wrong ``Q`` and a
   wrong ``R`` look alike (Mehra 1972): on a recorded drive the model's own errors were taken for
-  the fixes', and the scale ran away (see ``scale_window``), hence off by default.
+  the fixes', and the scale ran away (see ``scale_window``), hence off by default. A scale past
+  :data:`SCALE_WARN` (9: a sigma 3x optimistic) warns once, with the step.
 * **Numerical safety.** After every update ``P`` is symmetrised and checked by Cholesky; one
   that is not positive definite is repaired (symmetrised, eigenvalues floored at 1e-12 of the
   largest), counted in ``n_repairs``, with a warning naming the step.
@@ -110,8 +111,8 @@ from ..models import from_model
 from ..kalman.unscented import UnscentedKalmanFilter
 
 __all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS", "GATE", "REJECT_GATE", "REACQUIRE_AFTER",
-           "NIS_WINDOW", "CALIBRATION_SIGMAS", "WHITENESS_WINDOW", "SCALE_WINDOW", "SCALE_TEST", "gps_scale_mle",
-           "gps_scale_loglik"]
+           "NIS_WINDOW", "CALIBRATION_SIGMAS", "WHITENESS_WINDOW", "SCALE_WINDOW", "SCALE_TEST", "SCALE_WARN",
+           "gps_scale_mle", "gps_scale_loglik"]
 
 #: Default standstill threshold (m/s) on the odometer speed: 0.05 m/s = 0.11 mph, four
 #: times the creep of a standing car's CAN speed (0.001-0.03 mph).
@@ -145,6 +146,12 @@ SCALE_WINDOW = NIS_WINDOW
 #: exceeds this: the one-sided 0.1 % point of chi-square with 1 degree of freedom (the consistency
 #: monitor's level), so honest fixes keep their reported sigma in 999 windows of 1000.
 SCALE_TEST = NormalDist().inv_cdf(1.0 - 1e-3) ** 2  # = chi2.ppf(1 - 2e-3, 1) = 9.55
+#: A covariance scale above this (the fixes' reported sigma more than 3x optimistic) warns, once, with
+#: the step: a receiver that reports its accuracy is rarely that far off, and a scale that climbs past
+#: it is more likely the model's own errors taken for the fixes' (a wrong ``Q`` looks like a wrong
+#: ``R`` from the innovations, Mehra 1972). On onavdata's 2021-04-27C drive the 6-state EKF's scale
+#: ran to 467 that way.
+SCALE_WARN = 9.0
 
 
 def gps_scale_mle(y, P, R, scale=1.0, iterations=20, rtol=1e-6):
@@ -352,7 +359,7 @@ class GPSDRFilter:
         self.scale_window = int(scale_window)
         if self.scale_window < 0:
             raise ValueError(f"scale_window must be >= 0 (0: the fixes' covariance as reported), got {scale_window}")
-        self.gps_scale, self._scale_raw, self.gps_scales = 1.0, 1.0, []
+        self.gps_scale, self._scale_raw, self.gps_scales, self._scale_warned = 1.0, 1.0, [], False
         self._scale_fixes = deque(maxlen=max(self.scale_window, 1))  # (y clipped at the gate, P_pos, R)
 
     def _init_integrity(self, gate, reject_gate, reacquire_after, nis_window, x0):
@@ -550,6 +557,14 @@ class GPSDRFilter:
             return
         lr = 2.0 * (gps_scale_loglik(ys, Ps, Rs, lam) - gps_scale_loglik(ys, Ps, Rs, 1.0))
         self.gps_scale = lam if lr / self.gps_correlation > SCALE_TEST else 1.0
+        if self.gps_scale > SCALE_WARN and not self._scale_warned:
+            self._scale_warned = True
+            warnings.warn(
+                f"GPSDRFilter: the fixes' covariance scale reached {self.gps_scale:.3g} at step {self.step} "
+                f"(their reported sigma {np.sqrt(self.gps_scale):.2g}x optimistic, past the plausible "
+                f"{np.sqrt(SCALE_WARN):g}x): the innovations may carry the model's own errors (a wrong Q looks "
+                "like a wrong R); check the sensor grade, or take the fixes' covariance as reported "
+                "(scale_window=0)", RuntimeWarning, stacklevel=4)
 
     def _reacquire(self, y):
         """Take the filter to be lost: position variances ``+= y^2``, their cross-covariances dropped."""

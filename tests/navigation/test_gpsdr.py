@@ -516,3 +516,22 @@ def test_a_run_of_optimistic_fixes_raises_the_scale_and_it_comes_back():
     s = np.array(f.gps_scales)
     assert np.median(s[SCALE_WINDOW:n // 2]) > 2.0
     assert np.all(s[n // 2 + 2 * SCALE_WINDOW:] == 1.0)
+
+
+@pytest.mark.filterwarnings("ignore:GPSDRFilter is inconsistent")  # before the scale is learnt
+def test_a_scale_past_its_plausible_bound_warns_once_with_the_step():
+    from filterwnn.navigation.gpsdr import SCALE_WARN, SCALE_WINDOW
+
+    run = _scaled_fixes(simulate_scenario(_STRAIGHTISH, rng=9), 20.0, 5.0, np.random.default_rng(9))
+    f = _phone_filter(run, scale_window=SCALE_WINDOW)
+    with pytest.warns(RuntimeWarning, match=r"covariance scale reached .* at step \d+.*scale_window=0") as rec:
+        f.batch_filter(run.z_dr, run.gps_list(), run.gps_sigma_list())
+    assert max(f.gps_scales) > SCALE_WARN  # 4x optimistic: a scale of about 16
+    assert sum("covariance scale reached" in str(w.message) for w in rec) == 1
+    # 2x optimistic (a scale of about 4) is inside the bound: no such warning
+    run = _scaled_fixes(simulate_scenario(_STRAIGHTISH, rng=6), 10.0, 5.0, np.random.default_rng(6))
+    g = _phone_filter(run, scale_window=SCALE_WINDOW)
+    with warnings.catch_warnings(record=True) as rec:
+        warnings.simplefilter("always")
+        g.batch_filter(run.z_dr, run.gps_list(), run.gps_sigma_list())
+    assert not any("covariance scale reached" in str(w.message) for w in rec)
