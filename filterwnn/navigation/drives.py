@@ -164,7 +164,7 @@ def _located(path, exc, lines):
     return ValueError(f"{path}: " + re.sub(r"\b(t|heading|speed|distance)\[(\d+)\]", line_of, str(exc)))
 
 
-def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2, checks=True, progress=None):
+def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2, checks=True, progress=None, fill_gaps=0.0):
     """Read one's own drive from a CSV file with the columns of :data:`DRIVE_CSV_COLUMNS`.
 
     One row per DR sample, a header row with the column names; a GPS fix is the row's
@@ -183,8 +183,9 @@ def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2, checks=True,
     Parameters
     ----------
     path : str or path-like
-    origin, name, max_jitter, checks
-        As :meth:`DRRun.from_arrays` (``checks``: the plausibility checks against the fixes).
+    origin, name, max_jitter, checks, fill_gaps
+        As :meth:`DRRun.from_arrays` (``checks``: the plausibility checks against the fixes;
+        ``fill_gaps``: the longest gap of dropped DR samples, in s, to fill by interpolation).
     progress : bool, optional
         A tqdm bar over the file's bytes; default one for files of :data:`PROGRESS_BYTES`
         or more when stderr is a terminal.
@@ -217,7 +218,7 @@ def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2, checks=True,
     _csv_truth(path, header, col, column, origin, kw)
     try:
         return DRRun.from_arrays(t, heading, name=name or os.path.splitext(os.path.basename(path))[0],
-                                 max_jitter=max_jitter, checks=checks, **kw)
+                                 max_jitter=max_jitter, checks=checks, fill_gaps=fill_gaps, **kw)
     except ValueError as exc:
         raise _located(path, exc, lines) from None
 

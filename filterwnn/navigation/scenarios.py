@@ -35,6 +35,7 @@ Outages are cut in with :func:`with_outage` (one) or placed by :func:`outage_sta
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass, field, replace
 from typing import NamedTuple, Optional
 
@@ -249,7 +250,7 @@ class DRRun(NamedTuple):
     @classmethod
     def from_arrays(cls, t, heading, *, distance=None, speed=None, gps_t=None, east=None, north=None,
                     lat=None, lon=None, gps_sigma=None, truth=None, origin=None, name="drive",
-                    max_jitter=0.2, checks=True):
+                    max_jitter=0.2, checks=True, fill_gaps=0.0):
         """One's own drive from arrays: validated, on the DR sample grid, in local metres.
 
         Parameters
@@ -289,6 +290,13 @@ class DRRun(NamedTuple):
             a sample interval over 2 s ("time looks like milliseconds") and a dead-reckoned track whose
             course or length contradicts the moving fixes ("heading looks like degrees", "speed looks
             like km/h", "lat and lon look swapped"). ``False`` skips them, for a drive that really is so.
+        fill_gaps : float
+            Dropped DR samples: an interval that is a whole number (2 or more) of sample intervals,
+            and at most ``fill_gaps`` seconds long, is filled with interpolated samples (heading
+            along the shorter arc, speed or odometer and truth linearly; the fixes keep their own
+            times), with a warning that counts them and names the longest gap. Default 0: such a
+            drive is refused as unevenly sampled. Interpolated dead reckoning is a guess: keep it
+            to a few sample intervals.
 
         Returns
         -------
@@ -305,8 +313,37 @@ class DRRun(NamedTuple):
             negative speed, both or neither of ``distance``/``speed``, both or neither of
             ``east``/``north`` and ``lat``/``lon``, a failed plausibility check (with its likely cause).
         """
+        if fill_gaps:
+            t, heading, distance, speed, truth = _fill_gaps(t, heading, distance, speed, truth,
+                                                            check_positive(fill_gaps, "fill_gaps"), max_jitter)
         return cls(*_drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps_sigma,
                                   truth, origin, name, max_jitter, checks))
+
+
+def _fill_gaps(t, heading, distance, speed, truth, longest, max_jitter):
+    """``(t, heading, distance, speed, truth)`` with each dropped-sample gap of at most ``longest``
+    seconds filled by interpolated samples (see :meth:`DRRun.from_arrays`'s ``fill_gaps``)."""
+    t = _finite_1d(t, "t")
+    if len(t) < 3 or np.any(np.diff(t) <= 0):
+        return t, heading, distance, speed, truth  # _sample_grid says what is wrong
+    dts = np.diff(t)
+    k = np.rint(dts / float(np.median(dts)))
+    gap = (k >= 2) & (np.abs(dts / np.median(dts) - k) <= max_jitter * k) & (dts <= longest)
+    if not gap.any():
+        return t, heading, distance, speed, truth
+    parts = [t[:1]] + [np.linspace(t[i], t[i + 1], int(k[i]) + 1)[1:] if gap[i] else t[i + 1:i + 2]
+                       for i in range(len(t) - 1)]
+    new_t = np.concatenate(parts)
+    h = np.unwrap(_heading_radians(heading, len(t)))  # degrees are refused here, with their values
+
+    def interp(a, name):
+        return None if a is None else np.interp(new_t, t, _finite_1d(a, name, len(t)))
+
+    tr = None if truth is None else np.stack([np.interp(new_t, t, c) for c in np.asarray(truth, dtype=float).T], 1)
+    i = int(np.flatnonzero(gap)[np.argmax(dts[gap])])
+    warnings.warn(f"filled {int(gap.sum())} gap(s) of dropped DR samples with {len(new_t) - len(t)} interpolated "
+                  f"sample(s); the longest {dts[i]:g} s after t = {t[i]:g} s", RuntimeWarning, stacklevel=3)
+    return new_t, wrap_angle(np.interp(new_t, t, h)), interp(distance, "distance"), interp(speed, "speed"), tr
 
 
 def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps_sigma, truth, origin, name,
@@ -385,7 +422,9 @@ def _sample_grid(t, max_jitter):
     if np.any(jit > max_jitter):
         k = int(np.argmax(jit)) + 1
         raise ValueError(f"t must be evenly sampled (each interval within {max_jitter:.0%} of the median "
-                         f"{dt:g} s); t[{k}] - t[{k - 1}] = {dts[k - 1]:g} s: resample the drive first")
+                         f"{dt:g} s); t[{k}] - t[{k - 1}] = {dts[k - 1]:g} s: resample the drive first"
+                         + (" (dropped samples: fill_gaps=SECONDS, or --fill-gaps, interpolates gaps up to that "
+                            "long)" if round(dts[k - 1] / dt) >= 2 else ""))
     return dts, dt
 
 

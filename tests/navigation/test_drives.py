@@ -175,3 +175,44 @@ def test_the_cli_refuses_a_drive_in_one_line_and_can_skip_the_checks(tmp_path, m
         proc = subprocess.run(argv + ["--no-plausibility", "--filters", "EKF"], capture_output=True, text=True,
                               timeout=300)
         assert proc.returncode == 0, proc.stderr
+
+
+def _dropped(cols, rows):
+    """``cols`` without the DR samples ``rows`` (a logger that dropped them; no fix on them)."""
+    keep = np.ones(len(cols["time"]), dtype=bool)
+    keep[rows] = False
+    return {k: v[keep] for k, v in cols.items()}
+
+
+def test_dropped_samples_are_refused_with_the_remedy_and_filled_on_request(tmp_path):
+    full = _drive(n=601, bearing=2 * np.pi - 0.02 * 28.2)
+    # the heading crosses 2 pi -> 0 in the second gap (the drive turns past north at t = 28.2 s)
+    cols = _dropped(full, [41, 42, 282, 283, 284, 333])
+    path = _write(tmp_path / "d.csv", cols)
+    with pytest.raises(ValueError, match=r"evenly sampled.*t\[280\].*= 0\.4 s.*dropped samples: fill_gaps=SECONDS"):
+        read_drive_csv(path)
+    with pytest.warns(RuntimeWarning, match=r"filled 3 gap\(s\) .* with 6 interpolated sample\(s\); the longest "
+                                             r"0\.4 s after t = 28\.1 s"):
+        run = read_drive_csv(path, fill_gaps=0.5)
+    ref = read_drive_csv(_write(tmp_path / "full.csv", full))
+    assert run.z_dr.shape == ref.z_dr.shape and np.array_equal(run.gps_steps, ref.gps_steps)
+    np.testing.assert_allclose(run.z_dr[:, 1], ref.z_dr[:, 1], atol=1e-9)  # constant speed: exact
+    dh = np.angle(np.exp(1j * (run.z_dr[:, 0] - ref.z_dr[:, 0])))  # along the shorter arc, not round the circle
+    assert np.abs(dh).max() < 1e-6
+    # the truth's positions linearly between samples: within the track's sagitta over 0.4 s (4 mm)
+    np.testing.assert_allclose(run.x_true[:, [0, 3]], ref.x_true[:, [0, 3]], atol=0.01)
+    # a gap longer than fill_gaps is still refused
+    with pytest.raises(ValueError, match=r"evenly sampled.*= 0\.4 s"), pytest.warns(RuntimeWarning, match="filled 2"):
+        read_drive_csv(path, fill_gaps=0.35)
+    with pytest.raises(ValueError, match="fill_gaps must be"):
+        read_drive_csv(path, fill_gaps=-1.0)
+
+
+def test_the_cli_fills_dropped_samples_on_request(tmp_path):
+    path = _write(tmp_path / "d.csv", _dropped(_drive(n=601), [41, 42]))
+    argv = [sys.executable, "-m", "filterwnn.cli", "study", "dr", "--drive", path, "--out", str(tmp_path / "o"),
+            "--no-figures", "--no-progress", "--outages", "2", "--outage-length", "20", "--filters", "EKF"]
+    proc = subprocess.run(argv, capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 2 and "--fill-gaps" in proc.stderr, proc.stderr
+    proc = subprocess.run(argv + ["--fill-gaps", "0.5"], capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0 and "filled 1 gap(s) of dropped DR samples" in proc.stderr, proc.stderr

@@ -56,6 +56,9 @@ def add_arguments(parser):
                         help="with --drive: skip the checks of the drive against its own GPS fixes (sample "
                              "interval over 2 s, a heading or speed that contradicts the fixes' course or "
                              "distance, lat/lon swapped), for a drive that really is so")
+    parser.add_argument("--fill-gaps", type=options.nonnegative_float, default=0.0, metavar="SECONDS",
+                        help="with --drive: fill gaps of dropped DR samples up to this long (s) by interpolation, "
+                             "with a warning that counts them (default 0: a drive with dropped samples is refused)")
     parser.add_argument("--outage-length", type=options.positive_float, default=30.0, help="GPS outage length on drives (s)")
     parser.add_argument("--outages", type=options.positive_int, default=20, help="number of outages spread over each drive")
     parser.add_argument("--outage-starts", type=options.float_list, default=None,
@@ -116,6 +119,7 @@ def _run_drives(args, drives, filters):
     for path in drives:
         run = read_drive_csv(sample_drive_path() if path == "sample" else path,
                              checks=not getattr(args, "no_plausibility", False),
+                             fill_gaps=getattr(args, "fill_gaps", 0.0),
                              progress=None if not getattr(args, "no_progress", False) else False)
         try:
             res = real_drive_outages(run, n_placements=args.outages, length=args.outage_length, filters=fl,
