@@ -40,7 +40,6 @@ def staged_step(bank, z, mark):
     x, P, Q, R = bank._x, bank._P, bank._Q, bank._R
     N, n = x.shape
     m, Wm, Wc = model.dim_z, st.points.Wm, st.points.Wc
-    out = []
     for stage in ("p", "u"):
         Lx = np.zeros((n, n + 1, N))
         L = cholesky(P, "P", 1, out=Lx[:, :n])
@@ -91,8 +90,7 @@ def staged_step(bank, z, mark):
     ll = -0.5 * np.sum(e * e, axis=0) - log_det - 0.5 * m * LOG_2PI
     bank._check_finite(xn, Pn, "update", 1, "")
     mark("u.log-likelihood, finite check")
-    out = (xn, Pn, ll)
-    return out
+    return xn, Pn, ll
 
 
 def stages(B, reps):
