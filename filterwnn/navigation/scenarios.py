@@ -54,6 +54,7 @@ __all__ = [
     "en_to_latlon",
     "with_outage",
     "outage_starts",
+    "HEADING_ROUNDING",
 ]
 
 
