@@ -743,24 +743,35 @@ class _SMCNoiseTrainer(_SMCTrainer):
     the paper's R as its median), and the sampler carries both to their joint posterior. R
     (``measurement_noise``) is not used."""
 
+    #: How many coordinates the state appends to the weights (``s``; a subclass may append more after it).
+    _LEARNED = 1
+
     def _prior_model(self, X):
+        return self._with_noise(super()._prior_model(X))
+
+    def _with_noise(self, weights_model):
+        """The static parameter: the weights' model with the learned noise appended."""
         s = self.settings
-        return _LearnedNoise(super()._prior_model(X), np.log(s["noise_prior_mean"]), s["noise_prior_sd"])
+        return _LearnedNoise(weights_model, np.log(s["noise_prior_mean"]), s["noise_prior_sd"])
 
     @property
     def theta(self):
-        """The weights of the particle of largest posterior density (its ``s`` left out)."""
-        return super().theta[:-1]
+        """The weights of the particle of largest posterior density (the learned coordinates left out)."""
+        return super().theta[:-self._LEARNED]
 
     @property
     def noise(self):
-        """The particles' learned noise variances ``exp(s_i)``, shape ``(n_particles,)``."""
-        return np.exp(self.particles[:, -1])
+        """The particles' learned noise variances (or squared scales) ``exp(s_i)``, shape ``(n_particles,)``."""
+        return np.exp(self.particles[:, -self._LEARNED])
+
+    def _outputs(self, X):
+        """The particles' network outputs on ``X``, shape ``(N, n)``."""
+        return wnn.forward(self.particles[:, :-self._LEARNED], X, self.model.wavelet)
 
     def predict(self, X):
         """Mean and variance of the posterior predictive with R learned: the particles' mean output,
         and the particles' spread of outputs plus their mean noise ``exp(s_i)``."""
-        Y = wnn.forward(self.particles[:, :-1], X, self.model.wavelet)  # (N, n)
+        Y = self._outputs(X)
         return Y.mean(axis=0), Y.var(axis=0) + float(np.mean(self.noise))
 
 
@@ -787,6 +798,7 @@ class _StudentNoise:
         self.prior, self.wavelet = prior, prior.wavelet
         self.s_mean, self.s_sd = float(s_mean), float(s_sd)
         self.df_shape, self.df_rate = float(df_shape), float(df_rate)
+        self._weights_and_s = _LearnedNoise(prior, s_mean, s_sd)
         self.dim_x = prior.dim_x + 2
         u_mean = float(psi(self.df_shape) - np.log(self.df_rate))
         self.x0 = np.concatenate([prior.x0, [self.s_mean, u_mean]])
@@ -803,15 +815,14 @@ class _StudentNoise:
     def log_prior_and_grad(self, thetas):
         bad = ~np.all(np.isfinite(thetas), axis=1)
         safe = np.where(bad[:, None], self.x0, thetas)
-        lp, gp = self.prior.log_prior_and_grad(safe[:, :-2])
-        v = (safe[:, -2] - self.s_mean) / self.s_sd
-        lps = -0.5 * v * v - np.log(self.s_sd * np.sqrt(2.0 * np.pi))
+        # the weights and s: the Gaussian-noise row's prior (rows made finite above)
+        lp, gp = self._weights_and_s.log_prior_and_grad(safe[:, :-1])
         k, b, u = self.df_shape, self.df_rate, safe[:, -1]
         with np.errstate(over="ignore"):
             e_u = np.exp(u)
         lpu = k * np.log(b) - gammaln(k) + k * u - b * e_u
-        grad = np.column_stack([gp, -v / self.s_sd, k - b * e_u])
-        lp = lp + lps + lpu
+        grad = np.column_stack([gp, k - b * e_u])
+        lp = lp + lpu
         bad |= ~np.isfinite(lp) | ~np.all(np.isfinite(grad), axis=1)
         grad[bad] = 0.0
         return np.where(bad, -np.inf, lp), grad
@@ -850,27 +861,19 @@ class _StudentNoise:
         return np.where(bad, -np.inf, ll), grad
 
 
-class _SMCStudentTrainer(_SMCTrainer):
+class _SMCStudentTrainer(_SMCNoiseTrainer):
     r"""The SMC sampler with a Student-t likelihood, its scale and degrees of freedom learned:
     ``y_k ~ t_nu(WNN(theta, x_k), sigma^2)``, with ``s = log sigma^2`` and ``u = log nu`` in the state
     (:class:`_StudentNoise`; priors ``s ~ N(log noise_prior_mean, noise_prior_sd^2)`` and
     ``nu ~ Gamma(df_prior_shape, rate=df_prior_rate)``). R (``measurement_noise``) is not used.
     Its predictive is the particles' mixture of t's (:class:`~filterwnn.wnn.predictive.StudentTMixture`)."""
 
-    def _prior_model(self, X):
+    _LEARNED = 2  # s, then u
+
+    def _with_noise(self, weights_model):
         s = self.settings
-        return _StudentNoise(super()._prior_model(X), np.log(s["noise_prior_mean"]), s["noise_prior_sd"],
+        return _StudentNoise(weights_model, np.log(s["noise_prior_mean"]), s["noise_prior_sd"],
                              s["df_prior_shape"], s["df_prior_rate"])
-
-    @property
-    def theta(self):
-        """The weights of the particle of largest posterior density (its ``s`` and ``u`` left out)."""
-        return super().theta[:-2]
-
-    @property
-    def noise(self):
-        """The particles' learned squared scales ``sigma_i^2 = exp(s_i)``, shape ``(n_particles,)``."""
-        return np.exp(self.particles[:, -2])
 
     @property
     def df(self):
@@ -884,8 +887,7 @@ class _SMCStudentTrainer(_SMCTrainer):
 
     def predictive(self, X):
         """The posterior predictive: the particles' equally weighted mixture of ``t_{nu_i}(WNN(theta_i, x), sigma_i^2)``."""
-        Y = wnn.forward(self.particles[:, :-2], X, self.model.wavelet)  # (N, n)
-        return StudentTMixture(Y, self.noise, self.df)
+        return StudentTMixture(self._outputs(X), self.noise, self.df)
 
     def predict(self, X):
         """The mixture's mean (the particles' mean output) and variance: the outputs' spread plus the
