@@ -489,7 +489,7 @@ class ParticleFilter(WeightedMixtureFilter):
 
     @staticmethod
     def _moments(model, X, w):
-        if model.x_mean_fn is None and model.residual_x is None:
+        if _plain(model):
             return _plain_moments(X, w)
         x = model.mean_x(X, w)
         d = model.residual_x_rows(X, x[None, :])
@@ -660,8 +660,7 @@ class ParticleFilter(WeightedMixtureFilter):
         user reaches holds those (``X`` resampled away; one of the package's schemes, which
         reads ``w`` and writes nothing) and the moments are pure arithmetic (no ``x_mean_fn``,
         no ``residual_x``)."""
-        if (resampled and model.x_mean_fn is None and model.residual_x is None
-                and self._resample in _READ_ONLY_SCHEMES):
+        if resampled and _plain(model) and self._resample in _READ_ONLY_SCHEMES:
             return None
         return self._moments(model, X, w)
 
@@ -733,6 +732,11 @@ class ParticleFilter(WeightedMixtureFilter):
             f"proposal={self.proposal!r}, resampling={self.resampling!r}, "
             f"ess_threshold={self.ess_threshold}, tempering={self.tempering}, step={self.step})"
         )
+
+
+def _plain(model):
+    """Whether the model keeps the default mean and residual (no ``x_mean_fn``, no ``residual_x``)."""
+    return model.x_mean_fn is None and model.residual_x is None
 
 
 def _plain_moments(X, w):
