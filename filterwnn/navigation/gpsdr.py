@@ -318,7 +318,8 @@ class GPSDRFilter:
         statistic over ``gps_correlation`` under :data:`SCALE_TEST`), and always 1 with
         ``scale_window=0``.
     gps_scales : list of float
-        The factor each tested fix got (:attr:`gps_scale_mean` is their mean).
+        The factor each tested fix got (:attr:`gps_scale_mean` is their mean); empty with
+        ``scale_window=0``.
     """
 
     def __init__(self, model, kind="ekf", *, x0=None, P0=None, standstill_speed=STANDSTILL_SPEED,
@@ -393,7 +394,8 @@ class GPSDRFilter:
 
     @property
     def gps_scale_mean(self):
-        """Mean factor on the tested fixes' reported covariance (1: as reported; None before the first)."""
+        """Mean factor on the tested fixes' reported covariance (1: as reported; None before the first,
+        and with ``scale_window=0``, where it is not estimated)."""
         return float(np.mean(self.gps_scales)) if self.gps_scales else None
 
     @property
@@ -498,7 +500,7 @@ class GPSDRFilter:
         self._innovation = y, S
         self.nis = nis = float(y @ np.linalg.solve(S, y))
         self.n_fixes += 1
-        if scaled:
+        if scaled and self.scale_window:
             self.gps_scales.append(lam)
         if nis <= self.reject_gate or not test:  # the fixes it uses: the gate answers for the others
             self._monitor(min(nis, self.reject_gate))

@@ -196,7 +196,7 @@ def _integrity(f, run):
     rej = np.isin(run.gps_steps, f.rejected_steps)
     return {"n_fixes": f.n_fixes, "n_rejected": f.n_rejected, "n_downweighted": f.n_downweighted,
             "n_reacquired": f.n_reacquired,
-            "nis_mean": f.nis_mean, "gps_scale_mean": f.gps_scale_mean if f.scale_window else None,
+            "nis_mean": f.nis_mean, "gps_scale_mean": f.gps_scale_mean,
             "gps_scale": f.gps_scale, "rejected_xy": run.z_gps[rej]}
 
 
