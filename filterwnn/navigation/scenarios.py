@@ -328,8 +328,9 @@ def _fill_gaps(t, heading, distance, speed, truth, longest, max_jitter):
     if len(t) < 3 or np.any(np.diff(t) <= 0):
         return t, heading, distance, speed, truth  # _sample_grid says what is wrong
     dts = np.diff(t)
-    k = np.rint(dts / float(np.median(dts)))
-    gap = (k >= 2) & (np.abs(dts / np.median(dts) - k) <= max_jitter * k) & (dts <= longest)
+    ratio = dts / float(np.median(dts))
+    k = np.rint(ratio)
+    gap = (k >= 2) & (np.abs(ratio - k) <= max_jitter * k) & (dts <= longest)
     if not gap.any():
         return t, heading, distance, speed, truth
     parts = [t[:1]] + [np.linspace(t[i], t[i + 1], int(k[i]) + 1)[1:] if gap[i] else t[i + 1:i + 2]
