@@ -12,8 +12,9 @@ BLAS thread, every ratio within this run):
    filterpy's, the floor (the same arithmetic for B = 1), dynamax ``jit`` and Stone Soup
    when installed.
 3. **one UKF step on the 160 weights** of a 5-20-1 wavelet network (random walk,
-   ``dim_z = 1``, Merwe points): filterwnn, filterpy, and the floor: one Cholesky of the
-   160x160 covariance and the rank-1 update.
+   ``dim_z = 1``, Merwe points): filterwnn, filterpy, the same step written by hand in NumPy
+   (``numpy_wnn_steps``: no checks, the network on all 321 points included), and the floor:
+   one Cholesky of the 160x160 covariance and the rank-1 update.
 4. **a bootstrap particle-filter step** (the growth model of ``bench_particles_peer.py``,
    N = 1,000 and 10,000, systematic resampling every step): filterwnn's
    ``BootstrapParticleFilter``, a plain NumPy loop (the floor), Chopin's ``particles``
@@ -25,7 +26,7 @@ is printed: 20 members spread over each timed bank (B = 1,000 and 10,000, so the
 path of ``filterwnn._linalg.columns_layout`` that the timings run), max abs difference of
 ``x`` and ``P`` after one step; the tests pin it to 1e-12.
 
-    python benchmarks/bench_peers.py [--repeats 5] [--quick]
+    python benchmarks/bench_peers.py [--repeats 5] [--quick] [--protocol turns|steady]
 """
 
 from __future__ import annotations
@@ -70,19 +71,41 @@ class Timed:
         self.fn, self.per = fn, per
 
 
+PROTOCOLS = ("steady", "turns")
+_PROTOCOL = ["turns"]  # set by main's --protocol
+
+
 def _measure(row, repeats):
     """``row`` with every :class:`Timed` replaced by its median seconds per unit.
 
     The variants of a row take turns within each repeat (after one warm-up call each), so
     that a change in the machine's load falls on all of them alike: on a shared machine
-    the ratios within a row are what to read.
+    the ratios within a row are what to read. Two protocols (``--protocol``):
+
+    * ``turns`` (the default, the issue's protocol): the variants in one fixed order, one
+      timed call each. Each then runs right after another variant, with what that one left
+      in the caches: the bank after dynamax (and the filterpy loop), dynamax after the NumPy
+      floor (``benchmarks/bank_work/cold_warm_results.txt``: a bank after the filterpy loop
+      takes 1.19-1.36x its time as the third call in a row at B = 1,000, dynamax 1.10-1.20x).
+    * ``steady`` (added 2026-12-02, to see whether that placement decides the rows): each
+      repeat starts at the next variant (repeat ``r`` at variant ``r mod k``, so no variant
+      always follows the same neighbour), and each variant is called twice in a row, the
+      second call timed: the steady state of a filter that steps over and over, as
+      ``batch_filter`` and a study do. It does not favour the bank: dynamax gains as much
+      (``bench_peers_results.txt``, the runs marked ``protocol steady``).
     """
     timed = {k: v for k, v in row.items() if isinstance(v, Timed)}
+    names = list(timed)
     for v in timed.values():
         v.fn()
     ts = {k: [] for k in timed}
-    for _ in range(repeats):
-        for k, v in timed.items():
+    steady = _PROTOCOL[0] == "steady"
+    for r in range(repeats):
+        order = names[r % len(names):] + names[: r % len(names)] if steady else names
+        for k in order:
+            v = timed[k]
+            if steady:
+                v.fn()
             t0 = time.perf_counter()
             v.fn()
             ts[k].append(time.perf_counter() - t0)
@@ -218,6 +241,7 @@ def row_wnn(repeats, n_steps=10):
                                    lambda t, dt: t, merwe))
     P = np.eye(dim) * 0.01
     k = np.full(dim, 1e-3)
+    hand = numpy_wnn_steps(theta0, P, np.eye(dim) * 1e-5, 0.1, merwe, X, y, n_steps)
 
     def floor():
         for _ in range(n_steps):
@@ -225,7 +249,44 @@ def row_wnn(repeats, n_steps=10):
             P - 0.1 * np.outer(k, k)
 
     return _measure({"filterwnn UKF": Timed(ours, n_steps), "filterpy UKF": Timed(fp, n_steps),
-                     "floor (1 Cholesky + rank-1)": Timed(floor, n_steps)}, repeats)
+                     "NumPy by hand": Timed(hand, n_steps), "floor (1 Cholesky + rank-1)": Timed(floor, n_steps)},
+                    repeats)
+
+
+def numpy_wnn_steps(theta0, P0, Q, r, points, X, y, n_steps):
+    """The same UKF step written by hand in NumPy (no checks, no bookkeeping): what the step costs
+    with this ``hx`` (the network on all 321 points, 6,420 cosines and exponentials) before any
+    filter's overhead. ``P + Q``, one ``dpotrf``, the points ``x +- c U``, ``hx``, the 1x1
+    innovation and the rank-1 downdate (BLAS ``dger``), as ours does."""
+    from scipy.linalg.blas import dger
+    from scipy.linalg.lapack import dpotrf
+
+    n = theta0.size
+    Wm, Wc = points.Wm, points.Wc
+    c = np.sqrt(n + points.alpha**2 * (n + points.kappa) - n)
+    upper = np.triu(np.ones((n, n), dtype=bool))
+    cU, sig = np.zeros((n, n)), np.empty((2 * n + 1, n))
+    state = [theta0.copy(), P0.copy()]
+
+    def go():
+        x, P = state
+        for k in range(n_steps):
+            P = P + Q
+            L, _ = dpotrf(P, lower=1, clean=0)
+            np.multiply(c, L.T, out=cU, where=upper)
+            sig[0] = x
+            np.add(x, cU, out=sig[1 : n + 1])
+            np.subtract(x, cU, out=sig[n + 1 :])
+            h = wnn.forward(sig, X[k][None, :])[:, 0]
+            zp = Wm @ h
+            dz = h - zp
+            s = Wc @ (dz * dz) + r
+            wdz = dz * Wc
+            pxz = cU.T @ (wdz[1 : n + 1] - wdz[n + 1 :])
+            x = x + pxz * ((y[k] - zp) / s)
+            P = dger(-1.0, pxz / np.sqrt(s), pxz / np.sqrt(s), a=np.array(P, order="C").T, overwrite_a=1).T
+        state[:] = [x, P]
+    return go
 
 
 # --- row 4: the bootstrap particle filter ----------------------------------------------------
@@ -445,10 +506,14 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--repeats", type=int, default=5, help="repeats per variant (medians are reported)")
     ap.add_argument("--quick", action="store_true", help="3 repeats, B = 1,000 only, N = 1,000 only")
+    ap.add_argument("--protocol", choices=PROTOCOLS, default="turns",
+                    help="turns: one fixed order, one timed call each (the default, the issue's); steady: "
+                         "rotated order, each variant timed on its second call in a row")
     args = ap.parse_args(argv)
+    _PROTOCOL[0] = args.protocol
     reps = 3 if args.quick else args.repeats
     sizes = [1000] if args.quick else [1000, 10000]
-    print(f"bench_peers: median of {reps} repeats; 1 BLAS thread; python {platform.python_version()}, "
+    print(f"bench_peers: median of {reps} repeats, protocol {args.protocol}; 1 BLAS thread; python {platform.python_version()}, "
           f"numpy {np.__version__}, {platform.machine()}")
     print("| work | filterwnn | the alternatives | the floor | filterwnn / floor |")
     print("|---|---|---|---|---|")
