@@ -42,8 +42,11 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # this checkout's filterwnn, not an installed one
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-os.environ.setdefault("OMP_NUM_THREADS", "1")
-os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+# one thread everywhere, XLA's too (it would take both cores otherwise), set before numpy and jax load;
+# what bench_peers_results.txt's command line sets, so the plain command measures the same
+for _var, _val in (("OMP_NUM_THREADS", "1"), ("OPENBLAS_NUM_THREADS", "1"), ("MKL_NUM_THREADS", "1"),
+                   ("XLA_FLAGS", "--xla_cpu_multi_thread_eigen=false"), ("JAX_PLATFORMS", "cpu")):
+    os.environ.setdefault(_var, _val)
 
 import numpy as np  # noqa: E402
 from filterpy.kalman import MerweScaledSigmaPoints  # noqa: E402
