@@ -244,6 +244,10 @@ def _study(tmp_path, out, jobs, cache=True):
     return argv + (["--cache", str(tmp_path / "cache")] if cache else [])
 
 
+def _default_sigint():
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def _descendants(pid):
     out = subprocess.run(["pgrep", "-P", str(pid)], capture_output=True, text=True).stdout.split()
     return [int(p) for p in out] + [d for p in out for d in _descendants(int(p))]
@@ -281,8 +285,10 @@ def fresh_table(tmp_path_factory):
                          ids=["SIGKILL", "SIGINT", "SIGTERM"])
 def test_a_study_killed_part_way_resumes_with_the_same_numbers(tmp_path, sig, fresh_table):
     cache = tmp_path / "cache"
+    # a test run started in the background (``pytest &``, nohup) inherits SIGINT ignored, and
+    # Python then installs no Ctrl-C handler: the study would rightly ignore the signal
     proc = subprocess.Popen(_study(tmp_path, "killed", 2), env=_env(), stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True)
+                            stderr=subprocess.PIPE, text=True, preexec_fn=_default_sigint)
     deadline = time.monotonic() + 180
     while not list(cache.glob("*.npz")) and time.monotonic() < deadline and proc.poll() is None:
         time.sleep(0.05)
