@@ -13,7 +13,7 @@ BLAS thread, every ratio within this run):
    when installed.
 3. **one UKF step on the 160 weights** of a 5-20-1 wavelet network (random walk,
    ``dim_z = 1``, Merwe points): filterwnn, filterpy, the same step written by hand in NumPy
-   (``numpy_wnn_steps``: no checks, the network on all 321 points included), and the floor:
+   (``bench_ukf_step.arithmetic_steps``: no checks, the network on all 321 points included), and the floor:
    one Cholesky of the 160x160 covariance and the rank-1 update.
 4. **a bootstrap particle-filter step** (the growth model of ``bench_particles_peer.py``,
    N = 1,000 and 10,000, systematic resampling every step): filterwnn's
@@ -244,7 +244,11 @@ def row_wnn(repeats, n_steps=10):
                                    lambda t, dt: t, merwe))
     P = np.eye(dim) * 0.01
     k = np.full(dim, 1e-3)
-    hand = numpy_wnn_steps(theta0, P, np.eye(dim) * 1e-5, 0.1, merwe, X, y, n_steps)
+    import bench_ukf_step  # imports this module: here, once it is loaded
+
+    assert bench_ukf_step.N_STEPS == n_steps
+    hand = bench_ukf_step.arithmetic_steps(dict(X=X, y=y, theta0=theta0, n=dim, pts=merwe, P0=P.copy(),
+                                                Q=np.eye(dim) * 1e-5, R=np.eye(1) * 0.1))[0]
 
     def floor():
         for _ in range(n_steps):
@@ -255,41 +259,6 @@ def row_wnn(repeats, n_steps=10):
                      "NumPy by hand": Timed(hand, n_steps), "floor (1 Cholesky + rank-1)": Timed(floor, n_steps)},
                     repeats)
 
-
-def numpy_wnn_steps(theta0, P0, Q, r, points, X, y, n_steps):
-    """The same UKF step written by hand in NumPy (no checks, no bookkeeping): what the step costs
-    with this ``hx`` (the network on all 321 points, 6,420 cosines and exponentials) before any
-    filter's overhead. ``P + Q``, one ``dpotrf``, the points ``x +- c U``, ``hx``, the 1x1
-    innovation and the rank-1 downdate (BLAS ``dger``), as ours does."""
-    from scipy.linalg.blas import dger
-    from scipy.linalg.lapack import dpotrf
-
-    n = theta0.size
-    Wm, Wc = points.Wm, points.Wc
-    c = np.sqrt(n + points.alpha**2 * (n + points.kappa) - n)
-    upper = np.triu(np.ones((n, n), dtype=bool))
-    cU, sig = np.zeros((n, n)), np.empty((2 * n + 1, n))
-    state = [theta0.copy(), P0.copy()]
-
-    def go():
-        x, P = state
-        for k in range(n_steps):
-            P = P + Q
-            L, _ = dpotrf(P, lower=1, clean=0)
-            np.multiply(c, L.T, out=cU, where=upper)
-            sig[0] = x
-            np.add(x, cU, out=sig[1 : n + 1])
-            np.subtract(x, cU, out=sig[n + 1 :])
-            h = wnn.forward(sig, X[k][None, :])[:, 0]
-            zp = Wm @ h
-            dz = h - zp
-            s = Wc @ (dz * dz) + r
-            wdz = dz * Wc
-            pxz = cU.T @ (wdz[1 : n + 1] - wdz[n + 1 :])
-            x = x + pxz * ((y[k] - zp) / s)
-            P = dger(-1.0, pxz / np.sqrt(s), pxz / np.sqrt(s), a=np.array(P, order="C").T, overwrite_a=1).T
-        state[:] = [x, P]
-    return go
 
 
 # --- row 4: the bootstrap particle filter ----------------------------------------------------

@@ -74,7 +74,6 @@ import numpy as np
 from filterpy.kalman import UnscentedKalmanFilter as _FilterpyUKF
 from filterpy.kalman import unscented_transform
 from scipy.linalg import cho_factor, cho_solve, cholesky
-from scipy.linalg.blas import dger
 from scipy.linalg.lapack import dpotrf, dpotrs
 
 from .._linalg import cholesky as checked_cholesky
@@ -147,13 +146,17 @@ def _positive_definite(S):
 
 
 def _downdate(P, u):
-    """``P - u u^T`` in a fresh array: a copy and BLAS ``dger`` (half numpy's outer product).
+    """``P - u u^T`` in a fresh array, exactly symmetric when ``P`` is, on every machine.
 
-    ``alpha = -1`` is exact, so entry ``(i, j)`` is ``P_ij - u_i u_j`` rounded exactly as
-    ``(j, i)`` is: a symmetric ``P`` stays symmetric.
+    Entry ``(i, j)`` is ``P_ij - fl(u_i u_j)``: NumPy's elementwise product and difference,
+    each rounded once, and ``u_i u_j`` is ``u_j u_i`` bit for bit. BLAS ``dger`` (a third of
+    the time at n = 160) is not used: its kernels fuse the multiply-add (FMA, one rounding) in
+    their vector body but not in their tail, so ``(i, j)`` and ``(j, i)`` can differ in the
+    last bit when the two fall on different sides (OpenBLAS's Haswell kernel at n = 24), and
+    a filter fed in chunks then differs from one fed at once wherever ``P`` is symmetrized.
     """
-    out = np.array(P, dtype=float, order="C")
-    return dger(-1.0, u, u, a=out.T, overwrite_a=1).T
+    out = np.multiply.outer(u, u)
+    return np.subtract(P, out, out=out)
 
 
 def _downdate_finite(P, u):
