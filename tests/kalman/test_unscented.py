@@ -491,3 +491,19 @@ def test_a_pickle_from_before_P_prior_and_P_post_were_kept_loads():
     np.testing.assert_array_equal(old.P_post, ukf.P_post)
     old.predict(); ukf.predict()
     np.testing.assert_array_equal(old.P_prior, ukf.P_prior)
+
+
+def test_the_scalar_update_keeps_P_exactly_symmetric_at_every_size():
+    """A 1x1 ``S`` updates ``P`` by the rank-1 downdate ``P - u u^T``: exactly symmetric, bit for bit,
+    on every machine (BLAS ``dger`` was not: OpenBLAS's Haswell kernel fuses the multiply-add in
+    its vector body only, and left entries 1 ulp apart at n = 24)."""
+    rng = np.random.default_rng(3)
+    for n in range(1, 41):
+        A = rng.standard_normal((n, n))
+        f = UnscentedKalmanFilter(n, 1, 1.0, lambda X: np.sin(X).sum(axis=1, keepdims=True), None,
+                                  MerweScaledSigmaPoints(n, 1.0, 2.0, 0.0), vectorized=True)
+        f.x, f.P, f.Q, f.R = rng.standard_normal(n), A @ A.T / n + np.eye(n), np.eye(n) * 0.01, np.eye(1) * 0.1
+        for _ in range(3):
+            f.predict()
+            f.update(np.array([0.3]))
+            assert np.array_equal(f.P, f.P.T), n
