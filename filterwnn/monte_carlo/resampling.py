@@ -215,10 +215,11 @@ _FILTERPY_DOC = """{title} resampling with filterpy's signature: ``{name}_resamp
     rng : None, numpy.random.RandomState, or any ``rng`` of :func:`{name}`
         ``None`` (default): the global state (``np.random.random``), filterpy's habit, kept
         so that filterpy code swapped over repeats under ``np.random.seed``; new code
-        should pass ``rng=np.random.default_rng(seed)`` (the package's filters never touch
-        the global state). A ``RandomState`` is used as given (``RandomState(s)`` draws what
-        ``np.random.seed(s)`` does); anything else is normalised with
-        :func:`numpy.random.default_rng`.
+        should pass ``rng=np.random.default_rng(seed)``. The package's filters never touch
+        the global state: given as their ``resampling=``, this function is the scheme
+        ``"{name}"``, drawing from the filter's ``rng``. A ``RandomState`` is used as
+        given (``RandomState(s)`` draws what ``np.random.seed(s)`` does); anything else is
+        normalised with :func:`numpy.random.default_rng`.
 
     Returns
     -------
@@ -276,6 +277,7 @@ def _filterpy_named(name):
         return impl(w, _legacy_rng(rng), w.size)
 
     scheme.__name__ = scheme.__qualname__ = f"{name}_resample"
+    scheme._filterwnn_impl = impl  # given to a filter: the named scheme, drawing from the filter's rng
     title = {"residual": "Residual (unbiased)"}.get(name, name.capitalize())
     scheme.__doc__ = _FILTERPY_DOC.format(title=title, name=name, note=_FILTERPY_NOTE[name])
     return scheme
@@ -332,11 +334,13 @@ def get_scheme(name):
     ``name`` is a registered name or a callable: ``fn(weights, rng, n) -> indices``, or a
     one-argument ``fn(weights)`` such as filterpy's ``systematic_resample`` (note: filterpy's
     functions draw from numpy's global random state, so ``rng`` no longer makes the run
-    reproducible; seed ``np.random`` yourself). Raises ``ValueError`` listing the valid
-    names for an unknown one.
+    reproducible; seed ``np.random`` yourself). This package's drop-ins of those functions
+    (:func:`systematic_resample` and its siblings) are their named schemes, and draw from
+    ``rng``. Raises ``ValueError`` listing the valid names for an unknown one.
     """
     if callable(name):
-        return _from_callable(name)
+        impl = getattr(name, "_filterwnn_impl", None)
+        return _from_callable(name) if impl is None else impl
     if not isinstance(name, str):
         raise TypeError(f"resampling must be a scheme name (str) or a callable, got {type(name).__name__}")
     check_choice(name, "resampling scheme", SCHEMES)

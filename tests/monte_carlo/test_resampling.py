@@ -206,6 +206,29 @@ def test_a_callable_is_accepted_wherever_a_scheme_name_is():
     assert pf.resampled_history == [True]
 
 
+@pytest.mark.parametrize("name", ["systematic", "stratified", "residual", "multinomial"])
+def test_our_filterpy_named_function_given_to_a_filter_draws_from_the_filters_rng(name):
+    """``resampling=systematic_resample`` (ours) is the scheme ``"systematic"``: the filter's
+    ``rng`` decides the run, the global state is neither read nor needed."""
+    from filterwnn import BootstrapParticleFilter
+
+    def run(scheme, global_seed):
+        np.random.seed(global_seed)
+        pf = BootstrapParticleFilter(1, 1, 1.0, lambda X: X**2 / 20, lambda X, dt: X / 2 + 25 * X / (1 + X**2),
+                                     100, vectorized=True, rng=0, resampling=scheme, ess_threshold=1.0)
+        pf.x, pf.P, pf.Q, pf.R = np.zeros(1), np.array([[5.0]]), np.array([[10.0]]), np.array([[1.0]])
+        for k in range(8):
+            pf.predict()
+            pf.update(np.array([1.0 + k]))
+        return pf.particles.copy()
+
+    fn = getattr(resampling, f"{name}_resample")
+    np.testing.assert_array_equal(run(fn, 1), run(name, 2))
+    np.testing.assert_array_equal(run(fn, 1), run(fn, 2))
+    w = np.array([0.1, 0.2, 0.3, 0.4])
+    np.testing.assert_array_equal(resample(w, fn, rng=5), resample(w, name, rng=5))
+
+
 # --- filterpy's names and seeding ----------------------------------------------------------
 
 FILTERPY_NAMES = ["systematic", "stratified", "residual", "multinomial"]
