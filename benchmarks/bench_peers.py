@@ -75,7 +75,7 @@ class Timed:
 
 
 PROTOCOLS = ("steady", "turns")
-_PROTOCOL = ["turns"]  # set by main's --protocol
+PROTOCOL = "turns"  # main sets it from --protocol
 
 
 def _measure(row, repeats):
@@ -102,7 +102,7 @@ def _measure(row, repeats):
     for v in timed.values():
         v.fn()
     ts = {k: [] for k in timed}
-    steady = _PROTOCOL[0] == "steady"
+    steady = PROTOCOL == "steady"
     for r in range(repeats):
         order = names[r % len(names):] + names[: r % len(names)] if steady else names
         for k in order:
@@ -258,7 +258,6 @@ def row_wnn(repeats, n_steps=10):
     return _measure({"filterwnn UKF": Timed(ours, n_steps), "filterpy UKF": Timed(fp, n_steps),
                      "NumPy by hand": Timed(hand, n_steps), "floor (1 Cholesky + rank-1)": Timed(floor, n_steps)},
                     repeats)
-
 
 
 # --- row 4: the bootstrap particle filter ----------------------------------------------------
@@ -482,7 +481,8 @@ def main(argv=None):
                     help="turns: one fixed order, one timed call each (the default, the issue's); steady: "
                          "rotated order, each variant timed on its second call in a row")
     args = ap.parse_args(argv)
-    _PROTOCOL[0] = args.protocol
+    global PROTOCOL
+    PROTOCOL = args.protocol
     reps = 3 if args.quick else args.repeats
     sizes = [1000] if args.quick else [1000, 10000]
     print(f"bench_peers: median of {reps} repeats, protocol {args.protocol}; 1 BLAS thread; python {platform.python_version()}, "
