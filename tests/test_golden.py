@@ -4,8 +4,9 @@
 (every row of both tables, the settings search, a sweep point, a reference) and a tiny DR study
 (every filter on a DR-only and a GPS/DR scenario), before the module refactor. Timings are left out.
 
-On a machine whose BLAS rounds like the one that wrote them (the same ``blas_fingerprint``),
-every number must match to 1e-9 (relative). Elsewhere OpenBLAS picks other kernels, whose
+On a machine that rounds like the one that wrote them (the same ``blas_fingerprint``: its BLAS
+results, NumPy's SIMD targets and a digest of its elementwise functions), every number must
+match to 1e-9 (relative). Elsewhere OpenBLAS picks other kernels, whose
 last-bit differences some trainings amplify by orders of magnitude (measured with
 ``OPENBLAS_CORETYPE=Sandybridge``/``Prescott``: the paper-settings rows at Q = 1, the scikit-learn
 reference, the EPF and BP's search up to 100 %, every other number below 1e-7): there the
