@@ -69,6 +69,7 @@ from __future__ import annotations
 import math
 import numbers
 import operator
+import sys
 
 import numpy as np
 from filterpy.kalman import UnscentedKalmanFilter as _FilterpyUKF
@@ -265,6 +266,68 @@ class _Kept(property):
         obj.__dict__[self.now] = value
 
 
+def _references(value):
+    """``sys.getrefcount(value)``, or None where the interpreter keeps no count."""
+    count = getattr(sys, "getrefcount", None)
+    return None if count is None else count(value)
+
+
+class _CountOnSet:
+    """A descriptor that records what :func:`_references` sees in ``__set__`` (for :data:`_TEMPORARY`)."""
+
+    def __set_name__(self, owner, name):
+        self.seen = []
+
+    def __set__(self, obj, value):
+        self.seen.append(_references(value))
+
+
+def _temporary_references():
+    """What ``_Owned.__set__`` counts for a temporary (``obj.Q = np.empty(0)``), measured at import
+    on a descriptor of the same shape; None (never trust a count) if it is not the same each time."""
+    probe = type("Probe", (), {"value": _CountOnSet()})()
+    for _ in range(3):
+        probe.value = np.empty(0)
+    seen = type(probe).__dict__["value"].seen
+    return seen[0] if seen[0] is not None and len(set(seen)) == 1 else None
+
+
+_TEMPORARY = _temporary_references()
+
+
+class _Owned(property):
+    """``Q`` of :class:`UnscentedKalmanFilter`: validated once assigned, compared only once shared.
+
+    A ``property`` (subclass), like :class:`_Watched`. The value lives in ``_Q_now``;
+    ``_Q_out`` says whether anyone outside the filter may hold it, and ``_Q_checked`` whether
+    the value assigned has been checked. A value assigned as a temporary (``ukf.Q = np.eye(n) *
+    1e-5``: the assignment holds its only reference, which CPython's reference count tells) is
+    the filter's alone, so once checked it cannot change unseen and the step skips its O(n^2)
+    comparison. Anything else is compared at every step, as before: an array the caller keeps a
+    name for, any read of ``ukf.Q`` (so an edit in place, ``ukf.Q[0, 0] = ...`` or ``ukf.Q *=
+    2``, is seen like an assignment), a copied or unpickled filter's (``__setstate__``), and
+    every value where the interpreter keeps no reference count.
+    """
+
+    def __set_name__(self, owner, name):
+        self.name, self.now, self.out, self.checked = name, f"_{name}_now", f"_{name}_out", f"_{name}_checked"
+
+    def __get__(self, obj, objtype=None):
+        if obj is None:
+            return self
+        d, value = _stored(obj, self)
+        d[self.out] = True
+        return value
+
+    def __set__(self, obj, value):
+        d = obj.__dict__
+        # a view shares its memory with an array someone else may hold: only an array owning it counts
+        alone = type(value) is np.ndarray and value.base is None and _references(value) == _TEMPORARY
+        d[self.out] = _TEMPORARY is None or not alone
+        d[self.now] = value
+        d[self.checked] = False
+
+
 class UnscentedKalmanFilter(_FilterpyUKF):
     """filterpy's ``UnscentedKalmanFilter`` with ``vectorized=``, ``fx=None`` and clear errors.
 
@@ -310,11 +373,13 @@ class UnscentedKalmanFilter(_FilterpyUKF):
     fills ``sigmas_f`` in place. ``x``, ``P``, ``Q`` and ``R`` are validated when their
     values change (compared with private copies, so an edit in place is seen like an
     assignment), not on every step; an ``x`` or ``P`` the vectorized step made and nobody
-    has read since is not even compared (it cannot have changed).
+    has read since is not even compared (it cannot have changed), nor a ``Q`` assigned as a
+    temporary (``ukf.Q = np.eye(n) * q``) and not read back since (see ``_Owned``).
     """
 
     x = _Watched()
     P = _Watched()
+    Q = _Owned()
     P_prior = _Kept()
     P_post = _Kept()
 
@@ -343,9 +408,15 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         self._work = {}  # constant-shaped work arrays of the vectorized step (see _sigmas)
 
     def __setstate__(self, state):
-        for name in ("x", "P"):  # a pickle from before x and P were watched
+        for name in ("x", "P", "Q"):  # a pickle from before x, P and Q were watched
             if name in state:
                 state[f"_{name}_now"], state[f"_{name}_out"] = state.pop(name), True
+        # a copy (copy.copy passes the original's own __dict__ here) or an unpickled filter may
+        # share its arrays with another: both compare them from now on
+        for name in ("x", "P", "Q"):
+            if f"_{name}_now" in state:
+                state[f"_{name}_out"] = True
+        state.setdefault("_Q_checked", False)
         for name in ("P_prior", "P_post"):  # ... or P_prior and P_post kept
             if name in state:
                 state[f"_{name}_now"] = state.pop(name)
@@ -362,11 +433,11 @@ class UnscentedKalmanFilter(_FilterpyUKF):
 
     def _check_state(self, when, check_Q=False):
         """Shapes, finiteness and symmetry of ``x``, ``P`` (and ``Q``); ``when`` is for messages."""
-        d = self.__dict__  # the values themselves: reading x or P would hand them out
-        x, P, n = d["_x_now"], d["_P_now"], self._dim_x
+        d = self.__dict__  # the values themselves: reading x, P or Q would hand them out
+        x, P, Q, n = d["_x_now"], d["_P_now"], d["_Q_now"], self._dim_x
         if _shape(x) != (n,):
             raise ValueError(f"x must have shape ({n},), got {np.shape(x)}")
-        for name, M in (("P", P), ("Q", self.Q)):
+        for name, M in (("P", P), ("Q", Q)):
             if _shape(M) != (n, n):
                 raise ValueError(f"{name} must have shape ({n}, {n}), got {np.shape(M)}; "
                                  + _SHAPE_FIX[name].format(n=n))
@@ -389,13 +460,16 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         if d["_x_out"] and not self._unchanged("x", x):
             self._sigmas_stale = True
             self._mark("x", x)
-        if check_Q and not self._unchanged("Q", self.Q):
-            # once per Q: finite, symmetric, positive semi-definite (a Cholesky settles
-            # the usual positive definite Q; eigenvalues only for a singular one)
-            _with_fix(check_symmetric, self.Q, "Q")
-            if cholesky_lower(self.Q) is None:
-                _with_fix(check_covariance, self.Q, "Q", n, allow_scalar=False, require_pd=False)
-            self._mark("Q", self.Q)
+        # Q: compared once assigned, then at every step only if someone outside may hold it (_Owned)
+        if check_Q and (d["_Q_out"] or not d["_Q_checked"]):
+            if not self._unchanged("Q", Q):
+                # once per Q: finite, symmetric, positive semi-definite (a Cholesky settles
+                # the usual positive definite Q; eigenvalues only for a singular one)
+                _with_fix(check_symmetric, Q, "Q")
+                if cholesky_lower(Q) is None:
+                    _with_fix(check_covariance, Q, "Q", n, allow_scalar=False, require_pd=False)
+                self._mark("Q", Q)
+            d["_Q_checked"] = True
 
     def _unchanged(self, name, M):
         """True when ``M`` holds what the filter last produced or checked as ``name``.
@@ -647,20 +721,21 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         self.step += 1
         try:
             if fx is None:  # random walk: no sigma points here
-                self.P = self._P_now + self.Q
+                self.P = self._P_now + self.__dict__["_Q_now"]  # (not self.Q: a read hands Q out)
                 self.x = self._x_now.copy()
             else:
                 sigmas = self._sigmas(self._x_now, self._P_now, "P")
                 self.sigmas_f = self._call(fx, sigmas, "fx", self._dim_x, dt, **fx_args)
                 if self.vectorized and UT is None:
                     self.x, self.P, _ = self._vectorized_ut(
-                        self.sigmas_f, self.x_mean, self.residual_x, self.Q, ("x_mean_fn", "residual_x")
+                        self.sigmas_f, self.x_mean, self.residual_x, self.__dict__["_Q_now"],
+                        ("x_mean_fn", "residual_x"),
                     )
                 else:  # filterpy's own arithmetic (bit-identical in loop mode)
+                    # a user's UT gets Q as filterpy hands it (a read: compared from now on)
+                    Q = self.__dict__["_Q_now"] if UT is None else self.Q
                     UT = fpa.unscented_transform if UT is None else UT
-                    self.x, self.P = UT(
-                        self.sigmas_f, self.Wm, self.Wc, self.Q, self.x_mean, self.residual_x
-                    )
+                    self.x, self.P = UT(self.sigmas_f, self.Wm, self.Wc, Q, self.x_mean, self.residual_x)
                 if not (np.isfinite(self.x).all() and np.isfinite(self.P).all()):
                     raise NumericalError(
                         f"fx produced a non-finite prediction (x_prior or P_prior) at step {self.step}; "

@@ -1,5 +1,6 @@
 """Our UnscentedKalmanFilter against filterpy's, in both modes, and its failures."""
 
+import copy
 import pickle
 
 import numpy as np
@@ -373,6 +374,48 @@ def test_a_Q_edited_in_place_is_checked_again(vectorized):
     ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), vectorized)
     ukf.predict()
     ukf.Q *= -1
+    with pytest.raises(ValueError, match="Q must be positive semi-definite"):
+        ukf.predict()
+
+
+def _Q_comparisons(ukf, n_steps):
+    """How often ``n_steps`` predicts compare Q with the kept copy (its O(n^2) check)."""
+    seen = []
+    unchanged = ukf._unchanged
+    ukf._unchanged = lambda name, M: seen.append(name) or unchanged(name, M)
+    for _ in range(n_steps):
+        ukf.predict()
+        ukf.update(np.array([1.2, 0.1]))
+    del ukf._unchanged
+    return seen.count("Q")
+
+
+@pytest.mark.parametrize("vectorized", [False, True])
+def test_a_Q_assigned_as_a_temporary_is_checked_once_not_every_step(vectorized):
+    ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), vectorized)
+    ukf.Q = np.eye(3) * 0.02
+    assert _Q_comparisons(ukf, 5) == 1
+    Q = np.eye(3) * 0.02  # a Q the caller keeps a name for may change under the filter: compared every step
+    ukf.Q = Q
+    assert _Q_comparisons(ukf, 5) == 5
+
+
+@pytest.mark.parametrize("edit", ["through ukf.Q", "through the caller's name", "through the array viewed",
+                                  "through a shallow copy"])
+def test_an_edit_of_Q_by_any_route_is_still_seen(edit):
+    ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), True)
+    big = np.eye(4) * 0.02
+    ukf.Q = big[:3, :3] if edit == "through the array viewed" else np.eye(3) * 0.02
+    Q = ukf.Q if edit == "through the caller's name" else None
+    ukf.predict(); ukf.update(np.array([1.2, 0.1]))
+    if edit == "through ukf.Q":
+        ukf.Q[0, 0] = -1.0
+    elif edit == "through the caller's name":
+        Q[0, 0] = -1.0
+    elif edit == "through the array viewed":
+        big[0, 0] = -1.0
+    else:
+        copy.copy(ukf).Q[0, 0] = -1.0
     with pytest.raises(ValueError, match="Q must be positive semi-definite"):
         ukf.predict()
 
