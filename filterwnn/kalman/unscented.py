@@ -284,12 +284,20 @@ class _CountOnSet:
 
 def _temporary_references():
     """What ``_Owned.__set__`` counts for a temporary (``obj.Q = np.empty(0)``), measured at import
-    on a descriptor of the same shape; None (never trust a count) if it is not the same each time."""
+    on a descriptor of the same shape; None (never trust a count) unless it is the same each time
+    and a named array (``obj.Q = a``) counts more. An interpreter that pushes a local's value
+    without a reference of its own (as CPython 3.14's borrowed loads may) counts both alike:
+    there every ``Q`` is compared at every step, as before."""
     probe = type("Probe", (), {"value": _CountOnSet()})()
     for _ in range(3):
         probe.value = np.empty(0)
+    named = np.empty(0)
+    probe.value = named
     seen = type(probe).__dict__["value"].seen
-    return seen[0] if seen[0] is not None and len(set(seen)) == 1 else None
+    temporary = seen[0]
+    if temporary is None or len(set(seen[:3])) != 1 or not seen[3] > temporary:
+        return None
+    return temporary
 
 
 _TEMPORARY = _temporary_references()
@@ -306,7 +314,9 @@ class _Owned(property):
     comparison. Anything else is compared at every step, as before: an array the caller keeps a
     name for, any read of ``ukf.Q`` (so an edit in place, ``ukf.Q[0, 0] = ...`` or ``ukf.Q *=
     2``, is seen like an assignment), a copied or unpickled filter's (``__setstate__``), and
-    every value where the interpreter keeps no reference count.
+    every value where the interpreter's count cannot tell a temporary from a named array
+    (:func:`_temporary_references`). What a count cannot see: C code (a Cython function, say)
+    that assigns an array it keeps in a local and edits it in place before the next step.
     """
 
     def __set_name__(self, owner, name):

@@ -400,6 +400,15 @@ def test_a_Q_assigned_as_a_temporary_is_checked_once_not_every_step(vectorized):
     assert _Q_comparisons(ukf, 5) == 5
 
 
+def test_where_a_reference_count_cannot_tell_every_Q_is_compared_every_step(monkeypatch):
+    import filterwnn.kalman.unscented as unscented
+
+    monkeypatch.setattr(unscented, "_TEMPORARY", None)  # as on an interpreter that counts both alike
+    ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), True)
+    ukf.Q = np.eye(3) * 0.02
+    assert _Q_comparisons(ukf, 5) == 5
+
+
 @pytest.mark.parametrize("edit", ["through ukf.Q", "through the caller's name", "through the array viewed",
                                   "through a shallow copy"])
 def test_an_edit_of_Q_by_any_route_is_still_seen(edit):
