@@ -462,9 +462,8 @@ class _UKFTrainer(BaseTrainer):
 
     def scale_process_noise(self, factor):
         """Run the next epochs with ``factor * Q`` (``WNNRegressor.anneal``: down to 0)."""
-        # a scaled copy, not the model's wiring; assigned as a temporary, so the filter owns it
-        # and checks it once, not at every step (UnscentedKalmanFilter's Q)
-        self.kf.Q = float(factor) * self.model.Q
+        Q_scaled = float(factor) * self.model.Q  # a scaled copy, not the model's wiring
+        self.kf.Q = Q_scaled
 
     def predict_mean(self, X):
         return wnn.forward(self.kf.x, X, self.model.wavelet)
