@@ -418,12 +418,11 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         self._work = {}  # constant-shaped work arrays of the vectorized step (see _sigmas)
 
     def __setstate__(self, state):
-        for name in ("x", "P", "Q"):  # a pickle from before x, P and Q were watched
-            if name in state:
-                state[f"_{name}_now"], state[f"_{name}_out"] = state.pop(name), True
         # a copy (copy.copy passes the original's own __dict__ here) or an unpickled filter may
         # share its arrays with another: both compare them from now on
         for name in ("x", "P", "Q"):
+            if name in state:  # a pickle from before x, P and Q were watched
+                state[f"_{name}_now"] = state.pop(name)
             if f"_{name}_now" in state:
                 state[f"_{name}_out"] = True
         state.setdefault("_Q_checked", False)

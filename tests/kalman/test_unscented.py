@@ -413,9 +413,13 @@ def test_where_a_reference_count_cannot_tell_every_Q_is_compared_every_step(monk
                                   "through a shallow copy"])
 def test_an_edit_of_Q_by_any_route_is_still_seen(edit):
     ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), True)
-    big = np.eye(4) * 0.02
-    ukf.Q = big[:3, :3] if edit == "through the array viewed" else np.eye(3) * 0.02
-    Q = ukf.Q if edit == "through the caller's name" else None
+    big, Q = np.eye(4) * 0.02, np.eye(3) * 0.02
+    if edit == "through the array viewed":
+        ukf.Q = big[:3, :3]
+    elif edit == "through the caller's name":
+        ukf.Q = Q  # the caller keeps its name for the array it assigned
+    else:
+        ukf.Q = np.eye(3) * 0.02
     ukf.predict(); ukf.update(np.array([1.2, 0.1]))
     if edit == "through ukf.Q":
         ukf.Q[0, 0] = -1.0
