@@ -31,12 +31,13 @@ normalised internally.
 
 filterpy's names, ``systematic_resample(weights)``, ``stratified_resample``,
 ``residual_resample`` and ``multinomial_resample``, sit beside them with filterpy's
-signature and seeding: without a generator they draw from NumPy's *global* state (so
-``np.random.seed(1)`` makes a run repeat, as in filterpy); a legacy ``RandomState`` or any
-``rng`` the schemes accept may be passed as ``rng=``. For the same seed,
-``systematic_resample`` and ``stratified_resample`` return filterpy's indices,
-``multinomial_resample`` filterpy's indices sorted, and ``residual_resample`` differs
-where filterpy's is biased.
+signature. They never touch NumPy's global state: without a generator they draw from a fresh
+``np.random.default_rng()`` (unseeded, and they say once that ``np.random.seed`` no longer
+repeats the run); ``rng=`` takes any ``rng`` the schemes accept, or a legacy ``RandomState``.
+With ``rng=np.random.RandomState(s)``, ``systematic_resample`` and ``stratified_resample``
+return the indices filterpy's return with NumPy's global state seeded ``s``,
+``multinomial_resample`` filterpy's sorted, and ``residual_resample`` differs where
+filterpy's is biased.
 
 Weights are best kept on the log scale: :func:`normalize_log_weights` turns unnormalised
 log-weights into normalised weights with ``logsumexp``, without underflow.
@@ -64,6 +65,7 @@ filters", NSSPW 2006.
 from __future__ import annotations
 
 import inspect
+import warnings
 
 import numpy as np
 from scipy.special import logsumexp
@@ -204,22 +206,22 @@ def residual(w, rng, n):
 
 _FILTERPY_DOC = """{title} resampling with filterpy's signature: ``{name}_resample(weights)``.
 
-    A drop-in for :func:`filterpy.monte_carlo.{name}_resample`: without ``rng`` it draws
-    from NumPy's global random state, so ``np.random.seed(s)`` makes it repeat. {note}
-    Weights are validated and normalised (filterpy's are used as given).
+    A drop-in for :func:`filterpy.monte_carlo.{name}_resample` that never touches NumPy's
+    global random state: pass ``rng`` to repeat a run ({note}). Weights are validated and
+    normalised (filterpy's are used as given).
 
     Parameters
     ----------
     weights : array-like of shape (n_particles,)
         Non-negative weights with a positive sum.
     rng : None, numpy.random.RandomState, or any ``rng`` of :func:`{name}`
-        ``None`` (default): the global state (``np.random.random``), filterpy's habit, kept
-        so that filterpy code swapped over repeats under ``np.random.seed``; new code
-        should pass ``rng=np.random.default_rng(seed)``. The package's filters never touch
-        the global state: given as their ``resampling=``, this function is the scheme
-        ``"{name}"``, drawing from the filter's ``rng``. A ``RandomState`` is used as
-        given (``RandomState(s)`` draws what ``np.random.seed(s)`` does); anything else is
-        normalised with :func:`numpy.random.default_rng`.
+        ``None`` (default): a fresh ``np.random.default_rng()``, unseeded. Unlike filterpy's,
+        the function does not follow ``np.random.seed``; the first call without ``rng``
+        says so with a ``UserWarning`` (once per function and process). A ``RandomState``
+        is used as given (``RandomState(s)`` draws what filterpy's function draws from the
+        global state seeded ``s``); anything else is normalised with
+        :func:`numpy.random.default_rng`. Given as a filter's ``resampling=``, this function
+        is the scheme ``"{name}"``, drawing from the filter's ``rng``.
 
     Returns
     -------
@@ -236,8 +238,8 @@ _FILTERPY_DOC = """{title} resampling with filterpy's signature: ``{name}_resamp
     >>> bool(np.array_equal(a, b)), a.shape
     (True, (4,))
 
-    A ``RandomState(s)`` draws what ``np.random.seed(s)`` followed by the call without
-    ``rng`` draws (filterpy's way), without touching the global state:
+    A ``RandomState(s)`` draws what filterpy's function draws from the global state seeded
+    ``s``, without touching the global state:
 
     >>> c = {name}_resample([0.1, 0.2, 0.3, 0.4], rng=np.random.RandomState(3))
     >>> c.shape
@@ -245,27 +247,30 @@ _FILTERPY_DOC = """{title} resampling with filterpy's signature: ``{name}_resamp
     """
 
 _FILTERPY_NOTE = {
-    "systematic": "For the same state it returns filterpy's indices.",
-    "stratified": "For the same state it returns filterpy's indices.",
-    "multinomial": "For the same state it returns filterpy's indices, sorted.",
-    "residual": ("Unlike filterpy's (its issue #290) it is unbiased: the residual draws come "
-                 "from the residual weights, so for the same state the indices may differ."),
+    "systematic": "for the same stream it returns filterpy's indices",
+    "stratified": "for the same stream it returns filterpy's indices",
+    "multinomial": "for the same stream it returns filterpy's indices, sorted",
+    "residual": ("unlike filterpy's, its issue #290, it is unbiased: the residual draws come "
+                 "from the residual weights, so for the same stream the indices may differ"),
 }
 
 
-class _GlobalState:
-    """NumPy's global random state, read at each draw (``np.random.seed`` reaches it)."""
-
-    @staticmethod
-    def random(size=None):
-        return np.random.random(size)
+_UNSEEDED_WARNED = set()  # the drop-ins that have said, once per process, that rng=None is unseeded
 
 
-def _legacy_rng(rng):
-    if rng is None:
-        return _GlobalState
+def _legacy_rng(rng, name):
+    """``rng`` for a filterpy-named drop-in: a ``RandomState`` as given (filterpy's stream), None
+    a fresh ``np.random.default_rng()`` (once per drop-in and process, a warning that
+    ``np.random.seed`` no longer reaches it), anything else :func:`check_rng`'s."""
     if isinstance(rng, np.random.RandomState):
         return rng
+    if rng is None and name not in _UNSEEDED_WARNED:
+        _UNSEEDED_WARNED.add(name)
+        warnings.warn(
+            f"{name}_resample(weights) without rng draws from a fresh np.random.default_rng(): unlike "
+            "filterpy's, it does not follow np.random.seed, so a run does not repeat; pass "
+            f"rng=np.random.default_rng(seed) (or rng=np.random.RandomState(seed) for the indices filterpy's "
+            "gives with np.random.seed at that seed)", UserWarning, stacklevel=3)
     return check_rng(rng)
 
 
@@ -274,7 +279,7 @@ def _filterpy_named(name):
 
     def scheme(weights, rng=None):
         w = check_weights(weights)
-        return impl(w, _legacy_rng(rng), w.size)
+        return impl(w, _legacy_rng(rng, name), w.size)
 
     scheme.__name__ = scheme.__qualname__ = f"{name}_resample"
     scheme._filterwnn_impl = impl  # given to a filter: the named scheme, drawing from the filter's rng

@@ -4,17 +4,19 @@ Our own version of the problem from its description: a robot drives a diagonal f
 origin (heading change 0, distance 1.414 per step, with noise on both), measures its range
 to four landmarks (std 0.1), and a cloud of particles drawn uniformly over the 20 x 20
 field, heading included, finds it. The hand-written filter (predict, weight, resample when
-``N_eff < N/2``) draws from NumPy's global random state, as the book's does: swapping in
-``filterwnn.monte_carlo.systematic_resample`` changes nothing; ``BootstrapParticleFilter`` on
-the same problem keeps track. Also: ``pf.weights`` is settable and refuses edits in place, and
-the degeneracy warning only counts a collapse whose best particle cannot explain ``z``.
+``N_eff < N/2``) draws from one stream, as the book's does from NumPy's global state (here a
+``RandomState``, so that no test touches the global state): with that stream given as ``rng``,
+``filterwnn.monte_carlo.systematic_resample`` gives filterpy's run exactly;
+``BootstrapParticleFilter`` on the same problem keeps track. Also: ``pf.weights`` is settable
+and refuses edits in place, and the degeneracy warning only counts a collapse whose best
+particle cannot explain ``z``.
 """
 
 import warnings
 
 import numpy as np
 import pytest
-from filterpy.monte_carlo import systematic_resample as fp_systematic
+from filterpy.monte_carlo import resampling as fp_resampling
 
 from filterwnn import BootstrapParticleFilter, DegeneracyWarning
 from filterwnn.monte_carlo import systematic_resample
@@ -25,25 +27,16 @@ MOVE_STD = (0.2, 0.05)
 SENSOR_STD = 0.1
 
 
-@pytest.fixture
-def global_state():
-    state = np.random.get_state()
-    yield
-    np.random.set_state(state)
-
-
-def book_filter(resample_fn, n=2000, iters=12, seed=0):
-    """The hand-written filter, the book's way (global np.random), over one drive."""
-    np.random.seed(seed)
-    p = np.column_stack([np.random.uniform(0, 20, n), np.random.uniform(0, 20, n),
-                         np.random.uniform(0, 2 * np.pi, n)])
+def book_filter(resample_fn, r, n=2000, iters=12):
+    """The hand-written filter, the book's way, over one drive: every draw from the stream ``r``."""
+    p = np.column_stack([r.uniform(0, 20, n), r.uniform(0, 20, n), r.uniform(0, 2 * np.pi, n)])
     w = np.full(n, 1.0 / n)
     pos, estimates = np.zeros(2), []
     for _ in range(iters):
         pos = pos + 1.0
-        z = np.linalg.norm(LANDMARKS - pos, axis=1) + np.random.randn(4) * SENSOR_STD
-        p[:, 2] += STEP[0] + np.random.randn(n) * MOVE_STD[0]
-        dist = STEP[1] + np.random.randn(n) * MOVE_STD[1]
+        z = np.linalg.norm(LANDMARKS - pos, axis=1) + r.randn(4) * SENSOR_STD
+        p[:, 2] += STEP[0] + r.randn(n) * MOVE_STD[0]
+        dist = STEP[1] + r.randn(n) * MOVE_STD[1]
         p[:, 0] += np.cos(p[:, 2]) * dist
         p[:, 1] += np.sin(p[:, 2]) * dist
         d = np.linalg.norm(LANDMARKS[None] - p[:, None, :2], axis=-1)
@@ -57,8 +50,12 @@ def book_filter(resample_fn, n=2000, iters=12, seed=0):
     return np.array(estimates)
 
 
-def test_the_books_filter_runs_unchanged_with_filterwnns_systematic_resample(global_state):
-    np.testing.assert_array_equal(book_filter(systematic_resample), book_filter(fp_systematic))
+def test_the_books_filter_runs_unchanged_with_filterwnns_systematic_resample(monkeypatch):
+    ours = np.random.RandomState(0)
+    theirs = np.random.RandomState(0)
+    monkeypatch.setattr(fp_resampling, "random", theirs.random)  # filterpy's draws, from the same stream
+    np.testing.assert_array_equal(book_filter(lambda w: systematic_resample(w, rng=ours), ours),
+                                  book_filter(fp_resampling.systematic_resample, theirs))
 
 
 def hx(X):

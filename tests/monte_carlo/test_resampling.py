@@ -1,5 +1,7 @@
 """Resampling schemes: edge cases, unbiasedness, the registry, property tests."""
 
+import warnings
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -212,8 +214,7 @@ def test_our_filterpy_named_function_given_to_a_filter_draws_from_the_filters_rn
     ``rng`` decides the run, the global state is neither read nor needed."""
     from filterwnn import BootstrapParticleFilter
 
-    def run(scheme, global_seed):
-        np.random.seed(global_seed)
+    def run(scheme):
         pf = BootstrapParticleFilter(1, 1, 1.0, lambda X: X**2 / 20, lambda X, dt: X / 2 + 25 * X / (1 + X**2),
                                      100, vectorized=True, rng=0, resampling=scheme, ess_threshold=1.0)
         pf.x, pf.P, pf.Q, pf.R = np.zeros(1), np.array([[5.0]]), np.array([[10.0]]), np.array([[1.0]])
@@ -223,8 +224,10 @@ def test_our_filterpy_named_function_given_to_a_filter_draws_from_the_filters_rn
         return pf.particles.copy()
 
     fn = getattr(resampling, f"{name}_resample")
-    np.testing.assert_array_equal(run(fn, 1), run(name, 2))
-    np.testing.assert_array_equal(run(fn, 1), run(fn, 2))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # a filter's rng is given: the drop-in never says it is unseeded
+        np.testing.assert_array_equal(run(fn), run(name))
+    np.testing.assert_array_equal(run(fn), run(fn))
     w = np.array([0.1, 0.2, 0.3, 0.4])
     np.testing.assert_array_equal(resample(w, fn, rng=5), resample(w, name, rng=5))
 
@@ -235,15 +238,20 @@ FILTERPY_NAMES = ["systematic", "stratified", "residual", "multinomial"]
 
 
 @pytest.fixture
-def global_state():
-    """These tests must reach NumPy's global state (filterpy's seeding); it is restored after."""
-    state = np.random.get_state()
-    yield
-    np.random.set_state(state)
+def filterpy_stream(monkeypatch):
+    """filterpy's resampling functions draw from ``numpy.random.random`` (the global state):
+    here from a ``RandomState`` set by the returned function instead, so no test touches the
+    global state."""
+    from filterpy.monte_carlo import resampling as fp
+
+    def seed(s):
+        monkeypatch.setattr(fp, "random", np.random.RandomState(s).random)
+
+    return seed
 
 
 @pytest.mark.parametrize("name", ["systematic", "stratified", "multinomial"])
-def test_filterpy_named_functions_give_filterpys_indices_for_the_same_seed(name, rng, global_state):
+def test_filterpy_named_functions_give_filterpys_indices_for_the_same_seed(name, rng, filterpy_stream):
     from filterpy.monte_carlo import resampling as fp
 
     import filterwnn.monte_carlo as mc
@@ -251,36 +259,44 @@ def test_filterpy_named_functions_give_filterpys_indices_for_the_same_seed(name,
     ours_fn, theirs_fn = getattr(mc, f"{name}_resample"), getattr(fp, f"{name}_resample")
     for seed in range(50):
         w = rng.dirichlet(np.ones(1 + seed % 40))
-        np.random.seed(seed)
+        filterpy_stream(seed)
         theirs = theirs_fn(w)
-        np.random.seed(seed)
-        ours = ours_fn(w)
-        np.testing.assert_array_equal(ours, np.sort(theirs))
         np.testing.assert_array_equal(ours_fn(w, np.random.RandomState(seed)), np.sort(theirs))
 
 
 @pytest.mark.parametrize("name", FILTERPY_NAMES)
-def test_filterpy_named_functions_take_the_global_state_a_randomstate_or_an_rng(name, global_state):
+def test_filterpy_named_functions_take_a_randomstate_or_an_rng_and_never_the_global_state(name, monkeypatch):
     fn = getattr(resampling, f"{name}_resample")
     w = np.array([0.05, 0.15, 0.3, 0.5, 0.0, 0.0, 0.0, 0.0])
-    draws = []
-    for _ in range(2):
-        np.random.seed(7)
-        draws.append(fn(w))
-    np.testing.assert_array_equal(draws[0], draws[1])
+    np.testing.assert_array_equal(fn(w, np.random.RandomState(7)), fn(w, np.random.RandomState(7)))
     np.testing.assert_array_equal(fn(w, 5), fn(w, np.random.default_rng(5)))
-    assert fn(w).shape == (8,) and np.all(w[fn(w, np.random.RandomState(0))] > 0)
+    assert np.all(w[fn(w, np.random.RandomState(0))] > 0)
     with pytest.raises(ValueError, match="weights"):
-        fn([0.5, -0.5])
+        fn([0.5, -0.5], 0)
+
+    def global_draw(*args, **kwargs):
+        raise AssertionError("drew from NumPy's global state")
+
+    monkeypatch.setattr(np.random, "random", global_draw)
+    monkeypatch.setattr(np.random, "random_sample", global_draw)
+    monkeypatch.setattr(resampling, "_UNSEEDED_WARNED", set())
+    said = rf"{name}_resample\(weights\) without rng draws from a fresh np.random.default_rng\(\): "
+    with pytest.warns(UserWarning, match=said + r"unlike filterpy's, it does not follow np.random.seed"):
+        first = fn(w)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # said once per function and process
+        second = fn(w)
+    assert first.shape == second.shape == (8,) and np.all(w[first] > 0) and np.all(w[second] > 0)
 
 
-def test_filterpy_named_residual_is_unbiased_where_filterpys_is_not(global_state):
+def test_filterpy_named_residual_is_unbiased_where_filterpys_is_not(filterpy_stream):
     from filterpy.monte_carlo import residual_resample as fp_residual
 
     w = np.array([0.42, 0.33, 0.13, 0.07, 0.05])
     n_runs = 4000
-    np.random.seed(11)
-    ours = np.mean([np.bincount(resampling.residual_resample(w), minlength=5) for _ in range(n_runs)], axis=0)
+    filterpy_stream(11)
+    g = np.random.default_rng(11)
+    ours = np.mean([np.bincount(resampling.residual_resample(w, g), minlength=5) for _ in range(n_runs)], axis=0)
     theirs = np.mean([np.bincount(fp_residual(w), minlength=5) for _ in range(n_runs)], axis=0)
     sd = np.sqrt(5 * w * (1 - w) / n_runs)  # a multinomial bound on the count's standard error
     assert np.all(np.abs(ours - 5 * w) < 4 * sd)
