@@ -63,8 +63,9 @@ from typing import NamedTuple, Optional
 import numpy as np
 from scipy.linalg import solve_triangular
 
-from .._linalg import LOG_2PI, NoiseFactor, cholesky, columns_layout, repair_pd, solve_lower_columns
+from .._linalg import COLUMNS_MAX_N, LOG_2PI, NoiseFactor, cholesky, columns_layout, repair_pd, solve_lower_columns
 from .._validation import NumericalError, check_covariance, check_points_protocol, check_symmetric
+from . import _compiled
 from ._rowcheck import CALL_ERRORS, on_single_rows, one_point_error, rows_differ
 from .sigma_points import batched_sigma_points, unit_sigma_points, unit_transpose_apply
 
@@ -715,10 +716,39 @@ class UnscentedStep(_Step):
 
     kind = "ukf"
 
-    def __init__(self, points):
+    def __init__(self, points, *, compiled=False):
         check_points_protocol(points, ("n", "Wm", "Wc", "num_sigmas", "sigma_points"))
         self.points = points
         self._Z = unit_sigma_points(points)
+        self.compiled = bool(compiled)
+
+    def _compiled_for(self, model, n):
+        """The compiled kernels (``filterwnn.kalman._compiled``) when this step runs them on
+        ``model``: ``compiled`` set, ``n <= 8``, no mean or residual functions of the user's
+        (the kernels sum and subtract), else None."""
+        if not self.__dict__.get("compiled") or n > COLUMNS_MAX_N:
+            return None
+        if model.x_mean_fn is not None or model.z_mean_fn is not None:
+            return None
+        if model.residual_x not in (None, np.subtract) or model.residual_z not in (None, np.subtract):
+            return None
+        return _compiled.kernels()
+
+    @cached_property
+    def _weights(self):
+        """``(Wm, Wc, Z)`` as C-ordered float64 arrays, for the compiled kernels."""
+        return tuple(np.ascontiguousarray(a, dtype=float) for a in (self.points.Wm, self.points.Wc, self._Z))
+
+    def _sigmas_compiled(self, kern, x, P):
+        """``(L (n, n, N), rows (N * S, n))`` by the compiled kernel, or None when a member's
+        covariance is not positive definite (the NumPy path then raises its error)."""
+        N, n = x.shape
+        Z = self._weights[2]
+        L = np.empty((n, n, N))
+        sig = np.empty((n, N, Z.shape[0]))
+        if kern[0](np.ascontiguousarray(x, dtype=float), np.ascontiguousarray(P, dtype=float), Z, L, sig) >= 0:
+            return None
+        return L, sig.transpose(1, 2, 0).reshape(N * Z.shape[0], n)  # rows member by member, a view
 
     @cached_property
     def _Zx(self):
@@ -758,6 +788,16 @@ class UnscentedStep(_Step):
         if model.fx is None:
             return KalmanPrediction(x.copy(), P + Q)
         N, n = x.shape
+        kern = self._compiled_for(model, n)
+        if kern is not None:
+            got = self._sigmas_compiled(kern, x, P)
+            if got is not None:
+                Wm, Wc, Z = self._weights
+                F = apply_rows(model.fx, got[1], n, model.vectorized, "fx", (model.dt,), fx_args, model.rows_checked)
+                F = np.ascontiguousarray(F, dtype=float).reshape(N, Z.shape[0], n)
+                xp, Pp = np.empty((N, n)), np.empty((N, n, n))
+                kern[1](F, Wm, Wc, np.ascontiguousarray(Q, dtype=float).reshape(-1, n, n), xp, Pp)
+                return KalmanPrediction(xp, Pp)
         _, sig = self._sigmas(x, P, step, "P")
         S_ = sig.shape[1]
         F = apply_rows(model.fx, sig.reshape(N * S_, n), n, model.vectorized, "fx", (model.dt,), fx_args,
@@ -779,6 +819,11 @@ class UnscentedStep(_Step):
         xp, Pp = prediction
         N, n = xp.shape
         m = model.dim_z
+        kern = self._compiled_for(model, n)
+        if kern is not None:
+            upd = self._update_compiled(kern, model, xp, Pp, z, hx_args, R)
+            if upd is not None:
+                return upd
         L, sig = self._sigmas(xp, Pp, step, "P_prior")
         S_ = sig.shape[1]
         Hs = apply_rows(model.hx, sig.reshape(N * S_, n), m, model.vectorized, "hx", (), hx_args,
@@ -798,7 +843,33 @@ class UnscentedStep(_Step):
         Pxy = np.matmul(L, LinvPxy)
         return finish_update(model, xp, Pp, z, zp, S, Pxy, L, step, LinvPxy=LinvPxy, R=R)
 
+    def _update_compiled(self, kern, model, xp, Pp, z, hx_args, R):
+        """:meth:`_update` by the compiled kernels, or None where a member's ``P^-`` or ``S`` is
+        not positive definite (the NumPy path then raises its error). ``L_prior`` is kept (a
+        view of the factors stored member axis last); ``LinvPxy`` is not."""
+        got = self._sigmas_compiled(kern, xp, Pp)
+        if got is None:
+            return None
+        L, rows = got
+        N, n = xp.shape
+        m = model.dim_z
+        Wm, Wc, Z = self._weights
+        Hs = apply_rows(model.hx, rows, m, model.vectorized, "hx", (), hx_args, model.rows_checked)
+        del rows
+        Hs = np.ascontiguousarray(Hs, dtype=float).reshape(N, Z.shape[0], m)
+        R = noise_matrix(model.R, "R", m) if R is None else R
+        zz = np.ascontiguousarray(_as_z(z, N, m), dtype=float)
+        x, P = np.empty((N, n)), np.empty((N, n, n))
+        zp, S, Pxy, loglik = np.empty((N, m)), np.empty((N, m, m)), np.empty((N, n, m)), np.empty(N)
+        bad = kern[2](Hs, L, Z, np.ascontiguousarray(xp, dtype=float), np.ascontiguousarray(Pp, dtype=float), zz,
+                      np.ascontiguousarray(R, dtype=float).reshape(-1, m, m), Wm, Wc, x, P, zp, S, Pxy, loglik)
+        if bad >= 0:
+            return None
+        return KalmanUpdate(x, P, zp, S, Pxy, loglik, L.transpose(2, 0, 1))
+
     def __repr__(self):
+        if self.__dict__.get("compiled"):
+            return f"UnscentedStep(points={type(self.points).__name__}(n={self.points.n}), compiled=True)"
         return f"UnscentedStep(points={type(self.points).__name__}(n={self.points.n}))"
 
 

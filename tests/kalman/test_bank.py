@@ -15,6 +15,20 @@ TOL = 1e-12  # the issue's: a bank agrees with B independent filters
 B, N_STEPS, DT = 5, 12, 0.1
 
 
+@pytest.fixture(autouse=True, params=["numpy", "compiled"])
+def bank_path(request, monkeypatch):
+    """Every test here runs on both paths of the unscented bank: the NumPy step and the compiled
+    kernels (``compiled=None`` takes them when numba is installed)."""
+    from filterwnn.kalman import _compiled
+
+    if request.param == "compiled":
+        if not _compiled.available():
+            pytest.skip("numba is not installed (pip install '.[fast]')")
+    else:
+        monkeypatch.setattr(_compiled, "available", lambda: False)
+    return request.param
+
+
 from _nonlinear_model import fx, hx  # noqa: E402  (on the last axis: one point or rows)
 
 

@@ -1,0 +1,330 @@
+r"""Compiled kernels of the unscented step for many small filters (numba, optional).
+
+The batched unscented step (:class:`~filterwnn.kalman.batched.UnscentedStep`) is written in
+NumPy: one call per operation over every member. For a bank of many small filters
+(``dim_x <= 8``) each of those calls does little work, and what is left of a step is the
+fixed cost of some 100 NumPy calls and the array passes between them. These kernels do the
+same arithmetic in three compiled loops over blocks of members, the member axis innermost
+(so that the loops vectorize), with the user's ``fx`` and ``hx`` still called once each on
+every sigma point, as rows:
+
+:func:`sigma_kernel`
+    the lower Cholesky factor of every ``P`` and the sigma points ``x + L z_s``;
+:func:`predict_kernel`
+    the weighted mean and covariance of the propagated points, plus ``Q``;
+:func:`update_kernel`
+    the measurement moments, ``S = P_yy + R``, ``P_xy = L (Z^T W_c dY)``, the Cholesky
+    factor of ``S``, the gain by forward substitution, the posterior and the innovation
+    log-likelihood.
+
+They are the equations of the NumPy path, summed in another order: the two agree to
+rounding (the tests hold them, and filterpy's UKF, to 1e-12), not bit for bit. A member
+whose matrix is not positive definite makes a kernel return its index; the caller then
+runs the NumPy path, which raises its usual error (the same message, member and step).
+
+numba is imported when a kernel is first needed (``pip install "filterwnn[fast]"``);
+:func:`available` says whether it can be. The kernels are compiled once per machine and
+cached beside this file (numba's ``cache=True``).
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import math
+
+import numpy as np
+
+__all__ = ["available", "kernels", "BLOCK"]
+
+#: members per block: the block's work arrays (a few ``(n, S, BLOCK)`` arrays) stay in the
+#: first-level cache for ``n <= 8``
+BLOCK = 64
+
+_KERNELS = None
+
+
+def available():
+    """True when numba can be imported (the compiled path can run)."""
+    return importlib.util.find_spec("numba") is not None
+
+
+def kernels():
+    """``(sigma_kernel, predict_kernel, update_kernel)``, compiled on first use."""
+    global _KERNELS
+    if _KERNELS is None:
+        _KERNELS = _build()
+    return _KERNELS
+
+
+def _build():
+    import numba
+
+    jit = numba.njit(cache=True, nogil=True, error_model="numpy")
+    BS = BLOCK
+    HALF_LOG_2PI = 0.5 * math.log(2.0 * math.pi)
+
+    @jit
+    def sigma_kernel(x, P, Z, L, sig):
+        """Factors and sigma points of every member.
+
+        ``x (N, n)``, ``P (N, n, n)`` (only the lower triangle read), unit points ``Z (S, n)``
+        -> ``L (n, n, N)`` (lower factors, member axis last; zero above the diagonal) and
+        ``sig (n, N, S)`` (``sig[:, b, s] = x_b + L_b Z[s]``). Returns -1, or the first member
+        whose pivot was not positive and finite (``P_b`` not positive definite, or NaN).
+        """
+        N, n = x.shape
+        S = Z.shape[0]
+        A = np.empty((n, n, BS))
+        X = np.empty((n, BS))
+        r = np.empty(BS)
+        T = np.empty((S, BS))
+        for b0 in range(0, N, BS):
+            m = min(BS, N - b0)
+            for k in range(m):  # the block's lower triangles and means, member by member
+                for i in range(n):
+                    X[i, k] = x[b0 + k, i]
+                    for j in range(i + 1):
+                        A[i, j, k] = P[b0 + k, i, j]
+            for j in range(n):
+                for k in range(m):
+                    r[k] = A[j, j, k]
+                for p in range(j):
+                    for k in range(m):
+                        r[k] -= L[j, p, b0 + k] * L[j, p, b0 + k]
+                for k in range(m):
+                    v = r[k]
+                    if not (v > 0.0 and v < np.inf):
+                        return b0 + k
+                    L[j, j, b0 + k] = math.sqrt(v)
+                for i in range(j + 1, n):
+                    for k in range(m):
+                        r[k] = A[i, j, k]
+                    for p in range(j):
+                        for k in range(m):
+                            r[k] -= L[i, p, b0 + k] * L[j, p, b0 + k]
+                    for k in range(m):
+                        L[i, j, b0 + k] = r[k] / L[j, j, b0 + k]
+                for i in range(j):
+                    for k in range(m):
+                        L[i, j, b0 + k] = 0.0
+            for i in range(n):
+                for s in range(S):
+                    for k in range(m):
+                        T[s, k] = X[i, k]
+                    for j in range(i + 1):
+                        c = Z[s, j]
+                        if c != 0.0:  # a zero term adds nothing: Merwe's points have one per row
+                            for k in range(m):
+                                T[s, k] += L[i, j, b0 + k] * c
+                for k in range(m):
+                    for s in range(S):
+                        sig[i, b0 + k, s] = T[s, k]
+        return -1
+
+    @jit
+    def predict_kernel(F, Wm, Wc, Q, xp, Pp):
+        """Weighted moments of the propagated points ``F (N, S, n)`` -> ``xp (N, n)`` and
+        ``Pp (N, n, n) = sum_s Wc_s (F_s - xp)(F_s - xp)^T + Q`` (``Q (1 or N, n, n)``),
+        exactly symmetric (the lower triangle computed, the upper its mirror)."""
+        N, S, n = F.shape
+        D = np.empty((n, S, BS))
+        mu = np.empty((n, BS))
+        C = np.empty((n, n, BS))
+        per = Q.shape[0] > 1
+        for b0 in range(0, N, BS):
+            m = min(BS, N - b0)
+            for k in range(m):
+                for s in range(S):
+                    for i in range(n):
+                        D[i, s, k] = F[b0 + k, s, i]
+            for i in range(n):
+                for k in range(m):
+                    mu[i, k] = 0.0
+                for s in range(S):
+                    w = Wm[s]
+                    for k in range(m):
+                        mu[i, k] += w * D[i, s, k]
+                for s in range(S):
+                    for k in range(m):
+                        D[i, s, k] -= mu[i, k]
+            for i in range(n):
+                for j in range(i + 1):
+                    for k in range(m):
+                        C[i, j, k] = 0.0
+                    for s in range(S):
+                        w = Wc[s]
+                        for k in range(m):
+                            C[i, j, k] += w * D[i, s, k] * D[j, s, k]
+            for k in range(m):
+                q = b0 + k if per else 0
+                for i in range(n):
+                    xp[b0 + k, i] = mu[i, k]
+                    for j in range(i + 1):
+                        v = C[i, j, k] + 0.5 * (Q[q, i, j] + Q[q, j, i])
+                        Pp[b0 + k, i, j] = v
+                        Pp[b0 + k, j, i] = v
+
+    @jit
+    def update_kernel(H, L, Z, xp, Pp, z, R, Wm, Wc, x, P, zp, Sz, Pxy, loglik):
+        """The unscented update of every member from its measured points ``H (N, S, m)``.
+
+        ``L (n, n, N)``: the factors of ``Pp`` the points were drawn with (``sigma_kernel``);
+        ``z (1 or N, m)``; ``R (1 or N, m, m)``. Writes ``x (N, n)``, ``P (N, n, n)``
+        (``Pp - G^T G``, ``G = L_S^{-1} P_xy^T``, exactly symmetric), ``zp (N, m)``,
+        ``Sz (N, m, m)`` (with ``R``), ``Pxy (N, n, m)`` and ``loglik (N,)``. Returns -1, or
+        the first member whose ``S`` is not positive definite.
+        """
+        N, S, m = H.shape
+        n = xp.shape[1]
+        D = np.empty((m, S, BS))
+        E = np.empty((m, S, BS))
+        Y = np.empty((m, BS))
+        T = np.empty((n, m, BS))
+        C = np.empty((n, m, BS))
+        Sl = np.empty((m, m, BS))
+        Ls = np.empty((m, m, BS))
+        G = np.empty((m, n, BS))
+        e = np.empty((m, BS))
+        Xo = np.empty((n, BS))
+        Po = np.empty((n, n, BS))
+        r = np.empty(BS)
+        ld = np.empty(BS)
+        per_z = z.shape[0] > 1
+        per_r = R.shape[0] > 1
+        for b0 in range(0, N, BS):
+            mb = min(BS, N - b0)
+            for k in range(mb):  # the block's measured points and measurements, member by member
+                for s in range(S):
+                    for l in range(m):
+                        D[l, s, k] = H[b0 + k, s, l]
+                for l in range(m):
+                    Y[l, k] = z[b0 + k if per_z else 0, l]
+            # the predicted measurement, the deviations D and their weighted copies E
+            for l in range(m):
+                for k in range(mb):
+                    r[k] = 0.0
+                for s in range(S):
+                    w = Wm[s]
+                    for k in range(mb):
+                        r[k] += w * D[l, s, k]
+                for k in range(mb):
+                    Y[l, k] -= r[k]
+                    zp[b0 + k, l] = r[k]
+                for s in range(S):
+                    w = Wc[s]
+                    for k in range(mb):
+                        d = D[l, s, k] - r[k]
+                        D[l, s, k] = d
+                        E[l, s, k] = w * d
+            # S = D^T E + R (the lower triangle) and its factor
+            for l1 in range(m):
+                for l2 in range(l1 + 1):
+                    for k in range(mb):
+                        r[k] = 0.0
+                    for s in range(S):
+                        for k in range(mb):
+                            r[k] += D[l1, s, k] * E[l2, s, k]
+                    for k in range(mb):
+                        Sl[l1, l2, k] = r[k]
+            for k in range(mb):
+                rb = b0 + k if per_r else 0
+                for l1 in range(m):
+                    for l2 in range(l1 + 1):
+                        v = Sl[l1, l2, k] + 0.5 * (R[rb, l1, l2] + R[rb, l2, l1])
+                        Sl[l1, l2, k] = v
+                        Sz[b0 + k, l1, l2] = v
+                        Sz[b0 + k, l2, l1] = v
+                ld[k] = 0.0
+            for j in range(m):
+                for k in range(mb):
+                    r[k] = Sl[j, j, k]
+                for p in range(j):
+                    for k in range(mb):
+                        r[k] -= Ls[j, p, k] * Ls[j, p, k]
+                for k in range(mb):
+                    v = r[k]
+                    if not (v > 0.0 and v < np.inf):
+                        return b0 + k
+                    Ls[j, j, k] = math.sqrt(v)
+                    ld[k] += math.log(Ls[j, j, k])
+                for i in range(j + 1, m):
+                    for k in range(mb):
+                        r[k] = Sl[i, j, k]
+                    for p in range(j):
+                        for k in range(mb):
+                            r[k] -= Ls[i, p, k] * Ls[j, p, k]
+                    for k in range(mb):
+                        Ls[i, j, k] = r[k] / Ls[j, j, k]
+            # P_xy = L T with T = Z^T E (the points' deviations are L Z^T)
+            for j in range(n):
+                for l in range(m):
+                    for k in range(mb):
+                        T[j, l, k] = 0.0
+                    for s in range(S):
+                        c = Z[s, j]
+                        if c != 0.0:
+                            for k in range(mb):
+                                T[j, l, k] += c * E[l, s, k]
+            for i in range(n):
+                for l in range(m):
+                    for k in range(mb):
+                        r[k] = 0.0
+                    for j in range(i + 1):
+                        for k in range(mb):
+                            r[k] += L[i, j, b0 + k] * T[j, l, k]
+                    for k in range(mb):
+                        C[i, l, k] = r[k]
+            # G = L_S^{-1} P_xy^T and e = L_S^{-1} (z - zp), row by row
+            for l in range(m):
+                for k in range(mb):
+                    r[k] = Y[l, k]
+                for p in range(l):
+                    for k in range(mb):
+                        r[k] -= Ls[l, p, k] * e[p, k]
+                for k in range(mb):
+                    e[l, k] = r[k] / Ls[l, l, k]
+                for i in range(n):
+                    for k in range(mb):
+                        r[k] = C[i, l, k]
+                    for p in range(l):
+                        for k in range(mb):
+                            r[k] -= Ls[l, p, k] * G[p, i, k]
+                    for k in range(mb):
+                        G[l, i, k] = r[k] / Ls[l, l, k]
+            for k in range(mb):
+                r[k] = 0.0
+            for l in range(m):
+                for k in range(mb):
+                    r[k] += e[l, k] * e[l, k]
+            for k in range(mb):
+                loglik[b0 + k] = -0.5 * r[k] - ld[k] - m * HALF_LOG_2PI
+            # the posterior: x^- + G^T e and P^- - G^T G (the lower triangle)
+            for i in range(n):
+                for k in range(mb):
+                    r[k] = 0.0
+                for l in range(m):
+                    for k in range(mb):
+                        r[k] += G[l, i, k] * e[l, k]
+                for k in range(mb):
+                    Xo[i, k] = r[k]
+                for j in range(i + 1):
+                    for k in range(mb):
+                        r[k] = 0.0
+                    for l in range(m):
+                        for k in range(mb):
+                            r[k] += G[l, i, k] * G[l, j, k]
+                    for k in range(mb):
+                        Po[i, j, k] = r[k]
+            for k in range(mb):  # written out member by member
+                b = b0 + k
+                for i in range(n):
+                    x[b, i] = xp[b, i] + Xo[i, k]
+                    for l in range(m):
+                        Pxy[b, i, l] = C[i, l, k]
+                    for j in range(i + 1):
+                        v = Pp[b, i, j] - Po[i, j, k]
+                        P[b, i, j] = v
+                        P[b, j, i] = v
+        return -1
+
+    return sigma_kernel, predict_kernel, update_kernel

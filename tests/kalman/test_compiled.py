@@ -1,0 +1,175 @@
+"""The unscented bank's compiled kernels (numba) against its NumPy step and filterpy's UKF.
+
+The kernels sum in another order than the NumPy step, so the two agree to rounding (1e-12,
+the bank's tolerance against filterpy), not bit for bit; what must hold exactly is that a
+member's numbers do not depend on where it sits in the bank (the kernels work in blocks).
+"""
+
+import numpy as np
+import pytest
+from filterpy.kalman import JulierSigmaPoints, MerweScaledSigmaPoints
+from filterpy.kalman import UnscentedKalmanFilter as FilterpyUKF
+
+from filterwnn import NumericalError
+from filterwnn.kalman import SphericalSimplexSigmaPoints, UnscentedKalmanFilterBank
+from filterwnn.kalman import _compiled
+from filterwnn.kalman.batched import UnscentedStep
+
+pytestmark = pytest.mark.skipif(not _compiled.available(), reason="numba is not installed (pip install '.[fast]')")
+
+TOL = 1e-12
+DT = 0.1
+
+
+def _fx(X, dt):
+    """A nonlinear transition of any width n >= 2 on the last axis (one point or rows)."""
+    Y = 0.97 * X
+    Y[..., 0] = X[..., 0] + dt * X[..., 1] * np.cos(X[..., -1])
+    Y[..., 1] = X[..., 1] + dt * np.sin(X[..., 0])
+    return Y
+
+
+def _hx(m):
+    def hx(X):
+        cols = [np.sqrt(1.0 + X[..., 0] ** 2 + X[..., -1] ** 2)] + [np.arctan(X[..., j]) for j in range(1, m)]
+        return np.stack(cols, axis=-1)
+    return hx
+
+
+def _problem(Bn, n, m, n_steps, seed=0):
+    g = np.random.default_rng(seed)
+    x0 = g.normal(0.0, 0.5, (Bn, n))
+    A = g.normal(0.0, 0.3, (Bn, n, n))
+    P0 = np.matmul(A, np.swapaxes(A, 1, 2)) + 0.2 * np.eye(n)
+    Q = np.stack([np.eye(n) * q for q in np.linspace(1e-3, 5e-3, Bn)])
+    R = np.stack([np.eye(m) * r + 0.01 * np.ones((m, m)) for r in np.linspace(0.02, 0.1, Bn)])
+    zs = g.normal(0.0, 0.3, (n_steps, Bn, m)) + 1.0
+    if Bn > 3:
+        zs[1, 2] = np.nan  # one member misses a step
+    return x0, P0, Q, R, zs
+
+
+def _run(compiled, points, prob, m, shared=False, **kw):
+    x0, P0, Q, R, zs = prob
+    Bn, n = x0.shape
+    bank = UnscentedKalmanFilterBank(Bn, n, m, DT, _hx(m), _fx, points, compiled=compiled, **kw)
+    bank.x, bank.P = x0, P0
+    bank.Q, bank.R = (Q[0], R[0]) if shared else (Q, R)
+    out = []
+    for z in zs:
+        bank.predict()
+        bank.update(z[0] if shared else z)
+        out.append((bank.x.copy(), bank.P.copy(), bank.log_likelihood.copy()))
+    return bank, out
+
+
+POINTS = {
+    "merwe": lambda n: MerweScaledSigmaPoints(n, alpha=0.5, beta=2.0, kappa=3.0 - n),
+    "julier": lambda n: JulierSigmaPoints(n, kappa=1.0),
+    "simplex": lambda n: SphericalSimplexSigmaPoints(n, beta=2.0),
+}
+
+
+@pytest.mark.parametrize("kind", list(POINTS))
+@pytest.mark.parametrize("n, m, Bn", [(2, 1, 7), (3, 2, 64), (6, 3, 130), (8, 2, 300)])
+def test_the_compiled_bank_equals_the_numpy_bank(kind, n, m, Bn):
+    """x, P and the log-likelihoods after every step of 6, per-member Q and R, one member missing
+    a step; banks of one partial block, one full block, and several with a remainder."""
+    prob = _problem(Bn, n, m, 6)
+    bank, got = _run(True, POINTS[kind](n), prob, m)
+    assert bank._step.compiled
+    _, ref = _run(False, POINTS[kind](n), prob, m)
+    for (x, P, ll), (xr, Pr, llr) in zip(got, ref):
+        np.testing.assert_allclose(x, xr, rtol=0, atol=TOL)
+        np.testing.assert_allclose(P, Pr, rtol=0, atol=TOL)
+        np.testing.assert_allclose(ll, llr, rtol=0, atol=TOL)
+        assert np.array_equal(P, np.swapaxes(P, 1, 2))  # exactly symmetric
+    assert np.array_equal(got[1][2][2], 0.0)  # the member that missed step 2 has no likelihood there
+
+
+def test_the_compiled_bank_with_a_shared_measurement_and_noise_equals_filterpys_ukf():
+    prob = _problem(70, 4, 2, 5, seed=4)
+    pts = POINTS["merwe"](4)
+    _, got = _run(True, pts, prob, 2, shared=True)
+    x0, P0, Q, R, zs = prob
+    for i in (0, 33, 64, 69):  # both blocks and the remainder
+        f = FilterpyUKF(4, 2, DT, _hx(2), _fx, pts)
+        f.x, f.P, f.Q, f.R = x0[i].copy(), P0[i].copy(), Q[0], R[0]
+        for k, z in enumerate(zs):
+            f.predict()
+            f.update(z[0])
+            np.testing.assert_allclose(got[k][0][i], f.x, rtol=0, atol=TOL)
+            np.testing.assert_allclose(got[k][1][i], f.P, rtol=0, atol=TOL)
+            assert abs(got[k][2][i] - f.log_likelihood) <= TOL
+
+
+def test_a_members_numbers_do_not_depend_on_its_place_in_the_bank():
+    """Blocks of 64, a vectorized body and a remainder: the same member gives the same bits
+    wherever it sits (the bank reversed, and the member alone)."""
+    prob = _problem(150, 6, 3, 4, seed=2)
+    pts = POINTS["simplex"](6)
+    _, fwd = _run(True, pts, prob, 3)
+    rev = tuple(a[::-1].copy() for a in prob[:4]) + (prob[4][:, ::-1].copy(),)
+    _, bwd = _run(True, pts, rev, 3)
+    one = tuple(a[77:78] for a in prob[:4]) + (prob[4][:, 77:78],)
+    _, alone = _run(True, pts, one, 3)
+    for (x, P, ll), (xb, Pb, llb), (xa, Pa, lla) in zip(fwd, bwd, alone):
+        assert np.array_equal(x, xb[::-1]) and np.array_equal(P, Pb[::-1]) and np.array_equal(ll, llb[::-1])
+        assert np.array_equal(x[77], xa[0]) and np.array_equal(P[77], Pa[0]) and ll[77] == lla[0]
+
+
+def test_the_compiled_path_is_taken_only_where_it_computes_the_same_thing(monkeypatch):
+    """Mean or residual functions of the user's, or dim_x > 8, keep the NumPy step (the
+    kernels are not called); without numba, compiled=None is the NumPy step and compiled=True
+    says how to get numba."""
+    calls = []
+    real = _compiled.kernels()
+    monkeypatch.setattr(_compiled, "kernels", lambda: calls.append(1) or real)
+    prob = _problem(20, 3, 2, 2)
+    _run(True, POINTS["merwe"](3), prob, 2)
+    assert calls
+    calls.clear()
+    _run(True, POINTS["merwe"](3), prob, 2, residual_z=np.subtract)
+    assert calls  # filterpy's default residual is plain subtraction: still compiled
+    calls.clear()
+    _run(True, POINTS["merwe"](3), prob, 2, residual_z=lambda a, b: a - b)
+    _run(True, POINTS["merwe"](3), prob, 2, x_mean_fn=lambda s, w: w @ s, vectorized=False)
+    _run(True, POINTS["merwe"](9), _problem(20, 9, 2, 2), 2)
+    assert not calls
+    monkeypatch.setattr(_compiled, "available", lambda: False)
+    bank = UnscentedKalmanFilterBank(4, 3, 2, DT, _hx(2), _fx, POINTS["merwe"](3))
+    assert not bank._step.compiled and "compiled" not in repr(bank._step)
+    with pytest.raises(ImportError, match=r'compiled=True needs numba: pip install "filterwnn\[fast\]"'):
+        UnscentedKalmanFilterBank(4, 3, 2, DT, _hx(2), _fx, POINTS["merwe"](3), compiled=True)
+
+
+def test_compiled_errors_are_the_numpy_steps_errors():
+    """A member's P not positive definite at predict, or S at update: the kernels hand over to
+    the NumPy step, which raises its own error naming the member and the step."""
+    prob = _problem(100, 3, 2, 2)
+    msgs = []
+    for compiled in (True, False):
+        bank = UnscentedKalmanFilterBank(100, 3, 2, DT, _hx(2), _fx, POINTS["merwe"](3), compiled=compiled)
+        bank.x, bank.P, bank.Q, bank.R = prob[0], prob[1], prob[2], prob[3]
+        bank._P[70] = -np.eye(3)  # corrupted past the checked setter
+        with pytest.raises(NumericalError) as exc:
+            bank.predict()
+        msgs.append(str(exc.value))
+        nan_hx = lambda X: np.where(np.abs(X[:, :1]) > 50.0, np.nan, _hx(2)(X))  # noqa: E731
+        bank = UnscentedKalmanFilterBank(100, 3, 2, DT, nan_hx, None, POINTS["merwe"](3), compiled=compiled)
+        x0 = prob[0].copy()
+        x0[41] = 100.0
+        bank.x, bank.P = x0, prob[1]
+        bank.predict()
+        with pytest.raises(NumericalError) as exc:
+            bank.update(prob[4][0])
+        msgs.append(str(exc.value))
+    assert msgs[:2] == msgs[2:]
+    assert "member 70" in msgs[0] and "particle 41" in msgs[1]
+
+
+def test_a_step_pickled_before_the_compiled_option_loads_as_the_numpy_step():
+    step = UnscentedStep(POINTS["merwe"](3))
+    del step.__dict__["compiled"]
+    assert step._compiled_for(None, 3) is None and "compiled" not in repr(step)
+    assert "compiled=True" in repr(UnscentedStep(POINTS["merwe"](3), compiled=True))
