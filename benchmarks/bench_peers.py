@@ -6,7 +6,9 @@ BLAS thread, every ratio within this run):
 1. **a bank of B independent 6-state UKFs, one step each** (B = 1,000 and 10,000), per
    filter-step: :class:`~filterwnn.kalman.bank.UnscentedKalmanFilterBank`; a Python loop
    over filterpy ``UnscentedKalmanFilter`` objects (timed on 200 of them, per filter); the
-   NumPy floor (the same step written as stacked Cholesky + matmul, no checks); dynamax's
+   NumPy floor (the same step written as stacked Cholesky + matmul, no checks); with numba
+   installed the bank runs its compiled kernels and the same bank on its NumPy step
+   (``compiled=False``) is timed beside it; dynamax's
    ``jit(vmap(unscented_kalman_filter))`` when installed (compile time reported apart).
 2. **one 6-state UKF step**: filterwnn's ``UnscentedKalmanFilter(vectorized=True)``,
    filterpy's, the floor (the same arithmetic for B = 1), dynamax ``jit`` and Stone Soup
@@ -32,6 +34,7 @@ path of ``filterwnn._linalg.columns_layout`` that the timings run), max abs diff
 from __future__ import annotations
 
 import argparse
+import importlib.metadata
 import importlib.util
 import os
 import platform
@@ -158,8 +161,8 @@ def _filterpy_six(prob, x):
     return f
 
 
-def _bank(prob, x):
-    bank = UnscentedKalmanFilterBank(x.shape[0], 6, 3, DT6, six_hx, six_fx, _merwe6())
+def _bank(prob, x, compiled=None):
+    bank = UnscentedKalmanFilterBank(x.shape[0], 6, 3, DT6, six_hx, six_fx, _merwe6(), compiled=compiled)
     bank.x, bank.P, bank.Q, bank.R = x, prob["P0"], prob["Q"], prob["R"]
     return bank
 
@@ -171,10 +174,15 @@ def row_bank(B, repeats):
     P0 = np.broadcast_to(prob["P0"], (B, 6, 6)).copy()
 
     bank = _bank(prob, x)
+    numpy_bank = _bank(prob, x, compiled=False)
 
     def ours():  # one step of every member (the bank keeps stepping: the same work each time)
         bank.predict()
         bank.update(z)
+
+    def ours_numpy():  # the same bank on the NumPy step (what a user without numba runs)
+        numpy_bank.predict()
+        numpy_bank.update(z)
 
     def loop():
         for i in range(LOOP_SAMPLE):
@@ -185,17 +193,21 @@ def row_bank(B, repeats):
     def floor():
         numpy_ukf_step(x, P0, prob["Q"], prob["R"], z, pts.Wm, pts.Wc, c)
 
-    out = {"filterwnn bank": Timed(ours, B), "filterpy loop": Timed(loop, LOOP_SAMPLE), "NumPy floor": Timed(floor, B)}
+    out = {"filterwnn bank": Timed(ours, B)}
+    if bank._step.compiled:
+        out["filterwnn bank, NumPy step"] = Timed(ours_numpy, B)
+    out.update({"filterpy loop": Timed(loop, LOOP_SAMPLE), "NumPy floor": Timed(floor, B)})
     out = _measure({**out, **_dynamax_bank(prob, x, z)}, repeats)
-    bank = _bank(prob, x)  # a fresh bank of all B (the path timed): 20 members against filterpy after one step
-    bank.predict()
-    bank.update(z)
     err = 0.0
-    for i in np.linspace(0, B - 1, 20).astype(int):
-        f = _filterpy_six(prob, x[i])
-        f.predict()
-        f.update(z[i])
-        err = max(err, float(np.abs(f.x - bank.x[i]).max()), float(np.abs(f.P - bank.P[i]).max()))
+    for compiled in (None, False):  # fresh banks of all B (the paths timed): 20 members against filterpy after one step
+        bank = _bank(prob, x, compiled)
+        bank.predict()
+        bank.update(z)
+        for i in np.linspace(0, B - 1, 20).astype(int):
+            f = _filterpy_six(prob, x[i])
+            f.predict()
+            f.update(z[i])
+            err = max(err, float(np.abs(f.x - bank.x[i]).max()), float(np.abs(f.P - bank.P[i]).max()))
     return out, err
 
 
@@ -485,8 +497,12 @@ def main(argv=None):
     PROTOCOL = args.protocol
     reps = 3 if args.quick else args.repeats
     sizes = [1000] if args.quick else [1000, 10000]
+    from filterwnn.kalman import _compiled
+
+    step = (f"compiled (numba {importlib.metadata.version('numba')})" if _compiled.available()
+            else "the NumPy step (numba not installed)")
     print(f"bench_peers: median of {reps} repeats, protocol {args.protocol}; 1 BLAS thread; python {platform.python_version()}, "
-          f"numpy {np.__version__}, {platform.machine()}")
+          f"numpy {np.__version__}, {platform.machine()}; the bank: {step}")
     print("| work | filterwnn | the alternatives | the floor | filterwnn / floor |")
     print("|---|---|---|---|---|")
     with threadpool_limits(1):
@@ -500,7 +516,7 @@ def main(argv=None):
         _line("one UKF step, 160 network weights", row_wnn(reps), "filterwnn UKF", "floor (1 Cholesky + rank-1)", 3.0)
         for N in sizes:
             _line(f"bootstrap PF step, N = {N:,}", row_bootstrap(N, reps), "filterwnn bootstrap", "NumPy loop", 1.5)
-    print(f"bank (B = {', '.join(f'{B:,}' for B in sizes)}; 20 members each) vs filterpy UKFs after one step: "
+    print(f"bank (B = {', '.join(f'{B:,}' for B in sizes)}; 20 members each, both steps) vs filterpy UKFs after one step: "
           f"max abs difference {max(errs):.1e}")
     print("targets (issue 25): the bank within 2x of the floor and no slower than dynamax's vmap; one 6-state step "
           "within 5x of dynamax (its ratio after the floor's; at B = 1 the floor is NumPy's call overhead); the 160-weight step within 3x "

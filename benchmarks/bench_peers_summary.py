@@ -44,7 +44,7 @@ def summarize(found):
         for cells in rows:
             work, ours, alts, floor, ratios = cells
             got = table.setdefault(work, {"floor": [], "peer": [], "hand": [], "ours/hand": [], "met": [0, 0],
-                                          "peer_met": [0, 0]})
+                                          "peer_met": [0, 0], "numpy/peer": [], "compiled/numpy": []})
             rs = re.findall(r"([\d.]+)x \(target <= ([\d.]+)x: (yes|no)\)", ratios)
             got["floor"].append(float(rs[0][0]))
             got["met"][0] += rs[0][2] == "yes"
@@ -53,6 +53,13 @@ def summarize(found):
                 got["peer"].append(float(rs[1][0]))
                 got["peer_met"][0] += rs[1][2] == "yes"
                 got["peer_met"][1] += 1
+            nb = re.search(r"filterwnn bank, NumPy step ([\d,.]+) us", alts)
+            dx = re.search(r"dynamax jit\(vmap\) ([\d,.]+) us", alts)
+            if nb:  # the bank's NumPy step beside its compiled one
+                numpy_step = float(nb.group(1).replace(",", ""))
+                got["compiled/numpy"].append(_num(ours) / numpy_step)
+                if dx:
+                    got["numpy/peer"].append(numpy_step / float(dx.group(1).replace(",", "")))
             h = re.search(r"NumPy by hand ([\d,.]+) us", alts)
             if h:
                 hand = float(h.group(1).replace(",", ""))
@@ -77,6 +84,10 @@ def main(argv=None):
         if got["peer"]:
             line += (f"; / peer {min(got['peer']):.2f}-{max(got['peer']):.2f}x "
                      f"(target met {got['peer_met'][0]} of {got['peer_met'][1]})")
+        if got["compiled/numpy"]:
+            line += f"; compiled / NumPy step {min(got['compiled/numpy']):.2f}-{max(got['compiled/numpy']):.2f}x"
+        if got["numpy/peer"]:
+            line += f"; NumPy step / peer {min(got['numpy/peer']):.2f}-{max(got['numpy/peer']):.2f}x"
         if got["hand"]:
             line += (f"; NumPy by hand / floor {min(got['hand']):.2f}-{max(got['hand']):.2f}x, "
                      f"ours / by hand {min(got['ours/hand']):.2f}-{max(got['ours/hand']):.2f}x")
