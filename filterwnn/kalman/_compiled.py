@@ -23,7 +23,7 @@ whose matrix is not positive definite makes a kernel return its index; the calle
 runs the NumPy path, which raises its usual error (the same message, member and step).
 
 numba is imported when a kernel is first needed (``pip install "filterwnn[fast]"``);
-:func:`available` says whether it can be. The kernels are compiled once per machine and
+:func:`available` says whether it can be (not with ``NUMBA_DISABLE_JIT=1``). The kernels are compiled once per machine and
 cached beside this file (numba's ``cache=True``).
 """
 
@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import importlib.util
 import math
+import os
 
 import numpy as np
 
@@ -44,7 +45,13 @@ _KERNELS = None
 
 
 def available():
-    """True when numba can be imported (the compiled path can run)."""
+    """True when numba can be imported and compiles (the compiled path can run).
+
+    With ``NUMBA_DISABLE_JIT`` set (numba's switch for debugging) the kernels would run as
+    plain Python, far slower than the NumPy step: False then.
+    """
+    if os.environ.get("NUMBA_DISABLE_JIT", "0").strip() not in ("", "0"):
+        return False
     return importlib.util.find_spec("numba") is not None
 
 

@@ -173,3 +173,13 @@ def test_a_step_pickled_before_the_compiled_option_loads_as_the_numpy_step():
     del step.__dict__["compiled"]
     assert step._compiled_for(None, 3) is None and "compiled" not in repr(step)
     assert "compiled=True" in repr(UnscentedStep(POINTS["merwe"](3), compiled=True))
+
+
+def test_numba_switched_off_for_debugging_means_the_numpy_step(monkeypatch):
+    """NUMBA_DISABLE_JIT=1 would run the kernels as plain Python (minutes for a bank): the
+    default then takes the NumPy step."""
+    monkeypatch.setenv("NUMBA_DISABLE_JIT", "1")
+    assert not _compiled.available()
+    assert not UnscentedKalmanFilterBank(4, 3, 2, DT, _hx(2), _fx, POINTS["merwe"](3))._step.compiled
+    monkeypatch.setenv("NUMBA_DISABLE_JIT", "0")
+    assert _compiled.available()
