@@ -70,6 +70,58 @@ def _build():
     BS = BLOCK
     HALF_LOG_2PI = 0.5 * math.log(2.0 * math.pi)
 
+    @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+    def factor_block(A, L, b0, mb):
+        """Lower Cholesky factors of a block stored member axis last: ``A (n, n, >= mb)`` (the
+        lower triangle read) -> ``L[:, :, b0:b0 + mb]`` (zero above the diagonal). Returns -1,
+        or the block's first member whose pivot was not positive and finite."""
+        n = A.shape[0]
+        r = np.empty(mb)
+        for j in range(n):
+            for k in range(mb):
+                r[k] = A[j, j, k]
+            for p in range(j):
+                for k in range(mb):
+                    r[k] -= L[j, p, b0 + k] * L[j, p, b0 + k]
+            for k in range(mb):
+                v = r[k]
+                if not (v > 0.0 and v < np.inf):
+                    return k
+                L[j, j, b0 + k] = math.sqrt(v)
+            for i in range(j + 1, n):
+                for k in range(mb):
+                    r[k] = A[i, j, k]
+                for p in range(j):
+                    for k in range(mb):
+                        r[k] -= L[i, p, b0 + k] * L[j, p, b0 + k]
+                for k in range(mb):
+                    L[i, j, b0 + k] = r[k] / L[j, j, b0 + k]
+            for i in range(j):
+                for k in range(mb):
+                    L[i, j, b0 + k] = 0.0
+        return -1
+
+    @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+    def centre_block(F, b0, mb, i, W, D, mu, mean):
+        """Component ``i`` of the block's points ``F[b0:b0 + mb, :, i]`` -> ``D[i] (S, >= mb)``
+        less its weighted mean (``W``; summed in the scratch ``mu``), which goes to
+        ``mean[b0:b0 + mb, i]``."""
+        S = F.shape[1]
+        for k in range(mb):
+            for s in range(S):
+                D[i, s, k] = F[b0 + k, s, i]
+        for k in range(mb):
+            mu[k] = 0.0
+        for s in range(S):
+            w = W[s]
+            for k in range(mb):
+                mu[k] += w * D[i, s, k]
+        for k in range(mb):
+            mean[b0 + k, i] = mu[k]
+        for s in range(S):
+            for k in range(mb):
+                D[i, s, k] -= mu[k]
+
     @jit
     def sigma_kernel(x, P, Z, L, sig):
         """Factors and sigma points of every member.
@@ -83,7 +135,6 @@ def _build():
         S = Z.shape[0]
         A = np.empty((n, n, BS))
         X = np.empty((n, BS))
-        r = np.empty(BS)
         T = np.empty((S, BS))
         for b0 in range(0, N, BS):
             m = min(BS, N - b0)
@@ -92,28 +143,9 @@ def _build():
                     X[i, k] = x[b0 + k, i]
                     for j in range(i + 1):
                         A[i, j, k] = P[b0 + k, i, j]
-            for j in range(n):
-                for k in range(m):
-                    r[k] = A[j, j, k]
-                for p in range(j):
-                    for k in range(m):
-                        r[k] -= L[j, p, b0 + k] * L[j, p, b0 + k]
-                for k in range(m):
-                    v = r[k]
-                    if not (v > 0.0 and v < np.inf):
-                        return b0 + k
-                    L[j, j, b0 + k] = math.sqrt(v)
-                for i in range(j + 1, n):
-                    for k in range(m):
-                        r[k] = A[i, j, k]
-                    for p in range(j):
-                        for k in range(m):
-                            r[k] -= L[i, p, b0 + k] * L[j, p, b0 + k]
-                    for k in range(m):
-                        L[i, j, b0 + k] = r[k] / L[j, j, b0 + k]
-                for i in range(j):
-                    for k in range(m):
-                        L[i, j, b0 + k] = 0.0
+            bad = factor_block(A, L, b0, m)
+            if bad >= 0:
+                return b0 + bad
             for i in range(n):
                 for s in range(S):
                     for k in range(m):
@@ -135,39 +167,23 @@ def _build():
         exactly symmetric (the lower triangle computed, the upper its mirror)."""
         N, S, n = F.shape
         D = np.empty((n, S, BS))
-        mu = np.empty((n, BS))
-        C = np.empty((n, n, BS))
+        acc = np.empty(BS)
         per = Q.shape[0] > 1
         for b0 in range(0, N, BS):
             m = min(BS, N - b0)
-            for k in range(m):
-                for s in range(S):
-                    for i in range(n):
-                        D[i, s, k] = F[b0 + k, s, i]
             for i in range(n):
-                for k in range(m):
-                    mu[i, k] = 0.0
-                for s in range(S):
-                    w = Wm[s]
-                    for k in range(m):
-                        mu[i, k] += w * D[i, s, k]
-                for s in range(S):
-                    for k in range(m):
-                        D[i, s, k] -= mu[i, k]
+                centre_block(F, b0, m, i, Wm, D, acc, xp)
             for i in range(n):
                 for j in range(i + 1):
                     for k in range(m):
-                        C[i, j, k] = 0.0
+                        acc[k] = 0.0
                     for s in range(S):
                         w = Wc[s]
                         for k in range(m):
-                            C[i, j, k] += w * D[i, s, k] * D[j, s, k]
-            for k in range(m):
-                q = b0 + k if per else 0
-                for i in range(n):
-                    xp[b0 + k, i] = mu[i, k]
-                    for j in range(i + 1):
-                        v = C[i, j, k] + 0.5 * (Q[q, i, j] + Q[q, j, i])
+                            acc[k] += w * D[i, s, k] * D[j, s, k]
+                    for k in range(m):
+                        q = b0 + k if per else 0
+                        v = acc[k] + 0.5 * (Q[q, i, j] + Q[q, j, i])
                         Pp[b0 + k, i, j] = v
                         Pp[b0 + k, j, i] = v
 
@@ -185,45 +201,26 @@ def _build():
         n = xp.shape[1]
         D = np.empty((m, S, BS))
         E = np.empty((m, S, BS))
-        Y = np.empty((m, BS))
         T = np.empty((n, m, BS))
         C = np.empty((n, m, BS))
         Sl = np.empty((m, m, BS))
         Ls = np.empty((m, m, BS))
         G = np.empty((m, n, BS))
         e = np.empty((m, BS))
-        Xo = np.empty((n, BS))
-        Po = np.empty((n, n, BS))
         r = np.empty(BS)
         ld = np.empty(BS)
         per_z = z.shape[0] > 1
         per_r = R.shape[0] > 1
         for b0 in range(0, N, BS):
             mb = min(BS, N - b0)
-            for k in range(mb):  # the block's measured points and measurements, member by member
-                for s in range(S):
-                    for l in range(m):
-                        D[l, s, k] = H[b0 + k, s, l]
-                for l in range(m):
-                    Y[l, k] = z[b0 + k if per_z else 0, l]
             # the predicted measurement, the deviations D and their weighted copies E
             for l in range(m):
-                for k in range(mb):
-                    r[k] = 0.0
-                for s in range(S):
-                    w = Wm[s]
-                    for k in range(mb):
-                        r[k] += w * D[l, s, k]
-                for k in range(mb):
-                    Y[l, k] -= r[k]
-                    zp[b0 + k, l] = r[k]
+                centre_block(H, b0, mb, l, Wm, D, r, zp)
                 for s in range(S):
                     w = Wc[s]
                     for k in range(mb):
-                        d = D[l, s, k] - r[k]
-                        D[l, s, k] = d
-                        E[l, s, k] = w * d
-            # S = D^T E + R (the lower triangle) and its factor
+                        E[l, s, k] = w * D[l, s, k]
+            # S = D^T E + R (the lower triangle, mirrored) and its factor
             for l1 in range(m):
                 for l2 in range(l1 + 1):
                     for k in range(mb):
@@ -232,36 +229,19 @@ def _build():
                         for k in range(mb):
                             r[k] += D[l1, s, k] * E[l2, s, k]
                     for k in range(mb):
-                        Sl[l1, l2, k] = r[k]
-            for k in range(mb):
-                rb = b0 + k if per_r else 0
-                for l1 in range(m):
-                    for l2 in range(l1 + 1):
-                        v = Sl[l1, l2, k] + 0.5 * (R[rb, l1, l2] + R[rb, l2, l1])
+                        rb = b0 + k if per_r else 0
+                        v = r[k] + 0.5 * (R[rb, l1, l2] + R[rb, l2, l1])
                         Sl[l1, l2, k] = v
                         Sz[b0 + k, l1, l2] = v
                         Sz[b0 + k, l2, l1] = v
+            bad = factor_block(Sl, Ls, 0, mb)
+            if bad >= 0:
+                return b0 + bad
+            for k in range(mb):
                 ld[k] = 0.0
             for j in range(m):
                 for k in range(mb):
-                    r[k] = Sl[j, j, k]
-                for p in range(j):
-                    for k in range(mb):
-                        r[k] -= Ls[j, p, k] * Ls[j, p, k]
-                for k in range(mb):
-                    v = r[k]
-                    if not (v > 0.0 and v < np.inf):
-                        return b0 + k
-                    Ls[j, j, k] = math.sqrt(v)
                     ld[k] += math.log(Ls[j, j, k])
-                for i in range(j + 1, m):
-                    for k in range(mb):
-                        r[k] = Sl[i, j, k]
-                    for p in range(j):
-                        for k in range(mb):
-                            r[k] -= Ls[i, p, k] * Ls[j, p, k]
-                    for k in range(mb):
-                        Ls[i, j, k] = r[k] / Ls[j, j, k]
             # P_xy = L T with T = Z^T E (the points' deviations are L Z^T)
             for j in range(n):
                 for l in range(m):
@@ -269,7 +249,7 @@ def _build():
                         T[j, l, k] = 0.0
                     for s in range(S):
                         c = Z[s, j]
-                        if c != 0.0:
+                        if c != 0.0:  # as in sigma_kernel
                             for k in range(mb):
                                 T[j, l, k] += c * E[l, s, k]
             for i in range(n):
@@ -281,10 +261,11 @@ def _build():
                             r[k] += L[i, j, b0 + k] * T[j, l, k]
                     for k in range(mb):
                         C[i, l, k] = r[k]
+                        Pxy[b0 + k, i, l] = r[k]
             # G = L_S^{-1} P_xy^T and e = L_S^{-1} (z - zp), row by row
             for l in range(m):
                 for k in range(mb):
-                    r[k] = Y[l, k]
+                    r[k] = z[b0 + k if per_z else 0, l] - zp[b0 + k, l]
                 for p in range(l):
                     for k in range(mb):
                         r[k] -= Ls[l, p, k] * e[p, k]
@@ -305,15 +286,15 @@ def _build():
                     r[k] += e[l, k] * e[l, k]
             for k in range(mb):
                 loglik[b0 + k] = -0.5 * r[k] - ld[k] - m * HALF_LOG_2PI
-            # the posterior: x^- + G^T e and P^- - G^T G (the lower triangle)
+            # the posterior: x^- + G^T e and P^- - G^T G (the lower triangle, mirrored)
             for i in range(n):
                 for k in range(mb):
-                    r[k] = 0.0
+                    r[k] = xp[b0 + k, i]
                 for l in range(m):
                     for k in range(mb):
                         r[k] += G[l, i, k] * e[l, k]
                 for k in range(mb):
-                    Xo[i, k] = r[k]
+                    x[b0 + k, i] = r[k]
                 for j in range(i + 1):
                     for k in range(mb):
                         r[k] = 0.0
@@ -321,17 +302,9 @@ def _build():
                         for k in range(mb):
                             r[k] += G[l, i, k] * G[l, j, k]
                     for k in range(mb):
-                        Po[i, j, k] = r[k]
-            for k in range(mb):  # written out member by member
-                b = b0 + k
-                for i in range(n):
-                    x[b, i] = xp[b, i] + Xo[i, k]
-                    for l in range(m):
-                        Pxy[b, i, l] = C[i, l, k]
-                    for j in range(i + 1):
-                        v = Pp[b, i, j] - Po[i, j, k]
-                        P[b, i, j] = v
-                        P[b, j, i] = v
+                        v = Pp[b0 + k, i, j] - r[k]
+                        P[b0 + k, i, j] = v
+                        P[b0 + k, j, i] = v
         return -1
 
     return sigma_kernel, predict_kernel, update_kernel
