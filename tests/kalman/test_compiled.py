@@ -183,3 +183,23 @@ def test_numba_switched_off_for_debugging_means_the_numpy_step(monkeypatch):
     assert not UnscentedKalmanFilterBank(4, 3, 2, DT, _hx(2), _fx, POINTS["merwe"](3))._step.compiled
     monkeypatch.setenv("NUMBA_DISABLE_JIT", "0")
     assert _compiled.available()
+
+
+def test_a_new_process_loads_the_kernels_from_numbas_cache():
+    """Compiled once, then loaded: kernels defined in a closure missed the cache in every new
+    process and compiled again (about 5 s each)."""
+    import subprocess
+    import sys
+
+    code = (
+        "import numpy as np\n"
+        "from filterpy.kalman import MerweScaledSigmaPoints\n"
+        "from filterwnn.kalman import UnscentedKalmanFilterBank, _compiled\n"
+        "b = UnscentedKalmanFilterBank(70, 3, 2, 0.1, lambda X: X[:, :2], lambda X, dt: 0.9 * X,\n"
+        "                              MerweScaledSigmaPoints(3, 1.0, 2.0, 0.0), compiled=True)\n"
+        "b.predict(); b.update(np.zeros(2))\n"
+        "print(min(sum(k.stats.cache_hits.values()) for k in _compiled.kernels()))\n"
+    )
+    runs = [subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+            for _ in range(2)]
+    assert int(runs[1].stdout.split()[-1]) >= 1, [r.stdout + r.stderr for r in runs]
