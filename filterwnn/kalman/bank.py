@@ -427,7 +427,7 @@ class UnscentedKalmanFilterBank(_NonlinearBank):
     vectorized : bool, default True
     compiled : bool or None, default None
         Run the step's arithmetic in compiled kernels (``filterwnn.kalman._compiled``,
-        numba) for ``dim_x <= 8`` without mean or residual functions: about twice as fast
+        numba) for ``dim_x <= 8`` without mean or residual functions: 1.5-1.9x as fast
         for a bank of many small filters, the same numbers to rounding (not bit for bit),
         the same errors. None: when numba is installed (``pip install "filterwnn[fast]"``);
         True: required (``ImportError`` without numba); False: the NumPy step. ``fx`` and
