@@ -445,6 +445,10 @@ class UnscentedKalmanFilterBank(_NonlinearBank):
     log_likelihood : ndarray of shape (B,)
         ``log N(z_i; z_pred_i, S_i)`` at the last update (0 for members not observed).
     step : int
+    compiled : bool
+        Whether the steps run the compiled kernels (read-only): False without numba, with
+        ``compiled=False``, for ``dim_x > 8``, or with mean or residual functions (an angle
+        residual, say), which keep the NumPy step.
     """
 
     _kind = "ukf"
@@ -470,6 +474,11 @@ class UnscentedKalmanFilterBank(_NonlinearBank):
             residual_x=check_callable(residual_x, "residual_x"),
             residual_z=check_callable(residual_z, "residual_z"),
         )
+
+
+    @property
+    def compiled(self):
+        return self._step.runs_compiled(self._model, self.dim_x)
 
 
 class ExtendedKalmanFilterBank(_NonlinearBank):

@@ -722,17 +722,19 @@ class UnscentedStep(_Step):
         self._Z = unit_sigma_points(points)
         self.compiled = bool(compiled)
 
-    def _compiled_for(self, model, n):
-        """The compiled kernels (``filterwnn.kalman._compiled``) when this step runs them on
-        ``model``: ``compiled`` set, ``n <= 8``, no mean or residual functions of the user's
-        (the kernels sum and subtract), else None."""
+    def runs_compiled(self, model, n):
+        """True when this step runs the compiled kernels (``filterwnn.kalman._compiled``) on
+        ``model`` with ``n`` states: ``compiled`` set, ``n <= 8``, and no mean or residual
+        functions of the user's (the kernels sum and subtract)."""
         if not self.__dict__.get("compiled") or n > COLUMNS_MAX_N:
-            return None
+            return False
         if model.x_mean_fn is not None or model.z_mean_fn is not None:
-            return None
-        if model.residual_x not in (None, np.subtract) or model.residual_z not in (None, np.subtract):
-            return None
-        return _compiled.kernels()
+            return False
+        return model.residual_x in (None, np.subtract) and model.residual_z in (None, np.subtract)
+
+    def _compiled_for(self, model, n):
+        """The compiled kernels when :meth:`runs_compiled`, else None."""
+        return _compiled.kernels() if self.runs_compiled(model, n) else None
 
     @cached_property
     def _weights(self):

@@ -136,9 +136,16 @@ def test_the_compiled_path_is_taken_only_where_it_computes_the_same_thing(monkey
     _run(True, POINTS["merwe"](3), prob, 2, x_mean_fn=lambda s, w: w @ s, vectorized=False)
     _run(True, POINTS["merwe"](9), _problem(20, 9, 2, 2), 2)
     assert not calls
+    bank = UnscentedKalmanFilterBank(4, 3, 2, DT, _hx(2), _fx, POINTS["merwe"](3))
+    assert bank.compiled  # what a user reads
+    assert not UnscentedKalmanFilterBank(4, 3, 2, DT, _hx(2), _fx, POINTS["merwe"](3), residual_z=np.add).compiled
+    assert not UnscentedKalmanFilterBank(4, 9, 2, DT, _hx(2), _fx, POINTS["merwe"](9)).compiled
+    assert not UnscentedKalmanFilterBank(4, 3, 2, DT, _hx(2), _fx, POINTS["merwe"](3), compiled=False).compiled
+    with pytest.raises(AttributeError):
+        bank.compiled = False
     monkeypatch.setattr(_compiled, "available", lambda: False)
     bank = UnscentedKalmanFilterBank(4, 3, 2, DT, _hx(2), _fx, POINTS["merwe"](3))
-    assert not bank._step.compiled and "compiled" not in repr(bank._step)
+    assert not bank.compiled and not bank._step.compiled and "compiled" not in repr(bank._step)
     with pytest.raises(ImportError, match=r'compiled=True needs numba: pip install "filterwnn\[fast\]"'):
         UnscentedKalmanFilterBank(4, 3, 2, DT, _hx(2), _fx, POINTS["merwe"](3), compiled=True)
 
