@@ -56,12 +56,12 @@ def stages(B, reps):
     F = np.ascontiguousarray(six_fx(rows, DT6)).reshape(B, S, n)
     H = np.ascontiguousarray(six_hx(rows)).reshape(B, S, m)
     xp, Pp = np.empty((B, n)), np.empty((B, n, n))
-    pk(F, Wm, Wc, prob["Q"][None], xp, Pp)
+    pk(F, Wm, Wc, prob["Q"][None], xp, Pp, False)
     out = [np.empty(s) for s in ((B, n), (B, n, n), (B, m), (B, m, m), (B, n, m), (B,))]
     res = {
         "factors and sigma points (x2 a step)": per_member(lambda: sk(xx, P, Z, L, sig), B, reps),
-        "predicted moments": per_member(lambda: pk(F, Wm, Wc, prob["Q"][None], xp, Pp), B, reps),
-        "update": per_member(lambda: uk(H, L, Z, xp, P, z, prob["R"][None], Wm, Wc, *out), B, reps),
+        "predicted moments": per_member(lambda: pk(F, Wm, Wc, prob["Q"][None], xp, Pp, False), B, reps),
+        "update": per_member(lambda: uk(H, L, Z, xp, P, z, prob["R"][None], Wm, Wc, *out, False), B, reps),
         "the user's fx": per_member(lambda: six_fx(rows, DT6), B, reps),
         "the user's hx": per_member(lambda: six_hx(rows), B, reps),
     }

@@ -6,7 +6,8 @@ NumPy: one call per operation over every member. For a bank of many small filter
 fixed cost of some 100 NumPy calls and the array passes between them. These kernels do the
 same arithmetic in three compiled loops over blocks of members, the member axis innermost
 (so that the loops vectorize), with the user's ``fx`` and ``hx`` still called once each on
-every sigma point, as rows:
+every sigma point, as rows (and the user's mean and residual functions, when given, called
+in NumPy as on the NumPy step: the kernels then take the deviations they give):
 
 ``sigma_kernel``
     the lower Cholesky factor of every ``P`` and the sigma points ``x + L z_s``;

@@ -50,14 +50,21 @@ def factor_block(A, L, b0, mb):
     return -1
 
 @_inline
+def gather_block(F, b0, mb, i, D):
+    """Component ``i`` of the block's points, ``F[b0:b0 + mb, :, i]`` -> ``D[i] (S, >= mb)``."""
+    S = F.shape[1]
+    for k in range(mb):
+        for s in range(S):
+            D[i, s, k] = F[b0 + k, s, i]
+
+
+@_inline
 def centre_block(F, b0, mb, i, W, D, mu, mean):
     """Component ``i`` of the block's points ``F[b0:b0 + mb, :, i]`` -> ``D[i] (S, >= mb)``
     less its weighted mean (``W``; summed in the scratch ``mu``), which goes to
     ``mean[b0:b0 + mb, i]``."""
     S = F.shape[1]
-    for k in range(mb):
-        for s in range(S):
-            D[i, s, k] = F[b0 + k, s, i]
+    gather_block(F, b0, mb, i, D)
     for k in range(mb):
         mu[k] = 0.0
     for s in range(S):
@@ -69,6 +76,7 @@ def centre_block(F, b0, mb, i, W, D, mu, mean):
     for s in range(S):
         for k in range(mb):
             D[i, s, k] -= mu[k]
+
 
 @_jit
 def sigma_kernel(x, P, Z, L, sig):
@@ -109,10 +117,12 @@ def sigma_kernel(x, P, Z, L, sig):
     return -1
 
 @_jit
-def predict_kernel(F, Wm, Wc, Q, xp, Pp):
+def predict_kernel(F, Wm, Wc, Q, xp, Pp, centred):
     """Weighted moments of the propagated points ``F (N, S, n)`` -> ``xp (N, n)`` and
     ``Pp (N, n, n) = sum_s Wc_s (F_s - xp)(F_s - xp)^T + Q`` (``Q (1 or N, n, n)``),
-    exactly symmetric (the lower triangle computed, the upper its mirror)."""
+    exactly symmetric (the lower triangle computed, the upper its mirror). With ``centred``,
+    ``F`` holds the deviations ``F_s - xp`` already (the user's mean and residual functions),
+    and ``xp`` is not written."""
     N, S, n = F.shape
     D = np.empty((n, S, BS))
     acc = np.empty(BS)
@@ -120,7 +130,10 @@ def predict_kernel(F, Wm, Wc, Q, xp, Pp):
     for b0 in range(0, N, BS):
         m = min(BS, N - b0)
         for i in range(n):
-            centre_block(F, b0, m, i, Wm, D, acc, xp)
+            if centred:
+                gather_block(F, b0, m, i, D)
+            else:
+                centre_block(F, b0, m, i, Wm, D, acc, xp)
         for i in range(n):
             for j in range(i + 1):
                 for k in range(m):
@@ -136,14 +149,16 @@ def predict_kernel(F, Wm, Wc, Q, xp, Pp):
                     Pp[b0 + k, j, i] = v
 
 @_jit
-def update_kernel(H, L, Z, xp, Pp, z, R, Wm, Wc, x, P, zp, Sz, Pxy, loglik):
+def update_kernel(H, L, Z, xp, Pp, z, R, Wm, Wc, x, P, zp, Sz, Pxy, loglik, centred):
     """The unscented update of every member from its measured points ``H (N, S, m)``.
 
     ``L (n, n, N)``: the factors of ``Pp`` the points were drawn with (``sigma_kernel``);
     ``z (1 or N, m)``; ``R (1 or N, m, m)``. Writes ``x (N, n)``, ``P (N, n, n)``
     (``Pp - G^T G``, ``G = L_S^{-1} P_xy^T``, exactly symmetric), ``zp (N, m)``,
     ``Sz (N, m, m)`` (with ``R``), ``Pxy (N, n, m)`` and ``loglik (N,)``. Returns -1, or
-    the first member whose ``S`` is not positive definite.
+    the first member whose ``S`` is not positive definite. With ``centred`` (the user's mean
+    and residual functions), ``H`` holds the deviations ``H_s - zp``, ``zp`` is read, not
+    written, and ``z`` holds the innovations ``(N, m)``.
     """
     N, S, m = H.shape
     n = xp.shape[1]
@@ -163,7 +178,10 @@ def update_kernel(H, L, Z, xp, Pp, z, R, Wm, Wc, x, P, zp, Sz, Pxy, loglik):
         mb = min(BS, N - b0)
         # the predicted measurement, the deviations D and their weighted copies E
         for l in range(m):
-            centre_block(H, b0, mb, l, Wm, D, r, zp)
+            if centred:
+                gather_block(H, b0, mb, l, D)
+            else:
+                centre_block(H, b0, mb, l, Wm, D, r, zp)
             for s in range(S):
                 w = Wc[s]
                 for k in range(mb):
@@ -213,7 +231,7 @@ def update_kernel(H, L, Z, xp, Pp, z, R, Wm, Wc, x, P, zp, Sz, Pxy, loglik):
         # G = L_S^{-1} P_xy^T and e = L_S^{-1} (z - zp), row by row
         for l in range(m):
             for k in range(mb):
-                r[k] = z[b0 + k if per_z else 0, l] - zp[b0 + k, l]
+                r[k] = z[b0 + k, l] if centred else z[b0 + k if per_z else 0, l] - zp[b0 + k, l]
             for p in range(l):
                 for k in range(mb):
                     r[k] -= Ls[l, p, k] * e[p, k]

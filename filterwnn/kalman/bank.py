@@ -427,9 +427,10 @@ class UnscentedKalmanFilterBank(_NonlinearBank):
     vectorized : bool, default True
     compiled : bool or None, default None
         Run the step's arithmetic in compiled kernels (``filterwnn.kalman._compiled``,
-        numba) for ``dim_x <= 8`` without mean or residual functions: 1.5-1.9x as fast
-        for a bank of many small filters, the same numbers to rounding (not bit for bit),
-        the same errors. None: when numba is installed (``pip install "filterwnn[fast]"``);
+        numba) for ``dim_x <= 8``: 1.5-1.9x as fast for a bank of many small filters, the
+        same numbers to rounding (not bit for bit), the same errors. Mean and residual
+        functions (an angle residual, a circular mean) are called in NumPy as on the NumPy
+        step, and the kernels take the deviations they give. None: when numba is installed (``pip install "filterwnn[fast]"``);
         True: required (``ImportError`` without numba); False: the NumPy step. ``fx`` and
         ``hx`` are called as without it. The first use on a machine compiles the kernels
         (a few seconds, cached beside the module).
@@ -447,8 +448,7 @@ class UnscentedKalmanFilterBank(_NonlinearBank):
     step : int
     compiled : bool
         Whether the steps run the compiled kernels (read-only): False without numba, with
-        ``compiled=False``, for ``dim_x > 8``, or with mean or residual functions (an angle
-        residual, say), which keep the NumPy step.
+        ``compiled=False`` and for ``dim_x > 8``.
     """
 
     _kind = "ukf"

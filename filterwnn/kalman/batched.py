@@ -697,6 +697,11 @@ class LinearStep(_Step):
         return "LinearStep()"
 
 
+def _own_functions(mean_fn, residual_fn):
+    """True when a model has a mean or residual function of the user's (not plain subtraction)."""
+    return mean_fn is not None or residual_fn not in (None, np.subtract)
+
+
 class UnscentedStep(_Step):
     """One unscented Kalman step per member (UKF with Merwe points; SUKF with reduced points).
 
@@ -724,13 +729,10 @@ class UnscentedStep(_Step):
 
     def runs_compiled(self, model, n):
         """True when this step runs the compiled kernels (``filterwnn.kalman._compiled``) on
-        ``model`` with ``n`` states: ``compiled`` set, ``n <= 8``, and no mean or residual
-        functions of the user's (the kernels sum and subtract)."""
-        if not self.__dict__.get("compiled") or n > COLUMNS_MAX_N:
-            return False
-        if model.x_mean_fn is not None or model.z_mean_fn is not None:
-            return False
-        return model.residual_x in (None, np.subtract) and model.residual_z in (None, np.subtract)
+        ``model`` with ``n`` states: ``compiled`` set and ``n <= 8``. The user's mean and
+        residual functions, when given, are called in NumPy as on the NumPy step, and the
+        kernels take the deviations they give."""
+        return bool(self.__dict__.get("compiled")) and n <= COLUMNS_MAX_N
 
     def _compiled_for(self, model, n):
         """The compiled kernels when :meth:`runs_compiled`, else None."""
@@ -798,7 +800,11 @@ class UnscentedStep(_Step):
                 F = apply_rows(model.fx, got[1], n, model.vectorized, "fx", (model.dt,), fx_args, model.rows_checked)
                 F = np.ascontiguousarray(F, dtype=float).reshape(N, Z.shape[0], n)
                 xp, Pp = np.empty((N, n)), np.empty((N, n, n))
-                kern[1](F, Wm, Wc, np.ascontiguousarray(Q, dtype=float).reshape(-1, n, n), xp, Pp)
+                centred = _own_functions(model.x_mean_fn, model.residual_x)
+                if centred:  # the user's mean and residual, called as on the NumPy step
+                    xp = _weighted_mean(model.x_mean_fn, F, Wm)
+                    F = np.ascontiguousarray(_residual(model.residual_x, F, xp[:, None, :], model.vectorized))
+                kern[1](F, Wm, Wc, np.ascontiguousarray(Q, dtype=float).reshape(-1, n, n), xp, Pp, centred)
                 return KalmanPrediction(xp, Pp)
         _, sig = self._sigmas(x, P, step, "P")
         S_ = sig.shape[1]
@@ -863,8 +869,15 @@ class UnscentedStep(_Step):
         zz = np.ascontiguousarray(_as_z(z, N, m), dtype=float)
         x, P = np.empty((N, n)), np.empty((N, n, n))
         zp, S, Pxy, loglik = np.empty((N, m)), np.empty((N, m, m)), np.empty((N, n, m)), np.empty(N)
+        centred = _own_functions(model.z_mean_fn, model.residual_z)
+        if centred:  # the user's mean and residual, called as on the NumPy step; the kernel takes y
+            zp = _weighted_mean(model.z_mean_fn, Hs, Wm)
+            Hs = np.ascontiguousarray(_residual(model.residual_z, Hs, zp[:, None, :], model.vectorized))
+            y = _residual(model.residual_z, zz, zp, model.vectorized)
+            zz = np.ascontiguousarray(np.broadcast_to(y, (N, m)), dtype=float)
         bad = kern[2](Hs, L, Z, np.ascontiguousarray(xp, dtype=float), np.ascontiguousarray(Pp, dtype=float), zz,
-                      np.ascontiguousarray(R, dtype=float).reshape(-1, m, m), Wm, Wc, x, P, zp, S, Pxy, loglik)
+                      np.ascontiguousarray(R, dtype=float).reshape(-1, m, m), Wm, Wc, x, P, zp, S, Pxy, loglik,
+                      centred)
         if bad >= 0:
             return None
         return KalmanUpdate(x, P, zp, S, Pxy, loglik, L.transpose(2, 0, 1))
