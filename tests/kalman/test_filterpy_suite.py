@@ -1,8 +1,8 @@
 """filterpy's own ``kalman/tests/test_ukf.py``, run with filterwnn's classes renamed in.
 
 A filterpy user swaps a class by one import line and changes nothing else; so does this
-test: it reads the verbatim copy (``filterpy_test_ukf.py``, MIT licence, header kept),
-rewrites only the import lines and runs every ``test_*`` function in it. The renames:
+test: it reads the copy (``filterpy_test_ukf.py``, MIT licence, header kept), rewrites only
+the import lines and runs every ``test_*`` function in it. The renames:
 
 ``ukf``
     ``from filterwnn import UnscentedKalmanFilter`` in place of filterpy's;
@@ -11,8 +11,9 @@ rewrites only the import lines and runs every ``test_*`` function in it. The ren
     ``MerweScaledSigmaPoints(n, alpha, beta, kappa)`` call of the file (``kappa`` in
     ``{-1, 0, 0.1, 1, 3 - n}``, positionally and by keyword) builds an ``n + 2`` set.
 
-filterpy's tests draw from the global ``np.random`` (some seed it, some do not); each is
-seeded here before it runs, so a failure reproduces.
+filterpy's tests drew from NumPy's global random state (some seed it, some do not); the
+copy draws from one explicit generator instead (its header says how), which is reseeded
+here before each test, so a failure reproduces and nothing touches the global state.
 """
 
 import pathlib
@@ -76,11 +77,20 @@ def test_the_rename_reaches_the_classes(label):
     assert mod.MerweScaledSigmaPoints.__module__ == expected
 
 
+def _global_state():
+    """NumPy's global generator state as comparable values (the key, the position, the cached normal)."""
+    _, key, pos, has_gauss, gauss = np.random.get_state()
+    return key.tobytes(), pos, has_gauss, gauss
+
+
 @pytest.mark.parametrize("name", _test_names())
 @pytest.mark.parametrize("label", list(RENAMES))
 def test_filterpy_test_ukf_passes_with_a_plain_rename(label, name):
-    fn = getattr(_module(label), name)
-    np.random.seed(0)  # filterpy's tests use the global state; seeded for reproducibility
+    mod = _module(label)
+    fn = getattr(mod, name)
+    mod._seed(0)  # the copy's own generator (never NumPy's global state), reseeded per test
+    before = _global_state()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
         fn()
+    assert _global_state() == before, "the test drew from NumPy's global state"
