@@ -26,24 +26,21 @@ def factor_block(A, L, b0, mb):
     n = A.shape[0]
     r = np.empty(mb)
     for j in range(n):
-        for k in range(mb):
-            r[k] = A[j, j, k]
-        for p in range(j):
-            for k in range(mb):
-                r[k] -= L[j, p, b0 + k] * L[j, p, b0 + k]
-        for k in range(mb):
-            v = r[k]
-            if not (v > 0.0 and v < np.inf):
-                return k
-            L[j, j, b0 + k] = math.sqrt(v)
-        for i in range(j + 1, n):
+        for i in range(j, n):  # r = A_ij - sum_p L_ip L_jp; the pivot first (i == j), then the column
             for k in range(mb):
                 r[k] = A[i, j, k]
             for p in range(j):
                 for k in range(mb):
                     r[k] -= L[i, p, b0 + k] * L[j, p, b0 + k]
-            for k in range(mb):
-                L[i, j, b0 + k] = r[k] / L[j, j, b0 + k]
+            if i == j:
+                for k in range(mb):
+                    v = r[k]
+                    if not (v > 0.0 and v < np.inf):
+                        return k
+                    L[j, j, b0 + k] = math.sqrt(v)
+            else:
+                for k in range(mb):
+                    L[i, j, b0 + k] = r[k] / L[j, j, b0 + k]
         for i in range(j):
             for k in range(mb):
                 L[i, j, b0 + k] = 0.0
@@ -76,6 +73,41 @@ def centre_block(F, b0, mb, i, W, D, mu, mean):
     for s in range(S):
         for k in range(mb):
             D[i, s, k] -= mu[k]
+
+
+@_inline
+def deviations_block(F, b0, mb, W, D, mu, mean, centred):
+    """Every component of the block's points -> ``D (d, S, >= mb)``: their deviations from
+    the weighted mean (``W``; written to ``mean``), or, ``centred``, the deviations ``F``
+    already holds (the user's mean and residual functions gave them)."""
+    for i in range(F.shape[2]):
+        if centred:
+            gather_block(F, b0, mb, i, D)
+        else:
+            centre_block(F, b0, mb, i, W, D, mu, mean)
+
+
+@_inline
+def covariance_block(D, W, noise, b0, mb, acc, out, low):
+    """``sum_s W_s D_s D_s^T + noise`` of every member of the block, exactly symmetric: the
+    lower triangle computed (also kept in ``low (d, d, >= mb)``), the upper its mirror, written
+    to ``out[b0:b0 + mb]``; ``noise (1 or N, d, d)``, its symmetric part added."""
+    d, S = D.shape[0], D.shape[1]
+    per = noise.shape[0] > 1
+    for i in range(d):
+        for j in range(i + 1):
+            for k in range(mb):
+                acc[k] = 0.0
+            for s in range(S):
+                w = W[s]
+                for k in range(mb):
+                    acc[k] += w * D[i, s, k] * D[j, s, k]
+            for k in range(mb):
+                q = b0 + k if per else 0
+                v = acc[k] + 0.5 * (noise[q, i, j] + noise[q, j, i])
+                low[i, j, k] = v
+                out[b0 + k, i, j] = v
+                out[b0 + k, j, i] = v
 
 
 @_jit
@@ -125,28 +157,12 @@ def predict_kernel(F, Wm, Wc, Q, xp, Pp, centred):
     and ``xp`` is not written."""
     N, S, n = F.shape
     D = np.empty((n, S, BS))
+    low = np.empty((n, n, BS))
     acc = np.empty(BS)
-    per = Q.shape[0] > 1
     for b0 in range(0, N, BS):
         m = min(BS, N - b0)
-        for i in range(n):
-            if centred:
-                gather_block(F, b0, m, i, D)
-            else:
-                centre_block(F, b0, m, i, Wm, D, acc, xp)
-        for i in range(n):
-            for j in range(i + 1):
-                for k in range(m):
-                    acc[k] = 0.0
-                for s in range(S):
-                    w = Wc[s]
-                    for k in range(m):
-                        acc[k] += w * D[i, s, k] * D[j, s, k]
-                for k in range(m):
-                    q = b0 + k if per else 0
-                    v = acc[k] + 0.5 * (Q[q, i, j] + Q[q, j, i])
-                    Pp[b0 + k, i, j] = v
-                    Pp[b0 + k, j, i] = v
+        deviations_block(F, b0, m, Wm, D, acc, xp, centred)
+        covariance_block(D, Wc, Q, b0, m, acc, Pp, low)
 
 @_jit
 def update_kernel(H, L, Z, xp, Pp, z, R, Wm, Wc, x, P, zp, Sz, Pxy, loglik, centred):
@@ -173,33 +189,11 @@ def update_kernel(H, L, Z, xp, Pp, z, R, Wm, Wc, x, P, zp, Sz, Pxy, loglik, cent
     r = np.empty(BS)
     ld = np.empty(BS)
     per_z = z.shape[0] > 1
-    per_r = R.shape[0] > 1
     for b0 in range(0, N, BS):
         mb = min(BS, N - b0)
-        # the predicted measurement, the deviations D and their weighted copies E
-        for l in range(m):
-            if centred:
-                gather_block(H, b0, mb, l, D)
-            else:
-                centre_block(H, b0, mb, l, Wm, D, r, zp)
-            for s in range(S):
-                w = Wc[s]
-                for k in range(mb):
-                    E[l, s, k] = w * D[l, s, k]
-        # S = D^T E + R (the lower triangle, mirrored) and its factor
-        for l1 in range(m):
-            for l2 in range(l1 + 1):
-                for k in range(mb):
-                    r[k] = 0.0
-                for s in range(S):
-                    for k in range(mb):
-                        r[k] += D[l1, s, k] * E[l2, s, k]
-                for k in range(mb):
-                    rb = b0 + k if per_r else 0
-                    v = r[k] + 0.5 * (R[rb, l1, l2] + R[rb, l2, l1])
-                    Sl[l1, l2, k] = v
-                    Sz[b0 + k, l1, l2] = v
-                    Sz[b0 + k, l2, l1] = v
+        # the predicted measurement, the deviations D, S = sum_s Wc_s D_s D_s^T + R and its factor
+        deviations_block(H, b0, mb, Wm, D, r, zp, centred)
+        covariance_block(D, Wc, R, b0, mb, r, Sz, Sl)
         bad = factor_block(Sl, Ls, 0, mb)
         if bad >= 0:
             return b0 + bad
@@ -208,7 +202,12 @@ def update_kernel(H, L, Z, xp, Pp, z, R, Wm, Wc, x, P, zp, Sz, Pxy, loglik, cent
         for j in range(m):
             for k in range(mb):
                 ld[k] += math.log(Ls[j, j, k])
-        # P_xy = L T with T = Z^T E (the points' deviations are L Z^T)
+        # P_xy = L T with T = Z^T E, E = Wc D (the points' deviations are L Z^T)
+        for l in range(m):
+            for s in range(S):
+                w = Wc[s]
+                for k in range(mb):
+                    E[l, s, k] = w * D[l, s, k]
         for j in range(n):
             for l in range(m):
                 for k in range(mb):

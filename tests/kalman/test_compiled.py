@@ -49,10 +49,12 @@ def _problem(Bn, n, m, n_steps, seed=0):
     return x0, P0, Q, R, zs
 
 
-def _run(compiled, points, prob, m, shared=False, **kw):
+def _run(compiled, points, prob, m, shared=False, hx=None, fx=_fx, **kw):
+    """A bank on ``prob = (x0, P0, Q, R, zs)`` (``shared``: member 0's noise and measurements for
+    all) -> ``(bank, [(x, P, log_likelihood) after each step])``."""
     x0, P0, Q, R, zs = prob
     Bn, n = x0.shape
-    bank = UnscentedKalmanFilterBank(Bn, n, m, DT, _hx(m), _fx, points, compiled=compiled, **kw)
+    bank = UnscentedKalmanFilterBank(Bn, n, m, DT, _hx(m) if hx is None else hx, fx, points, compiled=compiled, **kw)
     bank.x, bank.P = x0, P0
     bank.Q, bank.R = (Q[0], R[0]) if shared else (Q, R)
     out = []
@@ -201,14 +203,8 @@ def test_angle_residuals_and_circular_means_on_the_compiled_path_equal_filterpys
     pts = POINTS["merwe"](4)
     out = []
     for compiled in (True, False):
-        bank = UnscentedKalmanFilterBank(Bn, 4, 2, DT, _bearing_hx, _bearing_fx, pts, compiled=compiled, **kw)
+        bank, got = _run(compiled, pts, (x0, P0, Q, R, zs), 2, hx=_bearing_hx, fx=_bearing_fx, **kw)
         assert bank.compiled == compiled
-        bank.x, bank.P, bank.Q, bank.R = x0, P0, Q, R
-        got = []
-        for z in zs:
-            bank.predict()
-            bank.update(z)
-            got.append((bank.x.copy(), bank.P.copy(), bank.log_likelihood.copy()))
         out.append(got)
     assert np.ptp(np.sign(np.array([g_[0][:, 1] for g_ in out[0]]))) > 0  # the bearings crossed the cut
     for (x, P, ll), (xr, Pr, llr) in zip(*out):
