@@ -43,7 +43,7 @@ With numba installed (``pip install "filterwnn[fast]"``), :class:`UnscentedKalma
 runs its arithmetic for ``dim_x <= 8`` in compiled kernels (``filterwnn.kalman._compiled``;
 ``compiled=None``, the default, takes them when numba imports): the model is called as
 before, and the numbers agree with the NumPy step to rounding (1e-12, not bit for bit), a
-member's numbers the same wherever it sits in the bank. It is 1.5-1.9x faster than the NumPy
+member's numbers the same wherever it sits in the bank. It is 1.4-1.9x faster than the NumPy
 step at 1,000-10,000 members (``benchmarks/bench_peers.py``); ``compiled=False`` keeps the
 NumPy step.
 
@@ -427,7 +427,7 @@ class UnscentedKalmanFilterBank(_NonlinearBank):
     vectorized : bool, default True
     compiled : bool or None, default None
         Run the step's arithmetic in compiled kernels (``filterwnn.kalman._compiled``,
-        numba) for ``dim_x <= 8``: 1.5-1.9x as fast for a bank of many small filters, the
+        numba) for ``dim_x <= 8``: 1.4-1.9x as fast for a bank of many small filters, the
         same numbers to rounding (not bit for bit), the same errors. Mean and residual
         functions (an angle residual, a circular mean) are called in NumPy as on the NumPy
         step, and the kernels take the deviations they give. None: when numba is installed (``pip install "filterwnn[fast]"``);
