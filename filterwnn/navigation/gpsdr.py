@@ -44,6 +44,19 @@ What the filter does when GPS lies (each part a public setting, on by default):
   "consider" states (zero gain, their uncertainty still counted). A calibration state that
   leaves :data:`CALIBRATION_SIGMAS` prior standard deviations of its prior mean (the grade's
   specification) is held at that bound, with a warning naming the step.
+* **Zero angular rate at standstills.** A car does not turn while it stands, so the gyro
+  heading's drift over a stop is the gyro's rate bias. When a stop of at least
+  :data:`ZERO_RATE_MIN_SAMPLES` samples ends, the filter fits the slope of the measured heading
+  over it (least squares) and updates the rate-bias state with it, the slope's variance taken
+  from the grade's heading noise (white) and angle random walk, or the fit's own standard error
+  when the headings scatter more than the grade says (Groves 2013, section 16.2.3's zero angular
+  rate update). The slope is tested against the state first (its NIS, chi-square
+  with 1 degree of freedom, against the 99.9 % point :data:`ZERO_RATE_GATE`; a car that crept
+  round a corner below ``standstill_speed``, or a heading that jumped, is rejected and counted).
+  Counted in ``n_zero_rate`` and ``n_zero_rate_rejected``; only a model with a rate-bias state
+  (``GPSDRModel(rate_bias=True)``, the phone grade) has it, and ``zero_rate_update=False``
+  switches it off. It needs no GPS: the rate bias is learnt at every stop, from the sensor that
+  has it, instead of from GPS fixes whose correlated errors look like a heading drift.
 * **Correlated fixes.** A receiver's errors are correlated from fix to fix (multipath that
   lasts a street, a phone's own smoothing), and a filter that takes them for independent
   learns them as calibration: the rate bias and the heading bias follow a drifting error,
@@ -105,14 +118,14 @@ from filterpy.kalman import ExtendedKalmanFilter
 from .._linalg import repair_pd
 from ..metrics import integrated_autocorrelation
 from .._validation import as_state, check_choice, check_covariance, check_positive, check_positive_int, check_scale
-from .dead_reckoning import GPSDRModel, dr_residual
+from .dead_reckoning import GPSDRModel, dr_residual, wrap_angle
 from ..kalman.presets import make_points
 from ..models import from_model
 from ..kalman.unscented import UnscentedKalmanFilter
 
 __all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS", "GATE", "REJECT_GATE", "REACQUIRE_AFTER",
-           "NIS_WINDOW", "CALIBRATION_SIGMAS", "WHITENESS_WINDOW", "SCALE_WINDOW", "SCALE_TEST", "SCALE_WARN",
-           "gps_scale_mle", "gps_scale_loglik"]
+           "NIS_WINDOW", "CALIBRATION_SIGMAS", "ZERO_RATE_GATE", "ZERO_RATE_MIN_SAMPLES", "WHITENESS_WINDOW", "SCALE_WINDOW", "SCALE_TEST", "SCALE_WARN",
+           "gps_scale_mle", "gps_scale_loglik", "stop_heading_slope"]
 
 #: Default standstill threshold (m/s) on the odometer speed: 0.05 m/s = 0.11 mph, four
 #: times the creep of a standing car's CAN speed (0.001-0.03 mph).
@@ -132,6 +145,12 @@ REACQUIRE_AFTER = 5
 NIS_WINDOW = 30
 #: A calibration state is held within this many prior (specification) sigmas of its prior mean.
 CALIBRATION_SIGMAS = 3.0
+#: The zero angular rate update's gate on the NIS of a stop's heading slope: the 99.9 % point of
+#: chi-square with 1 degree of freedom (the fixes' gate's level).
+ZERO_RATE_GATE = NormalDist().inv_cdf(1.0 - 0.5e-3) ** 2  # = chi2.ppf(0.999, 1) = 10.83
+#: Standstill samples a stop needs before its heading slope updates the rate bias (the slope's own
+#: variance, from the grade, weighs a short stop down further).
+ZERO_RATE_MIN_SAMPLES = 3
 #: Fixes over which the whiteness of the GPS innovations is estimated (lags up to a quarter of it).
 WHITENESS_WINDOW = 60
 #: Fixes over which the scale of the fixes' reported covariance is estimated when the estimate is
@@ -152,6 +171,44 @@ SCALE_TEST = NormalDist().inv_cdf(1.0 - 1e-3) ** 2  # = chi2.ppf(1 - 2e-3, 1) = 
 #: ``R`` from the innovations, Mehra 1972). On onavdata's 2021-04-27C drive the 6-state EKF's scale
 #: ran to 467 that way.
 SCALE_WARN = 9.0
+
+
+def stop_heading_slope(t, heading, sigma_heading, q_arw):
+    """The gyro heading's drift rate over a stop and its variance: ``(slope (rad/s), variance)``.
+
+    A car does not turn while it stands, so this is the gyro's rate bias (the zero angular rate
+    update of :class:`GPSDRFilter`). The slope is the least-squares line through the headings
+    ``heading (n,)`` (rad, unwrapped here) at times ``t (n,)`` (s), ``n >= 2``. Its variance is what
+    the sensor's specification gives: white heading noise of standard deviation ``sigma_heading``
+    (rad) on each sample, ``sigma_heading^2 sum a_i^2`` with ``a_i = (t_i - tbar) / sum (t_j -
+    tbar)^2`` the slope's weights, plus an angle random walk of density ``q_arw`` (rad^2/s) whose
+    increments between samples enter as ``q_arw sum_k (t_k - t_{k-1}) (sum_{i >= k} a_i)^2``; or,
+    with ``n > 2`` samples, the fit's own standard error ``sum a_i^2 RSS / (n - 2)`` when that is
+    larger (headings that scatter more than the specification says).
+
+    >>> import numpy as np
+    >>> t = np.arange(0.0, 10.0, 0.1)
+    >>> slope, var = stop_heading_slope(t, 0.3 + 1e-3 * t, 1e-3, 0.0)
+    >>> round(slope, 9), bool(np.sqrt(var) < 1e-4)
+    (0.001, True)
+    """
+    t = np.asarray(t, dtype=float)
+    h = np.asarray(heading, dtype=float)
+    if t.ndim != 1 or t.shape != h.shape or len(t) < 2:
+        raise ValueError(f"t and heading must be 1-D of the same length >= 2, got {t.shape} and {h.shape}")
+    h = h[0] + np.concatenate([[0.0], np.cumsum(wrap_angle(np.diff(h)))])  # unwrapped
+    t = t - t.mean()
+    tt = float(t @ t)
+    if not tt > 0:
+        raise ValueError("t must not be constant")
+    a = t / tt
+    slope = float(a @ h)
+    tail = np.cumsum(a[::-1])[::-1][1:]  # sum_{i >= k} a_i, k = 1 .. n-1
+    var = sigma_heading**2 * float(a @ a) + q_arw * float(np.diff(t) @ tail**2)
+    if len(h) > 2:
+        res = h - h.mean() - slope * t
+        var = max(var, float(res @ res) / (len(h) - 2) * float(a @ a))
+    return slope, var
 
 
 def gps_scale_mle(y, P, R, scale=1.0, iterations=20, rtol=1e-6):
@@ -287,6 +344,12 @@ class GPSDRFilter:
         On the simulated drives it stayed at 1 and changed almost nothing (the README's "When
         GPS lies": one 1 Hz analog's SUKF-8 median 2.73 -> 2.84 m).
 
+    zero_rate_update : bool
+        At the end of every stop, update the gyro rate bias with the slope of the measured
+        heading over the stop (a car does not turn while it stands; see the module docstring).
+        On by default; it acts only on a model with a rate-bias state (``rate_bias=True``, the
+        phone grade) and with ``standstill_speed > 0``.
+
     Attributes
     ----------
     kf : filter
@@ -308,6 +371,10 @@ class GPSDRFilter:
         The NIS of every accepted fix (:attr:`nis_mean` is their mean; 2 when consistent).
     nis_warnings : list of int
         The steps at which the consistency monitor warned.
+    n_zero_rate, n_zero_rate_rejected : int
+        Stops whose heading slope updated the rate bias; stops whose slope the gate rejected.
+    zero_rate_steps : list of tuple
+        Per stop tested: ``(step, slope (rad/s), its standard deviation (rad/s), accepted)``.
     gps_correlation : float
         The integrated autocorrelation time of the accepted fixes' whitened innovations, in
         fixes (1: white); the heading bias and rate bias take ``1 / gps_correlation`` of their gain.
@@ -325,7 +392,7 @@ class GPSDRFilter:
     def __init__(self, model, kind="ekf", *, x0=None, P0=None, standstill_speed=STANDSTILL_SPEED,
                  low_speed=LOW_SPEED, hold_without_gps=True, gps_window=0, points=None, gate=GATE,
                  reject_gate=None, reacquire_after=REACQUIRE_AFTER, nis_window=NIS_WINDOW,
-                 whiteness_window=WHITENESS_WINDOW, scale_window=0):
+                 whiteness_window=WHITENESS_WINDOW, scale_window=0, zero_rate_update=True):
         if not isinstance(model, GPSDRModel):
             raise TypeError(f"model must be a GPSDRModel, got {type(model).__name__}")
         self.model = model
@@ -362,6 +429,10 @@ class GPSDRFilter:
             raise ValueError(f"scale_window must be >= 0 (0: the fixes' covariance as reported), got {scale_window}")
         self.gps_scale, self._scale_raw, self.gps_scales, self._scale_warned = 1.0, 1.0, [], False
         self._scale_fixes = deque(maxlen=max(self.scale_window, 1))  # (y clipped at the gate, P_pos, R)
+        self.zero_rate_update = bool(zero_rate_update) and bool(getattr(model, "rate_bias", False))
+        self._stop = []  # (time, heading) of the standstill samples of the stop going on
+        self.n_zero_rate = self.n_zero_rate_rejected = 0
+        self.zero_rate_steps = []
 
     def _init_integrity(self, gate, reject_gate, reacquire_after, nis_window, x0):
         """The gate, the counters, the consistency monitor and the calibration bounds."""
@@ -443,6 +514,8 @@ class GPSDRFilter:
         """
         z_dr = check_scale(as_state(z_dr, "z_dr", 2), "z_dr")  # a distance of 1e308 would give x = inf
         self.motion = self.classify(z_dr)
+        if self.zero_rate_update:
+            self._zero_rate(z_dr[0])
         adapt = self.gps_window > 0 and z_gps is not None and gps_sigma is None
         if adapt:
             # the fix's innovation and its predicted-state part, before the update
@@ -472,6 +545,36 @@ class GPSDRFilter:
                 self.gps_sigma_est = float(np.sqrt(max(np.mean(self._gps_y) - np.mean(self._gps_hph), 0.01)))
         self.step += 1
         return self
+
+    def _zero_rate(self, heading):
+        """Collect a stop's headings; when it ends, update the rate bias with their slope."""
+        if self.motion == "still":
+            self._stop.append((self.step * self.model.dt, float(heading)))
+            return
+        stop, self._stop = self._stop, []
+        if len(stop) < ZERO_RATE_MIN_SAMPLES:
+            return
+        t, h = (np.array(a) for a in zip(*stop))
+        slope, var = stop_heading_slope(t, h, self.model.sigma_heading, self.model.q_bias)
+        r = 8
+        kf = self.kf
+        x, P = kf.x.copy(), kf.P.copy()
+        S = P[r, r] + var
+        y = slope - x[r]
+        ok = y * y / S <= ZERO_RATE_GATE
+        self.zero_rate_steps.append((self.step, slope, float(np.sqrt(var)), bool(ok)))
+        if not ok:
+            self.n_zero_rate_rejected += 1
+            return
+        self.n_zero_rate += 1
+        Pr = P[:, r].copy()
+        kf.x = x + Pr * (y / S)
+        P = P - np.outer(Pr, Pr) / S
+        kf.P = 0.5 * (P + P.T)
+        self._bound_calibration()
+        self._repair()
+        if self.kind != "ekf":  # the update's sigma points come from the prior: draw them from the new one
+            kf.compute_process_sigmas(self.model.dt, fx=lambda s, dt: s)
 
     def _fix_sigma(self, gps_sigma):
         return self.model.sigma_gps if gps_sigma is None else float(gps_sigma)

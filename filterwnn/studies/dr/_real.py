@@ -76,7 +76,8 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         the whole drive with GPS: ``n_fixes``, ``n_rejected``, ``n_downweighted``, ``n_reacquired``,
         ``nis_mean``, the NIS of the accepted fixes (2 when consistent), ``gps_scale_mean`` and ``gps_scale``,
         the mean and last factor on the fixes' covariance (mean None: not estimated), ``rejected_xy (m, 2)``,
-        the rejected fixes), and per filter ``(n,)`` end-of-outage errors (m; a non-finite estimate raises).
+        the rejected fixes, ``n_zero_rate`` and ``n_zero_rate_rejected``, the stops whose heading drift
+        updated the gyro rate bias or was rejected, None without a rate-bias state), and per filter ``(n,)`` end-of-outage errors (m; a non-finite estimate raises).
     """
     bad = [f for f in filters if f not in REAL_FILTERS]
     if bad:
@@ -197,7 +198,9 @@ def _integrity(f, run):
     return {"n_fixes": f.n_fixes, "n_rejected": f.n_rejected, "n_downweighted": f.n_downweighted,
             "n_reacquired": f.n_reacquired,
             "nis_mean": f.nis_mean, "gps_scale_mean": f.gps_scale_mean,
-            "gps_scale": f.gps_scale, "rejected_xy": run.z_gps[rej]}
+            "gps_scale": f.gps_scale, "rejected_xy": run.z_gps[rej],
+            "n_zero_rate": f.n_zero_rate if f.zero_rate_update else None,
+            "n_zero_rate_rejected": f.n_zero_rate_rejected if f.zero_rate_update else None}
 
 
 def _outage_ends(f, name, run, k0s, k1s, starts, gps, sig):
@@ -227,7 +230,8 @@ def real_drive_table(res, min_moved=100.0):
     """Markdown: median/p90/max end-of-outage error over all placements and moving ones, the
     error at the outage starts and its growth over them (medians), what each filter did with
     the drive's fixes (rejected / down-weighted / re-acquired of those it saw), its mean NIS
-    of the accepted ones and the mean factor on the fixes' reported covariance ("-": not estimated)."""
+    of the accepted ones, the mean factor on the fixes' reported covariance ("-": not estimated) and
+    the stops whose heading drift updated the gyro rate bias or was rejected ("-": no rate-bias state)."""
     mv = res["moved"] >= min_moved
     names = [k for k in res if k not in _REAL_META]
     lines = [f"### real drive {res.get('name', CAR_DRIVE)}: {len(res['starts'])} GPS outages of {res['length']:g} s "
@@ -235,7 +239,8 @@ def real_drive_table(res, min_moved=100.0):
              f"{res.get('reference', 'truth')} (m)", "",
              "| filter | median all | p90 all | max all | median moving | max moving | median at start | "
              "median growth | fixes rejected / down-weighted / re-acquired | mean NIS (2: consistent) | "
-             "mean GPS covariance scale (1: as reported) |", "|---|---|---|---|---|---|---|---|---|---|---|"]
+             "mean GPS covariance scale (1: as reported) | stops used / rejected for the gyro rate bias |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for n in names:
         e = res[n]
         em = e[mv] if mv.any() else np.array([np.nan])
@@ -248,7 +253,9 @@ def real_drive_table(res, min_moved=100.0):
 
 def _integrity_cells(ig):
     if ig is None:
-        return "- | - | -"
+        return "- | - | - | -"
     nis = "-" if ig["nis_mean"] is None else f"{ig['nis_mean']:.2f}"
     scale = "-" if ig.get("gps_scale_mean") is None else f"{ig['gps_scale_mean']:.2f}"
-    return f"{ig['n_rejected']} / {ig['n_downweighted']} / {ig['n_reacquired']} of {ig['n_fixes']} | {nis} | {scale}"
+    stops = "-" if ig.get("n_zero_rate") is None else f"{ig['n_zero_rate']} / {ig['n_zero_rate_rejected']}"
+    return (f"{ig['n_rejected']} / {ig['n_downweighted']} / {ig['n_reacquired']} of {ig['n_fixes']} | {nis} | "
+            f"{scale} | {stops}")

@@ -89,7 +89,13 @@ def main(argv=None):
     p.add_argument("what", nargs="+", choices=["analogs", "hard", "sample", "recorded"])
     p.add_argument("--seeds", default="0,1", help="analog seeds (comma-separated)")
     p.add_argument("--windows", default="0,30", help="scale_window values to run (0: off)")
+    p.add_argument("--zero-rate", choices=["on", "off"], default="on",
+                   help="GPSDRFilter's zero angular rate update at stops (default on, as in the package)")
     a = p.parse_args(argv)
+    if a.zero_rate == "off":
+        from filterwnn.navigation.gpsdr import GPSDRFilter
+
+        GPSDRFilter.__init__.__kwdefaults__["zero_rate_update"] = False
     windows = [int(w) for w in a.windows.split(",")]
     for what in a.what:
         if what == "analogs":

@@ -1,0 +1,157 @@
+"""The zero angular rate update: a stop's heading drift updates the gyro rate bias (issue 23).
+
+A car does not turn while it stands, so the gyro heading's slope over a stop is the gyro's rate
+bias; :class:`GPSDRFilter` fits it when the stop ends (:func:`stop_heading_slope`) and updates the
+rate-bias state, gated, with the variance the sensor grade gives (or the fit's own standard error
+when the headings scatter more).
+"""
+
+import numpy as np
+import pytest
+
+from filterwnn.navigation.dead_reckoning import GPSDRModel
+from filterwnn.navigation.gpsdr import KINDS, ZERO_RATE_GATE, ZERO_RATE_MIN_SAMPLES, GPSDRFilter, stop_heading_slope
+
+DT = 0.1
+DEG = np.pi / 180.0
+
+
+def _stop(rng, model, rate_deg_s, seconds, heading=0.5, white=None, arw=None, turn_deg_s=0.0):
+    """DR samples of a car standing ``seconds`` (the gyro heading drifting at the rate bias, plus
+    ``turn_deg_s`` of real turning), then one moving sample that ends the stop: ``(n + 1, 2)``."""
+    n = int(round(seconds / DT))
+    t = DT * np.arange(n)
+    white = model.sigma_heading if white is None else white
+    arw = model.q_bias if arw is None else arw
+    h = (heading + (rate_deg_s + turn_deg_s) * DEG * t + white * rng.standard_normal(n)
+         + np.sqrt(arw * DT) * np.concatenate([[0.0], np.cumsum(rng.standard_normal(n - 1))]))
+    z = np.stack([np.mod(h + np.pi, 2 * np.pi) - np.pi, np.zeros(n)], axis=1)
+    return np.vstack([z, [[heading, 1.0 * DT]]])  # pulls away at 1 m/s
+
+
+def _run(model, z, kind="ekf", **kw):
+    f = GPSDRFilter(model, kind, x0=np.zeros(model.dim_x) + np.r_[np.zeros(6), model.x0[6:]], **kw)
+    for zk in z:
+        f.predict()
+        f.update(zk)
+    return f
+
+
+@pytest.fixture(scope="module")
+def phone():
+    return GPSDRModel.from_grade("phone", DT)
+
+
+def test_the_slope_and_its_variance_match_their_definitions():
+    """The closed-form variance against the exact covariance of white noise plus a random walk."""
+    t = np.sort(np.random.default_rng(0).uniform(0.0, 20.0, 40))
+    sigma, q = 0.01, 2e-5
+    slope, var = stop_heading_slope(t, 0.2 - 0.003 * t, sigma, q)
+    assert slope == pytest.approx(-0.003, abs=1e-12)
+    tc = t - t.mean()
+    a = tc / (tc @ tc)
+    cov = sigma**2 * np.eye(len(t)) + q * np.minimum.outer(t - t[0], t - t[0])
+    assert var == pytest.approx(a @ cov @ a, rel=1e-12)
+
+
+def test_the_variance_is_honest_over_many_stops(phone):
+    """Stops drawn with the grade's own noise: the standardised slope errors have unit variance."""
+    rng = np.random.default_rng(1)
+    zs = []
+    for _ in range(400):
+        n = rng.integers(20, 300)
+        t = DT * np.arange(n)
+        h = (0.001 * t + phone.sigma_heading * rng.standard_normal(n)
+             + np.sqrt(phone.q_bias * DT) * np.concatenate([[0.0], np.cumsum(rng.standard_normal(n - 1))]))
+        s, v = stop_heading_slope(t, h, phone.sigma_heading, phone.q_bias)
+        zs.append((s - 0.001) / np.sqrt(v))
+    assert 0.85 < np.var(zs) < 1.15
+
+
+def test_noisier_headings_than_the_grade_take_the_fits_standard_error():
+    t = DT * np.arange(100)
+    h = 0.01 * np.random.default_rng(2).standard_normal(100)  # 0.57 degrees, against 0.001 rad said
+    slope, var = stop_heading_slope(t, h, 1e-3, 0.0)
+    tc = t - t.mean()
+    res = h - h.mean() - slope * tc
+    assert var == pytest.approx(res @ res / 98 / (tc @ tc), rel=1e-12)
+    assert var > 1e-6 / (tc @ tc)
+
+
+def test_a_stop_across_plus_minus_pi_is_unwrapped():
+    t = DT * np.arange(50)
+    h = np.pi - 0.01 + 0.001 * t  # crosses +pi at 10 s
+    slope, _ = stop_heading_slope(t, np.mod(h + np.pi, 2 * np.pi) - np.pi, 1e-3, 0.0)
+    assert slope == pytest.approx(0.001, abs=1e-12)
+
+
+def test_stop_heading_slope_rejects_bad_input():
+    with pytest.raises(ValueError, match="same length >= 2"):
+        stop_heading_slope([0.0], [0.0], 1e-3, 0.0)
+    with pytest.raises(ValueError, match="constant"):
+        stop_heading_slope([1.0, 1.0, 1.0], [0.0, 0.1, 0.2], 1e-3, 0.0)
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_a_stop_teaches_the_rate_bias(phone, kind):
+    """A 20 s stop with a 0.04 deg/s rate bias: the state goes from 0 (prior sd 0.05 deg/s) to the truth
+    within three of its new standard deviations, which is several times smaller than the prior's."""
+    z = _stop(np.random.default_rng(3), phone, 0.04, 20.0)
+    f = _run(phone, z, kind)
+    assert f.n_zero_rate == 1 and f.n_zero_rate_rejected == 0
+    step, slope, sd, ok = f.zero_rate_steps[0]
+    assert step == len(z) - 1 and ok
+    sd_r = np.sqrt(f.P[8, 8])
+    assert sd_r < 0.3 * 0.05 * DEG
+    assert abs(f.x[8] - 0.04 * DEG) < 3 * sd_r
+    off = _run(phone, z, kind, zero_rate_update=False)
+    assert off.n_zero_rate == 0 and not off.zero_rate_steps
+    assert abs(off.x[8]) < 1e-12 and np.sqrt(off.P[8, 8]) > 0.9 * 0.05 * DEG
+
+
+def test_the_kinds_make_the_same_update(phone):
+    z = _stop(np.random.default_rng(4), phone, -0.03, 15.0)
+    fs = [_run(phone, z, kind) for kind in KINDS]
+    for f in fs[1:]:
+        assert f.x[8] == pytest.approx(fs[0].x[8], rel=1e-9, abs=1e-15)
+        assert f.P[8, 8] == pytest.approx(fs[0].P[8, 8], rel=1e-9)
+
+
+def test_a_car_turning_below_the_standstill_speed_is_rejected(phone):
+    """Creeping round a corner at 2 deg/s while the odometer reads below ``standstill_speed``: the
+    slope is no rate bias; the gate rejects it, counts it, and the state keeps its prior."""
+    z = _stop(np.random.default_rng(5), phone, 0.0, 10.0, turn_deg_s=2.0)
+    f = _run(phone, z)
+    assert f.n_zero_rate == 0 and f.n_zero_rate_rejected == 1
+    _, slope, sd, ok = f.zero_rate_steps[0]
+    assert not ok and (slope / DEG) == pytest.approx(2.0, abs=0.2)
+    assert ((slope - 0.0) ** 2 / (sd**2 + f.P[8, 8])) > ZERO_RATE_GATE
+    assert abs(f.x[8]) < 1e-12
+
+
+def test_too_short_a_stop_is_not_used(phone):
+    z = _stop(np.random.default_rng(6), phone, 0.04, DT * (ZERO_RATE_MIN_SAMPLES - 1))
+    f = _run(phone, z)
+    assert not f.zero_rate_steps and f.n_zero_rate == 0
+
+
+def test_only_a_model_with_a_rate_bias_state_has_it():
+    survey = GPSDRModel.from_grade("survey", DT)
+    assert survey.dim_x == 8
+    z = _stop(np.random.default_rng(7), survey, 0.04, 20.0)
+    f = _run(survey, z)
+    assert f.zero_rate_update is False and not f.zero_rate_steps
+    assert GPSDRFilter(GPSDRModel.from_grade("phone", DT)).zero_rate_update is True
+
+
+def test_every_stop_of_a_drive_is_used(phone):
+    """Three stops with moving stretches between them (no GPS): three updates, the state near the
+    truth, and the moving samples collect nothing."""
+    rng = np.random.default_rng(8)
+    moving = np.stack([np.full(50, 0.5), np.full(50, 1.0)], axis=1)  # 10 m/s
+    z = np.vstack([_stop(rng, phone, 0.02, 8.0), moving, _stop(rng, phone, 0.02, 12.0), moving,
+                   _stop(rng, phone, 0.02, 5.0)])
+    f = _run(phone, z)
+    assert f.n_zero_rate == 3 and f.n_zero_rate_rejected == 0
+    assert abs(f.x[8] - 0.02 * DEG) < 3 * np.sqrt(f.P[8, 8])
+    assert not f._stop
