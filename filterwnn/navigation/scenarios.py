@@ -559,6 +559,11 @@ def _profile_rate(windows, t):
     return rate
 
 
+#: Speed (m/s) under which the simulated truth is at rest: a speed change that brakes the car to
+#: exactly its speed leaves it at rounding level (1e-15 m/s), whose direction is noise.
+STOPPED = 1e-9
+
+
 def true_trajectory(scenario):
     """Noise-free truth of a scenario: ``(t (n,), x0 (6,), x_true (n, 6))``."""
     sc = scenario
@@ -583,6 +588,8 @@ def true_trajectory(scenario):
     x[2], x[5] = accel(x, 0.0)
     for k in range(n):
         x = dr_fx(x, dt)
+        if 0.0 < np.hypot(x[1], x[4]) < STOPPED:  # braked to rest up to rounding: standing
+            x[1] = x[4] = 0.0
         t = (k + 1) * dt
         x[2], x[5] = accel(x, t)
         xs[k] = x
