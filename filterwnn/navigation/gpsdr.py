@@ -53,6 +53,8 @@ What the filter does when GPS lies (each part a public setting, on by default):
   rate update). The slope is tested against the state first (its NIS, chi-square
   with 1 degree of freedom, against the 99.9 % point :data:`ZERO_RATE_GATE`; a car that crept
   round a corner below ``standstill_speed``, or a heading that jumped, is rejected and counted).
+  A heading that does not change at all over a stop is held by its source (a fused or
+  GPS-course heading), not measured by a gyro, and is not used (``n_zero_rate_held``).
   Counted in ``n_zero_rate`` and ``n_zero_rate_rejected``; only a model with a rate-bias state
   (``GPSDRModel(rate_bias=True)``, the phone grade) has it, and ``zero_rate_update=False``
   switches it off. It needs no GPS: the rate bias is learnt at every stop, from the sensor that
@@ -371,8 +373,10 @@ class GPSDRFilter:
         The NIS of every accepted fix (:attr:`nis_mean` is their mean; 2 when consistent).
     nis_warnings : list of int
         The steps at which the consistency monitor warned.
-    n_zero_rate, n_zero_rate_rejected : int
-        Stops whose heading slope updated the rate bias; stops whose slope the gate rejected.
+    n_zero_rate, n_zero_rate_rejected, n_zero_rate_held : int
+        Stops whose heading slope updated the rate bias; stops whose slope the gate rejected; stops
+        over which the heading did not change at all (held by its source, e.g. a fused or GPS-course
+        heading, so it says nothing about the gyro: not used).
     zero_rate_steps : list of tuple
         Per stop tested: ``(step, slope (rad/s), its standard deviation (rad/s), accepted)``.
     gps_correlation : float
@@ -431,7 +435,7 @@ class GPSDRFilter:
         self._scale_fixes = deque(maxlen=max(self.scale_window, 1))  # (y clipped at the gate, P_pos, R)
         self.zero_rate_update = bool(zero_rate_update) and bool(getattr(model, "rate_bias", False))
         self._stop = []  # (time, heading) of the standstill samples of the stop going on
-        self.n_zero_rate = self.n_zero_rate_rejected = 0
+        self.n_zero_rate = self.n_zero_rate_rejected = self.n_zero_rate_held = 0
         self.zero_rate_steps = []
 
     def _init_integrity(self, gate, reject_gate, reacquire_after, nis_window, x0):
@@ -555,6 +559,9 @@ class GPSDRFilter:
         if len(stop) < ZERO_RATE_MIN_SAMPLES:
             return
         t, h = (np.array(a) for a in zip(*stop))
+        if np.all(h == h[0]):  # held by its source (a fused or GPS-course heading), not measured by a gyro
+            self.n_zero_rate_held += 1
+            return
         slope, var = stop_heading_slope(t, h, self.model.sigma_heading, self.model.q_bias)
         r = 8
         kf = self.kf

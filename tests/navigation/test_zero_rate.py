@@ -155,3 +155,13 @@ def test_every_stop_of_a_drive_is_used(phone):
     assert f.n_zero_rate == 3 and f.n_zero_rate_rejected == 0
     assert abs(f.x[8] - 0.02 * DEG) < 3 * np.sqrt(f.P[8, 8])
     assert not f._stop
+
+
+def test_a_heading_held_by_its_source_is_not_used(phone):
+    """A heading that stays exactly the same over a stop (a fused or GPS-course heading holds its last
+    value) measures nothing about the gyro: the stop is counted as held, and the state keeps its prior."""
+    z = _stop(np.random.default_rng(9), phone, 0.04, 10.0)
+    z[:-1, 0] = 0.5
+    f = _run(phone, z)
+    assert f.n_zero_rate_held == 1 and f.n_zero_rate == 0 and not f.zero_rate_steps
+    assert abs(f.x[8]) < 1e-12
