@@ -49,8 +49,9 @@ What the filter does when GPS lies (each part a public setting, on by default):
   :data:`ZERO_RATE_MIN_SAMPLES` samples ends, the filter fits the slope of the measured heading
   over it (least squares) and updates the rate-bias state with it, the slope's variance taken
   from the grade's heading noise (white) and angle random walk, or the fit's own standard error
-  when the headings scatter more than the grade says (Groves 2013, section 16.2.3's zero angular
-  rate update). The slope is tested against the state first (its NIS, chi-square
+  when the headings scatter more than the grade says: the zero angular rate update of inertial
+  navigation (Groves, *Principles of GNSS, Inertial, and Multisensor Integrated Navigation
+  Systems*, 2nd ed., 2013, on zero updates). The slope is tested against the state first (its NIS, chi-square
   with 1 degree of freedom, against the 99.9 % point :data:`ZERO_RATE_GATE`; a car that crept
   round a corner below ``standstill_speed``, or a heading that jumped, is rejected and counted).
   A heading that does not change at all over a stop is held by its source (a fused or
