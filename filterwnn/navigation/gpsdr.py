@@ -121,14 +121,14 @@ from filterpy.kalman import ExtendedKalmanFilter
 from .._linalg import repair_pd
 from ..metrics import integrated_autocorrelation
 from .._validation import as_state, check_choice, check_covariance, check_positive, check_positive_int, check_scale
-from .dead_reckoning import GPSDRModel, dr_residual, wrap_angle
+from .dead_reckoning import GPSDRModel, dr_residual
 from ..kalman.presets import make_points
 from ..models import from_model
 from ..kalman.unscented import UnscentedKalmanFilter
 
 __all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS", "GATE", "REJECT_GATE", "REACQUIRE_AFTER",
-           "NIS_WINDOW", "CALIBRATION_SIGMAS", "ZERO_RATE_GATE", "ZERO_RATE_MIN_SAMPLES", "WHITENESS_WINDOW", "SCALE_WINDOW", "SCALE_TEST", "SCALE_WARN",
-           "gps_scale_mle", "gps_scale_loglik", "stop_heading_slope"]
+           "NIS_WINDOW", "CALIBRATION_SIGMAS", "ZERO_RATE_GATE", "ZERO_RATE_MIN_SAMPLES", "WHITENESS_WINDOW",
+           "SCALE_WINDOW", "SCALE_TEST", "SCALE_WARN", "gps_scale_mle", "gps_scale_loglik", "stop_heading_slope"]
 
 #: Default standstill threshold (m/s) on the odometer speed: 0.05 m/s = 0.11 mph, four
 #: times the creep of a standing car's CAN speed (0.001-0.03 mph).
@@ -199,7 +199,7 @@ def stop_heading_slope(t, heading, sigma_heading, q_arw):
     h = np.asarray(heading, dtype=float)
     if t.ndim != 1 or t.shape != h.shape or len(t) < 2:
         raise ValueError(f"t and heading must be 1-D of the same length >= 2, got {t.shape} and {h.shape}")
-    h = h[0] + np.concatenate([[0.0], np.cumsum(wrap_angle(np.diff(h)))])  # unwrapped
+    h = np.unwrap(h)
     t = t - t.mean()
     tt = float(t @ t)
     if not tt > 0:
@@ -434,7 +434,7 @@ class GPSDRFilter:
             raise ValueError(f"scale_window must be >= 0 (0: the fixes' covariance as reported), got {scale_window}")
         self.gps_scale, self._scale_raw, self.gps_scales, self._scale_warned = 1.0, 1.0, [], False
         self._scale_fixes = deque(maxlen=max(self.scale_window, 1))  # (y clipped at the gate, P_pos, R)
-        self.zero_rate_update = bool(zero_rate_update) and bool(getattr(model, "rate_bias", False))
+        self.zero_rate_update = bool(zero_rate_update) and model.rate_bias
         self._stop = []  # (time, heading) of the standstill samples of the stop going on
         self.n_zero_rate = self.n_zero_rate_rejected = self.n_zero_rate_held = 0
         self.zero_rate_steps = []
@@ -564,9 +564,9 @@ class GPSDRFilter:
             self.n_zero_rate_held += 1
             return
         slope, var = stop_heading_slope(t, h, self.model.sigma_heading, self.model.q_bias)
-        r = 8
+        r = self.model.dim_x - 1  # the gyro rate bias, the last state
         kf = self.kf
-        x, P = kf.x.copy(), kf.P.copy()
+        x, P = kf.x, kf.P
         S = P[r, r] + var
         y = slope - x[r]
         ok = y * y / S <= ZERO_RATE_GATE
@@ -575,7 +575,7 @@ class GPSDRFilter:
             self.n_zero_rate_rejected += 1
             return
         self.n_zero_rate += 1
-        Pr = P[:, r].copy()
+        Pr = P[:, r]
         kf.x = x + Pr * (y / S)
         P = P - np.outer(Pr, Pr) / S
         kf.P = 0.5 * (P + P.T)

@@ -55,6 +55,7 @@ __all__ = [
     "with_outage",
     "outage_starts",
     "HEADING_ROUNDING",
+    "STOPPED",
 ]
 
 

@@ -16,21 +16,26 @@ DT = 0.1
 DEG = np.pi / 180.0
 
 
-def _stop(rng, model, rate_deg_s, seconds, heading=0.5, white=None, arw=None, turn_deg_s=0.0):
-    """DR samples of a car standing ``seconds`` (the gyro heading drifting at the rate bias, plus
-    ``turn_deg_s`` of real turning), then one moving sample that ends the stop: ``(n + 1, 2)``."""
-    n = int(round(seconds / DT))
+def _headings(rng, n, rate, white, arw):
+    """``n`` gyro headings (rad) every ``DT`` s from 0: a drift of ``rate`` (rad/s), white noise of
+    standard deviation ``white`` (rad) and an angle random walk of density ``arw`` (rad^2/s)."""
     t = DT * np.arange(n)
-    white = model.sigma_heading if white is None else white
-    arw = model.q_bias if arw is None else arw
-    h = (heading + (rate_deg_s + turn_deg_s) * DEG * t + white * rng.standard_normal(n)
-         + np.sqrt(arw * DT) * np.concatenate([[0.0], np.cumsum(rng.standard_normal(n - 1))]))
+    return (rate * t + white * rng.standard_normal(n)
+            + np.sqrt(arw * DT) * np.concatenate([[0.0], np.cumsum(rng.standard_normal(n - 1))]))
+
+
+def _stop(rng, model, rate_deg_s, seconds, heading=0.5, turn_deg_s=0.0):
+    """DR samples of a car standing ``seconds`` (the gyro heading drifting at the rate bias, plus
+    ``turn_deg_s`` of real turning, with the grade's noise), then one moving sample that ends the
+    stop: ``(n + 1, 2)``."""
+    n = int(round(seconds / DT))
+    h = heading + _headings(rng, n, (rate_deg_s + turn_deg_s) * DEG, model.sigma_heading, model.q_bias)
     z = np.stack([np.mod(h + np.pi, 2 * np.pi) - np.pi, np.zeros(n)], axis=1)
     return np.vstack([z, [[heading, 1.0 * DT]]])  # pulls away at 1 m/s
 
 
 def _run(model, z, kind="ekf", **kw):
-    f = GPSDRFilter(model, kind, x0=np.zeros(model.dim_x) + np.r_[np.zeros(6), model.x0[6:]], **kw)
+    f = GPSDRFilter(model, kind, x0=np.r_[np.zeros(6), model.x0[6:]], **kw)
     for zk in z:
         f.predict()
         f.update(zk)
@@ -60,10 +65,8 @@ def test_the_variance_is_honest_over_many_stops(phone):
     zs = []
     for _ in range(400):
         n = rng.integers(20, 300)
-        t = DT * np.arange(n)
-        h = (0.001 * t + phone.sigma_heading * rng.standard_normal(n)
-             + np.sqrt(phone.q_bias * DT) * np.concatenate([[0.0], np.cumsum(rng.standard_normal(n - 1))]))
-        s, v = stop_heading_slope(t, h, phone.sigma_heading, phone.q_bias)
+        h = _headings(rng, n, 0.001, phone.sigma_heading, phone.q_bias)
+        s, v = stop_heading_slope(DT * np.arange(n), h, phone.sigma_heading, phone.q_bias)
         zs.append((s - 0.001) / np.sqrt(v))
     assert 0.85 < np.var(zs) < 1.15
 

@@ -77,7 +77,8 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         ``nis_mean``, the NIS of the accepted fixes (2 when consistent), ``gps_scale_mean`` and ``gps_scale``,
         the mean and last factor on the fixes' covariance (mean None: not estimated), ``rejected_xy (m, 2)``,
         the rejected fixes, ``n_zero_rate`` and ``n_zero_rate_rejected``, the stops whose heading drift
-        updated the gyro rate bias or was rejected, None without a rate-bias state), and per filter ``(n,)`` end-of-outage errors (m; a non-finite estimate raises).
+        updated the gyro rate bias or was rejected, None without a rate-bias state), and per filter
+        ``(n,)`` end-of-outage errors (m; a non-finite estimate raises).
     """
     bad = [f for f in filters if f not in REAL_FILTERS]
     if bad:
