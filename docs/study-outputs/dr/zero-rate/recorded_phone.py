@@ -63,3 +63,34 @@ print("\nC. 2021-03-29, outage by outage: start (s), metres driven, end error (m
 off, on = per_outage[d.CAR_DRIVES[1], False], per_outage[d.CAR_DRIVES[1], True]
 for j, s in enumerate(off["starts"]):
     print(f"  {s:5.1f} s {off['moved'][j]:5.0f} m | DR {off['DR-mech'][j]:5.2f} | EKF-8 off {off['EKF-8'][j]:5.2f} on {on['EKF-8'][j]:5.2f}")
+
+print("\nD. the gyro heading minus the track (the direction of the reference velocity), median per 10 s window "
+      "while moving faster than 2 m/s (deg)")
+for name, run in runs.items():
+    ve, vn = run.x_true[:, 1], run.x_true[:, 4]
+    off = np.rad2deg(np.angle(np.exp(1j * (run.z_dr[:, 0] - np.arctan2(ve, vn)))))
+    moving = np.hypot(ve, vn) > 2.0
+    cells = []
+    for t0 in np.arange(0.0, run.t[-1], 10.0):
+        w = moving & (run.t >= t0) & (run.t < t0 + 10.0)
+        if w.any():
+            cells.append(f"{t0:.0f} s: {np.median(off[w]):+.2f}")
+    print(f"  {name}: " + ", ".join(cells))
+
+print("\nE. 2021-03-29, the phone grade's EKF-8 with all fixes: its heading bias and rate bias through the stand")
+from filterwnn.navigation.dead_reckoning import GPSDRModel  # noqa: E402
+
+run = runs[d.CAR_DRIVES[1]]
+m = GPSDRModel.from_grade("phone", run.scenario.dt)
+for on in (False, True):
+    f = GPSDRFilter(m, "ekf", x0=np.r_[run.x0, m.x0[6:]], zero_rate_update=on)
+    gps, sig = run.gps_list(), run.gps_sigma_list()
+    cells = []
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        for k in range(len(run.t)):
+            f.predict()
+            f.update(run.z_dr[k], gps[k], sig[k])
+            if round(run.t[k], 1) in (30.0, 60.0, 66.0, 70.0, 80.0, 90.0):
+                cells.append(f"{run.t[k]:.0f} s: b {np.rad2deg(f.x[7]):+.2f} deg, r {np.rad2deg(f.x[8]):+.4f} deg/s")
+    print(f"  stop update {'on ' if on else 'off'}: " + "; ".join(cells))
