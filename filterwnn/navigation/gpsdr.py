@@ -56,6 +56,12 @@ What the filter does when GPS lies (each part a public setting, on by default):
   round a corner below ``standstill_speed``, or a heading that jumped, is rejected and counted).
   A heading that does not change at all over a stop is held by its source (a fused or
   GPS-course heading), not measured by a gyro, and is not used (``n_zero_rate_held``).
+  When :data:`ZERO_RATE_REACQUIRE_AFTER` stops in a row are rejected and their slopes agree
+  with each other (their spread about their weighted mean passes chi-square with ``N - 1``
+  degrees of freedom at 99.9 %), the state, not the stops, is taken to be wrong (the gyro's
+  bias changed, or it is outside the grade): its variance is raised by the squared difference
+  (its cross-covariances dropped), it updates with the stops' weighted mean, and the filter
+  warns with the step (``n_zero_rate_reacquired``), as the fixes re-acquire the position.
   Counted in ``n_zero_rate`` and ``n_zero_rate_rejected``; only a model with a rate-bias state
   (``GPSDRModel(rate_bias=True)``, the phone grade) has it, and ``zero_rate_update=False``
   switches it off. It needs no GPS: the rate bias is learnt at every stop, from the sensor that
@@ -127,7 +133,8 @@ from ..models import from_model
 from ..kalman.unscented import UnscentedKalmanFilter
 
 __all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS", "GATE", "REJECT_GATE", "REACQUIRE_AFTER",
-           "NIS_WINDOW", "CALIBRATION_SIGMAS", "ZERO_RATE_GATE", "ZERO_RATE_MIN_SAMPLES", "WHITENESS_WINDOW",
+           "NIS_WINDOW", "CALIBRATION_SIGMAS", "ZERO_RATE_GATE", "ZERO_RATE_MIN_SAMPLES",
+           "ZERO_RATE_REACQUIRE_AFTER", "WHITENESS_WINDOW",
            "SCALE_WINDOW", "SCALE_TEST", "SCALE_WARN", "gps_scale_mle", "gps_scale_loglik", "stop_heading_slope"]
 
 #: Default standstill threshold (m/s) on the odometer speed: 0.05 m/s = 0.11 mph, four
@@ -154,6 +161,10 @@ ZERO_RATE_GATE = NormalDist().inv_cdf(1.0 - 0.5e-3) ** 2  # = chi2.ppf(0.999, 1)
 #: Standstill samples a stop needs before its heading slope updates the rate bias (the slope's own
 #: variance, from the grade, weighs a short stop down further).
 ZERO_RATE_MIN_SAMPLES = 3
+#: Stops rejected in a row after which, when their slopes agree with each other, the rate-bias state
+#: re-acquires from them (the GPS fixes' :data:`REACQUIRE_AFTER`, for a sensor that is sampled at
+#: each stop, not each second: a gyro whose bias jumps would otherwise be rejected at every stop).
+ZERO_RATE_REACQUIRE_AFTER = 3
 #: Fixes over which the whiteness of the GPS innovations is estimated (lags up to a quarter of it).
 WHITENESS_WINDOW = 60
 #: Fixes over which the scale of the fixes' reported covariance is estimated when the estimate is
@@ -352,6 +363,9 @@ class GPSDRFilter:
         heading over the stop (a car does not turn while it stands; see the module docstring).
         On by default; it acts only on a model with a rate-bias state (``rate_bias=True``, the
         phone grade) and with ``standstill_speed > 0``.
+    zero_rate_reacquire_after : int
+        Stops rejected in a row after which, when their slopes agree, the rate-bias state
+        re-acquires from them (default :data:`ZERO_RATE_REACQUIRE_AFTER`; 0: never).
 
     Attributes
     ----------
@@ -374,10 +388,11 @@ class GPSDRFilter:
         The NIS of every accepted fix (:attr:`nis_mean` is their mean; 2 when consistent).
     nis_warnings : list of int
         The steps at which the consistency monitor warned.
-    n_zero_rate, n_zero_rate_rejected, n_zero_rate_held : int
+    n_zero_rate, n_zero_rate_rejected, n_zero_rate_held, n_zero_rate_reacquired : int
         Stops whose heading slope updated the rate bias; stops whose slope the gate rejected; stops
         over which the heading did not change at all (held by its source, e.g. a fused or GPS-course
-        heading, so it says nothing about the gyro: not used).
+        heading, so it says nothing about the gyro: not used); re-acquisitions of the rate-bias state
+        from rejected stops that agreed with each other.
     zero_rate_steps : list of tuple
         Per stop tested: ``(step, slope (rad/s), its standard deviation (rad/s), accepted)``.
     gps_correlation : float
@@ -397,7 +412,8 @@ class GPSDRFilter:
     def __init__(self, model, kind="ekf", *, x0=None, P0=None, standstill_speed=STANDSTILL_SPEED,
                  low_speed=LOW_SPEED, hold_without_gps=True, gps_window=0, points=None, gate=GATE,
                  reject_gate=None, reacquire_after=REACQUIRE_AFTER, nis_window=NIS_WINDOW,
-                 whiteness_window=WHITENESS_WINDOW, scale_window=0, zero_rate_update=True):
+                 whiteness_window=WHITENESS_WINDOW, scale_window=0, zero_rate_update=True,
+                 zero_rate_reacquire_after=ZERO_RATE_REACQUIRE_AFTER):
         if not isinstance(model, GPSDRModel):
             raise TypeError(f"model must be a GPSDRModel, got {type(model).__name__}")
         self.model = model
@@ -436,8 +452,12 @@ class GPSDRFilter:
         self._scale_fixes = deque(maxlen=max(self.scale_window, 1))  # (y clipped at the gate, P_pos, R)
         self.zero_rate_update = bool(zero_rate_update) and model.rate_bias
         self._stop = []  # (time, heading) of the standstill samples of the stop going on
-        self.n_zero_rate = self.n_zero_rate_rejected = self.n_zero_rate_held = 0
+        self.zero_rate_reacquire_after = int(zero_rate_reacquire_after)
+        if self.zero_rate_reacquire_after < 0:
+            raise ValueError(f"zero_rate_reacquire_after must be >= 0 (0: never), got {zero_rate_reacquire_after}")
+        self.n_zero_rate = self.n_zero_rate_rejected = self.n_zero_rate_held = self.n_zero_rate_reacquired = 0
         self.zero_rate_steps = []
+        self._zr_rejected = deque(maxlen=max(self.zero_rate_reacquire_after, 1))  # (slope, var) rejected in a row
 
     def _init_integrity(self, gate, reject_gate, reacquire_after, nis_window, x0):
         """The gate, the counters, the consistency monitor and the calibration bounds."""
@@ -565,18 +585,60 @@ class GPSDRFilter:
             return
         slope, var = stop_heading_slope(t, h, self.model.sigma_heading, self.model.q_bias)
         r = self.model.dim_x - 1  # the gyro rate bias, the last state
+        S = self.kf.P[r, r] + var
+        y = slope - self.kf.x[r]
+        ok = y * y / S <= ZERO_RATE_GATE
+        self.zero_rate_steps.append((self.step, slope, float(np.sqrt(var)), bool(ok)))
+        if ok:
+            self._zr_rejected.clear()
+            self.n_zero_rate += 1
+            self._rate_update(slope, var)
+            return
+        self.n_zero_rate_rejected += 1
+        if not self.zero_rate_reacquire_after:
+            return
+        self._zr_rejected.append((slope, var))
+        if len(self._zr_rejected) == self.zero_rate_reacquire_after:
+            self._zero_rate_reacquire()
+
+    def _zero_rate_reacquire(self):
+        """After :attr:`zero_rate_reacquire_after` stops rejected in a row: when their slopes agree (their
+        weighted spread passes chi-square(N - 1) at 99.9 %), re-acquire the rate bias from their weighted mean."""
+        from scipy.stats import chi2
+
+        s, v = (np.array(a) for a in zip(*self._zr_rejected))
+        w = 1.0 / v
+        mean, var = float(w @ s / w.sum()), float(1.0 / w.sum())
+        if len(s) > 1 and float(w @ (s - mean) ** 2) > chi2.ppf(0.999, len(s) - 1):
+            return  # they disagree (creeping, a jumping heading): keep waiting, the oldest leaves the window
+        self._zr_rejected.clear()
+        r = self.model.dim_x - 1
+        kf = self.kf
+        state, sd = float(kf.x[r]), float(np.sqrt(kf.P[r, r]))
+        P = kf.P.copy()
+        v_r = P[r, r] + (mean - state) ** 2
+        P[r, :] = P[:, r] = 0.0
+        P[r, r] = v_r
+        kf.P = P
+        self.n_zero_rate_reacquired += 1
+        if self.n_zero_rate_reacquired == 1:
+            deg = 180.0 / np.pi
+            warnings.warn(
+                f"GPSDRFilter: the last {len(s)} stops measured the gyro rate bias at {mean * deg:+.3g} "
+                f"+- {np.sqrt(var) * deg:.2g} deg/s, each rejected against the state's {state * deg:+.3g} +- "
+                f"{sd * deg:.2g} deg/s; the rate-bias state re-acquires from them at step {self.step}. The gyro's "
+                "bias has changed, or it is outside the sensor grade's specification: check the grade (later "
+                "re-acquisitions are counted in n_zero_rate_reacquired)", RuntimeWarning, stacklevel=4)
+        self._rate_update(mean, var)
+
+    def _rate_update(self, slope, var):
+        """The Kalman update of the rate-bias state (the last) with a measured rate ``slope`` of variance ``var``."""
+        r = self.model.dim_x - 1
         kf = self.kf
         x, P = kf.x, kf.P
         S = P[r, r] + var
-        y = slope - x[r]
-        ok = y * y / S <= ZERO_RATE_GATE
-        self.zero_rate_steps.append((self.step, slope, float(np.sqrt(var)), bool(ok)))
-        if not ok:
-            self.n_zero_rate_rejected += 1
-            return
-        self.n_zero_rate += 1
         Pr = P[:, r]
-        kf.x = x + Pr * (y / S)
+        kf.x = x + Pr * ((slope - x[r]) / S)
         P = P - np.outer(Pr, Pr) / S
         kf.P = 0.5 * (P + P.T)
         self._bound_calibration()

@@ -168,3 +168,48 @@ def test_a_heading_held_by_its_source_is_not_used(phone):
     f = _run(phone, z)
     assert f.n_zero_rate_held == 1 and f.n_zero_rate == 0 and not f.zero_rate_steps
     assert abs(f.x[8]) < 1e-12
+
+
+def _bias_jump(rng, model, after, before=0.0, n_before=3, n_after=3, seconds=20.0):
+    """Stops with moving stretches between them (no GPS): ``n_before`` at a rate bias of ``before`` deg/s,
+    then ``n_after`` at ``after`` (the gyro's bias jumped, as a temperature change or a re-calibration does)."""
+    moving = np.stack([np.full(50, 0.5), np.full(50, 1.0)], axis=1)  # 10 m/s
+    rates = [before] * n_before + [after] * n_after
+    return np.vstack([np.vstack([_stop(rng, model, r, seconds), moving]) for r in rates])
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_a_bias_that_jumped_is_reacquired_from_the_stops(phone, kind):
+    """Three stops teach a rate bias of 0; it then jumps to 0.1 deg/s (inside the grade's 3-sigma bound
+    of 0.15). Every later stop disagrees with the now-confident state and is rejected; the third in a
+    row agrees with the other two, so the state re-acquires from them, with a warning naming the step,
+    and ends within three of its standard deviations of 0.1 deg/s. Without re-acquisition it would
+    reject every stop for ever and keep 0."""
+    z = _bias_jump(np.random.default_rng(10), phone, 0.1)
+    with pytest.warns(RuntimeWarning, match=r"the last 3 stops measured the gyro rate bias at \+0\.09.* re-acquires "
+                                            r"from them at step \d+"):
+        f = _run(phone, z, kind)
+    assert f.n_zero_rate == 3 and f.n_zero_rate_rejected == 3 and f.n_zero_rate_reacquired == 1
+    assert [ok for *_, ok in f.zero_rate_steps] == [True] * 3 + [False] * 3
+    assert abs(f.x[8] - 0.1 * DEG) < 3 * np.sqrt(f.P[8, 8]) and np.sqrt(f.P[8, 8]) < 0.01 * DEG
+    assert np.all(np.linalg.eigvalsh(f.P) > 0)
+    never = _run(phone, z, kind, zero_rate_reacquire_after=0)
+    assert never.n_zero_rate_rejected == 3 and never.n_zero_rate_reacquired == 0
+    assert abs(never.x[8]) < 0.02 * DEG
+
+
+def test_rejected_stops_that_disagree_do_not_reacquire(phone):
+    """Three stops in a row creeping round corners (+2, -2, +2 deg/s below the standstill speed): each is
+    rejected, but they do not agree with each other, so the state keeps what the first stops taught."""
+    rng = np.random.default_rng(11)
+    moving = np.stack([np.full(50, 0.5), np.full(50, 1.0)], axis=1)
+    z = np.vstack([_bias_jump(rng, phone, 0.0, n_after=0)]
+                  + [np.vstack([_stop(rng, phone, 0.0, 20.0, turn_deg_s=turn), moving]) for turn in (2.0, -2.0, 2.0)])
+    f = _run(phone, z)
+    assert f.n_zero_rate == 3 and f.n_zero_rate_rejected == 3 and f.n_zero_rate_reacquired == 0
+    assert abs(f.x[8]) < 0.02 * DEG
+
+
+def test_zero_rate_reacquire_after_is_checked(phone):
+    with pytest.raises(ValueError, match="zero_rate_reacquire_after must be >= 0"):
+        GPSDRFilter(phone, zero_rate_reacquire_after=-1)

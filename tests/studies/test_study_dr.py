@@ -193,7 +193,8 @@ def test_drive_table_separates_the_causes():
     assert cells[8].endswith(f"of {ig['n_fixes']}") and cells[9] == f"{ig['nis_mean']:.2f}"
     assert cells[10] == "-" and ig["gps_scale_mean"] is None  # the covariance scale is not estimated by default
     # the sample stands at its start and at a light: the stops' heading drift teaches the gyro rate bias
-    assert cells[11] == f"{ig['n_zero_rate']} / {ig['n_zero_rate_rejected']} / {ig['n_zero_rate_held']}"
+    assert cells[11] == (f"{ig['n_zero_rate']} / {ig['n_zero_rate_rejected']} / {ig['n_zero_rate_reacquired']} / "
+                         f"{ig['n_zero_rate_held']}")
     assert ig["n_zero_rate"] >= 1 and ig["n_zero_rate_held"] == 0
     held = run._replace(z_dr=np.where((run.z_dr[:, 1:] == 0.0) | (run.z_dr[:, 1:] / run.scenario.dt < 0.05),
                                       [[0.5, 0.0]], run.z_dr))  # a heading source that holds 0.5 rad standing

@@ -78,7 +78,8 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         the mean and last factor on the fixes' covariance (mean None: not estimated), ``rejected_xy (m, 2)``,
         the rejected fixes, ``n_zero_rate``, ``n_zero_rate_rejected`` and ``n_zero_rate_held``, the stops
         whose heading drift updated the gyro rate bias, was rejected, or did not move at all (a heading
-        held by its source), None without a rate-bias state), and per filter
+        held by its source), and ``n_zero_rate_reacquired``, the rate-bias state's re-acquisitions from
+        rejected stops that agreed; None without a rate-bias state), and per filter
         ``(n,)`` end-of-outage errors (m; a non-finite estimate raises).
     """
     bad = [f for f in filters if f not in REAL_FILTERS]
@@ -203,7 +204,8 @@ def _integrity(f, run):
             "gps_scale": f.gps_scale, "rejected_xy": run.z_gps[rej],
             "n_zero_rate": f.n_zero_rate if f.zero_rate_update else None,
             "n_zero_rate_rejected": f.n_zero_rate_rejected if f.zero_rate_update else None,
-            "n_zero_rate_held": f.n_zero_rate_held if f.zero_rate_update else None}
+            "n_zero_rate_held": f.n_zero_rate_held if f.zero_rate_update else None,
+            "n_zero_rate_reacquired": f.n_zero_rate_reacquired if f.zero_rate_update else None}
 
 
 def _outage_ends(f, name, run, k0s, k1s, starts, gps, sig):
@@ -243,7 +245,7 @@ def real_drive_table(res, min_moved=100.0):
              f"{res.get('reference', 'truth')} (m)", "",
              "| filter | median all | p90 all | max all | median moving | max moving | median at start | "
              "median growth | fixes rejected / down-weighted / re-acquired | mean NIS (2: consistent) | "
-             "mean GPS covariance scale (1: as reported) | stops for the gyro rate bias: used / rejected / heading held |",
+             "mean GPS covariance scale (1: as reported) | stops for the gyro rate bias: used / rejected / re-acquired / heading held |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for n in names:
         e = res[n]
@@ -261,6 +263,7 @@ def _integrity_cells(ig):
     nis = "-" if ig["nis_mean"] is None else f"{ig['nis_mean']:.2f}"
     scale = "-" if ig.get("gps_scale_mean") is None else f"{ig['gps_scale_mean']:.2f}"
     stops = ("-" if ig.get("n_zero_rate") is None
-             else f"{ig['n_zero_rate']} / {ig['n_zero_rate_rejected']} / {ig['n_zero_rate_held']}")
+             else f"{ig['n_zero_rate']} / {ig['n_zero_rate_rejected']} / {ig['n_zero_rate_reacquired']} / "
+                  f"{ig['n_zero_rate_held']}")
     return (f"{ig['n_rejected']} / {ig['n_downweighted']} / {ig['n_reacquired']} of {ig['n_fixes']} | {nis} | "
             f"{scale} | {stops}")
