@@ -56,12 +56,16 @@ What the filter does when GPS lies (each part a public setting, on by default):
   round a corner below ``standstill_speed``, or a heading that jumped, is rejected and counted).
   A heading that does not change at all over a stop is held by its source (a fused or
   GPS-course heading), not measured by a gyro, and is not used (``n_zero_rate_held``).
-  When :data:`ZERO_RATE_REACQUIRE_AFTER` stops in a row are rejected and their slopes agree
+  When :data:`ZERO_RATE_REACQUIRE_AFTER` stops in a row are ones the state could not follow
+  (rejected by the gate, or used but held at the calibration bound) and their slopes agree
   with each other (their spread about their weighted mean passes chi-square with ``N - 1``
   degrees of freedom at 99.9 %), the state, not the stops, is taken to be wrong (the gyro's
   bias changed, or it is outside the grade): its variance is raised by the squared difference
   (its cross-covariances dropped), it updates with the stops' weighted mean, and the filter
-  warns with the step (``n_zero_rate_reacquired``), as the fixes re-acquire the position.
+  warns with the step (``n_zero_rate_reacquired``), as the fixes re-acquire the position. The
+  gyro has then measured itself outside what the grade's prior says, so the calibration bounds
+  of the rate bias and of the heading bias it drives restart from there (their spread kept): a
+  gyro outside its grade is followed, with a warning, instead of held at the bound for ever.
   Counted in ``n_zero_rate`` and ``n_zero_rate_rejected``; only a model with a rate-bias state
   (``GPSDRModel(rate_bias=True)``, the phone grade) has it, and ``zero_rate_update=False``
   switches it off. It needs no GPS: the rate bias is learnt at every stop, from the sensor that
@@ -161,8 +165,8 @@ ZERO_RATE_GATE = NormalDist().inv_cdf(1.0 - 0.5e-3) ** 2  # = chi2.ppf(0.999, 1)
 #: Standstill samples a stop needs before its heading slope updates the rate bias (the slope's own
 #: variance, from the grade, weighs a short stop down further).
 ZERO_RATE_MIN_SAMPLES = 3
-#: Stops rejected in a row after which, when their slopes agree with each other, the rate-bias state
-#: re-acquires from them (the GPS fixes' :data:`REACQUIRE_AFTER`, for a sensor that is sampled at
+#: Stops in a row that the rate-bias state could not follow (rejected by the gate, or held at the calibration
+#: bound) after which, when their slopes agree with each other, the state re-acquires from them (the GPS fixes' :data:`REACQUIRE_AFTER`, for a sensor that is sampled at
 #: each stop, not each second: a gyro whose bias jumps would otherwise be rejected at every stop).
 ZERO_RATE_REACQUIRE_AFTER = 3
 #: Fixes over which the whiteness of the GPS innovations is estimated (lags up to a quarter of it).
@@ -364,8 +368,9 @@ class GPSDRFilter:
         On by default; it acts only on a model with a rate-bias state (``rate_bias=True``, the
         phone grade) and with ``standstill_speed > 0``.
     zero_rate_reacquire_after : int
-        Stops rejected in a row after which, when their slopes agree, the rate-bias state
-        re-acquires from them (default :data:`ZERO_RATE_REACQUIRE_AFTER`; 0: never).
+        Stops in a row that the state could not follow (rejected, or held at the calibration bound)
+        after which, when their slopes agree, the rate-bias state re-acquires from them (default
+        :data:`ZERO_RATE_REACQUIRE_AFTER`; 0: never).
 
     Attributes
     ----------
@@ -522,6 +527,7 @@ class GPSDRFilter:
         """Propagate ``x`` and ``P`` one DR sample interval."""
         self.kf.predict()
         if self._cal.size:
+            self._cal_mean = self._cal_F @ self._cal_mean
             self._cal_P = self._cal_F @ self._cal_P @ self._cal_F.T + self._cal_Q
         return self
 
@@ -590,11 +596,13 @@ class GPSDRFilter:
         ok = y * y / S <= ZERO_RATE_GATE
         self.zero_rate_steps.append((self.step, slope, float(np.sqrt(var)), bool(ok)))
         if ok:
-            self._zr_rejected.clear()
             self.n_zero_rate += 1
-            self._rate_update(slope, var)
-            return
-        self.n_zero_rate_rejected += 1
+            if not self._rate_update(slope, var):
+                self._zr_rejected.clear()
+                return
+            # used, but the calibration bound held the state: it could not follow this stop either
+        else:
+            self.n_zero_rate_rejected += 1
         if not self.zero_rate_reacquire_after:
             return
         self._zr_rejected.append((slope, var))
@@ -602,8 +610,9 @@ class GPSDRFilter:
             self._zero_rate_reacquire()
 
     def _zero_rate_reacquire(self):
-        """After :attr:`zero_rate_reacquire_after` stops rejected in a row: when their slopes agree (their
-        weighted spread passes chi-square(N - 1) at 99.9 %), re-acquire the rate bias from their weighted mean."""
+        """After :attr:`zero_rate_reacquire_after` stops in a row that the state could not follow (rejected by
+        the gate, or used but held at the calibration bound): when their slopes agree (their weighted spread
+        passes chi-square(N - 1) at 99.9 %), re-acquire the rate bias from their weighted mean."""
         from scipy.stats import chi2
 
         s, v = (np.array(a) for a in zip(*self._zr_rejected))
@@ -615,6 +624,10 @@ class GPSDRFilter:
         r = self.model.dim_x - 1
         kf = self.kf
         state, sd = float(kf.x[r]), float(np.sqrt(kf.P[r, r]))
+        # the gyro itself measured its bias: the grade's prior no longer describes it, so the calibration
+        # bounds of the rate bias and of the heading bias it drives restart from here (their spread kept)
+        self._cal_mean[-1] = mean
+        self._cal_mean[-2] = kf.x[r - 1]
         P = kf.P.copy()
         v_r = P[r, r] + (mean - state) ** 2
         P[r, :] = P[:, r] = 0.0
@@ -625,26 +638,30 @@ class GPSDRFilter:
             deg = 180.0 / np.pi
             warnings.warn(
                 f"GPSDRFilter: the last {len(s)} stops measured the gyro rate bias at {mean * deg:+.3g} "
-                f"+- {np.sqrt(var) * deg:.2g} deg/s, each rejected against the state's {state * deg:+.3g} +- "
-                f"{sd * deg:.2g} deg/s; the rate-bias state re-acquires from them at step {self.step}. The gyro's "
-                "bias has changed, or it is outside the sensor grade's specification: check the grade (later "
+                f"+- {np.sqrt(var) * deg:.2g} deg/s, which the state ({state * deg:+.3g} +- {sd * deg:.2g} deg/s) "
+                "could not follow (each rejected, or held at its calibration bound); the rate-bias state "
+                f"re-acquires from them at step {self.step}, and the "
+                "calibration bounds of the rate bias and the heading bias restart from there. The gyro's bias has "
+                "changed, or it is outside the sensor grade's specification: check the grade (later "
                 "re-acquisitions are counted in n_zero_rate_reacquired)", RuntimeWarning, stacklevel=4)
         self._rate_update(mean, var)
 
     def _rate_update(self, slope, var):
-        """The Kalman update of the rate-bias state (the last) with a measured rate ``slope`` of variance ``var``."""
+        """The Kalman update of the rate-bias state (the last) with a measured rate ``slope`` of variance
+        ``var``; True when the calibration bound then held the rate bias (the state could not follow it)."""
         r = self.model.dim_x - 1
         kf = self.kf
         x, P = kf.x, kf.P
         S = P[r, r] + var
         Pr = P[:, r]
-        kf.x = x + Pr * ((slope - x[r]) / S)
+        kf.x = x_new = x + Pr * ((slope - x[r]) / S)
         P = P - np.outer(Pr, Pr) / S
         kf.P = 0.5 * (P + P.T)
-        self._bound_calibration()
+        held = self._bound_calibration() and kf.x[r] != x_new[r]
         self._repair()
         if self.kind != "ekf":  # the update's sigma points come from the prior: draw them from the new one
             kf.compute_process_sigmas(self.model.dt, fx=lambda s, dt: s)
+        return held
 
     def _fix_sigma(self, gps_sigma):
         return self.model.sigma_gps if gps_sigma is None else float(gps_sigma)
@@ -822,7 +839,10 @@ class GPSDRFilter:
 
         The prior is the model's ``P0`` propagated by its ``F`` and ``Q`` without measurements
         (a random walk's spread grows with time; a heading bias driven by a rate bias grows
-        with the rate bias's specification times the time).
+        with the rate bias's specification times the time), about the start's mean propagated by
+        ``F`` (a heading bias drifts with the rate bias's mean). A re-acquisition of the rate bias
+        from the stops (:meth:`_zero_rate_reacquire`) restarts the mean of the rate bias and of the
+        heading bias from there: the gyro has measured itself outside its specification.
         """
         if not self._cal.size:
             return False

@@ -213,3 +213,31 @@ def test_rejected_stops_that_disagree_do_not_reacquire(phone):
 def test_zero_rate_reacquire_after_is_checked(phone):
     with pytest.raises(ValueError, match="zero_rate_reacquire_after must be >= 0"):
         GPSDRFilter(phone, zero_rate_reacquire_after=-1)
+
+
+def test_a_gyro_outside_its_grade_is_followed_with_a_warning(phone):
+    """A rate bias of 0.3 deg/s against the phone grade's 0.05 (its bound: three prior sigmas, 0.15 and
+    growing slowly). The stops are rejected; the third in a row re-acquires, and the calibration bounds
+    restart from the stops' value, so the state follows the gyro (within three of its sigmas of 0.3)
+    instead of being held at the bound. Without re-acquisition it stays under the grade's bound."""
+    z = _bias_jump(np.random.default_rng(12), phone, 0.3, n_before=0, n_after=4)
+    with pytest.warns(RuntimeWarning, match="calibration bounds of the rate bias and the heading bias restart"):
+        f = _run(phone, z)
+    assert f.n_zero_rate_rejected == 3 and f.n_zero_rate_reacquired == 1 and f.n_zero_rate == 1
+    assert abs(f.x[8] - 0.3 * DEG) < 3 * np.sqrt(f.P[8, 8])
+    never = _run(phone, z, zero_rate_reacquire_after=0)
+    assert never.n_zero_rate_rejected == 4 and never.x[8] < 0.16 * DEG
+
+
+def test_stops_held_at_the_bound_count_as_not_followed(phone):
+    """Short stops (3 s) at 0.3 deg/s each pass the gate (their slopes are uncertain), so the state climbs
+    until the calibration bound holds it near 0.15 deg/s. Stops the bound holds are ones the state could
+    not follow, as rejected ones are: three in a row that agree re-acquire, and the state follows the gyro."""
+    z = _bias_jump(np.random.default_rng(13), phone, 0.3, n_before=0, n_after=20, seconds=3.0)
+    with pytest.warns(RuntimeWarning, match="held at its calibration bound"):
+        f = _run(phone, z)
+    assert f.n_zero_rate_reacquired >= 1
+    assert abs(f.x[8] - 0.3 * DEG) < 3 * np.sqrt(f.P[8, 8])
+    never = _run(phone, z, zero_rate_reacquire_after=0)
+    assert never.n_zero_rate_reacquired == 0 and never.x[8] < 0.16 * DEG
+    assert never.n_zero_rate_rejected < 3  # they passed the gate: the gate alone would never re-acquire
