@@ -165,9 +165,10 @@ ZERO_RATE_GATE = NormalDist().inv_cdf(1.0 - 0.5e-3) ** 2  # = chi2.ppf(0.999, 1)
 #: Standstill samples a stop needs before its heading slope updates the rate bias (the slope's own
 #: variance, from the grade, weighs a short stop down further).
 ZERO_RATE_MIN_SAMPLES = 3
-#: Stops in a row that the rate-bias state could not follow (rejected by the gate, or held at the calibration
-#: bound) after which, when their slopes agree with each other, the state re-acquires from them (the GPS fixes' :data:`REACQUIRE_AFTER`, for a sensor that is sampled at
-#: each stop, not each second: a gyro whose bias jumps would otherwise be rejected at every stop).
+#: Stops in a row that the rate-bias state could not follow (rejected by the gate, or held at the
+#: calibration bound) after which, when their slopes agree with each other, the state re-acquires from
+#: them: the GPS fixes' :data:`REACQUIRE_AFTER`, for a sensor sampled at each stop, not each second (a
+#: gyro whose bias jumps would otherwise be rejected at every stop).
 ZERO_RATE_REACQUIRE_AFTER = 3
 #: Fixes over which the whiteness of the GPS innovations is estimated (lags up to a quarter of it).
 WHITENESS_WINDOW = 60
@@ -397,7 +398,7 @@ class GPSDRFilter:
         Stops whose heading slope updated the rate bias; stops whose slope the gate rejected; stops
         over which the heading did not change at all (held by its source, e.g. a fused or GPS-course
         heading, so it says nothing about the gyro: not used); re-acquisitions of the rate-bias state
-        from rejected stops that agreed with each other.
+        from stops it could not follow that agreed with each other.
     zero_rate_steps : list of tuple
         Per stop tested: ``(step, slope (rad/s), its standard deviation (rad/s), accepted)``.
     gps_correlation : float
@@ -462,7 +463,8 @@ class GPSDRFilter:
             raise ValueError(f"zero_rate_reacquire_after must be >= 0 (0: never), got {zero_rate_reacquire_after}")
         self.n_zero_rate = self.n_zero_rate_rejected = self.n_zero_rate_held = self.n_zero_rate_reacquired = 0
         self.zero_rate_steps = []
-        self._zr_rejected = deque(maxlen=max(self.zero_rate_reacquire_after, 1))  # (slope, var) rejected in a row
+        # (slope, var) of the stops in a row that the state could not follow
+        self._zr_rejected = deque(maxlen=max(self.zero_rate_reacquire_after, 1))
 
     def _init_integrity(self, gate, reject_gate, reacquire_after, nis_window, x0):
         """The gate, the counters, the consistency monitor and the calibration bounds."""
@@ -627,7 +629,7 @@ class GPSDRFilter:
         # the gyro itself measured its bias: the grade's prior no longer describes it, so the calibration
         # bounds of the rate bias and of the heading bias it drives restart from here (their spread kept)
         self._cal_mean[-1] = mean
-        self._cal_mean[-2] = kf.x[r - 1]
+        self._cal_mean[-2] = kf.x[r - 1]  # the heading bias, the state before the rate bias
         P = kf.P.copy()
         v_r = P[r, r] + (mean - state) ** 2
         P[r, :] = P[:, r] = 0.0

@@ -79,7 +79,7 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         the rejected fixes, ``n_zero_rate``, ``n_zero_rate_rejected`` and ``n_zero_rate_held``, the stops
         whose heading drift updated the gyro rate bias, was rejected, or did not move at all (a heading
         held by its source), and ``n_zero_rate_reacquired``, the rate-bias state's re-acquisitions from
-        rejected stops that agreed; None without a rate-bias state), and per filter
+        stops it could not follow that agreed; None without a rate-bias state), and per filter
         ``(n,)`` end-of-outage errors (m; a non-finite estimate raises).
     """
     bad = [f for f in filters if f not in REAL_FILTERS]
@@ -245,7 +245,8 @@ def real_drive_table(res, min_moved=100.0):
              f"{res.get('reference', 'truth')} (m)", "",
              "| filter | median all | p90 all | max all | median moving | max moving | median at start | "
              "median growth | fixes rejected / down-weighted / re-acquired | mean NIS (2: consistent) | "
-             "mean GPS covariance scale (1: as reported) | stops for the gyro rate bias: used / rejected / re-acquired / heading held |",
+             "mean GPS covariance scale (1: as reported) | "
+             "stops for the gyro rate bias: used / rejected / re-acquired / heading held |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for n in names:
         e = res[n]
