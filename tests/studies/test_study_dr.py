@@ -217,3 +217,27 @@ def test_a_new_scenario_is_one_entry_of_scenarios(monkeypatch):
            "turns": ((2.0, 6.0, 5.0),), **kw}))
     res = dr.run_study(scenarios=["slow-turn"], n_runs=1, filters=["EKF"], n_steps=80, seed=3)
     assert "slow-turn" in res.scenarios and np.all(np.isfinite(res.errors["slow-turn"]["filters"]["EKF"]))
+
+
+def test_a_filters_warnings_name_it_and_repeats_are_summarised():
+    """A drive runs several filters: each warning it gives is re-issued with the filter's name, and the
+    repeats of one kind (the same text up to the step) come in one line with their steps."""
+    import warnings
+
+    from filterwnn.studies.dr._real import _warnings_named
+
+    with pytest.warns(RuntimeWarning) as record:
+        with _warnings_named("EKF-8"):
+            for step in (5, 9, 12):
+                warnings.warn(f"GPSDRFilter is inconsistent at step {step}: NIS {step}", RuntimeWarning)
+            warnings.warn("GPSDRFilter: the heading bias state ran past 3 sigma at step 7 (x)", RuntimeWarning)
+            warnings.warn("GPSDRFilter: the heading bias state ran past 3 sigma at step 8 (y)", RuntimeWarning)
+    lines = [str(w.message) for w in record]
+    assert lines == ["EKF-8: GPSDRFilter is inconsistent at step 5: NIS 5 (and 2 more like it, at steps 9, 12)",
+                     "EKF-8: GPSDRFilter: the heading bias state ran past 3 sigma at step 7 (x) (and 1 more like it, "
+                     "at step 8)"]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # the outer filters still apply: -W error raises
+        with pytest.raises(RuntimeWarning, match="^UKF-8: no step here$"):
+            with _warnings_named("UKF-8"):
+                warnings.warn("no step here", RuntimeWarning)
