@@ -630,11 +630,7 @@ class GPSDRFilter:
         # bounds of the rate bias and of the heading bias it drives restart from here (their spread kept)
         self._cal_mean[-1] = mean
         self._cal_mean[-2] = kf.x[r - 1]  # the heading bias, the state before the rate bias
-        P = kf.P.copy()
-        v_r = P[r, r] + (mean - state) ** 2
-        P[r, :] = P[:, r] = 0.0
-        P[r, r] = v_r
-        kf.P = P
+        self._widen((r,), (mean - state,))
         self.n_zero_rate_reacquired += 1
         if self.n_zero_rate_reacquired == 1:
             deg = 180.0 / np.pi
@@ -661,8 +657,7 @@ class GPSDRFilter:
         kf.P = 0.5 * (P + P.T)
         held = self._bound_calibration() and kf.x[r] != x_new[r]
         self._repair()
-        if self.kind != "ekf":  # the update's sigma points come from the prior: draw them from the new one
-            kf.compute_process_sigmas(self.model.dt, fx=lambda s, dt: s)
+        self._redraw_sigmas()
         return held
 
     def _fix_sigma(self, gps_sigma):
@@ -762,15 +757,24 @@ class GPSDRFilter:
 
     def _reacquire(self, y):
         """Take the filter to be lost: position variances ``+= y^2``, their cross-covariances dropped."""
-        kf = self.kf
-        P = kf.P.copy()
-        for i, r in enumerate((0, 3)):
-            v = P[r, r] + y[i] ** 2
+        self._widen((0, 3), y)
+        self._redraw_sigmas()
+
+    def _widen(self, rows, y):
+        """Take the states ``rows`` to be lost: their variances ``+= y^2`` (``y``: one difference per
+        row), their cross-covariances dropped (the fixes' and the stops' re-acquisition)."""
+        P = self.kf.P.copy()
+        for r, yr in zip(rows, y):
+            v = P[r, r] + yr ** 2
             P[r, :] = P[:, r] = 0.0
             P[r, r] = v
-        kf.P = P
-        if self.kind != "ekf":  # the update's sigma points come from the prior: draw them from the new one
-            kf.compute_process_sigmas(self.model.dt, fx=lambda s, dt: s)
+        self.kf.P = P
+
+    def _redraw_sigmas(self):
+        """The unscented kinds' update takes its sigma points from the prior: after ``x`` or ``P``
+        changed outside a step, draw them from the new ones (the EKF keeps none)."""
+        if self.kind != "ekf":
+            self.kf.compute_process_sigmas(self.model.dt, fx=lambda s, dt: s)
 
     def _monitor(self, nis):
         """Warn when the mean NIS over the last :attr:`nis_window` fixes leaves its 99.9 % bound."""
