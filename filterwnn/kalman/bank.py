@@ -430,10 +430,10 @@ class UnscentedKalmanFilterBank(_NonlinearBank):
         numba) for ``dim_x <= 8``: 1.4-1.9x as fast for a bank of many small filters, the
         same numbers to rounding (not bit for bit), the same errors. Mean and residual
         functions (an angle residual, a circular mean) are called in NumPy as on the NumPy
-        step, and the kernels take the deviations they give. None: when numba is installed (``pip install "filterwnn[fast]"``);
-        True: required (``ImportError`` without numba); False: the NumPy step. ``fx`` and
-        ``hx`` are called as without it. The first use on a machine compiles the kernels
-        (a few seconds, cached beside the module).
+        step, and the kernels take the deviations they give. None: when numba is installed
+        (``pip install "filterwnn[fast]"``); True: required (``ImportError`` without numba);
+        False: the NumPy step. ``fx`` and ``hx`` are called as without it. The first use on a
+        machine compiles the kernels (a few seconds, cached beside the module).
 
     Attributes
     ----------
@@ -478,7 +478,7 @@ class UnscentedKalmanFilterBank(_NonlinearBank):
 
     @property
     def compiled(self):
-        return self._step.runs_compiled(self._model, self.dim_x)
+        return self._step.runs_compiled(self.dim_x)
 
 
 class ExtendedKalmanFilterBank(_NonlinearBank):

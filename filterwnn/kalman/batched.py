@@ -727,16 +727,16 @@ class UnscentedStep(_Step):
         self._Z = unit_sigma_points(points)
         self.compiled = bool(compiled)
 
-    def runs_compiled(self, model, n):
-        """True when this step runs the compiled kernels (``filterwnn.kalman._compiled``) on
-        ``model`` with ``n`` states: ``compiled`` set and ``n <= 8``. The user's mean and
-        residual functions, when given, are called in NumPy as on the NumPy step, and the
-        kernels take the deviations they give."""
+    def runs_compiled(self, n):
+        """True when this step runs the compiled kernels (``filterwnn.kalman._compiled``) on a
+        model with ``n`` states: ``compiled`` set and ``n <= 8``. The user's mean and residual
+        functions, when given, are called in NumPy as on the NumPy step, and the kernels take
+        the deviations they give."""
         return bool(self.__dict__.get("compiled")) and n <= COLUMNS_MAX_N
 
-    def _compiled_for(self, model, n):
+    def _compiled_for(self, n):
         """The compiled kernels when :meth:`runs_compiled`, else None."""
-        return _compiled.kernels() if self.runs_compiled(model, n) else None
+        return _compiled.kernels() if self.runs_compiled(n) else None
 
     @cached_property
     def _weights(self):
@@ -792,7 +792,7 @@ class UnscentedStep(_Step):
         if model.fx is None:
             return KalmanPrediction(x.copy(), P + Q)
         N, n = x.shape
-        kern = self._compiled_for(model, n)
+        kern = self._compiled_for(n)
         if kern is not None:
             got = self._sigmas_compiled(kern, x, P)
             if got is not None:
@@ -827,7 +827,7 @@ class UnscentedStep(_Step):
         xp, Pp = prediction
         N, n = xp.shape
         m = model.dim_z
-        kern = self._compiled_for(model, n)
+        kern = self._compiled_for(n)
         if kern is not None:
             upd = self._update_compiled(kern, model, xp, Pp, z, hx_args, R)
             if upd is not None:

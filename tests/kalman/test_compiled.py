@@ -249,7 +249,7 @@ def test_compiled_errors_are_the_numpy_steps_errors():
 def test_a_step_pickled_before_the_compiled_option_loads_as_the_numpy_step():
     step = UnscentedStep(POINTS["merwe"](3))
     del step.__dict__["compiled"]
-    assert step._compiled_for(None, 3) is None and "compiled" not in repr(step)
+    assert step._compiled_for(3) is None and "compiled" not in repr(step)
     assert "compiled=True" in repr(UnscentedStep(POINTS["merwe"](3), compiled=True))
 
 
