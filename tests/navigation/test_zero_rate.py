@@ -14,6 +14,8 @@ from filterwnn.navigation.gpsdr import KINDS, ZERO_RATE_GATE, ZERO_RATE_MIN_SAMP
 
 DT = 0.1
 DEG = np.pi / 180.0
+#: DR samples of 5 s driving at 10 m/s (heading 0.5 rad), between stops
+MOVING = np.stack([np.full(50, 0.5), np.full(50, 1.0)], axis=1)
 
 
 def _headings(rng, n, rate, white, arw):
@@ -151,8 +153,7 @@ def test_every_stop_of_a_drive_is_used(phone):
     """Three stops with moving stretches between them (no GPS): three updates, the state near the
     truth, and the moving samples collect nothing."""
     rng = np.random.default_rng(8)
-    moving = np.stack([np.full(50, 0.5), np.full(50, 1.0)], axis=1)  # 10 m/s
-    z = np.vstack([_stop(rng, phone, 0.02, 8.0), moving, _stop(rng, phone, 0.02, 12.0), moving,
+    z = np.vstack([_stop(rng, phone, 0.02, 8.0), MOVING, _stop(rng, phone, 0.02, 12.0), MOVING,
                    _stop(rng, phone, 0.02, 5.0)])
     f = _run(phone, z)
     assert f.n_zero_rate == 3 and f.n_zero_rate_rejected == 0
@@ -173,9 +174,8 @@ def test_a_heading_held_by_its_source_is_not_used(phone):
 def _bias_jump(rng, model, after, before=0.0, n_before=3, n_after=3, seconds=20.0):
     """Stops with moving stretches between them (no GPS): ``n_before`` at a rate bias of ``before`` deg/s,
     then ``n_after`` at ``after`` (the gyro's bias jumped, as a temperature change or a re-calibration does)."""
-    moving = np.stack([np.full(50, 0.5), np.full(50, 1.0)], axis=1)  # 10 m/s
     rates = [before] * n_before + [after] * n_after
-    return np.vstack([np.vstack([_stop(rng, model, r, seconds), moving]) for r in rates])
+    return np.vstack([np.vstack([_stop(rng, model, r, seconds), MOVING]) for r in rates])
 
 
 @pytest.mark.parametrize("kind", KINDS)
@@ -202,9 +202,8 @@ def test_rejected_stops_that_disagree_do_not_reacquire(phone):
     """Three stops in a row creeping round corners (+2, -2, +2 deg/s below the standstill speed): each is
     rejected, but they do not agree with each other, so the state keeps what the first stops taught."""
     rng = np.random.default_rng(11)
-    moving = np.stack([np.full(50, 0.5), np.full(50, 1.0)], axis=1)
     z = np.vstack([_bias_jump(rng, phone, 0.0, n_after=0)]
-                  + [np.vstack([_stop(rng, phone, 0.0, 20.0, turn_deg_s=turn), moving]) for turn in (2.0, -2.0, 2.0)])
+                  + [np.vstack([_stop(rng, phone, 0.0, 20.0, turn_deg_s=turn), MOVING]) for turn in (2.0, -2.0, 2.0)])
     f = _run(phone, z)
     assert f.n_zero_rate == 3 and f.n_zero_rate_rejected == 3 and f.n_zero_rate_reacquired == 0
     assert abs(f.x[8]) < 0.02 * DEG
