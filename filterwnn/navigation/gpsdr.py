@@ -129,6 +129,7 @@ import numpy as np
 from filterpy.kalman import ExtendedKalmanFilter
 
 from .._linalg import repair_pd
+from .._warnings import folded_warnings
 from ..metrics import integrated_autocorrelation
 from .._validation import as_state, check_choice, check_covariance, check_positive, check_positive_int, check_scale
 from .dead_reckoning import GPSDRModel, dr_residual
@@ -942,6 +943,14 @@ class GPSDRFilter:
         -------
         ndarray of shape (n_steps, dim_x)
             The posterior means.
+
+        Warns
+        -----
+        RuntimeWarning
+            What the steps warn (an inconsistent window of fixes, a calibration state at its bound, a
+            re-acquisition, a covariance repair), once per kind when the run ends: the first with its
+            step, then how many more like it came and at which steps. ``predict``/``update`` warn at
+            each step as it happens.
         """
         z_dr = np.asarray(z_dr, dtype=float)
         if z_dr.ndim != 2 or z_dr.shape[1] != 2:
@@ -953,8 +962,9 @@ class GPSDRFilter:
             if len(seq) != n:
                 raise ValueError(f"{name} must have one entry per DR sample ({n}), got {len(seq)}")
         out = np.empty((n, self.model.dim_x))
-        for k in range(n):
-            self.predict()
-            self.update(z_dr[k], gps[k], sig[k])
-            out[k] = self.kf.x
+        with folded_warnings():  # a long drive can warn many times for one cause: once per kind
+            for k in range(n):
+                self.predict()
+                self.update(z_dr[k], gps[k], sig[k])
+                out[k] = self.kf.x
         return out

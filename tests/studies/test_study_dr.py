@@ -224,7 +224,7 @@ def test_a_filters_warnings_name_it_and_repeats_are_summarised():
     repeats of one kind (the same text up to the step) come in one line with their steps."""
     import warnings
 
-    from filterwnn.studies.dr._real import _warnings_named
+    from filterwnn._warnings import folded_warnings as _warnings_named
 
     with pytest.warns(RuntimeWarning) as record:
         with _warnings_named("EKF-8"):

@@ -8,13 +8,11 @@ once with GPS, snapshots it at each outage start and runs each outage alone;
 
 from __future__ import annotations
 
-import contextlib
 import copy
-import re
-import warnings
 
 import numpy as np
 
+from ..._warnings import folded_warnings
 from ...navigation.dead_reckoning import GPSDRModel
 from ...navigation.drives import CAR_DRIVE
 from ...navigation.gpsdr import GPSDRFilter
@@ -123,7 +121,7 @@ def _score_filter(out, name, run, windows, use_gps_sigma, settings):
         f = _real_drive_filter(name, run, settings["grade"], settings["model_kwargs"], kw,
                                settings["gps_window"], settings["slow_speed"], settings["scale_window"])
         sig = run.gps_sigma_list() if use_gps_sigma else [None] * len(run.t)
-        with _warnings_named(name):
+        with folded_warnings(name):  # each warning names its filter, repeats folded
             ends, begins = _outage_ends(f, name, run, k0s, k1s, out["starts"], run.gps_list(), sig)
         out["start_err"][name] = np.hypot(*(begins - _start_refs(run, k0s, track)).T)
         out["integrity"][name] = _integrity(f, run)
@@ -210,34 +208,6 @@ def _integrity(f, run):
             "n_zero_rate_rejected": f.n_zero_rate_rejected if f.zero_rate_update else None,
             "n_zero_rate_held": f.n_zero_rate_held if f.zero_rate_update else None,
             "n_zero_rate_reacquired": f.n_zero_rate_reacquired if f.zero_rate_update else None}
-
-
-#: Steps a summarised warning lists before "...".
-_STEPS_LISTED = 8
-
-
-@contextlib.contextmanager
-def _warnings_named(name):
-    """Re-issue the warnings filter ``name`` gives while it runs, each prefixed with its name (a drive
-    runs several filters, and their warnings would not say whose they are), and the repeats of one kind
-    (the same text up to its step) in one line with their steps: ``EKF-8: GPSDRFilter is inconsistent
-    at step 29: ... (and 5 more like it, at steps 129, 221, ...)``. The outer warning filters apply to
-    the re-issued warnings as to any (``-W error`` still raises)."""
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        yield
-    groups = {}
-    for w in caught:
-        text = str(w.message)
-        groups.setdefault((w.category, re.split(r"\bstep \d+", text)[0]), []).append(text)
-    for (category, _), texts in groups.items():
-        line = f"{name}: {texts[0]}"
-        if len(texts) > 1:
-            steps = [m.group(1) for m in (re.search(r"\bstep (\d+)", t) for t in texts[1:]) if m]
-            listed = ", ".join(steps[:_STEPS_LISTED]) + (", ..." if len(steps) > _STEPS_LISTED else "")
-            at = f", at step{'s' if len(steps) > 1 else ''} {listed}" if steps else ""
-            line += f" (and {len(texts) - 1} more like it{at})"
-        warnings.warn(line, category, stacklevel=4)
 
 
 def _outage_ends(f, name, run, k0s, k1s, starts, gps, sig):
