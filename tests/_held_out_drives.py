@@ -127,10 +127,10 @@ def _columns(t, x, heading, speed, rows, err, sigma):
             "true_east": x[:, 0], "true_north": x[:, 3]}
 
 
-def phone_drive(rng):
-    """The car with a phone (see the module docstring): the CSV columns."""
+def phone_drive(rng, rate_bias=0.005):
+    """The car with a phone (see the module docstring): the CSV columns. ``rate_bias``: the gyro's (deg/s)."""
     t, x, heading, speed = _drive(rng, 0.1, 900.0, 0.15, (8.0, 25.0), 70.0, dict(
-        scale=1.02, odo=0.01, offset=1.0, rate_bias=0.005, arw=0.3, white=0.3), accel=1.5)
+        scale=1.02, odo=0.01, offset=1.0, rate_bias=rate_bias, arw=0.3, white=0.3), accel=1.5)
     rows = _fix_rows(t)
     m = int(rows.sum())
     acc = 6.5 + 1.5 * np.tanh(gauss_markov(rng, m, 1.0, 60.0))  # reported 5-8 m, changing slowly
@@ -140,10 +140,10 @@ def phone_drive(rng):
     return _columns(t, x, heading, speed, rows, err, np.round(acc, 1))
 
 
-def city_drive(rng):
-    """The city centre (see the module docstring): the CSV columns."""
+def city_drive(rng, rate_bias=0.015):
+    """The city centre (see the module docstring): the CSV columns. ``rate_bias``: the gyro's (deg/s)."""
     t, x, heading, speed = _drive(rng, 0.2, 720.0, 0.25, (3.0, 10.0), 200.0, dict(
-        scale=1.01, odo=0.01, offset=0.0, rate_bias=0.015, arw=0.5, white=0.2), accel=1.5, turn_every=25.0)
+        scale=1.01, odo=0.01, offset=0.0, rate_bias=rate_bias, arw=0.5, white=0.2), accel=1.5, turn_every=25.0)
     rows = _fix_rows(t)
     m = int(rows.sum())
     # a street's multipath: a per-axis sigma that changes every 20-60 s (log-normal), a bias
@@ -158,10 +158,10 @@ def city_drive(rng):
     return _columns(t, x, heading, speed, rows, err, reported)
 
 
-def one_hz_drive(rng):
-    """21 minutes at 1 Hz (see the module docstring): the CSV columns."""
+def one_hz_drive(rng, rate_bias=0.05):
+    """21 minutes at 1 Hz (see the module docstring): the CSV columns. ``rate_bias``: the gyro's (deg/s)."""
     t, x, heading, speed = _drive(rng, 1.0, 1260.0, 0.35, (8.0, 20.0), 320.0, dict(
-        scale=1.015, odo=0.1, offset=0.0, rate_bias=0.05, arw=1.0, white=0.5), accel=2.0)
+        scale=1.015, odo=0.1, offset=0.0, rate_bias=rate_bias, arw=1.0, white=0.5), accel=2.0)
     rows = _fix_rows(t)
     m = int(rows.sum())
     acc = rng.uniform(3.0, 5.0, m)
@@ -173,11 +173,12 @@ def one_hz_drive(rng):
 HELD_OUT = {"phone": phone_drive, "city": city_drive, "one_hz": one_hz_drive}
 
 
-def columns(name, seed=0):
+def columns(name, seed=0, **kw):
     """The CSV columns of analog ``name`` for ``seed``, drawn from ``SeedSequence([23, 100 + i, seed])``
-    (``i`` its place in :data:`HELD_OUT`): seed 0 is the one the tests and the README quote."""
+    (``i`` its place in :data:`HELD_OUT`): seed 0 is the one the tests and the README quote. ``kw`` go to
+    its generator (``rate_bias=0.3``: a gyro outside the phone grade; the same draws)."""
     i = list(HELD_OUT).index(name)
-    return HELD_OUT[name](np.random.default_rng(np.random.SeedSequence([23, 100 + i, seed])))
+    return HELD_OUT[name](np.random.default_rng(np.random.SeedSequence([23, 100 + i, seed])), **kw)
 
 
 def write_csv(path, cols):

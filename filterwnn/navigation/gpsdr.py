@@ -466,6 +466,7 @@ class GPSDRFilter:
         self.zero_rate_steps = []
         # (slope, var) of the stops in a row that the state could not follow
         self._zr_rejected = deque(maxlen=max(self.zero_rate_reacquire_after, 1))
+        self._rate_clamped_since = None  # the step the bound first held the rate bias (since the last re-acquisition)
 
     def _init_integrity(self, gate, reject_gate, reacquire_after, nis_window, x0):
         """The gate, the counters, the consistency monitor and the calibration bounds."""
@@ -627,11 +628,20 @@ class GPSDRFilter:
         r = self.model.dim_x - 1
         kf = self.kf
         state, sd = float(kf.x[r]), float(np.sqrt(kf.P[r, r]))
+        # while the bound held the rate bias, the heading bias integrated a rate bias about (mean - state)
+        # off: it lags by up to that times the time held, and is widened by it as the rate bias is by its
+        # own difference (else GPS catches the heading up through the rate bias, which overshoots: a
+        # 0.3 deg/s gyro run with the phone grade re-acquired at 0.35 and then ran to the new bound, 0.5)
+        held = 0 if self._rate_clamped_since is None else self.step - self._rate_clamped_since
+        lag = (mean - state) * held * self.model.dt
         # the gyro itself measured its bias: the grade's prior no longer describes it, so the calibration
-        # bounds of the rate bias and of the heading bias it drives restart from here (their spread kept)
+        # bounds of the rate bias and of the heading bias it drives restart from here (their spread kept,
+        # the heading bias's widened by the lag)
         self._cal_mean[-1] = mean
         self._cal_mean[-2] = kf.x[r - 1]  # the heading bias, the state before the rate bias
-        self._widen((r,), (mean - state,))
+        self._cal_P[-2, -2] += lag ** 2
+        self._widen((r - 1, r), (lag, mean - state))
+        self._rate_clamped_since = None
         self.n_zero_rate_reacquired += 1
         if self.n_zero_rate_reacquired == 1:
             deg = 180.0 / np.pi
@@ -859,6 +869,8 @@ class GPSDRFilter:
         out = np.abs(d) > bound
         if not out.any():
             return False
+        if out[-1] and self.model.rate_bias and self._rate_clamped_since is None:
+            self._rate_clamped_since = self.step
         x = x.copy()
         x[self._cal] = self._cal_mean + np.clip(d, -bound, bound)
         self.kf.x = x

@@ -6,6 +6,8 @@ rate-bias state, gated, with the variance the sensor grade gives (or the fit's o
 when the headings scatter more).
 """
 
+import warnings
+
 import numpy as np
 import pytest
 
@@ -240,3 +242,41 @@ def test_stops_held_at_the_bound_count_as_not_followed(phone):
     never = _run(phone, z, zero_rate_reacquire_after=0)
     assert never.n_zero_rate_reacquired == 0 and never.x[8] < 0.16 * DEG
     assert never.n_zero_rate_rejected < 3  # they passed the gate: the gate alone would never re-acquire
+
+
+def test_a_reacquisition_widens_the_heading_bias_by_what_it_integrated_while_held(phone):
+    """While the bound holds the rate bias, the heading bias integrates the difference: at the
+    re-acquisition its variance grows by (the rate bias's change times the time held)^2, its
+    cross-covariances are dropped, and its calibration bound widens by as much. A re-acquisition
+    whose state was never held (a jump inside the bound) leaves the heading bias as it was."""
+    seen = []
+
+    class Spy(GPSDRFilter):
+        def _zero_rate_reacquire(self):
+            before = (self._rate_clamped_since, self.step, self.x.copy(), self.P.copy(), self._cal_P.copy())
+            n = self.n_zero_rate_reacquired
+            super()._zero_rate_reacquire()
+            if self.n_zero_rate_reacquired > n:
+                seen.append(before + (self.P.copy(), self._cal_P.copy()))
+
+    def run(z):
+        f = Spy(phone, x0=np.r_[np.zeros(6), phone.x0[6:]])
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            for zk in z:
+                f.predict()
+                f.update(zk)
+        return f
+
+    run(_bias_jump(np.random.default_rng(13), phone, 0.3, n_before=0, n_after=20, seconds=3.0))
+    since, step, _, P, cal_P, P_new, cal_P_new = seen[0]
+    assert since is not None and step - since > 100
+    lag_min = (0.3 - 0.16) * DEG * (step - since) * DT  # the state is held at most at 0.16 deg/s
+    assert P_new[7, 7] - P[7, 7] > lag_min ** 2
+    assert np.all(P_new[7, np.r_[0:7, 8]] == 0.0)
+    assert cal_P_new[1, 1] - cal_P[1, 1] == pytest.approx(P_new[7, 7] - P[7, 7], rel=1e-9)
+
+    seen.clear()
+    run(_bias_jump(np.random.default_rng(10), phone, 0.1))
+    since, step, _, P, cal_P, P_new, cal_P_new = seen[0]
+    assert since is None and P_new[7, 7] == P[7, 7] and cal_P_new[1, 1] == cal_P[1, 1]
