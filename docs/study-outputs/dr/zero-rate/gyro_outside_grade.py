@@ -8,8 +8,8 @@ Run from the repository root, one BLAS thread::
 Per drive: dead reckoning alone from the true start, and the EKF-8 (median / max at the ends of the 20
 outages of 30 s, as ``filterwnn study dr --drive FILE --grade phone`` scores it) with the stops'
 re-acquisition (``zero_rate_reacquire_after=3``, the default) and without (0); the stops used / rejected /
-re-acquisitions, and how many distinct warnings the filter gave. The analogs' generator is patched in
-memory (its gyro's rate bias); nothing here is used by the package.
+re-acquisitions, and how many warning lines the filter gave (one per kind: the study folds repeats). The
+analogs are drawn with the gyro's rate bias changed (``columns(name, 0, rate_bias=...)``, the same draws); nothing here is used by the package.
 """
 import os, sys, tempfile, warnings, numpy as np
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", "..", ".."))
@@ -19,16 +19,9 @@ from filterwnn.navigation.drives import read_drive_csv
 from filterwnn.navigation import gpsdr
 from filterwnn.studies.dr import real_drive_outages
 tmp = tempfile.mkdtemp()
-orig = h._drive
-def make(bias):
-    def _drive(rng, dt, duration, standing, speeds, heading, sensors, **kw):
-        s = dict(sensors); s["rate_bias"] = bias
-        return orig(rng, dt, duration, standing, speeds, heading, s, **kw)
-    return _drive
 for name in sys.argv[1].split(","):
   for bias in [float(b) for b in sys.argv[2].split(",")]:
-    h._drive = make(bias)
-    run = read_drive_csv(h.write_csv(os.path.join(tmp, "d.csv"), h.columns(name, 0)))
+    run = read_drive_csv(h.write_csv(os.path.join(tmp, "d.csv"), h.columns(name, 0, rate_bias=bias)))
     cells = []
     for n in (3, 0):
         gpsdr.GPSDRFilter.__init__.__kwdefaults__["zero_rate_reacquire_after"] = n

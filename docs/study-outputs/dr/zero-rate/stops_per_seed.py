@@ -5,9 +5,9 @@ Run from the repository root, one BLAS thread::
     python docs/study-outputs/dr/zero-rate/stops_per_seed.py > docs/study-outputs/dr/zero-rate/stops_per_seed.txt
 
 Per analog and seed 0-29, the phone grade's EKF-8 over the whole drive with every fix (as the drive
-table's integrity counts are taken): ``name seed used rejected re-acquired held``. A re-acquisition
-needs three rejected stops in a row, so where no stop is rejected the re-acquisition cannot change
-any number.
+table's integrity counts are taken): ``name seed used rejected re-acquired held``. Where the
+re-acquired count is 0 (three stops in a row the state could not follow, rejected or held at the
+calibration bound, never came), the re-acquisition cannot change any number.
 """
 import os, sys, tempfile, warnings
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", "..", ".."))
