@@ -466,7 +466,7 @@ class GPSDRFilter:
         self.zero_rate_steps = []
         # (slope, var) of the stops in a row that the state could not follow
         self._zr_rejected = deque(maxlen=max(self.zero_rate_reacquire_after, 1))
-        self._rate_clamped_since = None  # the step the bound first held the rate bias (since the last re-acquisition)
+        self._rate_clamped_since = None  # the step from which the bound holds the rate bias (_track_rate_hold)
 
     def _init_integrity(self, gate, reject_gate, reacquire_after, nis_window, x0):
         """The gate, the counters, the consistency monitor and the calibration bounds."""
@@ -867,10 +867,10 @@ class GPSDRFilter:
         d = x[self._cal] - self._cal_mean
         bound = CALIBRATION_SIGMAS * np.sqrt(np.diag(self._cal_P))
         out = np.abs(d) > bound
+        if self.model.rate_bias:
+            self._track_rate_hold(out[-1], bound[-1] - abs(d[-1]))
         if not out.any():
             return False
-        if out[-1] and self.model.rate_bias and self._rate_clamped_since is None:
-            self._rate_clamped_since = self.step
         x = x.copy()
         x[self._cal] = self._cal_mean + np.clip(d, -bound, bound)
         self.kf.x = x
@@ -884,6 +884,16 @@ class GPSDRFilter:
                     f"{bound[i]:.3g}); held at the bound. Check the sensor grade (or the sensor)",
                     RuntimeWarning, stacklevel=4)
         return True
+
+    def _track_rate_hold(self, clamped, margin):
+        """Note the step from which the bound holds the rate bias (:meth:`_zero_rate_reacquire` widens the
+        heading bias by what it integrated since): held from the first clamp, and free again once the state
+        is more than one of its standard deviations inside the bound."""
+        if clamped:
+            if self._rate_clamped_since is None:
+                self._rate_clamped_since = self.step
+        elif margin > np.sqrt(self.kf.P[-1, -1]):
+            self._rate_clamped_since = None
 
     def _repair(self):
         """Keep ``P`` symmetric positive definite (documented repair, counted and warned)."""

@@ -280,3 +280,26 @@ def test_a_reacquisition_widens_the_heading_bias_by_what_it_integrated_while_hel
     run(_bias_jump(np.random.default_rng(10), phone, 0.1))
     since, step, _, P, cal_P, P_new, cal_P_new = seen[0]
     assert since is None and P_new[7, 7] == P[7, 7] and cal_P_new[1, 1] == cal_P[1, 1]
+
+
+def test_the_rate_bias_is_held_from_its_first_clamp_until_it_is_well_inside_its_bound(phone):
+    """The time the heading bias is widened by counts from the step the bound first held the rate bias,
+    and is forgotten once the state is back more than one of its standard deviations inside the bound
+    (an early clamp does not widen a re-acquisition many minutes later)."""
+    f = GPSDRFilter(phone, x0=np.r_[np.zeros(6), phone.x0[6:]])
+    bound = 3.0 * 0.05 * DEG
+    for _ in range(5):
+        f.predict()
+    with pytest.warns(RuntimeWarning, match="gyro rate bias state ran past"):
+        f.kf.x = np.r_[f.kf.x[:8], 0.3 * DEG]
+        f._bound_calibration()
+    since = f._rate_clamped_since
+    assert since == f.step and f.kf.x[8] == pytest.approx(bound, rel=1e-3)
+    f.predict()
+    f.update(np.array([0.0, 0.0]))  # a step later
+    f.kf.x = np.r_[f.kf.x[:8], bound - 0.5 * np.sqrt(f.P[8, 8])]  # inside, but within one sigma: still held
+    f._bound_calibration()
+    assert f._rate_clamped_since == since < f.step
+    f.kf.x = np.r_[f.kf.x[:8], 0.0]
+    f._bound_calibration()
+    assert f._rate_clamped_since is None
