@@ -1,5 +1,6 @@
 """Tests of GPSDRFilter: starts and stops handled by default, per-fix GPS sigma, the three kinds."""
 
+import copy
 import warnings
 
 import numpy as np
@@ -451,6 +452,47 @@ def test_correlated_fixes_are_found_and_teach_the_heading_bias_less():
 def test_whiteness_window_is_checked():
     with pytest.raises(ValueError, match="whiteness_window must be >= 0"):
         GPSDRFilter(GPSDRModel(augmented=True), whiteness_window=-1)
+
+
+def test_correlated_fixes_is_checked_and_defaults_to_the_calibrations_share():
+    assert GPSDRFilter(GPSDRModel(augmented=True)).correlated_fixes == "calibration"
+    with pytest.raises(ValueError, match="correlated_fixes"):
+        GPSDRFilter(GPSDRModel(augmented=True), correlated_fixes="ignore")
+
+
+def test_inflated_correlated_fixes_count_as_the_independent_fixes_they_are_worth():
+    """``correlated_fixes="inflate"``: white fixes leave the filter as the default has it, bit for bit
+    while the estimate is 1. The first fix after the estimate passes 1 is tested as reported (the same
+    NIS as the default's), and its update takes ``gps_correlation`` times its covariance: the position
+    variance it leaves is that of an update with the fix's variance times the estimate."""
+    white = _with_fix_errors(simulate_scenario(_STRAIGHTISH, rng=3), 0.0, np.random.default_rng(3))
+    f, g = _phone_filter(white), _phone_filter(white, correlated_fixes="inflate")
+    a = f.batch_filter(white.z_dr, white.gps_list(), white.gps_sigma_list())
+    b = g.batch_filter(white.z_dr, white.gps_list(), white.gps_sigma_list())
+    assert np.array_equal(a[:60], b[:60])
+
+    run = _with_fix_errors(simulate_scenario(_STRAIGHTISH, rng=4), 0.97, np.random.default_rng(4))
+    g = _phone_filter(run, correlated_fixes="inflate")
+    gps, sig = run.gps_list(), run.gps_sigma_list()
+    for k in range(len(run.z_dr)):
+        c = g.gps_correlation
+        g.predict()
+        if gps[k] is not None and c > 1.0:
+            break
+        g.update(run.z_dr[k], gps[k], sig[k])
+    # the same update by a filter that takes the fix as independent, given the fix's sigma times sqrt(c)
+    h = copy.deepcopy(g)
+    h.correlated_fixes, h.whiteness_window, h.gps_correlation = "calibration", 0, 1.0
+    x_prior, P_prior = g.x.copy(), g.P.copy()
+    g.update(run.z_dr[k], gps[k], sig[k])
+    h.update(run.z_dr[k], gps[k], sig[k] * np.sqrt(c))
+    assert g.fix_status == "accepted" and c > 1.5
+    np.testing.assert_allclose(g.x, h.x, rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(g.P, h.P, rtol=1e-12, atol=1e-15)
+    pos = [0, 3]
+    Pp, y = P_prior[np.ix_(pos, pos)], gps[k] - x_prior[pos]
+    assert g.nis == pytest.approx(y @ np.linalg.solve(Pp + sig[k] ** 2 * np.eye(2), y), rel=1e-9)  # as reported
+    assert h.nis < g.nis
 
 
 # ----------------------------------------------------------------------------- the fixes' covariance scale (issue 23)

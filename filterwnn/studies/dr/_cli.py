@@ -6,6 +6,7 @@ import os
 
 from ...navigation.dead_reckoning import SENSOR_GRADES
 from ...navigation.drives import CAR_DRIVES, load_car_drive, read_drive_csv
+from ...navigation.gpsdr import CORRELATED_FIXES
 from ...navigation.scenarios import SCENARIOS
 from .. import options, runner
 from ._filters import FILTER_TABLE, OPT_IN
@@ -68,6 +69,10 @@ def add_arguments(parser):
     parser.add_argument("--gps-scale-window", type=options.nonnegative_int, default=0, metavar="N",
                         help="estimate the scale of the fixes' reported covariance from the last N fixes' "
                              "innovations (GPSDRFilter's scale_window; 30 is the window to use; default 0: off)")
+    parser.add_argument("--correlated-fixes", choices=CORRELATED_FIXES, default="calibration",
+                        help="how the fixes' measured correlation counts them (GPSDRFilter's correlated_fixes): "
+                             "calibration (default) slows the heading and rate-bias calibration; inflate counts each "
+                             "fix as the independent fixes it is worth, in every state (for urban-canyon multipath)")
     parser.add_argument("--grade", choices=sorted(SENSOR_GRADES), default=None,
                         help="sensor grade for the GPS/DR settings (survey, phone; see "
                              "filterwnn.navigation.dead_reckoning.SENSOR_GRADES); default phone for --drive, survey for --real")
@@ -94,7 +99,8 @@ def run(args):
                 print(f"skipping the real drives: {exc}")
                 break
             rd = real_drive_outages(drive, grade=grade, use_gps_sigma=True,
-                                    scale_window=getattr(args, "gps_scale_window", 0))
+                                    scale_window=getattr(args, "gps_scale_window", 0),
+                                    correlated_fixes=getattr(args, "correlated_fixes", "calibration"))
             results.append(rd)
             texts.append(real_drive_table(rd))
             print(texts[-1])
@@ -126,7 +132,8 @@ def _run_drives(args, drives, filters):
                                      starts=starts, min_speed=args.min_speed,
                                      use_gps_sigma=run.gps_sigma is not None,
                                      grade=getattr(args, "grade", None) or "phone",
-                                     scale_window=getattr(args, "gps_scale_window", 0))
+                                     scale_window=getattr(args, "gps_scale_window", 0),
+                                     correlated_fixes=getattr(args, "correlated_fixes", "calibration"))
         except ValueError as exc:  # name the drive (and the options behind the outages)
             raise ValueError(f"{path}: {exc} (outages from --outage-length, --outages, --outage-starts, "
                              "--min-speed)") from None

@@ -31,7 +31,8 @@ REAL_FILTERS = ("DR-mech", "EKF", "EKF-8", "UKF-8", "SUKF-8")
 
 def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "EKF", "EKF-8"),
                        model_kwargs=None, slow_speed=None, starts=None, min_speed=0.0,
-                       use_gps_sigma=False, grade=None, gps_window=0, scale_window=0):
+                       use_gps_sigma=False, grade=None, gps_window=0, scale_window=0,
+                       correlated_fixes="calibration"):
     """Cut GPS outages of ``length`` s into a drive and score each filter at each outage end.
 
     Placements: ``starts`` as given, or ``n_placements`` spread evenly over the windows whose mean
@@ -65,6 +66,8 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
     gps_window, scale_window : int
         :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`'s: the noise of fixes without an accuracy, and the
         scale of the fixes' reported covariance, estimated over this many fixes (0, the defaults: neither).
+    correlated_fixes : {"calibration", "inflate"}
+        :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`'s: how the fixes' correlation counts them.
 
     Returns
     -------
@@ -88,7 +91,7 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         raise ValueError(f"unknown real-drive filters {bad}; valid: {', '.join(REAL_FILTERS)}")
     out, windows = _outage_plan(run, length, starts, n_placements, min_speed)
     settings = dict(grade=grade, model_kwargs=model_kwargs, gps_window=gps_window, slow_speed=slow_speed,
-                    scale_window=scale_window)
+                    scale_window=scale_window, correlated_fixes=correlated_fixes)
     for name in filters:
         _score_filter(out, name, run, windows, use_gps_sigma, settings)
     return out
@@ -119,7 +122,8 @@ def _score_filter(out, name, run, windows, use_gps_sigma, settings):
     else:
         kw = dict(REAL_MODEL, **(settings["model_kwargs"] or {}))
         f = _real_drive_filter(name, run, settings["grade"], settings["model_kwargs"], kw,
-                               settings["gps_window"], settings["slow_speed"], settings["scale_window"])
+                               settings["gps_window"], settings["slow_speed"], settings["scale_window"],
+                               settings["correlated_fixes"])
         sig = run.gps_sigma_list() if use_gps_sigma else [None] * len(run.t)
         with folded_warnings(name):  # each warning names its filter, repeats folded
             ends, begins = _outage_ends(f, name, run, k0s, k1s, out["starts"], run.gps_list(), sig)
@@ -159,7 +163,8 @@ def _outage_windows(run, starts, length):
     return k0s, k1s, np.array(refs), np.array(moved), track
 
 
-def _real_drive_filter(name, run, grade, model_kwargs, kw, gps_window, slow_speed, scale_window=0):
+def _real_drive_filter(name, run, grade, model_kwargs, kw, gps_window, slow_speed, scale_window=0,
+                       correlated_fixes="calibration"):
     """The :class:`~filterwnn.navigation.gpsdr.GPSDRFilter` ``name`` for a real drive, set from ``grade``
     (or the settings ``kw``), started at the drive's first state with 1 m position sigma."""
     aug = name.endswith("-8")
@@ -174,7 +179,7 @@ def _real_drive_filter(name, run, grade, model_kwargs, kw, gps_window, slow_spee
     P0[0, 0] = P0[3, 3] = 1.0
     low = {} if slow_speed is None else {"low_speed": slow_speed}
     return GPSDRFilter(model, FILTER_KIND[name], x0=x0, P0=P0, gps_window=gps_window, scale_window=scale_window,
-                       **low)
+                       correlated_fixes=correlated_fixes, **low)
 
 
 _REAL_META = ("starts", "moved", "length", "end_steps", "reference", "name", "track", "t", "end_xy", "start_err",

@@ -45,11 +45,15 @@ def _line(label, res, filters):
     print(f"{label} | " + " | ".join(cells), flush=True)
 
 
+#: Settings of every run (``--correlated-fixes``).
+EXTRA = {}
+
+
 def _run(label, run, filters, windows, **kw):
     for w in windows:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)  # the filters' own alarms
-            res = real_drive_outages(run, filters=filters, scale_window=w, **kw)
+            res = real_drive_outages(run, filters=filters, scale_window=w, **EXTRA, **kw)
         _line(f"{label} scale_window={w}", res, filters)
 
 
@@ -91,7 +95,10 @@ def main(argv=None):
     p.add_argument("--windows", default="0,30", help="scale_window values to run (0: off)")
     p.add_argument("--zero-rate", choices=["on", "off"], default="on",
                    help="GPSDRFilter's zero angular rate update at stops (default on, as in the package)")
+    p.add_argument("--correlated-fixes", choices=["calibration", "inflate"], default="calibration",
+                   help="GPSDRFilter's correlated_fixes (default calibration, as in the package)")
     a = p.parse_args(argv)
+    EXTRA["correlated_fixes"] = a.correlated_fixes
     if a.zero_rate == "off":
         from filterwnn.navigation.gpsdr import GPSDRFilter
 
