@@ -362,7 +362,7 @@ class GPSDRFilter:
         Fixes over which the innovations' autocorrelation is estimated (default
         :data:`WHITENESS_WINDOW`; 0 takes every fix for independent).
     correlated_fixes : {"calibration", "inflate"}
-        How :attr:`gps_correlation` counts the fixes. ``"calibration"`` (default): the heading bias
+        How ``gps_correlation`` counts the fixes. ``"calibration"`` (default): the heading bias
         and the gyro rate bias take ``1 / gps_correlation`` of their gain, and the other states take
         each fix as independent. ``"inflate"``: each fix is tested with its reported covariance and
         used with ``gps_correlation`` times it, so that correlated fixes count as the independent
