@@ -853,7 +853,10 @@ class GPSDRFilter:
 
         The held rows (:meth:`_held_rows`) keep none. With ``correlated_fixes="inflate"`` the others
         keep all of it (correlated fixes are counted by their covariance, in :meth:`update`); with
-        ``"calibration"`` the heading bias and the gyro rate bias keep ``1 / gps_correlation``.
+        ``"calibration"`` the heading bias and the gyro rate bias keep ``1 / gps_correlation``
+        (correlated fixes carry less of the heading's drift than their number says), and the odometer
+        scale its full gain: a miscalibrated scale makes the innovations correlated too, and
+        de-weighting it would keep it miscalibrated.
         """
         held = self._held_rows(gps)
         c = self.gps_correlation if gps and self.correlated_fixes == "calibration" else 1.0
