@@ -91,7 +91,7 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         raise ValueError(f"unknown real-drive filters {bad}; valid: {', '.join(REAL_FILTERS)}")
     out, windows = _outage_plan(run, length, starts, n_placements, min_speed)
     settings = dict(grade=grade, model_kwargs=model_kwargs, gps_window=gps_window, slow_speed=slow_speed,
-                    scale_window=scale_window, correlated_fixes=correlated_fixes)
+                    filter_kw=dict(scale_window=scale_window, correlated_fixes=correlated_fixes))
     for name in filters:
         _score_filter(out, name, run, windows, use_gps_sigma, settings)
     return out
@@ -122,8 +122,7 @@ def _score_filter(out, name, run, windows, use_gps_sigma, settings):
     else:
         kw = dict(REAL_MODEL, **(settings["model_kwargs"] or {}))
         f = _real_drive_filter(name, run, settings["grade"], settings["model_kwargs"], kw,
-                               settings["gps_window"], settings["slow_speed"], settings["scale_window"],
-                               settings["correlated_fixes"])
+                               settings["gps_window"], settings["slow_speed"], **settings["filter_kw"])
         sig = run.gps_sigma_list() if use_gps_sigma else [None] * len(run.t)
         with folded_warnings(name):  # each warning names its filter, repeats folded
             ends, begins = _outage_ends(f, name, run, k0s, k1s, out["starts"], run.gps_list(), sig)
@@ -163,10 +162,10 @@ def _outage_windows(run, starts, length):
     return k0s, k1s, np.array(refs), np.array(moved), track
 
 
-def _real_drive_filter(name, run, grade, model_kwargs, kw, gps_window, slow_speed, scale_window=0,
-                       correlated_fixes="calibration"):
+def _real_drive_filter(name, run, grade, model_kwargs, kw, gps_window, slow_speed, **filter_kw):
     """The :class:`~filterwnn.navigation.gpsdr.GPSDRFilter` ``name`` for a real drive, set from ``grade``
-    (or the settings ``kw``), started at the drive's first state with 1 m position sigma."""
+    (or the settings ``kw``), started at the drive's first state with 1 m position sigma; ``filter_kw``
+    go to the filter (``scale_window``, ``correlated_fixes``)."""
     aug = name.endswith("-8")
     dt = run.scenario.dt
     if grade is not None:
@@ -178,8 +177,7 @@ def _real_drive_filter(name, run, grade, model_kwargs, kw, gps_window, slow_spee
     P0 = model.P0.copy()
     P0[0, 0] = P0[3, 3] = 1.0
     low = {} if slow_speed is None else {"low_speed": slow_speed}
-    return GPSDRFilter(model, FILTER_KIND[name], x0=x0, P0=P0, gps_window=gps_window, scale_window=scale_window,
-                       correlated_fixes=correlated_fixes, **low)
+    return GPSDRFilter(model, FILTER_KIND[name], x0=x0, P0=P0, gps_window=gps_window, **low, **filter_kw)
 
 
 _REAL_META = ("starts", "moved", "length", "end_steps", "reference", "name", "track", "t", "end_xy", "start_err",
