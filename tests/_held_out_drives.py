@@ -140,17 +140,19 @@ def phone_drive(rng, rate_bias=0.005):
     return _columns(t, x, heading, speed, rows, err, np.round(acc, 1))
 
 
-def city_drive(rng, rate_bias=0.015):
-    """The city centre (see the module docstring): the CSV columns. ``rate_bias``: the gyro's (deg/s)."""
+def city_drive(rng, rate_bias=0.015, gps_rate=1.0):
+    """The city centre (see the module docstring): the CSV columns. ``rate_bias``: the gyro's (deg/s);
+    ``gps_rate``: fixes per second (1 or 5; the same error process, in seconds, sampled that often;
+    at 1 the same draws as before it was a parameter)."""
     t, x, heading, speed = _drive(rng, 0.2, 720.0, 0.25, (3.0, 10.0), 200.0, dict(
         scale=1.01, odo=0.01, offset=0.0, rate_bias=rate_bias, arw=0.5, white=0.2), accel=1.5, turn_every=25.0)
-    rows = _fix_rows(t)
+    rows = _fix_rows(t, gps_rate)
     m = int(rows.sum())
     # a street's multipath: a per-axis sigma that changes every 20-60 s (log-normal), a bias
     # correlated over 15 s, and jumps of 20-80 m on 4 % of the fixes
     edges = np.cumsum(rng.uniform(20.0, 60.0, m))
-    level = np.exp(rng.normal(np.log(18.5), 0.3, m))[np.searchsorted(edges, np.arange(m))]
-    err = level[:, None] * gauss_markov(rng, m, 1.0, 15.0, (2,))
+    level = np.exp(rng.normal(np.log(18.5), 0.3, m))[np.searchsorted(edges, np.arange(m) / gps_rate)]
+    err = level[:, None] * gauss_markov(rng, m, 1.0 / gps_rate, 15.0, (2,))
     jump = rng.random(m) < 0.04
     ang = rng.uniform(0.0, 2 * np.pi, m)
     err += (jump * rng.uniform(20.0, 80.0, m))[:, None] * np.stack([np.sin(ang), np.cos(ang)], axis=1)

@@ -75,7 +75,8 @@ What the filter does when GPS lies (each part a public setting, on by default):
   learns them as calibration: the rate bias and the heading bias follow a drifting error,
   and the outage integrates it. The whitened innovations ``u = L^{-1} y`` (``S = L L^T``)
   of a consistent filter are white; the filter estimates their integrated autocorrelation
-  time over the last :data:`WHITENESS_WINDOW` fixes it accepted,
+  time over the fixes of the last :data:`WHITENESS_WINDOW` seconds (60 fixes at 1 Hz, 300 at 5 Hz;
+  fixes it did not accept, and gaps, break the pairs),
   ``gps_correlation = 1 + 2 sum_m rho_m``, summing the lag-``m`` autocorrelations while each
   is significant (above two standard errors, ``2 / sqrt(2 n_m)``; Geyer 1992's initial
   sequence; Mehra 1970's whiteness test of the innovations): the number of fixes that carry
@@ -179,8 +180,11 @@ ZERO_RATE_MIN_SAMPLES = 3
 #: them: the GPS fixes' :data:`REACQUIRE_AFTER`, for a sensor sampled at each stop, not each second (a
 #: gyro whose bias jumps would otherwise be rejected at every stop).
 ZERO_RATE_REACQUIRE_AFTER = 3
-#: Fixes over which the whiteness of the GPS innovations is estimated (lags up to a quarter of it).
-WHITENESS_WINDOW = 60
+#: Seconds of fixes over which the whiteness of the GPS innovations is estimated (lags up to a quarter
+#: of it): 60 fixes at 1 Hz, 300 at 5 Hz. In seconds, not fixes, because the errors it looks for last
+#: a time (a street's multipath, a phone's own smoothing), whatever the receiver's rate: a window of
+#: 60 fixes at 5 Hz would span 12 s, under a 15 s correlation, and miss most of it.
+WHITENESS_WINDOW = 60.0
 #: The ways :class:`GPSDRFilter` can count correlated fixes (its ``correlated_fixes``).
 CORRELATED_FIXES = ("calibration", "inflate")
 #: Fixes over which the scale of the fixes' reported covariance is estimated when the estimate is
@@ -358,9 +362,11 @@ class GPSDRFilter:
         :data:`REACQUIRE_AFTER`).
     nis_window : int
         Fixes averaged by the consistency monitor (default :data:`NIS_WINDOW`).
-    whiteness_window : int
-        Fixes over which the innovations' autocorrelation is estimated (default
-        :data:`WHITENESS_WINDOW`; 0 takes every fix for independent).
+    whiteness_window : float
+        Seconds of fixes over which the innovations' autocorrelation is estimated (default
+        :data:`WHITENESS_WINDOW`, 60 s: 60 fixes at 1 Hz, 300 at 5 Hz, :attr:`whiteness_fixes`;
+        0 takes every fix for independent). It once counted fixes; at 1 Hz the two are the
+        same.
     correlated_fixes : {"calibration", "inflate"}
         How ``gps_correlation`` counts the fixes. ``"calibration"`` (default): the heading bias
         and the gyro rate bias take ``1 / gps_correlation`` of their gain, and the other states take
@@ -426,7 +432,7 @@ class GPSDRFilter:
         The integrated autocorrelation time of the accepted fixes' whitened innovations, in
         fixes (1: white); the heading bias and rate bias take ``1 / gps_correlation`` of their gain (with
         ``correlated_fixes="inflate"``: each fix used counts as ``1 / gps_correlation`` of one, in every
-        state).
+        state). :attr:`gps_correlation_mean` is its mean over the drive's fixes.
     gps_scale : float
         The factor (>= 1) on the next fix's reported covariance: the maximum-likelihood scale of the
         last ``scale_window`` fixes' covariance (:func:`gps_scale_mle`), held at 1 when below it;
@@ -469,11 +475,13 @@ class GPSDRFilter:
         self.motion = None
         self._init_integrity(gate, reject_gate, reacquire_after, nis_window, self.kf.x)
         self.correlated_fixes = check_choice(correlated_fixes, "correlated_fixes", CORRELATED_FIXES)
-        self.whiteness_window = int(whiteness_window)
-        if self.whiteness_window < 0:
-            raise ValueError(f"whiteness_window must be >= 0 (0: fixes taken for independent), got {whiteness_window}")
+        self.whiteness_window = float(whiteness_window)
+        if not (np.isfinite(self.whiteness_window) and self.whiteness_window >= 0):
+            raise ValueError(f"whiteness_window must be >= 0 s (0: fixes taken for independent), got {whiteness_window}")
         self.gps_correlation = 1.0
-        self._white = deque(maxlen=max(self.whiteness_window, 1))  # whitened innovations, None at a break
+        self._corr_sum, self._corr_n = 0.0, 0  # for gps_correlation_mean
+        # whitened innovations, None at a break; bounded to whiteness_window once the fixes' interval is known
+        self._white = deque()
         self._fix_gap, self._last_fix_step = None, None
         self.scale_window = int(scale_window)
         if self.scale_window < 0:
@@ -525,6 +533,13 @@ class GPSDRFilter:
         """Mean factor on the tested fixes' reported covariance (1: as reported; None before the first,
         and with ``scale_window=0``, where it is not estimated)."""
         return float(np.mean(self.gps_scales)) if self.gps_scales else None
+
+    @property
+    def gps_correlation_mean(self):
+        """Mean of :attr:`gps_correlation` over the fixes so far, each taken after its own update (1:
+        white fixes; the longer their errors last, the larger; None before the first fix, and with
+        ``whiteness_window=0``, where it is not estimated)."""
+        return self._corr_sum / self._corr_n if self._corr_n else None
 
     @property
     def nis_mean(self):
@@ -829,6 +844,14 @@ class GPSDRFilter:
                 f"(scale_window={SCALE_WINDOW})", RuntimeWarning, stacklevel=4)
         self._inconsistent = high
 
+    @property
+    def whiteness_fixes(self):
+        """The fixes the whiteness window holds: ``whiteness_window`` seconds at the shortest interval
+        between fixes seen so far (60 at 1 Hz, 300 at 5 Hz; at least 1), None before the second fix."""
+        if self._fix_gap is None:
+            return None
+        return max(int(round(self.whiteness_window / (self._fix_gap * self.model.dt))), 1)
+
     def _whiteness(self):
         """Add the last fix's whitened innovation ``L^{-1} y`` to the window (a break instead
         when it was not accepted as it is, or came after a gap over twice the shortest between fixes) and
@@ -837,7 +860,9 @@ class GPSDRFilter:
             return
         if self._last_fix_step is not None:
             gap = self.step - self._last_fix_step
-            self._fix_gap = gap if self._fix_gap is None else min(self._fix_gap, gap)
+            if self._fix_gap is None or gap < self._fix_gap:
+                self._fix_gap = gap
+                self._white = deque(self._white, maxlen=self.whiteness_fixes)
             if gap > 2 * self._fix_gap:
                 self._white.append(None)
         self._last_fix_step = self.step
@@ -847,6 +872,8 @@ class GPSDRFilter:
         else:
             self._white.append(None)
         self.gps_correlation = integrated_autocorrelation(self._white)
+        self._corr_sum += self.gps_correlation
+        self._corr_n += 1
 
     def _gain_weights(self, gps):
         """Per state, the share of its Kalman gain this update keeps ``(dim_x,)``, or None for all of it.

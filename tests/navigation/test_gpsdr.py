@@ -1,6 +1,7 @@
 """Tests of GPSDRFilter: starts and stops handled by default, per-fix GPS sigma, the three kinds."""
 
 import copy
+import dataclasses
 import warnings
 
 import numpy as np
@@ -431,7 +432,7 @@ def test_white_fixes_leave_the_filter_as_it_was():
     f, g = _phone_filter(run), _phone_filter(run, whiteness_window=0)
     a = f.batch_filter(run.z_dr, run.gps_list(), run.gps_sigma_list())
     b = g.batch_filter(run.z_dr, run.gps_list(), run.gps_sigma_list())
-    assert f.gps_correlation < 1.5
+    assert f.gps_correlation < 1.5 and 1.0 <= f.gps_correlation_mean < 1.5
     # where the estimate stayed at 1 the two filters agree to the last bit
     assert np.array_equal(a[:60], b[:60])
 
@@ -443,10 +444,46 @@ def test_correlated_fixes_are_found_and_teach_the_heading_bias_less():
     b = g.batch_filter(run.z_dr, run.gps_list(), run.gps_sigma_list())
     assert f.gps_correlation > 3.0, f.gps_correlation
     assert g.gps_correlation == 1.0
+    # the drive table's figure: the mean over the fixes; not estimated with whiteness_window=0
+    assert f.gps_correlation_mean > 2.0 and g.gps_correlation_mean is None
     # the heading bias and rate bias move less from the drifting errors; the scale is not held back
     assert np.std(np.diff(a[:, 7])) < np.std(np.diff(b[:, 7]))
     assert np.std(np.diff(a[:, 8])) < np.std(np.diff(b[:, 8]))
     assert abs(a[-1, 6] - 1.02) < 0.02
+
+
+def _at_rate(rate, seed, phi_per_second=0.95):
+    """The straightish drive at dt = 0.2 s with ``rate`` fixes a second whose errors are AR(1) with
+    lag-one correlation ``phi_per_second`` over one second, whatever the rate."""
+    sc = dataclasses.replace(_STRAIGHTISH, dt=0.2, gps_rate=rate)
+    return _with_fix_errors(simulate_scenario(sc, rng=seed), phi_per_second ** (1.0 / rate),
+                            np.random.default_rng(seed))
+
+
+def _median_correlation(f, run):
+    """Run ``f`` over ``run`` step by step: the median of its ``gps_correlation`` at the fixes after
+    the first quarter (the end value alone swings with the last minute's errors)."""
+    cs = []
+    for z, g, s in zip(run.z_dr, run.gps_list(), run.gps_sigma_list()):
+        f.predict()
+        f.update(z, g, s)
+        if g is not None:
+            cs.append(f.gps_correlation)
+    return float(np.median(cs[len(cs) // 4:]))
+
+
+def test_the_whiteness_window_spans_seconds_at_any_fix_rate():
+    one, five = _at_rate(1.0, 0), _at_rate(5.0, 0)
+    f1, f5, f12 = _phone_filter(one), _phone_filter(five), _phone_filter(five, whiteness_window=12.0)
+    assert f1.whiteness_window == f5.whiteness_window == 60.0 and f1.whiteness_fixes is None
+    c1, c5, c12 = _median_correlation(f1, one), _median_correlation(f5, five), _median_correlation(f12, five)
+    # 60 s of fixes: 60 at 1 Hz, 300 at 5 Hz (60 fixes at 5 Hz would span 12 s, under the errors' 20 s)
+    assert (f1.whiteness_fixes, f5.whiteness_fixes, f12.whiteness_fixes) == (60, 300, 60)
+    assert (f1._white.maxlen, f5._white.maxlen) == (60, 300)
+    # the same errors in seconds give about the same correlation time in seconds (seeds 0-5: 0.67-1.17)
+    assert 0.5 < (c5 / 5.0) / c1 < 2.0, (c1, c5)
+    # a window of 60 fixes at 5 Hz sees too few lags and counts the fixes as worth more (0.28-0.41)
+    assert c12 < 0.6 * c5, (c12, c5)
 
 
 def test_whiteness_window_is_checked():
