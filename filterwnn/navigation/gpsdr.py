@@ -70,6 +70,16 @@ What the filter does when GPS lies (each part a public setting, on by default):
   (``GPSDRModel(rate_bias=True)``, the phone grade) has it, and ``zero_rate_update=False``
   switches it off. It needs no GPS: the rate bias is learnt at every stop, from the sensor that
   has it, instead of from GPS fixes whose correlated errors look like a heading drift.
+* **Fast correlated fixes** (thinning off by default; ``min_fix_interval=MIN_FIX_INTERVAL``
+  switches it on). At 5 or 10 Hz a receiver's fixes can share a street's multipath, and a filter
+  that takes each for independent follows their errors into the outage. With
+  ``min_fix_interval`` set, a fix that comes sooner than that after the last fix used is not
+  used (``n_thinned``, ``fix_status == "thinned"``, one warning); fixes at that rate or slower,
+  with their jitter, are all used. Off by default because fixes whose errors are independent
+  at 5 Hz lose by it (twice the error at the outage ends). The filter warns, once, with the
+  step, when fixes come faster than one a second and their measured correlation
+  (``gps_correlation``) says they carry less than one independent fix a second, and names the
+  remedy.
 * **Correlated fixes.** A receiver's errors are correlated from fix to fix (multipath that
   lasts a street, a phone's own smoothing), and a filter that takes them for independent
   learns them as calibration: the rate bias and the heading bias follow a drifting error,
@@ -185,6 +195,15 @@ ZERO_RATE_REACQUIRE_AFTER = 3
 #: a time (a street's multipath, a phone's own smoothing), whatever the receiver's rate: a window of
 #: 60 fixes at 5 Hz would span 12 s, under a 15 s correlation, and miss most of it.
 WHITENESS_WINDOW = 60.0
+#: The ``min_fix_interval`` to use for fast fixes whose errors are correlated (``GPSDRFilter(
+#: min_fix_interval=MIN_FIX_INTERVAL)``; off by default): the filter then uses one fix a second and thins
+#: the others (``n_thinned``). A street's multipath lasts seconds, and a filter that takes 5 Hz fixes for
+#: independent follows their errors: on the city analog with 5 Hz fixes the worst 8-state kind met the
+#: targets on 8 of 10 seeds with one fix a second against 5 of 10 with every fix, and on held-out seeds 6
+#: against 5; with white 5 m errors at 5 Hz thinning doubled the errors at the outage ends
+#: (``docs/study-outputs/dr/fix-rate/RUN.md``). One second is the rate every drive the filter was built
+#: and checked on delivers its fixes at.
+MIN_FIX_INTERVAL = 1.0
 #: The ways :class:`GPSDRFilter` can count correlated fixes (its ``correlated_fixes``).
 CORRELATED_FIXES = ("calibration", "inflate")
 #: Fixes over which the scale of the fixes' reported covariance is estimated when the estimate is
@@ -377,6 +396,14 @@ class GPSDRFilter:
         medians at the outage ends (by 4.9 m over ten held-out seeds) but not every maximum, and a
         survey-grade recorded drive's worst outage end grows from 15.21 to 17.47 m (its innovations
         are correlated by the model's own errors, not the fixes').
+    min_fix_interval : float
+        Seconds after a fix used before the next is used; fixes that come faster are thinned
+        (``n_thinned``, with one warning), and fixes at that rate or slower, with their jitter, are
+        all used. Default 0: every fix used. :data:`MIN_FIX_INTERVAL` (1 s) is the value for fast
+        fixes whose errors are correlated (an urban canyon's at 5 Hz), which a filter that takes each
+        for independent follows; the filter warns when it measures such fixes. Not the default
+        because fast fixes with independent errors lose by it (measured in
+        ``docs/study-outputs/dr/fix-rate/RUN.md``).
     scale_window : int
         Fixes over which the scale of their reported covariance is estimated (``gps_scale``;
         :data:`SCALE_WINDOW` = 30 is the window to use). Default 0: off, every fix's covariance
@@ -410,11 +437,15 @@ class GPSDRFilter:
         Updates so far (the step the warnings name is ``step - 1``, counted from 0).
     fix_status : str
         What became of the last update's fix: ``"none"``, ``"accepted"``,
-        ``"down-weighted"``, ``"rejected"`` or ``"reacquired"``.
+        ``"down-weighted"``, ``"rejected"``, ``"reacquired"`` or ``"thinned"`` (not used: it came
+        sooner than ``min_fix_interval`` after the last fix used).
     nis : float or None
         The last fix's normalised innovation squared (before the gate).
     n_fixes, n_downweighted, n_rejected, n_reacquired, n_repairs : int
-        Fixes seen, down-weighted, rejected, accepted to re-acquire; covariance repairs.
+        Fixes tested, down-weighted, rejected, accepted to re-acquire; covariance repairs.
+    n_thinned : int
+        Fixes not used (nor tested) because they came sooner than ``min_fix_interval`` after the
+        last one used.
     rejected_steps : list of int
         The steps whose fix was rejected.
     nis_accepted : list of float
@@ -448,7 +479,8 @@ class GPSDRFilter:
                  low_speed=LOW_SPEED, hold_without_gps=True, gps_window=0, points=None, gate=GATE,
                  reject_gate=None, reacquire_after=REACQUIRE_AFTER, nis_window=NIS_WINDOW,
                  whiteness_window=WHITENESS_WINDOW, scale_window=0, zero_rate_update=True,
-                 zero_rate_reacquire_after=ZERO_RATE_REACQUIRE_AFTER, correlated_fixes="calibration"):
+                 zero_rate_reacquire_after=ZERO_RATE_REACQUIRE_AFTER, correlated_fixes="calibration",
+                 min_fix_interval=0.0):
         if not isinstance(model, GPSDRModel):
             raise TypeError(f"model must be a GPSDRModel, got {type(model).__name__}")
         self.model = model
@@ -475,6 +507,12 @@ class GPSDRFilter:
         self.motion = None
         self._init_integrity(gate, reject_gate, reacquire_after, nis_window, self.kf.x)
         self.correlated_fixes = check_choice(correlated_fixes, "correlated_fixes", CORRELATED_FIXES)
+        self.min_fix_interval = float(min_fix_interval)
+        if not (np.isfinite(self.min_fix_interval) and self.min_fix_interval >= 0):
+            raise ValueError(f"min_fix_interval must be >= 0 s (0: every fix used), got {min_fix_interval}")
+        self.n_thinned, self._fast_warned = 0, False
+        # the last fix offered and used (steps), the last steps between fixes offered
+        self._offered, self._used, self._offer_gaps = None, None, deque(maxlen=10)
         self.whiteness_window = float(whiteness_window)
         if not (np.isfinite(self.whiteness_window) and self.whiteness_window >= 0):
             raise ValueError(f"whiteness_window must be >= 0 s (0: fixes taken for independent), got {whiteness_window}")
@@ -589,6 +627,9 @@ class GPSDRFilter:
         self.motion = self.classify(z_dr)
         if self.zero_rate_update:
             self._zero_rate(z_dr[0])
+        thinned = z_gps is not None and self._thin()
+        if thinned:
+            z_gps = gps_sigma = None
         adapt = self.gps_window > 0 and z_gps is not None and gps_sigma is None
         if adapt:
             # the fix's innovation and its predicted-state part, before the update
@@ -596,7 +637,7 @@ class GPSDRFilter:
             y = np.asarray(z_gps, dtype=float) - self.kf.x[[0, 3]]
             if self.gps_sigma_est is not None:
                 gps_sigma = self.gps_sigma_est
-        self.fix_status = "none"
+        self.fix_status = "thinned" if thinned else "none"
         if z_gps is not None:  # a noise still being learnt from the innovations cannot judge them yet
             c = self.gps_correlation  # the fixes so far: each carries 1 / c of an independent fix
             z_gps, gps_sigma = self._check_fix(z_gps, gps_sigma, test=not (adapt and self.gps_sigma_est is None),
@@ -621,6 +662,29 @@ class GPSDRFilter:
                 self.gps_sigma_est = float(np.sqrt(max(np.mean(self._gps_y) - np.mean(self._gps_hph), 0.01)))
         self.step += 1
         return self
+
+    def _thin(self):
+        """Whether this step's fix comes too soon after the last fix used to be used itself: sooner than
+        ``min_fix_interval`` less half the fixes' interval (the median of the last ten), so that fixes
+        at ``min_fix_interval`` or slower, with their jitter, are all used, and faster ones one in
+        ``min_fix_interval / interval``. Warns at the first, with the step."""
+        if self._offered is not None:
+            self._offer_gaps.append(self.step - self._offered)
+        self._offered = self.step
+        dt = self.model.dt
+        interval = float(np.median(self._offer_gaps)) * dt if self._offer_gaps else 0.0
+        if (not self.min_fix_interval or self._used is None
+                or (self.step - self._used) * dt >= self.min_fix_interval - 0.5 * interval):
+            self._used = self.step
+            return False
+        if not self.n_thinned:
+            warnings.warn(
+                f"GPSDRFilter thins its fixes from step {self.step}: they come every {interval:g} s, "
+                f"and it uses one every {self.min_fix_interval:g} s (min_fix_interval): faster fixes' errors are "
+                "correlated, and a filter that takes each for independent follows them; pass min_fix_interval=0 "
+                "to use every fix (for fixes whose errors are independent at that rate)", RuntimeWarning, stacklevel=3)
+        self.n_thinned += 1
+        return True
 
     def _zero_rate(self, heading):
         """Collect a stop's headings; when it ends, update the rate bias with their slope."""
@@ -874,6 +938,23 @@ class GPSDRFilter:
         self.gps_correlation = integrated_autocorrelation(self._white)
         self._corr_sum += self.gps_correlation
         self._corr_n += 1
+        self._warn_fast_correlated()
+
+    def _warn_fast_correlated(self):
+        """Warn, once, when fixes come faster than one a second, every one is used, and their measured
+        correlation says they carry less than one independent fix a second (``gps_correlation`` above
+        the fixes per second)."""
+        if self._fast_warned or self.min_fix_interval or not self._offer_gaps:
+            return
+        interval = float(np.median(self._offer_gaps)) * self.model.dt
+        if interval >= 1.0 or self.gps_correlation * interval <= 1.0:
+            return
+        self._fast_warned = True
+        warnings.warn(
+            f"GPSDRFilter's fixes come every {interval:g} s and are correlated at step {self.step}: each carries "
+            f"1/{self.gps_correlation:.0f} of an independent fix (gps_correlation), less than one independent fix "
+            "a second, and a filter that uses every one follows their errors; pass "
+            f"min_fix_interval={MIN_FIX_INTERVAL:g} to use one a second", RuntimeWarning, stacklevel=4)
 
     def _gain_weights(self, gps):
         """Per state, the share of its Kalman gain this update keeps ``(dim_x,)``, or None for all of it.

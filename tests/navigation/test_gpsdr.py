@@ -9,7 +9,7 @@ import pytest
 from filterpy.kalman import ExtendedKalmanFilter
 
 from filterwnn.navigation.dead_reckoning import GPSDRModel, dr_residual
-from filterwnn.navigation.gpsdr import KINDS, LOW_SPEED, STANDSTILL_SPEED, GPSDRFilter
+from filterwnn.navigation.gpsdr import KINDS, LOW_SPEED, MIN_FIX_INTERVAL, STANDSTILL_SPEED, GPSDRFilter
 from filterwnn.navigation.scenarios import SCENARIOS, Scenario, simulate_scenario
 
 # starts from rest, turns, stops at a light for 10 s, pulls away again, then a 30 s tunnel;
@@ -474,7 +474,8 @@ def _median_correlation(f, run):
 
 def test_the_whiteness_window_spans_seconds_at_any_fix_rate():
     one, five = _at_rate(1.0, 0), _at_rate(5.0, 0)
-    f1, f5, f12 = _phone_filter(one), _phone_filter(five), _phone_filter(five, whiteness_window=12.0)
+    f1 = _phone_filter(one)
+    f5, f12 = (_phone_filter(five, min_fix_interval=0.0, whiteness_window=w) for w in (60.0, 12.0))
     assert f1.whiteness_window == f5.whiteness_window == 60.0 and f1.whiteness_fixes is None
     c1, c5, c12 = _median_correlation(f1, one), _median_correlation(f5, five), _median_correlation(f12, five)
     # 60 s of fixes: 60 at 1 Hz, 300 at 5 Hz (60 fixes at 5 Hz would span 12 s, under the errors' 20 s)
@@ -484,6 +485,60 @@ def test_the_whiteness_window_spans_seconds_at_any_fix_rate():
     assert 0.5 < (c5 / 5.0) / c1 < 2.0, (c1, c5)
     # a window of 60 fixes at 5 Hz sees too few lags and counts the fixes as worth more (0.28-0.41)
     assert c12 < 0.6 * c5, (c12, c5)
+
+
+def test_fixes_faster_than_one_a_second_are_thinned_with_a_warning():
+    five = _at_rate(5.0, 0)
+    assert _phone_filter(five).min_fix_interval == 0.0  # off by default
+    f = _phone_filter(five, min_fix_interval=MIN_FIX_INTERVAL)
+    assert f.min_fix_interval == 1.0
+    with pytest.warns(RuntimeWarning, match=r"thins its fixes from step \d+: they come every 0.2 s, and it uses "
+                                            r"one every 1 s \(min_fix_interval\)") as rec:
+        a = f.batch_filter(five.z_dr, five.gps_list(), five.gps_sigma_list())
+    assert sum("thins its fixes" in str(w.message) for w in rec) == 1
+    # one fix in five is used (the first, then every fifth), and only those are tested
+    n = len(five.gps_steps)
+    assert f.n_thinned == n - (n + 4) // 5 and f.n_fixes == (n + 4) // 5
+    # the same as a filter given only those fixes
+    keep = [g if g is not None and j % 5 == 0 else None
+            for j, g in zip(np.cumsum([g is not None for g in five.gps_list()]) - 1, five.gps_list())]
+    sig = [s if k is not None else None for s, k in zip(five.gps_sigma_list(), keep)]
+    g = _phone_filter(five, min_fix_interval=0.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        b = g.batch_filter(five.z_dr, keep, sig)
+    np.testing.assert_array_equal(a, b)
+    assert g.n_thinned == 0 and g.n_fixes == f.n_fixes
+    # 1 Hz fixes, with a jitter of up to 0.4 s, are all used
+    one = _at_rate(1.0, 0)
+    jitter = list(one.gps_list())
+    for k in one.gps_steps[3::7]:
+        jitter[k - 2], jitter[k] = jitter[k], None  # 0.4 s early
+    h = _phone_filter(one, min_fix_interval=MIN_FIX_INTERVAL)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)  # not even the thinning warning
+        warnings.filterwarnings("ignore", "GPSDRFilter is inconsistent", RuntimeWarning)
+        h.batch_filter(one.z_dr, jitter, one.gps_sigma_list())
+    assert h.n_thinned == 0 and h.n_fixes == len(one.gps_steps)
+
+
+def test_fast_correlated_fixes_warn_with_the_remedy():
+    correlated, white = _at_rate(5.0, 0), _at_rate(5.0, 0, phi_per_second=0.0)
+    f = _phone_filter(correlated)
+    with pytest.warns(RuntimeWarning, match=r"fixes come every 0.2 s and are correlated at step \d+: each carries "
+                                            r"1/\d+ of an independent fix .* pass min_fix_interval=1 to use one"):
+        f.batch_filter(correlated.z_dr, correlated.gps_list(), correlated.gps_sigma_list())
+    for run, kw in ((white, {}), (correlated, {"min_fix_interval": MIN_FIX_INTERVAL}), (_at_rate(1.0, 0), {})):
+        g = _phone_filter(run, **kw)
+        with warnings.catch_warnings(record=True) as rec:
+            warnings.simplefilter("always")
+            g.batch_filter(run.z_dr, run.gps_list(), run.gps_sigma_list())
+        assert not any("and are correlated at step" in str(w.message) for w in rec), kw
+
+
+def test_min_fix_interval_is_checked():
+    with pytest.raises(ValueError, match="min_fix_interval must be >= 0"):
+        GPSDRFilter(GPSDRModel(augmented=True), min_fix_interval=-1.0)
 
 
 def test_whiteness_window_is_checked():

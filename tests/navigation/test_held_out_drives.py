@@ -146,3 +146,28 @@ def test_inflating_correlated_fixes_is_an_option_of_the_command(tmp_path_factory
         default = real_drive_outages(read_drive_csv(path), filters=("EKF-8",), use_gps_sigma=True, grade="phone")
     assert medians["calibration"] == pytest.approx(np.median(default["EKF-8"]), abs=0.01)
     assert medians["inflate"] < medians["calibration"] - 3.0, medians
+
+
+def test_fast_correlated_fixes_warn_and_the_command_thins_them(tmp_path_factory, tmp_path):
+    """The city analog with its fixes at 5 Hz (the same multipath in seconds): the command warns that the
+    fixes are correlated and names ``min_fix_interval=1``; ``--min-fix-interval 1`` uses one fix a second,
+    the table counts the others as thinned, and it is what the API gives with that setting."""
+    path = held_out.write_csv(tmp_path_factory.mktemp("city5") / "city5.csv", held_out.columns("city", 0, gps_rate=5.0))
+    rows, said = {}, {}
+    for interval in ("0", "1"):
+        cmd = [sys.executable, "-m", "filterwnn.cli", "study", "dr", "--drive", path, "--grade", "phone",
+               "--no-figures", "--no-progress", "--filters", "EKF-8", "--min-fix-interval", interval,
+               "--out", str(tmp_path / interval)]
+        done = subprocess.run(cmd, capture_output=True, text=True, timeout=900)
+        assert done.returncode == 0, done.stderr[-2000:]
+        rows[interval] = next(line for line in done.stdout.splitlines() if line.startswith("| EKF-8 |"))
+        said[interval] = done.stdout + done.stderr
+    assert "are correlated at step" in said["0"] and "pass min_fix_interval=1" in said["0"]
+    assert "are correlated at step" not in said["1"] and "thins its fixes" in said["1"]
+    assert "more thinned" in rows["1"] and "more thinned" not in rows["0"]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        thinned = real_drive_outages(read_drive_csv(path), filters=("EKF-8",), use_gps_sigma=True, grade="phone",
+                                     min_fix_interval=1.0)
+    assert float(rows["1"].split("|")[2]) == pytest.approx(np.median(thinned["EKF-8"]), abs=0.01)
+    assert thinned["integrity"]["EKF-8"]["n_thinned"] > 3 * thinned["integrity"]["EKF-8"]["n_fixes"]

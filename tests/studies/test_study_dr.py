@@ -192,8 +192,11 @@ def test_drive_table_separates_the_causes():
     assert cells[6] == f"{np.median(s):.2f}" and cells[7] == f"{np.median(e - s):.2f}"
     assert cells[8].endswith(f"of {ig['n_fixes']}") and cells[9] == f"{ig['nis_mean']:.2f}"
     assert cells[10] == "-" and ig["gps_scale_mean"] is None  # the covariance scale is not estimated by default
+    # the fixes' correlation is measured by default, and is at least 1
+    assert cells[11] == f"{ig['gps_correlation_mean']:.2f}" and ig["gps_correlation_mean"] >= 1.0
+    assert "mean fix correlation (1: white)" in table
     # the sample stands at its start and at a light: the stops' heading drift teaches the gyro rate bias
-    assert cells[11] == (f"{ig['n_zero_rate']} / {ig['n_zero_rate_rejected']} / {ig['n_zero_rate_reacquired']} / "
+    assert cells[12] == (f"{ig['n_zero_rate']} / {ig['n_zero_rate_rejected']} / {ig['n_zero_rate_reacquired']} / "
                          f"{ig['n_zero_rate_held']}")
     assert ig["n_zero_rate"] >= 1 and ig["n_zero_rate_held"] == 0
     held = run._replace(z_dr=np.where((run.z_dr[:, 1:] == 0.0) | (run.z_dr[:, 1:] / run.scenario.dt < 0.05),

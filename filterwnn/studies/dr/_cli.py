@@ -73,6 +73,10 @@ def add_arguments(parser):
                         help="how the fixes' measured correlation counts them (GPSDRFilter's correlated_fixes): "
                              "calibration (default) slows the heading and rate-bias calibration; inflate counts each "
                              "fix as the independent fixes it is worth, in every state (for urban-canyon multipath)")
+    parser.add_argument("--min-fix-interval", type=options.nonnegative_float, default=0.0, metavar="SECONDS",
+                        help="use one fix every this many seconds and thin the others (GPSDRFilter's "
+                             "min_fix_interval; 1 for fast fixes whose errors are correlated, which the filters "
+                             "warn of; default 0: every fix)")
     parser.add_argument("--grade", choices=sorted(SENSOR_GRADES), default=None,
                         help="sensor grade for the GPS/DR settings (survey, phone; see "
                              "filterwnn.navigation.dead_reckoning.SENSOR_GRADES); default phone for --drive, survey for --real")
@@ -100,7 +104,8 @@ def run(args):
                 break
             rd = real_drive_outages(drive, grade=grade, use_gps_sigma=True,
                                     scale_window=getattr(args, "gps_scale_window", 0),
-                                    correlated_fixes=getattr(args, "correlated_fixes", "calibration"))
+                                    correlated_fixes=getattr(args, "correlated_fixes", "calibration"),
+                                    min_fix_interval=getattr(args, "min_fix_interval", 0.0))
             results.append(rd)
             texts.append(real_drive_table(rd))
             print(texts[-1])
@@ -133,7 +138,8 @@ def _run_drives(args, drives, filters):
                                      use_gps_sigma=run.gps_sigma is not None,
                                      grade=getattr(args, "grade", None) or "phone",
                                      scale_window=getattr(args, "gps_scale_window", 0),
-                                     correlated_fixes=getattr(args, "correlated_fixes", "calibration"))
+                                     correlated_fixes=getattr(args, "correlated_fixes", "calibration"),
+                                     min_fix_interval=getattr(args, "min_fix_interval", 0.0))
         except ValueError as exc:  # name the drive (and the options behind the outages)
             raise ValueError(f"{path}: {exc} (outages from --outage-length, --outages, --outage-starts, "
                              "--min-speed)") from None

@@ -32,7 +32,7 @@ REAL_FILTERS = ("DR-mech", "EKF", "EKF-8", "UKF-8", "SUKF-8")
 def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "EKF", "EKF-8"),
                        model_kwargs=None, slow_speed=None, starts=None, min_speed=0.0,
                        use_gps_sigma=False, grade=None, gps_window=0, scale_window=0,
-                       correlated_fixes="calibration"):
+                       correlated_fixes="calibration", min_fix_interval=0.0):
     """Cut GPS outages of ``length`` s into a drive and score each filter at each outage end.
 
     Placements: ``starts`` as given, or ``n_placements`` spread evenly over the windows whose mean
@@ -68,6 +68,9 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         scale of the fixes' reported covariance, estimated over this many fixes (0, the defaults: neither).
     correlated_fixes : {"calibration", "inflate"}
         :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`'s: how the fixes' correlation counts them.
+    min_fix_interval : float
+        :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`'s: seconds after a fix used before the next
+        is used (0, the default: every fix).
 
     Returns
     -------
@@ -77,9 +80,12 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         ``track (n_steps, 2)`` (truth, else the fixes interpolated), ``end_xy {filter: (n, 2)}``,
         ``start_err {filter: (n,)}`` (the horizontal error when each outage starts, against the same
         reference as the ends; 0 for ``DR-mech``, which starts there), ``integrity {filter: dict}`` (over
-        the whole drive with GPS: ``n_fixes``, ``n_rejected``, ``n_downweighted``, ``n_reacquired``,
+        the whole drive with GPS: ``n_fixes`` (tested), ``n_thinned`` (not used: ``min_fix_interval``),
+        ``n_rejected``, ``n_downweighted``, ``n_reacquired``,
         ``nis_mean``, the NIS of the accepted fixes (2 when consistent), ``gps_scale_mean`` and ``gps_scale``,
-        the mean and last factor on the fixes' covariance (mean None: not estimated), ``rejected_xy (m, 2)``,
+        the mean and last factor on the fixes' covariance (mean None: not estimated),
+        ``gps_correlation_mean``, the mean of the fixes' measured correlation (1: white; None: not
+        estimated), ``rejected_xy (m, 2)``,
         the rejected fixes, ``n_zero_rate``, ``n_zero_rate_rejected`` and ``n_zero_rate_held``, the stops
         whose heading drift updated the gyro rate bias, was rejected, or did not move at all (a heading
         held by its source), and ``n_zero_rate_reacquired``, the rate-bias state's re-acquisitions from
@@ -91,7 +97,8 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         raise ValueError(f"unknown real-drive filters {bad}; valid: {', '.join(REAL_FILTERS)}")
     out, windows = _outage_plan(run, length, starts, n_placements, min_speed)
     settings = dict(grade=grade, model_kwargs=model_kwargs, gps_window=gps_window, slow_speed=slow_speed,
-                    filter_kw=dict(scale_window=scale_window, correlated_fixes=correlated_fixes))
+                    filter_kw=dict(scale_window=scale_window, correlated_fixes=correlated_fixes,
+                                   min_fix_interval=min_fix_interval))
     for name in filters:
         _score_filter(out, name, run, windows, use_gps_sigma, settings)
     return out
@@ -165,7 +172,7 @@ def _outage_windows(run, starts, length):
 def _real_drive_filter(name, run, grade, model_kwargs, kw, gps_window, slow_speed, **filter_kw):
     """The :class:`~filterwnn.navigation.gpsdr.GPSDRFilter` ``name`` for a real drive, set from ``grade``
     (or the settings ``kw``), started at the drive's first state with 1 m position sigma; ``filter_kw``
-    go to the filter (``scale_window``, ``correlated_fixes``)."""
+    go to the filter (``scale_window``, ``correlated_fixes``, ``min_fix_interval``)."""
     aug = name.endswith("-8")
     dt = run.scenario.dt
     if grade is not None:
@@ -203,9 +210,11 @@ def _dr_mech_ends(run, k0s, k1s, track=None):
 def _integrity(f, run):
     """What the filter ``f`` did with the drive's fixes (see :func:`real_drive_outages`)."""
     rej = np.isin(run.gps_steps, f.rejected_steps)
-    return {"n_fixes": f.n_fixes, "n_rejected": f.n_rejected, "n_downweighted": f.n_downweighted,
+    return {"n_fixes": f.n_fixes, "n_thinned": f.n_thinned, "n_rejected": f.n_rejected,
+            "n_downweighted": f.n_downweighted,
             "n_reacquired": f.n_reacquired,
             "nis_mean": f.nis_mean, "gps_scale_mean": f.gps_scale_mean,
+            "gps_correlation_mean": f.gps_correlation_mean,
             "gps_scale": f.gps_scale, "rejected_xy": run.z_gps[rej],
             "n_zero_rate": f.n_zero_rate if f.zero_rate_update else None,
             "n_zero_rate_rejected": f.n_zero_rate_rejected if f.zero_rate_update else None,
@@ -240,7 +249,8 @@ def real_drive_table(res, min_moved=100.0):
     """Markdown: median/p90/max end-of-outage error over all placements and moving ones, the
     error at the outage starts and its growth over them (medians), what each filter did with
     the drive's fixes (rejected / down-weighted / re-acquired of those it saw), its mean NIS
-    of the accepted ones, the mean factor on the fixes' reported covariance ("-": not estimated) and
+    of the accepted ones, the mean factor on the fixes' reported covariance ("-": not estimated), the
+    mean of their measured correlation (``gps_correlation``: fixes worth one independent fix) and
     the stops whose heading drift updated the gyro rate bias, was rejected or was held by its source
     ("-": no rate-bias state)."""
     mv = res["moved"] >= min_moved
@@ -250,9 +260,9 @@ def real_drive_table(res, min_moved=100.0):
              f"{res.get('reference', 'truth')} (m)", "",
              "| filter | median all | p90 all | max all | median moving | max moving | median at start | "
              "median growth | fixes rejected / down-weighted / re-acquired | mean NIS (2: consistent) | "
-             "mean GPS covariance scale (1: as reported) | "
+             "mean GPS covariance scale (1: as reported) | mean fix correlation (1: white) | "
              "stops for the gyro rate bias: used / rejected / re-acquired / heading held |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for n in names:
         e = res[n]
         em = e[mv] if mv.any() else np.array([np.nan])
@@ -265,11 +275,13 @@ def real_drive_table(res, min_moved=100.0):
 
 def _integrity_cells(ig):
     if ig is None:
-        return "- | - | - | -"
+        return "- | - | - | - | -"
     nis = "-" if ig["nis_mean"] is None else f"{ig['nis_mean']:.2f}"
+    corr = "-" if ig.get("gps_correlation_mean") is None else f"{ig['gps_correlation_mean']:.2f}"
     scale = "-" if ig.get("gps_scale_mean") is None else f"{ig['gps_scale_mean']:.2f}"
     stops = ("-" if ig.get("n_zero_rate") is None
              else f"{ig['n_zero_rate']} / {ig['n_zero_rate_rejected']} / {ig['n_zero_rate_reacquired']} / "
                   f"{ig['n_zero_rate_held']}")
-    return (f"{ig['n_rejected']} / {ig['n_downweighted']} / {ig['n_reacquired']} of {ig['n_fixes']} | {nis} | "
-            f"{scale} | {stops}")
+    thinned = f" ({ig['n_thinned']} more thinned)" if ig.get("n_thinned") else ""
+    return (f"{ig['n_rejected']} / {ig['n_downweighted']} / {ig['n_reacquired']} of {ig['n_fixes']}{thinned} | {nis} | "
+            f"{scale} | {corr} | {stops}")
