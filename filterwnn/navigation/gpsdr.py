@@ -399,7 +399,7 @@ class GPSDRFilter:
     min_fix_interval : float
         Seconds after a fix used before the next is used; fixes that come faster are thinned
         (``n_thinned``, with one warning), and fixes at that rate or slower, with their jitter, are
-        all used. Default 0: every fix used. :data:`MIN_FIX_INTERVAL` (1 s) is the value for fast
+        all used. Default 0: every fix used. ``MIN_FIX_INTERVAL`` (1 s) is the value for fast
         fixes whose errors are correlated (an urban canyon's at 5 Hz), which a filter that takes each
         for independent follows; the filter warns when it measures such fixes. Not the default
         because fast fixes with independent errors lose by it (measured in
@@ -574,7 +574,7 @@ class GPSDRFilter:
 
     @property
     def gps_correlation_mean(self):
-        """Mean of :attr:`gps_correlation` over the fixes so far, each taken after its own update (1:
+        """Mean of ``gps_correlation`` over the fixes so far, each taken after its own update (1:
         white fixes; the longer their errors last, the larger; None before the first fix, and with
         ``whiteness_window=0``, where it is not estimated)."""
         return self._corr_sum / self._corr_n if self._corr_n else None
