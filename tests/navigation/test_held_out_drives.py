@@ -127,6 +127,17 @@ def test_a_gyro_outside_its_grade_is_re_acquired_on_the_1hz_analog(tmp_path_fact
     assert np.median(with_["EKF-8"]) < 6.0 < 100.0 < np.median(without["EKF-8"])
 
 
+def _study_ekf8(path, out, *options):
+    """``filterwnn study dr --drive path --grade phone --filters EKF-8 *options``, in a subprocess as a
+    user runs it: its EKF-8 table row, and all it printed."""
+    cmd = [sys.executable, "-m", "filterwnn.cli", "study", "dr", "--drive", path, "--grade", "phone",
+           "--no-figures", "--no-progress", "--filters", "EKF-8", *options, "--out", str(out)]
+    done = subprocess.run(cmd, capture_output=True, text=True, timeout=900)
+    assert done.returncode == 0, done.stderr[-2000:]
+    row = next(line for line in done.stdout.splitlines() if line.startswith("| EKF-8 |"))
+    return row, done.stdout + done.stderr
+
+
 def test_inflating_correlated_fixes_is_an_option_of_the_command(tmp_path_factory, tmp_path):
     """``--correlated-fixes inflate`` reaches the filters: on the city analog (seed 0) the EKF-8 counts the
     street-long multipath as the independent fixes it is worth and ends its outages nearer (median 16.43 ->
@@ -134,12 +145,7 @@ def test_inflating_correlated_fixes_is_an_option_of_the_command(tmp_path_factory
     path = _csv(tmp_path_factory, "city")
     medians = {}
     for mode in ("calibration", "inflate"):
-        cmd = [sys.executable, "-m", "filterwnn.cli", "study", "dr", "--drive", path, "--grade", "phone",
-               "--no-figures", "--no-progress", "--filters", "EKF-8", "--correlated-fixes", mode,
-               "--out", str(tmp_path / mode)]
-        done = subprocess.run(cmd, capture_output=True, text=True, timeout=900)
-        assert done.returncode == 0, done.stderr[-2000:]
-        row = next(line for line in done.stdout.splitlines() if line.startswith("| EKF-8 |"))
+        row, _ = _study_ekf8(path, tmp_path / mode, "--correlated-fixes", mode)
         medians[mode] = float(row.split("|")[2].split("/")[0])
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)  # the filters' own alarms (NIS, bounds)
@@ -155,13 +161,7 @@ def test_fast_correlated_fixes_warn_and_the_command_thins_them(tmp_path_factory,
     path = held_out.write_csv(tmp_path_factory.mktemp("city5") / "city5.csv", held_out.columns("city", 0, gps_rate=5.0))
     rows, said = {}, {}
     for interval in ("0", "1"):
-        cmd = [sys.executable, "-m", "filterwnn.cli", "study", "dr", "--drive", path, "--grade", "phone",
-               "--no-figures", "--no-progress", "--filters", "EKF-8", "--min-fix-interval", interval,
-               "--out", str(tmp_path / interval)]
-        done = subprocess.run(cmd, capture_output=True, text=True, timeout=900)
-        assert done.returncode == 0, done.stderr[-2000:]
-        rows[interval] = next(line for line in done.stdout.splitlines() if line.startswith("| EKF-8 |"))
-        said[interval] = done.stdout + done.stderr
+        rows[interval], said[interval] = _study_ekf8(path, tmp_path / interval, "--min-fix-interval", interval)
     assert "are correlated at step" in said["0"] and "pass min_fix_interval=1" in said["0"]
     assert "are correlated at step" not in said["1"] and "thins its fixes" in said["1"]
     assert "more thinned" in rows["1"] and "more thinned" not in rows["0"]
