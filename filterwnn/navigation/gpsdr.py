@@ -78,8 +78,8 @@ What the filter does when GPS lies (each part a public setting, on by default):
   with their jitter, are all used. Off by default because fixes whose errors are independent
   at 5 Hz lose by it (twice the error at the outage ends). The filter warns, once, with the
   step, when fixes come faster than one a second and their measured correlation
-  (``gps_correlation``) says they carry less than one independent fix a second, and names the
-  remedy.
+  (``gps_correlation``, over a full window) says they carry less than one independent fix a
+  second, and names the remedy.
 * **Correlated fixes.** A receiver's errors are correlated from fix to fix (multipath that
   lasts a street, a phone's own smoothing), and a filter that takes them for independent
   learns them as calibration: the rate bias and the heading bias follow a drifting error,
@@ -943,8 +943,10 @@ class GPSDRFilter:
     def _warn_fast_correlated(self):
         """Warn, once, when fixes come faster than one a second, every one is used, and their measured
         correlation says they carry less than one independent fix a second (``gps_correlation`` above
-        the fixes per second)."""
-        if self._fast_warned or self.min_fix_interval or not self._offer_gaps:
+        the fixes per second), measured over a full window (a filter still converging has correlated
+        innovations of its own for its first seconds)."""
+        if (self._fast_warned or self.min_fix_interval or not self._offer_gaps or self._white.maxlen is None
+                or len(self._white) < self._white.maxlen):
             return
         interval = float(np.median(self._offer_gaps)) * self.model.dt
         if interval >= 1.0 or self.gps_correlation * interval <= 1.0:
