@@ -511,8 +511,8 @@ class GPSDRFilter:
         if not (np.isfinite(self.min_fix_interval) and self.min_fix_interval >= 0):
             raise ValueError(f"min_fix_interval must be >= 0 s (0: every fix used), got {min_fix_interval}")
         self.n_thinned, self._fast_warned = 0, False
-        # the last fix offered and used (steps), the last steps between fixes offered
-        self._offered, self._used, self._offer_gaps = None, None, deque(maxlen=10)
+        # the last fix offered and used (steps), the last steps between fixes offered, and their median (s)
+        self._offered, self._used, self._offer_gaps, self._fix_interval = None, None, deque(maxlen=10), 0.0
         self.whiteness_window = float(whiteness_window)
         if not (np.isfinite(self.whiteness_window) and self.whiteness_window >= 0):
             raise ValueError(f"whiteness_window must be >= 0 s (0: fixes taken for independent), got {whiteness_window}")
@@ -672,7 +672,7 @@ class GPSDRFilter:
             self._offer_gaps.append(self.step - self._offered)
         self._offered = self.step
         dt = self.model.dt
-        interval = float(np.median(self._offer_gaps)) * dt if self._offer_gaps else 0.0
+        interval = self._fix_interval = float(np.median(self._offer_gaps)) * dt if self._offer_gaps else 0.0
         if (not self.min_fix_interval or self._used is None
                 or (self.step - self._used) * dt >= self.min_fix_interval - 0.5 * interval):
             self._used = self.step
@@ -948,7 +948,7 @@ class GPSDRFilter:
         if (self._fast_warned or self.min_fix_interval or not self._offer_gaps or self._white.maxlen is None
                 or len(self._white) < self._white.maxlen):
             return
-        interval = float(np.median(self._offer_gaps)) * self.model.dt
+        interval = self._fix_interval  # the median interval between fixes offered (:meth:`_thin`)
         if interval >= 1.0 or self.gps_correlation * interval <= 1.0:
             return
         self._fast_warned = True
