@@ -158,7 +158,7 @@ from ..kalman.unscented import UnscentedKalmanFilter
 
 __all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS", "GATE", "REJECT_GATE", "REACQUIRE_AFTER",
            "NIS_WINDOW", "CALIBRATION_SIGMAS", "ZERO_RATE_GATE", "ZERO_RATE_MIN_SAMPLES",
-           "ZERO_RATE_REACQUIRE_AFTER", "WHITENESS_WINDOW", "CORRELATED_FIXES",
+           "ZERO_RATE_REACQUIRE_AFTER", "WHITENESS_WINDOW", "FIX_GAPS", "MIN_FIX_INTERVAL", "CORRELATED_FIXES",
            "SCALE_WINDOW", "SCALE_TEST", "SCALE_WARN", "gps_scale_mle", "gps_scale_loglik", "stop_heading_slope"]
 
 #: Default standstill threshold (m/s) on the odometer speed: 0.05 m/s = 0.11 mph, four
@@ -195,6 +195,12 @@ ZERO_RATE_REACQUIRE_AFTER = 3
 #: a time (a street's multipath, a phone's own smoothing), whatever the receiver's rate: a window of
 #: 60 fixes at 5 Hz would span 12 s, under a 15 s correlation, and miss most of it.
 WHITENESS_WINDOW = 60.0
+#: The last gaps between fixes from which the filter takes the fixes' interval: their shortest sizes the
+#: whiteness window (:attr:`GPSDRFilter.whiteness_fixes`) and their median paces ``min_fix_interval``'s
+#: thinning. Recent, so that one early or doubled fix, or a receiver that changes its rate, is followed
+#: within that many fixes (over the whole drive, one doubled fix at 1 Hz made every later gap look like a
+#: break, and the correlation read 1 from there on).
+FIX_GAPS = 10
 #: The ``min_fix_interval`` to use for fast fixes whose errors are correlated (``GPSDRFilter(
 #: min_fix_interval=MIN_FIX_INTERVAL)``; off by default): the filter then uses one fix a second and thins
 #: the others (``n_thinned``). A street's multipath lasts seconds, and a filter that takes 5 Hz fixes for
@@ -512,7 +518,7 @@ class GPSDRFilter:
             raise ValueError(f"min_fix_interval must be >= 0 s (0: every fix used), got {min_fix_interval}")
         self.n_thinned, self._fast_warned = 0, False
         # the last fix offered and used (steps), the last steps between fixes offered, and their median (s)
-        self._offered, self._used, self._offer_gaps, self._fix_interval = None, None, deque(maxlen=10), 0.0
+        self._offered, self._used, self._offer_gaps, self._fix_interval = None, None, deque(maxlen=FIX_GAPS), 0.0
         self.whiteness_window = float(whiteness_window)
         if not (np.isfinite(self.whiteness_window) and self.whiteness_window >= 0):
             raise ValueError(f"whiteness_window must be >= 0 s (0: fixes taken for independent), got {whiteness_window}")
@@ -520,7 +526,8 @@ class GPSDRFilter:
         self._corr_sum, self._corr_n = 0.0, 0  # for gps_correlation_mean
         # whitened innovations, None at a break; bounded to whiteness_window once the fixes' interval is known
         self._white = deque()
-        self._fix_gap, self._last_fix_step = None, None
+        # the fixes' interval (steps): the shortest of the last ten gaps between the fixes it sees
+        self._fix_gap, self._last_fix_step, self._seen_gaps = None, None, deque(maxlen=FIX_GAPS)
         self.scale_window = int(scale_window)
         if self.scale_window < 0:
             raise ValueError(f"scale_window must be >= 0 (0: the fixes' covariance as reported), got {scale_window}")
@@ -665,9 +672,9 @@ class GPSDRFilter:
 
     def _thin(self):
         """Whether this step's fix comes too soon after the last fix used to be used itself: sooner than
-        ``min_fix_interval`` less half the fixes' interval (the median of the last ten), so that fixes
-        at ``min_fix_interval`` or slower, with their jitter, are all used, and faster ones one in
-        ``min_fix_interval / interval``. Warns at the first, with the step."""
+        ``min_fix_interval`` less half the fixes' interval (the median of the last :data:`FIX_GAPS`), so
+        that fixes at ``min_fix_interval`` or slower, with their jitter, are all used, and faster ones one
+        in ``min_fix_interval / interval``. Warns at the first, with the step."""
         if self._offered is not None:
             self._offer_gaps.append(self.step - self._offered)
         self._offered = self.step
@@ -910,8 +917,10 @@ class GPSDRFilter:
 
     @property
     def whiteness_fixes(self):
-        """The fixes the whiteness window holds: ``whiteness_window`` seconds at the shortest interval
-        between fixes seen so far (60 at 1 Hz, 300 at 5 Hz; at least 1), None before the second fix."""
+        """The fixes the whiteness window holds: ``whiteness_window`` seconds at the fixes' interval, the
+        shortest of the last :data:`FIX_GAPS` between them (60 at 1 Hz, 300 at 5 Hz; at least 1), None before
+        the second fix. One early or doubled fix is forgotten after that many, and a receiver that changes
+        its rate is followed as soon."""
         if self._fix_gap is None:
             return None
         return max(int(round(self.whiteness_window / (self._fix_gap * self.model.dt))), 1)
@@ -924,8 +933,9 @@ class GPSDRFilter:
             return
         if self._last_fix_step is not None:
             gap = self.step - self._last_fix_step
-            if self._fix_gap is None or gap < self._fix_gap:
-                self._fix_gap = gap
+            self._seen_gaps.append(gap)
+            self._fix_gap = min(self._seen_gaps)
+            if self._white.maxlen != self.whiteness_fixes:  # the last ones kept
                 self._white = deque(self._white, maxlen=self.whiteness_fixes)
             if gap > 2 * self._fix_gap:
                 self._white.append(None)

@@ -3,6 +3,7 @@
 import copy
 import dataclasses
 import re
+import typing
 import warnings
 
 import numpy as np
@@ -486,6 +487,51 @@ def test_the_whiteness_window_spans_seconds_at_any_fix_rate():
     assert 0.5 < (c5 / 5.0) / c1 < 2.0, (c1, c5)
     # a window of 60 fixes at 5 Hz sees too few lags and counts the fixes as worth more (0.28-0.41)
     assert c12 < 0.6 * c5, (c12, c5)
+
+
+class _Fixes(typing.NamedTuple):
+    """A drive's DR samples with other fixes: what ``_median_correlation`` reads."""
+    z_dr: np.ndarray
+    fixes: list
+    sigmas: list
+
+    def gps_list(self):
+        return self.fixes
+
+    def gps_sigma_list(self):
+        return self.sigmas
+
+
+def test_the_whiteness_window_forgets_a_doubled_fix_and_follows_a_change_of_rate():
+    one = _at_rate(1.0, 0)
+    c1 = _median_correlation(_phone_filter(one), one)
+    # one fix sent twice, the second 0.2 s later: the shortest gap ever seen was 0.2 s, every later 1 s
+    # gap looked like a break, and the correlation read 1 for the rest of the drive
+    fixes, sigmas = list(one.gps_list()), list(one.gps_sigma_list())
+    k = one.gps_steps[20]
+    fixes[k + 1], sigmas[k + 1] = fixes[k], sigmas[k]
+    f = _phone_filter(one)
+    c = _median_correlation(f, _Fixes(one.z_dr, fixes, sigmas))
+    assert f.whiteness_fixes == 60 and 0.8 * c1 < c < 1.25 * c1, (c, c1)  # 15.3 against 15.0
+    # a receiver that goes from 5 Hz to 1 Hz halfway: the window goes from 300 fixes to 60, and the
+    # correlation is measured on the 1 Hz fixes (it read 1 there, each fix after a break)
+    five = _at_rate(5.0, 0)
+    fixes, sigmas = list(five.gps_list()), list(five.gps_sigma_list())
+    half = len(fixes) // 2
+    nth = np.cumsum([g is not None for g in fixes]) - 1
+    for i in range(half, len(fixes)):
+        if fixes[i] is not None and nth[i] % 5:
+            fixes[i] = sigmas[i] = None
+    f = _phone_filter(five)
+    seen = []
+    for z, g, s in zip(five.z_dr, fixes, sigmas):
+        f.predict()
+        f.update(z, g, s)
+        if g is not None:
+            seen.append((f.step, f.whiteness_fixes, f.gps_correlation))
+    assert [w for step, w, _ in seen if step < half][-1] == 300 and f.whiteness_fixes == 60
+    late = np.median([c for step, _, c in seen if step > 1.5 * half])
+    assert 0.5 * c1 < late < 2.0 * c1, (late, c1)  # 18.1 against 15.0
 
 
 def test_fixes_faster_than_one_a_second_are_thinned_with_a_warning():
