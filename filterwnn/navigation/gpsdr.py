@@ -959,7 +959,8 @@ class GPSDRFilter:
                 or len(self._white) < self._white.maxlen):
             return
         interval = self._fix_interval  # the median interval between fixes offered (:meth:`_thin`)
-        if interval >= 1.0 or self.gps_correlation * interval <= 1.0:
+        # faster than one a second: by a DR sample at least (not by the rounding of the times' floats)
+        if interval > 1.0 - 0.5 * self.model.dt or self.gps_correlation * interval <= 1.0:
             return
         self._fast_warned = True
         warnings.warn(

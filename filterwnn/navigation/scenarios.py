@@ -421,6 +421,9 @@ def _sample_grid(t, max_jitter):
         k = int(np.argmax(dts <= 0)) + 1
         raise ValueError(f"t must be strictly increasing; t[{k}] = {float(t[k])!r} <= t[{k - 1}] = {float(t[k - 1])!r}")
     dt = float(f"{np.median(dts):.9g}")  # 0.1, not 0.09999999999999787
+    # times far from 0 (Unix epoch seconds, 1.7e9) are stored to 2.4e-7 s: round dt to what they resolve
+    # (0.1, not 0.0999999046, which made 1 Hz fixes look faster than one a second)
+    dt = float(np.round(dt, int(np.floor(-np.log10(8.0 * np.spacing(float(np.max(np.abs(t)))))))))
     jit = np.abs(dts / dt - 1.0)
     if np.any(jit > max_jitter):
         k = int(np.argmax(jit)) + 1

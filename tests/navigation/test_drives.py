@@ -93,6 +93,16 @@ def test_a_unit_mistake_is_refused_with_its_likely_cause_and_can_be_overridden(t
     read_drive_csv(path, checks=False)  # the override reads it
 
 
+def test_unix_epoch_times_read_as_times_from_zero(tmp_path):
+    cols = _drive()
+    want = read_drive_csv(_write(tmp_path / "zero.csv", cols))
+    cols["time"] = cols["time"] + 1.7e9  # stored to 2.4e-7 s: the median interval is 0.0999999046 s
+    got = read_drive_csv(_write(tmp_path / "epoch.csv", cols))
+    assert got.scenario.dt == want.scenario.dt == 0.1 and got.scenario.gps_rate == 1.0
+    np.testing.assert_array_equal(got.gps_steps, want.gps_steps)
+    np.testing.assert_allclose(got.z_dr, want.z_dr, rtol=1e-5)  # each step's distance from its own interval
+
+
 def test_from_arrays_checks_too():
     c = _drive()
     fix = ~np.isnan(c["gps_lat"])

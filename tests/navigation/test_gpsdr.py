@@ -585,6 +585,15 @@ def test_fast_correlated_fixes_warn_with_the_remedy():
             warnings.simplefilter("always")
             g.batch_filter(run.z_dr, run.gps_list(), run.gps_sigma_list())
         assert not any("and are correlated at step" in str(w.message) for w in rec), kw
+    # 1 Hz fixes on a dt read from Unix-epoch times (0.0999999046 s before the reader rounded it): the
+    # fixes came every 0.999999 s, and the warning took them for fast
+    one = _at_rate(1.0, 0)
+    model = GPSDRModel.from_grade("phone", one.scenario.dt * (1.0 - 1e-6))
+    g = GPSDRFilter(model, "ekf", x0=np.r_[one.x0, model.x0[6:]])
+    with warnings.catch_warnings(record=True) as rec:
+        warnings.simplefilter("always")
+        g.batch_filter(one.z_dr, one.gps_list(), one.gps_sigma_list())
+    assert g.gps_correlation > 5.0 and not any("and are correlated at step" in str(w.message) for w in rec)
 
 
 def test_min_fix_interval_is_checked():
