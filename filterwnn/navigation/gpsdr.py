@@ -35,7 +35,13 @@ What the filter does when GPS lies (each part a public setting, on by default):
 * **Re-acquisition.** After :data:`REACQUIRE_AFTER` rejections in a row the filter, not the
   fixes, is taken to be lost (a start far off, a wrong heading, a long drift): the position
   variances are raised to the innovation's square (their cross-covariances dropped) and the
-  fix is accepted, counted in ``n_reacquired``.
+  fix is accepted, counted in ``n_reacquired``; the first re-acquisition warns, with the step
+  (fixes that jumped together, into another datum or a street's multipath, also re-acquire).
+* **Stale fixes.** A fix that repeats the last different one to the bit after the car drove
+  farther than the fix's sigma is a receiver re-sending its last solution: not used or tested
+  (``n_stale``, ``fix_status == "stale"``, one warning). A run of them taken for fixes would fail
+  the gate, then re-acquire the filter onto a position left behind (a 10 s run at 23 m/s: an
+  outage that started there ended 200 m off).
 * **Calibration only where it is observable.** The odometer scale, heading bias and gyro
   rate bias learn from a fix only when it was accepted as it is, the car is moving
   (``motion == "moving"``, at least ``low_speed``: the gyro heading is the track's, the
@@ -443,8 +449,9 @@ class GPSDRFilter:
         Updates so far (the step the warnings name is ``step - 1``, counted from 0).
     fix_status : str
         What became of the last update's fix: ``"none"``, ``"accepted"``,
-        ``"down-weighted"``, ``"rejected"``, ``"reacquired"`` or ``"thinned"`` (not used: it came
-        sooner than ``min_fix_interval`` after the last fix used).
+        ``"down-weighted"``, ``"rejected"``, ``"reacquired"``, ``"thinned"`` (not used: it came
+        sooner than ``min_fix_interval`` after the last fix used) or ``"stale"`` (not used: the last
+        fix again, to the bit, after the car drove farther than the fix's sigma).
     nis : float or None
         The last fix's normalised innovation squared (before the gate).
     n_fixes, n_downweighted, n_rejected, n_reacquired, n_repairs : int
@@ -452,6 +459,11 @@ class GPSDRFilter:
     n_thinned : int
         Fixes not used (nor tested) because they came sooner than ``min_fix_interval`` after the
         last one used.
+    n_stale : int
+        Fixes not used (nor tested) because they repeat the last different fix to the bit after the car
+        drove farther than their sigma since it: a receiver that re-sends its last solution while it
+        has none (one warning, with the step). Taken for fixes, a run of them first fails the gate and
+        then re-acquires the filter onto a position left behind.
     rejected_steps : list of int
         The steps whose fix was rejected.
     nis_accepted : list of float
@@ -517,6 +529,7 @@ class GPSDRFilter:
         if not (np.isfinite(self.min_fix_interval) and self.min_fix_interval >= 0):
             raise ValueError(f"min_fix_interval must be >= 0 s (0: every fix used), got {min_fix_interval}")
         self.n_thinned, self._fast_warned = 0, False
+        self.n_stale, self._last_new_fix, self._driven = 0, None, 0.0  # the last fix that differed; m since
         # the last fix offered and used (steps), the last steps between fixes offered, and their median (s)
         self._offered, self._used, self._offer_gaps, self._fix_interval = None, None, deque(maxlen=FIX_GAPS), 0.0
         self.whiteness_window = float(whiteness_window)
@@ -634,8 +647,10 @@ class GPSDRFilter:
         self.motion = self.classify(z_dr)
         if self.zero_rate_update:
             self._zero_rate(z_dr[0])
-        thinned = z_gps is not None and self._thin()
-        if thinned:
+        self._driven += float(z_dr[1])
+        stale = z_gps is not None and self._stale(z_gps, gps_sigma)
+        thinned = z_gps is not None and not stale and self._thin()
+        if stale or thinned:
             z_gps = gps_sigma = None
         adapt = self.gps_window > 0 and z_gps is not None and gps_sigma is None
         if adapt:
@@ -644,7 +659,7 @@ class GPSDRFilter:
             y = np.asarray(z_gps, dtype=float) - self.kf.x[[0, 3]]
             if self.gps_sigma_est is not None:
                 gps_sigma = self.gps_sigma_est
-        self.fix_status = "thinned" if thinned else "none"
+        self.fix_status = "stale" if stale else "thinned" if thinned else "none"
         if z_gps is not None:  # a noise still being learnt from the innovations cannot judge them yet
             c = self.gps_correlation  # the fixes so far: each carries 1 / c of an independent fix
             z_gps, gps_sigma = self._check_fix(z_gps, gps_sigma, test=not (adapt and self.gps_sigma_est is None),
@@ -669,6 +684,25 @@ class GPSDRFilter:
                 self.gps_sigma_est = float(np.sqrt(max(np.mean(self._gps_y) - np.mean(self._gps_hph), 0.01)))
         self.step += 1
         return self
+
+    def _stale(self, z_gps, gps_sigma):
+        """Whether this fix repeats the last different fix to the bit although the car drove farther
+        than the fix's sigma since it (a receiver re-sending its last solution). Warns at the first."""
+        z = np.array(as_state(z_gps, "z_gps", 2))
+        last = self._last_new_fix
+        if last is None or not np.array_equal(z, last) \
+                or self._driven <= self._fix_sigma(gps_sigma):
+            if last is None or not np.array_equal(z, last):
+                self._last_new_fix, self._driven = z, 0.0
+            return False
+        if not self.n_stale:
+            warnings.warn(
+                f"GPSDRFilter: the fix at step {self.step} repeats the last one to the bit after the car drove "
+                f"{self._driven:.3g} m: a receiver re-sending its last solution while it has none; such fixes "
+                "are not used (n_stale counts them). Taken for fixes, a run of them would fail the gate and then "
+                "re-acquire the filter onto a position left behind", RuntimeWarning, stacklevel=3)
+        self.n_stale += 1
+        return True
 
     def _thin(self):
         """Whether this step's fix comes too soon after the last fix used to be used itself: sooner than
@@ -833,6 +867,13 @@ class GPSDRFilter:
             self._in_a_row = 0
             self.fix_status = "reacquired"
             self.n_reacquired += 1
+            if self.n_reacquired == 1:
+                warnings.warn(
+                    f"GPSDRFilter re-acquires at step {self.step}: {self.reacquire_after} fixes in a row failed "
+                    f"its gate, and this one is {np.hypot(*y):.3g} m from its prediction (NIS {nis:.3g}); it takes "
+                    "itself to be lost and follows the fixes. If the fixes jumped instead (another datum, a "
+                    "street's multipath), the position follows them: check the drive there (later "
+                    "re-acquisitions are counted in n_reacquired)", RuntimeWarning, stacklevel=3)
             return z_gps, gps_sigma
         self._in_a_row += 1
         self.fix_status = "rejected"

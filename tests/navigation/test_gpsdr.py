@@ -312,9 +312,38 @@ def test_a_run_of_rejections_reacquires():
     x0 = np.r_[run.x0, 1.0, 0.0]
     x0[0] += 200.0
     f = GPSDRFilter(GPSDRModel(augmented=True), x0=x0)
-    est = f.batch_filter(run.z_dr, run.gps_list())
+    with pytest.warns(RuntimeWarning, match=r"re-acquires at step \d+: 5 fixes in a row failed its gate, and "
+                                            r"this one is 1\d\d m from its prediction") as rec:
+        est = f.batch_filter(run.z_dr, run.gps_list())
     assert f.n_rejected == f.reacquire_after and f.n_reacquired >= 1
     assert abs(est[-1, 0] - run.x_true[-1, 0]) < 5.0
+    assert sum("re-acquires" in str(w.message) for w in rec) == 1  # later ones are counted
+
+
+def test_a_receiver_re_sending_its_last_fix_is_not_followed():
+    """10 s of the same fix, to the bit, at 12 m/s: taken for fixes, they failed the gate, re-acquired
+    the filter onto the position left behind, and the errors reached 110 m (11 m without them)."""
+    run = _at_rate(1.0, 0)
+    fixes, sigmas = list(run.gps_list()), list(run.gps_sigma_list())
+    k0 = run.gps_steps[100]
+    for k in run.gps_steps[101:111]:
+        fixes[k], sigmas[k] = fixes[k0], sigmas[k0]
+    f, g = _phone_filter(run), _phone_filter(run)
+    with pytest.warns(RuntimeWarning, match=r"the fix at step \d+ repeats the last one to the bit after the car "
+                                            r"drove 1\d.\d m: a receiver re-sending") as rec:
+        a = f.batch_filter(run.z_dr, fixes, sigmas)
+    assert sum("re-sending" in str(w.message) for w in rec) == 1
+    assert f.n_stale == 10 and f.n_rejected == f.n_reacquired == 0 and f.n_fixes == len(run.gps_steps) - 10
+    # the same as a filter without those fixes
+    gone = [None if k in run.gps_steps[101:111] else z for k, z in enumerate(fixes)]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        np.testing.assert_array_equal(a, g.batch_filter(run.z_dr, gone, sigmas))
+    # a standing car's receiver may repeat its fix: used, as the car drove less than its sigma
+    h = _phone_filter(run)
+    h.update([0.3, 0.0], [1.0, 2.0], 5.0)
+    h.update([0.3, 0.0], [1.0, 2.0], 5.0)
+    assert h.n_stale == 0 and h.fix_status != "stale"
 
 
 def test_calibration_holds_while_standing_and_is_bounded_by_its_specification():

@@ -81,6 +81,7 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         ``start_err {filter: (n,)}`` (the horizontal error when each outage starts, against the same
         reference as the ends; 0 for ``DR-mech``, which starts there), ``integrity {filter: dict}`` (over
         the whole drive with GPS: ``n_fixes`` (tested), ``n_thinned`` (not used: ``min_fix_interval``),
+        ``n_stale`` (not used: the last fix re-sent),
         ``n_rejected``, ``n_downweighted``, ``n_reacquired``,
         ``nis_mean``, the NIS of the accepted fixes (2 when consistent), ``gps_scale_mean`` and ``gps_scale``,
         the mean and last factor on the fixes' covariance (mean None: not estimated),
@@ -210,7 +211,7 @@ def _dr_mech_ends(run, k0s, k1s, track=None):
 def _integrity(f, run):
     """What the filter ``f`` did with the drive's fixes (see :func:`real_drive_outages`)."""
     rej = np.isin(run.gps_steps, f.rejected_steps)
-    return {"n_fixes": f.n_fixes, "n_thinned": f.n_thinned, "n_rejected": f.n_rejected,
+    return {"n_fixes": f.n_fixes, "n_thinned": f.n_thinned, "n_stale": f.n_stale, "n_rejected": f.n_rejected,
             "n_downweighted": f.n_downweighted,
             "n_reacquired": f.n_reacquired,
             "nis_mean": f.nis_mean, "gps_scale_mean": f.gps_scale_mean,
@@ -283,5 +284,6 @@ def _integrity_cells(ig):
              else f"{ig['n_zero_rate']} / {ig['n_zero_rate_rejected']} / {ig['n_zero_rate_reacquired']} / "
                   f"{ig['n_zero_rate_held']}")
     thinned = f" ({ig['n_thinned']} more thinned)" if ig.get("n_thinned") else ""
+    thinned += f" ({ig['n_stale']} more stale)" if ig.get("n_stale") else ""
     return (f"{ig['n_rejected']} / {ig['n_downweighted']} / {ig['n_reacquired']} of {ig['n_fixes']}{thinned} | {nis} | "
             f"{scale} | {corr} | {stops}")
