@@ -291,8 +291,10 @@ def _csv_truth(path, header, col, column, origin, kw):
         if origin is None and not len(kw["lat"]):
             raise ValueError(f"{path}: true_lat/true_lon are converted to metres about the first GPS fix, and the "
                              "file has none: give fixes, an origin, or the truth as true_east/true_north")
-        if origin is None:
-            kw["origin"] = origin = (kw["lat"][0], kw["lon"][0])
+        if origin is None:  # the first fix that is not a receiver's null fix (lat = lon = 0: dropped)
+            real = np.flatnonzero((kw["lat"] != 0.0) | (kw["lon"] != 0.0))
+            first = int(real[0]) if len(real) else 0
+            kw["origin"] = origin = (kw["lat"][first], kw["lon"][first])
         kw["truth"] = np.stack(latlon_to_en(column("true_lat"), column("true_lon"), *origin), axis=1)
 
 

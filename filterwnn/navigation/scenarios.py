@@ -274,7 +274,8 @@ class DRRun(NamedTuple):
             Fix positions (m) in a local frame. Or:
         lat, lon : array-like of shape (n_fixes,), optional
             Fix latitude/longitude (degrees, WGS84), converted by :func:`latlon_to_en` about
-            ``origin`` (default the first fix).
+            ``origin`` (default the first fix). Fixes at exactly lat = lon = 0, a receiver's null
+            fix written before it has a position, are dropped with a warning.
         gps_sigma : float or array-like of shape (n_fixes,), optional
             Each fix's standard deviation per axis (m), e.g. the receiver's reported horizontal
             accuracy; kept in ``run.gps_sigma`` for the filters.
@@ -473,6 +474,18 @@ def _gps_fixes(gps_t, east, north, lat, lon, gps_sigma, origin, t, dt):
         if np.any(np.abs(la) > 90) or np.any(np.abs(lo) > 360):
             raise ValueError(f"lat/lon must be degrees (|lat| <= 90, |lon| <= 360), got max |lat| = "
                              f"{np.max(np.abs(la)):g}, max |lon| = {np.max(np.abs(lo)):g}")
+        null = (la == 0.0) & (lo == 0.0)
+        if null.any():  # a receiver's "no position" written as a position; as the origin it bent every fix
+            if null.all():
+                raise ValueError(f"every GPS fix is at lat = lon = 0 (a receiver's null fix: no position); "
+                                 f"the drive has no fix to use ({m} given)")
+            warnings.warn(f"dropped {int(null.sum())} GPS fix(es) at lat = lon = 0 (a receiver's null fix, written "
+                          f"before it has a position), the first at t = {float(gps_t[null][0]):g} s", RuntimeWarning,
+                          stacklevel=4)
+            ok = ~null
+            gps_t, la, lo, m = gps_t[ok], la[ok], lo[ok], int(ok.sum())
+            if gps_sigma is not None and np.ndim(gps_sigma):
+                gps_sigma = np.asarray(gps_sigma, dtype=float)[ok]
         lat0, lon0 = (la[0], lo[0]) if origin is None else (float(origin[0]), float(origin[1]))
         e, nn = latlon_to_en(la, lo, lat0, lon0)
         if np.all(np.abs(lo) <= 90):  # the fixes read with lat and lon exchanged, for the plausibility check

@@ -103,6 +103,24 @@ def test_unix_epoch_times_read_as_times_from_zero(tmp_path):
     np.testing.assert_allclose(got.z_dr, want.z_dr, rtol=1e-5)  # each step's distance from its own interval
 
 
+def test_null_fixes_at_lat_lon_zero_are_dropped_with_a_warning(tmp_path):
+    cols = _drive()
+    want = read_drive_csv(_write(tmp_path / "clean.csv", cols))
+    fix = np.flatnonzero(~np.isnan(cols["gps_lat"]))
+    cols["gps_lat"][fix[:3]] = cols["gps_lon"][fix[:3]] = 0.0  # logged before the receiver had a position
+    # (the first, at t = 0, is the start's and never used: two fixes fewer)
+    with pytest.warns(RuntimeWarning, match=r"dropped 3 GPS fix\(es\) at lat = lon = 0 \(a receiver's null fix"):
+        got = read_drive_csv(_write(tmp_path / "null.csv", cols))
+    # the origin is the first real fix: as the first fix, (0, 0) bent every fix and the truth (EKF-8 9.8 -> 126 m)
+    shift = want.z_gps[2] - got.z_gps[0]
+    np.testing.assert_array_equal(got.gps_steps, want.gps_steps[2:])
+    np.testing.assert_allclose(got.z_gps + shift, want.z_gps[2:], atol=0.05)
+    np.testing.assert_allclose(got.x_true[:, [0, 3]] + shift, want.x_true[:, [0, 3]], atol=0.05)
+    cols["gps_lat"][fix] = cols["gps_lon"][fix] = 0.0
+    with pytest.raises(ValueError, match="every GPS fix is at lat = lon = 0"):
+        read_drive_csv(_write(tmp_path / "none.csv", cols))
+
+
 def test_from_arrays_checks_too():
     c = _drive()
     fix = ~np.isnan(c["gps_lat"])
