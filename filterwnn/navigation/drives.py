@@ -161,7 +161,8 @@ def _located(path, exc, lines):
         k = int(m.group(2))
         return f"{m.group(0)} (line {lines[k]})" if k < len(lines) else m.group(0)
 
-    return ValueError(f"{path}: " + re.sub(r"\b(t|heading|speed|distance)\[(\d+)\]", line_of, str(exc)))
+    msg = str(exc).replace("pass np.deg2rad(heading)", "name the column heading_deg, or write it in radians")
+    return ValueError(f"{path}: " + re.sub(r"\b(t|heading|speed|distance)\[(\d+)\]", line_of, msg))
 
 
 def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2, checks=True, progress=None, fill_gaps=0.0):
@@ -214,7 +215,7 @@ def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2, checks=True,
     t = column("time")
     heading = np.deg2rad(column(hname)) if hname == "heading_deg" else column(hname)
     kw = {"distance" if dname == "odometer" else "speed": column(dname)}
-    kw.update(_csv_fixes(path, header, col, column, t, origin))
+    kw.update(_csv_fixes(path, header, col, column, t, origin, lines))
     _csv_truth(path, header, col, column, origin, kw)
     try:
         return DRRun.from_arrays(t, heading, name=name or os.path.splitext(os.path.basename(path))[0],
@@ -243,7 +244,7 @@ def _csv_layout(path, header, lines):
     return col, hname, dname
 
 
-def _csv_fixes(path, header, col, column, t, origin):
+def _csv_fixes(path, header, col, column, t, origin, lines):
     """The GPS keywords of :meth:`DRRun.from_arrays` from a drive CSV's columns (none without
     GPS columns); ``column(name, allow_empty)`` reads one column."""
     kw = {}
@@ -271,6 +272,11 @@ def _csv_fixes(path, header, col, column, t, origin):
         if np.any(~np.isfinite(gs)):
             r = int(np.flatnonzero(fix)[np.argmax(~np.isfinite(gs))])
             raise ValueError(f"{path}: column 'gps_sigma' is empty on data row {r + 1}, which has a fix")
+        if np.any(gs <= 0):
+            r = int(np.flatnonzero(fix)[np.argmax(gs <= 0)])
+            raise ValueError(f"{path}: column 'gps_sigma' must be > 0 (m) where there is a fix; data row {r + 1} "
+                             f"(line {lines[r]}) has {gs[gs <= 0][0]:g} (0 is how some receivers write 'unknown': "
+                             "give that fix its accuracy, or drop the column to give every fix the grade's sigma)")
         kw["gps_sigma"] = gs
     return kw
 

@@ -332,7 +332,7 @@ def _fill_gaps(t, heading, distance, speed, truth, longest, max_jitter):
     dts = np.diff(t)
     ratio = dts / float(np.median(dts))
     k = np.rint(ratio)
-    gap = (k >= 2) & (np.abs(ratio - k) <= max_jitter * k) & (dts <= longest)
+    gap = (k >= 2) & (np.abs(ratio - k) <= max_jitter * k) & (dts <= longest * (1.0 + 1e-9))  # 2.1 s: 2.1000000000000014
     if not gap.any():
         return t, heading, distance, speed, truth
     parts = [t[:1]] + [np.linspace(t[i], t[i + 1], int(k[i]) + 1)[1:] if gap[i] else t[i + 1:i + 2]
@@ -359,6 +359,8 @@ def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps
     dts, dt = _sample_grid(t, max_jitter)
     heading = _heading_radians(heading, n)
     step, v0 = _odometer_steps(distance, speed, dts, n)
+    if speed is not None:
+        _warn_stamp_jitter(dts, dt, np.asarray(speed, dtype=float))
     z_dr = np.stack([wrap_angle(heading[1:]), step], axis=1)
     steps = np.zeros(0, dtype=int)
     z_gps = np.zeros((0, 2))
@@ -411,6 +413,12 @@ def _own_drive_scenario(name, n, dt, v0, heading0, steps, sig):
                     sigma_gps=float(np.median(sig)) if sig is not None and len(sig) else 3.0)
 
 
+def _ceil_to(gap, dt):
+    """``gap`` rounded up to the sample interval's precision (one more digit than ``dt``'s)."""
+    digits = max(int(np.ceil(-np.log10(dt))) + 1, 0)
+    return float(np.ceil(gap * 10**digits - 1e-9) / 10**digits)
+
+
 def _sample_grid(t, max_jitter):
     """The intervals of the sample times ``t`` and their median ``dt``; ValueError unless
     there are 3 or more, strictly increasing and evenly spaced within ``max_jitter``."""
@@ -420,7 +428,8 @@ def _sample_grid(t, max_jitter):
     dts = np.diff(t)
     if np.any(dts <= 0):
         k = int(np.argmax(dts <= 0)) + 1
-        raise ValueError(f"t must be strictly increasing; t[{k}] = {float(t[k])!r} <= t[{k - 1}] = {float(t[k - 1])!r}")
+        raise ValueError(f"t must be strictly increasing; t[{k}] = {float(t[k])!r} <= t[{k - 1}] = {float(t[k - 1])!r}"
+                         + (": a sample logged twice? drop the repeated rows" if dts[k - 1] == 0 else ""))
     dt = float(f"{np.median(dts):.9g}")  # 0.1, not 0.09999999999999787
     # times far from 0 (Unix epoch seconds, 1.7e9) are stored to 2.4e-7 s: round dt to what they resolve
     # (0.1, not 0.0999999046, which made 1 Hz fixes look faster than one a second)
@@ -431,7 +440,7 @@ def _sample_grid(t, max_jitter):
         raise ValueError(f"t must be evenly sampled (each interval within {max_jitter:.0%} of the median "
                          f"{dt:g} s); t[{k}] - t[{k - 1}] = {dts[k - 1]:g} s: resample the drive first"
                          + (" (dropped samples: fill_gaps=SECONDS, or --fill-gaps, interpolates gaps up to that "
-                            "long)" if round(dts[k - 1] / dt) >= 2 else ""))
+                            f"long; this one needs {_ceil_to(dts[k - 1], dt):g})" if round(dts[k - 1] / dt) >= 2 else ""))
     return dts, dt
 
 
@@ -451,8 +460,32 @@ def _odometer_steps(distance, speed, dts, n):
     speed = _finite_1d(speed, "speed", n)
     if np.any(speed < 0):
         k = int(np.argmax(speed < 0))
-        raise ValueError(f"speed must be >= 0 (m/s); speed[{k}] = {float(speed[k])!r}")
+        raise ValueError(f"speed must be >= 0 (m/s); speed[{k}] = {float(speed[k])!r}: a reversing car is not "
+                         "modelled (the heading is taken for the direction of travel); give the unsigned speed, "
+                         "or cut the reversing out")
     return speed[1:] * dts, speed[0]
+
+
+#: Timestamp jitter (m of odometer distance per step: the median moving speed times the spread of the
+#: sample intervals) above which :meth:`DRRun.from_arrays` warns. ``speed`` samples become distances
+#: through their intervals, so a logger that stamps regular samples late adds that much noise to every
+#: step; the sensor grades' odometers are 0.01-0.02 m (5 ms at 23 m/s is 0.057 m, and took a phone-grade
+#: EKF-8's worst outage end from 35 to 99 m).
+STAMP_JITTER_M = 0.02
+
+
+def _warn_stamp_jitter(dts, dt, speed):
+    moving = speed[speed > 1.0]
+    if not len(moving):
+        return
+    spread = float(np.std(dts - dt))
+    noise = float(np.median(moving)) * spread
+    if noise > STAMP_JITTER_M:
+        warnings.warn(f"the sample times jitter by {1e3 * spread:.2g} ms (sd of the intervals about {dt:g} s): "
+                      f"speed times interval then adds {noise:.2g} m of noise to each step at the median "
+                      f"speed, more than a wheel odometer's 0.01-0.02 m. If the samples are regular and only "
+                      "their time stamps jitter (a logger's), give the times on their grid (t[0] + k dt)",
+                      RuntimeWarning, stacklevel=4)
 
 
 def _gps_fixes(gps_t, east, north, lat, lon, gps_sigma, origin, t, dt):

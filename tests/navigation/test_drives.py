@@ -3,6 +3,7 @@ against the GPS fixes, delimiters, a byte-order mark, NaN cells, short files, a 
 
 import subprocess
 import sys
+import warnings
 
 import numpy as np
 import pytest
@@ -119,6 +120,45 @@ def test_null_fixes_at_lat_lon_zero_are_dropped_with_a_warning(tmp_path):
     cols["gps_lat"][fix] = cols["gps_lon"][fix] = 0.0
     with pytest.raises(ValueError, match="every GPS fix is at lat = lon = 0"):
         read_drive_csv(_write(tmp_path / "none.csv", cols))
+
+
+def test_a_loggers_faults_are_named_with_their_remedy(tmp_path):
+    """What a probe with a user's kind of log met: each refusal names the line, the cause and what to do."""
+    def refused(cols, match, **kw):
+        with pytest.raises(ValueError, match=match):
+            read_drive_csv(_write(tmp_path / "d.csv", cols), **kw)
+
+    c = _drive()
+    c["gps_sigma"][np.flatnonzero(~np.isnan(c["gps_sigma"]))[37]] = 0.0  # the fix's index was all it said
+    refused(c, r"'gps_sigma' must be > 0 \(m\) where there is a fix; data row 371 \(line 372\) has 0 \(0 is how")
+    c = _drive()
+    c["heading"] = np.degrees(c["heading"])
+    refused(c, "looks like degrees: name the column heading_deg, or write it in radians")
+    c = _drive()
+    c["speed"][10] = -1.0
+    refused(c, r"speed\[10\] \(line 12\) = -1.0: a reversing car is not modelled .* give the unsigned speed")
+    c = _drive()
+    c["time"][11] = c["time"][10]
+    refused(c, r"t\[11\] \(line 13\) = 1.0 <= t\[10\] \(line 12\) = 1.0: a sample logged twice\? drop the repeated")
+    keep = np.ones(1201, dtype=bool)
+    keep[500:520] = False  # 2 s of rows dropped: a 2.1 s interval
+    c = {k: v[keep] for k, v in _drive().items()}
+    refused(c, r"= 2.1 s: .* this one needs 2.1\)", fill_gaps=2.0)
+    with pytest.warns(RuntimeWarning, match="filled 1 gap"):
+        read_drive_csv(_write(tmp_path / "d.csv", c), fill_gaps=2.1)  # as the message says (2.1000000000000014)
+
+
+def test_jittered_time_stamps_warn_that_they_add_odometer_noise(tmp_path):
+    rng = np.random.default_rng(0)
+    c = _drive(v=23.0)
+    c["time"] = c["time"] + rng.uniform(-0.005, 0.005, len(c["time"]))
+    with pytest.warns(RuntimeWarning, match=r"sample times jitter by 4.\d ms .* adds 0.0\d+ m of noise to each step .* "
+                                            r"give the times on their grid"):
+        read_drive_csv(_write(tmp_path / "d.csv", c), checks=False)
+    c["time"] = 0.1 * np.arange(1201) + rng.uniform(-0.0005, 0.0005, 1201)  # at 10 m/s: 0.004 m, under a wheel's
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        read_drive_csv(_write(tmp_path / "d.csv", c), checks=False)
 
 
 def test_from_arrays_checks_too():
