@@ -252,7 +252,7 @@ class DRRun(NamedTuple):
     @classmethod
     def from_arrays(cls, t, heading, *, distance=None, speed=None, gps_t=None, east=None, north=None,
                     lat=None, lon=None, gps_sigma=None, truth=None, origin=None, name="drive",
-                    max_jitter=0.2, checks=True, fill_gaps=0.0):
+                    max_jitter=0.2, checks=True, fill_gaps=0.0, gps_latency=0.0):
         """One's own drive from arrays: validated, on the DR sample grid, in local metres.
 
         Parameters
@@ -300,6 +300,10 @@ class DRRun(NamedTuple):
             times), with a warning that counts them and names the longest gap. Default 0: such a
             drive is refused as unevenly sampled. Interpolated dead reckoning is a guess: keep it
             to a few sample intervals.
+        gps_latency : float
+            Seconds by which each fix's position is older than its time stamp (the receiver's
+            latency, from its data sheet): the fix is placed at ``gps_t - gps_latency``. Default 0.
+            Unmodelled, 0.3 s at 23 m/s puts every fix 7 m behind the car along its track.
 
         Returns
         -------
@@ -319,6 +323,9 @@ class DRRun(NamedTuple):
         if fill_gaps:
             t, heading, distance, speed, truth = _fill_gaps(t, heading, distance, speed, truth,
                                                             check_positive(fill_gaps, "fill_gaps"), max_jitter)
+        latency = check_positive(gps_latency, "gps_latency", strict=False)
+        if gps_t is not None and latency:
+            gps_t = np.asarray(gps_t, dtype=float) - latency
         return cls(*_drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps_sigma,
                                   truth, origin, name, max_jitter, checks))
 

@@ -161,6 +161,17 @@ def test_jittered_time_stamps_warn_that_they_add_odometer_noise(tmp_path):
         read_drive_csv(_write(tmp_path / "d.csv", c), checks=False)
 
 
+def test_a_receivers_latency_places_each_fix_where_the_car_was(tmp_path):
+    c = _drive(sigma=1e-9)
+    late = {k: np.roll(v, 3) if k.startswith("gps_") else v for k, v in c.items()}  # stamped 0.3 s late
+    for latency, off in ((0.0, 3.0), (0.3, 0.0)):  # 10 m/s for 0.3 s: 3 m behind the car
+        run = read_drive_csv(_write(tmp_path / "late.csv", late), gps_latency=latency)
+        err = np.hypot(*(run.z_gps - run.x_true[run.gps_steps][:, [0, 3]]).T)
+        np.testing.assert_allclose(np.median(err), off, atol=0.01)
+    with pytest.raises(ValueError, match="gps_latency must be finite and >= 0"):
+        read_drive_csv(_write(tmp_path / "late.csv", late), gps_latency=-0.1)
+
+
 def test_from_arrays_checks_too():
     c = _drive()
     fix = ~np.isnan(c["gps_lat"])
@@ -284,3 +295,26 @@ def test_the_cli_fills_dropped_samples_on_request(tmp_path):
     assert proc.returncode == 2 and "--fill-gaps" in proc.stderr, proc.stderr
     proc = subprocess.run(argv + ["--fill-gaps", "0.5"], capture_output=True, text=True, timeout=300)
     assert proc.returncode == 0 and "filled 1 gap(s) of dropped DR samples" in proc.stderr, proc.stderr
+
+
+def test_the_cli_passes_the_receivers_latency_to_the_reader(tmp_path, monkeypatch):
+    import filterwnn.studies.dr._cli as dr_cli
+    from filterwnn.cli import main
+
+    seen = {}
+
+    class Read(Exception):
+        pass
+
+    def reader(path, **kw):
+        seen.update(kw)
+        raise Read  # stop there: the kwargs are what is tested
+
+    monkeypatch.setattr(dr_cli, "read_drive_csv", reader)
+    for argv, want in ((["--gps-latency", "0.3"], 0.3), ([], 0.0)):
+        seen.clear()
+        try:  # the command turns the exception into its one-line error
+            main(["study", "dr", "--drive", "sample", "--out", str(tmp_path), "--no-figures", *argv])
+        except (Read, SystemExit):
+            pass
+        assert seen["gps_latency"] == want

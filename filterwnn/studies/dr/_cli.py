@@ -60,6 +60,9 @@ def add_arguments(parser):
     parser.add_argument("--fill-gaps", type=options.nonnegative_float, default=0.0, metavar="SECONDS",
                         help="with --drive: fill gaps of dropped DR samples up to this long (s) by interpolation, "
                              "with a warning that counts them (default 0: a drive with dropped samples is refused)")
+    parser.add_argument("--gps-latency", type=options.nonnegative_float, default=0.0, metavar="SECONDS",
+                        help="with --drive: the receiver's latency (s, from its data sheet): each fix's position "
+                             "is that much older than its time stamp (default 0)")
     parser.add_argument("--outage-length", type=options.positive_float, default=30.0, help="GPS outage length on drives (s)")
     parser.add_argument("--outages", type=options.positive_int, default=20, help="number of outages spread over each drive")
     parser.add_argument("--outage-starts", type=options.float_list, default=None,
@@ -131,6 +134,7 @@ def _run_drives(args, drives, filters):
         run = read_drive_csv(sample_drive_path() if path == "sample" else path,
                              checks=not getattr(args, "no_plausibility", False),
                              fill_gaps=getattr(args, "fill_gaps", 0.0),
+                             gps_latency=getattr(args, "gps_latency", 0.0),
                              progress=None if not getattr(args, "no_progress", False) else False)
         try:
             res = real_drive_outages(run, n_placements=args.outages, length=args.outage_length, filters=fl,
