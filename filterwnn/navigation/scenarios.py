@@ -476,8 +476,8 @@ def _odometer_steps(distance, speed, dts, n):
 #: Timestamp jitter (m of odometer distance per step: the median moving speed times the spread of the
 #: sample intervals) above which :meth:`DRRun.from_arrays` warns. ``speed`` samples become distances
 #: through their intervals, so a logger that stamps regular samples late adds that much noise to every
-#: step; the sensor grades' odometers are 0.01-0.02 m (5 ms at 23 m/s is 0.057 m, and took a phone-grade
-#: EKF-8's worst outage end from 35 to 99 m).
+#: step; the sensor grades' odometers are 0.01-0.02 m (stamps off by up to 5 ms, 0.067 m a step at 23 m/s,
+#: took a phone-grade EKF-8's worst outage end from 34.6 to 75.5 m: docs/study-outputs/dr/log-faults).
 STAMP_JITTER_M = 0.02
 
 
