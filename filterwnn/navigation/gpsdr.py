@@ -689,11 +689,10 @@ class GPSDRFilter:
         """Whether this fix repeats the last different fix to the bit although the car drove farther
         than the fix's sigma since it (a receiver re-sending its last solution). Warns at the first."""
         z = np.array(as_state(z_gps, "z_gps", 2))
-        last = self._last_new_fix
-        if last is None or not np.array_equal(z, last) \
-                or self._driven <= self._fix_sigma(gps_sigma):
-            if last is None or not np.array_equal(z, last):
-                self._last_new_fix, self._driven = z, 0.0
+        if self._last_new_fix is None or not np.array_equal(z, self._last_new_fix):
+            self._last_new_fix, self._driven = z, 0.0
+            return False
+        if self._driven <= self._fix_sigma(gps_sigma):  # a standing car's receiver may repeat its fix
             return False
         if not self.n_stale:
             warnings.warn(

@@ -482,6 +482,8 @@ STAMP_JITTER_M = 0.02
 
 
 def _warn_stamp_jitter(dts, dt, speed):
+    """Warn when the intervals' spread times the median speed while moving (over 1 m/s) is more than
+    :data:`STAMP_JITTER_M` of odometer distance a step."""
     moving = speed[speed > 1.0]
     if not len(moving):
         return
