@@ -538,8 +538,13 @@ def _gps_fixes(gps_t, east, north, lat, lon, gps_sigma, origin, t, dt):
         if not np.all(np.isfinite(gs)) or np.any(gs <= 0):
             k = int(np.argmax(~np.isfinite(gs) | (gs <= 0)))
             raise ValueError(f"gps_sigma must be finite and > 0 (m); gps_sigma[{k}] = {float(gs[k])!r}")
-    k_fix = np.round((gps_t - t[0]) / dt).astype(int) - 1
-    keep = (k_fix >= 0) & (k_fix < n - 1)
+    # each fix on the sample nearest its time (ties to the earlier), as a step (sample i is step i - 1); not
+    # by the nominal dt: with intervals within max_jitter whose mean is not their median (a logger that
+    # is late one sample in ten by 15 ms), t0 + k dt drifts from the k-th sample, by 15 s after 1000 s
+    i = np.clip(np.searchsorted(t, gps_t), 1, n - 1)
+    i = np.where(gps_t - t[i - 1] <= t[i] - gps_t, i - 1, i)
+    k_fix = i - 1
+    keep = (k_fix >= 0) & (gps_t <= t[-1] + 0.5 * dt)
     k_fix, idx = np.unique(k_fix[keep], return_index=True)
     sel = np.flatnonzero(keep)[idx]
     return (k_fix, np.stack([e[sel], nn[sel]], axis=1), (gs[sel] if gps_sigma is not None else None),

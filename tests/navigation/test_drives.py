@@ -172,6 +172,20 @@ def test_a_receivers_latency_places_each_fix_where_the_car_was(tmp_path):
         read_drive_csv(_write(tmp_path / "late.csv", late), gps_latency=-0.1)
 
 
+def test_each_fix_lands_on_the_sample_nearest_its_time_when_the_intervals_vary():
+    """One sample in ten 15 ms late (within max_jitter): the median interval is 0.1 s and the mean 0.1015 s,
+    so t0 + k dt drifted from the samples, and after 1000 s the fixes landed 15 s (148 samples) early."""
+    dts = np.where(np.arange(10000) % 10 == 9, 0.115, 0.1)
+    t = np.r_[0.0, np.cumsum(dts)]
+    gps_t = np.arange(1.0, t[-1], 1.0)
+    with pytest.warns(RuntimeWarning, match="sample times jitter"):  # 4.5 ms at 10 m/s: 0.045 m a step
+        run = DRRun.from_arrays(t, np.zeros(len(t)), speed=np.full(len(t), 10.0), gps_t=gps_t,
+                                east=np.zeros(len(gps_t)), north=10.0 * gps_t, checks=False)
+    assert run.scenario.dt == 0.1 and len(run.gps_steps) == len(gps_t)
+    # sample gps_steps + 1 is the fix's step's end: within half an interval of the fix's time
+    assert np.max(np.abs(t[run.gps_steps + 1] - gps_t)) <= 0.0575 + 1e-9
+
+
 def test_from_arrays_checks_too():
     c = _drive()
     fix = ~np.isnan(c["gps_lat"])
