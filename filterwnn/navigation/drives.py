@@ -20,7 +20,7 @@ import numpy as np
 
 from .._validation import check_rng
 from .dead_reckoning import wrap_angle
-from .scenarios import DRRun, Scenario, earth_radii, latlon_to_en
+from .scenarios import DRRun, Scenario, earth_radii, latlon_to_en, _null_fixes
 
 __all__ = ["DRIVE_CSV_COLUMNS", "PROGRESS_BYTES", "read_drive_csv", "sample_drive_path", "load_car_drive", "CAR_DRIVE", "CAR_DRIVES",
            "MIN_ODOMETER_SPEED"]
@@ -300,8 +300,8 @@ def _csv_truth(path, header, col, column, origin, kw):
         if origin is None and not len(kw["lat"]):
             raise ValueError(f"{path}: true_lat/true_lon are converted to metres about the first GPS fix, and the "
                              "file has none: give fixes, an origin, or the truth as true_east/true_north")
-        if origin is None:  # the first fix that is not a receiver's null fix (lat = lon = 0: dropped)
-            real = np.flatnonzero((kw["lat"] != 0.0) | (kw["lon"] != 0.0))
+        if origin is None:  # the first fix that is not a receiver's null fix (dropped by DRRun.from_arrays)
+            real = np.flatnonzero(~_null_fixes(kw["lat"], kw["lon"]))
             first = int(real[0]) if len(real) else 0
             kw["origin"] = origin = (kw["lat"][first], kw["lon"][first])
         kw["truth"] = np.stack(latlon_to_en(column("true_lat"), column("true_lon"), *origin), axis=1)

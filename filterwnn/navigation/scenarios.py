@@ -497,6 +497,12 @@ def _warn_stamp_jitter(dts, dt, speed):
                       RuntimeWarning, stacklevel=4)
 
 
+def _null_fixes(lat, lon):
+    """Which fixes are a receiver's null fix: exactly lat = lon = 0, written before it has a position
+    (:meth:`DRRun.from_arrays` drops them; the default origin is the first fix that is not one)."""
+    return (np.asarray(lat) == 0.0) & (np.asarray(lon) == 0.0)
+
+
 def _gps_fixes(gps_t, east, north, lat, lon, gps_sigma, origin, t, dt):
     """The GPS fixes on the DR grid: their steps, east/north (m), sigmas (or None) and, for
     lat/lon fixes, east/north read with lat and lon exchanged (or None)."""
@@ -516,7 +522,7 @@ def _gps_fixes(gps_t, east, north, lat, lon, gps_sigma, origin, t, dt):
         if np.any(np.abs(la) > 90) or np.any(np.abs(lo) > 360):
             raise ValueError(f"lat/lon must be degrees (|lat| <= 90, |lon| <= 360), got max |lat| = "
                              f"{np.max(np.abs(la)):g}, max |lon| = {np.max(np.abs(lo)):g}")
-        null = (la == 0.0) & (lo == 0.0)
+        null = _null_fixes(la, lo)
         if null.any():  # a receiver's "no position" written as a position; as the origin it bent every fix
             if null.all():
                 raise ValueError(f"every GPS fix is at lat = lon = 0 (a receiver's null fix: no position); "

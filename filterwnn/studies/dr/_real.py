@@ -283,7 +283,6 @@ def _integrity_cells(ig):
     stops = ("-" if ig.get("n_zero_rate") is None
              else f"{ig['n_zero_rate']} / {ig['n_zero_rate_rejected']} / {ig['n_zero_rate_reacquired']} / "
                   f"{ig['n_zero_rate_held']}")
-    thinned = f" ({ig['n_thinned']} more thinned)" if ig.get("n_thinned") else ""
-    thinned += f" ({ig['n_stale']} more stale)" if ig.get("n_stale") else ""
-    return (f"{ig['n_rejected']} / {ig['n_downweighted']} / {ig['n_reacquired']} of {ig['n_fixes']}{thinned} | {nis} | "
+    unused = "".join(f" ({ig[f'n_{k}']} more {k})" for k in ("thinned", "stale") if ig.get(f"n_{k}"))
+    return (f"{ig['n_rejected']} / {ig['n_downweighted']} / {ig['n_reacquired']} of {ig['n_fixes']}{unused} | {nis} | "
             f"{scale} | {corr} | {stops}")
