@@ -196,22 +196,42 @@ def integrated_autocorrelation(u, min_pairs=10, n_se=2.0):
     True
     """
     u = list(u)
+    n = len(u)
     ok = np.array([v is not None for v in u], dtype=bool)
-    if not ok.any():
+    rows = [v for v in u if v is not None]
+    d = len(rows[0]) if rows else 0
+    n_lags = n // 4  # lags m = 1 .. n_lags - 1
+    if not ok.any() or n_lags < 2:
         return 1.0
-    d = len(u[int(np.argmax(ok))])
-    U = np.array([np.zeros(d) if v is None else np.asarray(v, dtype=float) for v in u])
-    # a pair spans no break when no None lies between its ends: count the breaks before each sample
-    breaks = np.cumsum(~ok)
+    U = np.zeros((n + n_lags, d))  # zero rows after the end: every lag's partner exists
+    U[:n][ok] = rows
+    # a pair spans no break when no break lies between its ends: sample k pairs at lags up to
+    # ahead[k], the samples after it before the next break (-1 for a break), and back[k] before it
+    k = np.arange(n)
+    ahead = np.where(ok, np.minimum.accumulate(np.where(ok, n, k)[::-1])[::-1] - k - 1, -1)
+    back = np.where(ok, k - np.maximum.accumulate(np.where(ok, -1, k)) - 1, -1)
+
+    def from_lag(reach, w):
+        """``[sum of w[k] over the k with reach[k] >= m for m in 1 .. n_lags - 1]``."""
+        per = np.bincount(np.clip(reach, 0, n_lags - 1), weights=w, minlength=n_lags)
+        return np.cumsum(per[::-1])[::-1][1:]
+
+    sq = np.square(U[:n]).sum(axis=1)
+    n_pairs = from_lag(ahead, None)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        inv_den = 2.0 / (from_lag(ahead, sq) + from_lag(back, sq))  # 1 / (sum (|u_k|^2 + |u_k-m|^2) / 2)
+        bound = n_se / np.sqrt(d * n_pairs)
     c = 1.0
-    for m in range(1, len(U) // 4):
-        pair = ok[m:] & ok[:-m] & (breaks[m:] == breaks[:-m])
-        n_pairs = int(pair.sum())
-        if n_pairs < min_pairs:
+    for lo, hi in ((1, 2), (2, n_lags)):  # lag 1 alone first: a white sequence stops there
+        # [k, i, m - lo] = U[k + m, i] for the lags m of the block
+        later = np.lib.stride_tricks.as_strided(U[lo:], (n, d, hi - lo), U.strides + U.strides[:1])
+        pair = np.arange(lo, hi) <= ahead[:, None]
+        num = sum(U[:n, i] @ np.where(pair, later[:, i], 0.0) for i in range(d))
+        with np.errstate(invalid="ignore"):
+            r = num * inv_den[lo - 1:hi - 1]
+        counts = (n_pairs[lo - 1:hi - 1] >= min_pairs) & (r >= bound[lo - 1:hi - 1])
+        last = int(np.argmin(counts)) if not counts.all() else len(counts)
+        c += 2.0 * float(r[:last].sum())  # Geyer's initial sequence: the lags before the first that fails
+        if last < len(counts):
             break
-        a, b = U[m:][pair], U[:-m][pair]
-        r = float(np.sum(a * b) / (0.5 * np.sum(a * a + b * b)))
-        if r < n_se / np.sqrt(U.shape[1] * n_pairs):
-            break
-        c += 2.0 * r
     return c
