@@ -60,6 +60,11 @@ What the filter does when GPS lies (each part a public setting, on by default):
   Systems*, 2nd ed., 2013, on zero updates). The slope is tested against the state first (its NIS, chi-square
   with 1 degree of freedom, against the 99.9 % point :data:`ZERO_RATE_GATE`; a car that crept
   round a corner below ``standstill_speed``, or a heading that jumped, is rejected and counted).
+  A rejected stop whose heading turned faster than any gyro's bias (:data:`MAX_STOP_RATE_DEG_S`, beyond
+  its slope's noise) is a car that moved while its speed read 0 (creeping below a wheel-speed sensor's
+  cutoff, turning in a car park): it is counted (``n_zero_rate_turned``), warned at the first, and kept
+  out of the re-acquisition below (three turning crawls in a row agree with each other, and were once
+  taken for a gyro bias of 4 deg/s: a drive's outages ended 1 km off).
   A heading that does not change at all over a stop is held by its source (a fused or
   GPS-course heading), not measured by a gyro, and is not used (``n_zero_rate_held``).
   When :data:`ZERO_RATE_REACQUIRE_AFTER` stops in a row are ones the state could not follow
@@ -157,6 +162,7 @@ from .._linalg import repair_pd
 from .._warnings import folded_warnings
 from ..metrics import integrated_autocorrelation
 from .._validation import as_state, check_choice, check_covariance, check_positive, check_positive_int, check_scale
+from ._plausibility import MAX_DRIFT_DEG_S
 from .dead_reckoning import GPSDRModel, dr_residual
 from ..kalman.presets import make_points
 from ..models import from_model
@@ -164,7 +170,7 @@ from ..kalman.unscented import UnscentedKalmanFilter
 
 __all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS", "GATE", "REJECT_GATE", "REACQUIRE_AFTER",
            "NIS_WINDOW", "CALIBRATION_SIGMAS", "ZERO_RATE_GATE", "ZERO_RATE_MIN_SAMPLES",
-           "ZERO_RATE_REACQUIRE_AFTER", "WHITENESS_WINDOW", "FIX_GAPS", "MIN_FIX_INTERVAL", "CORRELATED_FIXES",
+           "ZERO_RATE_REACQUIRE_AFTER", "MAX_STOP_RATE_DEG_S", "WHITENESS_WINDOW", "FIX_GAPS", "MIN_FIX_INTERVAL", "CORRELATED_FIXES",
            "SCALE_WINDOW", "SCALE_TEST", "SCALE_WARN", "gps_scale_mle", "gps_scale_loglik", "stop_heading_slope"]
 
 #: Default standstill threshold (m/s) on the odometer speed: 0.05 m/s = 0.11 mph, four
@@ -191,6 +197,11 @@ ZERO_RATE_GATE = NormalDist().inv_cdf(1.0 - 0.5e-3) ** 2  # = chi2.ppf(0.999, 1)
 #: Standstill samples a stop needs before its heading slope updates the rate bias (the slope's own
 #: variance, from the grade, weighs a short stop down further).
 ZERO_RATE_MIN_SAMPLES = 3
+#: The fastest heading drift (deg/s) a stop's slope is taken to measure: a gyro's rate bias, up to a MEMS
+#: gyro's turn-on bias of about 0.7 deg/s (the drive reader's plausibility check allows as much). A stop
+#: whose heading turned faster, by more than its slope's noise allows (the gate's 3.29 sigma), is a car
+#: that moved while its speed read 0, not a gyro: it says nothing about the rate bias.
+MAX_STOP_RATE_DEG_S = MAX_DRIFT_DEG_S
 #: Stops in a row that the rate-bias state could not follow (rejected by the gate, or held at the
 #: calibration bound) after which, when their slopes agree with each other, the state re-acquires from
 #: them: the GPS fixes' :data:`REACQUIRE_AFTER`, for a sensor sampled at each stop, not each second (a
@@ -470,11 +481,13 @@ class GPSDRFilter:
         The NIS of every accepted fix (:attr:`nis_mean` is their mean; 2 when consistent).
     nis_warnings : list of int
         The steps at which the consistency monitor warned.
-    n_zero_rate, n_zero_rate_rejected, n_zero_rate_held, n_zero_rate_reacquired : int
+    n_zero_rate, n_zero_rate_rejected, n_zero_rate_held, n_zero_rate_reacquired, n_zero_rate_turned : int
         Stops whose heading slope updated the rate bias; stops whose slope the gate rejected; stops
         over which the heading did not change at all (held by its source, e.g. a fused or GPS-course
         heading, so it says nothing about the gyro: not used); re-acquisitions of the rate-bias state
-        from stops it could not follow that agreed with each other.
+        from stops it could not follow that agreed with each other; of the rejected stops, those whose
+        heading turned faster than :data:`MAX_STOP_RATE_DEG_S` (the car moved while its speed read 0:
+        kept out of the re-acquisition too, with a warning at the first).
     zero_rate_steps : list of tuple
         Per stop tested: ``(step, slope (rad/s), its standard deviation (rad/s), accepted)``.
     gps_correlation : float
@@ -552,6 +565,7 @@ class GPSDRFilter:
         if self.zero_rate_reacquire_after < 0:
             raise ValueError(f"zero_rate_reacquire_after must be >= 0 (0: never), got {zero_rate_reacquire_after}")
         self.n_zero_rate = self.n_zero_rate_rejected = self.n_zero_rate_held = self.n_zero_rate_reacquired = 0
+        self.n_zero_rate_turned = 0
         self.zero_rate_steps = []
         # (slope, var) of the stops in a row that the state could not follow
         self._zr_rejected = deque(maxlen=max(self.zero_rate_reacquire_after, 1))
@@ -752,11 +766,30 @@ class GPSDRFilter:
             # used, but the calibration bound held the state: it could not follow this stop either
         else:
             self.n_zero_rate_rejected += 1
+            if abs(slope) - np.deg2rad(MAX_STOP_RATE_DEG_S) > np.sqrt(ZERO_RATE_GATE * var):
+                self._turned(t, h, slope)
+                return  # the car moved: no evidence about the gyro, for a re-acquisition either
         if not self.zero_rate_reacquire_after:
             return
         self._zr_rejected.append((slope, var))
         if len(self._zr_rejected) == self.zero_rate_reacquire_after:
             self._zero_rate_reacquire()
+
+    def _turned(self, t, h, slope):
+        """Count a stop whose heading turned faster than any gyro's bias (the car moved while its speed
+        read 0), and warn at the first."""
+        self.n_zero_rate_turned += 1
+        if self.n_zero_rate_turned > 1:
+            return
+        turn = np.degrees(np.unwrap(h)[-1] - h[0])
+        warnings.warn(
+            f"GPSDRFilter: over the {t[-1] - t[0]:.3g} s stop that ended at step {self.step} the heading turned "
+            f"{turn:+.3g} deg (a fitted drift of {np.degrees(slope):+.3g} deg/s), faster than any gyro's bias "
+            f"({MAX_STOP_RATE_DEG_S:g} deg/s), while the speed read 0: the car moved (creeping below the speed "
+            "sensor's low-speed cutoff, or turning in a car park). Such stops do not teach the rate bias "
+            "(n_zero_rate_turned), but the zero-velocity update held the position while the car moved, and the "
+            "fixes pull it back only afterwards: where a speed sensor reads 0 below some speed, expect larger "
+            "errors after slow traffic (later ones are counted)", RuntimeWarning, stacklevel=4)
 
     def _zero_rate_reacquire(self):
         """After :attr:`zero_rate_reacquire_after` stops in a row that the state could not follow (rejected by

@@ -12,7 +12,8 @@ import numpy as np
 import pytest
 
 from filterwnn.navigation.dead_reckoning import GPSDRModel
-from filterwnn.navigation.gpsdr import KINDS, ZERO_RATE_GATE, ZERO_RATE_MIN_SAMPLES, GPSDRFilter, stop_heading_slope
+from filterwnn.navigation.gpsdr import (KINDS, MAX_STOP_RATE_DEG_S, ZERO_RATE_GATE, ZERO_RATE_MIN_SAMPLES, GPSDRFilter,
+                                       stop_heading_slope)
 
 DT = 0.1
 DEG = np.pi / 180.0
@@ -209,6 +210,35 @@ def test_rejected_stops_that_disagree_do_not_reacquire(phone):
     f = _run(phone, z)
     assert f.n_zero_rate == 3 and f.n_zero_rate_rejected == 3 and f.n_zero_rate_reacquired == 0
     assert abs(f.x[8]) < 0.02 * DEG
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_turning_crawls_that_agree_are_no_gyro_bias(phone, kind):
+    """Three 20 s crawls in a row, each turning 80 deg (4 deg/s) while the speed reads 0 (a queue below a
+    wheel-speed sensor's cutoff, a car park): each is rejected, and their slopes agree with each other,
+    but no gyro's bias is 4 deg/s, so they are counted as turned, warned once, and do not re-acquire the
+    rate bias (before they did: the state took 4 deg/s, the heading bias ran away, and a probe drive's
+    outages ended 1 km off). The stops before them still teach the state."""
+    rng = np.random.default_rng(14)
+    z = np.vstack([_bias_jump(rng, phone, 0.0, n_after=0)]
+                  + [np.vstack([_stop(rng, phone, 0.0, 20.0, turn_deg_s=4.0), MOVING]) for _ in range(3)])
+    with pytest.warns(RuntimeWarning, match=r"the heading turned \+(79|80)\.\d deg \(a fitted drift of \+(3\.9|4\.0)\d* deg/s\), faster than any "
+                                            r"gyro's bias \(1 deg/s\), while the speed read 0: the car moved"):
+        f = _run(phone, z, kind)
+    assert f.n_zero_rate == 3 and f.n_zero_rate_rejected == 3 and f.n_zero_rate_turned == 3
+    assert f.n_zero_rate_reacquired == 0
+    assert abs(f.x[8]) < 0.02 * DEG
+    assert MAX_STOP_RATE_DEG_S == 1.0
+
+
+def test_a_mems_gyro_bias_is_still_followed(phone):
+    """0.7 deg/s, a MEMS gyro's turn-on bias and far outside the phone grade: under the turning limit, so
+    the stops re-acquire the state, as for any gyro outside its grade."""
+    z = _bias_jump(np.random.default_rng(15), phone, 0.7, n_before=0, n_after=4)
+    with pytest.warns(RuntimeWarning, match="re-acquires from them"):
+        f = _run(phone, z)
+    assert f.n_zero_rate_turned == 0 and f.n_zero_rate_reacquired == 1
+    assert abs(f.x[8] - 0.7 * DEG) < 3 * np.sqrt(f.P[8, 8])
 
 
 def test_zero_rate_reacquire_after_is_checked(phone):
