@@ -170,8 +170,9 @@ from ..kalman.unscented import UnscentedKalmanFilter
 
 __all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS", "GATE", "REJECT_GATE", "REACQUIRE_AFTER",
            "NIS_WINDOW", "CALIBRATION_SIGMAS", "ZERO_RATE_GATE", "ZERO_RATE_MIN_SAMPLES",
-           "ZERO_RATE_REACQUIRE_AFTER", "MAX_STOP_RATE_DEG_S", "WHITENESS_WINDOW", "FIX_GAPS", "MIN_FIX_INTERVAL", "CORRELATED_FIXES",
-           "SCALE_WINDOW", "SCALE_TEST", "SCALE_WARN", "gps_scale_mle", "gps_scale_loglik", "stop_heading_slope"]
+           "ZERO_RATE_REACQUIRE_AFTER", "MAX_STOP_RATE_DEG_S", "WHITENESS_WINDOW", "FIX_GAPS", "MIN_FIX_INTERVAL",
+           "CORRELATED_FIXES", "SCALE_WINDOW", "SCALE_TEST", "SCALE_WARN", "gps_scale_mle", "gps_scale_loglik",
+           "stop_heading_slope"]
 
 #: Default standstill threshold (m/s) on the odometer speed: 0.05 m/s = 0.11 mph, four
 #: times the creep of a standing car's CAN speed (0.001-0.03 mph).
@@ -197,8 +198,8 @@ ZERO_RATE_GATE = NormalDist().inv_cdf(1.0 - 0.5e-3) ** 2  # = chi2.ppf(0.999, 1)
 #: Standstill samples a stop needs before its heading slope updates the rate bias (the slope's own
 #: variance, from the grade, weighs a short stop down further).
 ZERO_RATE_MIN_SAMPLES = 3
-#: The fastest heading drift (deg/s) a stop's slope is taken to measure: a gyro's rate bias, up to a MEMS
-#: gyro's turn-on bias of about 0.7 deg/s (the drive reader's plausibility check allows as much). A stop
+#: The fastest heading drift (deg/s) a stop's slope is taken to measure: a gyro's rate bias (a MEMS gyro's
+#: turn-on bias reaches about 0.7 deg/s; the drive reader's plausibility check allows this 1 deg/s). A stop
 #: whose heading turned faster, by more than its slope's noise allows (the gate's 3.29 sigma), is a car
 #: that moved while its speed read 0, not a gyro: it says nothing about the rate bias.
 MAX_STOP_RATE_DEG_S = MAX_DRIFT_DEG_S
