@@ -368,6 +368,7 @@ def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps
     step, v0 = _odometer_steps(distance, speed, dts, n)
     if speed is not None:
         _warn_stamp_jitter(dts, dt, np.asarray(speed, dtype=float))
+        _warn_speed_cutoff(np.asarray(speed, dtype=float), dt)
     z_dr = np.stack([wrap_angle(heading[1:]), step], axis=1)
     steps = np.zeros(0, dtype=int)
     z_gps = np.zeros((0, 2))
@@ -495,6 +496,36 @@ def _warn_stamp_jitter(dts, dt, speed):
                       f"speed, more than a wheel odometer's 0.01-0.02 m. If the samples are regular and only "
                       "their time stamps jitter (a logger's), give the times on their grid (t[0] + k dt)",
                       RuntimeWarning, stacklevel=4)
+
+
+#: The fastest a car's speed changes when it pulls away from a stop or comes to one in ordinary driving
+#: (m/s^2): the first speed sample after a standstill, and the last before one, is at most this times
+#: the sample interval.
+MAX_STOP_ACCEL = 3.0
+#: The smallest low-speed cutoff (m/s) :meth:`DRRun.from_arrays` warns of: a speed sensor that reads 0
+#: below it. A car creeping slower covers little (a 1 km/h quantisation reads 0 below 0.14 m/s).
+SPEED_CUTOFF_WARN = 0.5
+_MIN_SPEED_EDGES = 4
+
+
+def _warn_speed_cutoff(speed, dt):
+    """Warn when the speed reads 0 below some cutoff: at each of at least four start-ups and stops it steps
+    between 0 and at least ``s`` within one sample, more than a car's speed changes in one
+    (:data:`MAX_STOP_ACCEL` times ``dt``), and ``s`` is at least :data:`SPEED_CUTOFF_WARN`. At 1 Hz a car
+    can change speed by 3 m/s in a sample, so only a cutoff above that is seen there."""
+    still = speed == 0
+    edges = speed[np.r_[np.flatnonzero(still[:-1] & ~still[1:]) + 1, np.flatnonzero(~still[:-1] & still[1:])]]
+    if len(edges) < _MIN_SPEED_EDGES:
+        return
+    s = float(edges.min())
+    if s < max(SPEED_CUTOFF_WARN, MAX_STOP_ACCEL * dt):
+        return
+    warnings.warn(f"at each of the {len(edges)} start-ups and stops the speed steps between 0 and at least {s:.2g} "
+                  f"m/s within one {dt:g} s sample, more than a car's speed changes in one ({MAX_STOP_ACCEL:g} "
+                  f"m/s^2): the speed sensor reads 0 below about {s:.2g} m/s (a wheel-speed sensor's cutoff). A car "
+                  "creeping slower, in a queue, is taken to stand, and the zero-velocity update holds its position "
+                  "while it moves (a turn while creeping is warned of by the filter). If the log has the wheel-tick "
+                  "distance, give it as the odometer column instead", RuntimeWarning, stacklevel=4)
 
 
 def _null_fixes(lat, lon):

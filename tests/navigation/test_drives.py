@@ -332,3 +332,41 @@ def test_the_cli_passes_the_receivers_latency_to_the_reader(tmp_path, monkeypatc
         except (Read, SystemExit):
             pass
         assert seen["gps_latency"] == want
+
+
+def _stop_and_go(dt, cycles=5, accel=1.5, top=8.0, stand=10.0):
+    """Speeds every ``dt`` s of ``cycles`` stops and starts at ``accel`` (m/s^2), each start at a random
+    phase of the sample grid: the truth a speed sensor reads."""
+    rng = np.random.default_rng(1)
+    v = []
+    for _ in range(cycles):
+        ramp = np.arange(rng.uniform(0.0, dt), top / accel, dt) * accel
+        v += [0.0] * int(stand / dt) + list(ramp) + [top] * int(20 / dt) + list(ramp[::-1])
+    return np.array(v + [0.0] * int(stand / dt))
+
+
+@pytest.mark.parametrize("dt", [0.1, 0.2])
+def test_a_speed_that_reads_0_below_a_cutoff_warns(dt):
+    """A wheel-speed sensor that reads 0 below 0.8 m/s: at every start and stop the speed steps between 0
+    and 0.8 m/s or more in one sample, which no car does at 10 or 5 Hz; the reader names the cutoff, what
+    it does to a creeping car, and the remedy. The same drive with the honest speed does not warn."""
+    v = _stop_and_go(dt)
+    t = dt * np.arange(len(v))
+    cut = np.where(v < 0.8, 0.0, v)
+    with pytest.warns(RuntimeWarning, match=r"at each of the 10 start-ups and stops the speed steps between 0 and at "
+                                            r"least 0.8\d* m/s .* reads 0 below about 0.8\d* m/s .* give it as the "
+                                            r"odometer column"):
+        DRRun.from_arrays(t, np.zeros(len(t)), speed=cut, checks=False)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        DRRun.from_arrays(t, np.zeros(len(t)), speed=v, checks=False)
+
+
+def test_a_1_hz_speed_cannot_show_a_cutoff_under_3_m_s():
+    """At 1 Hz a car pulling away at 3 m/s^2 reads 3 m/s at its first sample: a cutoff under that is not
+    told from a brisk start, so the reader says nothing (no false alarm on the 1 Hz analogs)."""
+    v = _stop_and_go(1.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        DRRun.from_arrays(np.arange(len(v), dtype=float), np.zeros(len(v)), speed=np.where(v < 0.8, 0.0, v),
+                          checks=False)
