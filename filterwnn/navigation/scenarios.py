@@ -267,6 +267,8 @@ class DRRun(NamedTuple):
             Cumulative odometer reading (m), non-decreasing. Give this or ``speed``.
         speed : array-like of shape (n_samples,), optional
             Odometer (wheel / CAN) speed (m/s), ``>= 0``; step ``k`` covers ``speed[k] * (t[k] - t[k-1])``.
+            Warned: time stamps whose jitter adds more than ``STAMP_JITTER_M`` a step, and a speed that
+            reads 0 below a cutoff (``MAX_STOP_ACCEL``, ``SPEED_CUTOFF_WARN``).
         gps_t : array-like of shape (n_fixes,), optional
             GPS fix times (s, same clock as ``t``), each to the nearest sample (fixes over half an
             interval outside the samples are dropped).
