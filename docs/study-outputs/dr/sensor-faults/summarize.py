@@ -29,7 +29,7 @@ def warnings(path):
         more = int(m.group(1)) if m else 0
         body = line.replace("filterwnn: warning: ", "")
         m2 = re.match(r"([A-Za-z0-9-]+): (.*)", body)
-        who, rest = (m2.group(1), m2.group(2)) if m2 else ("", body)
+        who, rest = (m2.group(1), m2.group(2)) if m2 else ("reader", body)
         lead = "GPSDRFilter: " if rest.startswith("GPSDRFilter: ") else ""
         first = who + ": " + lead + re.split(r"(?<=[a-z0-9)])[:;.] ", rest[len(lead):], maxsplit=1)[0]
         out.append((first, 1 + more, body))
