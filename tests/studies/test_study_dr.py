@@ -198,7 +198,10 @@ def test_drive_table_separates_the_causes():
     # the sample stands at its start and at a light: the stops' heading drift teaches the gyro rate bias
     assert cells[12] == (f"{ig['n_zero_rate']} / {ig['n_zero_rate_rejected']} / {ig['n_zero_rate_reacquired']} / "
                          f"{ig['n_zero_rate_held']}")
-    assert ig["n_zero_rate"] >= 1 and ig["n_zero_rate_held"] == 0
+    assert ig["n_zero_rate"] >= 1 and ig["n_zero_rate_held"] == 0 and ig["n_zero_rate_turned"] == 0
+    turned = dict(ig, n_zero_rate_rejected=3, n_zero_rate_turned=2)  # a drive with two turning crawls
+    assert dr._real._integrity_cells(turned).endswith(
+        f"| {ig['n_zero_rate']} / 3 (2 turned) / {ig['n_zero_rate_reacquired']} / {ig['n_zero_rate_held']}")
     held = run._replace(z_dr=np.where((run.z_dr[:, 1:] == 0.0) | (run.z_dr[:, 1:] / run.scenario.dt < 0.05),
                                       [[0.5, 0.0]], run.z_dr))  # a heading source that holds 0.5 rad standing
     ig_held = dr.real_drive_outages(held, starts=[100.0], filters=("EKF-8",), use_gps_sigma=True,

@@ -89,8 +89,10 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         estimated), ``rejected_xy (m, 2)``,
         the rejected fixes, ``n_zero_rate``, ``n_zero_rate_rejected`` and ``n_zero_rate_held``, the stops
         whose heading drift updated the gyro rate bias, was rejected, or did not move at all (a heading
-        held by its source), and ``n_zero_rate_reacquired``, the rate-bias state's re-acquisitions from
-        stops it could not follow that agreed; None without a rate-bias state), and per filter
+        held by its source), ``n_zero_rate_reacquired``, the rate-bias state's re-acquisitions from
+        stops it could not follow that agreed, and ``n_zero_rate_turned``, the rejected stops whose heading
+        turned faster than any gyro's bias, "(N turned)" in the table; None without a rate-bias state), and
+        per filter
         ``(n,)`` end-of-outage errors (m; a non-finite estimate raises).
     """
     bad = [f for f in filters if f not in REAL_FILTERS]
@@ -220,7 +222,8 @@ def _integrity(f, run):
             "n_zero_rate": f.n_zero_rate if f.zero_rate_update else None,
             "n_zero_rate_rejected": f.n_zero_rate_rejected if f.zero_rate_update else None,
             "n_zero_rate_held": f.n_zero_rate_held if f.zero_rate_update else None,
-            "n_zero_rate_reacquired": f.n_zero_rate_reacquired if f.zero_rate_update else None}
+            "n_zero_rate_reacquired": f.n_zero_rate_reacquired if f.zero_rate_update else None,
+            "n_zero_rate_turned": f.n_zero_rate_turned if f.zero_rate_update else None}
 
 
 def _outage_ends(f, name, run, k0s, k1s, starts, gps, sig):
@@ -280,8 +283,9 @@ def _integrity_cells(ig):
     nis = "-" if ig["nis_mean"] is None else f"{ig['nis_mean']:.2f}"
     corr = "-" if ig.get("gps_correlation_mean") is None else f"{ig['gps_correlation_mean']:.2f}"
     scale = "-" if ig.get("gps_scale_mean") is None else f"{ig['gps_scale_mean']:.2f}"
+    turned = f" ({ig['n_zero_rate_turned']} turned)" if ig.get("n_zero_rate_turned") else ""
     stops = ("-" if ig.get("n_zero_rate") is None
-             else f"{ig['n_zero_rate']} / {ig['n_zero_rate_rejected']} / {ig['n_zero_rate_reacquired']} / "
+             else f"{ig['n_zero_rate']} / {ig['n_zero_rate_rejected']}{turned} / {ig['n_zero_rate_reacquired']} / "
                   f"{ig['n_zero_rate_held']}")
     unused = "".join(f" ({ig[f'n_{k}']} more {k})" for k in ("thinned", "stale") if ig.get(f"n_{k}"))
     return (f"{ig['n_rejected']} / {ig['n_downweighted']} / {ig['n_reacquired']} of {ig['n_fixes']}{unused} | {nis} | "
