@@ -369,8 +369,9 @@ def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps
     heading = _heading_radians(heading, n)
     step, v0 = _odometer_steps(distance, speed, dts, n)
     if speed is not None:
-        _warn_stamp_jitter(dts, dt, np.asarray(speed, dtype=float))
-        _warn_speed_cutoff(np.asarray(speed, dtype=float), dt)
+        speed = np.asarray(speed, dtype=float)
+        _warn_stamp_jitter(dts, dt, speed)
+        _warn_speed_cutoff(speed, dt)
     z_dr = np.stack([wrap_angle(heading[1:]), step], axis=1)
     steps = np.zeros(0, dtype=int)
     z_gps = np.zeros((0, 2))
