@@ -62,7 +62,7 @@ What the filter does when GPS lies (each part a public setting, on by default):
   round a corner below ``standstill_speed``, or a heading that jumped, is rejected and counted).
   A rejected stop whose heading turned faster than any gyro's bias (:data:`MAX_STOP_RATE_DEG_S`, beyond
   its slope's noise) is a car that moved while its speed read 0 (creeping below a wheel-speed sensor's
-  cutoff, turning in a car park): it is counted (``n_zero_rate_turned``), warned at the first, and kept
+  cutoff, turning in a car park) or a heading that jumped: it is counted (``n_zero_rate_turned``), warned at the first, and kept
   out of the re-acquisition below (three turning crawls in a row agree with each other, and were once
   taken for a gyro bias of 4 deg/s: a drive's outages ended 1 km off).
   A heading that does not change at all over a stop is held by its source (a fused or
@@ -778,7 +778,7 @@ class GPSDRFilter:
 
     def _turned(self, t, h, slope):
         """Count a stop whose heading turned faster than any gyro's bias (the car moved while its speed
-        read 0), and warn at the first."""
+        read 0, or the heading jumped), and warn at the first."""
         self.n_zero_rate_turned += 1
         if self.n_zero_rate_turned > 1:
             return
@@ -787,7 +787,8 @@ class GPSDRFilter:
             f"GPSDRFilter: over the {t[-1] - t[0]:.3g} s stop that ended at step {self.step} the heading turned "
             f"{turn:+.3g} deg (a fitted drift of {np.degrees(slope):+.3g} deg/s), faster than any gyro's bias "
             f"({MAX_STOP_RATE_DEG_S:g} deg/s), while the speed read 0: the car moved (creeping below the speed "
-            "sensor's low-speed cutoff, or turning in a car park). Such stops do not teach the rate bias "
+            "sensor's low-speed cutoff, or turning in a car park), or the heading's source jumped. Such stops do "
+            "not teach the rate bias "
             "(n_zero_rate_turned), but the zero-velocity update held the position while the car moved, and the "
             "fixes pull it back only afterwards: where a speed sensor reads 0 below some speed, expect larger "
             "errors after slow traffic (later ones are counted)", RuntimeWarning, stacklevel=4)
