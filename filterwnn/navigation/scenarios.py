@@ -252,23 +252,25 @@ class DRRun(NamedTuple):
     @classmethod
     def from_arrays(cls, t, heading, *, distance=None, speed=None, gps_t=None, east=None, north=None,
                     lat=None, lon=None, gps_sigma=None, truth=None, origin=None, name="drive",
-                    max_jitter=0.2, checks=True, fill_gaps=0.0, gps_latency=0.0):
+                    max_jitter=0.2, checks=True, fill_gaps=0.0, gps_latency=0.0, intervals="auto"):
         """One's own drive from arrays: validated, on the DR sample grid, in local metres.
 
         Parameters
         ----------
         t : array-like of shape (n_samples,)
-            DR sample times (s), strictly increasing and evenly spaced (each interval within
-            ``max_jitter`` of the median interval, which becomes ``dt``).
+            DR sample times (s), strictly increasing and evenly spaced: each interval within
+            ``max_jitter`` of the median interval, which becomes ``dt``, or stamps that jitter about a
+            regular grid (each within ``GRID_TOLERANCE`` of an interval of it, and a late one followed by
+            a short interval: their lag-1 autocorrelation below ``GRID_CORRELATION``).
         heading : array-like of shape (n_samples,)
             Gyro (or fused) heading in **radians**, from north, clockwise positive (values beyond
             ``+-2 pi`` are taken for degrees and refused).
         distance : array-like of shape (n_samples,), optional
             Cumulative odometer reading (m), non-decreasing. Give this or ``speed``.
         speed : array-like of shape (n_samples,), optional
-            Odometer (wheel / CAN) speed (m/s), ``>= 0``; step ``k`` covers ``speed[k] * (t[k] - t[k-1])``.
-            Warned: time stamps whose jitter adds more than ``STAMP_JITTER_M`` a step, and a speed that
-            reads 0 below a cutoff (``MAX_STOP_ACCEL``, ``SPEED_CUTOFF_WARN``).
+            Odometer (wheel / CAN) speed (m/s), ``>= 0``; step ``k`` covers ``speed[k]`` times its
+            interval (``intervals``). Warned: a speed that reads 0 below a cutoff (``MAX_STOP_ACCEL``,
+            ``SPEED_CUTOFF_WARN``).
         gps_t : array-like of shape (n_fixes,), optional
             GPS fix times (s, same clock as ``t``), each to the nearest sample (fixes over half an
             interval outside the samples are dropped).
@@ -289,7 +291,8 @@ class DRRun(NamedTuple):
         name : str
             Name of the drive (tables and figures).
         max_jitter : float
-            Allowed relative deviation of a sample interval from the median interval.
+            Allowed relative deviation of a sample interval from the median interval (stamps that
+            jitter about a regular grid may deviate more).
         checks : bool
             Plausibility checks against the GPS fixes (``filterwnn.navigation._plausibility``): refuse
             a sample interval over 2 s ("time looks like milliseconds") and a dead-reckoned track whose
@@ -306,6 +309,17 @@ class DRRun(NamedTuple):
             Seconds by which each fix's position is older than its time stamp (the receiver's
             latency, from its data sheet): the fix is placed at ``gps_t - gps_latency``. Default 0.
             Unmodelled, 0.3 s at 23 m/s puts every fix 7 m behind the car along its track.
+        intervals : {"auto", "stamps", "grid"}
+            The interval each ``speed`` sample covers. ``"stamps"``: its stamped one, ``t[k] - t[k-1]``.
+            ``"grid"``: the stamps' regular grid's (the slope of their least-squares line over the sample
+            index), for regular samples whose stamps jitter (a logger's): a stamp written 5 ms late at
+            23 m/s would add 0.12 m to one step and take it from the next, more than a wheel odometer's
+            0.01-0.02 m of noise, and the filters take each step for a measurement. ``"auto"`` (default):
+            the stamped intervals, unless their spread adds more than ``STAMP_JITTER_M`` a step at the median
+            moving speed; then the grid when every stamp stays within half an interval of it and the
+            intervals' lag-1 autocorrelation is below ``GRID_CORRELATION`` (a late stamp makes the next
+            interval short), with a warning, and otherwise the stamped intervals with a warning that
+            they add noise. Ignored with ``distance``.
 
         Returns
         -------
@@ -329,7 +343,7 @@ class DRRun(NamedTuple):
         if gps_t is not None and latency:
             gps_t = np.asarray(gps_t, dtype=float) - latency
         return cls(*_drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps_sigma,
-                                  truth, origin, name, max_jitter, checks))
+                                  truth, origin, name, max_jitter, checks, intervals))
 
 
 def _fill_gaps(t, heading, distance, speed, truth, longest, max_jitter):
@@ -360,17 +374,20 @@ def _fill_gaps(t, heading, distance, speed, truth, longest, max_jitter):
 
 
 def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps_sigma, truth, origin, name,
-                  max_jitter, checks):
+                  max_jitter, checks, intervals="auto"):
     """The :class:`DRRun` fields of one's own drive (the work of :meth:`DRRun.from_arrays`, whose
     arguments these are): checked arrays, the GPS fixes on the sample grid, ``x0`` and the scenario."""
     t = _finite_1d(t, "t")
     n = len(t)
     dts, dt = _sample_grid(t, max_jitter)
     heading = _heading_radians(heading, n)
+    if speed is not None:
+        speed = _finite_1d(speed, "speed", n)
+        grid = _speed_interval(t, dts, dt, speed, intervals)
+        if grid is not None:  # the stamps' grid: each speed covers its interval, and the filters run on it
+            dts, dt = np.full_like(dts, grid), float(f"{grid:.6g}")
     step, v0 = _odometer_steps(distance, speed, dts, n)
     if speed is not None:
-        speed = np.asarray(speed, dtype=float)
-        _warn_stamp_jitter(dts, dt, speed)
         _warn_speed_cutoff(speed, dt)
     z_dr = np.stack([wrap_angle(heading[1:]), step], axis=1)
     steps = np.zeros(0, dtype=int)
@@ -432,7 +449,8 @@ def _ceil_to(gap, dt):
 
 def _sample_grid(t, max_jitter):
     """The intervals of the sample times ``t`` and their median ``dt``; ValueError unless
-    there are 3 or more, strictly increasing and evenly spaced within ``max_jitter``."""
+    there are 3 or more, strictly increasing, and evenly spaced within ``max_jitter`` or jittering
+    about a regular grid (:func:`_stamp_grid`)."""
     n = len(t)
     if n < 3:
         raise ValueError(f"t must have at least 3 samples, got {n}")
@@ -446,7 +464,7 @@ def _sample_grid(t, max_jitter):
     # (0.1, not 0.0999999046, which made 1 Hz fixes look faster than one a second)
     dt = float(np.round(dt, int(np.floor(-np.log10(8.0 * np.spacing(float(np.max(np.abs(t)))))))))
     jit = np.abs(dts / dt - 1.0)
-    if np.any(jit > max_jitter):
+    if np.any(jit > max_jitter) and not _stamp_grid(t, dts)[1]:  # regular samples whose stamps jitter pass
         k = int(np.argmax(jit)) + 1
         raise ValueError(f"t must be evenly sampled (each interval within {max_jitter:.0%} of the median "
                          f"{dt:g} s); t[{k}] - t[{k - 1}] = {dts[k - 1]:g} s: resample the drive first"
@@ -478,27 +496,90 @@ def _odometer_steps(distance, speed, dts, n):
 
 
 #: Timestamp jitter (m of odometer distance per step: the median moving speed times the spread of the
-#: sample intervals) above which :meth:`DRRun.from_arrays` warns. ``speed`` samples become distances
-#: through their intervals, so a logger that stamps regular samples late adds that much noise to every
-#: step; the sensor grades' odometers are 0.01-0.02 m (stamps off by up to 5 ms, 0.067 m a step at 23 m/s,
-#: took a phone-grade EKF-8's worst outage end from 34.6 to 75.5 m: docs/study-outputs/dr/log-faults).
+#: sample intervals) above which :meth:`DRRun.from_arrays` gives each speed the stamps' grid interval when
+#: they jitter about one, and otherwise warns. ``speed`` samples become distances through their
+#: intervals, so a logger that stamps regular samples late adds that much noise to every step; the sensor
+#: grades' odometers are 0.01-0.02 m (stamps off by up to 5 ms, 0.067 m a step at 23 m/s, took a
+#: phone-grade EKF-8's worst outage end from 34.57 to 75.48 m, and 34.57 with the grid's interval:
+#: docs/study-outputs/dr/log-faults).
 STAMP_JITTER_M = 0.02
 
 
-def _warn_stamp_jitter(dts, dt, speed):
-    """Warn when the intervals' spread times the median speed while moving (over 1 m/s) is more than
-    :data:`STAMP_JITTER_M` of odometer distance a step."""
+#: The lag-1 autocorrelation of the sample intervals below which their spread is taken for time stamps
+#: that jitter about a regular grid: a stamp written late makes its interval long and the next one short
+#: (-0.5 for stamps jittered independently), while intervals that really vary do so independently (0).
+GRID_CORRELATION = -0.25
+#: What ``intervals`` of :meth:`DRRun.from_arrays` takes.
+INTERVALS = ("auto", "stamps", "grid")
+
+
+#: How far (in sample intervals) every stamp may lie from the stamps' regular grid for them to be taken
+#: as jittering about it: a quarter, so that one dropped sample (the stamps after it a whole interval
+#: late) is not.
+GRID_TOLERANCE = 0.25
+
+
+def _stamp_grid(t, dts):
+    """The stamps' regular grid: ``(interval, on_grid, rho)``. ``interval`` is the slope of the
+    least-squares line through ``(k, t[k])`` (about ``t[0]``, so that epoch times keep their digits);
+    ``on_grid`` whether the stamps jitter about it: every stamp within :data:`GRID_TOLERANCE` of an
+    interval of the line, and the intervals' lag-1 autocorrelation ``rho`` below :data:`GRID_CORRELATION`."""
+    k = np.arange(len(t), dtype=float) - 0.5 * (len(t) - 1)
+    tc = t - t[0]
+    tc = tc - np.mean(tc)
+    interval = float(k @ tc / (k @ k))
+    d = dts - np.mean(dts)
+    dd = float(d @ d)
+    rho = float(d[1:] @ d[:-1] / dd) if dd > 0 else 0.0
+    on_grid = float(np.max(np.abs(tc - interval * k))) <= GRID_TOLERANCE * interval and rho < GRID_CORRELATION
+    return interval, on_grid, rho
+
+
+def _speed_interval(t, dts, dt, speed, intervals):
+    """The stamps' grid interval (:func:`_stamp_grid`) when each speed sample is to cover it, else None
+    (each covers its stamped interval). ``intervals="auto"`` takes the grid, with a warning, when the
+    stamps jitter about one and enough to add more than :data:`STAMP_JITTER_M` of noise to a step at the
+    median moving speed; a jitter that large with intervals that vary independently is warned as noise."""
+    if intervals not in INTERVALS:
+        raise ValueError(f"intervals must be one of {', '.join(map(repr, INTERVALS))}, got {intervals!r}")
+    if intervals == "stamps" or (intervals == "auto" and _stamp_noise(dts, dt, speed) <= STAMP_JITTER_M):
+        if intervals == "stamps":
+            _warn_stamp_jitter(dts, dt, speed, None)
+        return None
+    grid, on_grid, rho = _stamp_grid(t, dts)
+    if intervals == "grid":
+        return grid
+    if not on_grid:
+        _warn_stamp_jitter(dts, dt, speed, rho)
+        return None
+    warnings.warn(f"the sample times jitter by {1e3 * float(np.std(dts - dt)):.2g} ms (sd of the intervals) about "
+                  f"a regular {grid:.4g} s grid (their lag-1 correlation {rho:.2f}: a stamp written late makes the "
+                  "next interval short, as a logger's do): each speed is taken over the grid's interval, not its "
+                  f"stamped one, which would add {_stamp_noise(dts, dt, speed):.2g} m of noise to each step at the "
+                  "median speed; pass intervals='stamps' (--intervals stamps) if the samples really came at their "
+                  "stamped times", RuntimeWarning, stacklevel=4)
+    return grid
+
+
+def _stamp_noise(dts, dt, speed):
+    """The noise (m) the intervals' spread adds to a step at the median speed while moving (over 1 m/s)."""
     moving = speed[speed > 1.0]
-    if not len(moving):
-        return
-    spread = float(np.std(dts - dt))
-    noise = float(np.median(moving)) * spread
+    return float(np.median(moving)) * float(np.std(dts - dt)) if len(moving) else 0.0
+
+
+def _warn_stamp_jitter(dts, dt, speed, rho):
+    """Warn when the intervals' spread times the median speed while moving (over 1 m/s) is more than
+    :data:`STAMP_JITTER_M` of odometer distance a step (``rho``: their lag-1 autocorrelation, when
+    measured)."""
+    noise = _stamp_noise(dts, dt, speed)
     if noise > STAMP_JITTER_M:
-        warnings.warn(f"the sample times jitter by {1e3 * spread:.2g} ms (sd of the intervals about {dt:g} s): "
-                      f"speed times interval then adds {noise:.2g} m of noise to each step at the median "
-                      f"speed, more than a wheel odometer's 0.01-0.02 m. If the samples are regular and only "
-                      "their time stamps jitter (a logger's), give the times on their grid (t[0] + k dt)",
-                      RuntimeWarning, stacklevel=4)
+        why = "" if rho is None else (f" (their lag-1 correlation {rho:.2f}, not below {GRID_CORRELATION:g}: they "
+                                      "vary independently, not about a regular grid)")
+        warnings.warn(f"the sample times jitter by {1e3 * float(np.std(dts - dt)):.2g} ms (sd of the intervals about "
+                      f"{dt:g} s){why}: speed times interval then adds {noise:.2g} m of noise to each step at the "
+                      "median speed, more than a wheel odometer's 0.01-0.02 m. If the samples are regular and only "
+                      "their time stamps jitter (a logger's), pass intervals='grid' (--intervals grid), or give the "
+                      "times on their grid (t[0] + k dt)", RuntimeWarning, stacklevel=5)
 
 
 #: The fastest a car's speed changes when it pulls away from a stop or comes to one in ordinary driving

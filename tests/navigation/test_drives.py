@@ -148,17 +148,58 @@ def test_a_loggers_faults_are_named_with_their_remedy(tmp_path):
         read_drive_csv(_write(tmp_path / "d.csv", c), fill_gaps=2.1)  # as the message says (2.1000000000000014)
 
 
-def test_jittered_time_stamps_warn_that_they_add_odometer_noise(tmp_path):
+def test_stamps_that_jitter_about_a_regular_grid_give_each_speed_the_grids_interval(tmp_path):
+    """A logger stamps regular samples up to 5 ms late: taken over its stamped interval each speed would
+    add 0.067 m of noise to a step (each late stamp lengthens one interval and shortens the next); read
+    with the default, the distances are the clean drive's, with a warning that says so."""
     rng = np.random.default_rng(0)
     c = _drive(v=23.0)
+    clean = read_drive_csv(_write(tmp_path / "c.csv", c), checks=False)
     c["time"] = c["time"] + rng.uniform(-0.005, 0.005, len(c["time"]))
-    with pytest.warns(RuntimeWarning, match=r"sample times jitter by 4.\d ms .* adds 0.0\d+ m of noise to each step .* "
-                                            r"give the times on their grid"):
-        read_drive_csv(_write(tmp_path / "d.csv", c), checks=False)
+    path = _write(tmp_path / "d.csv", c)
+    with pytest.warns(RuntimeWarning, match=r"sample times jitter by 4.\d ms \(sd of the intervals\) about a regular "
+                                            r"0.1 s grid \(their lag-1 correlation -0.\d\d: .* add 0.0\d+ m of noise .* "
+                                            r"intervals='stamps'"):
+        run = read_drive_csv(path, checks=False)
+    np.testing.assert_allclose(run.z_dr, clean.z_dr, rtol=2e-5, atol=0)
+    assert np.ptp(run.z_dr[:, 1]) < 1e-12  # one interval for every step
+    with pytest.warns(RuntimeWarning, match=r"sample times jitter by 4.\d ms \(sd of the intervals about 0.099\d+ s\): "
+                                            r"speed times interval then adds 0.0\d+ m .* intervals='grid'"):
+        stamped = read_drive_csv(path, checks=False, intervals="stamps")
+    assert np.std(stamped.z_dr[:, 1]) > 0.05  # the stamped intervals' noise
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # asked for: not warned
+        np.testing.assert_array_equal(read_drive_csv(path, checks=False, intervals="grid").z_dr, run.z_dr)
+    with pytest.raises(ValueError, match="intervals must be one of 'auto', 'stamps', 'grid', got 'median'"):
+        read_drive_csv(path, checks=False, intervals="median")
     c["time"] = 0.1 * np.arange(1201) + rng.uniform(-0.0005, 0.0005, 1201)  # at 10 m/s: 0.004 m, under a wheel's
+    c["speed"][:] = 10.0
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        read_drive_csv(_write(tmp_path / "d.csv", c), checks=False)
+        run = read_drive_csv(_write(tmp_path / "d.csv", c), checks=False)
+    assert np.std(run.z_dr[:, 1]) > 0  # a jitter under a wheel's noise keeps the stamped intervals
+
+
+def test_stamps_that_jitter_past_max_jitter_about_a_grid_are_read_and_dropped_samples_are_not():
+    """Stamps with a 6 ms sd about a 0.1 s grid make intervals up to 27 % off their median (past
+    max_jitter's 20 %): the samples are regular, and the drive is read. A dropped sample among such
+    stamps leaves those after it an interval late, and is refused with the fill_gaps it needs, as
+    are intervals that vary by 25 % independently."""
+    rng = np.random.default_rng(0)
+    n = 3001
+    t = 0.1 * np.arange(n) + rng.normal(0.0, 0.006, n)
+    assert np.max(np.abs(np.diff(t) / 0.1 - 1.0)) > 0.25
+    with pytest.warns(RuntimeWarning, match="about a regular 0.1 s grid"):
+        run = DRRun.from_arrays(t, np.zeros(n), speed=np.full(n, 23.0), checks=False)
+    assert run.scenario.dt == pytest.approx(0.1, abs=1e-3)
+    np.testing.assert_allclose(run.z_dr[:, 1], 2.3, rtol=1e-3)
+    for m in (5, 1500, 2995):
+        t = np.delete(0.1 * np.arange(n), m) + rng.uniform(-0.01, 0.01, n - 1)
+        with pytest.raises(ValueError, match=r"resample the drive first \(dropped samples: fill_gaps"):
+            DRRun.from_arrays(t, np.zeros(n - 1), speed=np.full(n - 1, 23.0), checks=False)
+    t = np.r_[0.0, np.cumsum(0.1 * (1.0 + rng.uniform(-0.25, 0.25, n - 1)))]
+    with pytest.raises(ValueError, match="t must be evenly sampled"):
+        DRRun.from_arrays(t, np.zeros(n), speed=np.full(n, 23.0), checks=False)
 
 
 def test_a_receivers_latency_places_each_fix_where_the_car_was(tmp_path):
@@ -178,7 +219,9 @@ def test_each_fix_lands_on_the_sample_nearest_its_time_when_the_intervals_vary()
     dts = np.where(np.arange(10000) % 10 == 9, 0.115, 0.1)
     t = np.r_[0.0, np.cumsum(dts)]
     gps_t = np.arange(1.0, t[-1], 1.0)
-    with pytest.warns(RuntimeWarning, match="sample times jitter"):  # 4.5 ms at 10 m/s: 0.045 m a step
+    # 4.5 ms at 10 m/s: 0.045 m a step; the intervals vary independently (lag-1 correlation -0.11), not
+    # about a grid, so each speed keeps its stamped interval
+    with pytest.warns(RuntimeWarning, match=r"sample times jitter .* lag-1 correlation -0.11, not below -0.25"):
         run = DRRun.from_arrays(t, np.zeros(len(t)), speed=np.full(len(t), 10.0), gps_t=gps_t,
                                 east=np.zeros(len(gps_t)), north=10.0 * gps_t, checks=False)
     assert run.scenario.dt == 0.1 and len(run.gps_steps) == len(gps_t)
@@ -311,7 +354,7 @@ def test_the_cli_fills_dropped_samples_on_request(tmp_path):
     assert proc.returncode == 0 and "filled 1 gap(s) of dropped DR samples" in proc.stderr, proc.stderr
 
 
-def test_the_cli_passes_the_receivers_latency_to_the_reader(tmp_path, monkeypatch):
+def test_the_cli_passes_the_receivers_latency_and_the_intervals_to_the_reader(tmp_path, monkeypatch):
     import filterwnn.studies.dr._cli as dr_cli
     from filterwnn.cli import main
 
@@ -325,13 +368,13 @@ def test_the_cli_passes_the_receivers_latency_to_the_reader(tmp_path, monkeypatc
         raise Read  # stop there: the kwargs are what is tested
 
     monkeypatch.setattr(dr_cli, "read_drive_csv", reader)
-    for argv, want in ((["--gps-latency", "0.3"], 0.3), ([], 0.0)):
+    for argv, want in ((["--gps-latency", "0.3", "--intervals", "stamps"], (0.3, "stamps")), ([], (0.0, "auto"))):
         seen.clear()
         try:  # the command turns the exception into its one-line error
             main(["study", "dr", "--drive", "sample", "--out", str(tmp_path), "--no-figures", *argv])
         except (Read, SystemExit):
             pass
-        assert seen["gps_latency"] == want
+        assert (seen["gps_latency"], seen["intervals"]) == want
 
 
 def _stop_and_go(dt, cycles=5, accel=1.5, top=8.0, stand=10.0):

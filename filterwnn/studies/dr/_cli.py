@@ -7,7 +7,7 @@ import os
 from ...navigation.dead_reckoning import SENSOR_GRADES
 from ...navigation.drives import CAR_DRIVES, load_car_drive, read_drive_csv
 from ...navigation.gpsdr import CORRELATED_FIXES
-from ...navigation.scenarios import SCENARIOS
+from ...navigation.scenarios import INTERVALS, SCENARIOS
 from .. import options, runner
 from ._filters import FILTER_TABLE, OPT_IN
 from ._real import REAL_FILTERS, real_drive_outages, real_drive_table
@@ -63,6 +63,10 @@ def add_arguments(parser):
     parser.add_argument("--gps-latency", type=options.nonnegative_float, default=0.0, metavar="SECONDS",
                         help="with --drive: the receiver's latency (s, from its data sheet): each fix's position "
                              "is that much older than its time stamp (default 0)")
+    parser.add_argument("--intervals", choices=INTERVALS, default="auto",
+                        help="with --drive: the interval each speed sample covers: its stamped one ('stamps'), the "
+                             "stamps' regular grid's ('grid': regular samples whose time stamps jitter, a logger's), "
+                             "or 'auto' (default): the grid when the stamps jitter about one, with a warning")
     parser.add_argument("--outage-length", type=options.positive_float, default=30.0, help="GPS outage length on drives (s)")
     parser.add_argument("--outages", type=options.positive_int, default=20, help="number of outages spread over each drive")
     parser.add_argument("--outage-starts", type=options.float_list, default=None,
@@ -135,6 +139,7 @@ def _run_drives(args, drives, filters):
                              checks=not getattr(args, "no_plausibility", False),
                              fill_gaps=getattr(args, "fill_gaps", 0.0),
                              gps_latency=getattr(args, "gps_latency", 0.0),
+                             intervals=getattr(args, "intervals", "auto"),
                              progress=None if not getattr(args, "no_progress", False) else False)
         try:
             res = real_drive_outages(run, n_placements=args.outages, length=args.outage_length, filters=fl,
