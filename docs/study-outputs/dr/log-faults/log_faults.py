@@ -85,6 +85,9 @@ def variants():
     j = {k: v.copy() for k, v in c.items()}
     j["time"] = j["time"] + np.random.default_rng(7).uniform(-0.005, 0.005, N)
     yield "time stamps jittered by +-5 ms", j, ()
+    j = {k: v.copy() for k, v in c.items()}
+    j["time"] = j["time"] + np.random.default_rng(8).normal(0.0, 0.006, N)
+    yield "time stamps jittered by 6 ms sd (intervals up to 27 % off)", j, ()
     lag = {k: v.copy() for k, v in c.items()}
     for g, tr in (("gps_east", "true_east"), ("gps_north", "true_north")):
         lag[g][fk] += c[tr][fk - 3] - c[tr][fk]
