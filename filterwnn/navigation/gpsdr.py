@@ -163,7 +163,7 @@ from .._warnings import folded_warnings
 from ..metrics import integrated_autocorrelation
 from .._validation import as_state, check_choice, check_covariance, check_positive, check_positive_int, check_scale
 from ._plausibility import MAX_DRIFT_DEG_S
-from .dead_reckoning import GPSDRModel, dr_residual
+from .dead_reckoning import GPSDRModel, dr_residual, wrap_angle
 from ..kalman.presets import make_points
 from ..models import from_model
 from ..kalman.unscented import UnscentedKalmanFilter
@@ -1082,21 +1082,28 @@ class GPSDRFilter:
         with the rate bias's specification times the time), about the start's mean propagated by
         ``F`` (a heading bias drifts with the rate bias's mean). A re-acquisition of the rate bias
         from the stops (:meth:`_zero_rate_reacquire`) restarts the mean of the rate bias and of the
-        heading bias from there: the gyro has measured itself outside its specification.
+        heading bias from there: the gyro has measured itself outside its specification. The heading
+        bias is an angle: compared with its prior mean the shorter way round, and kept in ``[-pi, pi)``.
+        True when it changed the state.
         """
         if not self._cal.size:
             return False
         x = self.kf.x
         d = x[self._cal] - self._cal_mean
+        d[1] = wrap_angle(d[1])  # the heading bias is an angle: its distance from its prior mean the shorter way
         bound = CALIBRATION_SIGMAS * np.sqrt(np.diag(self._cal_P))
         out = np.abs(d) > bound
         if self.model.rate_bias:
             self._track_rate_hold(out[-1], bound[-1] - abs(d[-1]))
-        if not out.any():
+        wrap = abs(x[7]) > np.pi
+        if not (out.any() or wrap):
             return False
         x = x.copy()
         x[self._cal] = self._cal_mean + np.clip(d, -bound, bound)
+        x[7] = wrap_angle(x[7])  # kept in [-pi, pi)
         self.kf.x = x
+        if not out.any():
+            return True
         names = ("odometer scale", "heading bias", "gyro rate bias")
         for i in np.flatnonzero(out):
             if i not in self._cal_warned:

@@ -361,6 +361,29 @@ def test_calibration_holds_while_standing_and_is_bounded_by_its_specification():
 
 
 @pytest.mark.parametrize("kind", KINDS)
+def test_the_heading_bias_is_an_angle_kept_within_half_a_turn(kind):
+    """A heading bias one turn and 1 degree from its prior mean is 1 degree from it: within the bound, not
+    held at it with a warning, and the state is kept in [-pi, pi); 10 degrees one turn away is held at the
+    bound."""
+    m = GPSDRModel(augmented=True, sd_bias=np.deg2rad(1.0))
+    g = GPSDRFilter(m, kind)
+    x = g.x.copy()
+    x[7] = np.deg2rad(361.0)
+    g.kf.x = x
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        g.predict().update([0.0, 1.0])
+    assert -np.pi <= g.x[7] < np.pi and abs(g.x[7] - np.deg2rad(1.0)) < 1e-3
+    assert g._cal_warned == set()
+    x = g.x.copy()
+    x[7] = np.deg2rad(-350.0)
+    g.kf.x = x
+    with pytest.warns(RuntimeWarning, match=r"heading bias state ran past 3 sigma .* \(\+0.175 from its prior mean"):
+        g.predict().update([0.0, 1.0])
+    assert g.x[7] == pytest.approx(3 * np.sqrt(g._cal_P[1, 1]), abs=1e-12)
+
+
+@pytest.mark.parametrize("kind", KINDS)
 @pytest.mark.parametrize("dt", [0.05, 1.0])
 def test_P_stays_positive_definite_at_any_rate(kind, dt):
     sc = FROM_REST.with_(dt=dt, duration=120.0)
