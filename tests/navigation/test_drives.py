@@ -213,6 +213,28 @@ def test_a_receivers_latency_places_each_fix_where_the_car_was(tmp_path):
         read_drive_csv(_write(tmp_path / "late.csv", late), gps_latency=-0.1)
 
 
+def test_an_odometers_latency_reads_each_speed_where_it_was_measured(tmp_path):
+    """A CAN speed 0.5 s late (5 samples at 10 Hz) through stops and starts: with ``odometer_latency=0.5``
+    the steps are the honest speed's but for the last 0.5 s (the last sample held); a cumulative odometer
+    late by as much reads the same way; a negative latency is refused."""
+    c = _drive()
+    c["speed"] = 5.0 + 5.0 * np.sin(0.3 * c["time"])  # 0 to 10 m/s
+    honest = read_drive_csv(_write(tmp_path / "h.csv", c), checks=False)
+    late = {**c, "speed": np.r_[np.full(5, c["speed"][0]), c["speed"][:-5]]}
+    path = _write(tmp_path / "late.csv", late)
+    as_logged = read_drive_csv(path, checks=False)
+    run = read_drive_csv(path, checks=False, odometer_latency=0.5)
+    np.testing.assert_allclose(run.z_dr[:-5], honest.z_dr[:-5], rtol=0, atol=1e-9)
+    assert np.max(np.abs(as_logged.z_dr[:-5, 1] - honest.z_dr[:-5, 1])) > 0.07  # 0.5 s of 1.5 m/s^2: 0.075 m
+    odo = np.r_[0.0, np.cumsum(late["speed"][1:] * 0.1)]
+    cols = ["time", "heading", "odometer", "gps_lat", "gps_lon", "gps_sigma", "true_lat", "true_lon"]
+    run = read_drive_csv(_write(tmp_path / "odo.csv", {**late, "odometer": odo}, columns=cols), checks=False,
+                         odometer_latency=0.5)
+    np.testing.assert_allclose(run.z_dr[5:-5, 1], honest.z_dr[5:-5, 1], rtol=0, atol=1e-9)
+    with pytest.raises(ValueError, match="odometer_latency must be finite and >= 0"):
+        read_drive_csv(path, odometer_latency=-0.5)
+
+
 def test_each_fix_lands_on_the_sample_nearest_its_time_when_the_intervals_vary():
     """One sample in ten 15 ms late (within max_jitter): the median interval is 0.1 s and the mean 0.1015 s,
     so t0 + k dt drifted from the samples, and after 1000 s the fixes landed 15 s (148 samples) early."""
@@ -354,7 +376,7 @@ def test_the_cli_fills_dropped_samples_on_request(tmp_path):
     assert proc.returncode == 0 and "filled 1 gap(s) of dropped DR samples" in proc.stderr, proc.stderr
 
 
-def test_the_cli_passes_the_receivers_latency_and_the_intervals_to_the_reader(tmp_path, monkeypatch):
+def test_the_cli_passes_the_latencies_and_the_intervals_to_the_reader(tmp_path, monkeypatch):
     import filterwnn.studies.dr._cli as dr_cli
     from filterwnn.cli import main
 
@@ -368,13 +390,14 @@ def test_the_cli_passes_the_receivers_latency_and_the_intervals_to_the_reader(tm
         raise Read  # stop there: the kwargs are what is tested
 
     monkeypatch.setattr(dr_cli, "read_drive_csv", reader)
-    for argv, want in ((["--gps-latency", "0.3", "--intervals", "stamps"], (0.3, "stamps")), ([], (0.0, "auto"))):
+    for argv, want in ((["--gps-latency", "0.3", "--intervals", "stamps", "--odometer-latency", "0.2"],
+                        (0.3, "stamps", 0.2)), ([], (0.0, "auto", 0.0))):
         seen.clear()
         try:  # the command turns the exception into its one-line error
             main(["study", "dr", "--drive", "sample", "--out", str(tmp_path), "--no-figures", *argv])
         except (Read, SystemExit):
             pass
-        assert (seen["gps_latency"], seen["intervals"]) == want
+        assert (seen["gps_latency"], seen["intervals"], seen["odometer_latency"]) == want
 
 
 def _stop_and_go(dt, cycles=5, accel=1.5, top=8.0, stand=10.0):

@@ -63,6 +63,9 @@ def add_arguments(parser):
     parser.add_argument("--gps-latency", type=options.nonnegative_float, default=0.0, metavar="SECONDS",
                         help="with --drive: the receiver's latency (s, from its data sheet): each fix's position "
                              "is that much older than its time stamp (default 0)")
+    parser.add_argument("--odometer-latency", type=options.nonnegative_float, default=0.0, metavar="SECONDS",
+                        help="with --drive: the speed's (or odometer's) latency (s, from the vehicle's data sheet, "
+                             "e.g. a CAN bus's): each sample is that much older than its time stamp (default 0)")
     parser.add_argument("--intervals", choices=INTERVALS, default="auto",
                         help="with --drive: the interval each speed sample covers: its stamped one ('stamps'), the "
                              "stamps' regular grid's ('grid': regular samples whose time stamps jitter, a logger's), "
@@ -140,6 +143,7 @@ def _run_drives(args, drives, filters):
                              fill_gaps=getattr(args, "fill_gaps", 0.0),
                              gps_latency=getattr(args, "gps_latency", 0.0),
                              intervals=getattr(args, "intervals", "auto"),
+                             odometer_latency=getattr(args, "odometer_latency", 0.0),
                              progress=None if not getattr(args, "no_progress", False) else False)
         try:
             res = real_drive_outages(run, n_placements=args.outages, length=args.outage_length, filters=fl,
