@@ -269,8 +269,9 @@ class DRRun(NamedTuple):
         distance : array-like of shape (n_samples,), optional
             Cumulative odometer reading (m), non-decreasing. Give this or ``speed``.
         speed : array-like of shape (n_samples,), optional
-            Odometer (wheel / CAN) speed (m/s), ``>= 0``; step ``k`` covers ``speed[k]`` times its
-            interval (``intervals``). Warned: a speed that reads 0 below a cutoff (``MAX_STOP_ACCEL``,
+            Odometer (wheel / CAN) speed (m/s); step ``k`` covers ``|speed[k]|`` times its interval
+            (``intervals``). A signed speed below ``-REVERSING_SPEED`` is the car reversing: there the
+            heading is turned by 180 degrees to be the direction of travel, with a warning. Warned: a speed that reads 0 below a cutoff (``MAX_STOP_ACCEL``,
             ``SPEED_CUTOFF_WARN``).
         gps_t : array-like of shape (n_fixes,), optional
             GPS fix times (s, same clock as ``t``), each to the nearest sample (fixes over half an
@@ -339,8 +340,8 @@ class DRRun(NamedTuple):
         ------
         ValueError
             Naming the argument, the rule and the value: lengths that differ, non-finite values, time
-            not strictly increasing or unevenly sampled, headings in degrees, a decreasing odometer, a
-            negative speed, both or neither of ``distance``/``speed``, both or neither of
+            not strictly increasing or unevenly sampled, headings in degrees, a decreasing odometer,
+            both or neither of ``distance``/``speed``, both or neither of
             ``east``/``north`` and ``lat``/``lon``, a failed plausibility check (with its likely cause).
         """
         if fill_gaps:
@@ -395,14 +396,17 @@ def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps
     n = len(t)
     dts, dt = _sample_grid(t, max_jitter)
     heading = _heading_radians(heading, n)
+    signed = None
     if speed is not None:
-        speed = _finite_1d(speed, "speed", n)
+        signed = _finite_1d(speed, "speed", n)
+        speed = np.abs(signed)
         grid = _speed_interval(t, dts, dt, speed, intervals)
         if grid is not None:  # the stamps' grid: each speed covers its interval, and the filters run on it
             dts, dt = np.full_like(dts, grid), float(f"{grid:.6g}")
     step, v0 = _odometer_steps(distance, speed, dts, n)
     if speed is not None:
         _warn_speed_cutoff(speed, dt)
+        heading, v0 = _reversing(t, heading, signed, dts), float(signed[0])
     z_dr = np.stack([wrap_angle(heading[1:]), step], axis=1)
     steps = np.zeros(0, dtype=int)
     z_gps = np.zeros((0, 2))
@@ -501,12 +505,29 @@ def _odometer_steps(distance, speed, dts, n):
                              f"{float(distance[k])!r} < distance[{k - 1}] = {float(distance[k - 1])!r}")
         return dd, dd[0] / dts[0]
     speed = _finite_1d(speed, "speed", n)
-    if np.any(speed < 0):
-        k = int(np.argmax(speed < 0))
-        raise ValueError(f"speed must be >= 0 (m/s); speed[{k}] = {float(speed[k])!r}: a reversing car is not "
-                         "modelled (the heading is taken for the direction of travel); give the unsigned speed, "
-                         "or cut the reversing out")
     return speed[1:] * dts, speed[0]
+
+
+#: A signed speed below minus this (m/s) is a car reversing: its samples' heading is turned half a turn to
+#: be the direction of travel. Between it and 0 a speed is a standstill's dither (``GPSDRFilter``'s
+#: ``standstill_speed``), whose heading is kept, so that a stop's headings stay the gyro's.
+REVERSING_SPEED = 0.05
+
+
+def _reversing(t, heading, speed, dts):
+    """The heading as the direction of travel: turned by pi where the signed ``speed`` is below
+    -:data:`REVERSING_SPEED` (the car reversing, its nose the other way), with a warning that counts them."""
+    back = speed[1:] < -REVERSING_SPEED  # step k covers sample k + 1
+    if not back.any():
+        return heading
+    heading = heading.copy()
+    heading[1:][back] = wrap_angle(heading[1:][back] + np.pi)
+    k = int(np.argmax(back)) + 1
+    warnings.warn(f"the speed is negative on {int(back.sum())} sample(s), the first at t = {float(t[k]):g} s: the car "
+                  f"reversed, {float(np.sum(-speed[1:][back] * dts[back])):.3g} m in all; there the heading is turned "
+                  "by 180 deg to be the direction of travel (if the speed's sign means something else, give its "
+                  "magnitude)", RuntimeWarning, stacklevel=4)
+    return heading
 
 
 #: Timestamp jitter (m of odometer distance per step: the median moving speed times the spread of the
