@@ -47,7 +47,6 @@ def test_from_arrays_follows_the_conventions():
     (dict(heading=np.degrees(np.full(101, 0.5)) + 40), r"heading must be in radians.*looks like degrees"),
     (dict(t=np.r_[0.0, 0.1, 0.1, 0.3 + 0.1 * np.arange(98)]), r"t must be strictly increasing; t\[2\]"),
     (dict(t=np.r_[0.1 * np.arange(50), 5.5 + 0.1 * np.arange(51)]), r"t must be evenly sampled"),
-    (dict(speed=np.r_[10.0, -1.0, np.full(99, 10.0)]), r"speed must be >= 0.*speed\[1\] = -1.0"),
     (dict(speed=np.r_[np.nan, np.full(100, 10.0)]), r"speed must be finite; speed\[0\] = nan"),
     (dict(speed=np.full(100, 10.0)), r"speed must have the same length as t \(101\), got 100"),
     (dict(speed=None), r"exactly one of distance .* and speed .*neither"),
