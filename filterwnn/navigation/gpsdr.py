@@ -534,8 +534,9 @@ class GPSDRFilter:
         else:
             if points is None:
                 points = make_points("gpsdr-ukf" if self.kind == "ukf" else "gpsdr-sukf", model.dim_x)
-            # dim_z follows the fix (4 with GPS, 2 without), so the per-point hx is used
-            self.kf = from_model(UnscentedKalmanFilter, model, points=points, x0=x0, P0=P0)
+            # fx, hx and the heading's mean and residual on all sigma points at once (the model's functions
+            # are written on the last axis; dim_z, 4 with GPS and 2 without, is taken from each update's R)
+            self.kf = from_model(UnscentedKalmanFilter, model, points=points, x0=x0, P0=P0, vectorized=True)
         self.motion = None
         self._init_integrity(gate, reject_gate, reacquire_after, nis_window, self.kf.x)
         self.correlated_fixes = check_choice(correlated_fixes, "correlated_fixes", CORRELATED_FIXES)
