@@ -98,6 +98,8 @@ def _drive(rng, dt, duration, standing, speeds, heading, sensors, **route_kw):
     ``sensors``: ``scale`` (odometer), ``odo`` (m per sample), ``offset`` (deg), ``rate_bias``
     (deg/s, integrated), ``arw`` (deg/sqrt(h)) and ``white`` (deg) of the gyro heading, which
     is held while the car stands (a gyro keeps its heading); the speed is exactly 0 then.
+    ``gyro_scale`` (optional, default 0): the gyro's scale factor error, its heading turning
+    ``1 + gyro_scale`` times the car (it draws nothing: the other draws stay the same).
     """
     changes, turns = route(rng, duration, dt, standing, speeds, **route_kw)
     t, x, psi, v = _truth(changes, turns, duration, dt, heading)
@@ -107,6 +109,7 @@ def _drive(rng, dt, duration, standing, speeds, heading, sensors, **route_kw):
            + np.deg2rad(sensors["white"]) * rng.standard_normal(n))
     noise = sensors["odo"] / dt * rng.standard_normal(n)
     speed = np.where(v > 0, np.maximum(sensors["scale"] * v + noise, 0.0), 0.0)
+    psi = psi + sensors.get("gyro_scale", 0.0) * (psi - psi[0])
     return t, x, np.mod(psi + err, 2 * np.pi), speed
 
 
@@ -127,10 +130,12 @@ def _columns(t, x, heading, speed, rows, err, sigma):
             "true_east": x[:, 0], "true_north": x[:, 3]}
 
 
-def phone_drive(rng, rate_bias=0.005):
-    """The car with a phone (see the module docstring): the CSV columns. ``rate_bias``: the gyro's (deg/s)."""
+def phone_drive(rng, rate_bias=0.005, gyro_scale=0.0):
+    """The car with a phone (see the module docstring): the CSV columns. ``rate_bias``: the gyro's (deg/s);
+    ``gyro_scale``: its scale factor error."""
     t, x, heading, speed = _drive(rng, 0.1, 900.0, 0.15, (8.0, 25.0), 70.0, dict(
-        scale=1.02, odo=0.01, offset=1.0, rate_bias=rate_bias, arw=0.3, white=0.3), accel=1.5)
+        scale=1.02, odo=0.01, offset=1.0, rate_bias=rate_bias, arw=0.3, white=0.3, gyro_scale=gyro_scale),
+        accel=1.5)
     rows = _fix_rows(t)
     m = int(rows.sum())
     acc = 6.5 + 1.5 * np.tanh(gauss_markov(rng, m, 1.0, 60.0))  # reported 5-8 m, changing slowly
@@ -140,12 +145,13 @@ def phone_drive(rng, rate_bias=0.005):
     return _columns(t, x, heading, speed, rows, err, np.round(acc, 1))
 
 
-def city_drive(rng, rate_bias=0.015, gps_rate=1.0):
+def city_drive(rng, rate_bias=0.015, gps_rate=1.0, gyro_scale=0.0):
     """The city centre (see the module docstring): the CSV columns. ``rate_bias``: the gyro's (deg/s);
     ``gps_rate``: fixes per second (1 or 5; the same error process, in seconds, sampled that often;
-    at 1 the same draws as before it was a parameter)."""
+    at 1 the same draws as before it was a parameter); ``gyro_scale``: the gyro's scale factor error."""
     t, x, heading, speed = _drive(rng, 0.2, 720.0, 0.25, (3.0, 10.0), 200.0, dict(
-        scale=1.01, odo=0.01, offset=0.0, rate_bias=rate_bias, arw=0.5, white=0.2), accel=1.5, turn_every=25.0)
+        scale=1.01, odo=0.01, offset=0.0, rate_bias=rate_bias, arw=0.5, white=0.2, gyro_scale=gyro_scale),
+        accel=1.5, turn_every=25.0)
     rows = _fix_rows(t, gps_rate)
     m = int(rows.sum())
     # a street's multipath: a per-axis sigma that changes every 20-60 s (log-normal), a bias
@@ -160,10 +166,12 @@ def city_drive(rng, rate_bias=0.015, gps_rate=1.0):
     return _columns(t, x, heading, speed, rows, err, reported)
 
 
-def one_hz_drive(rng, rate_bias=0.05):
-    """21 minutes at 1 Hz (see the module docstring): the CSV columns. ``rate_bias``: the gyro's (deg/s)."""
+def one_hz_drive(rng, rate_bias=0.05, gyro_scale=0.0):
+    """21 minutes at 1 Hz (see the module docstring): the CSV columns. ``rate_bias``: the gyro's (deg/s);
+    ``gyro_scale``: its scale factor error."""
     t, x, heading, speed = _drive(rng, 1.0, 1260.0, 0.35, (8.0, 20.0), 320.0, dict(
-        scale=1.015, odo=0.1, offset=0.0, rate_bias=rate_bias, arw=1.0, white=0.5), accel=2.0)
+        scale=1.015, odo=0.1, offset=0.0, rate_bias=rate_bias, arw=1.0, white=0.5, gyro_scale=gyro_scale),
+        accel=2.0)
     rows = _fix_rows(t)
     m = int(rows.sum())
     acc = rng.uniform(3.0, 5.0, m)

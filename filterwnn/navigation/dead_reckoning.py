@@ -107,7 +107,9 @@ def transition_matrix(dt, accel_term="kinematic", dim_x=6):
 
     ``dim_x = 6`` is the kinematic state; ``dim_x = 8`` appends the odometer scale and
     the heading bias, both constant (random walks through ``Q``); ``dim_x = 9`` also a
-    gyro rate bias ``r`` that the heading bias integrates (``b_k = b_{k-1} + T r``).
+    gyro rate bias ``r`` that the heading bias integrates (``b_k = b_{k-1} + T r``);
+    ``dim_x = 10`` also the gyro's scale factor error, constant here (the measured turns
+    that carry it into the heading bias are inputs: ``GPSDRFilter`` applies them).
     ``accel_term="kinematic"`` puts ``T^2/2`` in the position-acceleration entries (exact
     constant-acceleration kinematics); ``"paper"`` puts the paper's printed ``T^2``.
     """
@@ -250,15 +252,24 @@ def gps_hx(x):
 #: ``phone``: a phone's 1 Hz GPS of about 5 m, a MEMS gyro (angle random walk about 0.3 deg/sqrt(h),
 #: bias instability about 10 deg/h, a residual turn-on bias of up to about 0.05 deg/s after the phone's
 #: own calibration), a CAN odometer (1 cm per 0.1 s sample, a few per cent scale from tyres).
+#: ``gyro_scale_sd``: the gyro's scale factor error (its sensitivity tolerance, a fraction, one sigma),
+#: estimated as a tenth state when above 0 (with a rate-bias state). 0 in both grades: a MEMS gyro's
+#: data sheet gives a tolerance of up to +-3 % (0.01 read as three sigmas), and the state pays for
+#: itself only when the error is there (docs/study-outputs/dr/gyro-scale/RUN.md: with 1-3 % it takes the
+#: 1 Hz analog's worst outage end from 16-41 m to 7-11 m; without one it costs the shipped sample's
+#: median 3.39 -> 4.36 m); pass ``{"gyro_scale_sd": 0.01}`` (``--gyro-scale-sd 0.01``) for a MEMS gyro
+#: whose sensitivity was not calibrated. A tactical gyro's scale error is a few hundred ppm.
 #: Both: a passenger car's manoeuvres as white jerk of about 1.4 m/s^3 (comfortable driving stays
 #: under about 2 m/s^3).
 SENSOR_GRADES = {
     "survey": dict(gps_sigma_m=1.5, heading_noise_deg=0.2, gyro_arw_deg_rt_h=0.1, gyro_bias_deg_s=0.0,
                    gyro_bias_instability_deg_h=1.0, odometer_noise_m=0.02, odometer_scale_sd=0.03,
-                   odometer_scale_drift=1e-8, heading_bias_sd_deg=2.0, vehicle_jerk_sd=1.4, rate_bias=False),
+                   odometer_scale_drift=1e-8, heading_bias_sd_deg=2.0, vehicle_jerk_sd=1.4, rate_bias=False,
+                   gyro_scale_sd=0.0),
     "phone": dict(gps_sigma_m=5.0, heading_noise_deg=0.5, gyro_arw_deg_rt_h=0.3, gyro_bias_deg_s=0.05,
                   gyro_bias_instability_deg_h=10.0, odometer_noise_m=0.01, odometer_scale_sd=0.03,
-                  odometer_scale_drift=1e-8, heading_bias_sd_deg=5.0, vehicle_jerk_sd=1.4, rate_bias=True),
+                  odometer_scale_drift=1e-8, heading_bias_sd_deg=5.0, vehicle_jerk_sd=1.4, rate_bias=True,
+                  gyro_scale_sd=0.0),
 }
 
 
@@ -393,6 +404,11 @@ def _grade_settings(spec, rate):
     if rate:
         kw.update(sd_rate=max(w, 1e-9),
                   q_rate=(np.deg2rad(spec["gyro_bias_instability_deg_h"]) / 3600.0) ** 2 / 100.0)
+    if spec["gyro_scale_sd"] > 0:
+        if not rate:
+            raise ValueError("grade['gyro_scale_sd'] > 0 needs a rate-bias state (a grade with rate_bias=True, "
+                             "as the phone's): the gyro's scale factor error is the tenth state")
+        kw.update(gyro_scale=True, sd_gyro_scale=spec["gyro_scale_sd"])
     return kw
 
 
@@ -420,6 +436,11 @@ class GPSDRModel(StateSpaceModel):
         With ``augmented``: a ninth state, the gyro rate bias ``r`` (rad/s), integrated by
         the heading bias (``b_k = b_{k-1} + T r_{k-1}``). For MEMS gyros, whose residual
         rate bias makes the heading error grow linearly; a random-walk ``b`` cannot follow it.
+    gyro_scale : bool
+        With ``rate_bias``: a tenth state, the gyro's scale factor error ``k`` (the measured
+        heading turns ``1 + k`` times the car), constant but for ``q_gyro_scale``. Each measured
+        turn ``d`` adds ``k d`` to the heading bias: :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`
+        applies it from the DR samples (``fx`` alone does not).
     zeta : float
         Odometer scale assumed by the 6-state model, and the prior mean of the 8-state one.
     q, sigma_heading, sigma_odometer, accel_term, min_speed
@@ -432,6 +453,8 @@ class GPSDRModel(StateSpaceModel):
         Prior standard deviations of ``zeta`` and ``b``.
     q_rate, sd_rate : float
         Random-walk spectral density (rad^2/s^3) and prior standard deviation (rad/s) of ``r``.
+    q_gyro_scale, sd_gyro_scale : float
+        Random-walk spectral density (1/s) and prior standard deviation of ``k``.
     stationary_inflation : float
         Factor on the heading variance used by ``R_for(stationary=True)``.
     sigma_zupt : float
@@ -440,7 +463,7 @@ class GPSDRModel(StateSpaceModel):
         Extra velocity noise (m/s, per axis) of the low-speed form (``measurement_for(low_speed=True)``):
         pulling away, a car's track and its gyro heading differ by tens of degrees.
     x0, P0 : array-like, optional
-        Prior (default as :class:`DRModel`, extended by ``zeta``, ``b = 0`` and ``r = 0``).
+        Prior (default as :class:`DRModel`, extended by ``zeta``, ``b = 0``, ``r = 0`` and ``k = 0``).
 
     See Also
     --------
@@ -453,6 +476,7 @@ class GPSDRModel(StateSpaceModel):
         *,
         augmented=False,
         rate_bias=False,
+        gyro_scale=False,
         zeta=1.0,
         q=0.1,
         sigma_heading=np.deg2rad(1.0),
@@ -464,6 +488,8 @@ class GPSDRModel(StateSpaceModel):
         sd_bias=np.deg2rad(5.0),
         q_rate=1e-10,
         sd_rate=np.deg2rad(0.1),
+        q_gyro_scale=1e-12,
+        sd_gyro_scale=0.02,
         stationary_inflation=1e6,
         sigma_zupt=0.01,
         sigma_low_speed=0.5,
@@ -477,8 +503,13 @@ class GPSDRModel(StateSpaceModel):
         self.rate_bias = bool(rate_bias)
         if self.rate_bias and not self.augmented:
             raise ValueError("rate_bias=True needs augmented=True (the rate bias drives the heading bias state)")
-        self.dim_x = 9 if self.rate_bias else 8 if self.augmented else 6
+        self.gyro_scale = bool(gyro_scale)
+        if self.gyro_scale and not self.rate_bias:
+            raise ValueError("gyro_scale=True needs rate_bias=True (the gyro's scale error is the tenth state)")
+        self.dim_x = 10 if self.gyro_scale else 9 if self.rate_bias else 8 if self.augmented else 6
         self.q_rate = check_positive(q_rate, "q_rate", strict=False)
+        self.q_gyro_scale = check_positive(q_gyro_scale, "q_gyro_scale", strict=False)
+        self.sd_gyro_scale = check_positive(sd_gyro_scale, "sd_gyro_scale")
         self.dim_z = 4
         self.zeta = check_positive(zeta, "zeta")
         self.q = check_positive(q, "q", strict=False)
@@ -510,6 +541,8 @@ class GPSDRModel(StateSpaceModel):
             Q[7, 7] = self.q_bias * self.dt
         if self.rate_bias:
             Q[8, 8] = self.q_rate * self.dt
+        if self.gyro_scale:
+            Q[9, 9] = self.q_gyro_scale * self.dt
         return Q
 
     def _set_prior(self, x0, P0, sd_scale, sd_bias, sd_rate):
@@ -517,13 +550,15 @@ class GPSDRModel(StateSpaceModel):
         ``sd_scale``, ``sd_bias``, ``sd_rate`` on the states the model has."""
         n = self.dim_x
         x0_default = ([0.0, 10.0, 0.0, 0.0, 10.0, 0.0] + ([self.zeta, 0.0] if self.augmented else [])
-                      + ([0.0] if self.rate_bias else []))
+                      + ([0.0] if self.rate_bias else []) + ([0.0] if self.gyro_scale else []))
         self.x0 = np.array(x0_default) if x0 is None else as_state(x0, "x0", n)
         p0 = [1e-4, 0.25, 0.01, 1e-4, 0.25, 0.01]
         if self.augmented:
             p0 += [check_positive(sd_scale, "sd_scale") ** 2, check_positive(sd_bias, "sd_bias") ** 2]
         if self.rate_bias:
             p0 += [check_positive(sd_rate, "sd_rate") ** 2]
+        if self.gyro_scale:
+            p0 += [self.sd_gyro_scale ** 2]
         self.P0 = np.diag(p0) if P0 is None else check_covariance(P0, "P0", n)
 
     @classmethod
@@ -540,7 +575,8 @@ class GPSDRModel(StateSpaceModel):
         augmented : bool
             Estimate the odometer scale and the heading bias online (8 states).
         rate_bias : bool, optional
-            Estimate the gyro rate bias too (9 states); default the grade's ``rate_bias``.
+            Estimate the gyro rate bias too (9 states; 10 with the gyro's scale factor error, when
+            the grade's ``gyro_scale_sd`` is above 0); default the grade's ``rate_bias``.
         **overrides
             :class:`GPSDRModel` keyword arguments that win over the derived ones.
 
@@ -560,6 +596,8 @@ class GPSDRModel(StateSpaceModel):
           density gives the same spread at ``L = 30`` s (the outage length scored);
         * with a rate-bias state: ``sd_rate = gyro_bias_deg_s`` (prior), ``q_rate =
           (gyro_bias_instability_deg_h * pi/180 / 3600)^2 / 100 s`` (its drift);
+        * with a rate-bias state and ``gyro_scale_sd > 0``: a gyro scale factor state,
+          ``sd_gyro_scale = gyro_scale_sd`` (prior);
         * ``sigma_odometer = odometer_noise_m``, ``sd_scale = odometer_scale_sd``;
         * ``q = vehicle_jerk_sd^2 * 1 s`` (white jerk of the vehicle class, m^2/s^5).
 

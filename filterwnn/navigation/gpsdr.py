@@ -50,6 +50,11 @@ What the filter does when GPS lies (each part a public setting, on by default):
   "consider" states (zero gain, their uncertainty still counted). A calibration state that
   leaves :data:`CALIBRATION_SIGMAS` prior standard deviations of its prior mean (the grade's
   specification) is held at that bound, with a warning naming the step.
+* **A gyro's scale factor error.** With a model that has the state (``GPSDRModel(gyro_scale=True)``,
+  a grade with ``gyro_scale_sd`` above 0), every measured turn ``d`` adds ``k d`` to the heading bias,
+  ``k`` the gyro's scale factor error (a MEMS gyro's sensitivity is good to a few per cent: 3 % turns a
+  90 degree corner into 92.7): a linear map of the state and its covariance at each sample. The fixes
+  teach ``k`` as they teach the other calibration states, and an outage's turns are then corrected.
 * **Zero angular rate at standstills.** A car does not turn while it stands, so the gyro
   heading's drift over a stop is the gyro's rate bias. When a stop of at least
   :data:`ZERO_RATE_MIN_SAMPLES` samples ends, the filter fits the slope of the measured heading
@@ -177,6 +182,9 @@ __all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS", "GATE", "REJ
 #: Default standstill threshold (m/s) on the odometer speed: 0.05 m/s = 0.11 mph, four
 #: times the creep of a standing car's CAN speed (0.001-0.03 mph).
 STANDSTILL_SPEED = 0.05
+#: The calibration states' rows: the heading bias, the gyro rate bias and the gyro scale factor error
+#: (after the odometer scale, row 6; each where the model has it).
+HEADING_BIAS, RATE, GYRO_SCALE = 7, 8, 9
 #: Default low-speed threshold (m/s): below it the DR sample enters as a velocity vector.
 LOW_SPEED = 5.0
 #: Filter kinds: filterpy's EKF, the unscented filter with Merwe points, with spherical-simplex points.
@@ -544,6 +552,7 @@ class GPSDRFilter:
         if not (np.isfinite(self.min_fix_interval) and self.min_fix_interval >= 0):
             raise ValueError(f"min_fix_interval must be >= 0 s (0: every fix used), got {min_fix_interval}")
         self.n_thinned, self._fast_warned = 0, False
+        self._last_heading = None  # the last DR sample's heading (the gyro scale factor's turn)
         self.n_stale, self._last_new_fix, self._driven = 0, None, 0.0  # the last fix that differed; m since
         # the last fix offered and used (steps), the last steps between fixes offered, and their median (s)
         self._offered, self._used, self._offer_gaps, self._fix_interval = None, None, deque(maxlen=FIX_GAPS), 0.0
@@ -660,6 +669,8 @@ class GPSDRFilter:
             This fix's standard deviation per axis (m); default the model's ``sigma_gps``.
         """
         z_dr = check_scale(as_state(z_dr, "z_dr", 2), "z_dr")  # a distance of 1e308 would give x = inf
+        if self.model.gyro_scale:
+            self._turn(float(z_dr[0]))
         self.motion = self.classify(z_dr)
         if self.zero_rate_update:
             self._zero_rate(z_dr[0])
@@ -700,6 +711,31 @@ class GPSDRFilter:
                 self.gps_sigma_est = float(np.sqrt(max(np.mean(self._gps_y) - np.mean(self._gps_hph), 0.01)))
         self.step += 1
         return self
+
+    def _turn(self, heading):
+        """The gyro's scale factor error ``k``: a measured turn ``d`` (this heading less the last) adds
+        ``k d`` to the heading bias, ``b += k d``, a linear map of the state and its covariance (and
+        of the calibration's prior, which bounds it)."""
+        last, self._last_heading = self._last_heading, heading
+        if last is None:
+            return
+        d = float(wrap_angle(heading - last))
+        if d == 0.0:
+            return
+        kf = self.kf
+        x = kf.x.copy()
+        x[HEADING_BIAS] += d * x[GYRO_SCALE]
+        P = kf.P.copy()
+        P[HEADING_BIAS, :] += d * P[GYRO_SCALE, :]
+        P[:, HEADING_BIAS] += d * P[:, GYRO_SCALE]
+        kf.x, kf.P = x, 0.5 * (P + P.T)
+        b, k = HEADING_BIAS - 6, GYRO_SCALE - 6
+        self._cal_mean[b] += d * self._cal_mean[k]
+        C = self._cal_P.copy()
+        C[b, :] += d * C[k, :]
+        C[:, b] += d * C[:, k]
+        self._cal_P = 0.5 * (C + C.T)
+        self._redraw_sigmas()
 
     def _stale(self, z_gps, gps_sigma):
         """Whether this fix repeats the last different fix to the bit although the car drove farther
@@ -755,7 +791,7 @@ class GPSDRFilter:
             self.n_zero_rate_held += 1
             return
         slope, var = stop_heading_slope(t, h, self.model.sigma_heading, self.model.q_bias)
-        r = self.model.dim_x - 1  # the gyro rate bias, the last state
+        r = RATE  # the gyro rate bias
         S = self.kf.P[r, r] + var
         y = slope - self.kf.x[r]
         ok = y * y / S <= ZERO_RATE_GATE
@@ -806,7 +842,7 @@ class GPSDRFilter:
         if len(s) > 1 and float(w @ (s - mean) ** 2) > chi2.ppf(0.999, len(s) - 1):
             return  # they disagree (creeping, a jumping heading): keep waiting, the oldest leaves the window
         self._zr_rejected.clear()
-        r = self.model.dim_x - 1
+        r = RATE
         kf = self.kf
         state, sd = float(kf.x[r]), float(np.sqrt(kf.P[r, r]))
         # while the bound held the rate bias, the heading bias integrated a rate bias about (mean - state)
@@ -818,10 +854,10 @@ class GPSDRFilter:
         # the gyro itself measured its bias: the grade's prior no longer describes it, so the calibration
         # bounds of the rate bias and of the heading bias it drives restart from here (their spread kept,
         # the heading bias's widened by the lag)
-        self._cal_mean[-1] = mean
-        self._cal_mean[-2] = kf.x[r - 1]  # the heading bias, the state before the rate bias
-        self._cal_P[-2, -2] += lag ** 2
-        self._widen((r - 1, r), (lag, mean - state))
+        self._cal_mean[RATE - 6] = mean
+        self._cal_mean[HEADING_BIAS - 6] = kf.x[HEADING_BIAS]
+        self._cal_P[HEADING_BIAS - 6, HEADING_BIAS - 6] += lag ** 2
+        self._widen((HEADING_BIAS, r), (lag, mean - state))
         self._rate_clamped_since = None
         self.n_zero_rate_reacquired += 1
         if self.n_zero_rate_reacquired == 1:
@@ -839,7 +875,7 @@ class GPSDRFilter:
     def _rate_update(self, slope, var):
         """The Kalman update of the rate-bias state (the last) with a measured rate ``slope`` of variance
         ``var``; True when the calibration bound then held the rate bias (the state could not follow it)."""
-        r = self.model.dim_x - 1
+        r = RATE
         kf = self.kf
         x, P = kf.x, kf.P
         S = P[r, r] + var
@@ -1095,7 +1131,8 @@ class GPSDRFilter:
         bound = CALIBRATION_SIGMAS * np.sqrt(np.diag(self._cal_P))
         out = np.abs(d) > bound
         if self.model.rate_bias:
-            self._track_rate_hold(out[-1], bound[-1] - abs(d[-1]))
+            i = RATE - 6
+            self._track_rate_hold(out[i], bound[i] - abs(d[i]))
         wrap = abs(x[7]) > np.pi
         if not (out.any() or wrap):
             return False
@@ -1105,7 +1142,7 @@ class GPSDRFilter:
         self.kf.x = x
         if not out.any():
             return True
-        names = ("odometer scale", "heading bias", "gyro rate bias")
+        names = ("odometer scale", "heading bias", "gyro rate bias", "gyro scale factor")
         for i in np.flatnonzero(out):
             if i not in self._cal_warned:
                 self._cal_warned.add(i)
@@ -1123,7 +1160,7 @@ class GPSDRFilter:
         if clamped:
             if self._rate_clamped_since is None:
                 self._rate_clamped_since = self.step
-        elif margin > np.sqrt(self.kf.P[-1, -1]):
+        elif margin > np.sqrt(self.kf.P[RATE, RATE]):
             self._rate_clamped_since = None
 
     def _repair(self):

@@ -90,6 +90,10 @@ def add_arguments(parser):
     parser.add_argument("--grade", choices=sorted(SENSOR_GRADES), default=None,
                         help="sensor grade for the GPS/DR settings (survey, phone; see "
                              "filterwnn.navigation.dead_reckoning.SENSOR_GRADES); default phone for --drive, survey for --real")
+    parser.add_argument("--gyro-scale-sd", type=options.nonnegative_float, default=0.0, metavar="FRACTION",
+                        help="with --drive: estimate the gyro's scale factor error as a state, its prior sd this "
+                             "fraction (a MEMS gyro's sensitivity tolerance of +-3 %% over three sigmas: 0.01); needs "
+                             "the phone grade's rate-bias state (default 0: not estimated)")
 
 
 def run(args):
@@ -130,12 +134,22 @@ def run(args):
     return 0
 
 
+def _drive_grade(args):
+    """``--grade`` for ``--drive`` (default phone), with ``--gyro-scale-sd`` when given."""
+    grade = getattr(args, "grade", None) or "phone"
+    k = getattr(args, "gyro_scale_sd", 0.0)
+    if k and not SENSOR_GRADES[grade]["rate_bias"]:
+        raise ValueError(f"--gyro-scale-sd needs a grade with a gyro rate-bias state (phone), got --grade {grade}")
+    return dict(SENSOR_GRADES[grade], gyro_scale_sd=k) if k else grade
+
+
 def _run_drives(args, drives, filters):
     """``--drive``: the GPS/DR filters on one's own drives, with each fix's accuracy when given."""
     from ...navigation.drives import sample_drive_path
 
     starts = args.outage_starts or None
     fl = tuple(filters) if filters else REAL_FILTERS
+    grade = _drive_grade(args)
     results = []
     for path in drives:
         run = read_drive_csv(sample_drive_path() if path == "sample" else path,
@@ -149,7 +163,7 @@ def _run_drives(args, drives, filters):
             res = real_drive_outages(run, n_placements=args.outages, length=args.outage_length, filters=fl,
                                      starts=starts, min_speed=args.min_speed,
                                      use_gps_sigma=run.gps_sigma is not None,
-                                     grade=getattr(args, "grade", None) or "phone",
+                                     grade=grade,
                                      scale_window=getattr(args, "gps_scale_window", 0),
                                      correlated_fixes=getattr(args, "correlated_fixes", "calibration"),
                                      min_fix_interval=getattr(args, "min_fix_interval", 0.0))

@@ -47,6 +47,8 @@ def _line(label, res, filters):
 
 #: Settings of every run (``--correlated-fixes``).
 EXTRA = {}
+#: The analogs' generator keywords (``--gyro-scale-error``).
+ANALOG_KW = {}
 
 
 def _run(label, run, filters, windows, **kw):
@@ -63,7 +65,8 @@ def analogs(seeds, windows):
     with tempfile.TemporaryDirectory() as tmp:
         for name in TARGETS:
             for seed in seeds:
-                path = held_out.write_csv(os.path.join(tmp, f"{name}_{seed}.csv"), held_out.columns(name, seed))
+                path = held_out.write_csv(os.path.join(tmp, f"{name}_{seed}.csv"),
+                                          held_out.columns(name, seed, **ANALOG_KW))
                 _run(f"{name} seed {seed} (target {TARGETS[name][0]:g} / {TARGETS[name][1]:g})",
                      read_drive_csv(path), ("DR-mech",) + KINDS8, windows, use_gps_sigma=True, grade="phone")
 
@@ -97,8 +100,19 @@ def main(argv=None):
                    help="GPSDRFilter's zero angular rate update at stops (default on, as in the package)")
     p.add_argument("--correlated-fixes", choices=["calibration", "inflate"], default="calibration",
                    help="GPSDRFilter's correlated_fixes (default calibration, as in the package)")
+    p.add_argument("--gyro-scale-sd", type=float, default=0.0,
+                   help="the phone grade's gyro_scale_sd: estimate the gyro's scale factor error as a state "
+                        "(default 0, as in the package)")
+    p.add_argument("--gyro-scale-error", type=float, default=0.0,
+                   help="the analogs' gyro turns 1 + this times the car (default 0, the analogs as stored)")
     a = p.parse_args(argv)
     EXTRA["correlated_fixes"] = a.correlated_fixes
+    if a.gyro_scale_sd:
+        from filterwnn.navigation.dead_reckoning import SENSOR_GRADES
+
+        SENSOR_GRADES["phone"]["gyro_scale_sd"] = a.gyro_scale_sd
+    if a.gyro_scale_error:
+        ANALOG_KW["gyro_scale"] = a.gyro_scale_error
     if a.zero_rate == "off":
         from filterwnn.navigation.gpsdr import GPSDRFilter
 
