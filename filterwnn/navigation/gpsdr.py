@@ -55,6 +55,10 @@ What the filter does when GPS lies (each part a public setting, on by default):
   ``k`` the gyro's scale factor error (a MEMS gyro's sensitivity is good to a few per cent: 3 % turns a
   90 degree corner into 92.7): a linear map of the state and its covariance at each sample. The fixes
   teach ``k`` as they teach the other calibration states, and an outage's turns are then corrected.
+  A model with a rate-bias state and without this one monitors it instead: a generalized likelihood
+  ratio test of a scale error on the accepted fixes' innovations (``gyro_scale_estimate``,
+  ``gyro_scale_z``) warns once, with the step, the estimate and the remedy, when the fixes show one
+  (:data:`SCALE_ERROR_Z`, :data:`SCALE_ERROR_MIN`).
 * **Zero angular rate at standstills.** A car does not turn while it stands, so the gyro
   heading's drift over a stop is the gyro's rate bias. When a stop of at least
   :data:`ZERO_RATE_MIN_SAMPLES` samples ends, the filter fits the slope of the measured heading
@@ -176,8 +180,8 @@ from ..kalman.unscented import UnscentedKalmanFilter
 __all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS", "GATE", "REJECT_GATE", "REACQUIRE_AFTER",
            "NIS_WINDOW", "CALIBRATION_SIGMAS", "ZERO_RATE_GATE", "ZERO_RATE_MIN_SAMPLES",
            "ZERO_RATE_REACQUIRE_AFTER", "MAX_STOP_RATE_DEG_S", "WHITENESS_WINDOW", "FIX_GAPS", "MIN_FIX_INTERVAL",
-           "CORRELATED_FIXES", "SCALE_WINDOW", "SCALE_TEST", "SCALE_WARN", "gps_scale_mle", "gps_scale_loglik",
-           "stop_heading_slope"]
+           "CORRELATED_FIXES", "SCALE_WINDOW", "SCALE_TEST", "SCALE_WARN", "SCALE_ERROR_Z", "SCALE_ERROR_MIN",
+           "HEADING_BIAS", "RATE", "GYRO_SCALE", "gps_scale_mle", "gps_scale_loglik", "stop_heading_slope"]
 
 #: Default standstill threshold (m/s) on the odometer speed: 0.05 m/s = 0.11 mph, four
 #: times the creep of a standing car's CAN speed (0.001-0.03 mph).
@@ -185,6 +189,13 @@ STANDSTILL_SPEED = 0.05
 #: The calibration states' rows: the heading bias, the gyro rate bias and the gyro scale factor error
 #: (after the odometer scale, row 6; each where the model has it).
 HEADING_BIAS, RATE, GYRO_SCALE = 7, 8, 9
+#: The scale-error monitor's gate (a filter without the gyro scale state): the generalized likelihood
+#: ratio's z-score of a scale factor error from the accepted fixes' innovations (divided by the square
+#: root of ``gps_correlation``), past which it warns; 6.1 is chi-square(1)'s 1 - 1e-9 point's root
+#: (the monitor looks at every fix, so its false alarms must be rarer than one fix's).
+SCALE_ERROR_Z = 6.1
+#: ... and the estimated error must be at least this (a fraction): smaller ones cost less than the state.
+SCALE_ERROR_MIN = 0.005
 #: Default low-speed threshold (m/s): below it the DR sample enters as a velocity vector.
 LOW_SPEED = 5.0
 #: Filter kinds: filterpy's EKF, the unscented filter with Merwe points, with spherical-simplex points.
@@ -513,6 +524,11 @@ class GPSDRFilter:
     gps_scales : list of float
         The factor each tested fix got (:attr:`gps_scale_mean` is their mean); empty with
         ``scale_window=0``.
+    gyro_scale_estimate, gyro_scale_z : float or None
+        With a rate-bias state and no scale state: the gyro scale factor error the accepted fixes
+        show so far (a fraction; the generalized likelihood ratio's estimate) and its z-score (over
+        the root of ``gps_correlation``); None before the first accepted fix while moving, and
+        without the monitor. Past :data:`SCALE_ERROR_Z` and :data:`SCALE_ERROR_MIN` it warns once.
     """
 
     def __init__(self, model, kind="ekf", *, x0=None, P0=None, standstill_speed=STANDSTILL_SPEED,
@@ -553,6 +569,15 @@ class GPSDRFilter:
             raise ValueError(f"min_fix_interval must be >= 0 s (0: every fix used), got {min_fix_interval}")
         self.n_thinned, self._fast_warned = 0, False
         self._last_heading = None  # the last DR sample's heading (the gyro scale factor's turn)
+        # the scale-error monitor (a MEMS gyro's model: a rate-bias state, no scale state): the state's
+        # sensitivity to a scale error held at 0, and the accepted fixes' score and information about it.
+        # Not for a model without the rate bias (the survey grade's tactical gyro): a drift it does not
+        # model can read as a scale error on a drive that turns mostly one way
+        self._ks = np.zeros(model.dim_x) if model.rate_bias and not model.gyro_scale else None
+        self._ku = self._ki = 0.0
+        self._scale_error_warned = False
+        self.gyro_scale_z = None  #: the monitor's z-score (see :data:`SCALE_ERROR_Z`), None before a fix
+        self.gyro_scale_estimate = None  #: the scale factor error the fixes show (fraction), None before
         self.n_stale, self._last_new_fix, self._driven = 0, None, 0.0  # the last fix that differed; m since
         # the last fix offered and used (steps), the last steps between fixes offered, and their median (s)
         self._offered, self._used, self._offer_gaps, self._fix_interval = None, None, deque(maxlen=FIX_GAPS), 0.0
@@ -651,6 +676,8 @@ class GPSDRFilter:
     def predict(self):
         """Propagate ``x`` and ``P`` one DR sample interval."""
         self.kf.predict()
+        if self._ks is not None:
+            self._ks = self.model.F @ self._ks
         if self._cal.size:
             self._cal_mean = self._cal_F @ self._cal_mean
             self._cal_P = self._cal_F @ self._cal_P @ self._cal_F.T + self._cal_Q
@@ -671,6 +698,8 @@ class GPSDRFilter:
         z_dr = check_scale(as_state(z_dr, "z_dr", 2), "z_dr")  # a distance of 1e308 would give x = inf
         if self.model.gyro_scale:
             self._turn(float(z_dr[0]))
+        elif self._ks is not None:
+            self._monitor_turn(float(z_dr[0]))
         self.motion = self.classify(z_dr)
         if self.zero_rate_update:
             self._zero_rate(z_dr[0])
@@ -697,11 +726,14 @@ class GPSDRFilter:
         z, R, kw = self.model.measurement_for(z_dr, z_gps, zupt=self.motion == "still",
                                               low_speed=self.motion == "slow", gps_sigma=gps_sigma)
         weights = self._gain_weights(kw["gps"])
+        x_prior = self.kf.x.copy()
         if weights is not None:
-            x_pre, P_pre = self.kf.x.copy(), self.kf.P.copy()
+            x_pre, P_pre = x_prior, self.kf.P.copy()
         self._update(z, R, kw)
         if weights is not None:
             self._schmidt(x_pre, P_pre, weights)
+        if self._ks is not None:
+            self._monitor_scale(x_prior, kw, weights)
         if self._bound_calibration() | self._repair() and hasattr(self.kf, "x_post"):
             self.kf.x_post, self.kf.P_post = self.kf.x.copy(), self.kf.P.copy()
         if adapt:
@@ -736,6 +768,47 @@ class GPSDRFilter:
         C[:, b] += d * C[:, k]
         self._cal_P = 0.5 * (C + C.T)
         self._redraw_sigmas()
+
+    def _monitor_turn(self, heading):
+        """The scale-error monitor's turn: a scale error ``k`` would add ``k d`` to the heading bias."""
+        last, self._last_heading = self._last_heading, heading
+        if last is not None:
+            self._ks[HEADING_BIAS] += float(wrap_angle(heading - last))
+
+    def _monitor_scale(self, x_prior, kw, weights):
+        """The generalized likelihood ratio test of a gyro scale factor error (Willsky and Jones 1976)
+        in a filter that does not estimate one: ``s``, the state's sensitivity to the error, follows
+        the filter (``F s``, each measured turn into the heading bias, ``s - K H s`` at each update);
+        each accepted fix adds ``g^T S^-1 y`` and ``g^T S^-1 g`` (``g`` the fix's rows of ``H s``) to the
+        score and the information. Their ratio estimates the error, and the score over the root of the
+        information, divided by the root of ``gps_correlation``, is its z-score: past
+        :data:`SCALE_ERROR_Z`, with an error of at least :data:`SCALE_ERROR_MIN`, it warns once, with the
+        step and the remedy."""
+        H = np.asarray(self.model.HJacobian(x_prior, **kw), dtype=float)
+        K = np.asarray(self.kf.K, dtype=float)
+        if weights is not None:
+            K = K * weights[:, None]
+        hs = H @ self._ks
+        if kw["gps"] and self.fix_status == "accepted" and self.motion == "moving":
+            S = np.asarray(self.kf.S, dtype=float)[2:, 2:]
+            y = np.asarray(self.kf.y, dtype=float)[2:]
+            g = hs[2:]
+            w = np.linalg.solve(S, g)
+            self._ku += float(w @ y)
+            self._ki += float(w @ g)
+        self._ks = self._ks - K @ hs
+        if self._ki <= 0.0:
+            return
+        self.gyro_scale_estimate = k = self._ku / self._ki
+        self.gyro_scale_z = z = self._ku / np.sqrt(self._ki * max(self.gps_correlation, 1.0))
+        if abs(z) > SCALE_ERROR_Z and abs(k) >= SCALE_ERROR_MIN and not self._scale_error_warned:
+            self._scale_error_warned = True
+            warnings.warn(
+                f"GPSDRFilter: by step {self.step} the fixes show the gyro turning {100 * k:+.2g} % "
+                f"(+- {100 * abs(k / z):.2g} %) more than the car (a scale factor error; z-score {z:+.3g}), which "
+                "this model does not estimate: each turn in an outage then leaves that share of it in the "
+                "heading. Use a grade with gyro_scale_sd=0.01 (--gyro-scale-sd 0.01) to estimate it",
+                RuntimeWarning, stacklevel=3)
 
     def _stale(self, z_gps, gps_sigma):
         """Whether this fix repeats the last different fix to the bit although the car drove farther
@@ -880,6 +953,8 @@ class GPSDRFilter:
         x, P = kf.x, kf.P
         S = P[r, r] + var
         Pr = P[:, r]
+        if self._ks is not None:  # the stop's slope does not depend on a scale error: the state's share goes
+            self._ks = self._ks - Pr * (self._ks[r] / S)
         kf.x = x_new = x + Pr * ((slope - x[r]) / S)
         P = P - np.outer(Pr, Pr) / S
         kf.P = 0.5 * (P + P.T)

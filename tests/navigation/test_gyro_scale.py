@@ -113,3 +113,32 @@ def test_the_command_takes_the_gyro_scale_sd(tmp_path, monkeypatch):
         assert (grade == "phone") if want is None else (grade["gyro_scale_sd"] == want and grade["rate_bias"])
     argv = ["study", "dr", "--drive", "sample", "--out", str(tmp_path), "--grade", "survey", "--gyro-scale-sd", "0.01"]
     assert main(argv) == 2  # refused, with its one-line error
+
+
+def _one_hz_filter(tmp_path, error, grade="phone"):
+    path = held_out.write_csv(tmp_path / f"one_hz_{error}.csv", held_out.columns("one_hz", 0, gyro_scale=error))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        run = read_drive_csv(path)
+    m = GPSDRModel.from_grade(grade, run.scenario.dt)
+    return run, GPSDRFilter(m, "ekf", x0=np.r_[run.x0, m.x0[6:]])
+
+
+def test_a_filter_without_the_state_warns_when_the_fixes_show_a_scale_error(tmp_path):
+    """The 1 Hz analog with a gyro 3 % off, the phone grade (no scale state): the monitor warns once, with
+    the step, the estimate so far (+3.7 +- 0.6 % at step 158; 2.85 % at the end) and the remedy; with no error it stays quiet (|z| 0.6 at the end); the
+    survey grade's model (no rate bias) has no monitor, and the scale state's model needs none."""
+    run, f = _one_hz_filter(tmp_path, 0.03)
+    with pytest.warns(RuntimeWarning, match=r"by step \d+ the fixes show the gyro turning \+\d\.\d % \(\+- 0\.\d+ %\) "
+                                            r"more than the car .* gyro_scale_sd=0.01 \(--gyro-scale-sd 0.01\)"):
+        f.batch_filter(run.z_dr, run.gps_list(), run.gps_sigma_list())
+    assert abs(f.gyro_scale_estimate - 0.03) < 0.005 and f.gyro_scale_z > 6.1
+    run, f = _one_hz_filter(tmp_path, 0.0)
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        f.batch_filter(run.z_dr, run.gps_list(), run.gps_sigma_list())
+    assert not [w for w in seen if "scale factor error" in str(w.message)]
+    assert abs(f.gyro_scale_z) < 3.0 and abs(f.gyro_scale_estimate) < 0.005
+    assert GPSDRFilter(GPSDRModel.from_grade("survey")).gyro_scale_z is None
+    assert GPSDRFilter(GPSDRModel.from_grade("survey"))._ks is None
+    assert GPSDRFilter(GPSDRModel.from_grade(K))._ks is None
