@@ -748,11 +748,8 @@ class GPSDRFilter:
         """The gyro's scale factor error ``k``: a measured turn ``d`` (this heading less the last) adds
         ``k d`` to the heading bias, ``b += k d``, a linear map of the state and its covariance (and
         of the calibration's prior, which bounds it)."""
-        last, self._last_heading = self._last_heading, heading
-        if last is None:
-            return
-        d = float(wrap_angle(heading - last))
-        if d == 0.0:
+        d = self._measured_turn(heading)
+        if not d:
             return
         kf = self.kf
         x = kf.x.copy()
@@ -769,11 +766,14 @@ class GPSDRFilter:
         self._cal_P = 0.5 * (C + C.T)
         self._redraw_sigmas()
 
+    def _measured_turn(self, heading):
+        """This DR sample's heading less the last one's, wrapped (0 at the first)."""
+        last, self._last_heading = self._last_heading, heading
+        return 0.0 if last is None else float(wrap_angle(heading - last))
+
     def _monitor_turn(self, heading):
         """The scale-error monitor's turn: a scale error ``k`` would add ``k d`` to the heading bias."""
-        last, self._last_heading = self._last_heading, heading
-        if last is not None:
-            self._ks[HEADING_BIAS] += float(wrap_angle(heading - last))
+        self._ks[HEADING_BIAS] += self._measured_turn(heading)
 
     def _monitor_scale(self, x_prior, kw, weights):
         """The generalized likelihood ratio test of a gyro scale factor error (Willsky and Jones 1976)

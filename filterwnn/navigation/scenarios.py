@@ -271,8 +271,8 @@ class DRRun(NamedTuple):
         speed : array-like of shape (n_samples,), optional
             Odometer (wheel / CAN) speed (m/s); step ``k`` covers ``|speed[k]|`` times its interval
             (``intervals``). A signed speed below ``-REVERSING_SPEED`` is the car reversing: there the
-            heading is turned by 180 degrees to be the direction of travel, with a warning. Warned: a speed that reads 0 below a cutoff (``MAX_STOP_ACCEL``,
-            ``SPEED_CUTOFF_WARN``).
+            heading is turned by 180 degrees to be the direction of travel, with a warning. Warned
+            too: a speed that reads 0 below a cutoff (``MAX_STOP_ACCEL``, ``SPEED_CUTOFF_WARN``).
         gps_t : array-like of shape (n_fixes,), optional
             GPS fix times (s, same clock as ``t``), each to the nearest sample (fixes over half an
             interval outside the samples are dropped).
@@ -324,9 +324,9 @@ class DRRun(NamedTuple):
             23 m/s would add 0.12 m to one step and take it from the next, more than a wheel odometer's
             0.01-0.02 m of noise, and the filters take each step for a measurement. ``"auto"`` (default):
             the stamped intervals, unless their spread adds more than ``STAMP_JITTER_M`` a step at the median
-            moving speed; then the grid when every stamp stays within half an interval of it and the
-            intervals' lag-1 autocorrelation is below ``GRID_CORRELATION`` (a late stamp makes the next
-            interval short), with a warning, and otherwise the stamped intervals with a warning that
+            moving speed; then the grid when every stamp stays within ``GRID_TOLERANCE`` (a quarter) of an
+            interval of it and the intervals' lag-1 autocorrelation is below ``GRID_CORRELATION`` (a late
+            stamp makes the next interval short), with a warning, and otherwise the stamped intervals with a warning that
             they add noise. Ignored with ``distance``.
 
         Returns
