@@ -66,6 +66,8 @@ nonlinear filters of navigation systems".
 
 from __future__ import annotations
 
+import copy
+
 import numpy as np
 from filterpy.common import Q_continuous_white_noise
 
@@ -560,6 +562,21 @@ class GPSDRModel(StateSpaceModel):
         if self.gyro_scale:
             p0 += [self.sd_gyro_scale ** 2]
         self.P0 = np.diag(p0) if P0 is None else check_covariance(P0, "P0", n)
+
+    def with_gyro_scale(self, sd):
+        """This model with the gyro's scale factor error as a tenth state (prior mean 0, sd ``sd``):
+        the same settings otherwise, and ``x0``/``P0`` extended (a filter switching to it brings its own)."""
+        if not self.rate_bias or self.gyro_scale:
+            raise ValueError("with_gyro_scale needs a model with a rate-bias state and no scale state")
+        m = copy.copy(self)
+        m.gyro_scale, m.sd_gyro_scale, m.dim_x = True, check_positive(sd, "sd"), 10
+        m.F = transition_matrix(m.dt, m.accel_term, m.dim_x)
+        m.Q = m._process_Q()
+        m.x0 = np.r_[self.x0, 0.0]
+        m.P0 = np.zeros((10, 10))
+        m.P0[:9, :9] = self.P0
+        m.P0[9, 9] = m.sd_gyro_scale ** 2
+        return m
 
     @classmethod
     def from_grade(cls, grade, dt=0.1, *, augmented=True, rate_bias=None, **overrides):

@@ -57,8 +57,9 @@ What the filter does when GPS lies (each part a public setting, on by default):
   teach ``k`` as they teach the other calibration states, and an outage's turns are then corrected.
   A model with a rate-bias state and without this one monitors it instead: a generalized likelihood
   ratio test of a scale error on the accepted fixes' innovations (``gyro_scale_estimate``,
-  ``gyro_scale_z``) warns once, with the step, the estimate and the remedy, when the fixes show one
-  (:data:`SCALE_ERROR_Z`, :data:`SCALE_ERROR_MIN`).
+  ``gyro_scale_z``) warns once, with the step and the estimate, when the fixes show one
+  (:data:`SCALE_ERROR_Z`, :data:`SCALE_ERROR_MIN`), and the filter then adds the state from that
+  estimate (``scale_on_detection``, on by default; ``gyro_scale_added`` the step).
 * **Zero angular rate at standstills.** A car does not turn while it stands, so the gyro
   heading's drift over a stop is the gyro's rate bias. When a stop of at least
   :data:`ZERO_RATE_MIN_SAMPLES` samples ends, the filter fits the slope of the measured heading
@@ -180,7 +181,7 @@ from ..kalman.unscented import UnscentedKalmanFilter
 __all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS", "GATE", "REJECT_GATE", "REACQUIRE_AFTER",
            "NIS_WINDOW", "CALIBRATION_SIGMAS", "ZERO_RATE_GATE", "ZERO_RATE_MIN_SAMPLES",
            "ZERO_RATE_REACQUIRE_AFTER", "MAX_STOP_RATE_DEG_S", "WHITENESS_WINDOW", "FIX_GAPS", "MIN_FIX_INTERVAL",
-           "CORRELATED_FIXES", "SCALE_WINDOW", "SCALE_TEST", "SCALE_WARN", "SCALE_ERROR_Z", "SCALE_ERROR_MIN",
+           "CORRELATED_FIXES", "SCALE_WINDOW", "SCALE_TEST", "SCALE_WARN", "SCALE_ERROR_Z", "SCALE_ERROR_MIN", "DETECTED_SCALE_SD",
            "HEADING_BIAS", "RATE", "GYRO_SCALE", "gps_scale_mle", "gps_scale_loglik", "stop_heading_slope"]
 
 #: Default standstill threshold (m/s) on the odometer speed: 0.05 m/s = 0.11 mph, four
@@ -196,6 +197,9 @@ HEADING_BIAS, RATE, GYRO_SCALE = 7, 8, 9
 SCALE_ERROR_Z = 6.1
 #: ... and the estimated error must be at least this (a fraction): smaller ones cost less than the state.
 SCALE_ERROR_MIN = 0.005
+#: The specification of a scale factor error the monitor found (``scale_on_detection``): a MEMS gyro's
+#: sensitivity tolerance of +-3 % read as three sigmas; the calibration bound of the added state.
+DETECTED_SCALE_SD = 0.01
 #: Default low-speed threshold (m/s): below it the DR sample enters as a velocity vector.
 LOW_SPEED = 5.0
 #: Filter kinds: filterpy's EKF, the unscented filter with Merwe points, with spherical-simplex points.
@@ -447,6 +451,12 @@ class GPSDRFilter:
         for independent follows; the filter warns when it measures such fixes. Not the default
         because fast fixes with independent errors lose by it (measured in
         ``docs/study-outputs/dr/fix-rate/RUN.md``).
+    scale_on_detection : bool
+        With a rate-bias state and no scale state: when the scale-error monitor finds a gyro scale
+        factor error (see ``gyro_scale_z``), add the state from its estimate (``gyro_scale_added``;
+        the model becomes :meth:`~filterwnn.navigation.dead_reckoning.GPSDRModel.with_gyro_scale`'s,
+        ``batch_filter`` still returns the first states). Default True; False only warns. On drives
+        without such an error the monitor did not fire, so the filter is the 9-state one bit for bit.
     scale_window : int
         Fixes over which the scale of their reported covariance is estimated (``gps_scale``;
         :data:`SCALE_WINDOW` = 30 is the window to use). Default 0: off, every fix's covariance
@@ -524,6 +534,8 @@ class GPSDRFilter:
     gps_scales : list of float
         The factor each tested fix got (:attr:`gps_scale_mean` is their mean); empty with
         ``scale_window=0``.
+    gyro_scale_added : int or None
+        The step at which the monitor's scale error made the filter add the scale state (None: not).
     gyro_scale_estimate, gyro_scale_z : float or None
         With a rate-bias state and no scale state: the gyro scale factor error the accepted fixes
         show so far (a fraction; the generalized likelihood ratio's estimate) and its z-score (over
@@ -536,7 +548,7 @@ class GPSDRFilter:
                  reject_gate=None, reacquire_after=REACQUIRE_AFTER, nis_window=NIS_WINDOW,
                  whiteness_window=WHITENESS_WINDOW, scale_window=0, zero_rate_update=True,
                  zero_rate_reacquire_after=ZERO_RATE_REACQUIRE_AFTER, correlated_fixes="calibration",
-                 min_fix_interval=0.0):
+                 min_fix_interval=0.0, scale_on_detection=True):
         if not isinstance(model, GPSDRModel):
             raise TypeError(f"model must be a GPSDRModel, got {type(model).__name__}")
         self.model = model
@@ -553,14 +565,8 @@ class GPSDRFilter:
         self.gps_sigma_est = None
         #: state rows held without GPS: position and the calibration states
         self.held_states = np.array([0, 3] + list(range(6, model.dim_x)))
-        if self.kind == "ekf":
-            self.kf = from_model(ExtendedKalmanFilter, model, x0=x0, P0=P0)
-        else:
-            if points is None:
-                points = make_points("gpsdr-ukf" if self.kind == "ukf" else "gpsdr-sukf", model.dim_x)
-            # fx, hx and the heading's mean and residual on all sigma points at once (the model's functions
-            # are written on the last axis; dim_z, 4 with GPS and 2 without, is taken from each update's R)
-            self.kf = from_model(UnscentedKalmanFilter, model, points=points, x0=x0, P0=P0, vectorized=True)
+        self.kf = self._inner_filter(model, x0, P0, points)
+        self.scale_on_detection = bool(scale_on_detection)
         self.motion = None
         self._init_integrity(gate, reject_gate, reacquire_after, nis_window, self.kf.x)
         self.correlated_fixes = check_choice(correlated_fixes, "correlated_fixes", CORRELATED_FIXES)
@@ -576,6 +582,10 @@ class GPSDRFilter:
         self._ks = np.zeros(model.dim_x) if model.rate_bias and not model.gyro_scale else None
         self._ku = self._ki = 0.0
         self._scale_error_warned = False
+        self._turn_sum = 0.0  # the measured turns so far (rad), for the added state's calibration bound
+        self._adopt = None  # (estimate, its variance) when the monitor found an error to add the state for
+        #: the step at which the monitor's scale error made the filter add the scale state (None: not)
+        self.gyro_scale_added = None
         self.gyro_scale_z = None  #: the monitor's z-score (see :data:`SCALE_ERROR_Z`), None before a fix
         self.gyro_scale_estimate = None  #: the scale factor error the fixes show (fraction), None before
         self.n_stale, self._last_new_fix, self._driven = 0, None, 0.0  # the last fix that differed; m since
@@ -653,6 +663,16 @@ class GPSDRFilter:
     def nis_mean(self):
         """Mean NIS of the accepted fixes (2 for a consistent filter; None before the first)."""
         return float(np.mean(self.nis_accepted)) if self.nis_accepted else None
+
+    def _inner_filter(self, model, x0, P0, points=None):
+        """filterpy's EKF, or our UKF with ``points`` (default this kind's preset), on ``model``."""
+        if self.kind == "ekf":
+            return from_model(ExtendedKalmanFilter, model, x0=x0, P0=P0)
+        if points is None:
+            points = make_points("gpsdr-ukf" if self.kind == "ukf" else "gpsdr-sukf", model.dim_x)
+        # fx, hx and the heading's mean and residual on all sigma points at once (the model's functions
+        # are written on the last axis; dim_z, 4 with GPS and 2 without, is taken from each update's R)
+        return from_model(UnscentedKalmanFilter, model, points=points, x0=x0, P0=P0, vectorized=True)
 
     def _set_x(self, value):
         self.kf.x = as_state(value, "x", self.model.dim_x).copy()
@@ -741,6 +761,8 @@ class GPSDRFilter:
             self._gps_hph.append(hph)
             if len(self._gps_y) >= 10:
                 self.gps_sigma_est = float(np.sqrt(max(np.mean(self._gps_y) - np.mean(self._gps_hph), 0.01)))
+        if self._adopt is not None:
+            self._adopt_scale()
         self.step += 1
         return self
 
@@ -773,7 +795,9 @@ class GPSDRFilter:
 
     def _monitor_turn(self, heading):
         """The scale-error monitor's turn: a scale error ``k`` would add ``k d`` to the heading bias."""
-        self._ks[HEADING_BIAS] += self._measured_turn(heading)
+        d = self._measured_turn(heading)
+        self._ks[HEADING_BIAS] += d
+        self._turn_sum += d
 
     def _monitor_scale(self, x_prior, kw, weights):
         """The generalized likelihood ratio test of a gyro scale factor error (Willsky and Jones 1976)
@@ -803,12 +827,50 @@ class GPSDRFilter:
         self.gyro_scale_z = z = self._ku / np.sqrt(self._ki * max(self.gps_correlation, 1.0))
         if abs(z) > SCALE_ERROR_Z and abs(k) >= SCALE_ERROR_MIN and not self._scale_error_warned:
             self._scale_error_warned = True
+            if self.scale_on_detection:
+                self._adopt = (k, (k / z) ** 2)
+                then = ("the filter adds a scale state from here, started at that estimate "
+                        "(scale_on_detection=False only warns; a grade with gyro_scale_sd=0.01, --gyro-scale-sd 0.01, "
+                        "estimates it from the start)")
+            else:
+                then = "use a grade with gyro_scale_sd=0.01 (--gyro-scale-sd 0.01) to estimate it"
             warnings.warn(
                 f"GPSDRFilter: by step {self.step} the fixes show the gyro turning {100 * k:+.2g} % "
                 f"(+- {100 * abs(k / z):.2g} %) more than the car (a scale factor error; z-score {z:+.3g}), which "
                 "this model does not estimate: each turn in an outage then leaves that share of it in the "
-                "heading. Use a grade with gyro_scale_sd=0.01 (--gyro-scale-sd 0.01) to estimate it",
-                RuntimeWarning, stacklevel=3)
+                f"heading; {then}", RuntimeWarning, stacklevel=3)
+
+    def _adopt_scale(self):
+        """Add the gyro's scale factor error as a tenth state (:meth:`GPSDRModel.with_gyro_scale`), from the
+        monitor's estimate ``k`` and its variance ``v`` (the generalized likelihood ratio's jump
+        compensation): ``x -> [x + s k, k]``, ``P -> [[P + s s^T v, s v], [s^T v, v]]`` (``s`` the
+        monitor's sensitivity). The calibration prior gets the state with :data:`DETECTED_SCALE_SD`, and the
+        heading bias's the spread such a state would have given it over the turns so far."""
+        k, v = self._adopt
+        self._adopt, s = None, self._ks
+        n = self.model.dim_x + 1
+        x = np.r_[self.kf.x + s * k, k]
+        P = np.zeros((n, n))
+        P[:-1, :-1] = self.kf.P + np.outer(s, s) * v
+        P[:-1, -1] = P[-1, :-1] = s * v
+        P[-1, -1] = v
+        model = self.model.with_gyro_scale(DETECTED_SCALE_SD)
+        self.model, self.kf = model, self._inner_filter(model, x, 0.5 * (P + P.T))
+        self.held_states = np.array([0, 3] + list(range(6, n)))
+        sd2 = DETECTED_SCALE_SD ** 2
+        C = np.zeros((4, 4))
+        C[:3, :3] = self._cal_P
+        b, g = HEADING_BIAS - 6, GYRO_SCALE - 6
+        C[b, b] += self._turn_sum ** 2 * sd2
+        C[b, g] = C[g, b] = self._turn_sum * sd2
+        C[g, g] = sd2
+        self._cal = np.arange(6, n)
+        self._cal_mean = np.r_[self._cal_mean, 0.0]
+        self._cal_F = model.F[np.ix_(self._cal, self._cal)]
+        self._cal_Q = model.Q[np.ix_(self._cal, self._cal)]
+        self._cal_P = C
+        self._ks = None
+        self.gyro_scale_added = self.step
 
     def _stale(self, z_gps, gps_sigma):
         """Whether this fix repeats the last different fix to the bit although the car drove farther
@@ -1326,10 +1388,11 @@ class GPSDRFilter:
         for name, seq in (("z_gps", gps), ("gps_sigma", sig)):
             if len(seq) != n:
                 raise ValueError(f"{name} must have one entry per DR sample ({n}), got {len(seq)}")
-        out = np.empty((n, self.model.dim_x))
+        width = self.model.dim_x
+        out = np.empty((n, width))
         with folded_warnings():  # a long drive can warn many times for one cause: once per kind
             for k in range(n):
                 self.predict()
                 self.update(z_dr[k], gps[k], sig[k])
-                out[k] = self.kf.x
+                out[k] = self.kf.x[:width]  # the states of the model it started with (a scale state added is not)
         return out

@@ -91,7 +91,10 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         whose heading drift updated the gyro rate bias, was rejected, or did not move at all (a heading
         held by its source), ``n_zero_rate_reacquired``, the rate-bias state's re-acquisitions from
         stops it could not follow that agreed, and ``n_zero_rate_turned``, the rejected stops whose heading
-        turned faster than any gyro's bias, "(N turned)" in the table; None without a rate-bias state), and
+        turned faster than any gyro's bias, "(N turned)" in the table; None without a rate-bias state;
+        ``gyro_scale_estimate`` and ``gyro_scale_z``, the scale-error monitor's estimate and z-score (None
+        without it), ``gyro_scale_added``, the step at which it made the filter add the scale state (None:
+        not), and ``gyro_scale``, that state's last value (None without one)), and
         per filter
         ``(n,)`` end-of-outage errors (m; a non-finite estimate raises).
     """
@@ -223,7 +226,10 @@ def _integrity(f, run):
             "n_zero_rate_rejected": f.n_zero_rate_rejected if f.zero_rate_update else None,
             "n_zero_rate_held": f.n_zero_rate_held if f.zero_rate_update else None,
             "n_zero_rate_reacquired": f.n_zero_rate_reacquired if f.zero_rate_update else None,
-            "n_zero_rate_turned": f.n_zero_rate_turned if f.zero_rate_update else None}
+            "n_zero_rate_turned": f.n_zero_rate_turned if f.zero_rate_update else None,
+            "gyro_scale_estimate": f.gyro_scale_estimate, "gyro_scale_z": f.gyro_scale_z,
+            "gyro_scale_added": f.gyro_scale_added,
+            "gyro_scale": float(f.x[9]) if f.model.gyro_scale else None}
 
 
 def _outage_ends(f, name, run, k0s, k1s, starts, gps, sig):

@@ -103,10 +103,17 @@ def main(argv=None):
     p.add_argument("--gyro-scale-sd", type=float, default=0.0,
                    help="the phone grade's gyro_scale_sd: estimate the gyro's scale factor error as a state "
                         "(default 0, as in the package)")
+    p.add_argument("--scale-on-detection", choices=["on", "off"], default="on",
+                   help="GPSDRFilter's scale_on_detection: add the gyro scale state when the monitor finds an "
+                        "error (default on, as in the package)")
     p.add_argument("--gyro-scale-error", type=float, default=0.0,
                    help="the analogs' gyro turns 1 + this times the car (default 0, the analogs as stored)")
     a = p.parse_args(argv)
     EXTRA["correlated_fixes"] = a.correlated_fixes
+    if a.scale_on_detection == "off":
+        from filterwnn.navigation.gpsdr import GPSDRFilter
+
+        GPSDRFilter.__init__.__kwdefaults__["scale_on_detection"] = False
     if a.gyro_scale_sd:
         from filterwnn.navigation.dead_reckoning import SENSOR_GRADES
 
