@@ -455,8 +455,9 @@ class GPSDRFilter:
         With a rate-bias state and no scale state: when the scale-error monitor finds a gyro scale
         factor error (see ``gyro_scale_z``), add the state from its estimate (``gyro_scale_added``;
         the model becomes :meth:`~filterwnn.navigation.dead_reckoning.GPSDRModel.with_gyro_scale`'s,
-        ``batch_filter`` still returns the first states). Default True; False only warns. On drives
-        without such an error the monitor did not fire, so the filter is the 9-state one bit for bit.
+        ``batch_filter`` still returns the first states; an unscented kind takes its kind's preset
+        points for the 10 states). Default True; False only warns. On drives without such an error the
+        monitor did not fire, so the filter is the 9-state one bit for bit.
     scale_window : int
         Fixes over which the scale of their reported covariance is estimated (``gps_scale``;
         :data:`SCALE_WINDOW` = 30 is the window to use). Default 0: off, every fix's covariance
