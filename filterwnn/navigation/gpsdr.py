@@ -273,6 +273,16 @@ SCALE_TEST = NormalDist().inv_cdf(1.0 - 1e-3) ** 2  # = chi2.ppf(1 - 2e-3, 1) = 
 SCALE_WARN = 9.0
 
 
+def _shear(M, b, k, d):
+    """``T M T^T`` for ``T = I + d e_b e_k^T`` (row ``k`` added ``d`` times to row ``b``), symmetrised: the
+    covariance map of a measured turn ``d`` for a scale factor error in row ``k`` of a heading bias in
+    row ``b``."""
+    M = M.copy()
+    M[b, :] += d * M[k, :]
+    M[:, b] += d * M[:, k]
+    return 0.5 * (M + M.T)
+
+
 def stop_heading_slope(t, heading, sigma_heading, q_arw):
     """The gyro heading's drift rate over a stop and its variance: ``(slope (rad/s), variance)``.
 
@@ -747,7 +757,7 @@ class GPSDRFilter:
         z, R, kw = self.model.measurement_for(z_dr, z_gps, zupt=self.motion == "still",
                                               low_speed=self.motion == "slow", gps_sigma=gps_sigma)
         weights = self._gain_weights(kw["gps"])
-        x_prior = self.kf.x.copy()
+        x_prior = self.kf.x.copy() if weights is not None or self._ks is not None else None
         if weights is not None:
             x_pre, P_pre = x_prior, self.kf.P.copy()
         self._update(z, R, kw)
@@ -777,16 +787,10 @@ class GPSDRFilter:
         kf = self.kf
         x = kf.x.copy()
         x[HEADING_BIAS] += d * x[GYRO_SCALE]
-        P = kf.P.copy()
-        P[HEADING_BIAS, :] += d * P[GYRO_SCALE, :]
-        P[:, HEADING_BIAS] += d * P[:, GYRO_SCALE]
-        kf.x, kf.P = x, 0.5 * (P + P.T)
-        b, k = HEADING_BIAS - 6, GYRO_SCALE - 6
+        kf.x, kf.P = x, _shear(kf.P, HEADING_BIAS, GYRO_SCALE, d)
+        b, k = HEADING_BIAS - 6, GYRO_SCALE - 6  # the calibration prior's rows
         self._cal_mean[b] += d * self._cal_mean[k]
-        C = self._cal_P.copy()
-        C[b, :] += d * C[k, :]
-        C[:, b] += d * C[:, k]
-        self._cal_P = 0.5 * (C + C.T)
+        self._cal_P = _shear(self._cal_P, b, k, d)
         self._redraw_sigmas()
 
     def _measured_turn(self, heading):
@@ -1265,18 +1269,19 @@ class GPSDRFilter:
             return False
         x = self.kf.x
         d = x[self._cal] - self._cal_mean
-        d[1] = wrap_angle(d[1])  # the heading bias is an angle: its distance from its prior mean the shorter way
+        b = HEADING_BIAS - 6  # the heading bias is an angle: its distance from its prior mean the shorter way
+        d[b] = wrap_angle(d[b])
         bound = CALIBRATION_SIGMAS * np.sqrt(np.diag(self._cal_P))
         out = np.abs(d) > bound
         if self.model.rate_bias:
             i = RATE - 6
             self._track_rate_hold(out[i], bound[i] - abs(d[i]))
-        wrap = abs(x[7]) > np.pi
+        wrap = abs(x[HEADING_BIAS]) > np.pi
         if not (out.any() or wrap):
             return False
         x = x.copy()
         x[self._cal] = self._cal_mean + np.clip(d, -bound, bound)
-        x[7] = wrap_angle(x[7])  # kept in [-pi, pi)
+        x[HEADING_BIAS] = wrap_angle(x[HEADING_BIAS])  # kept in [-pi, pi)
         self.kf.x = x
         if not out.any():
             return True

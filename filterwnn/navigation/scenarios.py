@@ -577,20 +577,21 @@ def _speed_interval(t, dts, dt, speed, intervals):
     median moving speed; a jitter that large with intervals that vary independently is warned as noise."""
     if intervals not in INTERVALS:
         raise ValueError(f"intervals must be one of {', '.join(map(repr, INTERVALS))}, got {intervals!r}")
-    if intervals == "stamps" or (intervals == "auto" and _stamp_noise(dts, dt, speed) <= STAMP_JITTER_M):
+    noise = _stamp_noise(dts, dt, speed)
+    if intervals == "stamps" or (intervals == "auto" and noise <= STAMP_JITTER_M):
         if intervals == "stamps":
-            _warn_stamp_jitter(dts, dt, speed, None)
+            _warn_stamp_jitter(dts, dt, noise, None)
         return None
     grid, on_grid, rho = _stamp_grid(t, dts)
     if intervals == "grid":
         return grid
     if not on_grid:
-        _warn_stamp_jitter(dts, dt, speed, rho)
+        _warn_stamp_jitter(dts, dt, noise, rho)
         return None
     warnings.warn(f"the sample times jitter by {1e3 * float(np.std(dts - dt)):.2g} ms (sd of the intervals) about "
                   f"a regular {grid:.4g} s grid (their lag-1 correlation {rho:.2f}: a stamp written late makes the "
                   "next interval short, as a logger's do): each speed is taken over the grid's interval, not its "
-                  f"stamped one, which would add {_stamp_noise(dts, dt, speed):.2g} m of noise to each step at the "
+                  f"stamped one, which would add {noise:.2g} m of noise to each step at the "
                   "median speed; pass intervals='stamps' (--intervals stamps) if the samples really came at their "
                   "stamped times", RuntimeWarning, stacklevel=4)
     return grid
@@ -602,11 +603,10 @@ def _stamp_noise(dts, dt, speed):
     return float(np.median(moving)) * float(np.std(dts - dt)) if len(moving) else 0.0
 
 
-def _warn_stamp_jitter(dts, dt, speed, rho):
-    """Warn when the intervals' spread times the median speed while moving (over 1 m/s) is more than
-    :data:`STAMP_JITTER_M` of odometer distance a step (``rho``: their lag-1 autocorrelation, when
-    measured)."""
-    noise = _stamp_noise(dts, dt, speed)
+def _warn_stamp_jitter(dts, dt, noise, rho):
+    """Warn when the intervals' spread times the median speed while moving (``noise``,
+    :func:`_stamp_noise`) is more than :data:`STAMP_JITTER_M` of odometer distance a step (``rho``:
+    their lag-1 autocorrelation, when measured)."""
     if noise > STAMP_JITTER_M:
         why = "" if rho is None else (f" (their lag-1 correlation {rho:.2f}, not below {GRID_CORRELATION:g}: they "
                                       "vary independently, not about a regular grid)")

@@ -15,7 +15,7 @@ import numpy as np
 from ..._warnings import folded_warnings
 from ...navigation.dead_reckoning import GPSDRModel
 from ...navigation.drives import CAR_DRIVE
-from ...navigation.gpsdr import GPSDRFilter
+from ...navigation.gpsdr import GYRO_SCALE, GPSDRFilter
 from ...navigation.scenarios import outage_starts
 from ._filters import FILTER_KIND
 
@@ -229,7 +229,7 @@ def _integrity(f, run):
             "n_zero_rate_turned": f.n_zero_rate_turned if f.zero_rate_update else None,
             "gyro_scale_estimate": f.gyro_scale_estimate, "gyro_scale_z": f.gyro_scale_z,
             "gyro_scale_added": f.gyro_scale_added,
-            "gyro_scale": float(f.x[9]) if f.model.gyro_scale else None}
+            "gyro_scale": float(f.x[GYRO_SCALE]) if f.model.gyro_scale else None}
 
 
 def _outage_ends(f, name, run, k0s, k1s, starts, gps, sig):
