@@ -89,6 +89,7 @@ __all__ = [
     "dr_residual",
     "dr_z_mean",
     "gps_hx",
+    "gps_H",
     "DRModel",
     "GPSDRModel",
     "SENSOR_GRADES",
@@ -104,7 +105,7 @@ _ACCEL_TERMS = ("kinematic", "paper")
 wrap_angle = wrap
 
 
-def transition_matrix(dt, accel_term="kinematic", dim_x=6):
+def transition_matrix(dt, accel_term="kinematic", dim_x=6, rate_bias=None):
     r"""The transition matrix :math:`\Phi` of shape ``(dim_x, dim_x)``.
 
     ``dim_x = 6`` is the kinematic state; ``dim_x = 8`` appends the odometer scale and
@@ -114,6 +115,9 @@ def transition_matrix(dt, accel_term="kinematic", dim_x=6):
     that carry it into the heading bias are inputs: ``GPSDRFilter`` applies them).
     ``accel_term="kinematic"`` puts ``T^2/2`` in the position-acceleration entries (exact
     constant-acceleration kinematics); ``"paper"`` puts the paper's printed ``T^2``.
+    ``rate_bias``: whether state 8 is a rate bias (default: ``dim_x >= 9``); a model whose ninth state
+    is something else (the fixes' latency of an 8-state model) passes False. States past them are
+    constant.
     """
     dt = check_positive(dt, "dt")
     check_choice(accel_term, "accel_term", _ACCEL_TERMS)
@@ -122,7 +126,7 @@ def transition_matrix(dt, accel_term="kinematic", dim_x=6):
     F = np.eye(dim_x)
     F[0:3, 0:3] = A
     F[3:6, 3:6] = A
-    if dim_x >= 9:
+    if dim_x >= 9 if rate_bias is None else rate_bias:
         F[7, 8] = dt
     return F
 
@@ -235,10 +239,30 @@ _heading_residual = angle_residual(0)
 _heading_mean = angle_mean(0)
 
 
-def gps_hx(x):
-    """GPS position ``[e, n]`` on the last axis: ``(2,)`` or ``(n_points, 2)``."""
+def gps_hx(x, latency=None):
+    """GPS position ``[e, n]`` on the last axis: ``(2,)`` or ``(n_points, 2)``.
+
+    ``latency``: the index of a latency state ``tau`` (s), when the state has one: a fix stamped at the
+    DR sample's time is the position ``tau`` earlier, ``[e - v_e tau, n - v_n tau]`` (to first order).
+    """
     x = np.asarray(x, dtype=float)
-    return np.stack([x[..., 0], x[..., 3]], axis=-1)
+    if latency is None:
+        return np.stack([x[..., 0], x[..., 3]], axis=-1)
+    tau = x[..., latency]
+    return np.stack([x[..., 0] - x[..., 1] * tau, x[..., 3] - x[..., 4] * tau], axis=-1)
+
+
+def gps_H(x, dim_x, latency=None):
+    """The Jacobian of :func:`gps_hx`: ``(2, dim_x)``, or ``(n_points, 2, dim_x)``."""
+    x = np.asarray(x, dtype=float)
+    G = np.zeros(x.shape[:-1] + (2, dim_x))
+    G[..., 0, 0] = 1.0
+    G[..., 1, 3] = 1.0
+    if latency is not None:
+        tau = x[..., latency]
+        G[..., 0, 1] = G[..., 1, 4] = -tau
+        G[..., 0, latency], G[..., 1, latency] = -x[..., 1], -x[..., 4]
+    return G
 
 
 # --------------------------------------------------------------------------- models
@@ -443,6 +467,12 @@ class GPSDRModel(StateSpaceModel):
         heading turns ``1 + k`` times the car), constant but for ``q_gyro_scale``. Each measured
         turn ``d`` adds ``k d`` to the heading bias: :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`
         applies it from the DR samples (``fx`` alone does not).
+    latency : bool
+        With ``augmented``: a last state, the fixes' latency ``tau`` (s) against the DR samples (a
+        receiver's latency, or the offset between the clocks that stamped the fixes and the DR samples):
+        a fix stamped at a sample's time is the position ``tau`` earlier, ``p - v tau``
+        (:func:`gps_hx`). Constant but for ``q_latency``. :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`
+        adds it when its latency monitor finds one (``latency_on_detection``).
     zeta : float
         Odometer scale assumed by the 6-state model, and the prior mean of the 8-state one.
     q, sigma_heading, sigma_odometer, accel_term, min_speed
@@ -457,6 +487,10 @@ class GPSDRModel(StateSpaceModel):
         Random-walk spectral density (rad^2/s^3) and prior standard deviation (rad/s) of ``r``.
     q_gyro_scale, sd_gyro_scale : float
         Random-walk spectral density (1/s) and prior standard deviation of ``k``.
+    q_latency, sd_latency : float
+        Random-walk spectral density (s^2/s) and prior standard deviation (s) of ``tau``. The default
+        ``q_latency`` is two free-running clocks 20 ppm apart (a crystal's tolerance) taken as a random
+        walk of that spread over an hour: ``(20e-6)^2 * 3600`` s.
     stationary_inflation : float
         Factor on the heading variance used by ``R_for(stationary=True)``.
     sigma_zupt : float
@@ -492,6 +526,9 @@ class GPSDRModel(StateSpaceModel):
         sd_rate=np.deg2rad(0.1),
         q_gyro_scale=1e-12,
         sd_gyro_scale=0.02,
+        latency=False,
+        q_latency=(20e-6) ** 2 * 3600.0,
+        sd_latency=1.0,
         stationary_inflation=1e6,
         sigma_zupt=0.01,
         sigma_low_speed=0.5,
@@ -508,7 +545,12 @@ class GPSDRModel(StateSpaceModel):
         self.gyro_scale = bool(gyro_scale)
         if self.gyro_scale and not self.rate_bias:
             raise ValueError("gyro_scale=True needs rate_bias=True (the gyro's scale error is the tenth state)")
-        self.dim_x = 10 if self.gyro_scale else 9 if self.rate_bias else 8 if self.augmented else 6
+        self.latency = bool(latency)
+        if self.latency and not self.augmented:
+            raise ValueError("latency=True needs augmented=True (the fixes' latency is a calibration state)")
+        self.q_latency = check_positive(q_latency, "q_latency", strict=False)
+        self.sd_latency = check_positive(sd_latency, "sd_latency")
+        self.dim_x = (10 if self.gyro_scale else 9 if self.rate_bias else 8 if self.augmented else 6) + self.latency
         self.q_rate = check_positive(q_rate, "q_rate", strict=False)
         self.q_gyro_scale = check_positive(q_gyro_scale, "q_gyro_scale", strict=False)
         self.sd_gyro_scale = check_positive(sd_gyro_scale, "sd_gyro_scale")
@@ -525,7 +567,7 @@ class GPSDRModel(StateSpaceModel):
         self.sigma_low_speed = check_positive(sigma_low_speed, "sigma_low_speed", strict=False)
         self.accel_term = check_choice(accel_term, "accel_term", _ACCEL_TERMS)
         self.min_speed = check_positive(min_speed, "min_speed")
-        self.F = transition_matrix(self.dt, accel_term, self.dim_x)
+        self.F = transition_matrix(self.dt, accel_term, self.dim_x, self.rate_bias)
         self.Q = self._process_Q()
         self.R = np.diag(
             [self.sigma_heading**2, self.sigma_odometer**2, self.sigma_gps**2, self.sigma_gps**2]
@@ -545,6 +587,8 @@ class GPSDRModel(StateSpaceModel):
             Q[8, 8] = self.q_rate * self.dt
         if self.gyro_scale:
             Q[9, 9] = self.q_gyro_scale * self.dt
+        if self.latency:
+            Q[-1, -1] = self.q_latency * self.dt
         return Q
 
     def _set_prior(self, x0, P0, sd_scale, sd_bias, sd_rate):
@@ -552,7 +596,8 @@ class GPSDRModel(StateSpaceModel):
         ``sd_scale``, ``sd_bias``, ``sd_rate`` on the states the model has."""
         n = self.dim_x
         x0_default = ([0.0, 10.0, 0.0, 0.0, 10.0, 0.0] + ([self.zeta, 0.0] if self.augmented else [])
-                      + ([0.0] if self.rate_bias else []) + ([0.0] if self.gyro_scale else []))
+                      + ([0.0] if self.rate_bias else []) + ([0.0] if self.gyro_scale else [])
+                      + ([0.0] if self.latency else []))
         self.x0 = np.array(x0_default) if x0 is None else as_state(x0, "x0", n)
         p0 = [1e-4, 0.25, 0.01, 1e-4, 0.25, 0.01]
         if self.augmented:
@@ -561,22 +606,55 @@ class GPSDRModel(StateSpaceModel):
             p0 += [check_positive(sd_rate, "sd_rate") ** 2]
         if self.gyro_scale:
             p0 += [self.sd_gyro_scale ** 2]
+        if self.latency:
+            p0 += [self.sd_latency ** 2]
         self.P0 = np.diag(p0) if P0 is None else check_covariance(P0, "P0", n)
 
+    @property
+    def latency_index(self):
+        """The row of the fixes' latency state, or None without one (the last row when there is)."""
+        return self.dim_x - 1 if self.latency else None
+
+    @property
+    def state_names(self):
+        """A short name per state row (``"e"``, ``"v_e"``, ..., ``"odometer scale"``, ``"latency"``)."""
+        names = ["e", "v_e", "a_e", "n", "v_n", "a_n"]
+        names += ["odometer scale", "heading bias"] if self.augmented else []
+        names += ["gyro rate bias"] if self.rate_bias else []
+        names += ["gyro scale factor"] if self.gyro_scale else []
+        return names + (["latency"] if self.latency else [])
+
+    def _with_state(self, index, prior_sd, **flags):
+        """This model with one more state at row ``index`` (prior mean 0, sd ``prior_sd``): the same
+        settings otherwise, ``x0``/``P0`` extended (a filter switching to it brings its own)."""
+        m = copy.copy(self)
+        for k, v in flags.items():
+            setattr(m, k, v)
+        n = m.dim_x = self.dim_x + 1
+        m.F = transition_matrix(m.dt, m.accel_term, n, m.rate_bias)
+        m.Q = m._process_Q()
+        keep = np.delete(np.arange(n), index)
+        m.x0 = np.insert(self.x0, index, 0.0)
+        m.P0 = np.zeros((n, n))
+        m.P0[np.ix_(keep, keep)] = self.P0
+        m.P0[index, index] = prior_sd ** 2
+        return m
+
     def with_gyro_scale(self, sd):
-        """This model with the gyro's scale factor error as a tenth state (prior mean 0, sd ``sd``):
+        """This model with the gyro's scale factor error as a state (row 9, prior mean 0, sd ``sd``):
         the same settings otherwise, and ``x0``/``P0`` extended (a filter switching to it brings its own)."""
         if not self.rate_bias or self.gyro_scale:
             raise ValueError("with_gyro_scale needs a model with a rate-bias state and no scale state")
-        m = copy.copy(self)
-        m.gyro_scale, m.sd_gyro_scale, m.dim_x = True, check_positive(sd, "sd"), 10
-        m.F = transition_matrix(m.dt, m.accel_term, m.dim_x)
-        m.Q = m._process_Q()
-        m.x0 = np.r_[self.x0, 0.0]
-        m.P0 = np.zeros((10, 10))
-        m.P0[:9, :9] = self.P0
-        m.P0[9, 9] = m.sd_gyro_scale ** 2
-        return m
+        sd = check_positive(sd, "sd")
+        return self._with_state(9, sd, gyro_scale=True, sd_gyro_scale=sd)
+
+    def with_latency(self, sd):
+        """This model with the fixes' latency as its last state (prior mean 0, sd ``sd`` s): the same
+        settings otherwise, and ``x0``/``P0`` extended (a filter switching to it brings its own)."""
+        if not self.augmented or self.latency:
+            raise ValueError("with_latency needs an augmented model without a latency state")
+        sd = check_positive(sd, "sd")
+        return self._with_state(self.dim_x, sd, latency=True, sd_latency=sd)
 
     @classmethod
     def from_grade(cls, grade, dt=0.1, *, augmented=True, rate_bias=None, **overrides):
@@ -640,7 +718,7 @@ class GPSDRModel(StateSpaceModel):
 
     def FJacobian(self, x=None, dt=None, **fx_args):
         """The (constant) transition matrix ``(dim_x, dim_x)``."""
-        return self.F if dt is None else transition_matrix(dt, self.accel_term, self.dim_x)
+        return self.F if dt is None else transition_matrix(dt, self.accel_term, self.dim_x, self.rate_bias)
 
     def hx(self, x, gps=True, velocity=False, **hx_args):
         """``[theta, s, e, n]`` (``gps=True``) or ``[theta, s]``, on the last axis.
@@ -655,7 +733,7 @@ class GPSDRModel(StateSpaceModel):
             z = dr_hx(x, self.dt, self.zeta, self.augmented)
         if not gps:
             return z
-        return np.concatenate([z, gps_hx(x)], axis=-1)
+        return np.concatenate([z, gps_hx(x, self.latency_index)], axis=-1)
 
     def HJacobian(self, x, gps=True, velocity=False, **hx_args):
         """Analytic Jacobian ``(4, dim_x)`` (``gps=True``) or ``(2, dim_x)`` (``velocity`` as in :meth:`hx`)."""
@@ -665,10 +743,7 @@ class GPSDRModel(StateSpaceModel):
             H = dr_HJacobian(x, self.dt, self.zeta, self.augmented, self.min_speed)
         if not gps:
             return H
-        G = np.zeros(H.shape[:-2] + (2, self.dim_x))
-        G[..., 0, 0] = 1.0
-        G[..., 1, 3] = 1.0
-        return np.concatenate([H, G], axis=-2)
+        return np.concatenate([H, gps_H(x, self.dim_x, self.latency_index)], axis=-2)
 
     def R_for(self, gps=True, stationary=False, zupt=False):
         """Measurement noise for the chosen measurement: ``(4, 4)`` or ``(2, 2)``.
