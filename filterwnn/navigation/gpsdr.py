@@ -60,6 +60,16 @@ What the filter does when GPS lies (each part a public setting, on by default):
   ``gyro_scale_z``) warns once, with the step and the estimate, when the fixes show one
   (:data:`SCALE_ERROR_Z`, :data:`SCALE_ERROR_MIN`), and the filter then adds the state from that
   estimate (``scale_on_detection``, on by default; ``gyro_scale_added`` the step).
+* **Fixes stamped late.** A fix stamped at a DR sample's time may be the position of some time before:
+  a receiver's latency, or the offset between the clocks that stamped the fixes (a phone) and the DR
+  samples (a car's logger). It places every fix behind the car by its speed times the latency, and the
+  filter follows them there (on the 1 Hz analog a second of it took the outage ends from 1.63 / 6.28 to
+  8.70 / 32.45 m). A known latency is a setting of the drive reader (``gps_latency``). An unknown one
+  is tested for with the scale error, in one generalized likelihood ratio test (``latency_estimate``,
+  ``latency_z``; :data:`LATENCY_Z`, :data:`LATENCY_MIN`): the two are estimated jointly, with the
+  calibration states' errors as nuisance parameters, so that neither is read as the other, nor a
+  calibration a bad start left off as either. When it fires the filter adds a latency state, the fix
+  modelled as ``p - v tau`` (``latency_on_detection``, on by default; ``latency_added`` the step).
 * **Zero angular rate at standstills.** A car does not turn while it stands, so the gyro
   heading's drift over a stop is the gyro's rate bias. When a stop of at least
   :data:`ZERO_RATE_MIN_SAMPLES` samples ends, the filter fits the slope of the measured heading
@@ -173,7 +183,7 @@ from .._warnings import folded_warnings
 from ..metrics import integrated_autocorrelation
 from .._validation import as_state, check_choice, check_covariance, check_positive, check_positive_int, check_scale
 from ._plausibility import MAX_DRIFT_DEG_S
-from .dead_reckoning import GPSDRModel, dr_residual, wrap_angle
+from .dead_reckoning import GPSDRModel, dr_residual, gps_H, gps_hx, wrap_angle
 from ..kalman.presets import make_points
 from ..models import from_model
 from ..kalman.unscented import UnscentedKalmanFilter
@@ -182,6 +192,7 @@ __all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS", "GATE", "REJ
            "NIS_WINDOW", "CALIBRATION_SIGMAS", "ZERO_RATE_GATE", "ZERO_RATE_MIN_SAMPLES",
            "ZERO_RATE_REACQUIRE_AFTER", "MAX_STOP_RATE_DEG_S", "WHITENESS_WINDOW", "FIX_GAPS", "MIN_FIX_INTERVAL",
            "CORRELATED_FIXES", "SCALE_WINDOW", "SCALE_TEST", "SCALE_WARN", "SCALE_ERROR_Z", "SCALE_ERROR_MIN", "DETECTED_SCALE_SD",
+           "LATENCY_Z", "LATENCY_MIN", "DETECTED_LATENCY_SD",
            "HEADING_BIAS", "RATE", "GYRO_SCALE", "gps_scale_mle", "gps_scale_loglik", "stop_heading_slope"]
 
 #: Default standstill threshold (m/s) on the odometer speed: 0.05 m/s = 0.11 mph, four
@@ -200,6 +211,16 @@ SCALE_ERROR_MIN = 0.005
 #: The specification of a scale factor error the monitor found (``scale_on_detection``): a MEMS gyro's
 #: sensitivity tolerance of +-3 % read as three sigmas; the calibration bound of the added state.
 DETECTED_SCALE_SD = 0.01
+#: The latency monitor's gate: the generalized likelihood ratio's z-score of the fixes' latency against
+#: the DR samples (their clocks' offset, or a receiver's latency), as :data:`SCALE_ERROR_Z`.
+LATENCY_Z = 6.1
+#: ... and the estimated latency must be at least this (s): at 20 m/s, 0.1 s places a fix 2 m behind.
+LATENCY_MIN = 0.1
+#: The specification of a latency the monitor found (``latency_on_detection``), s: the clocks of a
+#: phone and of a car's logger, each set from the network or GPS, agree to about a second; the
+#: calibration bound of the added state is three of it. The first-order model ``p - v tau`` holds
+#: while ``tau`` is short against the car's turns (a few seconds).
+DETECTED_LATENCY_SD = 1.0
 #: Default low-speed threshold (m/s): below it the DR sample enters as a velocity vector.
 LOW_SPEED = 5.0
 #: Filter kinds: filterpy's EKF, the unscented filter with Merwe points, with spherical-simplex points.
@@ -468,6 +489,12 @@ class GPSDRFilter:
         ``batch_filter`` still returns the first states; an unscented kind takes its kind's preset
         points for the 10 states). Default True; False only warns. On drives without such an error the
         monitor did not fire, so the filter is the 9-state one bit for bit.
+    latency_on_detection : bool
+        With a calibrated model (8 states or more) without a latency state: when the monitor finds the fixes
+        late against the DR samples (see ``latency_z``), add the latency state from its estimate
+        (``latency_added``; the model becomes :meth:`~filterwnn.navigation.dead_reckoning.GPSDRModel.with_latency`'s,
+        the fix ``p - v tau``; ``batch_filter`` still returns the first states). Default True; False only
+        warns, naming ``gps_latency`` (the reader's setting for a latency one knows).
     scale_window : int
         Fixes over which the scale of their reported covariance is estimated (``gps_scale``;
         :data:`SCALE_WINDOW` = 30 is the window to use). Default 0: off, every fix's covariance
@@ -549,9 +576,19 @@ class GPSDRFilter:
         The step at which the monitor's scale error made the filter add the scale state (None: not).
     gyro_scale_estimate, gyro_scale_z : float or None
         With a rate-bias state and no scale state: the gyro scale factor error the accepted fixes
-        show so far (a fraction; the generalized likelihood ratio's estimate) and its z-score (over
-        the root of ``gps_correlation``); None before the first accepted fix while moving, and
-        without the monitor. Past :data:`SCALE_ERROR_Z` and :data:`SCALE_ERROR_MIN` it warns once.
+        show so far (a fraction; the generalized likelihood ratio's estimate) and its z-score (see
+        ``latency_z``); None before the first accepted fix while moving, and without the monitor. Past :data:`SCALE_ERROR_Z` and :data:`SCALE_ERROR_MIN` it warns once.
+    latency_added : int or None
+        The step at which the monitor's latency made the filter add the latency state (None: not).
+    latency_estimate, latency_z : float or None
+        With a calibrated model without a latency state: the fixes' latency against the DR samples the
+        accepted fixes show so far (s; positive: each fix is the position that long before its stamp) and its
+        z-score; None before the monitor has scored a fix, and without the monitor. Past :data:`LATENCY_Z` and
+        :data:`LATENCY_MIN` it warns once. Both monitors' estimates are joint (one generalized likelihood
+        ratio test), their z-scores the estimate over its standard deviation, each fix's information
+        counted ``1 / gps_correlation`` when it came; scoring starts at the first accepted fix while moving,
+        with the calibration states' errors then as nuisance parameters (their prior the filter's own
+        covariance).
     """
 
     def __init__(self, model, kind="ekf", *, x0=None, P0=None, standstill_speed=STANDSTILL_SPEED,
@@ -559,7 +596,7 @@ class GPSDRFilter:
                  reject_gate=None, reacquire_after=REACQUIRE_AFTER, nis_window=NIS_WINDOW,
                  whiteness_window=WHITENESS_WINDOW, scale_window=0, zero_rate_update=True,
                  zero_rate_reacquire_after=ZERO_RATE_REACQUIRE_AFTER, correlated_fixes="calibration",
-                 min_fix_interval=0.0, scale_on_detection=True):
+                 min_fix_interval=0.0, scale_on_detection=True, latency_on_detection=True):
         if not isinstance(model, GPSDRModel):
             raise TypeError(f"model must be a GPSDRModel, got {type(model).__name__}")
         self.model = model
@@ -578,6 +615,7 @@ class GPSDRFilter:
         self.held_states = np.array([0, 3] + list(range(6, model.dim_x)))
         self.kf = self._inner_filter(model, x0, P0, points)
         self.scale_on_detection = bool(scale_on_detection)
+        self.latency_on_detection = bool(latency_on_detection)
         self.motion = None
         self._init_integrity(gate, reject_gate, reacquire_after, nis_window, self.kf.x)
         self.correlated_fixes = check_choice(correlated_fixes, "correlated_fixes", CORRELATED_FIXES)
@@ -586,19 +624,31 @@ class GPSDRFilter:
             raise ValueError(f"min_fix_interval must be >= 0 s (0: every fix used), got {min_fix_interval}")
         self.n_thinned, self._fast_warned = 0, False
         self._last_heading = None  # the last DR sample's heading (the gyro scale factor's turn)
-        # the scale-error monitor (a MEMS gyro's model: a rate-bias state, no scale state): the state's
-        # sensitivity to a scale error held at 0, and the accepted fixes' score and information about it.
-        # Not for a model without the rate bias (the survey grade's tactical gyro): a drift it does not
-        # model can read as a scale error on a drive that turns mostly one way
-        self._ks = np.zeros(model.dim_x) if model.rate_bias and not model.gyro_scale else None
-        self._ku = self._ki = 0.0
-        self._scale_error_warned = False
+        # the monitor's hypotheses, each an error the model does not estimate (_monitor_errors): a gyro
+        # scale factor error (a MEMS gyro's model: a rate-bias state, no scale state; not for a model without
+        # the rate bias, the survey grade's tactical gyro, where a drift it does not model can read as a scale
+        # error on a drive that turns mostly one way) and the fixes' latency (a calibrated model without it)
+        self._hyp = (["gyro_scale"] if model.rate_bias and not model.gyro_scale else []) + (
+            ["latency"] if model.augmented and not model.latency else [])
+        m = len(self._hyp)
+        # per hypothesis the state's sensitivity to the error, and the accepted fixes' score and information
+        self._sens = np.zeros((model.dim_x, m)) if m else None
+        # the score's variance: each fix's information times the fixes' correlation when it came
+        self._u, self._I, self._J = np.zeros(m), np.zeros((m, m)), np.zeros((m, m))
+        self._theta = self._var = None  # the joint estimates and their variances (over gps_correlation)
+        self._warned_errors = set()
+        self._listening = False  # scoring started (:meth:`_listen`)
+        self._residuals = deque()  # the scored fixes' whitened innovations and sensitivities (None: a break)
         self._turn_sum = 0.0  # the measured turns so far (rad), for the added state's calibration bound
-        self._adopt = None  # (estimate, its variance) when the monitor found an error to add the state for
+        self._adopt = None  # the hypothesis to add a state for, when the monitor found its error
         #: the step at which the monitor's scale error made the filter add the scale state (None: not)
         self.gyro_scale_added = None
         self.gyro_scale_z = None  #: the monitor's z-score (see :data:`SCALE_ERROR_Z`), None before a fix
         self.gyro_scale_estimate = None  #: the scale factor error the fixes show (fraction), None before
+        #: the step at which the monitor's latency made the filter add the latency state (None: not)
+        self.latency_added = None
+        self.latency_z = None  #: the latency monitor's z-score (see :data:`LATENCY_Z`), None before a fix
+        self.latency_estimate = None  #: the fixes' latency the fixes show (s), None before
         self.n_stale, self._last_new_fix, self._driven = 0, None, 0.0  # the last fix that differed; m since
         # the last fix offered and used (steps), the last steps between fixes offered, and their median (s)
         self._offered, self._used, self._offer_gaps, self._fix_interval = None, None, deque(maxlen=FIX_GAPS), 0.0
@@ -707,8 +757,8 @@ class GPSDRFilter:
     def predict(self):
         """Propagate ``x`` and ``P`` one DR sample interval."""
         self.kf.predict()
-        if self._ks is not None:
-            self._ks = self.model.F @ self._ks
+        if self._sens is not None:
+            self._sens = self.model.F @ self._sens
         if self._cal.size:
             self._cal_mean = self._cal_F @ self._cal_mean
             self._cal_P = self._cal_F @ self._cal_P @ self._cal_F.T + self._cal_Q
@@ -729,7 +779,7 @@ class GPSDRFilter:
         z_dr = check_scale(as_state(z_dr, "z_dr", 2), "z_dr")  # a distance of 1e308 would give x = inf
         if self.model.gyro_scale:
             self._turn(float(z_dr[0]))
-        elif self._ks is not None:
+        elif "gyro_scale" in self._hyp:
             self._monitor_turn(float(z_dr[0]))
         self.motion = self.classify(z_dr)
         if self.zero_rate_update:
@@ -757,14 +807,14 @@ class GPSDRFilter:
         z, R, kw = self.model.measurement_for(z_dr, z_gps, zupt=self.motion == "still",
                                               low_speed=self.motion == "slow", gps_sigma=gps_sigma)
         weights = self._gain_weights(kw["gps"])
-        x_prior = self.kf.x.copy() if weights is not None or self._ks is not None else None
+        x_prior = self.kf.x.copy() if weights is not None or self._sens is not None else None
         if weights is not None:
             x_pre, P_pre = x_prior, self.kf.P.copy()
         self._update(z, R, kw)
         if weights is not None:
             self._schmidt(x_pre, P_pre, weights)
-        if self._ks is not None:
-            self._monitor_scale(x_prior, kw, weights)
+        if self._sens is not None:
+            self._monitor_errors(x_prior, kw, weights)
         if self._bound_calibration() | self._repair() and hasattr(self.kf, "x_post"):
             self.kf.x_post, self.kf.P_post = self.kf.x.copy(), self.kf.P.copy()
         if adapt:
@@ -773,7 +823,7 @@ class GPSDRFilter:
             if len(self._gps_y) >= 10:
                 self.gps_sigma_est = float(np.sqrt(max(np.mean(self._gps_y) - np.mean(self._gps_hph), 0.01)))
         if self._adopt is not None:
-            self._adopt_scale()
+            self._add_state()
         self.step += 1
         return self
 
@@ -788,6 +838,8 @@ class GPSDRFilter:
         x = kf.x.copy()
         x[HEADING_BIAS] += d * x[GYRO_SCALE]
         kf.x, kf.P = x, _shear(kf.P, HEADING_BIAS, GYRO_SCALE, d)
+        if self._sens is not None:  # the map acts on the estimate's error too
+            self._sens[HEADING_BIAS] += d * self._sens[GYRO_SCALE]
         b, k = HEADING_BIAS - 6, GYRO_SCALE - 6  # the calibration prior's rows
         self._cal_mean[b] += d * self._cal_mean[k]
         self._cal_P = _shear(self._cal_P, b, k, d)
@@ -801,81 +853,182 @@ class GPSDRFilter:
     def _monitor_turn(self, heading):
         """The scale-error monitor's turn: a scale error ``k`` would add ``k d`` to the heading bias."""
         d = self._measured_turn(heading)
-        self._ks[HEADING_BIAS] += d
+        self._sens[HEADING_BIAS, self._hyp.index("gyro_scale")] += d
         self._turn_sum += d
 
-    def _monitor_scale(self, x_prior, kw, weights):
-        """The generalized likelihood ratio test of a gyro scale factor error (Willsky and Jones 1976)
-        in a filter that does not estimate one: ``s``, the state's sensitivity to the error, follows
-        the filter (``F s``, each measured turn into the heading bias, ``s - K H s`` at each update);
-        each accepted fix adds ``g^T S^-1 y`` and ``g^T S^-1 g`` (``g`` the fix's rows of ``H s``) to the
-        score and the information. Their ratio estimates the error, and the score over the root of the
-        information, divided by the root of ``gps_correlation``, is its z-score: past
-        :data:`SCALE_ERROR_Z`, with an error of at least :data:`SCALE_ERROR_MIN`, it warns once, with the
-        step and the remedy."""
+    def _monitor_errors(self, x_prior, kw, weights):
+        """The generalized likelihood ratio test (Willsky and Jones 1976) of the errors the model does not
+        estimate (``_hyp``: a gyro scale factor error, the fixes' latency), jointly.
+
+        Per hypothesis ``j``, ``s_j``, the state's sensitivity to the error, follows the filter (``F s``, each
+        measured turn into the heading bias for a scale error, ``s - K a`` at each update, ``a = H s + g``,
+        ``g`` the measurement's own sensitivity: ``-v`` in a fix's rows for a latency, 0 else). Each accepted
+        fix while moving adds ``A^T S^-1 y`` and ``A^T S^-1 A`` (``A`` the fix's rows of the ``a``) to the
+        score and the information. The information's inverse times the score estimates the errors jointly
+        (a latency is not read as a scale error), and each estimate over its standard deviation, divided by
+        the root of ``gps_correlation``, is its z-score: past :data:`SCALE_ERROR_Z` / :data:`LATENCY_Z`, with
+        an error of at least :data:`SCALE_ERROR_MIN` / :data:`LATENCY_MIN`, it warns once, with the step
+        and the remedy, and the filter adds the state (``scale_on_detection``, ``latency_on_detection``)."""
         H = np.asarray(self.model.HJacobian(x_prior, **kw), dtype=float)
         K = np.asarray(self.kf.K, dtype=float)
         if weights is not None:
             K = K * weights[:, None]
-        hs = H @ self._ks
+        A = H @ self._sens
+        if kw["gps"] and "latency" in self._hyp:  # a fix tau late is the position v tau behind
+            A[2:, self._hyp.index("latency")] -= x_prior[[1, 4]]
         if kw["gps"] and self.fix_status == "accepted" and self.motion == "moving":
+            if not self._listening:
+                self._listen(x_prior)
+                A = H @ self._sens
+                if "latency" in self._hyp:
+                    A[2:, self._hyp.index("latency")] -= x_prior[[1, 4]]
             S = np.asarray(self.kf.S, dtype=float)[2:, 2:]
             y = np.asarray(self.kf.y, dtype=float)[2:]
-            g = hs[2:]
-            w = np.linalg.solve(S, g)
-            self._ku += float(w @ y)
-            self._ki += float(w @ g)
-        self._ks = self._ks - K @ hs
-        if self._ki <= 0.0:
+            G = A[2:]
+            W = np.linalg.solve(S, G)
+            self._u += W.T @ y
+            info = G.T @ W
+            self._I += info
+            L = np.linalg.cholesky(S)
+            self._residuals.append((np.linalg.solve(L, y), np.linalg.solve(L, G)))
+            self._J += self._residual_correlation() * info  # the score's variance: correlated fixes count less
+        elif kw["gps"] and self._listening:
+            self._residuals.append(None)
+        self._sens = self._sens - K @ A
+        self._estimate_errors()
+
+    def _listen(self, x_prior):
+        """Start scoring: add the calibration states' errors as nuisance hypotheses, their sensitivity the
+        unit vector and their prior information the inverse of their covariance now (the filter's own
+        account of how far off they may be). A calibration that a bad start left off (an unknown start
+        heading teaches the heading and rate bias wrong things) then explains its own innovations instead
+        of reading as a latency or a scale error."""
+        self._listening = True
+        cal = [i for i in self._cal]
+        n, m = len(cal), len(self._hyp)
+        E = np.zeros((self.model.dim_x, n))
+        E[cal, np.arange(n)] = 1.0
+        self._sens = np.hstack([self._sens, E])
+        I = np.zeros((m + n, m + n))
+        I[:m, :m] = self._I
+        I[m:, m:] = np.linalg.inv(self.kf.P[np.ix_(cal, cal)])
+        J = I.copy()
+        J[:m, :m] = self._J
+        self._I, self._J, self._u = I, J, np.r_[self._u, np.zeros(n)]
+        self._hyp = self._hyp + [f"calibration {i}" for i in cal]
+
+    def _residual_correlation(self):
+        """The correlation of the scored fixes' innovations less what the estimated errors explain (the
+        innovations' own, :attr:`gps_correlation`, also carries the errors' signature: a scale error or a
+        latency the model lacks makes them correlated); ``gps_correlation`` until the window is full."""
+        n = self.whiteness_fixes
+        if self._residuals.maxlen != n:
+            self._residuals = deque(self._residuals, maxlen=n)
+        if self._theta is None or n is None or len(self._residuals) < n:
+            return max(self.gps_correlation, 1.0)
+        th = self._theta
+        return integrated_autocorrelation([None if e is None else e[0] - e[1] @ th for e in self._residuals])
+
+    def _estimate_errors(self):
+        """The joint estimates of the monitor's errors, their z-scores, and the warning past the gates."""
+        info = np.diag(self._I)
+        if not self._listening or not (info > 0.0).all():
             return
-        self.gyro_scale_estimate = k = self._ku / self._ki
-        self.gyro_scale_z = z = self._ku / np.sqrt(self._ki * max(self.gps_correlation, 1.0))
-        if abs(z) > SCALE_ERROR_Z and abs(k) >= SCALE_ERROR_MIN and not self._scale_error_warned:
-            self._scale_error_warned = True
+        try:
+            inv = np.linalg.inv(np.linalg.cholesky(self._I))
+        except np.linalg.LinAlgError:
+            return
+        Iinv = inv.T @ inv
+        theta = Iinv @ self._u
+        var = np.diag(Iinv @ self._J @ Iinv)  # the sandwich: the information's inverse around the score's variance
+        self._theta, self._var = theta, var
+        z = theta / np.sqrt(var)
+        tested = [(j, name) for j, name in enumerate(self._hyp) if name in ("gyro_scale", "latency")]
+        for j, name in tested:
+            setattr(self, f"{name}_estimate", float(theta[j]))
+            setattr(self, f"{name}_z", float(z[j]))
+        for j, name in tested:
+            gate, least = (SCALE_ERROR_Z, SCALE_ERROR_MIN) if name == "gyro_scale" else (LATENCY_Z, LATENCY_MIN)
+            if abs(z[j]) > gate and abs(theta[j]) >= least and name not in self._warned_errors:
+                self._warned_errors.add(name)
+                self._warn_error(name, theta[j], np.sqrt(self._var[j]), z[j])
+                if self._adopt is None and (self.scale_on_detection if name == "gyro_scale"
+                                            else self.latency_on_detection):
+                    self._adopt = name
+
+    def _warn_error(self, name, theta, sd, z):
+        if name == "gyro_scale":
             if self.scale_on_detection:
-                self._adopt = (k, (k / z) ** 2)
                 then = ("the filter adds a scale state from here, started at that estimate "
                         "(scale_on_detection=False only warns; a grade with gyro_scale_sd=0.01, --gyro-scale-sd 0.01, "
                         "estimates it from the start)")
             else:
                 then = "use a grade with gyro_scale_sd=0.01 (--gyro-scale-sd 0.01) to estimate it"
-            warnings.warn(
-                f"GPSDRFilter: by step {self.step} the fixes show the gyro turning {100 * k:+.2g} % "
-                f"(+- {100 * abs(k / z):.2g} %) more than the car (a scale factor error; z-score {z:+.3g}), which "
-                "this model does not estimate: each turn in an outage then leaves that share of it in the "
-                f"heading; {then}", RuntimeWarning, stacklevel=3)
+            what = (f"the gyro turning {100 * theta:+.2g} % (+- {100 * sd:.2g} %) more than the car (a scale factor "
+                    f"error; z-score {z:+.3g}), which this model does not estimate: each turn in an outage then leaves "
+                    "that share of it in the heading")
+        else:
+            if self.latency_on_detection:
+                then = ("the filter adds a latency state from here, started at that estimate "
+                        "(latency_on_detection=False only warns)")
+            else:
+                then = "place the fixes at their own time (gps_latency=, --gps-latency, when it is known)"
+            what = (f"the fixes {theta:+.2g} s (+- {sd:.2g} s) late against the DR samples (a receiver's latency, or "
+                    f"the offset between the clocks that stamped them; z-score {z:+.3g}): each fix is then the "
+                    "position that long before its time, behind the car by its speed times it")
+        warnings.warn(f"GPSDRFilter: by step {self.step} the fixes show {what}; {then}", RuntimeWarning,
+                      stacklevel=4)
 
-    def _adopt_scale(self):
-        """Add the gyro's scale factor error as a tenth state (:meth:`GPSDRModel.with_gyro_scale`), from the
-        monitor's estimate ``k`` and its variance ``v`` (the generalized likelihood ratio's jump
-        compensation): ``x -> [x + s k, k]``, ``P -> [[P + s s^T v, s v], [s^T v, v]]`` (``s`` the
-        monitor's sensitivity). The calibration prior gets the state with :data:`DETECTED_SCALE_SD`, and the
-        heading bias's the spread such a state would have given it over the turns so far."""
-        k, v = self._adopt
-        self._adopt, s = None, self._ks
+    def _add_state(self):
+        """Add the error the monitor found as a state (:meth:`GPSDRModel.with_gyro_scale` at row 9, or
+        :meth:`GPSDRModel.with_latency` last), from its joint estimate ``k`` and that estimate's variance ``v``
+        (the generalized likelihood ratio's jump compensation): ``x -> [x + s k, k]``,
+        ``P -> [[P + s s^T v, s v], [s^T v, v]]`` (``s`` the monitor's sensitivity). The calibration prior
+        gets the state with :data:`DETECTED_SCALE_SD` (and the heading bias the spread such a state would
+        have given it over the turns so far) or :data:`DETECTED_LATENCY_SD`. A hypothesis still tested
+        keeps what the fixes told of it beyond the added error (its score and information conditioned on
+        the added one's)."""
+        name, self._adopt = self._adopt, None
+        j = self._hyp.index(name)
+        k, v, s = float(self._theta[j]), float(self._var[j]), self._sens[:, j]
         n = self.model.dim_x + 1
-        x = np.r_[self.kf.x + s * k, k]
+        if name == "gyro_scale":
+            index, model, sd = GYRO_SCALE, self.model.with_gyro_scale(DETECTED_SCALE_SD), DETECTED_SCALE_SD
+        else:
+            index, model, sd = n - 1, self.model.with_latency(DETECTED_LATENCY_SD), DETECTED_LATENCY_SD
+        keep = np.delete(np.arange(n), index)
+        x = np.insert(self.kf.x + s * k, index, k)
         P = np.zeros((n, n))
-        P[:-1, :-1] = self.kf.P + np.outer(s, s) * v
-        P[:-1, -1] = P[-1, :-1] = s * v
-        P[-1, -1] = v
-        model = self.model.with_gyro_scale(DETECTED_SCALE_SD)
+        P[np.ix_(keep, keep)] = self.kf.P + np.outer(s, s) * v
+        P[keep, index] = P[index, keep] = s * v
+        P[index, index] = v
         self.model, self.kf = model, self._inner_filter(model, x, 0.5 * (P + P.T))
         self.held_states = np.array([0, 3] + list(range(6, n)))
-        sd2 = DETECTED_SCALE_SD ** 2
-        C = np.zeros((4, 4))
-        C[:3, :3] = self._cal_P
-        b, g = HEADING_BIAS - 6, GYRO_SCALE - 6
-        C[b, b] += self._turn_sum ** 2 * sd2
-        C[b, g] = C[g, b] = self._turn_sum * sd2
-        C[g, g] = sd2
+        c, ck = index - 6, keep[6:] - 6  # the calibration prior's rows
+        C = np.zeros((n - 6, n - 6))
+        C[np.ix_(ck, ck)] = self._cal_P
+        C[c, c] = sd ** 2
+        if name == "gyro_scale":
+            b = HEADING_BIAS - 6
+            C[b, b] += self._turn_sum ** 2 * sd ** 2
+            C[b, c] = C[c, b] = self._turn_sum * sd ** 2
         self._cal = np.arange(6, n)
-        self._cal_mean = np.r_[self._cal_mean, 0.0]
+        self._cal_mean = np.insert(self._cal_mean, c, 0.0)
         self._cal_F = model.F[np.ix_(self._cal, self._cal)]
         self._cal_Q = model.Q[np.ix_(self._cal, self._cal)]
         self._cal_P = C
-        self._ks = None
-        self.gyro_scale_added = self.step
+        setattr(self, f"{name}_added", self.step)
+        # the others: what the fixes told of them beyond this error (the information's Schur complement)
+        rest = [i for i in range(len(self._hyp)) if i != j]
+        if rest:
+            L = np.eye(len(self._hyp))[rest]
+            L[:, j] = -self._I[rest, j] / self._I[j, j]
+            self._u, self._I, self._J = L @ self._u, L @ self._I @ L.T, L @ self._J @ L.T
+            self._residuals.clear()
+            self._sens = np.insert(self._sens[:, rest], index, 0.0, axis=0)
+            self._hyp = [self._hyp[i] for i in rest]
+        else:
+            self._sens, self._hyp = None, []
 
     def _stale(self, z_gps, gps_sigma):
         """Whether this fix repeats the last different fix to the bit although the car drove farther
@@ -1020,8 +1173,8 @@ class GPSDRFilter:
         x, P = kf.x, kf.P
         S = P[r, r] + var
         Pr = P[:, r]
-        if self._ks is not None:  # the stop's slope does not depend on a scale error: the state's share goes
-            self._ks = self._ks - Pr * (self._ks[r] / S)
+        if self._sens is not None:  # the stop's slope depends on no monitored error: the state's share goes
+            self._sens = self._sens - np.outer(Pr, self._sens[r] / S)
         kf.x = x_new = x + Pr * ((slope - x[r]) / S)
         P = P - np.outer(Pr, Pr) / S
         kf.P = 0.5 * (P + P.T)
@@ -1046,13 +1199,19 @@ class GPSDRFilter:
         """
         z_gps = check_scale(as_state(z_gps, "z_gps", 2), "z_gps")
         pos = [0, 3]
-        y = z_gps - self.kf.x[pos]
+        lat = self.model.latency_index
         reported = check_positive(self._fix_sigma(gps_sigma), "gps_sigma")
         lam = self.gps_scale if scaled else 1.0
         if lam != 1.0:  # an unscaled fix keeps its sigma as given (bit for bit as without the estimate)
             gps_sigma = reported * np.sqrt(lam)
         sigma = self._fix_sigma(gps_sigma)
-        P_pos = self.kf.P[np.ix_(pos, pos)]
+        if lat is None:
+            y = z_gps - self.kf.x[pos]
+            P_pos = self.kf.P[np.ix_(pos, pos)]
+        else:  # the fix predicted at its latency: p - v tau
+            y = z_gps - gps_hx(self.kf.x, lat)
+            G = gps_H(self.kf.x, self.model.dim_x, lat)
+            P_pos = G @ self.kf.P @ G.T
         S = P_pos + sigma**2 * np.eye(2)
         self._innovation = y, S
         self.nis = nis = float(y @ np.linalg.solve(S, y))
@@ -1285,7 +1444,7 @@ class GPSDRFilter:
         self.kf.x = x
         if not out.any():
             return True
-        names = ("odometer scale", "heading bias", "gyro rate bias", "gyro scale factor")
+        names = self.model.state_names[6:]
         for i in np.flatnonzero(out):
             if i not in self._cal_warned:
                 self._cal_warned.add(i)

@@ -310,7 +310,9 @@ class DRRun(NamedTuple):
         gps_latency : float
             Seconds by which each fix's position is older than its time stamp (the receiver's
             latency, from its data sheet): the fix is placed at ``gps_t - gps_latency``. Default 0.
-            Unmodelled, 0.3 s at 23 m/s puts every fix 7 m behind the car along its track.
+            Unmodelled, 0.3 s at 23 m/s puts every fix 7 m behind the car along its track. An
+            unknown latency (or clock offset, of either sign) is what the GPS/DR filter's latency
+            monitor estimates (``GPSDRFilter(latency_on_detection=True)``, the default).
         odometer_latency : float
             Seconds by which each ``speed`` (or ``distance``) sample is older than its time stamp (a CAN
             bus's or a logger's latency, from the vehicle's data sheet): the odometer is read at

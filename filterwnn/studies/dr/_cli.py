@@ -62,7 +62,8 @@ def add_arguments(parser):
                              "with a warning that counts them (default 0: a drive with dropped samples is refused)")
     parser.add_argument("--gps-latency", type=options.nonnegative_float, default=0.0, metavar="SECONDS",
                         help="with --drive: the receiver's latency (s, from its data sheet): each fix's position "
-                             "is that much older than its time stamp (default 0)")
+                             "is that much older than its time stamp (default 0; an unknown one the filters "
+                             "estimate when the fixes show it, with a warning)")
     parser.add_argument("--odometer-latency", type=options.nonnegative_float, default=0.0, metavar="SECONDS",
                         help="with --drive: the speed's (or odometer's) latency (s, from the vehicle's data sheet, "
                              "e.g. a CAN bus's): each sample is that much older than its time stamp (default 0)")

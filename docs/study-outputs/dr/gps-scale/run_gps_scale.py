@@ -108,12 +108,21 @@ def main(argv=None):
                         "error (default on, as in the package)")
     p.add_argument("--gyro-scale-error", type=float, default=0.0,
                    help="the analogs' gyro turns 1 + this times the car (default 0, the analogs as stored)")
+    p.add_argument("--latency-on-detection", choices=["on", "off"], default="on",
+                   help="GPSDRFilter's latency_on_detection: add the latency state when the monitor finds the "
+                        "fixes late (default on, as in the package)")
+    p.add_argument("--gps-latency-error", type=float, default=0.0,
+                   help="the analogs' fixes are the truth this many seconds before their time stamps (default 0, "
+                        "the analogs as stored)")
     a = p.parse_args(argv)
     EXTRA["correlated_fixes"] = a.correlated_fixes
-    if a.scale_on_detection == "off":
-        from filterwnn.navigation.gpsdr import GPSDRFilter
+    for flag in ("scale_on_detection", "latency_on_detection"):
+        if getattr(a, flag) == "off":
+            from filterwnn.navigation.gpsdr import GPSDRFilter
 
-        GPSDRFilter.__init__.__kwdefaults__["scale_on_detection"] = False
+            GPSDRFilter.__init__.__kwdefaults__[flag] = False
+    if a.gps_latency_error:
+        ANALOG_KW["gps_latency"] = a.gps_latency_error
     if a.gyro_scale_sd:
         from filterwnn.navigation.dead_reckoning import SENSOR_GRADES
 
