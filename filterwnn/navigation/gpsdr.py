@@ -577,7 +577,8 @@ class GPSDRFilter:
     gyro_scale_estimate, gyro_scale_z : float or None
         With a rate-bias state and no scale state: the gyro scale factor error the accepted fixes
         show so far (a fraction; the generalized likelihood ratio's estimate) and its z-score (see
-        ``latency_z``); None before the first accepted fix while moving, and without the monitor. Past :data:`SCALE_ERROR_Z` and :data:`SCALE_ERROR_MIN` it warns once.
+        ``latency_z``); None before the first accepted fix while moving, and without the monitor. Past
+        :data:`SCALE_ERROR_Z` and :data:`SCALE_ERROR_MIN` it warns once.
     latency_added : int or None
         The step at which the monitor's latency made the filter add the latency state (None: not).
     latency_estimate, latency_z : float or None
@@ -586,9 +587,9 @@ class GPSDRFilter:
         z-score; None before the monitor has scored a fix, and without the monitor. Past :data:`LATENCY_Z` and
         :data:`LATENCY_MIN` it warns once. Both monitors' estimates are joint (one generalized likelihood
         ratio test), their z-scores the estimate over its standard deviation, each fix's information
-        counted ``1 / gps_correlation`` when it came; scoring starts at the first accepted fix while moving,
-        with the calibration states' errors then as nuisance parameters (their prior the filter's own
-        covariance).
+        counted at the correlation its innovations showed when it came, less what the estimated errors
+        explain; scoring starts at the first accepted fix while moving, with the calibration states' errors
+        then as nuisance parameters (their prior the filter's own covariance).
     """
 
     def __init__(self, model, kind="ekf", *, x0=None, P0=None, standstill_speed=STANDSTILL_SPEED,
@@ -635,7 +636,7 @@ class GPSDRFilter:
         self._sens = np.zeros((model.dim_x, m)) if m else None
         # the score's variance: each fix's information times the fixes' correlation when it came
         self._u, self._I, self._J = np.zeros(m), np.zeros((m, m)), np.zeros((m, m))
-        self._theta = self._var = None  # the joint estimates and their variances (over gps_correlation)
+        self._theta = self._var = None  # the joint estimates and their variances (the sandwich's)
         self._warned_errors = set()
         self._listening = False  # scoring started (:meth:`_listen`)
         self._residuals = deque()  # the scored fixes' whitened innovations and sensitivities (None: a break)
@@ -864,11 +865,17 @@ class GPSDRFilter:
         measured turn into the heading bias for a scale error, ``s - K a`` at each update, ``a = H s + g``,
         ``g`` the measurement's own sensitivity: ``-v`` in a fix's rows for a latency, 0 else). Each accepted
         fix while moving adds ``A^T S^-1 y`` and ``A^T S^-1 A`` (``A`` the fix's rows of the ``a``) to the
-        score and the information. The information's inverse times the score estimates the errors jointly
-        (a latency is not read as a scale error), and each estimate over its standard deviation, divided by
-        the root of ``gps_correlation``, is its z-score: past :data:`SCALE_ERROR_Z` / :data:`LATENCY_Z`, with
-        an error of at least :data:`SCALE_ERROR_MIN` / :data:`LATENCY_MIN`, it warns once, with the step
-        and the remedy, and the filter adds the state (``scale_on_detection``, ``latency_on_detection``)."""
+        score and the information, and the information times the fixes' correlation when it came (of their
+        innovations less what the estimated errors explain, :meth:`_residual_correlation`) to the score's
+        variance. The information's inverse times the score estimates the errors jointly (a latency is not
+        read as a scale error), and each estimate over its standard deviation (the sandwich, the
+        information's inverse about the score's variance) is its z-score: past :data:`SCALE_ERROR_Z` /
+        :data:`LATENCY_Z`, with an error of at least :data:`SCALE_ERROR_MIN` / :data:`LATENCY_MIN`, it warns
+        once, with the step and the remedy, and the filter adds the state (``scale_on_detection``,
+        ``latency_on_detection``)."""
+        scored = kw["gps"] and self.fix_status == "accepted" and self.motion == "moving"
+        if scored and not self._listening:
+            self._listen()
         H = np.asarray(self.model.HJacobian(x_prior, **kw), dtype=float)
         K = np.asarray(self.kf.K, dtype=float)
         if weights is not None:
@@ -876,12 +883,7 @@ class GPSDRFilter:
         A = H @ self._sens
         if kw["gps"] and "latency" in self._hyp:  # a fix tau late is the position v tau behind
             A[2:, self._hyp.index("latency")] -= x_prior[[1, 4]]
-        if kw["gps"] and self.fix_status == "accepted" and self.motion == "moving":
-            if not self._listening:
-                self._listen(x_prior)
-                A = H @ self._sens
-                if "latency" in self._hyp:
-                    A[2:, self._hyp.index("latency")] -= x_prior[[1, 4]]
+        if scored:
             S = np.asarray(self.kf.S, dtype=float)[2:, 2:]
             y = np.asarray(self.kf.y, dtype=float)[2:]
             G = A[2:]
@@ -897,14 +899,14 @@ class GPSDRFilter:
         self._sens = self._sens - K @ A
         self._estimate_errors()
 
-    def _listen(self, x_prior):
+    def _listen(self):
         """Start scoring: add the calibration states' errors as nuisance hypotheses, their sensitivity the
         unit vector and their prior information the inverse of their covariance now (the filter's own
         account of how far off they may be). A calibration that a bad start left off (an unknown start
         heading teaches the heading and rate bias wrong things) then explains its own innovations instead
         of reading as a latency or a scale error."""
         self._listening = True
-        cal = [i for i in self._cal]
+        cal = list(self._cal)
         n, m = len(cal), len(self._hyp)
         E = np.zeros((self.model.dim_x, n))
         E[cal, np.arange(n)] = 1.0
@@ -926,8 +928,11 @@ class GPSDRFilter:
             self._residuals = deque(self._residuals, maxlen=n)
         if self._theta is None or n is None or len(self._residuals) < n:
             return max(self.gps_correlation, 1.0)
-        th = self._theta
-        return integrated_autocorrelation([None if e is None else e[0] - e[1] @ th for e in self._residuals])
+        scored = [e for e in self._residuals if e is not None]
+        if not scored:
+            return max(self.gps_correlation, 1.0)
+        left = iter(np.array([e[0] for e in scored]) - np.array([e[1] for e in scored]) @ self._theta)
+        return integrated_autocorrelation([None if e is None else next(left) for e in self._residuals])
 
     def _estimate_errors(self):
         """The joint estimates of the monitor's errors, their z-scores, and the warning past the gates."""
@@ -976,8 +981,9 @@ class GPSDRFilter:
             what = (f"the fixes {theta:+.2g} s (+- {sd:.2g} s) late against the DR samples (a receiver's latency, or "
                     f"the offset between the clocks that stamped them; z-score {z:+.3g}): each fix is then the "
                     "position that long before its time, behind the car by its speed times it")
+        # warn (1) <- _estimate_errors <- _monitor_errors <- update <- the caller (5)
         warnings.warn(f"GPSDRFilter: by step {self.step} the fixes show {what}; {then}", RuntimeWarning,
-                      stacklevel=4)
+                      stacklevel=5)
 
     def _add_state(self):
         """Add the error the monitor found as a state (:meth:`GPSDRModel.with_gyro_scale` at row 9, or

@@ -31,7 +31,7 @@ from filterwnn.navigation.drives import read_drive_csv  # noqa: E402
 variant = sys.argv[1]
 F = gpsdr.GPSDRFilter
 if variant in ("no-nuisance", "first"):
-    def _listen(self, x_prior):
+    def _listen(self):
         self._listening = True
     F._listen = _listen
 if variant == "innovations":
