@@ -639,6 +639,7 @@ class GPSDRFilter:
         self._theta = self._var = None  # the joint estimates and their variances (the sandwich's)
         self._warned_errors = set()
         self._listening = False  # scoring started (:meth:`_listen`)
+        self._restate = False  # a state was added: the others' estimates to be made again
         self._residuals = deque()  # the scored fixes' whitened innovations and sensitivities (None: a break)
         self._turn_sum = 0.0  # the measured turns so far (rad), for the added state's calibration bound
         self._adopt = None  # the hypothesis to add a state for, when the monitor found its error
@@ -897,7 +898,9 @@ class GPSDRFilter:
         elif kw["gps"] and self._listening:
             self._residuals.append(None)
         self._sens = self._sens - K @ A
-        self._estimate_errors()
+        if scored or self._restate:  # the estimates change with the score, the information, or a state added
+            self._restate = False
+            self._estimate_errors()
 
     def _listen(self):
         """Start scoring: add the calibration states' errors as nuisance hypotheses, their sensitivity the
@@ -1024,6 +1027,7 @@ class GPSDRFilter:
         self._cal_Q = model.Q[np.ix_(self._cal, self._cal)]
         self._cal_P = C
         setattr(self, f"{name}_added", self.step)
+        self._restate = True
         # the others: what the fixes told of them beyond this error (the information's Schur complement)
         rest = [i for i in range(len(self._hyp)) if i != j]
         if rest:
