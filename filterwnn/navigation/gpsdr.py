@@ -641,6 +641,7 @@ class GPSDRFilter:
         self._listening = False  # scoring started (:meth:`_listen`)
         self._restate = False  # a state was added: the others' estimates to be made again
         self._residuals = deque()  # the scored fixes' whitened innovations and sensitivities (None: a break)
+        self._residual_c, self._since_measured = None, 0  # their last correlation, and fixes scored since
         self._turn_sum = 0.0  # the measured turns so far (rad), for the added state's calibration bound
         self._adopt = None  # the hypothesis to add a state for, when the monitor found its error
         #: the step at which the monitor's scale error made the filter add the scale state (None: not)
@@ -925,12 +926,23 @@ class GPSDRFilter:
     def _residual_correlation(self):
         """The correlation of the scored fixes' innovations less what the estimated errors explain (the
         innovations' own, :attr:`gps_correlation`, also carries the errors' signature: a scale error or a
-        latency the model lacks makes them correlated); ``gps_correlation`` until the window is full."""
+        latency the model lacks makes them correlated); ``gps_correlation`` until the window is full.
+        Measured again once a second of fixes (every fix at 1 Hz, every fifth at 5 Hz)."""
         n = self.whiteness_fixes
         if self._residuals.maxlen != n:
             self._residuals = deque(self._residuals, maxlen=n)
         if self._theta is None or n is None or len(self._residuals) < n:
             return max(self.gps_correlation, 1.0)
+        per_second = max(int(round(1.0 / (self._fix_gap * self.model.dt))), 1)
+        self._since_measured += 1
+        if self._residual_c is not None and self._since_measured < per_second:
+            return self._residual_c
+        self._since_measured = 0
+        self._residual_c = self._measure_residual_correlation()
+        return self._residual_c
+
+    def _measure_residual_correlation(self):
+        """:func:`~filterwnn.metrics.integrated_autocorrelation` of the window's residuals ``L^-1 (y - A theta)``."""
         scored = [e for e in self._residuals if e is not None]
         if not scored:
             return max(self.gps_correlation, 1.0)
@@ -1035,6 +1047,7 @@ class GPSDRFilter:
             L[:, j] = -self._I[rest, j] / self._I[j, j]
             self._u, self._I, self._J = L @ self._u, L @ self._I @ L.T, L @ self._J @ L.T
             self._residuals.clear()
+            self._residual_c = None
             self._sens = np.insert(self._sens[:, rest], index, 0.0, axis=0)
             self._hyp = [self._hyp[i] for i in rest]
         else:
