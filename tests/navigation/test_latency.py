@@ -162,3 +162,17 @@ def test_a_calibration_a_bad_start_left_off_is_not_read_as_a_latency():
             top = max(top, abs(f.latency_z or 0.0))
     assert not [w for w in seen if "late against the DR samples" in str(w.message)]
     assert f.latency_added is None and top < LATENCY_Z
+
+
+def test_the_survey_grades_model_adds_the_latency_as_its_ninth_state(drives):
+    """No rate bias there: the latency is row 8, and the heading bias stays uncoupled from it. Measured: added
+    at step 80 (EKF), the state 0.87 s at the end (this drive's gyro is outside the survey grade)."""
+    run = drives[1.0]
+    f = _filter(run, grade="survey")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        est = f.batch_filter(run.z_dr, run.gps_list(), run.gps_sigma_list())
+    assert est.shape == (len(run.z_dr), 8) and np.all(np.isfinite(est))
+    assert f.latency_added is not None and f.model.dim_x == 9 and f.model.latency_index == 8
+    assert f.model.F[7, 8] == 0.0 and f.model.state_names[8] == "latency"
+    assert abs(f.x[8] - 1.0) < 0.3, f.x[8]
