@@ -589,7 +589,8 @@ class GPSDRFilter:
         ratio test), their z-scores the estimate over its standard deviation, each fix's information
         counted at the correlation its innovations showed when it came, less what the estimated errors
         explain; scoring starts at the first accepted fix while moving, with the calibration states' errors
-        then as nuisance parameters (their prior the filter's own covariance).
+        then as nuisance parameters (their prior the filter's own covariance; without a rate-bias state,
+        a heading drift too).
     """
 
     def __init__(self, model, kind="ekf", *, x0=None, P0=None, standstill_speed=STANDSTILL_SPEED,
@@ -762,6 +763,8 @@ class GPSDRFilter:
         self.kf.predict()
         if self._sens is not None:
             self._sens = self.model.F @ self._sens
+            if "drift" in self._hyp:  # a heading drift the model lacks grows the heading bias's error
+                self._sens[HEADING_BIAS, self._hyp.index("drift")] += self.model.dt
         if self._cal.size:
             self._cal_mean = self._cal_F @ self._cal_mean
             self._cal_P = self._cal_F @ self._cal_P @ self._cal_F.T + self._cal_Q
@@ -908,20 +911,24 @@ class GPSDRFilter:
         unit vector and their prior information the inverse of their covariance now (the filter's own
         account of how far off they may be). A calibration that a bad start left off (an unknown start
         heading teaches the heading and rate bias wrong things) then explains its own innovations instead
-        of reading as a latency or a scale error."""
+        of reading as a latency or a scale error. A model without a rate-bias state (the survey grade's)
+        gets one more: a heading drift from here (its sensitivity ``dt`` more in the heading bias at each
+        predict), with no prior, since a gyro that drifts where its grade says it does not would otherwise
+        read as a latency (on 1 Hz analogs with a 0.05 deg/s gyro it fired at -0.5 s)."""
         self._listening = True
         cal = list(self._cal)
         n, m = len(cal), len(self._hyp)
-        E = np.zeros((self.model.dim_x, n))
+        drift = not self.model.rate_bias  # a model without a rate bias: a drift it lacks, from here, unbounded
+        E = np.zeros((self.model.dim_x, n + drift))
         E[cal, np.arange(n)] = 1.0
         self._sens = np.hstack([self._sens, E])
-        I = np.zeros((m + n, m + n))
+        I = np.zeros((m + n + drift, m + n + drift))
         I[:m, :m] = self._I
-        I[m:, m:] = np.linalg.inv(self.kf.P[np.ix_(cal, cal)])
+        I[m:m + n, m:m + n] = np.linalg.inv(self.kf.P[np.ix_(cal, cal)])
         J = I.copy()
         J[:m, :m] = self._J
-        self._I, self._J, self._u = I, J, np.r_[self._u, np.zeros(n)]
-        self._hyp = self._hyp + [f"calibration {i}" for i in cal]
+        self._I, self._J, self._u = I, J, np.r_[self._u, np.zeros(n + drift)]
+        self._hyp = self._hyp + [f"calibration {i}" for i in cal] + ["drift"] * drift
 
     def _residual_correlation(self):
         """The correlation of the scored fixes' innovations less what the estimated errors explain (the

@@ -176,3 +176,21 @@ def test_the_survey_grades_model_adds_the_latency_as_its_ninth_state(drives):
     assert f.latency_added is not None and f.model.dim_x == 9 and f.model.latency_index == 8
     assert f.model.F[7, 8] == 0.0 and f.model.state_names[8] == "latency"
     assert abs(f.x[8] - 1.0) < 0.3, f.x[8]
+
+
+def test_a_drift_the_survey_grade_lacks_is_not_read_as_a_latency(tmp_path):
+    """The 1 Hz analog of seed 3 (a 0.05 deg/s gyro) with the survey grade's model, which has no rate bias:
+    before the monitor took such a drift for a nuisance parameter it warned of the fixes -0.51 s late at
+    step 343; now its largest |z| is 2.66."""
+    run = read_drive_csv(held_out.write_csv(tmp_path / "one_hz_3.csv", held_out.columns("one_hz", 3)))
+    f = _filter(run, grade="survey")
+    top = 0.0
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        for k in range(len(run.z_dr)):
+            f.predict()
+            f.update(run.z_dr[k], run.gps_list()[k], run.gps_sigma_list()[k])
+            top = max(top, abs(f.latency_z or 0.0))
+    assert not [w for w in seen if "late against the DR samples" in str(w.message)]
+    assert f.latency_added is None and top < 4.0, top
+    assert "drift" in f._hyp and "gyro_scale" not in f._hyp
