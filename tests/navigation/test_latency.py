@@ -67,6 +67,18 @@ def drives(tmp_path_factory):
     return out
 
 
+def _step_through(f, run):
+    """Run ``f`` over ``run`` step by step: ``(the warnings, the largest |latency_z| on the way)``."""
+    top = 0.0
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        for k in range(len(run.z_dr)):
+            f.predict()
+            f.update(run.z_dr[k], run.gps_list()[k], run.gps_sigma_list()[k])
+            top = max(top, abs(f.latency_z or 0.0))
+    return seen, top
+
+
 def _filter(run, kind="ekf", grade="phone", **kw):
     m = GPSDRModel.from_grade(grade, run.scenario.dt)
     return GPSDRFilter(m, kind, x0=np.r_[run.x0, m.x0[6:]], **kw)
@@ -153,13 +165,7 @@ def test_a_calibration_a_bad_start_left_off_is_not_read_as_a_latency():
 
     run, grade, _ = th.unknown_heading(np.random.default_rng(np.random.SeedSequence([23, th.DRIVES.index(th.unknown_heading)])))
     f = _filter(run, grade=grade)
-    top = 0.0
-    with warnings.catch_warnings(record=True) as seen:
-        warnings.simplefilter("always")
-        for k in range(len(run.z_dr)):
-            f.predict()
-            f.update(run.z_dr[k], run.gps_list()[k], run.gps_sigma_list()[k])
-            top = max(top, abs(f.latency_z or 0.0))
+    seen, top = _step_through(f, run)
     assert not [w for w in seen if "late against the DR samples" in str(w.message)]
     assert f.latency_added is None and top < LATENCY_Z
 
@@ -184,13 +190,7 @@ def test_a_drift_the_survey_grade_lacks_is_not_read_as_a_latency(tmp_path):
     step 343; now its largest |z| is 2.66."""
     run = read_drive_csv(held_out.write_csv(tmp_path / "one_hz_3.csv", held_out.columns("one_hz", 3)))
     f = _filter(run, grade="survey")
-    top = 0.0
-    with warnings.catch_warnings(record=True) as seen:
-        warnings.simplefilter("always")
-        for k in range(len(run.z_dr)):
-            f.predict()
-            f.update(run.z_dr[k], run.gps_list()[k], run.gps_sigma_list()[k])
-            top = max(top, abs(f.latency_z or 0.0))
+    seen, top = _step_through(f, run)
     assert not [w for w in seen if "late against the DR samples" in str(w.message)]
     assert f.latency_added is None and top < 4.0, top
     assert "drift" in f._hyp and "gyro_scale" not in f._hyp
