@@ -64,7 +64,7 @@ What the filter does when GPS lies (each part a public setting, on by default):
   a receiver's latency, or the offset between the clocks that stamped the fixes (a phone) and the DR
   samples (a car's logger). It places every fix behind the car by its speed times the latency, and the
   filter follows them there (on the 1 Hz analog a second of it took the outage ends from 1.63 / 6.28 to
-  8.70 / 32.45 m). A known latency is a setting of the drive reader (``gps_latency``). An unknown one
+  8.68 / 32.45 m). A known latency is a setting of the drive reader (``gps_latency``). An unknown one
   is tested for with the scale error, in one generalized likelihood ratio test (``latency_estimate``,
   ``latency_z``; :data:`LATENCY_Z`, :data:`LATENCY_MIN`): the two are estimated jointly, with the
   calibration states' errors as nuisance parameters, so that neither is read as the other, nor a
