@@ -1000,7 +1000,7 @@ class GPSDRFilter:
                         "(latency_on_detection=False only warns)")
             else:
                 then = "place the fixes at their own time (gps_latency=, --gps-latency, when it is known)"
-            what = (f"the fixes {theta:+.2g} s (+- {sd:.2g} s) late against the DR samples (a receiver's latency, or "
+            what = (f"themselves {theta:+.2g} s (+- {sd:.2g} s) late against the DR samples (a receiver's latency, or "
                     f"the offset between the clocks that stamped them; z-score {z:+.3g}): each fix is then the "
                     "position that long before its time, behind the car by its speed times it")
         # warn (1) <- _estimate_errors <- _monitor_errors <- update <- the caller (5)

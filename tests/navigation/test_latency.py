@@ -90,7 +90,7 @@ def test_the_monitor_finds_a_second_of_latency_and_adds_the_state(drives, kind):
     latency (1.03, 1.01 and 1.02 s at the end; added at steps 48, 79 and 80); batch_filter keeps the states of the model it started with."""
     run = drives[1.0]
     f = _filter(run, kind)
-    with pytest.warns(RuntimeWarning, match=r"by step \d+ the fixes show the fixes \+[01]\.\d+ s \(\+- 0\.\d+ s\) late "
+    with pytest.warns(RuntimeWarning, match=r"by step \d+ the fixes show themselves \+[01]\.\d+ s \(\+- 0\.\d+ s\) late "
                                             r"against the DR samples .* the filter adds a latency state from here"):
         est = f.batch_filter(run.z_dr, run.gps_list(), run.gps_sigma_list())
     assert est.shape == (len(run.z_dr), 9) and np.all(np.isfinite(est))
