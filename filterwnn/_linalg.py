@@ -52,6 +52,7 @@ __all__ = [
     "smallest_eigenvalue",
     "solve_lower_columns",
     "repair_pd",
+    "insert_state",
     "gaussian_logpdf_chol",
     "NoiseFactor",
     "staircase_apply",
@@ -283,6 +284,24 @@ def repair_pd(C):
         C[i] = 0.5 * (C[i] + C[i].T)
         n_bad += 1
     return C, n_bad
+
+
+def insert_state(x, P, index, value, var, cross=None):
+    """A Gaussian ``(x, P)`` with one more state at row ``index``: mean ``value``, variance ``var``, and
+    covariance ``cross`` ``(n,)`` with the others (default 0). Returns the new ``(x, P)``.
+
+    >>> x, P = insert_state(np.zeros(2), np.eye(2), 1, 5.0, 4.0, cross=np.array([0.5, 0.0]))
+    >>> x.tolist(), P[1].tolist()
+    ([0.0, 5.0, 0.0], [0.5, 4.0, 0.0])
+    """
+    n = len(x) + 1
+    keep = np.delete(np.arange(n), index)
+    out = np.zeros((n, n))
+    out[np.ix_(keep, keep)] = P
+    if cross is not None:
+        out[keep, index] = out[index, keep] = cross
+    out[index, index] = var
+    return np.insert(x, index, value), out
 
 
 def gaussian_logpdf_chol(d, L, half_logdet=None):

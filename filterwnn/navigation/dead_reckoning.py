@@ -71,6 +71,7 @@ import copy
 import numpy as np
 from filterpy.common import Q_continuous_white_noise
 
+from .._linalg import insert_state
 from .._validation import (
     as_state,
     check_choice,
@@ -630,14 +631,10 @@ class GPSDRModel(StateSpaceModel):
         m = copy.copy(self)
         for k, v in flags.items():
             setattr(m, k, v)
-        n = m.dim_x = self.dim_x + 1
-        m.F = transition_matrix(m.dt, m.accel_term, n, m.rate_bias)
+        m.dim_x = self.dim_x + 1
+        m.F = transition_matrix(m.dt, m.accel_term, m.dim_x, m.rate_bias)
         m.Q = m._process_Q()
-        keep = np.delete(np.arange(n), index)
-        m.x0 = np.insert(self.x0, index, 0.0)
-        m.P0 = np.zeros((n, n))
-        m.P0[np.ix_(keep, keep)] = self.P0
-        m.P0[index, index] = prior_sd ** 2
+        m.x0, m.P0 = insert_state(self.x0, self.P0, index, 0.0, prior_sd ** 2)
         return m
 
     def with_gyro_scale(self, sd):

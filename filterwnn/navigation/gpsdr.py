@@ -178,7 +178,7 @@ from statistics import NormalDist
 import numpy as np
 from filterpy.kalman import ExtendedKalmanFilter
 
-from .._linalg import repair_pd
+from .._linalg import insert_state, repair_pd
 from .._warnings import folded_warnings
 from ..metrics import integrated_autocorrelation
 from .._validation import as_state, check_choice, check_covariance, check_positive, check_positive_int, check_scale
@@ -1024,24 +1024,16 @@ class GPSDRFilter:
             index, model, sd = GYRO_SCALE, self.model.with_gyro_scale(DETECTED_SCALE_SD), DETECTED_SCALE_SD
         else:
             index, model, sd = n - 1, self.model.with_latency(DETECTED_LATENCY_SD), DETECTED_LATENCY_SD
-        keep = np.delete(np.arange(n), index)
-        x = np.insert(self.kf.x + s * k, index, k)
-        P = np.zeros((n, n))
-        P[np.ix_(keep, keep)] = self.kf.P + np.outer(s, s) * v
-        P[keep, index] = P[index, keep] = s * v
-        P[index, index] = v
+        x, P = insert_state(self.kf.x + s * k, self.kf.P + np.outer(s, s) * v, index, k, v, s * v)
         self.model, self.kf = model, self._inner_filter(model, x, 0.5 * (P + P.T))
         self.held_states = np.array([0, 3] + list(range(6, n)))
-        c, ck = index - 6, keep[6:] - 6  # the calibration prior's rows
-        C = np.zeros((n - 6, n - 6))
-        C[np.ix_(ck, ck)] = self._cal_P
-        C[c, c] = sd ** 2
+        c = index - 6  # the calibration prior's row
+        self._cal_mean, C = insert_state(self._cal_mean, self._cal_P, c, 0.0, sd ** 2)
         if name == "gyro_scale":
             b = HEADING_BIAS - 6
             C[b, b] += self._turn_sum ** 2 * sd ** 2
             C[b, c] = C[c, b] = self._turn_sum * sd ** 2
         self._cal = np.arange(6, n)
-        self._cal_mean = np.insert(self._cal_mean, c, 0.0)
         self._cal_F = model.F[np.ix_(self._cal, self._cal)]
         self._cal_Q = model.Q[np.ix_(self._cal, self._cal)]
         self._cal_P = C

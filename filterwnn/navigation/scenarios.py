@@ -396,13 +396,13 @@ def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps
     arguments these are): checked arrays, the GPS fixes on the sample grid, ``x0`` and the scenario."""
     t = _finite_1d(t, "t")
     n = len(t)
-    dts, dt = _sample_grid(t, max_jitter)
+    dts, dt, stamps = _sample_grid(t, max_jitter)
     heading = _heading_radians(heading, n)
     signed = None
     if speed is not None:
         signed = _finite_1d(speed, "speed", n)
         speed = np.abs(signed)
-        grid = _speed_interval(t, dts, dt, speed, intervals)
+        grid = _speed_interval(t, dts, dt, speed, intervals, stamps)
         if grid is not None:  # the stamps' grid: each speed covers its interval, and the filters run on it
             dts, dt = np.full_like(dts, grid), float(f"{grid:.6g}")
     step, v0 = _odometer_steps(distance, speed, dts, n)
@@ -468,9 +468,9 @@ def _ceil_to(gap, dt):
 
 
 def _sample_grid(t, max_jitter):
-    """The intervals of the sample times ``t`` and their median ``dt``; ValueError unless
-    there are 3 or more, strictly increasing, and evenly spaced within ``max_jitter`` or jittering
-    about a regular grid (:func:`_stamp_grid`)."""
+    """The intervals of the sample times ``t``, their median ``dt``, and :func:`_stamp_grid`'s answer when
+    an interval strays past ``max_jitter`` (else None); ValueError unless there are 3 or more, strictly
+    increasing, and evenly spaced within ``max_jitter`` or jittering about a regular grid."""
     n = len(t)
     if n < 3:
         raise ValueError(f"t must have at least 3 samples, got {n}")
@@ -484,13 +484,14 @@ def _sample_grid(t, max_jitter):
     # (0.1, not 0.0999999046, which made 1 Hz fixes look faster than one a second)
     dt = float(np.round(dt, int(np.floor(-np.log10(8.0 * np.spacing(float(np.max(np.abs(t)))))))))
     jit = np.abs(dts / dt - 1.0)
-    if np.any(jit > max_jitter) and not _stamp_grid(t, dts)[1]:  # regular samples whose stamps jitter pass
+    stamps = _stamp_grid(t, dts) if np.any(jit > max_jitter) else None
+    if stamps is not None and not stamps[1]:  # regular samples whose stamps jitter pass
         k = int(np.argmax(jit)) + 1
         raise ValueError(f"t must be evenly sampled (each interval within {max_jitter:.0%} of the median "
                          f"{dt:g} s); t[{k}] - t[{k - 1}] = {dts[k - 1]:g} s: resample the drive first"
                          + (" (dropped samples: fill_gaps=SECONDS, or --fill-gaps, interpolates gaps up to that "
                             f"long; this one needs {_ceil_to(dts[k - 1], dt):g})" if round(dts[k - 1] / dt) >= 2 else ""))
-    return dts, dt
+    return dts, dt, stamps
 
 
 def _odometer_steps(distance, speed, dts, n):
@@ -572,11 +573,12 @@ def _stamp_grid(t, dts):
     return interval, on_grid, rho
 
 
-def _speed_interval(t, dts, dt, speed, intervals):
+def _speed_interval(t, dts, dt, speed, intervals, stamps=None):
     """The stamps' grid interval (:func:`_stamp_grid`) when each speed sample is to cover it, else None
     (each covers its stamped interval). ``intervals="auto"`` takes the grid, with a warning, when the
     stamps jitter about one and enough to add more than :data:`STAMP_JITTER_M` of noise to a step at the
-    median moving speed; a jitter that large with intervals that vary independently is warned as noise."""
+    median moving speed; a jitter that large with intervals that vary independently is warned as noise.
+    ``stamps``: :func:`_stamp_grid`'s answer when :func:`_sample_grid` already has it."""
     if intervals not in INTERVALS:
         raise ValueError(f"intervals must be one of {', '.join(map(repr, INTERVALS))}, got {intervals!r}")
     noise = _stamp_noise(dts, dt, speed)
@@ -584,7 +586,7 @@ def _speed_interval(t, dts, dt, speed, intervals):
         if intervals == "stamps":
             _warn_stamp_jitter(dts, dt, noise, None)
         return None
-    grid, on_grid, rho = _stamp_grid(t, dts)
+    grid, on_grid, rho = _stamp_grid(t, dts) if stamps is None else stamps
     if intervals == "grid":
         return grid
     if not on_grid:
