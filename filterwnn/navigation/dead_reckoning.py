@@ -286,17 +286,23 @@ def gps_H(x, dim_x, latency=None):
 #: 1 Hz analog's worst outage end from 16-41 m to 7-11 m; without one it costs the shipped sample's
 #: median 3.39 -> 4.36 m); pass ``{"gyro_scale_sd": 0.01}`` (``--gyro-scale-sd 0.01``) for a MEMS gyro
 #: whose sensitivity was not calibrated. A tactical gyro's scale error is a few hundred ppm.
+#: ``gps_latency_sd``: the fixes' latency against the DR samples (s, one sigma), estimated as a last state
+#: from the start when above 0 (any calibrated model). 0 in both grades: a receiver that stamps its fixes
+#: at their own time has none, and an unknown one is found by :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`'s
+#: monitor, which adds the state then; pass ``{"gps_latency_sd": 0.5}`` (``--gps-latency-sd 0.5``) when the
+#: fixes and the DR samples were stamped by two clocks (a phone's and a car logger's), so that the outages
+#: before the monitor fires are corrected too (docs/study-outputs/dr/latency/RUN.md).
 #: Both: a passenger car's manoeuvres as white jerk of about 1.4 m/s^3 (comfortable driving stays
 #: under about 2 m/s^3).
 SENSOR_GRADES = {
     "survey": dict(gps_sigma_m=1.5, heading_noise_deg=0.2, gyro_arw_deg_rt_h=0.1, gyro_bias_deg_s=0.0,
                    gyro_bias_instability_deg_h=1.0, odometer_noise_m=0.02, odometer_scale_sd=0.03,
                    odometer_scale_drift=1e-8, heading_bias_sd_deg=2.0, vehicle_jerk_sd=1.4, rate_bias=False,
-                   gyro_scale_sd=0.0),
+                   gyro_scale_sd=0.0, gps_latency_sd=0.0),
     "phone": dict(gps_sigma_m=5.0, heading_noise_deg=0.5, gyro_arw_deg_rt_h=0.3, gyro_bias_deg_s=0.05,
                   gyro_bias_instability_deg_h=10.0, odometer_noise_m=0.01, odometer_scale_sd=0.03,
                   odometer_scale_drift=1e-8, heading_bias_sd_deg=5.0, vehicle_jerk_sd=1.4, rate_bias=True,
-                  gyro_scale_sd=0.0),
+                  gyro_scale_sd=0.0, gps_latency_sd=0.0),
 }
 
 
@@ -413,9 +419,11 @@ class DRModel(StateSpaceModel):
         return from_model(ExtendedKalmanFilter, self, x0=x0, P0=P0, R=R)
 
 
-def _grade_settings(spec, rate):
+def _grade_settings(spec, rate, augmented=True):
     """:class:`GPSDRModel` keyword arguments from a grade's specification ``spec``, one line per
-    number (the mapping of :meth:`GPSDRModel.from_grade`); ``rate``: with a rate-bias state."""
+    number (the mapping of :meth:`GPSDRModel.from_grade`); ``rate``: with a rate-bias state;
+    ``augmented``: with calibration states (a 6-state model takes neither a gyro scale nor a latency
+    state, whatever the grade says)."""
     arw = np.deg2rad(spec["gyro_arw_deg_rt_h"]) / 60.0
     w = np.deg2rad(spec["gyro_bias_deg_s"])
     kw = dict(
@@ -431,11 +439,15 @@ def _grade_settings(spec, rate):
     if rate:
         kw.update(sd_rate=max(w, 1e-9),
                   q_rate=(np.deg2rad(spec["gyro_bias_instability_deg_h"]) / 3600.0) ** 2 / 100.0)
+    if not (augmented or rate):  # the 6-state model: no calibration states, so none of these
+        return kw
     if spec["gyro_scale_sd"] > 0:
         if not rate:
             raise ValueError("grade['gyro_scale_sd'] > 0 needs a rate-bias state (a grade with rate_bias=True, "
                              "as the phone's): the gyro's scale factor error is the tenth state")
         kw.update(gyro_scale=True, sd_gyro_scale=spec["gyro_scale_sd"])
+    if spec["gps_latency_sd"] > 0:
+        kw.update(latency=True, sd_latency=spec["gps_latency_sd"])
     return kw
 
 
@@ -690,6 +702,8 @@ class GPSDRModel(StateSpaceModel):
           (gyro_bias_instability_deg_h * pi/180 / 3600)^2 / 100 s`` (its drift);
         * with a rate-bias state and ``gyro_scale_sd > 0``: a gyro scale factor state,
           ``sd_gyro_scale = gyro_scale_sd`` (prior);
+        * with calibration states and ``gps_latency_sd > 0``: the fixes' latency as the last state,
+          ``sd_latency = gps_latency_sd`` (prior);
         * ``sigma_odometer = odometer_noise_m``, ``sd_scale = odometer_scale_sd``;
         * ``q = vehicle_jerk_sd^2 * 1 s`` (white jerk of the vehicle class, m^2/s^5).
 
@@ -705,7 +719,7 @@ class GPSDRModel(StateSpaceModel):
         """
         spec = _grade(grade)
         rate = bool(spec["rate_bias"]) if rate_bias is None else bool(rate_bias)
-        kw = _grade_settings(spec, rate)
+        kw = _grade_settings(spec, rate, augmented)
         kw.update(overrides)
         return cls(dt, augmented=augmented or rate, rate_bias=rate, **kw)
 

@@ -70,6 +70,8 @@ What the filter does when GPS lies (each part a public setting, on by default):
   calibration states' errors as nuisance parameters, so that neither is read as the other, nor a
   calibration a bad start left off as either. When it fires the filter adds a latency state, the fix
   modelled as ``p - v tau`` (``latency_on_detection``, on by default; ``latency_added`` the step).
+  A log known to have two clocks can have the state from the start (a grade's ``gps_latency_sd``),
+  so that the outages before the monitor would fire are corrected too; without a latency it costs.
 * **Zero angular rate at standstills.** A car does not turn while it stands, so the gyro
   heading's drift over a stop is the gyro's rate bias. When a stop of at least
   :data:`ZERO_RATE_MIN_SAMPLES` samples ends, the filter fits the slope of the measured heading

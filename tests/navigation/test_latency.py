@@ -9,6 +9,7 @@ likelihood ratio) and adds a latency state, ``p - v tau``, when the fixes show o
 (docs/study-outputs/dr/latency/RUN.md).
 """
 
+import re
 import sys
 import warnings
 from pathlib import Path
@@ -16,7 +17,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from filterwnn.navigation.dead_reckoning import GPSDRModel, gps_H, gps_hx
+from filterwnn.navigation.dead_reckoning import SENSOR_GRADES, GPSDRModel, gps_H, gps_hx
 from filterwnn.navigation.drives import read_drive_csv
 from filterwnn.navigation.gpsdr import GYRO_SCALE, LATENCY_MIN, LATENCY_Z, GPSDRFilter
 from filterwnn.studies.dr import real_drive_outages
@@ -195,3 +196,89 @@ def test_a_drift_the_survey_grade_lacks_is_not_read_as_a_latency(tmp_path):
     assert not [w for w in seen if "late against the DR samples" in str(w.message)]
     assert f.latency_added is None and top < 4.0, top
     assert "drift" in f._hyp and "gyro_scale" not in f._hyp
+
+
+def test_a_grade_with_gps_latency_sd_has_the_state_from_the_start():
+    """``gps_latency_sd`` in a grade: the latency is the last state from the start, its prior sd that, in
+    every calibrated model (after a gyro scale state); the 6-state model takes none; the monitor then tests
+    only what the model lacks."""
+    phone = GPSDRModel.from_grade({"gps_latency_sd": 0.5})
+    assert phone.dim_x == 10 and phone.latency_index == 9 and phone.P0[9, 9] == pytest.approx(0.25)
+    survey = dict(SENSOR_GRADES["survey"], gps_latency_sd=0.5)
+    assert GPSDRModel.from_grade(survey).state_names[6:] == ["odometer scale", "heading bias", "latency"]
+    assert GPSDRModel.from_grade(survey, augmented=False).dim_x == 6
+    both = GPSDRModel.from_grade({"gps_latency_sd": 0.5, "gyro_scale_sd": 0.01})
+    assert both.dim_x == 11 and both.state_names[9:] == ["gyro scale factor", "latency"]
+    assert GPSDRFilter(phone)._hyp == ["gyro_scale"] and GPSDRFilter(both)._sens is None
+    assert GPSDRModel.from_grade("phone").dim_x == 9  # not in the shipped grades
+    with pytest.raises(ValueError, match=r"grade\['gps_latency_sd'\]"):
+        GPSDRModel.from_grade({"gps_latency_sd": -1.0})
+
+
+def test_the_command_takes_the_gps_latency_sd(tmp_path, monkeypatch):
+    import filterwnn.studies.dr._cli as dr_cli
+    from filterwnn.cli import main
+
+    seen = {}
+
+    class Scored(Exception):
+        pass
+
+    def outages(run, **kw):
+        seen.update(kw)
+        raise Scored
+
+    monkeypatch.setattr(dr_cli, "real_drive_outages", outages)
+    for argv, want in ((["--gps-latency-sd", "0.5"], ("phone", 0.5)),
+                       (["--gps-latency-sd", "0.5", "--grade", "survey"], ("survey", 0.5)),
+                       (["--gps-latency-sd", "0.5", "--gyro-scale-sd", "0.01"], ("phone", 0.5)), ([], None)):
+        seen.clear()
+        try:
+            main(["study", "dr", "--drive", "sample", "--out", str(tmp_path), "--no-figures", *argv])
+        except Scored:
+            pass
+        grade = seen["grade"]
+        if want is None:
+            assert grade == "phone"
+        else:
+            assert grade["gps_latency_sd"] == want[1]
+            assert grade["rate_bias"] == SENSOR_GRADES[want[0]]["rate_bias"]
+            assert grade["gyro_scale_sd"] == (0.01 if "--gyro-scale-sd" in argv else 0.0)
+
+
+def test_the_state_from_the_start_corrects_the_outages_before_the_monitor_would_fire(tmp_path):
+    """The phone analog (seed 0) with every fix a second late: the monitor finds it only after 2.5 minutes
+    and the outages before keep their errors (EKF-8 6.27 / 39.30 m, the max past the 30 m target); with
+    the state from the start (``gps_latency_sd`` 0.5 s) 6.97 / 28.74 m, and the state ends at 0.95 s
+    (docs/study-outputs/dr/latency/latency_1_*.txt)."""
+    run = read_drive_csv(held_out.write_csv(tmp_path / "phone_1s.csv", held_out.columns("phone", 0, gps_latency=1.0)))
+    res = {}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        for label, grade in (("detected", "phone"), ("from the start", {"gps_latency_sd": 0.5})):
+            res[label] = real_drive_outages(run, filters=("EKF-8",), use_gps_sigma=True, grade=grade)
+    late, early = res["detected"], res["from the start"]
+    assert late["integrity"]["EKF-8"]["latency_added"] is not None and late["EKF-8"].max() > 30.0
+    assert early["integrity"]["EKF-8"]["latency_added"] is None
+    assert np.median(early["EKF-8"]) <= 10.0 and early["EKF-8"].max() <= 30.0, early["EKF-8"]
+    assert abs(early["integrity"]["EKF-8"]["latency"] - 1.0) < 0.15
+
+
+def test_the_command_runs_every_filter_with_both_states_from_the_start(tmp_path, capsys):
+    """``--gyro-scale-sd`` and ``--gps-latency-sd`` on the sample with the command's default filters: the
+    6-state EKF takes neither state (it has no calibration; before stop 42 the command stopped on it with
+    "needs a rate-bias state"), and below the table each 8-state kind says where its states ended."""
+    from filterwnn.cli import main
+
+    argv = ["study", "dr", "--drive", "sample", "--out", str(tmp_path), "--no-figures", "--no-progress",
+            "--gyro-scale-sd", "0.01", "--gps-latency-sd", "0.5"]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        assert main(argv) == 0
+    out = capsys.readouterr().out
+    assert "| EKF | " in out
+    for kind in KINDS8:
+        assert re.search(rf"^- {kind}: the gyro's scale factor error [+-]\d\.\d\d % at the end \(from the start\); "
+                         r"the fixes' latency [+-]\d\.\d\d s at the end \(from the start\)$", out, re.M), out
+    assert GPSDRModel.from_grade({"gyro_scale_sd": 0.01, "gps_latency_sd": 0.5}, augmented=False,
+                                 rate_bias=False).dim_x == 6

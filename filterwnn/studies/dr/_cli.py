@@ -95,6 +95,11 @@ def add_arguments(parser):
                         help="with --drive: estimate the gyro's scale factor error as a state, its prior sd this "
                              "fraction (a MEMS gyro's sensitivity tolerance of +-3 %% over three sigmas: 0.01); needs "
                              "the phone grade's rate-bias state (default 0: not estimated)")
+    parser.add_argument("--gps-latency-sd", type=options.nonnegative_float, default=0.0, metavar="SECONDS",
+                        help="with --drive: estimate the fixes' latency against the DR samples as a state from the "
+                             "start, its prior sd this many seconds (fixes and speed stamped by two clocks, or a "
+                             "receiver's unknown latency; default 0: the filters add the state when the fixes show a "
+                             "latency, with a warning)")
 
 
 def run(args):
@@ -136,12 +141,15 @@ def run(args):
 
 
 def _drive_grade(args):
-    """``--grade`` for ``--drive`` (default phone), with ``--gyro-scale-sd`` when given."""
+    """``--grade`` for ``--drive`` (default phone), with ``--gyro-scale-sd`` and ``--gps-latency-sd`` when
+    given."""
     grade = getattr(args, "grade", None) or "phone"
     k = getattr(args, "gyro_scale_sd", 0.0)
     if k and not SENSOR_GRADES[grade]["rate_bias"]:
         raise ValueError(f"--gyro-scale-sd needs a grade with a gyro rate-bias state (phone), got --grade {grade}")
-    return dict(SENSOR_GRADES[grade], gyro_scale_sd=k) if k else grade
+    tau = getattr(args, "gps_latency_sd", 0.0)
+    extra = dict(({"gyro_scale_sd": k} if k else {}), **({"gps_latency_sd": tau} if tau else {}))
+    return dict(SENSOR_GRADES[grade], **extra) if extra else grade
 
 
 def _run_drives(args, drives, filters):

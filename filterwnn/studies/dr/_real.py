@@ -265,7 +265,9 @@ def real_drive_table(res, min_moved=100.0):
     of the accepted ones, the mean factor on the fixes' reported covariance ("-": not estimated), the
     mean of their measured correlation (``gps_correlation``: fixes worth one independent fix) and
     the stops whose heading drift updated the gyro rate bias, was rejected or was held by its source
-    ("-": no rate-bias state)."""
+    ("-": no rate-bias state). Below it, a line per filter that estimated the gyro's scale factor error or
+    the fixes' latency: the state's last value, and the step at which the monitor added it (or "from the
+    start")."""
     mv = res["moved"] >= min_moved
     names = [k for k in res if k not in _REAL_META]
     lines = [f"### real drive {res.get('name', CAR_DRIVE)}: {len(res['starts'])} GPS outages of {res['length']:g} s "
@@ -283,7 +285,23 @@ def real_drive_table(res, min_moved=100.0):
         lines.append(f"| {n} | {np.median(e):.2f} | {np.percentile(e, 90):.2f} | {e.max():.2f} | "
                      f"{np.median(em):.2f} | {em.max():.2f} | {np.median(s):.2f} | {np.median(e - s):.2f} | "
                      + _integrity_cells(res.get("integrity", {}).get(n)) + " |")
-    return "\n".join(lines) + "\n"
+    states = [f"- {n}: {said}" for n in names if (said := _states_added(res.get("integrity", {}).get(n)))]
+    return "\n".join(lines + ([""] + states if states else [])) + "\n"
+
+
+def _states_added(ig):
+    """What the filter ended with in the states a drive can add: the gyro's scale factor error and the
+    fixes' latency ("" without them)."""
+    if ig is None:
+        return ""
+    told = []
+    for key, what, unit in (("gyro_scale", "the gyro's scale factor error", "%"), ("latency", "the fixes' latency", "s")):
+        if ig.get(key) is None:
+            continue
+        value = f"{100 * ig[key]:+.2f} %" if unit == "%" else f"{ig[key]:+.2f} s"
+        added = ig.get(f"{key}_added")
+        told.append(f"{what} {value} at the end ({'from the start' if added is None else f'added at step {added}'})")
+    return "; ".join(told)
 
 
 def _integrity_cells(ig):

@@ -103,6 +103,9 @@ def main(argv=None):
     p.add_argument("--gyro-scale-sd", type=float, default=0.0,
                    help="the phone grade's gyro_scale_sd: estimate the gyro's scale factor error as a state "
                         "(default 0, as in the package)")
+    p.add_argument("--gps-latency-sd", type=float, default=0.0,
+                   help="every grade's gps_latency_sd: estimate the fixes' latency as a state from the start "
+                        "(default 0, as in the package)")
     p.add_argument("--scale-on-detection", choices=["on", "off"], default="on",
                    help="GPSDRFilter's scale_on_detection: add the gyro scale state when the monitor finds an "
                         "error (default on, as in the package)")
@@ -127,6 +130,11 @@ def main(argv=None):
         from filterwnn.navigation.dead_reckoning import SENSOR_GRADES
 
         SENSOR_GRADES["phone"]["gyro_scale_sd"] = a.gyro_scale_sd
+    if a.gps_latency_sd:
+        from filterwnn.navigation.dead_reckoning import SENSOR_GRADES
+
+        for spec in SENSOR_GRADES.values():
+            spec["gps_latency_sd"] = a.gps_latency_sd
     if a.gyro_scale_error:
         ANALOG_KW["gyro_scale"] = a.gyro_scale_error
     if a.zero_rate == "off":
