@@ -449,7 +449,9 @@ class GPSDRFilter:
         2.48/42.78 m): the innovations carry the model's own errors too. Prefer the
         receiver's per-fix accuracy.
     points : sigma points, optional
-        Override the unscented kinds' points (filterpy protocol).
+        Override the unscented kinds' points (filterpy protocol). For the model's dimension: when the
+        filter adds a state (``scale_on_detection``, ``latency_on_detection``) it takes its kind's preset
+        points for the new dimension, with a warning; a model with the state from the start keeps them.
     gate : float
         A fix whose NIS exceeds it is down-weighted (default :data:`GATE`; ``numpy.inf``
         switches the test off).
@@ -489,7 +491,7 @@ class GPSDRFilter:
         factor error (see ``gyro_scale_z``), add the state from its estimate (``gyro_scale_added``;
         the model becomes :meth:`~filterwnn.navigation.dead_reckoning.GPSDRModel.with_gyro_scale`'s,
         ``batch_filter`` still returns the first states; an unscented kind takes its kind's preset
-        points for the 10 states). Default True; False only warns. On drives without such an error the
+        points for the 10 states, with a warning when it was given its own). Default True; False only warns. On drives without such an error the
         monitor did not fire, so the filter is the 9-state one bit for bit.
     latency_on_detection : bool
         With a calibrated model (8 states or more) without a latency state: when the monitor finds the fixes
@@ -618,6 +620,7 @@ class GPSDRFilter:
         #: state rows held without GPS: position and the calibration states
         self.held_states = np.array([0, 3] + list(range(6, model.dim_x)))
         self.kf = self._inner_filter(model, x0, P0, points)
+        self._own_points = points is not None and self.kind != "ekf"
         self.scale_on_detection = bool(scale_on_detection)
         self.latency_on_detection = bool(latency_on_detection)
         self.motion = None
@@ -999,7 +1002,8 @@ class GPSDRFilter:
         else:
             if self.latency_on_detection:
                 then = ("the filter adds a latency state from here, started at that estimate "
-                        "(latency_on_detection=False only warns)")
+                        "(latency_on_detection=False only warns; a grade with gps_latency_sd=0.5, --gps-latency-sd "
+                        "0.5, estimates it from the start)")
             else:
                 then = "place the fixes at their own time (gps_latency=, --gps-latency, when it is known)"
             what = (f"themselves {theta:+.2g} s (+- {sd:.2g} s) late against the DR samples (a receiver's latency, or "
@@ -1027,6 +1031,14 @@ class GPSDRFilter:
         else:
             index, model, sd = n - 1, self.model.with_latency(DETECTED_LATENCY_SD), DETECTED_LATENCY_SD
         x, P = insert_state(self.kf.x + s * k, self.kf.P + np.outer(s, s) * v, index, k, v, s * v)
+        if self._own_points:
+            setting = "gyro_scale_sd" if name == "gyro_scale" else "gps_latency_sd"
+            warnings.warn(f"GPSDRFilter: at step {self.step} the filter adds the {model.state_names[index]} state "
+                          f"and takes the {self.kind.upper()}'s preset sigma points for its {n} states in place of the "
+                          f"points it was given (for {n - 1}); to keep your own, give it a model with that state from "
+                          f"the start (a grade with {setting}) and points for its dimension", RuntimeWarning,
+                          stacklevel=3)
+            self._own_points = False
         self.model, self.kf = model, self._inner_filter(model, x, 0.5 * (P + P.T))
         self.held_states = np.array([0, 3] + list(range(6, n)))
         c = index - 6  # the calibration prior's row

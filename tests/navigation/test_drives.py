@@ -430,27 +430,10 @@ def test_the_cli_fills_dropped_samples_on_request(tmp_path):
     assert proc.returncode == 0 and "filled 1 gap(s) of dropped DR samples" in proc.stderr, proc.stderr
 
 
-def test_the_cli_passes_the_latencies_and_the_intervals_to_the_reader(tmp_path, monkeypatch):
-    import filterwnn.studies.dr._cli as dr_cli
-    from filterwnn.cli import main
-
-    seen = {}
-
-    class Read(Exception):
-        pass
-
-    def reader(path, **kw):
-        seen.update(kw)
-        raise Read  # stop there: the kwargs are what is tested
-
-    monkeypatch.setattr(dr_cli, "read_drive_csv", reader)
+def test_the_cli_passes_the_latencies_and_the_intervals_to_the_reader(command_passes):
     for argv, want in ((["--gps-latency", "0.3", "--intervals", "stamps", "--odometer-latency", "0.2"],
                         (0.3, "stamps", 0.2)), ([], (0.0, "auto", 0.0))):
-        seen.clear()
-        try:  # the command turns the exception into its one-line error
-            main(["study", "dr", "--drive", "sample", "--out", str(tmp_path), "--no-figures", *argv])
-        except (Read, SystemExit):
-            pass
+        seen = command_passes("read_drive_csv", argv)
         assert (seen["gps_latency"], seen["intervals"], seen["odometer_latency"]) == want
 
 

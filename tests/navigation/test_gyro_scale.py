@@ -98,27 +98,11 @@ def test_a_gyro_that_turns_3_percent_too_far_meets_the_1_hz_target_with_the_scal
     assert one_hz_3_percent["default"]["integrity"][kind]["gyro_scale_added"] is not None
 
 
-def test_the_command_takes_the_gyro_scale_sd(tmp_path, monkeypatch):
-    import filterwnn.studies.dr._cli as dr_cli
+def test_the_command_takes_the_gyro_scale_sd(tmp_path, command_passes):
     from filterwnn.cli import main
 
-    seen = {}
-
-    class Scored(Exception):
-        pass
-
-    def outages(run, **kw):
-        seen.update(kw)
-        raise Scored
-
-    monkeypatch.setattr(dr_cli, "real_drive_outages", outages)
     for argv, want in ((["--gyro-scale-sd", "0.01"], 0.01), ([], None)):
-        seen.clear()
-        try:
-            main(["study", "dr", "--drive", "sample", "--out", str(tmp_path), "--no-figures", *argv])
-        except Scored:
-            pass
-        grade = seen["grade"]
+        grade = command_passes("real_drive_outages", argv)["grade"]
         assert (grade == "phone") if want is None else (grade["gyro_scale_sd"] == want and grade["rate_bias"])
     argv = ["study", "dr", "--drive", "sample", "--out", str(tmp_path), "--grade", "survey", "--gyro-scale-sd", "0.01"]
     assert main(argv) == 2  # refused, with its one-line error

@@ -215,29 +215,11 @@ def test_a_grade_with_gps_latency_sd_has_the_state_from_the_start():
         GPSDRModel.from_grade({"gps_latency_sd": -1.0})
 
 
-def test_the_command_takes_the_gps_latency_sd(tmp_path, monkeypatch):
-    import filterwnn.studies.dr._cli as dr_cli
-    from filterwnn.cli import main
-
-    seen = {}
-
-    class Scored(Exception):
-        pass
-
-    def outages(run, **kw):
-        seen.update(kw)
-        raise Scored
-
-    monkeypatch.setattr(dr_cli, "real_drive_outages", outages)
+def test_the_command_takes_the_gps_latency_sd(command_passes):
     for argv, want in ((["--gps-latency-sd", "0.5"], ("phone", 0.5)),
                        (["--gps-latency-sd", "0.5", "--grade", "survey"], ("survey", 0.5)),
                        (["--gps-latency-sd", "0.5", "--gyro-scale-sd", "0.01"], ("phone", 0.5)), ([], None)):
-        seen.clear()
-        try:
-            main(["study", "dr", "--drive", "sample", "--out", str(tmp_path), "--no-figures", *argv])
-        except Scored:
-            pass
-        grade = seen["grade"]
+        grade = command_passes("real_drive_outages", argv)["grade"]
         if want is None:
             assert grade == "phone"
         else:
@@ -282,3 +264,31 @@ def test_the_command_runs_every_filter_with_both_states_from_the_start(tmp_path,
                          r"the fixes' latency [+-]\d\.\d\d s at the end \(from the start\)$", out, re.M), out
     assert GPSDRModel.from_grade({"gyro_scale_sd": 0.01, "gps_latency_sd": 0.5}, augmented=False,
                                  rate_bias=False).dim_x == 6
+
+
+def test_points_of_ones_own_are_kept_with_the_state_from_the_start_and_replaced_with_a_warning_when_added(drives):
+    """A user's sigma points are for the model's dimension: when the monitor adds the latency state the UKF
+    takes its preset points for 10 states and says so, with the step and the remedy; a model with the state
+    from the start keeps the points it was given."""
+    from filterpy.kalman import MerweScaledSigmaPoints
+
+    run = drives[1.0]
+    m = GPSDRModel.from_grade("phone", run.scenario.dt)
+    f = GPSDRFilter(m, "ukf", x0=np.r_[run.x0, m.x0[6:]], points=MerweScaledSigmaPoints(9, 0.3, 2.0, 0.0))
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        f.batch_filter(run.z_dr, run.gps_list(), run.gps_sigma_list())
+    said = [str(w.message) for w in seen if "preset sigma points" in str(w.message)]
+    assert f.latency_added is not None and len(said) == 1, said
+    assert re.search(rf"at step {f.latency_added} the filter adds the latency state and takes the UKF's preset sigma "
+                     r"points for its 10 states in place of the points it was given \(for 9\); .* \(a grade with "
+                     r"gps_latency_sd\)", said[0]), said[0]
+    assert f.kf.points_fn.n == 10 and f.kf.points_fn.alpha != 0.3
+    m = GPSDRModel.from_grade({"gps_latency_sd": 0.5}, run.scenario.dt)
+    mine = MerweScaledSigmaPoints(10, 0.3, 2.0, 0.0)
+    g = GPSDRFilter(m, "ukf", x0=np.r_[run.x0, m.x0[6:]], points=mine)
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        g.batch_filter(run.z_dr, run.gps_list(), run.gps_sigma_list())
+    assert not [w for w in seen if "preset sigma points" in str(w.message)] and g.kf.points_fn is mine
+    assert abs(g.x[9] - 1.0) < 0.15, g.x[9]
