@@ -19,9 +19,11 @@ in the columns of :data:`filterwnn.navigation.drives.DRIVE_CSV_COLUMNS` (with th
 * :func:`one_hz_drive`: 21 minutes at 1 Hz, 35 % standing still, a MEMS-like gyro (a
   0.05 deg/s rate bias), a 1.5 % odometer scale error, fixes of 3-5 m.
 
-Each takes ``gyro_scale`` (the gyro's scale factor error) and ``gps_latency`` (s: each fix is the
-truth that long before its time stamp, a receiver's latency or the offset between two clocks), faults
-none of the three was described with; both draw nothing, so the other draws stay the same.
+Each takes ``gyro_scale`` (the gyro's scale factor error), ``gps_latency`` (s: each fix is the
+truth that long before its time stamp, a receiver's latency or the offset between two clocks) and
+``odometer_latency`` (s: each speed sample is the one that long before its time stamp, a CAN bus's
+latency or the offset between the car logger's clock and the phone's), faults none of the three was
+described with; they draw nothing, so the other draws stay the same.
 
 Nothing here is read by a filter: the filters are set from the sensor grade alone.
 """
@@ -124,11 +126,14 @@ def _fix_rows(t, rate=1.0):
     return rows
 
 
-def _columns(t, x, heading, speed, rows, err, sigma, gps_latency=0.0):
+def _columns(t, x, heading, speed, rows, err, sigma, gps_latency=0.0, odometer_latency=0.0):
     """The CSV columns: fixes (truth + ``err``) and their ``sigma`` on ``rows``, empty elsewhere.
     ``gps_latency`` (s): each fix is the truth that long before its row's time (linearly interpolated;
-    the first position before the start), a receiver's latency or another clock's offset."""
+    the first position before the start), a receiver's latency or another clock's offset.
+    ``odometer_latency`` (s): each speed sample is the one that long before (the same interpolation)."""
     nan = np.full(len(t), np.nan)
+    if odometer_latency:
+        speed = np.interp(t - odometer_latency, t, speed)
     ge, gn, gs = nan.copy(), nan.copy(), nan.copy()
     if gps_latency:
         at = t[rows] - gps_latency
@@ -140,7 +145,7 @@ def _columns(t, x, heading, speed, rows, err, sigma, gps_latency=0.0):
             "true_east": x[:, 0], "true_north": x[:, 3]}
 
 
-def phone_drive(rng, rate_bias=0.005, gyro_scale=0.0, gps_latency=0.0):
+def phone_drive(rng, rate_bias=0.005, gyro_scale=0.0, gps_latency=0.0, odometer_latency=0.0):
     """The car with a phone (see the module docstring): the CSV columns. ``rate_bias``: the gyro's (deg/s);
     ``gyro_scale``: its scale factor error."""
     t, x, heading, speed = _drive(rng, 0.1, 900.0, 0.15, (8.0, 25.0), 70.0, dict(
@@ -152,10 +157,10 @@ def phone_drive(rng, rate_bias=0.005, gyro_scale=0.0, gps_latency=0.0):
     # half the variance correlated over 20 s (the phone's own filter, lasting multipath), half white
     slow, white = gauss_markov(rng, m, 1.0, 20.0, (2,)), rng.standard_normal((m, 2))
     err = acc[:, None] * np.sqrt(0.5) * (slow + white)
-    return _columns(t, x, heading, speed, rows, err, np.round(acc, 1), gps_latency)
+    return _columns(t, x, heading, speed, rows, err, np.round(acc, 1), gps_latency, odometer_latency)
 
 
-def city_drive(rng, rate_bias=0.015, gps_rate=1.0, gyro_scale=0.0, gps_latency=0.0):
+def city_drive(rng, rate_bias=0.015, gps_rate=1.0, gyro_scale=0.0, gps_latency=0.0, odometer_latency=0.0):
     """The city centre (see the module docstring): the CSV columns. ``rate_bias``: the gyro's (deg/s);
     ``gps_rate``: fixes per second (1 or 5; the same error process, in seconds, sampled that often;
     at 1 the same draws as before it was a parameter); ``gyro_scale``: the gyro's scale factor error."""
@@ -173,10 +178,10 @@ def city_drive(rng, rate_bias=0.015, gps_rate=1.0, gyro_scale=0.0, gps_latency=0
     ang = rng.uniform(0.0, 2 * np.pi, m)
     err += (jump * rng.uniform(20.0, 80.0, m))[:, None] * np.stack([np.sin(ang), np.cos(ang)], axis=1)
     reported = np.round(1.05 * level * np.exp(rng.normal(0.0, 0.25, m)), 1)
-    return _columns(t, x, heading, speed, rows, err, reported, gps_latency)
+    return _columns(t, x, heading, speed, rows, err, reported, gps_latency, odometer_latency)
 
 
-def one_hz_drive(rng, rate_bias=0.05, gyro_scale=0.0, gps_latency=0.0):
+def one_hz_drive(rng, rate_bias=0.05, gyro_scale=0.0, gps_latency=0.0, odometer_latency=0.0):
     """21 minutes at 1 Hz (see the module docstring): the CSV columns. ``rate_bias``: the gyro's (deg/s);
     ``gyro_scale``: its scale factor error."""
     t, x, heading, speed = _drive(rng, 1.0, 1260.0, 0.35, (8.0, 20.0), 320.0, dict(
@@ -186,7 +191,7 @@ def one_hz_drive(rng, rate_bias=0.05, gyro_scale=0.0, gps_latency=0.0):
     m = int(rows.sum())
     acc = rng.uniform(3.0, 5.0, m)
     err = acc[:, None] * rng.standard_normal((m, 2))
-    return _columns(t, x, heading, speed, rows, err, np.round(acc, 1), gps_latency)
+    return _columns(t, x, heading, speed, rows, err, np.round(acc, 1), gps_latency, odometer_latency)
 
 
 #: ``{name: generator}``; :func:`columns` calls each with its own seeded generator.

@@ -72,6 +72,12 @@ What the filter does when GPS lies (each part a public setting, on by default):
   modelled as ``p - v tau`` (``latency_on_detection``, on by default; ``latency_added`` the step).
   A log known to have two clocks can have the state from the start (a grade's ``gps_latency_sd``),
   so that the outages before the monitor would fire are corrected too; without a latency it costs.
+* **A speed stamped late.** A speed sample may be the car's speed some time before its stamp (a CAN
+  bus's latency, or the car logger's clock against the phone's that stamped the heading and the fixes):
+  the distance then lags every change of speed. The monitor tests for it too, jointly with the errors
+  above but kept apart from them (both latencies move the car along its track, and tested jointly they
+  hide each other early), and warns with the step and the estimate, naming the reader's
+  ``odometer_latency``, the remedy (``odometer_latency_estimate``, ``odometer_latency_z``).
 * **Zero angular rate at standstills.** A car does not turn while it stands, so the gyro
   heading's drift over a stop is the gyro's rate bias. When a stop of at least
   :data:`ZERO_RATE_MIN_SAMPLES` samples ends, the filter fits the slope of the measured heading
@@ -194,7 +200,7 @@ __all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS", "GATE", "REJ
            "NIS_WINDOW", "CALIBRATION_SIGMAS", "ZERO_RATE_GATE", "ZERO_RATE_MIN_SAMPLES",
            "ZERO_RATE_REACQUIRE_AFTER", "MAX_STOP_RATE_DEG_S", "WHITENESS_WINDOW", "FIX_GAPS", "MIN_FIX_INTERVAL",
            "CORRELATED_FIXES", "SCALE_WINDOW", "SCALE_TEST", "SCALE_WARN", "SCALE_ERROR_Z", "SCALE_ERROR_MIN", "DETECTED_SCALE_SD",
-           "LATENCY_Z", "LATENCY_MIN", "DETECTED_LATENCY_SD",
+           "LATENCY_Z", "LATENCY_MIN", "DETECTED_LATENCY_SD", "ODOMETER_LATENCY_Z", "ODOMETER_LATENCY_MIN",
            "HEADING_BIAS", "RATE", "GYRO_SCALE", "gps_scale_mle", "gps_scale_loglik", "stop_heading_slope"]
 
 #: Default standstill threshold (m/s) on the odometer speed: 0.05 m/s = 0.11 mph, four
@@ -223,6 +229,15 @@ LATENCY_MIN = 0.1
 #: calibration bound of the added state is three of it. The first-order model ``p - v tau`` holds
 #: while ``tau`` is short against the car's turns (a few seconds).
 DETECTED_LATENCY_SD = 1.0
+#: The gate of the speed's latency against the heading and the fixes (a CAN bus's, or the offset between
+#: the car logger's clock and the phone's): its z-score, as :data:`LATENCY_Z`. It only warns: the remedy is
+#: the drive reader's ``odometer_latency``.
+ODOMETER_LATENCY_Z = 6.1
+#: ... and the estimated speed's latency must be at least this (s), as :data:`LATENCY_MIN`.
+ODOMETER_LATENCY_MIN = 0.1
+#: The monitor's errors, each with its gate on the z-score and its least estimate.
+_TESTED = {"gyro_scale": (SCALE_ERROR_Z, SCALE_ERROR_MIN), "latency": (LATENCY_Z, LATENCY_MIN),
+           "odometer_latency": (ODOMETER_LATENCY_Z, ODOMETER_LATENCY_MIN)}
 #: Default low-speed threshold (m/s): below it the DR sample enters as a velocity vector.
 LOW_SPEED = 5.0
 #: Filter kinds: filterpy's EKF, the unscented filter with Merwe points, with spherical-simplex points.
@@ -595,6 +610,12 @@ class GPSDRFilter:
         explain; scoring starts at the first accepted fix while moving, with the calibration states' errors
         then as nuisance parameters (their prior the filter's own covariance; without a rate-bias state,
         a heading drift too).
+    odometer_latency_estimate, odometer_latency_z : float or None
+        With a calibrated model: the speed's latency against the heading and the fixes that the accepted fixes
+        show so far (s; positive: each speed sample is the one that long before its stamp, a CAN bus's latency
+        or the car logger's clock behind the phone's) and its z-score, estimated jointly with the errors above
+        (which are estimated as without it). Past :data:`ODOMETER_LATENCY_Z` and :data:`ODOMETER_LATENCY_MIN`
+        it warns once, naming the drive reader's ``odometer_latency``; no state is added.
     """
 
     def __init__(self, model, kind="ekf", *, x0=None, P0=None, standstill_speed=STANDSTILL_SPEED,
@@ -639,7 +660,11 @@ class GPSDRFilter:
             ["latency"] if model.augmented and not model.latency else [])
         m = len(self._hyp)
         # per hypothesis the state's sensitivity to the error, and the accepted fixes' score and information
-        self._sens = np.zeros((model.dim_x, m)) if m else None
+        self._sens = np.zeros((model.dim_x, m)) if m or model.augmented else None
+        # the speed's latency (a calibrated model), tested jointly with those but kept apart (_monitor_speed):
+        # its sensitivity, score, its information and score variance's cross terms with them, and its own
+        self._so = np.zeros(model.dim_x) if model.augmented else None
+        self._uo, self._Ixo, self._Jxo, self._Ioo, self._Joo = 0.0, np.zeros(m), np.zeros(m), 0.0, 0.0
         # the score's variance: each fix's information times the fixes' correlation when it came
         self._u, self._I, self._J = np.zeros(m), np.zeros((m, m)), np.zeros((m, m))
         self._theta = self._var = None  # the joint estimates and their variances (the sandwich's)
@@ -658,6 +683,8 @@ class GPSDRFilter:
         self.latency_added = None
         self.latency_z = None  #: the latency monitor's z-score (see :data:`LATENCY_Z`), None before a fix
         self.latency_estimate = None  #: the fixes' latency the fixes show (s), None before
+        self.odometer_latency_z = None  #: the speed-latency monitor's z-score, None before a fix
+        self.odometer_latency_estimate = None  #: the speed's latency the fixes show (s), None before
         self.n_stale, self._last_new_fix, self._driven = 0, None, 0.0  # the last fix that differed; m since
         # the last fix offered and used (steps), the last steps between fixes offered, and their median (s)
         self._offered, self._used, self._offer_gaps, self._fix_interval = None, None, deque(maxlen=FIX_GAPS), 0.0
@@ -770,6 +797,8 @@ class GPSDRFilter:
             self._sens = self.model.F @ self._sens
             if "drift" in self._hyp:  # a heading drift the model lacks grows the heading bias's error
                 self._sens[HEADING_BIAS, self._hyp.index("drift")] += self.model.dt
+        if self._so is not None:
+            self._so = self.model.F @ self._so
         if self._cal.size:
             self._cal_mean = self._cal_F @ self._cal_mean
             self._cal_P = self._cal_F @ self._cal_P @ self._cal_F.T + self._cal_Q
@@ -851,6 +880,8 @@ class GPSDRFilter:
         kf.x, kf.P = x, _shear(kf.P, HEADING_BIAS, GYRO_SCALE, d)
         if self._sens is not None:  # the map acts on the estimate's error too
             self._sens[HEADING_BIAS] += d * self._sens[GYRO_SCALE]
+        if self._so is not None:
+            self._so[HEADING_BIAS] += d * self._so[GYRO_SCALE]
         b, k = HEADING_BIAS - 6, GYRO_SCALE - 6  # the calibration prior's rows
         self._cal_mean[b] += d * self._cal_mean[k]
         self._cal_P = _shear(self._cal_P, b, k, d)
@@ -903,13 +934,44 @@ class GPSDRFilter:
             self._I += info
             L = np.linalg.cholesky(S)
             self._residuals.append((np.linalg.solve(L, y), np.linalg.solve(L, G)))
-            self._J += self._residual_correlation() * info  # the score's variance: correlated fixes count less
+            c = self._residual_correlation()
+            self._J += c * info  # the score's variance: correlated fixes count less
         elif kw["gps"] and self._listening:
             self._residuals.append(None)
+        if self._so is not None:
+            self._monitor_speed(H, K, x_prior, kw, (y, S, G, c) if scored else None)
         self._sens = self._sens - K @ A
         if scored or self._restate:  # the estimates change with the score, the information, or a state added
             self._restate = False
             self._estimate_errors()
+
+    def _monitor_speed(self, H, K, x_prior, kw, fix):
+        """The speed's latency as one more hypothesis of :meth:`_monitor_errors`, its column kept apart so that
+        the others are estimated as without it: its sensitivity (the DR measurement's own, :meth:`_speed_lag`,
+        while the car moves), and at a scored ``fix = (y, S, G, c)`` its score, its information, and their
+        cross terms with the others' (``G`` their rows), the score's variance at the same correlation ``c``."""
+        a = H @ self._so
+        if self.motion != "still":
+            a[:2] += self._speed_lag(x_prior, kw["velocity"])
+        if fix is not None:
+            y, S, G, c = fix
+            w = np.linalg.solve(S, a[2:])
+            cross, own = G.T @ w, float(a[2:] @ w)
+            self._uo += float(w @ y)
+            self._Ixo, self._Ioo = self._Ixo + cross, self._Ioo + own
+            self._Jxo, self._Joo = self._Jxo + c * cross, self._Joo + c * own
+        self._so = self._so - K @ a
+
+    def _speed_lag(self, x, velocity):
+        """The DR measurement's sensitivity to the speed's latency ``t``: a speed sample that long late reads
+        ``|v| - t a`` (``a`` the acceleration along the velocity), so the odometer's distance is ``zeta dt a``
+        short per second of it, and the low-speed form's velocity vector ``zeta a`` along the velocity."""
+        v = np.array([x[1], x[4]])
+        speed = max(float(np.hypot(*v)), self.model.min_speed)
+        along = float(v @ x[[2, 5]]) / speed
+        if velocity:
+            return -x[6] * along * v / speed
+        return np.array([0.0, -x[6] * self.model.dt * along])
 
     def _listen(self):
         """Start scoring: add the calibration states' errors as nuisance hypotheses, their sensitivity the
@@ -933,6 +995,7 @@ class GPSDRFilter:
         J = I.copy()
         J[:m, :m] = self._J
         self._I, self._J, self._u = I, J, np.r_[self._u, np.zeros(n + drift)]
+        self._Ixo, self._Jxo = np.r_[self._Ixo, np.zeros(n + drift)], np.r_[self._Jxo, np.zeros(n + drift)]
         self._hyp = self._hyp + [f"calibration {i}" for i in cal] + ["drift"] * drift
 
     def _residual_correlation(self):
@@ -962,31 +1025,57 @@ class GPSDRFilter:
         return integrated_autocorrelation([None if e is None else next(left) for e in self._residuals])
 
     def _estimate_errors(self):
-        """The joint estimates of the monitor's errors, their z-scores, and the warning past the gates."""
-        info = np.diag(self._I)
-        if not self._listening or not (info > 0.0).all():
+        """The joint estimates of the monitor's errors, their z-scores, and the warning past the gates.
+
+        The gyro scale and the fixes' latency are estimated as without the speed's latency; the speed's
+        latency jointly with them all (the system with its row and column). Both latencies move the car along
+        its track, so tested jointly each hides the other early in a drive (with the speed's latency among
+        them, a fix a second late on the phone analog was told after 7 minutes instead of 2.6); tested this
+        way the fixes' latency is told as before, and a fixes' latency or a scale error is not read as the
+        speed's."""
+        if not self._listening:
             return
-        try:
-            inv = np.linalg.inv(np.linalg.cholesky(self._I))
-        except np.linalg.LinAlgError:
-            return
-        Iinv = inv.T @ inv
-        theta = Iinv @ self._u
-        var = np.diag(Iinv @ self._J @ Iinv)  # the sandwich: the information's inverse around the score's variance
-        self._theta, self._var = theta, var
-        z = theta / np.sqrt(var)
-        tested = [(j, name) for j, name in enumerate(self._hyp) if name in ("gyro_scale", "latency")]
-        for j, name in tested:
-            setattr(self, f"{name}_estimate", float(theta[j]))
-            setattr(self, f"{name}_z", float(z[j]))
-        for j, name in tested:
-            gate, least = (SCALE_ERROR_Z, SCALE_ERROR_MIN) if name == "gyro_scale" else (LATENCY_Z, LATENCY_MIN)
-            if abs(z[j]) > gate and abs(theta[j]) >= least and name not in self._warned_errors:
+        m = len(self._hyp)
+        solved = self._solve(self._I, self._J, self._u) if m else None
+        if solved is not None:
+            self._theta, self._var = solved
+        found = []
+        if solved is not None:
+            found = [(name, theta, var) for name, theta, var in zip(self._hyp, *solved) if name in _TESTED]
+        if self._so is not None and self._Ioo > 0.0:
+            I = np.block([[self._I, self._Ixo[:, None]], [self._Ixo[None, :], np.array([[self._Ioo]])]])
+            J = np.block([[self._J, self._Jxo[:, None]], [self._Jxo[None, :], np.array([[self._Joo]])]])
+            every = self._solve(I, J, np.r_[self._u, self._uo])
+            if every is not None:
+                found.append(("odometer_latency", every[0][-1], every[1][-1]))
+        for name, theta, var in found:
+            setattr(self, f"{name}_estimate", float(theta))
+            setattr(self, f"{name}_z", float(theta / np.sqrt(var)))
+        for name, theta, var in found:
+            gate, least = _TESTED[name]
+            z = theta / np.sqrt(var)
+            if abs(z) > gate and abs(theta) >= least and name not in self._warned_errors:
                 self._warned_errors.add(name)
-                self._warn_error(name, theta[j], np.sqrt(self._var[j]), z[j])
-                if self._adopt is None and (self.scale_on_detection if name == "gyro_scale"
-                                            else self.latency_on_detection):
+                self._warn_error(name, theta, np.sqrt(var), z)
+                if self._adopt is None and {"gyro_scale": self.scale_on_detection,
+                                            "latency": self.latency_on_detection}.get(name, False):
                     self._adopt = name
+
+    @staticmethod
+    def _solve(I, J, u):
+        """The estimates of the monitor's errors and their sandwich variances: the information ``I``'s
+        inverse times the score ``u``, and the information's inverse around the score's variance ``J``
+        (never below the information's inverse: each fix counts at a correlation of 1 or more, and rounding
+        could take it under, to zero or below, when the first fixes leave the information nearly singular).
+        None while an error has no information yet."""
+        if not (np.diag(I) > 0.0).all():
+            return None
+        try:
+            inv = np.linalg.inv(np.linalg.cholesky(I))
+        except np.linalg.LinAlgError:
+            return None
+        Iinv = inv.T @ inv
+        return Iinv @ u, np.maximum(np.diag(Iinv @ J @ Iinv), np.diag(Iinv))
 
     def _warn_error(self, name, theta, sd, z):
         if name == "gyro_scale":
@@ -999,6 +1088,12 @@ class GPSDRFilter:
             what = (f"the gyro turning {100 * theta:+.2g} % (+- {100 * sd:.2g} %) more than the car (a scale factor "
                     f"error; z-score {z:+.3g}), which this model does not estimate: each turn in an outage then leaves "
                     "that share of it in the heading")
+        elif name == "odometer_latency":
+            then = (f"read the drive with each speed placed at its own time (odometer_latency={theta:.2g}, "
+                    f"--odometer-latency {theta:.2g})")
+            what = (f"the speed {theta:+.2g} s (+- {sd:.2g} s) late against the heading and themselves (a CAN bus's "
+                    f"latency, or the offset between the clocks that stamped them; z-score {z:+.3g}): each speed is "
+                    "then that of that long before, and the distance lags every change of speed")
         else:
             if self.latency_on_detection:
                 then = ("the filter adds a latency state from here, started at that estimate "
@@ -1010,7 +1105,10 @@ class GPSDRFilter:
                     f"the offset between the clocks that stamped them; z-score {z:+.3g}): each fix is then the "
                     "position that long before its time, behind the car by its speed times it")
         # warn (1) <- _estimate_errors <- _monitor_errors <- update <- the caller (5)
-        warnings.warn(f"GPSDRFilter: by step {self.step} the fixes show {what}; {then}", RuntimeWarning,
+        # each error's own kind before the step, so that a run's folded warnings keep them apart
+        topic = {"gyro_scale": "the gyro's scale", "latency": "the fixes' latency",
+                 "odometer_latency": "the speed's latency"}[name]
+        warnings.warn(f"GPSDRFilter, {topic}: by step {self.step} the fixes show {what}; {then}", RuntimeWarning,
                       stacklevel=5)
 
     def _add_state(self):
@@ -1055,9 +1153,16 @@ class GPSDRFilter:
         self._restate = True
         # the others: what the fixes told of them beyond this error (the information's Schur complement)
         rest = [i for i in range(len(self._hyp)) if i != j]
+        L = np.eye(len(self._hyp))[rest]
+        L[:, j] = -self._I[rest, j] / self._I[j, j]
+        if self._so is not None:  # the speed's latency, conditioned the same way
+            f = self._Ixo[j] / self._I[j, j]
+            self._uo -= f * self._u[j]
+            self._Ioo -= f * self._Ixo[j]
+            self._Joo += f * (f * self._J[j, j] - 2.0 * self._Jxo[j])
+            self._Ixo, self._Jxo = L @ (self._Ixo - f * self._I[:, j]), L @ (self._Jxo - f * self._J[:, j])
+            self._so = np.insert(self._so, index, 0.0)
         if rest:
-            L = np.eye(len(self._hyp))[rest]
-            L[:, j] = -self._I[rest, j] / self._I[j, j]
             self._u, self._I, self._J = L @ self._u, L @ self._I @ L.T, L @ self._J @ L.T
             self._residuals.clear()
             self._residual_c = None
@@ -1211,6 +1316,8 @@ class GPSDRFilter:
         Pr = P[:, r]
         if self._sens is not None:  # the stop's slope depends on no monitored error: the state's share goes
             self._sens = self._sens - np.outer(Pr, self._sens[r] / S)
+        if self._so is not None:
+            self._so = self._so - Pr * (self._so[r] / S)
         kf.x = x_new = x + Pr * ((slope - x[r]) / S)
         P = P - np.outer(Pr, Pr) / S
         kf.P = 0.5 * (P + P.T)

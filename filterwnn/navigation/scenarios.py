@@ -316,9 +316,11 @@ class DRRun(NamedTuple):
         odometer_latency : float
             Seconds by which each ``speed`` (or ``distance``) sample is older than its time stamp (a CAN
             bus's or a logger's latency, from the vehicle's data sheet): the odometer is read at
-            ``t + odometer_latency`` (linearly interpolated, the last sample held). Default 0. Unmodelled,
-            the dead-reckoned distance lags the heading and the fixes: 0.5 s took a phone-grade EKF-8's
-            worst outage end from 28.16 to 33.01 m (docs/study-outputs/dr/sensor-faults).
+            ``t + odometer_latency`` (linearly interpolated, the last sample held; the first one before it,
+            for a negative latency: a speed stamped late by a clock behind the heading's). Default 0.
+            Unmodelled, the dead-reckoned distance lags the heading and the fixes: 0.5 s took a phone-grade
+            EKF-8's worst outage end from 28.16 to 33.01 m (docs/study-outputs/dr/sensor-faults). An unknown
+            one is what the GPS/DR filter's monitor estimates and warns of, with this setting's value.
         intervals : {"auto", "stamps", "grid"}
             The interval each ``speed`` sample covers. ``"stamps"``: its stamped one, ``t[k] - t[k-1]``.
             ``"grid"``: the stamps' regular grid's (the slope of their least-squares line over the sample
@@ -349,7 +351,10 @@ class DRRun(NamedTuple):
         if fill_gaps:
             t, heading, distance, speed, truth = _fill_gaps(t, heading, distance, speed, truth,
                                                             check_positive(fill_gaps, "fill_gaps"), max_jitter)
-        lag = check_positive(odometer_latency, "odometer_latency", strict=False)
+        lag = float(odometer_latency)
+        if not np.isfinite(lag):
+            raise ValueError(f"odometer_latency must be a finite number of seconds (negative: the speed is early), "
+                             f"got {odometer_latency!r}")
         if lag:  # the odometer's value at t is the one logged at t + lag
             t_read = _finite_1d(t, "t") + lag
             if speed is not None:

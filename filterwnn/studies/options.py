@@ -100,6 +100,11 @@ def nonnegative_float(text):
     return _number(text, float, lambda v: math.isfinite(v) and v >= 0, "a finite number >= 0")
 
 
+def finite_float(text):
+    """A finite number, of either sign."""
+    return _number(text, float, math.isfinite, "a finite number")
+
+
 def float_list(text):
     """Comma-separated finite numbers ``>= 0`` (``''``: an empty list).
 

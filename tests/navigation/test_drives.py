@@ -270,7 +270,7 @@ def test_a_signed_speed_reverses_the_car_along_its_heading():
 def test_an_odometers_latency_reads_each_speed_where_it_was_measured(tmp_path):
     """A CAN speed 0.5 s late (5 samples at 10 Hz) through stops and starts: with ``odometer_latency=0.5``
     the steps are the honest speed's but for the last 0.5 s (the last sample held); a cumulative odometer
-    late by as much reads the same way; a negative latency is refused."""
+    late by as much reads the same way; a speed 0.5 s early reads back with -0.5 (the first sample held)."""
     c = _drive()
     c["speed"] = 5.0 + 5.0 * np.sin(0.3 * c["time"])  # 0 to 10 m/s
     honest = read_drive_csv(_write(tmp_path / "h.csv", c), checks=False)
@@ -285,8 +285,11 @@ def test_an_odometers_latency_reads_each_speed_where_it_was_measured(tmp_path):
     run = read_drive_csv(_write(tmp_path / "odo.csv", {**late, "odometer": odo}, columns=cols), checks=False,
                          odometer_latency=0.5)
     np.testing.assert_allclose(run.z_dr[5:-5, 1], honest.z_dr[5:-5, 1], rtol=0, atol=1e-9)
-    with pytest.raises(ValueError, match="odometer_latency must be finite and >= 0"):
-        read_drive_csv(path, odometer_latency=-0.5)
+    early = {**c, "speed": np.r_[c["speed"][5:], np.full(5, c["speed"][-1])]}
+    run = read_drive_csv(_write(tmp_path / "early.csv", early), checks=False, odometer_latency=-0.5)
+    np.testing.assert_allclose(run.z_dr[6:, 1], honest.z_dr[6:, 1], rtol=0, atol=1e-9)
+    with pytest.raises(ValueError, match=r"odometer_latency must be a finite number of seconds \(negative"):
+        read_drive_csv(path, odometer_latency=np.nan)
 
 
 def test_each_fix_lands_on_the_sample_nearest_its_time_when_the_intervals_vary():

@@ -64,9 +64,10 @@ def add_arguments(parser):
                         help="with --drive: the receiver's latency (s, from its data sheet): each fix's position "
                              "is that much older than its time stamp (default 0; an unknown one the filters "
                              "estimate when the fixes show it, with a warning)")
-    parser.add_argument("--odometer-latency", type=options.nonnegative_float, default=0.0, metavar="SECONDS",
+    parser.add_argument("--odometer-latency", type=options.finite_float, default=0.0, metavar="SECONDS",
                         help="with --drive: the speed's (or odometer's) latency (s, from the vehicle's data sheet, "
-                             "e.g. a CAN bus's): each sample is that much older than its time stamp (default 0)")
+                             "e.g. a CAN bus's): each sample is that much older than its time stamp (default 0; negative: the "
+                             "speed is early; an unknown one the filters warn of when the fixes show it, with its value)")
     parser.add_argument("--intervals", choices=INTERVALS, default="auto",
                         help="with --drive: the interval each speed sample covers: its stamped one ('stamps'), the "
                              "stamps' regular grid's ('grid': regular samples whose time stamps jitter, a logger's), "

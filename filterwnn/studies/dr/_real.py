@@ -95,7 +95,8 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         ``gyro_scale_estimate`` and ``gyro_scale_z``, the scale-error monitor's estimate and z-score (None
         without it), ``gyro_scale_added``, the step at which it made the filter add the scale state (None:
         not), and ``gyro_scale``, that state's last value (None without one); ``latency_estimate``,
-        ``latency_z``, ``latency_added`` and ``latency``, the same for the fixes' latency (s)), and
+        ``latency_z``, ``latency_added`` and ``latency``, the same for the fixes' latency (s);
+        ``odometer_latency_estimate`` and ``odometer_latency_z``, the speed's latency (s)), and
         per filter
         ``(n,)`` end-of-outage errors (m; a non-finite estimate raises).
     """
@@ -232,7 +233,8 @@ def _integrity(f, run):
             "gyro_scale_added": f.gyro_scale_added,
             "gyro_scale": float(f.x[GYRO_SCALE]) if f.model.gyro_scale else None,
             "latency_estimate": f.latency_estimate, "latency_z": f.latency_z, "latency_added": f.latency_added,
-            "latency": float(f.x[f.model.latency_index]) if f.model.latency else None}
+            "latency": float(f.x[f.model.latency_index]) if f.model.latency else None,
+            "odometer_latency_estimate": f.odometer_latency_estimate, "odometer_latency_z": f.odometer_latency_z}
 
 
 def _outage_ends(f, name, run, k0s, k1s, starts, gps, sig):

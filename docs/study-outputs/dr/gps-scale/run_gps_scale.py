@@ -49,6 +49,8 @@ def _line(label, res, filters):
 EXTRA = {}
 #: The analogs' generator keywords (``--gyro-scale-error``).
 ANALOG_KW = {}
+#: the drive reader's settings for the analogs (``odometer_latency``)
+READ_KW = {}
 
 
 def _run(label, run, filters, windows, **kw):
@@ -68,7 +70,7 @@ def analogs(seeds, windows):
                 path = held_out.write_csv(os.path.join(tmp, f"{name}_{seed}.csv"),
                                           held_out.columns(name, seed, **ANALOG_KW))
                 _run(f"{name} seed {seed} (target {TARGETS[name][0]:g} / {TARGETS[name][1]:g})",
-                     read_drive_csv(path), ("DR-mech",) + KINDS8, windows, use_gps_sigma=True, grade="phone")
+                     read_drive_csv(path, **READ_KW), ("DR-mech",) + KINDS8, windows, use_gps_sigma=True, grade="phone")
 
 
 def hard(windows):
@@ -117,7 +119,16 @@ def main(argv=None):
     p.add_argument("--gps-latency-error", type=float, default=0.0,
                    help="the analogs' fixes are the truth this many seconds before their time stamps (default 0, "
                         "the analogs as stored)")
+    p.add_argument("--odometer-latency-error", type=float, default=0.0,
+                   help="the analogs' speed samples are the ones this many seconds before their time stamps "
+                        "(default 0, the analogs as stored)")
+    p.add_argument("--odometer-latency", type=float, default=0.0,
+                   help="the drive reader's odometer_latency for the analogs (default 0, as in the package)")
     a = p.parse_args(argv)
+    if a.odometer_latency_error:
+        ANALOG_KW["odometer_latency"] = a.odometer_latency_error
+    if a.odometer_latency:
+        READ_KW["odometer_latency"] = a.odometer_latency
     EXTRA["correlated_fixes"] = a.correlated_fixes
     for flag in ("scale_on_detection", "latency_on_detection"):
         if getattr(a, flag) == "off":

@@ -1,5 +1,5 @@
-"""The error monitor (one generalized likelihood ratio test of a gyro scale factor error and of the fixes'
-latency) on the held-out analogs and on the drives it must leave alone: one EKF pass (phone grade) over each
+"""The error monitor (one generalized likelihood ratio test of a gyro scale factor error, of the fixes'
+latency and, since stop 42, of the speed's latency) on the held-out analogs and on the drives it must leave alone: one EKF pass (phone grade) over each
 whole drive with every fix, warning only (``scale_on_detection=False, latency_on_detection=False``). Per drive:
 each error's estimate and z-score at the end, the largest |z| on the way, and the step at which it warned.
 
@@ -27,7 +27,11 @@ from filterwnn.navigation.gpsdr import GPSDRFilter  # noqa: E402
 #: (label, the analogs' generator keywords)
 ERRORS = (("none", {}), ("scale +1 %", {"gyro_scale": 0.01}), ("scale +3 %", {"gyro_scale": 0.03}),
           ("scale -2 %", {"gyro_scale": -0.02}), ("latency +0.5 s", {"gps_latency": 0.5}),
-          ("latency +1 s", {"gps_latency": 1.0}), ("latency -0.5 s", {"gps_latency": -0.5}))
+          ("latency +1 s", {"gps_latency": 1.0}), ("latency -0.5 s", {"gps_latency": -0.5}),
+          ("speed +0.5 s", {"odometer_latency": 0.5}), ("speed -0.5 s", {"odometer_latency": -0.5}))
+#: (monitor error, unit, scale, what its warning says)
+TESTED = (("gyro_scale", "%", 100.0, "scale factor error"), ("latency", "s", 1.0, "late against the DR samples"),
+          ("odometer_latency", "s", 1.0, "the fixes show the speed"))
 
 
 def _fmt(v, f):
@@ -38,7 +42,7 @@ def one(label, run, grade, kind="ekf"):
     m = GPSDRModel.from_grade(grade, run.scenario.dt)
     f = GPSDRFilter(m, kind, x0=np.r_[run.x0, m.x0[6:]], scale_on_detection=False, latency_on_detection=False)
     gps, sig = run.gps_list(), run.gps_sigma_list()
-    top = {"gyro_scale": 0.0, "latency": 0.0}
+    top = {name: 0.0 for name, *_ in TESTED}
     with warnings.catch_warnings(record=True) as seen:
         warnings.simplefilter("always")
         for k in range(len(run.z_dr)):
@@ -49,12 +53,12 @@ def one(label, run, grade, kind="ekf"):
                 if z is not None and abs(z) > abs(top[name]):
                     top[name] = z
     said = {name: [str(w.message).split(" the fixes show")[0].split("by step ")[-1] for w in seen
-                   if ("scale factor error" if name == "gyro_scale" else "late against") in str(w.message)]
-            for name in top}
+                   if words in str(w.message)]
+            for name, _, _, words in TESTED}
     cells = []
-    for name, unit, f_est in (("gyro_scale", "%", lambda v: 100 * v), ("latency", "s", lambda v: v)):
+    for name, unit, times, _ in TESTED:
         est = getattr(f, f"{name}_estimate")
-        cells.append(f"{name} {_fmt(None if est is None else f_est(est), '+.2f')} {unit} z {_fmt(getattr(f, f'{name}_z'), '+.2f')}"
+        cells.append(f"{name} {_fmt(None if est is None else times * est, '+.2f')} {unit} z {_fmt(getattr(f, f'{name}_z'), '+.2f')}"
                      f" (max |z| {abs(top[name]):.2f}) warned at {said[name][0] if said[name] else '-'}")
     print(f"{label:45s} | " + " | ".join(cells) + f" | gps_correlation mean {_fmt(f.gps_correlation_mean, '.2f')}",
           flush=True)
