@@ -660,7 +660,7 @@ class GPSDRFilter:
             ["latency"] if model.augmented and not model.latency else [])
         m = len(self._hyp)
         # per hypothesis the state's sensitivity to the error, and the accepted fixes' score and information
-        self._sens = np.zeros((model.dim_x, m)) if m or model.augmented else None
+        self._sens = np.zeros((model.dim_x, m)) if model.augmented else None  # (every hypothesis needs one)
         # the speed's latency (a calibrated model), tested jointly with those but kept apart (_monitor_speed):
         # its sensitivity, score, its information and score variance's cross terms with them, and its own
         self._so = np.zeros(model.dim_x) if model.augmented else None
@@ -1033,14 +1033,12 @@ class GPSDRFilter:
         them, a fix a second late on the phone analog was told after 7 minutes instead of 2.6); tested this
         way the fixes' latency is told as before, and a fixes' latency or a scale error is not read as the
         speed's."""
-        if not self._listening:
+        if not self._listening:  # (listening, the system holds the calibration's nuisance parameters at least)
             return
-        m = len(self._hyp)
-        solved = self._solve(self._I, self._J, self._u) if m else None
+        found = []
+        solved = self._solve(self._I, self._J, self._u)
         if solved is not None:
             self._theta, self._var = solved
-        found = []
-        if solved is not None:
             found = [(name, theta, var) for name, theta, var in zip(self._hyp, *solved) if name in _TESTED]
         if self._so is not None and self._Ioo > 0.0:
             I = np.block([[self._I, self._Ixo[:, None]], [self._Ixo[None, :], np.array([[self._Ioo]])]])
@@ -1048,15 +1046,15 @@ class GPSDRFilter:
             every = self._solve(I, J, np.r_[self._u, self._uo])
             if every is not None:
                 found.append(("odometer_latency", every[0][-1], every[1][-1]))
-        for name, theta, var in found:
+        found = [(name, theta, np.sqrt(var), theta / np.sqrt(var)) for name, theta, var in found]
+        for name, theta, _, z in found:
             setattr(self, f"{name}_estimate", float(theta))
-            setattr(self, f"{name}_z", float(theta / np.sqrt(var)))
-        for name, theta, var in found:
+            setattr(self, f"{name}_z", float(z))
+        for name, theta, sd, z in found:
             gate, least = _TESTED[name]
-            z = theta / np.sqrt(var)
             if abs(z) > gate and abs(theta) >= least and name not in self._warned_errors:
                 self._warned_errors.add(name)
-                self._warn_error(name, theta, np.sqrt(var), z)
+                self._warn_error(name, theta, sd, z)
                 if self._adopt is None and {"gyro_scale": self.scale_on_detection,
                                             "latency": self.latency_on_detection}.get(name, False):
                     self._adopt = name
@@ -1151,7 +1149,8 @@ class GPSDRFilter:
         self._cal_P = C
         setattr(self, f"{name}_added", self.step)
         self._restate = True
-        # the others: what the fixes told of them beyond this error (the information's Schur complement)
+        # the others: what the fixes told of them beyond this error (the information's Schur complement; the
+        # calibration's nuisance parameters are always among them)
         rest = [i for i in range(len(self._hyp)) if i != j]
         L = np.eye(len(self._hyp))[rest]
         L[:, j] = -self._I[rest, j] / self._I[j, j]
@@ -1162,14 +1161,11 @@ class GPSDRFilter:
             self._Joo += f * (f * self._J[j, j] - 2.0 * self._Jxo[j])
             self._Ixo, self._Jxo = L @ (self._Ixo - f * self._I[:, j]), L @ (self._Jxo - f * self._J[:, j])
             self._so = np.insert(self._so, index, 0.0)
-        if rest:
-            self._u, self._I, self._J = L @ self._u, L @ self._I @ L.T, L @ self._J @ L.T
-            self._residuals.clear()
-            self._residual_c = None
-            self._sens = np.insert(self._sens[:, rest], index, 0.0, axis=0)
-            self._hyp = [self._hyp[i] for i in rest]
-        else:
-            self._sens, self._hyp = None, []
+        self._u, self._I, self._J = L @ self._u, L @ self._I @ L.T, L @ self._J @ L.T
+        self._residuals.clear()
+        self._residual_c = None
+        self._sens = np.insert(self._sens[:, rest], index, 0.0, axis=0)
+        self._hyp = [self._hyp[i] for i in rest]
 
     def _stale(self, z_gps, gps_sigma):
         """Whether this fix repeats the last different fix to the bit although the car drove farther

@@ -148,8 +148,7 @@ def _drive_grade(args):
     k = getattr(args, "gyro_scale_sd", 0.0)
     if k and not SENSOR_GRADES[grade]["rate_bias"]:
         raise ValueError(f"--gyro-scale-sd needs a grade with a gyro rate-bias state (phone), got --grade {grade}")
-    tau = getattr(args, "gps_latency_sd", 0.0)
-    extra = dict(({"gyro_scale_sd": k} if k else {}), **({"gps_latency_sd": tau} if tau else {}))
+    extra = {key: v for key, v in (("gyro_scale_sd", k), ("gps_latency_sd", getattr(args, "gps_latency_sd", 0.0))) if v}
     return dict(SENSOR_GRADES[grade], **extra) if extra else grade
 
 

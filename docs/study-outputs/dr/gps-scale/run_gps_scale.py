@@ -26,7 +26,9 @@ import numpy as np
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", "..", ".."))
 sys.path[:0] = [os.path.join(ROOT, "tests"), os.path.join(ROOT, "tests", "navigation")]
 
+from filterwnn.navigation.dead_reckoning import SENSOR_GRADES  # noqa: E402
 from filterwnn.navigation.drives import CAR_DRIVES, load_car_drive, read_drive_csv, sample_drive_path  # noqa: E402
+from filterwnn.navigation.gpsdr import GPSDRFilter  # noqa: E402
 from filterwnn.studies.dr import real_drive_outages  # noqa: E402
 
 KINDS8 = ("EKF-8", "UKF-8", "SUKF-8")
@@ -125,33 +127,21 @@ def main(argv=None):
     p.add_argument("--odometer-latency", type=float, default=0.0,
                    help="the drive reader's odometer_latency for the analogs (default 0, as in the package)")
     a = p.parse_args(argv)
-    if a.odometer_latency_error:
-        ANALOG_KW["odometer_latency"] = a.odometer_latency_error
+    # the analogs' faults: generator keywords
+    ANALOG_KW.update({key: v for key, v in (("gyro_scale", a.gyro_scale_error), ("gps_latency", a.gps_latency_error),
+                                            ("odometer_latency", a.odometer_latency_error)) if v})
     if a.odometer_latency:
         READ_KW["odometer_latency"] = a.odometer_latency
     EXTRA["correlated_fixes"] = a.correlated_fixes
-    for flag in ("scale_on_detection", "latency_on_detection"):
-        if getattr(a, flag) == "off":
-            from filterwnn.navigation.gpsdr import GPSDRFilter
-
+    for flag, on in (("scale_on_detection", a.scale_on_detection), ("latency_on_detection", a.latency_on_detection),
+                     ("zero_rate_update", a.zero_rate)):
+        if on == "off":
             GPSDRFilter.__init__.__kwdefaults__[flag] = False
-    if a.gps_latency_error:
-        ANALOG_KW["gps_latency"] = a.gps_latency_error
     if a.gyro_scale_sd:
-        from filterwnn.navigation.dead_reckoning import SENSOR_GRADES
-
         SENSOR_GRADES["phone"]["gyro_scale_sd"] = a.gyro_scale_sd
     if a.gps_latency_sd:
-        from filterwnn.navigation.dead_reckoning import SENSOR_GRADES
-
         for spec in SENSOR_GRADES.values():
             spec["gps_latency_sd"] = a.gps_latency_sd
-    if a.gyro_scale_error:
-        ANALOG_KW["gyro_scale"] = a.gyro_scale_error
-    if a.zero_rate == "off":
-        from filterwnn.navigation.gpsdr import GPSDRFilter
-
-        GPSDRFilter.__init__.__kwdefaults__["zero_rate_update"] = False
     windows = [int(w) for w in a.windows.split(",")]
     for what in a.what:
         if what == "analogs":

@@ -27,6 +27,7 @@ import test_hard_drives as th  # noqa: E402
 import filterwnn.navigation.gpsdr as gpsdr  # noqa: E402
 from filterwnn.navigation.dead_reckoning import GPSDRModel  # noqa: E402
 from filterwnn.navigation.drives import read_drive_csv  # noqa: E402
+from monitor import one_pass  # noqa: E402  (this folder's: the one-pass loop)
 
 variant = sys.argv[1]
 F = gpsdr.GPSDRFilter
@@ -51,19 +52,7 @@ if variant in ("last-correlation", "first"):
 def one(label, run, grade):
     m = GPSDRModel.from_grade(grade, run.scenario.dt)
     f = F(m, "ekf", x0=np.r_[run.x0, m.x0[6:]], latency_on_detection=False, scale_on_detection=False)
-    gps, sig = run.gps_list(), run.gps_sigma_list()
-    top, fired = {"gyro_scale": 0.0, "latency": 0.0}, {"gyro_scale": None, "latency": None}
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        for k in range(len(run.z_dr)):
-            f.predict()
-            f.update(run.z_dr[k], gps[k], sig[k])
-            for name in top:
-                z = getattr(f, f"{name}_z")
-                if z is not None and abs(z) > abs(top[name]):
-                    top[name] = z
-                if fired[name] is None and name in f._warned_errors:
-                    fired[name] = k
+    top, fired = one_pass(f, run, ["gyro_scale", "latency"])
     print(f"{variant:16s} {label:34s} | scale max |z| {abs(top['gyro_scale']):5.2f}, warned at {fired['gyro_scale']}, "
           f"end {100 * f.gyro_scale_estimate:+.2f} % | latency max |z| {abs(top['latency']):5.2f}, warned at "
           f"{fired['latency']}, end {f.latency_estimate:+.3f} s", flush=True)
