@@ -132,10 +132,13 @@ def transition_matrix(dt, accel_term="kinematic", dim_x=6, rate_bias=None):
     return F
 
 
-def dr_fx(x, dt, accel_term="kinematic"):
+def dr_fx(x, dt, accel_term="kinematic", rate_bias=None):
     """Noise-free transition ``Phi x`` on the last axis: ``(dim_x,)`` or ``(n, dim_x)``.
 
-    Works for the 6-state model and for the 8-state one (scale and bias unchanged).
+    Works for the 6-state model and for the 8-state one (scale and bias unchanged). ``rate_bias``: whether
+    state 8 is a gyro rate bias that the heading bias integrates, as in :func:`transition_matrix` (default:
+    ``dim_x >= 9``); a model whose ninth state is something else (the fixes' latency of an 8-state model)
+    passes False.
     """
     x = np.asarray(x, dtype=float)
     c = 0.5 * dt * dt if accel_term == "kinematic" else dt * dt
@@ -144,7 +147,7 @@ def dr_fx(x, dt, accel_term="kinematic"):
     out[..., 1] = x[..., 1] + dt * x[..., 2]
     out[..., 3] = x[..., 3] + dt * x[..., 4] + c * x[..., 5]
     out[..., 4] = x[..., 4] + dt * x[..., 5]
-    if x.shape[-1] >= 9:  # the heading bias integrates the gyro rate bias
+    if x.shape[-1] >= 9 if rate_bias is None else rate_bias:  # the heading bias integrates the gyro rate bias
         out[..., 7] = x[..., 7] + dt * x[..., 8]
     return out
 
@@ -725,7 +728,7 @@ class GPSDRModel(StateSpaceModel):
 
     def fx(self, x, dt=None, **fx_args):
         """``Phi x`` for ``(dim_x,)`` or ``(n_points, dim_x)``."""
-        return dr_fx(x, self.dt if dt is None else dt, self.accel_term)
+        return dr_fx(x, self.dt if dt is None else dt, self.accel_term, self.rate_bias)
 
     def FJacobian(self, x=None, dt=None, **fx_args):
         """The (constant) transition matrix ``(dim_x, dim_x)``."""

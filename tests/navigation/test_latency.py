@@ -34,6 +34,10 @@ def test_a_latency_state_predicts_each_fix_that_long_before_its_time():
     m = GPSDRModel.from_grade("survey", latency=True, sd_latency=0.5)
     assert m.dim_x == 9 and m.latency_index == 8 and m.state_names[6:] == ["odometer scale", "heading bias", "latency"]
     assert m.F[7, 8] == 0.0 and m.P0[8, 8] == pytest.approx(0.25) and m.Q[8, 8] > 0.0
+    # fx (the unscented kinds' transition) is F: the latency does not drive the heading bias there either
+    x9 = np.arange(1.0, 10.0)
+    np.testing.assert_allclose(m.fx(x9), m.F @ x9)
+    np.testing.assert_allclose(m.fx(np.stack([x9, -x9])), np.stack([m.F @ x9, -(m.F @ x9)]))
     x = np.array([10.0, 12.0, 0.5, -4.0, -5.0, 0.1, 1.01, 0.02, 0.7])
     np.testing.assert_allclose(gps_hx(x, 8), [10.0 - 12.0 * 0.7, -4.0 + 5.0 * 0.7])
     np.testing.assert_allclose(m.hx(x)[2:], gps_hx(x, 8))
@@ -337,3 +341,26 @@ def test_a_runs_folded_warnings_keep_each_monitored_error_apart(tmp_path):
     assert said[0].startswith("GPSDRFilter, the fixes' latency: by step ") and "themselves +0.5" in said[0]
     assert said[1].startswith("GPSDRFilter, the speed's latency: by step ") and "the speed -0.4" in said[1]
     assert f.latency_added is not None and f.odometer_latency_estimate < -0.3
+
+
+@pytest.mark.parametrize("kind", KINDS8)
+def test_the_survey_grade_with_the_state_from_the_start_holds_on_a_drive_from_rest(kind):
+    """The plainest problem: the drive from rest (tests/navigation/test_gpsdr.py), the survey grade with the
+    latency from the start. Its ninth state is the latency, not a rate bias; until stop 42 the unscented
+    kinds' transition integrated it into the heading bias as a rate bias (the old ``dim_x >= 9`` rule
+    ``transition_matrix`` had dropped), and UKF-8 ended 355 m off, SUKF-8 271 m. Measured now: 7.72, 6.90
+    and 9.15 m at worst (EKF, UKF, SUKF; without the state 3.05, 2.98, 3.34 m: a state with nothing to
+    learn costs)."""
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    from test_gpsdr import FROM_REST
+
+    from filterwnn.navigation.scenarios import simulate_scenario
+
+    run = simulate_scenario(FROM_REST, rng=0)
+    m = GPSDRModel.from_grade(dict(SENSOR_GRADES["survey"], gps_latency_sd=0.5), run.scenario.dt)
+    f = GPSDRFilter(m, kind.split("-")[0].lower(), x0=np.r_[run.x0, m.x0[6:]])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)  # the survey grade's known consistency warning here
+        est = f.batch_filter(run.z_dr, run.gps_list())
+    err = np.hypot(est[:, 0] - run.x_true[:, 0], est[:, 3] - run.x_true[:, 3])
+    assert err.max() < 12.0, (kind, err.max())
