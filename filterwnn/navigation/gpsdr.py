@@ -1030,7 +1030,7 @@ class GPSDRFilter:
         The gyro scale and the fixes' latency are estimated as without the speed's latency; the speed's
         latency jointly with them all (the system with its row and column). Both latencies move the car along
         its track, so tested jointly each hides the other early in a drive (with the speed's latency among
-        them, a fix a second late on the phone analog was told after 7 minutes instead of 2.6); tested this
+        them, a fix a second late on the phone analog was told after 10 minutes instead of 2.6); tested this
         way the fixes' latency is told as before, and a fixes' latency or a scale error is not read as the
         speed's."""
         if not self._listening:  # (listening, the system holds the calibration's nuisance parameters at least)
