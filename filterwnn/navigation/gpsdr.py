@@ -105,6 +105,12 @@ What the filter does when GPS lies (each part a public setting, on by default):
   gyro has then measured itself outside what the grade's prior says, so the calibration bounds
   of the rate bias and of the heading bias it drives restart from there (their spread kept): a
   gyro outside its grade is followed, with a warning, instead of held at the bound for ever.
+  A stop between them that the state follows ends the run only when it contradicts the run too (its
+  slope against their weighted mean, the gate's level): a stop too short to tell the two apart does
+  not. The warning of a rate bias outside the grade (and of the rate-bias state held at its bound)
+  names the remedy, the gyro's own specification (``gyro_bias_deg_s`` in a grade of one's own,
+  ``filterwnn study dr --gyro-bias``) with the value measured: until the stops have told it, the
+  outages end far off (docs/study-outputs/dr/zero-rate/RUN.md).
   Counted in ``n_zero_rate`` and ``n_zero_rate_rejected``; only a model with a rate-bias state
   (``GPSDRModel(rate_bias=True)``, the phone grade) has it, and ``zero_rate_update=False``
   switches it off. It needs no GPS: the rate bias is learnt at every stop, from the sensor that
@@ -319,6 +325,18 @@ def _shear(M, b, k, d):
     M[b, :] += d * M[k, :]
     M[:, b] += d * M[:, k]
     return 0.5 * (M + M.T)
+
+
+def _gyro_bias_remedy(rate, least=""):
+    """The remedy a warning names for a gyro rate bias of ``rate`` (rad/s) outside the grade: the gyro's
+    own specification, ``gyro_bias_deg_s`` of that size (rounded up to two digits), from the start."""
+    deg = float(np.degrees(rate))
+    e = np.floor(np.log10(deg)) - 1 if deg > 0 else 0
+    v = float(np.ceil(deg / 10**e) * 10**e)
+    return (f"For a gyro whose turn-on bias is {least + ' ' if least else ''}{v:.2g} deg/s, more than the grade's, "
+            f"give the gyro's own specification and the filter starts from it: a grade of your own with "
+            f"gyro_bias_deg_s={v:.2g} (filterwnn study dr --gyro-bias {v:.2g}); else the outages before the stops "
+            "have told the bias end far off")
 
 
 def stop_heading_slope(t, heading, sigma_heading, q_arw):
@@ -1229,6 +1247,8 @@ class GPSDRFilter:
         if ok:
             self.n_zero_rate += 1
             if not self._rate_update(slope, var):
+                if self._zr_rejected and self._agrees_with_run(slope, var):
+                    return  # too short to tell the state from the stops before it: the run goes on
                 self._zr_rejected.clear()
                 return
             # used, but the calibration bound held the state: it could not follow this stop either
@@ -1292,6 +1312,8 @@ class GPSDRFilter:
         self.n_zero_rate_reacquired += 1
         if self.n_zero_rate_reacquired == 1:
             deg = 180.0 / np.pi
+            outside = abs(mean) > CALIBRATION_SIGMAS * np.sqrt(self.model.P0[r, r])  # past the grade's bound
+            remedy = ". " + _gyro_bias_remedy(abs(mean)) if outside else ""
             warnings.warn(
                 f"GPSDRFilter: the last {len(s)} stops measured the gyro rate bias at {mean * deg:+.3g} "
                 f"+- {np.sqrt(var) * deg:.2g} deg/s, which the state ({state * deg:+.3g} +- {sd * deg:.2g} deg/s) "
@@ -1299,8 +1321,16 @@ class GPSDRFilter:
                 f"re-acquires from them at step {self.step}, and the "
                 "calibration bounds of the rate bias and the heading bias restart from there. The gyro's bias has "
                 "changed, or it is outside the sensor grade's specification: check the grade (later "
-                "re-acquisitions are counted in n_zero_rate_reacquired)", RuntimeWarning, stacklevel=4)
+                "re-acquisitions are counted in n_zero_rate_reacquired)" + remedy, RuntimeWarning, stacklevel=4)
         self._rate_update(mean, var)
+
+    def _agrees_with_run(self, slope, var):
+        """Whether a stop's slope (of variance ``var``) agrees with the weighted mean of the stops the state
+        could not follow so far (the gate's level): a stop too short to tell them apart does not end their run."""
+        s, v = (np.array(a) for a in zip(*self._zr_rejected))
+        w = 1.0 / v
+        mean, mvar = float(w @ s / w.sum()), float(1.0 / w.sum())
+        return (slope - mean) ** 2 / (var + mvar) <= ZERO_RATE_GATE
 
     def _rate_update(self, slope, var):
         """The Kalman update of the rate-bias state (the last) with a measured rate ``slope`` of variance
@@ -1587,10 +1617,12 @@ class GPSDRFilter:
         for i in np.flatnonzero(out):
             if i not in self._cal_warned:
                 self._cal_warned.add(i)
+                rate = self.model.rate_bias and i == RATE - 6  # the rate bias: its own remedy
+                remedy = " " + _gyro_bias_remedy(abs(self._cal_mean[i] + d[i]), "at least") if rate else ""
                 warnings.warn(
                     f"GPSDRFilter: the {names[i]} state ran past {CALIBRATION_SIGMAS:g} sigma of its "
                     f"specification at step {self.step} ({d[i]:+.3g} from its prior mean, bound "
-                    f"{bound[i]:.3g}); held at the bound. Check the sensor grade (or the sensor)",
+                    f"{bound[i]:.3g}); held at the bound. Check the sensor grade (or the sensor)" + remedy,
                     RuntimeWarning, stacklevel=4)
         return True
 

@@ -108,6 +108,17 @@ def test_the_command_takes_the_gyro_scale_sd(tmp_path, command_passes):
     assert main(argv) == 2  # refused, with its one-line error
 
 
+def test_the_command_takes_the_gyros_own_bias(tmp_path, command_passes):
+    """--gyro-bias: the gyro's rate bias (deg/s, one sigma) in place of the phone grade's 0.05; refused with
+    a grade that has no rate-bias state."""
+    from filterwnn.cli import main
+
+    grade = command_passes("real_drive_outages", ["--gyro-bias", "0.31"])["grade"]
+    assert grade["gyro_bias_deg_s"] == 0.31 and grade["rate_bias"] and grade["gps_sigma_m"] == 5.0
+    argv = ["study", "dr", "--drive", "sample", "--out", str(tmp_path), "--grade", "survey", "--gyro-bias", "0.3"]
+    assert main(argv) == 2
+
+
 def _one_hz_filter(tmp_path, error, grade="phone"):
     path = held_out.write_csv(tmp_path / f"one_hz_{error}.csv", held_out.columns("one_hz", 0, gyro_scale=error))
     with warnings.catch_warnings():

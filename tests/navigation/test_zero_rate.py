@@ -260,6 +260,46 @@ def test_a_gyro_outside_its_grade_is_followed_with_a_warning(phone):
     assert never.n_zero_rate_rejected == 4 and never.x[8] < 0.16 * DEG
 
 
+def test_the_warning_names_the_gyros_own_specification_as_the_remedy(phone):
+    """A gyro outside its grade (0.3 deg/s against the phone grade's 0.05): the re-acquisition's warning
+    gives the value to state, gyro_bias_deg_s=0.31 (--gyro-bias 0.31), and a grade with it follows the same
+    stops from the first, with no re-acquisition. A bias that jumped inside the grade (0.1 deg/s, its
+    bound 0.15) has no such remedy, and the warning names none."""
+    z = _bias_jump(np.random.default_rng(12), phone, 0.3, n_before=0, n_after=4)
+    with pytest.warns(RuntimeWarning, match=r"re-acquires from them .* turn-on bias is 0\.3\d? deg/s, more than "
+                                            r"the grade's, .*gyro_bias_deg_s=0\.3\d? \(filterwnn study dr --gyro-bias 0\.3\d?\)"):
+        _run(phone, z)
+    own = GPSDRModel.from_grade({"gyro_bias_deg_s": 0.31}, DT)
+    f = _run(own, z)
+    assert f.n_zero_rate == 4 and f.n_zero_rate_rejected == 0 and f.n_zero_rate_reacquired == 0
+    assert abs(f.x[8] - 0.3 * DEG) < 3 * np.sqrt(f.P[8, 8])
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        _run(phone, _bias_jump(np.random.default_rng(10), phone, 0.1))
+    said = [str(w.message) for w in seen if "re-acquires from them" in str(w.message)]
+    assert len(said) == 1 and "gyro_bias_deg_s" not in said[0]
+
+
+def test_a_stop_too_short_to_tell_does_not_end_the_run(phone):
+    """Two long stops at 0.3 deg/s, rejected by a state still at 0; then a 0.4 s stop, whose slope is too
+    uncertain to reject (accepted, hardly moving the state) and agrees with them as well; then a third
+    long one. The short stop does not end the run of stops the state could not follow: the third long
+    one re-acquires (before, the short stop cleared the run, and a drive with few stops, the city analog
+    with a 0.3 deg/s gyro, re-acquired at 591 s instead of 367 s). A long stop that the state follows and
+    that contradicts the run (at 0 deg/s) does end it."""
+    rng = np.random.default_rng(16)
+    long_ = [np.vstack([_stop(rng, phone, 0.3, 20.0), MOVING]) for _ in range(3)]
+    short = np.vstack([_stop(rng, phone, 0.3, 0.4), MOVING])
+    with pytest.warns(RuntimeWarning, match="re-acquires from them"):
+        f = _run(phone, np.vstack([long_[0], long_[1], short, long_[2]]))
+    assert [ok for *_, ok in f.zero_rate_steps] == [False, False, True, False]
+    assert f.n_zero_rate_reacquired == 1 and abs(f.x[8] - 0.3 * DEG) < 3 * np.sqrt(f.P[8, 8])
+    still = np.vstack([_stop(rng, phone, 0.0, 20.0), MOVING])
+    f = _run(phone, np.vstack([long_[0], long_[1], still, long_[2]]))
+    assert [ok for *_, ok in f.zero_rate_steps] == [False, False, True, False]
+    assert f.n_zero_rate_reacquired == 0
+
+
 def test_stops_held_at_the_bound_count_as_not_followed(phone):
     """Short stops (3 s) at 0.3 deg/s each pass the gate (their slopes are uncertain), so the state climbs
     until the calibration bound holds it near 0.15 deg/s. Stops the bound holds are ones the state could

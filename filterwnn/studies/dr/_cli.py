@@ -96,6 +96,11 @@ def add_arguments(parser):
                         help="with --drive: estimate the gyro's scale factor error as a state, its prior sd this "
                              "fraction (a MEMS gyro's sensitivity tolerance of +-3 %% over three sigmas: 0.01); needs "
                              "the phone grade's rate-bias state (default 0: not estimated)")
+    parser.add_argument("--gyro-bias", type=options.positive_float, default=None, metavar="DEG_S",
+                        help="with --drive: the gyro's rate bias (deg/s, one sigma; its data sheet's turn-on bias) "
+                             "in place of the grade's (phone: 0.05), the rate-bias state's prior and, three of it, "
+                             "its bound; for a gyro outside the grade, which the filters warn of with the value to "
+                             "give; needs the phone grade's rate-bias state (default: the grade's)")
     parser.add_argument("--gps-latency-sd", type=options.nonnegative_float, default=0.0, metavar="SECONDS",
                         help="with --drive: estimate the fixes' latency against the DR samples as a state from the "
                              "start, its prior sd this many seconds (fixes and speed stamped by two clocks, or a "
@@ -142,13 +147,16 @@ def run(args):
 
 
 def _drive_grade(args):
-    """``--grade`` for ``--drive`` (default phone), with ``--gyro-scale-sd`` and ``--gps-latency-sd`` when
-    given."""
+    """``--grade`` for ``--drive`` (default phone), with ``--gyro-scale-sd``, ``--gyro-bias`` and
+    ``--gps-latency-sd`` when given."""
     grade = getattr(args, "grade", None) or "phone"
     k = getattr(args, "gyro_scale_sd", 0.0)
-    if k and not SENSOR_GRADES[grade]["rate_bias"]:
-        raise ValueError(f"--gyro-scale-sd needs a grade with a gyro rate-bias state (phone), got --grade {grade}")
-    extra = {key: v for key, v in (("gyro_scale_sd", k), ("gps_latency_sd", getattr(args, "gps_latency_sd", 0.0))) if v}
+    bias = getattr(args, "gyro_bias", None)
+    for flag, v in (("--gyro-scale-sd", k), ("--gyro-bias", bias)):
+        if v and not SENSOR_GRADES[grade]["rate_bias"]:
+            raise ValueError(f"{flag} needs a grade with a gyro rate-bias state (phone), got --grade {grade}")
+    extra = {key: v for key, v in (("gyro_scale_sd", k), ("gyro_bias_deg_s", bias),
+                                   ("gps_latency_sd", getattr(args, "gps_latency_sd", 0.0))) if v}
     return dict(SENSOR_GRADES[grade], **extra) if extra else grade
 
 
