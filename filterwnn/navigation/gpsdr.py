@@ -105,9 +105,7 @@ What the filter does when GPS lies (each part a public setting, on by default):
   gyro has then measured itself outside what the grade's prior says, so the calibration bounds
   of the rate bias and of the heading bias it drives restart from there (their spread kept): a
   gyro outside its grade is followed, with a warning, instead of held at the bound for ever.
-  A stop between them that the state follows ends the run only when it contradicts the run too (its
-  slope against their weighted mean, the gate's level): a stop too short to tell the two apart does
-  not. The warning of a rate bias outside the grade (and of the rate-bias state held at its bound)
+  The warning of a rate bias outside the grade (and of the rate-bias state held at its bound)
   names the remedy, the gyro's own specification (``gyro_bias_deg_s`` in a grade of one's own,
   ``filterwnn study dr --gyro-bias``) with the value measured: until the stops have told it, the
   outages end far off (docs/study-outputs/dr/zero-rate/RUN.md).
@@ -1247,8 +1245,6 @@ class GPSDRFilter:
         if ok:
             self.n_zero_rate += 1
             if not self._rate_update(slope, var):
-                if self._zr_rejected and self._agrees_with_run(slope, var):
-                    return  # too short to tell the state from the stops before it: the run goes on
                 self._zr_rejected.clear()
                 return
             # used, but the calibration bound held the state: it could not follow this stop either
@@ -1323,14 +1319,6 @@ class GPSDRFilter:
                 "changed, or it is outside the sensor grade's specification: check the grade (later "
                 "re-acquisitions are counted in n_zero_rate_reacquired)" + remedy, RuntimeWarning, stacklevel=4)
         self._rate_update(mean, var)
-
-    def _agrees_with_run(self, slope, var):
-        """Whether a stop's slope (of variance ``var``) agrees with the weighted mean of the stops the state
-        could not follow so far (the gate's level): a stop too short to tell them apart does not end their run."""
-        s, v = (np.array(a) for a in zip(*self._zr_rejected))
-        w = 1.0 / v
-        mean, mvar = float(w @ s / w.sum()), float(1.0 / w.sum())
-        return (slope - mean) ** 2 / (var + mvar) <= ZERO_RATE_GATE
 
     def _rate_update(self, slope, var):
         """The Kalman update of the rate-bias state (the last) with a measured rate ``slope`` of variance
