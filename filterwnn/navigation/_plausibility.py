@@ -23,13 +23,22 @@ over 2 s is refused by itself ("time looks like milliseconds"): dead-reckoning s
 sample at 1-100 Hz, and fixes a median over :math:`\max(100\,\mathrm{m}, 30\sigma)` from
 a given truth ("the fixes and the truth must share one frame"). Drives whose fixes never
 move by :math:`L` are not judged on course and length.
+
+A drive that passes can still have its heading's zero off by a constant (a phone mounted askew; a
+magnetic heading, by the declination): the line through the chords' angles over time starts there.
+Past :data:`HEADING_OFFSET_WARN_DEG` and 3.29 of its standard errors (:func:`heading_offset`), the
+check warns with the value and the reader's remedy (``heading_offset=``, ``--heading-offset``); a
+refusal that such an offset explains names the same remedy.
 """
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 
-__all__ = ["check_drive", "MAX_DT", "MAX_ANGLE_DEG", "MAX_DRIFT_DEG_S", "RATIO_RANGE"]
+__all__ = ["check_drive", "heading_offset", "MAX_DT", "MAX_ANGLE_DEG", "MAX_DRIFT_DEG_S", "RATIO_RANGE",
+           "HEADING_OFFSET_WARN_DEG"]
 
 #: The longest DR sample interval (s) accepted without ``checks=False``.
 MAX_DT = 2.0
@@ -40,6 +49,10 @@ MAX_ANGLE_DEG = 30.0
 MAX_DRIFT_DEG_S = 1.0
 #: The accepted range of the median odometer path length over the GPS chord length.
 RATIO_RANGE = (0.6, 1.8)
+#: A heading offset at the start (deg) past which the drive reader warns: twice the phone grade's heading-bias
+#: sigma (5 deg), the larger of the two grades'. The filters learn a heading bias from the fixes, but not
+#: before the first ones, and one past their grade's bound slowly; the warning names the reader's remedy.
+HEADING_OFFSET_WARN_DEG = 10.0
 _MIN_CHORDS = 3
 _OVERRIDE = "; if the drive really is so, pass checks=False (command line: --no-plausibility)"
 #: Length-ratio mistakes: (factor the ratio shows, the likely cause).
@@ -80,17 +93,63 @@ def _chord_angles(heading, step, steps, z_gps, pairs):
     return (ang + np.pi) % (2 * np.pi) - np.pi, ratio
 
 
-def _drifting_gyro(heading, step, steps, z_gps, pairs, dt):
-    """Whether a gyro's drift explains the chords' angles: a heading right at the start whose
-    error grows at a steady rate (an integrated rate bias, up to :data:`MAX_DRIFT_DEG_S`),
-    about which the chords scatter by at most :data:`MAX_ANGLE_DEG` (median)."""
+def _offset_fit(heading, step, steps, z_gps, pairs, dt):
+    """The line through the chords' angles over time: ``(offset (deg) at the first chord, its standard
+    error (deg), rate (deg/s), median absolute residual (deg))``."""
     ang, _ = _chord_angles(heading, step, steps, z_gps, pairs)
     ang = np.unwrap(ang)
+    off0 = np.round(np.median(ang[:5]) / (2 * np.pi)) * 2 * np.pi  # the unwrapped line starts within +-pi
     t = dt * np.array([0.5 * (steps[i] + steps[j]) for i, j in pairs])
-    rate, offset = np.polyfit(t - t[0], ang, 1)
-    resid = np.degrees(np.median(np.abs(ang - offset - rate * (t - t[0]))))
-    return (abs(np.degrees(offset)) <= MAX_ANGLE_DEG and abs(np.degrees(rate)) <= MAX_DRIFT_DEG_S
-            and resid <= MAX_ANGLE_DEG)
+    (rate, offset), cov = np.polyfit(t - t[0], ang - off0, 1, cov=True)
+    resid = np.degrees(np.median(np.abs(ang - off0 - offset - rate * (t - t[0]))))
+    return float(np.degrees(offset)), float(np.degrees(np.sqrt(cov[1, 1]))), float(np.degrees(rate)), float(resid)
+
+
+def _drifting_gyro(fit):
+    """Whether a gyro's drift explains the chords' angles (``fit``: :func:`_offset_fit`'s): a heading right
+    at the start whose error grows at a steady rate (an integrated rate bias, up to
+    :data:`MAX_DRIFT_DEG_S`), about which the chords scatter by at most :data:`MAX_ANGLE_DEG` (median)."""
+    offset, _, rate, resid = fit
+    return abs(offset) <= MAX_ANGLE_DEG and abs(rate) <= MAX_DRIFT_DEG_S and resid <= MAX_ANGLE_DEG
+
+
+def _offset_told(fit):
+    """The heading's offset a warning or refusal names, or None: a line of the chords' angles over time
+    (a gyro's drift at most :data:`MAX_DRIFT_DEG_S`, the chords within :data:`MAX_ANGLE_DEG` of it)
+    that starts past :data:`HEADING_OFFSET_WARN_DEG` and past 3.29 of its standard errors (the gate's
+    0.1 %)."""
+    offset, se, rate, resid = fit
+    if abs(rate) <= MAX_DRIFT_DEG_S and resid <= MAX_ANGLE_DEG and abs(offset) > max(HEADING_OFFSET_WARN_DEG, 3.29 * se):
+        return offset
+    return None
+
+
+def _offset_remedy(offset, se, rate, filters=False):
+    """What a warning (``filters``: with what the filters do about it) or a refusal says of the offset."""
+    wrapped = (offset + 180.0) % 360.0 - 180.0
+    why = ("The GPS/DR filters learn a heading bias from the fixes, but not before the first ones, and one past "
+           "their grade slowly (the phone grade's: 5 deg, one sigma). " if filters else "")
+    return (f"the dead-reckoned course starts {wrapped:+.0f} +- {se:.1g} degrees off the fixes' (a line through "
+            f"the stretches' angles over time, drifting {rate:+.2g} deg/s from there): a heading whose zero is off "
+            "(a phone mounted askew; a magnetic heading, by the declination) reads that much more than the car's "
+            f"course. {why}If the offset is the heading's, pass heading_offset={wrapped:.0f} (command line: "
+            f"--heading-offset {wrapped:.0f}), which subtracts it")
+
+
+def heading_offset(dt, heading, step, steps, z_gps, sigma=None):
+    """How far the heading's zero looks off the GPS fixes' course at the start of a drive: ``(offset,
+    standard error, rate, residual)`` (deg, deg, deg/s, deg), or None with fewer than three chords.
+
+    The signed angle from each GPS chord to the dead-reckoned one (see the module docstring), as a
+    straight line over time: its value at the first chord is the heading's offset (positive: the
+    heading reads clockwise of the course), its slope a gyro's drift, the median absolute residual
+    the chords' scatter about it. The arguments are :func:`check_drive`'s.
+    """
+    sigma = 3.0 if sigma is None else float(sigma)
+    pairs = _chords(steps, z_gps, max(20.0, 8.0 * sigma))
+    if len(pairs) < _MIN_CHORDS:
+        return None
+    return _offset_fit(heading, step, steps, z_gps, pairs, dt)
 
 
 def _fits(angle, ratio):
@@ -179,7 +238,12 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
     if len(pairs) < _MIN_CHORDS:
         return
     angle, ratio = _scores(heading, step, steps, z_gps, pairs)
-    if _fits(angle, ratio) or (_fits(0.0, ratio) and _drifting_gyro(heading, step, steps, z_gps, pairs, dt)):
+    fit = _offset_fit(heading, step, steps, z_gps, pairs, dt)
+    told = _offset_told(fit)
+    if _fits(angle, ratio) or (_fits(0.0, ratio) and _drifting_gyro(fit)):
+        if told is not None:
+            warnings.warn(f"plausibility: over {len(pairs)} moving stretches between GPS fixes, "
+                          f"{_offset_remedy(*fit[:3], filters=True)}", RuntimeWarning, stacklevel=4)
         return
     found = (f"median over {len(pairs)} moving stretches between GPS fixes: the dead-reckoned track is "
              f"{angle:.0f} degrees off the fixes' course and {ratio:.3g} times their distance")
@@ -187,6 +251,7 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
         cause = _ratio_cause(ratio) or "check the units of speed/odometer and time"
     else:
         cause = (_track_cause(heading, step, steps, z_gps, pairs, swapped)
-                 or "check the heading's zero (north) and sign (clockwise), and the fixes' frame")
+                 or ((_offset_remedy(*fit[:3]) + "; else ") if told is not None and _fits(0.0, ratio) else "")
+                 + "check the heading's zero (north) and sign (clockwise), and the fixes' frame")
     raise ValueError(f"plausibility: {found} (expected at most {MAX_ANGLE_DEG:g} degrees and "
                      f"{RATIO_RANGE[0]}-{RATIO_RANGE[1]}): {cause}{_OVERRIDE}")

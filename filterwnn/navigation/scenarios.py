@@ -253,7 +253,7 @@ class DRRun(NamedTuple):
     def from_arrays(cls, t, heading, *, distance=None, speed=None, gps_t=None, east=None, north=None,
                     lat=None, lon=None, gps_sigma=None, truth=None, origin=None, name="drive",
                     max_jitter=0.2, checks=True, fill_gaps=0.0, gps_latency=0.0, intervals="auto",
-                    odometer_latency=0.0):
+                    odometer_latency=0.0, heading_offset=0.0):
         """One's own drive from arrays: validated, on the DR sample grid, in local metres.
 
         Parameters
@@ -321,6 +321,12 @@ class DRRun(NamedTuple):
             Unmodelled, the dead-reckoned distance lags the heading and the fixes: 0.5 s took a phone-grade
             EKF-8's worst outage end from 28.16 to 33.01 m (docs/study-outputs/dr/sensor-faults). An unknown
             one is what the GPS/DR filter's monitor estimates and warns of, with this setting's value.
+        heading_offset : float
+            Degrees by which the heading reads clockwise of the car's course (its zero off: a phone mounted
+            askew; a magnetic heading, east declination negative: ``-D``): subtracted from every heading.
+            Default 0. The plausibility check estimates it against the fixes and warns past
+            ``HEADING_OFFSET_WARN_DEG`` (10 degrees) with this setting's value; the filters learn a heading
+            bias from the fixes, but an outage before the first ones ends off by the whole offset.
         intervals : {"auto", "stamps", "grid"}
             The interval each ``speed`` sample covers. ``"stamps"``: its stamped one, ``t[k] - t[k-1]``.
             ``"grid"``: the stamps' regular grid's (the slope of their least-squares line over the sample
@@ -364,8 +370,11 @@ class DRRun(NamedTuple):
         latency = check_positive(gps_latency, "gps_latency", strict=False)
         if gps_t is not None and latency:
             gps_t = np.asarray(gps_t, dtype=float) - latency
+        off = float(heading_offset)
+        if not np.isfinite(off):
+            raise ValueError(f"heading_offset must be a finite number of degrees, got {heading_offset!r}")
         return cls(*_drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps_sigma,
-                                  truth, origin, name, max_jitter, checks, intervals))
+                                  truth, origin, name, max_jitter, checks, intervals, np.deg2rad(off)))
 
 
 def _fill_gaps(t, heading, distance, speed, truth, longest, max_jitter):
@@ -396,13 +405,15 @@ def _fill_gaps(t, heading, distance, speed, truth, longest, max_jitter):
 
 
 def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps_sigma, truth, origin, name,
-                  max_jitter, checks, intervals="auto"):
+                  max_jitter, checks, intervals="auto", heading_offset=0.0):
     """The :class:`DRRun` fields of one's own drive (the work of :meth:`DRRun.from_arrays`, whose
     arguments these are): checked arrays, the GPS fixes on the sample grid, ``x0`` and the scenario."""
     t = _finite_1d(t, "t")
     n = len(t)
     dts, dt, stamps = _sample_grid(t, max_jitter)
     heading = _heading_radians(heading, n)
+    if heading_offset:
+        heading = wrap_angle(heading - heading_offset)
     signed = None
     if speed is not None:
         signed = _finite_1d(speed, "speed", n)

@@ -57,6 +57,45 @@ def test_a_drifting_gyro_passes_and_a_wrong_heading_zero_does_not(tmp_path):
         read_drive_csv(_write(tmp_path / "zero.csv", wrong))
 
 
+def test_a_heading_zero_off_is_warned_with_its_value_and_the_remedy_reads_it_back(tmp_path):
+    """A heading whose zero is off by a constant (a phone mounted askew, a magnetic heading): up to 10
+    degrees nothing is said; 15 degrees is warned with the offset the fixes show (+15, +- 1) and the
+    reader's remedy, heading_offset=15, which gives back the clean drive's headings; past 30 degrees the
+    refusal names the same remedy, and the remedy reads it. A gyro's drift is no offset: 0.05 deg/s over
+    21 minutes is not warned."""
+    cols = _drive(n=1261, dt=1.0, turn=0.02)
+    clean = read_drive_csv(_write(tmp_path / "clean.csv", cols))
+
+    def off(deg):
+        return {**cols, "heading": np.mod(cols["heading"] + np.deg2rad(deg), 2 * np.pi)}
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        read_drive_csv(_write(tmp_path / "5.csv", off(5.0)))
+        drift = {**cols, "heading": np.mod(cols["heading"] + np.deg2rad(0.05) * cols["time"], 2 * np.pi)}
+        read_drive_csv(_write(tmp_path / "drift.csv", drift))
+    path = _write(tmp_path / "15.csv", off(15.0))
+    with pytest.warns(RuntimeWarning, match=r"the dead-reckoned course starts \+15 \+- [0-9.]+ degrees off the fixes'.*"
+                                            r"pass heading_offset=15 \(command line: --heading-offset 15\)"):
+        read_drive_csv(path)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        told = read_drive_csv(path, heading_offset=15.0)
+    np.testing.assert_allclose(np.angle(np.exp(1j * (told.z_dr[:, 0] - clean.z_dr[:, 0]))), 0.0, atol=1e-9)
+    path = _write(tmp_path / "-90.csv", off(-90.0))
+    with pytest.raises(ValueError, match=r"degrees off the fixes' course .* starts -90 .* heading_offset=-90 .*"
+                                         r"else check the heading's zero"):
+        read_drive_csv(path)
+    read_drive_csv(path, heading_offset=-90.0)
+    with pytest.raises(ValueError, match="heading_offset must be a finite number of degrees"):
+        read_drive_csv(path, heading_offset=float("nan"))
+
+
+def test_the_command_takes_the_heading_offset(command_passes):
+    assert command_passes("read_drive_csv", ["--heading-offset", "-12.5"])["heading_offset"] == -12.5
+    assert command_passes("read_drive_csv", [])["heading_offset"] == 0.0
+
+
 def _swap(cols, *pairs):
     out = dict(cols)
     for a, b in pairs:

@@ -68,6 +68,10 @@ def add_arguments(parser):
                         help="with --drive: the speed's (or odometer's) latency (s, from the vehicle's data sheet, "
                              "e.g. a CAN bus's): each sample is that much older than its time stamp (default 0; negative: the "
                              "speed is early; an unknown one the filters warn of when the fixes show it, with its value)")
+    parser.add_argument("--heading-offset", type=options.finite_float, default=0.0, metavar="DEG",
+                        help="with --drive: degrees by which the heading reads clockwise of the car's course (its "
+                             "zero off: a phone mounted askew; a magnetic heading, by the declination), subtracted "
+                             "from every heading (default 0; the drive reader warns past 10 degrees, with the value)")
     parser.add_argument("--intervals", choices=INTERVALS, default="auto",
                         help="with --drive: the interval each speed sample covers: its stamped one ('stamps'), the "
                              "stamps' regular grid's ('grid': regular samples whose time stamps jitter, a logger's), "
@@ -175,6 +179,7 @@ def _run_drives(args, drives, filters):
                              gps_latency=getattr(args, "gps_latency", 0.0),
                              intervals=getattr(args, "intervals", "auto"),
                              odometer_latency=getattr(args, "odometer_latency", 0.0),
+                             heading_offset=getattr(args, "heading_offset", 0.0),
                              progress=None if not getattr(args, "no_progress", False) else False)
         try:
             res = real_drive_outages(run, n_placements=args.outages, length=args.outage_length, filters=fl,
