@@ -28,7 +28,10 @@ A drive that passes can still have its heading's zero off by a constant (a phone
 magnetic heading, by the declination): the line through the chords' angles over time starts there.
 Past :data:`HEADING_OFFSET_WARN_DEG` and 3.29 of its standard errors (:func:`heading_offset`), the
 check warns with the value and the reader's remedy (``heading_offset=``, ``--heading-offset``); a
-refusal that such an offset explains names the same remedy.
+refusal that such an offset explains names the same remedy. Likewise a median length ratio off 1 by
+more than :data:`SPEED_SCALE_WARN` and 3.29 of its standard errors (:func:`speed_scale`): a speed
+that reads high (a speedometer's signal) is warned with the ratio and ``speed_scale=`` /
+``--speed-scale``, which divides it out.
 """
 
 from __future__ import annotations
@@ -37,8 +40,8 @@ import warnings
 
 import numpy as np
 
-__all__ = ["check_drive", "heading_offset", "MAX_DT", "MAX_ANGLE_DEG", "MAX_DRIFT_DEG_S", "RATIO_RANGE",
-           "HEADING_OFFSET_WARN_DEG"]
+__all__ = ["check_drive", "heading_offset", "speed_scale", "MAX_DT", "MAX_ANGLE_DEG", "MAX_DRIFT_DEG_S",
+           "RATIO_RANGE", "HEADING_OFFSET_WARN_DEG", "SPEED_SCALE_WARN"]
 
 #: The longest DR sample interval (s) accepted without ``checks=False``.
 MAX_DT = 2.0
@@ -53,6 +56,10 @@ RATIO_RANGE = (0.6, 1.8)
 #: sigma (5 deg), the larger of the two grades'. The filters learn a heading bias from the fixes, but not
 #: before the first ones, and one past their grade's bound slowly; the warning names the reader's remedy.
 HEADING_OFFSET_WARN_DEG = 10.0
+#: A speed (or odometer) scale off by more than this fraction makes the drive reader warn: twice the phone grade's
+#: odometer-scale sigma (3 %), the larger of the two grades'. A speedometer's signal may read high by up to
+#: 10 % (and 4 km/h) by regulation; a wheel-speed signal with the wrong tyre circumference by a few per cent.
+SPEED_SCALE_WARN = 0.06
 _MIN_CHORDS = 3
 _OVERRIDE = "; if the drive really is so, pass checks=False (command line: --no-plausibility)"
 #: Length-ratio mistakes: (factor the ratio shows, the likely cause).
@@ -134,6 +141,41 @@ def _offset_remedy(offset, se, rate, filters=False):
             "(a phone mounted askew; a magnetic heading, by the declination) reads that much more than the car's "
             f"course. {why}If the offset is the heading's, pass heading_offset={wrapped:.0f} (command line: "
             f"--heading-offset {wrapped:.0f}), which subtracts it")
+
+
+def _scale_fit(ratio):
+    """The chords' median length ratio and its standard error (both of the log; the median's
+    ``1.2533 * 1.4826 MAD / sqrt(n)``): ``(ratio, se)``."""
+    lr = np.log(ratio)
+    med = float(np.median(lr))
+    return float(np.exp(med)), float(1.2533 * 1.4826 * np.median(np.abs(lr - med)) / np.sqrt(len(lr)))
+
+
+def speed_scale(dt, heading, step, steps, z_gps, sigma=None):
+    """How much more the odometer's path is than the GPS fixes' distance: ``(ratio, standard error of its
+    log)``, or None with fewer than three chords. The median over the chords (see the module docstring),
+    so a bend's few per cent count little; the fixes' own noise lengthens a chord by a per cent or two.
+    The arguments are :func:`check_drive`'s."""
+    sigma = 3.0 if sigma is None else float(sigma)
+    pairs = _chords(steps, z_gps, max(20.0, 8.0 * sigma))
+    if len(pairs) < _MIN_CHORDS:
+        return None
+    return _scale_fit(_chord_angles(heading, step, steps, z_gps, pairs)[1])
+
+
+def _warn_scale(ratio, n):
+    """Warn of a speed scale past :data:`SPEED_SCALE_WARN` and 3.29 standard errors, with the remedy."""
+    r, se = _scale_fit(ratio)
+    if abs(np.log(r)) <= max(np.log1p(SPEED_SCALE_WARN), 3.29 * se):
+        return
+    warnings.warn(
+        f"plausibility: over {n} moving stretches between GPS fixes, the odometer's path is {r:.3g} times the "
+        f"fixes' distance (median, +- {100 * se:.1g} %): a speed (or odometer) that reads {100 * (r - 1):+.0f} % (a "
+        "speedometer's signal reads high by up to 10 %, a wheel-speed signal with the wrong tyre circumference "
+        "a few per cent). The GPS/DR filters learn an odometer scale from the fixes, but not before the first "
+        "ones, and not past their grade (the phone grade's: 3 %, one sigma, held within three); if the scale is "
+        f"the sensor's, pass speed_scale={r:.3g} (command line: --speed-scale {r:.3g}), which divides it out",
+        RuntimeWarning, stacklevel=5)
 
 
 def heading_offset(dt, heading, step, steps, z_gps, sigma=None):
@@ -244,6 +286,7 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
         if told is not None:
             warnings.warn(f"plausibility: over {len(pairs)} moving stretches between GPS fixes, "
                           f"{_offset_remedy(*fit[:3], filters=True)}", RuntimeWarning, stacklevel=4)
+        _warn_scale(_chord_angles(heading, step, steps, z_gps, pairs)[1], len(pairs))
         return
     found = (f"median over {len(pairs)} moving stretches between GPS fixes: the dead-reckoned track is "
              f"{angle:.0f} degrees off the fixes' course and {ratio:.3g} times their distance")

@@ -253,7 +253,7 @@ class DRRun(NamedTuple):
     def from_arrays(cls, t, heading, *, distance=None, speed=None, gps_t=None, east=None, north=None,
                     lat=None, lon=None, gps_sigma=None, truth=None, origin=None, name="drive",
                     max_jitter=0.2, checks=True, fill_gaps=0.0, gps_latency=0.0, intervals="auto",
-                    odometer_latency=0.0, heading_offset=0.0):
+                    odometer_latency=0.0, heading_offset=0.0, speed_scale=1.0):
         """One's own drive from arrays: validated, on the DR sample grid, in local metres.
 
         Parameters
@@ -327,6 +327,12 @@ class DRRun(NamedTuple):
             Default 0. The plausibility check estimates it against the fixes and warns past
             ``HEADING_OFFSET_WARN_DEG`` (10 degrees) with this setting's value; the filters learn a heading
             bias from the fixes, but an outage before the first ones ends off by the whole offset.
+        speed_scale : float
+            The factor by which ``speed`` (or ``distance``) reads more than the car drove (a speedometer's
+            signal reads high by up to 10 %; a wheel-speed signal with the wrong tyre circumference a few per
+            cent): divided out. Default 1. The plausibility check estimates it against the fixes and warns
+            past ``SPEED_SCALE_WARN`` (6 %) with this setting's value; the filters learn an odometer scale
+            from the fixes, within their grade, but an outage before the first ones drives on the whole error.
         intervals : {"auto", "stamps", "grid"}
             The interval each ``speed`` sample covers. ``"stamps"``: its stamped one, ``t[k] - t[k-1]``.
             ``"grid"``: the stamps' regular grid's (the slope of their least-squares line over the sample
@@ -373,6 +379,10 @@ class DRRun(NamedTuple):
         off = float(heading_offset)
         if not np.isfinite(off):
             raise ValueError(f"heading_offset must be a finite number of degrees, got {heading_offset!r}")
+        scale = check_positive(speed_scale, "speed_scale")
+        if scale != 1.0:
+            speed = None if speed is None else _finite_1d(speed, "speed") / scale
+            distance = None if distance is None else _finite_1d(distance, "distance") / scale
         return cls(*_drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps_sigma,
                                   truth, origin, name, max_jitter, checks, intervals, np.deg2rad(off)))
 

@@ -91,9 +91,32 @@ def test_a_heading_zero_off_is_warned_with_its_value_and_the_remedy_reads_it_bac
         read_drive_csv(path, heading_offset=float("nan"))
 
 
-def test_the_command_takes_the_heading_offset(command_passes):
-    assert command_passes("read_drive_csv", ["--heading-offset", "-12.5"])["heading_offset"] == -12.5
-    assert command_passes("read_drive_csv", [])["heading_offset"] == 0.0
+def test_a_speed_that_reads_high_is_warned_with_its_scale_and_the_remedy_divides_it_out(tmp_path):
+    """A speed 12 % high (a speedometer's signal may read up to 10 % high; past the phone grade's 3 % sigma
+    held within three): warned with the ratio the fixes show and speed_scale=, which gives back the clean
+    drive's steps; 4 % (within the grade) is not warned."""
+    cols = _drive(n=1261, dt=1.0, turn=0.02)
+    clean = read_drive_csv(_write(tmp_path / "clean.csv", cols))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        read_drive_csv(_write(tmp_path / "4.csv", {**cols, "speed": cols["speed"] * 1.04}))
+    path = _write(tmp_path / "12.csv", {**cols, "speed": cols["speed"] * 1.12})
+    with pytest.warns(RuntimeWarning, match=r"the odometer's path is 1\.1[12] times the fixes' distance .* reads \+1[12] % .*"
+                                            r"pass speed_scale=1\.1[12] \(command line: --speed-scale 1\.1[12]\)"):
+        read_drive_csv(path)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        told = read_drive_csv(path, speed_scale=1.12)
+    np.testing.assert_allclose(told.z_dr, clean.z_dr, rtol=1e-12, atol=1e-12)
+    with pytest.raises(ValueError, match="speed_scale must be finite and > 0"):
+        read_drive_csv(path, speed_scale=0.0)
+
+
+def test_the_command_takes_the_heading_offset_and_the_speed_scale(command_passes):
+    seen = command_passes("read_drive_csv", ["--heading-offset", "-12.5", "--speed-scale", "1.08"])
+    assert seen["heading_offset"] == -12.5 and seen["speed_scale"] == 1.08
+    seen = command_passes("read_drive_csv", [])
+    assert seen["heading_offset"] == 0.0 and seen["speed_scale"] == 1.0
 
 
 def _swap(cols, *pairs):

@@ -72,6 +72,10 @@ def add_arguments(parser):
                         help="with --drive: degrees by which the heading reads clockwise of the car's course (its "
                              "zero off: a phone mounted askew; a magnetic heading, by the declination), subtracted "
                              "from every heading (default 0; the drive reader warns past 10 degrees, with the value)")
+    parser.add_argument("--speed-scale", type=options.positive_float, default=1.0, metavar="FACTOR",
+                        help="with --drive: the factor by which the speed (or odometer) reads more than the car "
+                             "drove (a speedometer's signal reads high by up to 10 %%), divided out (default 1; the "
+                             "drive reader warns past 6 %%, with the value)")
     parser.add_argument("--intervals", choices=INTERVALS, default="auto",
                         help="with --drive: the interval each speed sample covers: its stamped one ('stamps'), the "
                              "stamps' regular grid's ('grid': regular samples whose time stamps jitter, a logger's), "
@@ -180,6 +184,7 @@ def _run_drives(args, drives, filters):
                              intervals=getattr(args, "intervals", "auto"),
                              odometer_latency=getattr(args, "odometer_latency", 0.0),
                              heading_offset=getattr(args, "heading_offset", 0.0),
+                             speed_scale=getattr(args, "speed_scale", 1.0),
                              progress=None if not getattr(args, "no_progress", False) else False)
         try:
             res = real_drive_outages(run, n_placements=args.outages, length=args.outage_length, filters=fl,
