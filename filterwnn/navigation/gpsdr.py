@@ -1606,7 +1606,13 @@ class GPSDRFilter:
             if i not in self._cal_warned:
                 self._cal_warned.add(i)
                 rate = self.model.rate_bias and i == RATE - 6  # the rate bias: its own remedy
-                remedy = " " + _gyro_bias_remedy(abs(self._cal_mean[i] + d[i]), "at least") if rate else ""
+                held = abs(self._cal_mean[i] + np.sign(d[i]) * bound[i])  # where the bound holds it
+                remedy = ". " + _gyro_bias_remedy(held, "at least") if rate else ""
+                if i == 0:  # the odometer scale: a speed off by more than the grade allows is the reader's to fix
+                    remedy = (f". A speed or odometer that reads {'more' if d[i] > 0 else 'less'} than the car drove "
+                              "by more than the grade allows (a speedometer's signal reads high by up to 10 %) is "
+                              "divided out by the drive reader's speed_scale= (--speed-scale), whose check against "
+                              "the fixes names the value")
                 warnings.warn(
                     f"GPSDRFilter: the {names[i]} state ran past {CALIBRATION_SIGMAS:g} sigma of its "
                     f"specification at step {self.step} ({d[i]:+.3g} from its prior mean, bound "

@@ -280,6 +280,22 @@ def test_the_warning_names_the_gyros_own_specification_as_the_remedy(phone):
     assert len(said) == 1 and "gyro_bias_deg_s" not in said[0]
 
 
+def test_each_calibration_bound_names_its_own_remedy(phone):
+    """Held at its bound, the rate bias names the gyro's own specification (at least the value held), the
+    odometer scale the drive reader's speed_scale (a speed that reads high), the heading bias neither."""
+    f = GPSDRFilter(phone, x0=np.r_[np.zeros(6), phone.x0[6:]])
+    f.predict()
+    for row, value, want, not_ in ((8, 0.3 * DEG, r"gyro rate bias state ran past .* at least 0\.16 deg/s.*--gyro-bias 0\.16",
+                                    "speed_scale"),
+                                   (6, 1.2, r"odometer scale state ran past .* reads more than the car drove .*"
+                                            r"speed_scale= \(--speed-scale\)", "gyro-bias"),
+                                   (7, 30.0 * DEG, r"heading bias state ran past", "speed_scale")):
+        f.kf.x = np.r_[f.kf.x[:row], value, f.kf.x[row + 1:]]
+        with pytest.warns(RuntimeWarning, match=want) as seen:
+            f._bound_calibration()
+        assert all(not_ not in str(w.message) and "gyro-bias" not in str(w.message) * (row != 8) for w in seen)
+
+
 def test_stops_held_at_the_bound_count_as_not_followed(phone):
     """Short stops (3 s) at 0.3 deg/s each pass the gate (their slopes are uncertain), so the state climbs
     until the calibration bound holds it near 0.15 deg/s. Stops the bound holds are ones the state could
