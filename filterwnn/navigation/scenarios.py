@@ -323,7 +323,7 @@ class DRRun(NamedTuple):
             one is what the GPS/DR filter's monitor estimates and warns of, with this setting's value.
         heading_offset : float
             Degrees by which the heading reads clockwise of the car's course (its zero off: a phone mounted
-            askew; a magnetic heading, east declination negative: ``-D``): subtracted from every heading.
+            askew; a magnetic heading reads ``-D`` for a declination ``D`` east): subtracted from every heading.
             Default 0. The plausibility check estimates it against the fixes and warns past
             ``HEADING_OFFSET_WARN_DEG`` (10 degrees) with this setting's value; the filters learn a heading
             bias from the fixes, but an outage before the first ones ends off by the whole offset.
