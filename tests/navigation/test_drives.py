@@ -57,6 +57,13 @@ def test_a_drifting_gyro_passes_and_a_wrong_heading_zero_does_not(tmp_path):
         read_drive_csv(_write(tmp_path / "zero.csv", wrong))
 
 
+def _read_quietly(path, **kw):
+    """``read_drive_csv(path, **kw)``, any warning an error."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        return read_drive_csv(path, **kw)
+
+
 def test_a_heading_zero_off_is_warned_with_its_value_and_the_remedy_reads_it_back(tmp_path):
     """A heading whose zero is off by a constant (a phone mounted askew, a magnetic heading): up to 10
     degrees nothing is said; 15 degrees is warned with the offset the fixes show (+15, +- 1) and the
@@ -69,18 +76,14 @@ def test_a_heading_zero_off_is_warned_with_its_value_and_the_remedy_reads_it_bac
     def off(deg):
         return {**cols, "heading": np.mod(cols["heading"] + np.deg2rad(deg), 2 * np.pi)}
 
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")
-        read_drive_csv(_write(tmp_path / "5.csv", off(5.0)))
-        drift = {**cols, "heading": np.mod(cols["heading"] + np.deg2rad(0.05) * cols["time"], 2 * np.pi)}
-        read_drive_csv(_write(tmp_path / "drift.csv", drift))
+    _read_quietly(_write(tmp_path / "5.csv", off(5.0)))
+    drift = {**cols, "heading": np.mod(cols["heading"] + np.deg2rad(0.05) * cols["time"], 2 * np.pi)}
+    _read_quietly(_write(tmp_path / "drift.csv", drift))
     path = _write(tmp_path / "15.csv", off(15.0))
     with pytest.warns(RuntimeWarning, match=r"the dead-reckoned course starts \+15 \+- [0-9.]+ degrees off the fixes'.*"
                                             r"pass heading_offset=15 \(command line: --heading-offset 15\)"):
         read_drive_csv(path)
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")
-        told = read_drive_csv(path, heading_offset=15.0)
+    told = _read_quietly(path, heading_offset=15.0)
     np.testing.assert_allclose(np.angle(np.exp(1j * (told.z_dr[:, 0] - clean.z_dr[:, 0]))), 0.0, atol=1e-9)
     path = _write(tmp_path / "-90.csv", off(-90.0))
     with pytest.raises(ValueError, match=r"degrees off the fixes' course .* starts -90 .* heading_offset=-90 .*"
@@ -97,16 +100,12 @@ def test_a_speed_that_reads_high_is_warned_with_its_scale_and_the_remedy_divides
     drive's steps; 4 % (within the grade) is not warned."""
     cols = _drive(n=1261, dt=1.0, turn=0.02)
     clean = read_drive_csv(_write(tmp_path / "clean.csv", cols))
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")
-        read_drive_csv(_write(tmp_path / "4.csv", {**cols, "speed": cols["speed"] * 1.04}))
+    _read_quietly(_write(tmp_path / "4.csv", {**cols, "speed": cols["speed"] * 1.04}))
     path = _write(tmp_path / "12.csv", {**cols, "speed": cols["speed"] * 1.12})
     with pytest.warns(RuntimeWarning, match=r"the odometer's path is 1\.1[12] times the fixes' distance .* reads \+1[12] % .*"
                                             r"pass speed_scale=1\.1[12] \(command line: --speed-scale 1\.1[12]\)"):
         read_drive_csv(path)
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")
-        told = read_drive_csv(path, speed_scale=1.12)
+    told = _read_quietly(path, speed_scale=1.12)
     np.testing.assert_allclose(told.z_dr, clean.z_dr, rtol=1e-12, atol=1e-12)
     with pytest.raises(ValueError, match="speed_scale must be finite and > 0"):
         read_drive_csv(path, speed_scale=0.0)
