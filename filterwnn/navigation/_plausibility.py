@@ -26,10 +26,11 @@ move by :math:`L` are not judged on course and length.
 
 A drive that passes can still have its heading's zero off by a constant (a phone mounted askew; a
 magnetic heading, by the declination): the line through the chords' angles over time starts there.
-Past :data:`HEADING_OFFSET_WARN_DEG` and 3.29 of its standard errors (:func:`heading_offset`), the
+Past :data:`HEADING_OFFSET_WARN_DEG` and the 0.1 % point of its t-statistic, from at least
+:data:`WARN_MIN_CHORDS` chords (:func:`heading_offset`), the
 check warns with the value and the reader's remedy (``heading_offset=``, ``--heading-offset``); a
 refusal that such an offset explains names the same remedy. Likewise a median length ratio off 1 by
-more than :data:`SPEED_SCALE_WARN` and 3.29 of its standard errors (:func:`speed_scale`): a speed
+more than :data:`SPEED_SCALE_WARN` and the same point of its t-statistic (:func:`speed_scale`): a speed
 that reads high (a speedometer's signal) is warned with the ratio and ``speed_scale=`` /
 ``--speed-scale``, which divides it out.
 """
@@ -41,7 +42,7 @@ import warnings
 import numpy as np
 
 __all__ = ["check_drive", "heading_offset", "speed_scale", "MAX_DT", "MAX_ANGLE_DEG", "MAX_DRIFT_DEG_S",
-           "RATIO_RANGE", "HEADING_OFFSET_WARN_DEG", "SPEED_SCALE_WARN"]
+           "RATIO_RANGE", "HEADING_OFFSET_WARN_DEG", "SPEED_SCALE_WARN", "WARN_MIN_CHORDS"]
 
 #: The longest DR sample interval (s) accepted without ``checks=False``.
 MAX_DT = 2.0
@@ -60,6 +61,10 @@ HEADING_OFFSET_WARN_DEG = 10.0
 #: odometer-scale sigma (3 %), the larger of the two grades'. A speedometer's signal may read high by up to
 #: 10 % (and 4 km/h) by regulation; a wheel-speed signal with the wrong tyre circumference by a few per cent.
 SPEED_SCALE_WARN = 0.06
+#: The fewest chords from which either of those is warned: their spread, which gives the estimates' standard
+#: errors, is its own estimate only from that many (a city drive's first 90 s, 3 or 4 chords of 20 m fixes,
+#: otherwise read speed scales of 0.86-1.17 at "+- 1 %").
+WARN_MIN_CHORDS = 10
 _MIN_CHORDS = 3
 _OVERRIDE = "; if the drive really is so, pass checks=False (command line: --no-plausibility)"
 #: Length-ratio mistakes: (factor the ratio shows, the likely cause).
@@ -120,13 +125,23 @@ def _drifting_gyro(fit):
     return abs(offset) <= MAX_ANGLE_DEG and abs(rate) <= MAX_DRIFT_DEG_S and resid <= MAX_ANGLE_DEG
 
 
-def _offset_told(fit):
+def _past(n, dof):
+    """The two-sided 0.1 % point (the gate's level) of Student's t with ``dof`` degrees of freedom, for an
+    estimate from ``n`` chords whose standard error is estimated from their spread; inf under
+    :data:`WARN_MIN_CHORDS`."""
+    from scipy.stats import t
+
+    return float(t.ppf(1.0 - 0.5e-3, dof)) if n >= WARN_MIN_CHORDS else np.inf
+
+
+def _offset_told(fit, n):
     """The heading's offset a warning or refusal names, or None: a line of the chords' angles over time
     (a gyro's drift at most :data:`MAX_DRIFT_DEG_S`, the chords within :data:`MAX_ANGLE_DEG` of it)
-    that starts past :data:`HEADING_OFFSET_WARN_DEG` and past 3.29 of its standard errors (the gate's
-    0.1 %)."""
+    through ``n`` chords (at least :data:`WARN_MIN_CHORDS`) that starts past :data:`HEADING_OFFSET_WARN_DEG`
+    and past the 0.1 % point of its t-statistic (``n - 2`` degrees of freedom)."""
     offset, se, rate, resid = fit
-    if abs(rate) <= MAX_DRIFT_DEG_S and resid <= MAX_ANGLE_DEG and abs(offset) > max(HEADING_OFFSET_WARN_DEG, 3.29 * se):
+    if (abs(rate) <= MAX_DRIFT_DEG_S and resid <= MAX_ANGLE_DEG
+            and abs(offset) > max(HEADING_OFFSET_WARN_DEG, _past(n, n - 2) * se)):
         return offset
     return None
 
@@ -164,9 +179,10 @@ def speed_scale(dt, heading, step, steps, z_gps, sigma=None):
 
 
 def _warn_scale(ratio, n):
-    """Warn of a speed scale past :data:`SPEED_SCALE_WARN` and 3.29 standard errors, with the remedy."""
+    """Warn of a speed scale past :data:`SPEED_SCALE_WARN` and the 0.1 % point of its t-statistic (``n - 1``
+    degrees of freedom; at least :data:`WARN_MIN_CHORDS` chords), with the remedy."""
     r, se = _scale_fit(ratio)
-    if abs(np.log(r)) <= max(np.log1p(SPEED_SCALE_WARN), 3.29 * se):
+    if abs(np.log(r)) <= max(np.log1p(SPEED_SCALE_WARN), _past(n, n - 1) * se):
         return
     warnings.warn(
         f"plausibility: over {n} moving stretches between GPS fixes, the odometer's path is {r:.3g} times the "
@@ -281,7 +297,7 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
         return
     angle, ratio = _scores(heading, step, steps, z_gps, pairs)
     fit = _offset_fit(heading, step, steps, z_gps, pairs, dt)
-    told = _offset_told(fit)
+    told = _offset_told(fit, len(pairs))
     if _fits(angle, ratio) or (_fits(0.0, ratio) and _drifting_gyro(fit)):
         if told is not None:
             warnings.warn(f"plausibility: over {len(pairs)} moving stretches between GPS fixes, "

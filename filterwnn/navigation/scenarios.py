@@ -451,7 +451,7 @@ def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps
     if checks:
         from ._plausibility import check_drive
 
-        check_drive(dt, heading, step, steps, z_gps, None if sig is None else float(np.median(sig)),
+        check_drive(dt, heading, step, steps, z_gps, None if sig is None or not len(sig) else float(np.median(sig)),
                     swapped, None if truth is None else np.asarray(truth, dtype=float))
     x0 = np.array([p0[0], v0 * np.sin(heading[0]), 0.0, p0[1], v0 * np.cos(heading[0]), 0.0])
     sc = _own_drive_scenario(name, n, dt, v0, heading[0], steps, sig)

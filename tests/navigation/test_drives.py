@@ -107,8 +107,22 @@ def test_a_speed_that_reads_high_is_warned_with_its_scale_and_the_remedy_divides
         read_drive_csv(path)
     told = _read_quietly(path, speed_scale=1.12)
     np.testing.assert_allclose(told.z_dr, clean.z_dr, rtol=1e-12, atol=1e-12)
+    short = {k: v[:101] for k, v in _drive().items()}  # 100 m, 4 chords: their spread says nothing of their error
+    _read_quietly(_write(tmp_path / "short.csv", {**short, "speed": short["speed"] * 1.12,
+                                                 "heading": np.mod(short["heading"] + np.deg2rad(15.0), 2 * np.pi)}))
     with pytest.raises(ValueError, match="speed_scale must be finite and > 0"):
         read_drive_csv(path, speed_scale=0.0)
+
+
+def test_a_drive_whose_only_fix_is_its_start_reads_without_a_numpy_warning():
+    """The first fix gives the start and is not a fix to filter: with no other, the check had taken the median
+    of no sigmas (numpy's "Mean of empty slice")."""
+    t = np.arange(0.0, 5.0, 0.1)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        run = DRRun.from_arrays(t, np.full(len(t), 0.5), speed=np.full(len(t), 5.0), gps_t=[0.0], east=[0.0],
+                                north=[0.0], gps_sigma=[3.0])
+    assert len(run.gps_steps) == 0
 
 
 def test_the_command_takes_the_heading_offset_and_the_speed_scale(command_passes):
