@@ -1,11 +1,13 @@
 """Faults of a sensor's installation (issue 23, stop 43): the held-out analogs of seed 0 with a constant added to
-every heading (``heading``) or every speed scaled (``speed``), run as a user would, then again as the drive
+every heading (``heading``), every speed scaled (``speed``), or both (``both``: +15 degrees and the speed
+times 1.10), run as a user would, then again as the drive
 reader's warning (or refusal) tells.
 
 Run from the repository root, one BLAS thread::
 
     OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/installation/installation.py heading > docs/study-outputs/dr/installation/heading_offset.txt
     OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/installation/installation.py speed > docs/study-outputs/dr/installation/speed_scale.txt
+    OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/installation/installation.py both > docs/study-outputs/dr/installation/both.txt
 
 A phone mounted askew in its holder, or a heading from a magnetometer (magnetic north: off by the
 declination, up to 20 degrees in much of North America and Europe's north), reads a constant more than the
@@ -32,7 +34,8 @@ import _held_out_drives as held_out  # noqa: E402
 
 FILTERS = ("DR-mech", "EKF-8", "UKF-8", "SUKF-8")
 FAULTS = {"heading": ("--heading-offset", (5.0, 10.0, 15.0, -15.0, 20.0, 30.0, 90.0)),
-          "speed": ("--speed-scale", (0.92, 1.04, 1.06, 1.10, 1.20))}
+          "speed": ("--speed-scale", (0.92, 1.04, 1.06, 1.10, 1.20)),
+          "both": ("--(?:heading-offset|speed-scale)", ((15.0, 1.10),))}
 
 
 def command(path, out, option, *extra):
@@ -47,8 +50,8 @@ def command(path, out, option, *extra):
             rows[cells[1]] = f"{cells[2]} / {cells[4]}"
     refused = p.stderr.strip().splitlines()[-1].replace(os.path.dirname(path), "<tmp>") if p.stderr.strip() else ""
     cells = " | ".join(f"{k} {rows[k]}" for k in FILTERS) if rows else refused[:160]
-    told = re.findall(option + r" (-?[0-9.]+)\)", p.stderr)
-    return p.returncode, cells, (told[0] if told else None)
+    told = re.findall("(" + option + r") (-?[0-9.]+)\)", p.stderr)
+    return p.returncode, cells, [a for pair in dict(told).items() for a in pair]
 
 
 def main(fault):
@@ -57,16 +60,15 @@ def main(fault):
     for name in ("phone", "city", "one_hz"):
         base = held_out.columns(name, 0)
         for v in values:
-            if fault == "heading":
-                cols, label = dict(base, heading=np.mod(base["heading"] + np.deg2rad(v), 2 * np.pi)), f"{v:+g} deg"
-            else:
-                cols, label = dict(base, speed=base["speed"] * v), f"speed x{v:g}"
-            path = held_out.write_csv(os.path.join(tmp, f"{name}_{v:g}.csv"), cols)
+            deg, factor = (v, 1.0) if fault == "heading" else (0.0, v) if fault == "speed" else v
+            cols = dict(base, heading=np.mod(base["heading"] + np.deg2rad(deg), 2 * np.pi), speed=base["speed"] * factor)
+            label = " ".join(([f"{deg:+g} deg"] if deg else []) + ([f"speed x{factor:g}"] if factor != 1.0 else []))
+            path = held_out.write_csv(os.path.join(tmp, f"{name}_{'both' if fault == 'both' else f'{v:g}'}.csv"), cols)
             rc, cells, told = command(path, tmp, option)
-            print(f"{name} {label} | rc {rc} | {cells} | told: {told or '-'}", flush=True)
+            print(f"{name} {label} | rc {rc} | {cells} | told: {' '.join(told[1::2]) or '-'}", flush=True)
             if told:
-                rc, cells, _ = command(path, tmp, option, option, told)
-                print(f"    as told, {option} {told} | rc {rc} | {cells}", flush=True)
+                rc, cells, _ = command(path, tmp, option, *told)
+                print(f"    as told, {' '.join(told)} | rc {rc} | {cells}", flush=True)
 
 
 if __name__ == "__main__":
