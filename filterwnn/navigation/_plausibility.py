@@ -84,10 +84,20 @@ def _chords(steps, z_gps, min_len):
     return pairs
 
 
-def _scores(heading, step, steps, z_gps, pairs):
-    """Median angle (degrees) between the DR and GPS chords, and median path/chord length ratio."""
-    ang, ratio = _chord_angles(heading, step, steps, z_gps, pairs)
+def _chord_pairs(steps, z_gps, sigma):
+    """The chords of a drive whose fixes have the typical ``sigma`` (m; None: 3): at least ``max(20 m, 8
+    sigma)`` long, so the fixes' noise is small against them (see the module docstring)."""
+    return _chords(steps, z_gps, max(20.0, 8.0 * (3.0 if sigma is None else float(sigma))))
+
+
+def _medians(ang, ratio):
+    """Median absolute angle (degrees) between the DR and GPS chords, and median path/chord length ratio."""
     return float(np.degrees(np.median(np.abs(ang)))), float(np.median(ratio))
+
+
+def _scores(heading, step, steps, z_gps, pairs):
+    """:func:`_medians` of the chords with this heading and these fixes."""
+    return _medians(*_chord_angles(heading, step, steps, z_gps, pairs))
 
 
 def _chord_angles(heading, step, steps, z_gps, pairs):
@@ -105,10 +115,9 @@ def _chord_angles(heading, step, steps, z_gps, pairs):
     return (ang + np.pi) % (2 * np.pi) - np.pi, ratio
 
 
-def _offset_fit(heading, step, steps, z_gps, pairs, dt):
-    """The line through the chords' angles over time: ``(offset (deg) at the first chord, its standard
-    error (deg), rate (deg/s), median absolute residual (deg))``."""
-    ang, _ = _chord_angles(heading, step, steps, z_gps, pairs)
+def _offset_fit(ang, steps, pairs, dt):
+    """The line through the chords' signed angles ``ang`` (:func:`_chord_angles`') over time: ``(offset
+    (deg) at the first chord, its standard error (deg), rate (deg/s), median absolute residual (deg))``."""
     ang = np.unwrap(ang)
     off0 = np.round(np.median(ang[:5]) / (2 * np.pi)) * 2 * np.pi  # the unwrapped line starts within +-pi
     t = dt * np.array([0.5 * (steps[i] + steps[j]) for i, j in pairs])
@@ -171,8 +180,7 @@ def speed_scale(dt, heading, step, steps, z_gps, sigma=None):
     log)``, or None with fewer than three chords. The median over the chords (see the module docstring),
     so a bend's few per cent count little; the fixes' own noise lengthens a chord by a per cent or two.
     The arguments are :func:`check_drive`'s."""
-    sigma = 3.0 if sigma is None else float(sigma)
-    pairs = _chords(steps, z_gps, max(20.0, 8.0 * sigma))
+    pairs = _chord_pairs(steps, z_gps, sigma)
     if len(pairs) < _MIN_CHORDS:
         return None
     return _scale_fit(_chord_angles(heading, step, steps, z_gps, pairs)[1])
@@ -203,11 +211,10 @@ def heading_offset(dt, heading, step, steps, z_gps, sigma=None):
     heading reads clockwise of the course), its slope a gyro's drift, the median absolute residual
     the chords' scatter about it. The arguments are :func:`check_drive`'s.
     """
-    sigma = 3.0 if sigma is None else float(sigma)
-    pairs = _chords(steps, z_gps, max(20.0, 8.0 * sigma))
+    pairs = _chord_pairs(steps, z_gps, sigma)
     if len(pairs) < _MIN_CHORDS:
         return None
-    return _offset_fit(heading, step, steps, z_gps, pairs, dt)
+    return _offset_fit(_chord_angles(heading, step, steps, z_gps, pairs)[0], steps, pairs, dt)
 
 
 def _fits(angle, ratio):
@@ -290,19 +297,19 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
         cause = "time looks like milliseconds (divide by 1000 for s)" if dt >= 10 else "resample the drive"
         raise ValueError(f"plausibility: the DR sample interval is {dt:g} s, longer than {MAX_DT:g} s (dead-"
                          f"reckoning sensors sample at 1-100 Hz): {cause}{_OVERRIDE}")
-    sigma = 3.0 if sigma is None else float(sigma)
-    _check_truth(steps, z_gps, truth, sigma)
-    pairs = _chords(steps, z_gps, max(20.0, 8.0 * sigma))
+    _check_truth(steps, z_gps, truth, 3.0 if sigma is None else float(sigma))
+    pairs = _chord_pairs(steps, z_gps, sigma)
     if len(pairs) < _MIN_CHORDS:
         return
-    angle, ratio = _scores(heading, step, steps, z_gps, pairs)
-    fit = _offset_fit(heading, step, steps, z_gps, pairs, dt)
+    ang, ratios = _chord_angles(heading, step, steps, z_gps, pairs)  # once, for every test below
+    angle, ratio = _medians(ang, ratios)
+    fit = _offset_fit(ang, steps, pairs, dt)
     told = _offset_told(fit, len(pairs))
     if _fits(angle, ratio) or (_fits(0.0, ratio) and _drifting_gyro(fit)):
         if told is not None:
             warnings.warn(f"plausibility: over {len(pairs)} moving stretches between GPS fixes, "
                           f"{_offset_remedy(*fit[:3], filters=True)}", RuntimeWarning, stacklevel=4)
-        _warn_scale(_chord_angles(heading, step, steps, z_gps, pairs)[1], len(pairs))
+        _warn_scale(ratios, len(pairs))
         return
     found = (f"median over {len(pairs)} moving stretches between GPS fixes: the dead-reckoned track is "
              f"{angle:.0f} degrees off the fixes' course and {ratio:.3g} times their distance")

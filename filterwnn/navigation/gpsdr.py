@@ -1605,10 +1605,10 @@ class GPSDRFilter:
         for i in np.flatnonzero(out):
             if i not in self._cal_warned:
                 self._cal_warned.add(i)
-                rate = self.model.rate_bias and i == RATE - 6  # the rate bias: its own remedy
-                held = abs(self._cal_mean[i] + np.sign(d[i]) * bound[i])  # where the bound holds it
-                remedy = ". " + _gyro_bias_remedy(held, "at least") if rate else ""
-                if i == 0:  # the odometer scale: a speed off by more than the grade allows is the reader's to fix
+                remedy = ""
+                if self.model.rate_bias and i == RATE - 6:  # the gyro's own specification, at least where held
+                    remedy = ". " + _gyro_bias_remedy(abs(x[RATE]), "at least")
+                elif i == 0:  # the odometer scale: a speed off by more than the grade allows is the reader's to fix
                     remedy = (f". A speed or odometer that reads {'more' if d[i] > 0 else 'less'} than the car drove "
                               "by more than the grade allows (a speedometer's signal reads high by up to 10 %) is "
                               "divided out by the drive reader's speed_scale= (--speed-scale), whose check against "
