@@ -26,22 +26,26 @@ runs the NumPy path, which raises its usual error (the same message, member and 
 The kernels live in ``filterwnn.kalman._kernels``, which imports numba; :func:`kernels` loads
 it when a kernel is first needed (``pip install "filterwnn[fast]"``), and :func:`available`
 says whether it can (not with ``NUMBA_DISABLE_JIT=1``). They are compiled once per machine
-and cached beside that module (numba's ``cache=True``; a new process loads them in well under
-a second).
+and cached (numba's ``cache=True``; a new process loads them in well under a second) in
+:func:`cache_dir`, the user's cache folder, not beside the installed module: a cache written
+into ``site-packages/filterwnn`` outlived ``pip uninstall`` there, and an editable install made
+afterwards imported that leftover folder instead of the package.
 """
 
 from __future__ import annotations
 
 import importlib.util
 import os
+import threading
 
-__all__ = ["available", "kernels", "BLOCK"]
+__all__ = ["available", "kernels", "cache_dir", "BLOCK"]
 
 #: members per block: the block's work arrays (a few ``(n, S, BLOCK)`` arrays) stay in the
 #: first-level cache for ``n <= 8``
 BLOCK = 64
 
 _KERNELS = None
+_LOCK = threading.Lock()
 
 
 def available():
@@ -55,12 +59,34 @@ def available():
     return importlib.util.find_spec("numba") is not None
 
 
+def cache_dir():
+    """Where numba caches the compiled kernels: ``NUMBA_CACHE_DIR`` when set (numba's own
+    setting, for every package), else ``filterwnn/numba`` in the user's cache folder
+    (``$XDG_CACHE_HOME``, by default ``~/.cache``). numba names each cached module's subfolder
+    after its path, so two installs of filterwnn keep apart."""
+    import numba
+
+    if numba.config.CACHE_DIR:
+        return numba.config.CACHE_DIR
+    root = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return os.path.join(root, "filterwnn", "numba")
+
+
 def kernels():
     """``(sigma_kernel, predict_kernel, update_kernel)`` (``filterwnn.kalman._kernels``, which
-    imports numba), compiled on first use."""
+    imports numba), compiled on first use and cached in :func:`cache_dir`."""
     global _KERNELS
-    if _KERNELS is None:
-        from . import _kernels
+    with _LOCK:
+        if _KERNELS is None:
+            import numba
 
-        _KERNELS = (_kernels.sigma_kernel, _kernels.predict_kernel, _kernels.update_kernel)
+            # numba places a function's cache when it is decorated, from numba.config.CACHE_DIR (where
+            # NUMBA_CACHE_DIR lands); set for the decoration of ours alone, so other packages' stay put
+            before = numba.config.CACHE_DIR
+            numba.config.CACHE_DIR = cache_dir()
+            try:
+                from . import _kernels
+            finally:
+                numba.config.CACHE_DIR = before
+            _KERNELS = (_kernels.sigma_kernel, _kernels.predict_kernel, _kernels.update_kernel)
     return _KERNELS

@@ -2,7 +2,8 @@
 ``_compiled.kernels()``).
 
 Defined at module level, not in a closure, so that numba's on-disk cache (``cache=True``)
-finds them again in a new process.
+finds them again in a new process; imported through ``_compiled.kernels()``, which places that
+cache in ``_compiled.cache_dir()``.
 """
 
 import math

@@ -263,6 +263,33 @@ def test_numba_switched_off_for_debugging_means_the_numpy_step(monkeypatch):
     assert _compiled.available()
 
 
+def test_the_kernels_cache_outside_the_installed_package(tmp_path):
+    """numba's cache beside the module outlived `pip uninstall` in site-packages/filterwnn, and an editable
+    install made afterwards imported that leftover folder instead of the package: it goes to the user's
+    cache folder, numba's own setting is left as it was, and NUMBA_CACHE_DIR, when set, wins."""
+    import os
+    import subprocess
+    import sys
+
+    code = (
+        "import numba, os\n"
+        "from filterwnn.kalman import _compiled\n"
+        "k = _compiled.kernels()\n"
+        "print(repr(numba.config.CACHE_DIR), _compiled.cache_dir())\n"
+        "print(k[0]._cache._cache_path)\n"
+    )
+    env = {k: v for k, v in os.environ.items() if k != "NUMBA_CACHE_DIR"}
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
+                         env=dict(env, XDG_CACHE_HOME=str(tmp_path / "xdg")))
+    first, path = run.stdout.split("\n")[:2]
+    assert first.startswith("'' ") and first.split()[1] == str(tmp_path / "xdg" / "filterwnn" / "numba")
+    assert path.startswith(str(tmp_path / "xdg" / "filterwnn" / "numba"))
+    assert not path.startswith(os.path.dirname(_compiled.__file__))
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
+                         env=dict(env, NUMBA_CACHE_DIR=str(tmp_path / "numba")))
+    assert run.stdout.split("\n")[1].startswith(str(tmp_path / "numba"))
+
+
 def test_a_new_process_loads_the_kernels_from_numbas_cache():
     """Compiled once, then loaded: kernels defined in a closure missed the cache in every new
     process and compiled again (about 5 s each)."""
