@@ -125,6 +125,23 @@ def test_a_drive_whose_only_fix_is_its_start_reads_without_a_numpy_warning():
     assert len(run.gps_steps) == 0
 
 
+def test_a_fix_jumping_while_the_car_stands_reads_without_a_numpy_warning():
+    """A chord between a standing car's fixes, one jumped 60 m (multipath), has no odometer path: its ratio
+    is 0, taken as the lowest by the speed scale's median; numpy's "divide by zero encountered in log"
+    had reached the user."""
+    t = np.arange(0.0, 300.0, 0.1)
+    speed = np.where((t > 100.0) & (t < 140.0), 0.0, 10.0)
+    north = np.r_[0.0, np.cumsum(speed[:-1] * 0.1)]
+    gps = np.arange(10, len(t), 10)
+    ge, gn = np.zeros(len(gps)), north[gps].copy()
+    ge[np.searchsorted(t[gps], 120.0)] = 60.0  # the jump, while the car stands
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        run = DRRun.from_arrays(t, np.zeros(len(t)), speed=speed, gps_t=t[gps], east=ge, north=gn,
+                                gps_sigma=np.full(len(gps), 2.0))
+    assert len(run.gps_steps) == len(gps)
+
+
 def test_the_command_takes_the_heading_offset_and_the_speed_scale(command_passes):
     seen = command_passes("read_drive_csv", ["--heading-offset", "-12.5", "--speed-scale", "1.08"])
     assert seen["heading_offset"] == -12.5 and seen["speed_scale"] == 1.08
