@@ -130,12 +130,13 @@ def _medians(ang, ratio):
 
 def _scores(heading, step, steps, z_gps, pairs):
     """:func:`_medians` of the chords with this heading and these fixes."""
-    return _medians(*_chord_angles(heading, step, steps, z_gps, pairs))
+    return _medians(*_chord_angles(heading, step, steps, z_gps, pairs)[:2])
 
 
 def _chord_angles(heading, step, steps, z_gps, pairs):
     """Per chord, the signed angle (rad, in ``[-pi, pi)``) from the GPS chord to the DR one, and
-    the path/chord length ratio."""
+    the path/chord length ratio, and the ratio of the dead-reckoned displacement's length to the chord's (a
+    speed scale, which a bend does not lengthen as it does the path)."""
     cum_e = np.r_[0.0, np.cumsum(step * np.sin(heading[1:]))]
     cum_n = np.r_[0.0, np.cumsum(step * np.cos(heading[1:]))]
     cum_l = np.r_[0.0, np.cumsum(step)]
@@ -144,8 +145,10 @@ def _chord_angles(heading, step, steps, z_gps, pairs):
     dr = np.stack([cum_e[b] - cum_e[a], cum_n[b] - cum_n[a]], axis=1)
     gps = np.stack([z_gps[j] - z_gps[i] for i, j in pairs])
     ang = np.arctan2(dr[:, 0], dr[:, 1]) - np.arctan2(gps[:, 0], gps[:, 1])
-    ratio = (cum_l[b] - cum_l[a]) / np.hypot(gps[:, 0], gps[:, 1])
-    return (ang + np.pi) % (2 * np.pi) - np.pi, ratio
+    chord = np.hypot(gps[:, 0], gps[:, 1])
+    with np.errstate(divide="ignore", invalid="ignore"):  # a fix re-sent (stale) while the car moved: inf
+        ratio, length = (cum_l[b] - cum_l[a]) / chord, np.hypot(dr[:, 0], dr[:, 1]) / chord
+    return (ang + np.pi) % (2 * np.pi) - np.pi, ratio, length
 
 
 def _offset_fit(ang, steps, pairs, dt):
@@ -212,14 +215,15 @@ def _scale_fit(ratio):
 
 
 def speed_scale(dt, heading, step, steps, z_gps, sigma=None):
-    """How much more the odometer's path is than the GPS fixes' distance: ``(ratio, standard error of its
-    log)``, or None with fewer than three chords. The median over the chords (see the module docstring),
-    so a bend's few per cent count little; the fixes' own noise lengthens a chord by a per cent or two.
-    The arguments are :func:`check_drive`'s."""
+    """How much longer the dead-reckoned displacement is than the GPS fixes' over the same stretch: ``(ratio,
+    standard error of its log)``, or None with fewer than three chords. The median over the chords (see the
+    module docstring) of the straight-line lengths, which a bend shortens alike (the odometer's path, longer
+    on a bend, read a city drive's speed 10 % high); the fixes' own noise lengthens a chord by a per cent or
+    two. The arguments are :func:`check_drive`'s."""
     pairs = _chord_pairs(steps, z_gps, sigma, step)
     if len(pairs) < _MIN_CHORDS:
         return None
-    return _scale_fit(_chord_angles(heading, step, steps, z_gps, pairs)[1])
+    return _scale_fit(_chord_angles(heading, step, steps, z_gps, pairs)[2])
 
 
 def _warn_scale(ratio, n):
@@ -229,8 +233,8 @@ def _warn_scale(ratio, n):
     if abs(np.log(r)) <= max(np.log1p(SPEED_SCALE_WARN), _past(n, n - 1) * se):
         return
     warnings.warn(
-        f"plausibility: over {n} moving stretches between GPS fixes, the odometer's path is {r:.3g} times the "
-        f"fixes' distance (median, +- {100 * se:.1g} %): a speed (or odometer) that reads {100 * (r - 1):+.0f} % (a "
+        f"plausibility: over {n} moving stretches between GPS fixes, the dead-reckoned distance is {r:.3g} times "
+        f"the fixes' (median, +- {100 * se:.1g} %): a speed (or odometer) that reads {100 * (r - 1):+.0f} % (a "
         "speedometer's signal reads high by up to 10 %, a wheel-speed signal with the wrong tyre circumference "
         "a few per cent). The GPS/DR filters learn an odometer scale from the fixes, but not before the first "
         "ones, and not past their grade (the phone grade's: 3 %, one sigma, held within three); if the scale is "
@@ -337,7 +341,7 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
     pairs = _chord_pairs(steps, z_gps, sigma, step)
     if len(pairs) < _MIN_CHORDS:
         return
-    ang, ratios = _chord_angles(heading, step, steps, z_gps, pairs)  # once, for every test below
+    ang, ratios, lengths = _chord_angles(heading, step, steps, z_gps, pairs)  # once, for every test below
     angle, ratio = _medians(ang, ratios)
     fit = _offset_fit(ang, steps, pairs, dt)
     told = _offset_told(fit, len(pairs))
@@ -345,7 +349,7 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
         if told is not None:
             warnings.warn(f"plausibility: over {len(pairs)} moving stretches between GPS fixes, "
                           f"{_offset_remedy(*fit[:3], filters=True)}", RuntimeWarning, stacklevel=4)
-        _warn_scale(ratios, len(pairs))
+        _warn_scale(lengths, len(pairs))
         return
     found = (f"median over {len(pairs)} moving stretches between GPS fixes: the dead-reckoned track is "
              f"{angle:.0f} degrees off the fixes' course and {ratio:.3g} times their distance")

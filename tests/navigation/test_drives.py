@@ -102,7 +102,7 @@ def test_a_speed_that_reads_high_is_warned_with_its_scale_and_the_remedy_divides
     clean = read_drive_csv(_write(tmp_path / "clean.csv", cols))
     _read_quietly(_write(tmp_path / "4.csv", {**cols, "speed": cols["speed"] * 1.04}))
     path = _write(tmp_path / "12.csv", {**cols, "speed": cols["speed"] * 1.12})
-    with pytest.warns(RuntimeWarning, match=r"the odometer's path is 1\.1[12] times the fixes' distance .* reads \+1[12] % .*"
+    with pytest.warns(RuntimeWarning, match=r"the dead-reckoned distance is 1\.1[12] times the fixes' .* reads \+1[12] % .*"
                                             r"pass speed_scale=1\.1[12] \(command line: --speed-scale 1\.1[12]\)"):
         read_drive_csv(path)
     told = _read_quietly(path, speed_scale=1.12)
