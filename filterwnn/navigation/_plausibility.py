@@ -205,8 +205,8 @@ def _offset_remedy(offset, se, rate, filters=False):
 
 def _scale_fit(ratio):
     """The chords' median length ratio and its standard error (both of the log; the median's
-    ``1.2533 * 1.4826 MAD / sqrt(n)``): ``(ratio, se)``. A chord the odometer did not move along (the car
-    stood while a fix jumped) has the log ``-inf``: the lowest ratio, which the median and its absolute
+    ``1.2533 * 1.4826 MAD / sqrt(n)``): ``(ratio, se)``. A chord with no dead-reckoned displacement (the car
+    stood while a fix jumped, where the chords come from the fixes' distance) has the log ``-inf``: the lowest ratio, which the median and its absolute
     deviation take as such."""
     with np.errstate(divide="ignore"):
         lr = np.log(ratio)
