@@ -163,6 +163,20 @@ def test_a_drifting_gyro_with_multipath_jumps_is_read():
     assert abs(offset) < 3 * se + 1.0 and abs(rate - 0.09) < 0.005 and resid < 10.0
 
 
+def test_one_wild_chord_angle_does_not_turn_the_rest():
+    """numpy's unwrap takes each angle within pi of the one before: one chord pointing anywhere (a jumped fix)
+    shifted all later angles by a turn. Unwrapped against the median of the five before, it stays one."""
+    from filterwnn.navigation._plausibility import _unwrap
+
+    line = np.deg2rad(0.5 * np.arange(40.0) + 170.0)  # a drift through +-180 degrees
+    ang = (line + np.pi) % (2 * np.pi) - np.pi
+    ang[20] = ang[20] + np.deg2rad(179.8)  # the wild one: numpy takes the step into it (+180.3 deg) for -179.7, and every later angle a turn lower
+    out = _unwrap(ang)
+    keep = np.arange(40) != 20
+    np.testing.assert_allclose(out[keep], line[keep], atol=1e-12)
+    assert not np.allclose(np.unwrap(ang)[keep], line[keep])
+
+
 @pytest.mark.parametrize("case", ["5 Hz fixes", "multipath at walking pace"])
 def test_chords_chosen_by_the_odometer_read_the_speed_scale_right(case):
     """A chord that ended at the first fix past its length was chosen by the fixes' errors: 5 Hz fixes

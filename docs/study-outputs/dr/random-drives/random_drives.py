@@ -36,8 +36,11 @@ KINDS = ("EKF-8", "UKF-8", "SUKF-8")
 FILTERS = ("DR-mech",) + KINDS
 
 
-def draw(seed):
-    """The drive's settings, drawn from ``SeedSequence([23, 44, seed])``."""
+def draw(seed, protocol=1):
+    """The drive's settings, drawn from ``SeedSequence([23, 44, seed])``. ``protocol=2`` draws the odometer's
+    noise per sample as a wheel tick's quantization (0.002-0.015 m) and a speed's noise (0.02-0.2 m/s) times the
+    sample interval, from ``SeedSequence([23, 44, seed, 2])`` (every other draw the same): protocol 1's 0.005-0.1
+    m a sample, whatever the interval, is 0.1-2 m/s of speed noise at 20 Hz, which no wheel-speed sensor has."""
     rng = np.random.default_rng(np.random.SeedSequence([23, 44, seed]))
     dt = float(rng.choice([0.05, 0.1, 0.2, 0.5, 1.0]))
     d = dict(dt=dt, duration=float(np.round(rng.uniform(600.0, 1500.0))), standing=rng.uniform(0.0, 0.45),
@@ -49,21 +52,25 @@ def draw(seed):
              sigma=float(np.exp(rng.uniform(np.log(2.5), np.log(20.0)))), optimism=rng.uniform(0.8, 1.4),
              correlated=rng.uniform(0.0, 0.9), tau=rng.uniform(5.0, 30.0), jumps=rng.uniform(0.0, 0.08),
              tunnel=rng.uniform(20.0, 90.0) if rng.random() < 0.3 else 0.0)
+    if protocol == 2:
+        odo = np.random.default_rng(np.random.SeedSequence([23, 44, seed, 2]))
+        d["odo"] = float(np.hypot(odo.uniform(0.002, 0.015), odo.uniform(0.02, 0.2) * dt))
     return d, rng
 
 
-def describe(d):
+def describe(d, protocol=1):
+    odometer = f", odometer {d['odo']:.3f} m" if protocol == 2 else ""
     tunnel = f", a {d['tunnel']:.0f} s tunnel" if d["tunnel"] else ""
     return (f"dt {d['dt']:g} s, {d['duration']:.0f} s, {100 * d['standing']:.0f} % standing, "
             f"{d['speeds'][0]:g}-{d['speeds'][1]:g} m/s, scale {d['scale']:.3f}, offset {d['offset']:+.1f} deg, "
-            f"rate bias {d['rate_bias']:+.3f} deg/s, arw {d['arw']:.2f}, fixes {d['gps_rate']:g} Hz "
+            f"rate bias {d['rate_bias']:+.3f} deg/s, arw {d['arw']:.2f}{odometer}, fixes {d['gps_rate']:g} Hz "
             f"sigma {d['sigma']:.1f} m x{d['optimism']:.2f} ({100 * d['correlated']:.0f} % over {d['tau']:.0f} s, "
             f"{100 * d['jumps']:.1f} % jumps{tunnel})")
 
 
-def drive(seed):
+def drive(seed, protocol=1):
     """The drive CSV's columns and its fixes' horizontal errors."""
-    d, rng = draw(seed)
+    d, rng = draw(seed, protocol)
     t, x, heading, speed = held_out._drive(
         rng, d["dt"], d["duration"], d["standing"], d["speeds"], d["heading"],
         dict(scale=d["scale"], odo=d["odo"], offset=d["offset"], rate_bias=d["rate_bias"], arw=d["arw"],
@@ -105,8 +112,8 @@ def command(path, out, grade):
     return p.returncode, "Traceback" in p.stderr, rows, warned, reader, p.stderr
 
 
-def one(seed, keep=None):
-    d, cols, fix_err = drive(seed)
+def one(seed, keep=None, protocol=1):
+    d, cols, fix_err = drive(seed, protocol)
     m50, m95 = np.median(fix_err), np.percentile(fix_err, 95)
     out = []
     with tempfile.TemporaryDirectory() as tmp:
@@ -132,7 +139,7 @@ def one(seed, keep=None):
         if keep:
             import shutil
             shutil.copy(path, keep)
-    return f"seed {seed}: {describe(d)}; fixes' error median {m50:.1f} m, p95 {m95:.1f} m\n" + "\n".join(out)
+    return f"seed {seed}: {describe(d, protocol)}; fixes' error median {m50:.1f} m, p95 {m95:.1f} m\n" + "\n".join(out)
 
 
 def seeds(spec):
@@ -148,7 +155,9 @@ if __name__ == "__main__":
     ap.add_argument("--seeds", default="0-99")
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--keep", help="a folder to keep each drive's CSV and the command's stderr in")
+    ap.add_argument("--protocol", type=int, choices=(1, 2), default=1, help="the odometer's noise (see draw)")
     a = ap.parse_args()
     from joblib import Parallel, delayed
-    for line in Parallel(n_jobs=a.jobs, return_as="generator")(delayed(one)(s, a.keep) for s in seeds(a.seeds)):
+    for line in Parallel(n_jobs=a.jobs, return_as="generator")(delayed(one)(s, a.keep, a.protocol)
+                                                                for s in seeds(a.seeds)):
         print(line, flush=True)
