@@ -153,20 +153,29 @@ def _chord_angles(heading, step, steps, z_gps, pairs):
 
 def _offset_fit(ang, steps, pairs, dt):
     """The line through the chords' signed angles ``ang`` (:func:`_chord_angles`') over time: ``(offset
-    (deg) at the first chord, its standard error (deg), rate (deg/s), median absolute residual (deg))``."""
+    (deg) at the first chord, its standard error (deg), rate (deg/s), median absolute residual (deg), chords
+    fitted)``. Least squares, then again without the chords past three robust sigmas (1.4826 times the median
+    absolute residual) of the first line: a chord from a fix jumped by multipath points anywhere, and a few
+    of them had doubled the offset's standard error on a city drive of 25 chords."""
     ang = _unwrap(ang)
     off0 = np.round(np.median(ang[:5]) / (2 * np.pi)) * 2 * np.pi  # the unwrapped line starts within +-pi
     t = dt * np.array([0.5 * (steps[i] + steps[j]) for i, j in pairs])
-    (rate, offset), cov = np.polyfit(t - t[0], ang - off0, 1, cov=True)
-    resid = np.degrees(np.median(np.abs(ang - off0 - offset - rate * (t - t[0]))))
-    return float(np.degrees(offset)), float(np.degrees(np.sqrt(cov[1, 1]))), float(np.degrees(rate)), float(resid)
+    t, a = t - t[0], ang - off0
+    (rate, offset), cov = np.polyfit(t, a, 1, cov=True)
+    r = np.abs(a - offset - rate * t)
+    resid = np.median(r)
+    keep = r <= max(3.0 * 1.4826 * resid, np.deg2rad(1.0))  # a chord from a jumped fix leaves the fit
+    if 4 <= keep.sum() < len(keep):
+        (rate, offset), cov = np.polyfit(t[keep], a[keep], 1, cov=True)
+    return (float(np.degrees(offset)), float(np.degrees(np.sqrt(cov[1, 1]))), float(np.degrees(rate)),
+            float(np.degrees(resid)), int(keep.sum()) if keep.sum() >= 4 else len(keep))
 
 
 def _drifting_gyro(fit):
     """Whether a gyro's drift explains the chords' angles (``fit``: :func:`_offset_fit`'s): a heading right
     at the start whose error grows at a steady rate (an integrated rate bias, up to
     :data:`MAX_DRIFT_DEG_S`), about which the chords scatter by at most :data:`MAX_ANGLE_DEG` (median)."""
-    offset, _, rate, resid = fit
+    offset, _, rate, resid = fit[:4]
     return abs(offset) <= MAX_ANGLE_DEG and abs(rate) <= MAX_DRIFT_DEG_S and resid <= MAX_ANGLE_DEG
 
 
@@ -179,12 +188,13 @@ def _past(n, dof):
     return float(t.ppf(1.0 - 0.5e-3, dof)) if n >= WARN_MIN_CHORDS else np.inf
 
 
-def _offset_told(fit, n):
+def _offset_told(fit):
     """The heading's offset a warning or refusal names, or None: a line of the chords' angles over time
-    (a gyro's drift at most :data:`MAX_DRIFT_DEG_S`, the chords within :data:`MAX_ANGLE_DEG` of it)
-    through ``n`` chords (at least :data:`WARN_MIN_CHORDS`) that starts past :data:`HEADING_OFFSET_WARN_DEG`
-    and past the 0.1 % point of its t-statistic (``n - 2`` degrees of freedom)."""
-    offset, se, rate, resid = fit
+    (``fit``: :func:`_offset_fit`'s; a gyro's drift at most :data:`MAX_DRIFT_DEG_S`, the chords within
+    :data:`MAX_ANGLE_DEG` of it) through ``n`` chords (those it fitted, at least :data:`WARN_MIN_CHORDS`)
+    that starts past :data:`HEADING_OFFSET_WARN_DEG` and past the 0.1 % point of its t-statistic (``n - 2``
+    degrees of freedom)."""
+    offset, se, rate, resid, n = fit
     if (abs(rate) <= MAX_DRIFT_DEG_S and resid <= MAX_ANGLE_DEG
             and abs(offset) > max(HEADING_OFFSET_WARN_DEG, _past(n, n - 2) * se)):
         return offset
@@ -254,7 +264,7 @@ def heading_offset(dt, heading, step, steps, z_gps, sigma=None):
     pairs = _chord_pairs(steps, z_gps, sigma, step)
     if len(pairs) < _MIN_CHORDS:
         return None
-    return _offset_fit(_chord_angles(heading, step, steps, z_gps, pairs)[0], steps, pairs, dt)
+    return _offset_fit(_chord_angles(heading, step, steps, z_gps, pairs)[0], steps, pairs, dt)[:4]
 
 
 def _fits(angle, ratio):
@@ -344,7 +354,7 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
     ang, ratios, lengths = _chord_angles(heading, step, steps, z_gps, pairs)  # once, for every test below
     angle, ratio = _medians(ang, ratios)
     fit = _offset_fit(ang, steps, pairs, dt)
-    told = _offset_told(fit, len(pairs))
+    told = _offset_told(fit)
     if _fits(angle, ratio) or (_fits(0.0, ratio) and _drifting_gyro(fit)):
         if told is not None:
             warnings.warn(f"plausibility: over {len(pairs)} moving stretches between GPS fixes, "
