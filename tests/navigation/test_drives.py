@@ -163,6 +163,24 @@ def test_a_drifting_gyro_with_multipath_jumps_is_read():
     assert abs(offset) < 3 * se + 1.0 and abs(rate - 0.09) < 0.005 and resid < 10.0
 
 
+def test_a_speed_dropping_to_0_for_a_sample_is_interpolated_and_a_stop_is_not():
+    """A CAN frame lost and logged as 0 (one sample, or three) between 10 m/s samples: no car stops and pulls
+    away so fast, so it is a dropout, interpolated with a warning; taken for a stop it held the filters still
+    while the car moved (20 of them took the phone analog's EKF-8 from 6.68 / 28.16 to 63.51 / 397.75 m). A
+    real stop (braking at 3 m/s^2, 5 s at 0) stays."""
+    kw = _arrays(minutes=2.0, v=10.0)
+    clean = _quiet(**kw)
+    speed = kw["speed"].copy()
+    speed[[300, 601, 602, 603]] = 0.0
+    with pytest.warns(RuntimeWarning, match=r"the speed reads 0 for 4 sample\(s\) in 2 run\(s\) .* first at t = 30 s, "
+                                            r"between 10 and 10 m/s 0.2 s apart.* interpolated"):
+        run = DRRun.from_arrays(**{**kw, "speed": speed})
+    np.testing.assert_allclose(run.z_dr, clean.z_dr, atol=1e-12)
+    t = kw["t"]
+    stop = np.clip(np.minimum(np.abs(t - 60.0) - 2.5, 1e9) * 3.0, 0.0, 10.0)  # 10 m/s, braking to 5 s at 0 at 60 s
+    _quiet(**{**kw, "speed": stop})
+
+
 def test_one_wild_chord_angle_does_not_turn_the_rest():
     """numpy's unwrap takes each angle within pi of the one before: one chord pointing anywhere (a jumped fix)
     shifted all later angles by a turn. Unwrapped against the median of the five before, it stays one."""

@@ -93,6 +93,9 @@ def variants():
         lag[g][fk] += c[tr][fk - 3] - c[tr][fk]
     yield "fixes 0.3 s old (a receiver's latency)", lag, ()
     yield "fixes 0.3 s old, --gps-latency 0.3", lag, ("--gps-latency", "0.3")
+    z = {k: v.copy() for k, v in c.items()}
+    z["speed"][np.sort(np.random.default_rng(9).choice(np.flatnonzero(c["speed"] > 3.0), 10, replace=False))] = 0.0
+    yield "the speed 0 for one sample, 10 times while moving (a CAN frame lost and logged as 0)", z, ()
 
 
 def main():
