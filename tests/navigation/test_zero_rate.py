@@ -369,3 +369,36 @@ def test_the_rate_bias_is_held_from_its_first_clamp_until_it_is_well_inside_its_
     f.kf.x = np.r_[f.kf.x[:8], 0.0]
     f._bound_calibration()
     assert f._rate_clamped_since is None
+
+
+def test_a_standstill_whose_speed_flickers_is_one_stop_with_stop_reopen(phone):
+    """A 30 s standstill whose speed reads over the standstill speed every third sample (a GNSS speed's
+    noise, 0.1 m/s; 0.3 m in all): without stop_reopen, ten pieces too short to use or with slopes of no
+    weight, and the rate bias stays near its prior; with 2 s, one stop, used once, and the state at the
+    truth with a standard deviation a fifth of the prior's. A real stop (MOVING after it) is not merged."""
+    rng = np.random.default_rng(11)
+    z = _stop(rng, phone, 0.08, 30.0)[:-1]
+    z[2::3, 1] = 0.1 * DT  # 0.1 m/s: over the standstill speed
+    z = np.vstack([z, MOVING])
+    cut = _run(phone, z)
+    whole = _run(phone, z, stop_reopen=2.0)
+    assert cut.n_zero_rate + cut.n_zero_rate_rejected == 0  # two samples a piece: none long enough
+    assert abs(cut.x[8]) < 0.01 * DEG
+    assert whole.n_zero_rate == 1 and whole.n_zero_rate_rejected == 0
+    sd = np.sqrt(whole.P[8, 8])
+    assert sd < 0.2 * 0.05 * DEG and abs(whole.x[8] - 0.08 * DEG) < 3 * sd
+    two = _run(phone, np.vstack([z, _stop(rng, phone, 0.08, 10.0), MOVING]), stop_reopen=2.0)
+    assert two.n_zero_rate == 2  # the drive between (5 s, 50 m) keeps them apart
+
+
+def test_stop_reopen_is_checked_and_off_by_default(phone):
+    assert GPSDRFilter(phone).stop_reopen == 0.0
+    with pytest.raises(ValueError, match="stop_reopen must be >= 0 s"):
+        GPSDRFilter(phone, stop_reopen=-1.0)
+    with pytest.raises(ValueError, match="stop_reopen must be >= 0 s"):
+        GPSDRFilter(phone, stop_reopen=float("nan"))
+
+
+def test_the_command_passes_stop_reopen_to_the_filters(command_passes):
+    assert command_passes("real_drive_outages", ["--stop-reopen", "2"])["stop_reopen"] == 2.0
+    assert command_passes("real_drive_outages", [])["stop_reopen"] == 0.0

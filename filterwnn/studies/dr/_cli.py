@@ -97,6 +97,10 @@ def add_arguments(parser):
                         help="use one fix every this many seconds and thin the others (GPSDRFilter's "
                              "min_fix_interval; 1 for fast fixes whose errors are correlated, which the filters "
                              "warn of; default 0: every fix)")
+    parser.add_argument("--stop-reopen", type=options.nonnegative_float, default=0.0, metavar="SECONDS",
+                        help="a stop that starts again within this many seconds, the car having moved at most "
+                             "0.5 m, is the same stop to the gyro rate bias's update (GPSDRFilter's stop_reopen; "
+                             "2 for a speed that does not read 0 at a standstill, a GNSS speed; default 0: off)")
     parser.add_argument("--grade", choices=sorted(SENSOR_GRADES), default=None,
                         help="sensor grade for the GPS/DR settings (survey, phone; see "
                              "filterwnn.navigation.dead_reckoning.SENSOR_GRADES); default phone for --drive, survey for --real")
@@ -139,7 +143,8 @@ def run(args):
             rd = real_drive_outages(drive, grade=grade, use_gps_sigma=True,
                                     scale_window=getattr(args, "gps_scale_window", 0),
                                     correlated_fixes=getattr(args, "correlated_fixes", "calibration"),
-                                    min_fix_interval=getattr(args, "min_fix_interval", 0.0))
+                                    min_fix_interval=getattr(args, "min_fix_interval", 0.0),
+                                    stop_reopen=getattr(args, "stop_reopen", 0.0))
             results.append(rd)
             texts.append(real_drive_table(rd))
             print(texts[-1])
@@ -193,7 +198,8 @@ def _run_drives(args, drives, filters):
                                      grade=grade,
                                      scale_window=getattr(args, "gps_scale_window", 0),
                                      correlated_fixes=getattr(args, "correlated_fixes", "calibration"),
-                                     min_fix_interval=getattr(args, "min_fix_interval", 0.0))
+                                     min_fix_interval=getattr(args, "min_fix_interval", 0.0),
+                                    stop_reopen=getattr(args, "stop_reopen", 0.0))
         except ValueError as exc:  # name the drive (and the options behind the outages)
             raise ValueError(f"{path}: {exc} (outages from --outage-length, --outages, --outage-starts, "
                              "--min-speed)") from None
