@@ -216,8 +216,8 @@ def _offset_remedy(offset, se, rate, filters=False):
 def _scale_fit(ratio):
     """The chords' median length ratio and its standard error (both of the log; the median's
     ``1.2533 * 1.4826 MAD / sqrt(n)``): ``(ratio, se)``. A chord with no dead-reckoned displacement (the car
-    stood while a fix jumped, where the chords come from the fixes' distance) has the log ``-inf``: the lowest ratio, which the median and its absolute
-    deviation take as such."""
+    stood while a fix jumped, where the chords come from the fixes' distance) has the log ``-inf``: the lowest
+    ratio, which the median and its absolute deviation take as such."""
     with np.errstate(divide="ignore"):
         lr = np.log(ratio)
     med = float(np.median(lr))
