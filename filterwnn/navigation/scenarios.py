@@ -661,6 +661,10 @@ _MIN_SPEED_EDGES = 4
 #: had to brake to a stop and pull away again within it at more than this on average (m/s^2, 1 g: no car
 #: does either so fast).
 MAX_DROPOUT_ACCEL = 10.0
+#: The slowest speed (m/s) the samples beside a dropout may read: under it a reading of 0 is the sensor's own
+#: at a crawl (a wheel-speed sensor's low-speed cutoff, up to about 1.5 m/s; a noisy speed clipped at 0), and
+#: stays as read.
+MIN_DROPOUT_SPEED = 2.0
 
 
 def _speed_dropouts(t, speed):
@@ -668,7 +672,7 @@ def _speed_dropouts(t, speed):
 
     A dropout is a run of samples reading 0 (a CAN frame lost and logged as 0, a wheel-speed signal's glitch)
     between two samples of speeds ``a`` and ``b``, ``D`` seconds apart, with ``(a + b) / D`` over
-    :data:`MAX_DROPOUT_ACCEL`: a stop so short is no car's. Taken for a stop, each held the filters still for
+    :data:`MAX_DROPOUT_ACCEL`, both at least :data:`MIN_DROPOUT_SPEED`: a stop so short is no car's. Taken for a stop, each held the filters still for
     its samples while the car moved on (20 such samples over the phone analog's 15 minutes took EKF-8 from
     6.68 / 28.16 to 63.51 / 397.75 m). A real stop, however abrupt, lasts longer than that."""
     low = speed == 0.0
@@ -679,7 +683,7 @@ def _speed_dropouts(t, speed):
     inner = (starts >= 1) & (ends <= len(speed) - 1)
     starts, ends = starts[inner], ends[inner]
     a, b = np.abs(speed[starts - 1]), np.abs(speed[ends])
-    drop = (a + b) / (t[ends] - t[starts - 1]) > MAX_DROPOUT_ACCEL
+    drop = ((a + b) / (t[ends] - t[starts - 1]) > MAX_DROPOUT_ACCEL) & (np.minimum(a, b) >= MIN_DROPOUT_SPEED)
     if not drop.any():
         return speed
     out = speed.copy()

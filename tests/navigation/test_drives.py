@@ -167,7 +167,7 @@ def test_a_speed_dropping_to_0_for_a_sample_is_interpolated_and_a_stop_is_not():
     """A CAN frame lost and logged as 0 (one sample, or three) between 10 m/s samples: no car stops and pulls
     away so fast, so it is a dropout, interpolated with a warning; taken for a stop it held the filters still
     while the car moved (20 of them took the phone analog's EKF-8 from 6.68 / 28.16 to 63.51 / 397.75 m). A
-    real stop (braking at 3 m/s^2, 5 s at 0) stays."""
+    real stop (braking at 3 m/s^2, 5 s at 0) stays, and so does a 0 between samples of a crawl (1.5 m/s)."""
     kw = _arrays(minutes=2.0, v=10.0)
     clean = _quiet(**kw)
     speed = kw["speed"].copy()
@@ -176,6 +176,11 @@ def test_a_speed_dropping_to_0_for_a_sample_is_interpolated_and_a_stop_is_not():
                                             r"between 10 and 10 m/s 0.2 s apart.* interpolated"):
         run = DRRun.from_arrays(**{**kw, "speed": speed})
     np.testing.assert_allclose(run.z_dr, clean.z_dr, atol=1e-12)
+    crawl = {**kw, "speed": np.where(speed == 0.0, 0.0, 1.5)}  # at a crawl a 0 is the sensor's own (a cutoff)
+    with pytest.warns(RuntimeWarning, match="a wheel-speed sensor's cutoff") as seen:
+        read = DRRun.from_arrays(**crawl, checks=False)  # its fixes drove at 10 m/s
+    assert not any("dropouts" in str(w.message) for w in seen)
+    assert np.array_equal(read.z_dr[:, 1] == 0.0, crawl["speed"][1:] == 0.0)
     t = kw["t"]
     stop = np.clip(np.minimum(np.abs(t - 60.0) - 2.5, 1e9) * 3.0, 0.0, 10.0)  # 10 m/s, braking to 5 s at 0 at 60 s
     _quiet(**{**kw, "speed": stop})
