@@ -120,6 +120,15 @@ def add_arguments(parser):
                              "latency, with a warning)")
 
 
+def _filter_options(args):
+    """The GPS/DR filters' options of the command line (``real_drive_outages``'s), the same for ``--real``
+    and ``--drive``."""
+    return dict(scale_window=getattr(args, "gps_scale_window", 0),
+                correlated_fixes=getattr(args, "correlated_fixes", "calibration"),
+                min_fix_interval=getattr(args, "min_fix_interval", 0.0),
+                stop_reopen=getattr(args, "stop_reopen", 0.0))
+
+
 def run(args):
     """Entry point of ``filterwnn study dr``."""
     drives = getattr(args, "drive", None)
@@ -140,11 +149,7 @@ def run(args):
             except ImportError as exc:
                 print(f"skipping the real drives: {exc}")
                 break
-            rd = real_drive_outages(drive, grade=grade, use_gps_sigma=True,
-                                    scale_window=getattr(args, "gps_scale_window", 0),
-                                    correlated_fixes=getattr(args, "correlated_fixes", "calibration"),
-                                    min_fix_interval=getattr(args, "min_fix_interval", 0.0),
-                                    stop_reopen=getattr(args, "stop_reopen", 0.0))
+            rd = real_drive_outages(drive, grade=grade, use_gps_sigma=True, **_filter_options(args))
             results.append(rd)
             texts.append(real_drive_table(rd))
             print(texts[-1])
@@ -195,11 +200,7 @@ def _run_drives(args, drives, filters):
             res = real_drive_outages(run, n_placements=args.outages, length=args.outage_length, filters=fl,
                                      starts=starts, min_speed=args.min_speed,
                                      use_gps_sigma=run.gps_sigma is not None,
-                                     grade=grade,
-                                     scale_window=getattr(args, "gps_scale_window", 0),
-                                     correlated_fixes=getattr(args, "correlated_fixes", "calibration"),
-                                     min_fix_interval=getattr(args, "min_fix_interval", 0.0),
-                                    stop_reopen=getattr(args, "stop_reopen", 0.0))
+                                     grade=grade, **_filter_options(args))
         except ValueError as exc:  # name the drive (and the options behind the outages)
             raise ValueError(f"{path}: {exc} (outages from --outage-length, --outages, --outage-starts, "
                              "--min-speed)") from None
