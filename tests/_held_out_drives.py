@@ -111,7 +111,7 @@ def _truth(changes, turns, duration, dt, heading, fine=20, exact_stops=False):
     return tf[::fine], x[::fine], psi[::fine], v[::fine]
 
 
-def _drive(rng, dt, duration, standing, speeds, heading, sensors, **route_kw):
+def _drive(rng, dt, duration, standing, speeds, heading, sensors, exact_stops=False, **route_kw):
     """A drive with stops and its DR sensors: ``(t, x (n, 6), heading (n,), speed (n,))``.
 
     ``sensors``: ``scale`` (odometer), ``odo`` (m per sample), ``offset`` (deg), ``rate_bias``
@@ -121,9 +121,8 @@ def _drive(rng, dt, duration, standing, speeds, heading, sensors, **route_kw):
     ``gyro_scale`` (optional, default 0): the gyro's scale factor error, its heading turning
     ``1 + gyro_scale`` times the car (it draws nothing: the other draws stay the same).
     """
-    exact = route_kw.pop("exact_stops", False)
     changes, turns = route(rng, duration, dt, standing, speeds, **route_kw)
-    t, x, psi, v = _truth(changes, turns, duration, dt, heading, exact_stops=exact)
+    t, x, psi, v = _truth(changes, turns, duration, dt, heading, exact_stops=exact_stops)
     n = len(t)
     err = (np.deg2rad(sensors["offset"] + sensors["rate_bias"] * t)
            + np.deg2rad(sensors["arw"] / 60.0) * np.sqrt(dt) * np.cumsum(rng.standard_normal(n))

@@ -75,22 +75,12 @@ _SCALES = ((3.6, "speed looks like km/h (divide by 3.6 for m/s)"),
            (1000.0, "time looks like milliseconds (divide by 1000 for s)"))
 
 
-def _chords(steps, z_gps, min_len):
-    """Index pairs ``(i, j)`` of fixes at least ``min_len`` apart, each starting where the last ended."""
+def _chords(n, apart):
+    """Index pairs ``(i, j)`` of ``n`` fixes with ``apart(i, j)`` (far enough apart), each starting where the
+    last ended."""
     pairs, i = [], 0
-    for j in range(1, len(steps)):
-        if np.hypot(*(z_gps[j] - z_gps[i])) >= min_len:
-            pairs.append((i, j))
-            i = j
-    return pairs
-
-
-def _path_chords(steps, path, min_path):
-    """Index pairs ``(i, j)`` of fixes with at least ``min_path`` of odometer path between them (``path``: the
-    cumulative path at each fix), each starting where the last ended."""
-    pairs, i = [], 0
-    for j in range(1, len(steps)):
-        if path[j] - path[i] >= min_path:
+    for j in range(1, n):
+        if apart(i, j):
             pairs.append((i, j))
             i = j
     return pairs
@@ -108,8 +98,10 @@ def _chord_pairs(steps, z_gps, sigma, step):
     was refused)."""
     min_len = max(20.0, 8.0 * (3.0 if sigma is None else float(sigma)))
     path = np.r_[0.0, np.cumsum(step)][np.asarray(steps, dtype=int) + 1]  # the fix at step k is sample k + 1
-    pairs = _path_chords(steps, path, min_len)
-    return pairs if len(pairs) >= _MIN_CHORDS else _chords(steps, z_gps, min_len)
+    pairs = _chords(len(steps), lambda i, j: path[j] - path[i] >= min_len)
+    if len(pairs) >= _MIN_CHORDS:
+        return pairs
+    return _chords(len(steps), lambda i, j: np.hypot(*(z_gps[j] - z_gps[i])) >= min_len)
 
 
 def _unwrap(ang, k=5):
@@ -165,10 +157,12 @@ def _offset_fit(ang, steps, pairs, dt):
     r = np.abs(a - offset - rate * t)
     resid = np.median(r)
     keep = r <= max(3.0 * 1.4826 * resid, np.deg2rad(1.0))  # a chord from a jumped fix leaves the fit
-    if 4 <= keep.sum() < len(keep):
+    n = len(keep)
+    if 4 <= keep.sum() < n:
         (rate, offset), cov = np.polyfit(t[keep], a[keep], 1, cov=True)
+        n = int(keep.sum())
     return (float(np.degrees(offset)), float(np.degrees(np.sqrt(cov[1, 1]))), float(np.degrees(rate)),
-            float(np.degrees(resid)), int(keep.sum()) if keep.sum() >= 4 else len(keep))
+            float(np.degrees(resid)), n)
 
 
 def _drifting_gyro(fit):

@@ -672,9 +672,10 @@ def _speed_dropouts(t, speed):
 
     A dropout is a run of samples reading 0 (a CAN frame lost and logged as 0, a wheel-speed signal's glitch)
     between two samples of speeds ``a`` and ``b``, ``D`` seconds apart, with ``(a + b) / D`` over
-    :data:`MAX_DROPOUT_ACCEL`, both at least :data:`MIN_DROPOUT_SPEED`: a stop so short is no car's. Taken for a stop, each held the filters still for
-    its samples while the car moved on (20 such samples over the phone analog's 15 minutes took EKF-8 from
-    6.68 / 28.16 to 63.51 / 397.75 m). A real stop, however abrupt, lasts longer than that."""
+    :data:`MAX_DROPOUT_ACCEL`, both at least :data:`MIN_DROPOUT_SPEED`: a stop so short is no car's. Taken for
+    a stop, each held the filters still for its samples while the car moved on (20 such samples over the phone
+    analog's 15 minutes took EKF-8 from 6.68 / 28.16 to 63.51 / 397.75 m). A real stop, however abrupt, lasts
+    longer than that."""
     low = speed == 0.0
     if not low.any():
         return speed
