@@ -152,7 +152,7 @@ def test_a_drifting_gyro_with_multipath_jumps_is_read():
     """20 minutes of a 0.09 deg/s rate bias (108 degrees at the end; the phone grade's gyro, within 2 sigma)
     with 5 % of the fixes jumped 40-80 m: numpy's unwrap of the chords' angles took a jumped chord's for a
     turn and shifted every later one by 360 degrees, and the drive was refused ("68 degrees off the fixes'
-    course"); 5 of 21 random drives were. The line's drift is the gyro's."""
+    course"); 12 of 60 random drives were. The line's drift is the gyro's."""
     kw = _arrays(drift=0.09, jumps=0.05)
     _quiet(**kw)
     from filterwnn.navigation._plausibility import heading_offset
