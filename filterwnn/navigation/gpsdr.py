@@ -533,8 +533,10 @@ class GPSDRFilter:
         into stops of a sample or two whose slopes say nothing of the gyro, and the rate bias is not learnt
         (a random drive with such stops ended its outages 26.18 / 77.59 m off, 6.82 / 25.44 m with 2 s; the
         city analogs whose stops creep, seeds 2 and 3, 21.63 / 71.60 -> 18.89 / 56.07 and 15.92 / 39.73 ->
-        13.79 / 30.73 m). Not the default yet because every drive's numbers move with it (the update comes up
-        to 2 s later): ``docs/study-outputs/dr/analog-seeds/RUN.md``, stop 44.
+        13.79 / 30.73 m). Not the default: on a plain drive from rest with no gyro bias to find, the whole
+        stop's slope only adds its noise (outage ends 3.35 -> 4.61 m median over 20 seeds), and every drive's
+        numbers move with it (the update comes up to 2 s later): ``docs/study-outputs/dr/analog-seeds/RUN.md``,
+        stop 44.
     scale_on_detection : bool
         With a rate-bias state and no scale state: when the scale-error monitor finds a gyro scale
         factor error (see ``gyro_scale_z``), add the state from its estimate (``gyro_scale_added``;
