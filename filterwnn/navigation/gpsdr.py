@@ -95,6 +95,12 @@ What the filter does when GPS lies (each part a public setting, on by default):
   taken for a gyro bias of 4 deg/s: a drive's outages ended 1 km off).
   A heading that does not change at all over a stop is held by its source (a fused or
   GPS-course heading), not measured by a gyro, and is not used (``n_zero_rate_held``).
+  A heading that steps during a stop (a fused orientation re-aligning to a compass or to GPS) is
+  no drift: fitted as one, a step reads as a rate bias of 1.5 times the step over the stop.
+  :func:`stop_heading_step` tests the stop's headings for one step, past both their own scatter
+  and the grade's heading noise; when there is one, the slope is fitted on either side of it, the
+  heading bias takes the step (its variance the step's), the stop is counted
+  (``n_zero_rate_stepped``), and the first is warned with its step and size.
   When :data:`ZERO_RATE_REACQUIRE_AFTER` stops in a row are ones the state could not follow
   (rejected by the gate, or used but held at the calibration bound) and their slopes agree
   with each other (their spread about their weighted mean passes chi-square with ``N - 1``
@@ -206,7 +212,8 @@ __all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS", "GATE", "REJ
            "FIX_GAPS", "MIN_FIX_INTERVAL",
            "CORRELATED_FIXES", "SCALE_WINDOW", "SCALE_TEST", "SCALE_WARN", "SCALE_ERROR_Z", "SCALE_ERROR_MIN", "DETECTED_SCALE_SD",
            "LATENCY_Z", "LATENCY_MIN", "DETECTED_LATENCY_SD", "ODOMETER_LATENCY_Z", "ODOMETER_LATENCY_MIN",
-           "HEADING_BIAS", "RATE", "GYRO_SCALE", "gps_scale_mle", "gps_scale_loglik", "stop_heading_slope"]
+           "HEADING_BIAS", "RATE", "GYRO_SCALE", "gps_scale_mle", "gps_scale_loglik", "stop_heading_slope",
+           "stop_heading_step", "STOP_STEP_ALPHA", "STOP_STEP_MIN_SIDE"]
 
 #: Default standstill threshold (m/s) on the odometer speed: 0.05 m/s = 0.11 mph, four
 #: times the creep of a standing car's CAN speed (0.001-0.03 mph).
@@ -264,6 +271,12 @@ ZERO_RATE_GATE = NormalDist().inv_cdf(1.0 - 0.5e-3) ** 2  # = chi2.ppf(0.999, 1)
 #: Standstill samples a stop needs before its heading slope updates the rate bias (the slope's own
 #: variance, from the grade, weighs a short stop down further).
 ZERO_RATE_MIN_SAMPLES = 3
+#: The level of the test for a step in a stop's headings (:func:`stop_heading_step`), per stop, corrected for
+#: the places tried: a stop whose headings step is fitted with an offset on each side of the step.
+STOP_STEP_ALPHA = 1e-3
+#: Samples a step in a stop's headings must leave on each side of it to be tested (so ``2 * 3 + 2 = 8`` samples
+#: at least).
+STOP_STEP_MIN_SIDE = 3
 #: The fastest heading drift (deg/s) a stop's slope is taken to measure: a gyro's rate bias (a MEMS gyro's
 #: turn-on bias reaches about 0.7 deg/s; the drive reader's plausibility check allows this 1 deg/s). A stop
 #: whose heading turned faster, by more than its slope's noise allows (the gate's 3.29 sigma), is a car
@@ -344,7 +357,7 @@ def _gyro_bias_remedy(rate, least=""):
             "have told the bias end far off")
 
 
-def stop_heading_slope(t, heading, sigma_heading, q_arw):
+def stop_heading_slope(t, heading, sigma_heading, q_arw, step_at=None):
     """The gyro heading's drift rate over a stop and its variance: ``(slope (rad/s), variance)``.
 
     A car does not turn while it stands, so this is the gyro's rate bias (the zero angular rate
@@ -357,18 +370,35 @@ def stop_heading_slope(t, heading, sigma_heading, q_arw):
     with ``n > 2`` samples, the fit's own standard error ``sum a_i^2 RSS / (n - 2)`` when that is
     larger (headings that scatter more than the specification says).
 
+    ``step_at`` (an index, see :func:`stop_heading_step`): the heading stepped before that sample (a fused
+    heading re-aligned); the line then has an offset of its own on each side, and the slope comes from the
+    headings' change within each side (the weights ``a_i`` the times less their side's mean, over their sum of
+    squares; the fit's standard error then has ``n - 3`` degrees of freedom).
+
     >>> import numpy as np
     >>> t = np.arange(0.0, 10.0, 0.1)
     >>> slope, var = stop_heading_slope(t, 0.3 + 1e-3 * t, 1e-3, 0.0)
     >>> round(slope, 9), bool(np.sqrt(var) < 1e-4)
     (0.001, True)
+    >>> h = 0.3 + 1e-3 * t + 0.01 * (t >= 4.0)  # a 0.57 deg step at 4 s
+    >>> round(stop_heading_slope(t, h, 1e-3, 0.0, step_at=40)[0], 9)
+    0.001
     """
     t = np.asarray(t, dtype=float)
     h = np.asarray(heading, dtype=float)
     if t.ndim != 1 or t.shape != h.shape or len(t) < 2:
         raise ValueError(f"t and heading must be 1-D of the same length >= 2, got {t.shape} and {h.shape}")
     h = np.unwrap(h)
-    t = t - t.mean()
+    n = len(t)
+    if step_at is None:
+        t = t - t.mean()
+        fitted = 2
+    else:
+        k = int(step_at)
+        if not 2 <= k <= n - 2:
+            raise ValueError(f"step_at must leave at least 2 samples on each side of the step, got {step_at} of {n}")
+        t = np.concatenate([t[:k] - t[:k].mean(), t[k:] - t[k:].mean()])
+        fitted = 3
     tt = float(t @ t)
     if not tt > 0:
         raise ValueError("t must not be constant")
@@ -376,10 +406,98 @@ def stop_heading_slope(t, heading, sigma_heading, q_arw):
     slope = float(a @ h)
     tail = np.cumsum(a[::-1])[::-1][1:]  # sum_{i >= k} a_i, k = 1 .. n-1
     var = sigma_heading**2 * float(a @ a) + q_arw * float(np.diff(t) @ tail**2)
-    if len(h) > 2:
-        res = h - h.mean() - slope * t
-        var = max(var, float(res @ res) / (len(h) - 2) * float(a @ a))
+    if n > fitted:
+        if step_at is None:
+            res = h - h.mean() - slope * t
+        else:
+            res = np.concatenate([h[:k] - h[:k].mean(), h[k:] - h[k:].mean()]) - slope * t
+        var = max(var, float(res @ res) / (n - fitted) * float(a @ a))
     return slope, var
+
+
+def stop_heading_step(t, heading, sigma_heading=None, q_arw=0.0, alpha=STOP_STEP_ALPHA, min_side=STOP_STEP_MIN_SIDE):
+    """The most likely step in a stop's headings, and whether it is one: ``(index or None, size, sd, p)``.
+
+    A gyro's heading drifts steadily while the car stands; a fused heading (a phone's orientation, a
+    logger that re-aligns to a compass or to GPS) may also jump. A jump fitted as a drift reads as a rate
+    bias of 1.5 times the jump over the stop's length (a 0.5 degree jump in a 15 s stop: 0.05 deg/s), which
+    the rate-bias state then integrates through the next outage. The step: the one before sample ``k``
+    that reduces the residual sum of squares of the line through the headings ``heading (n,)`` (rad) at
+    times ``t (n,)`` (s) the most, ``k`` leaving ``min_side`` samples on each side. Its size over its
+    standard deviation is tested twice, each with a Bonferroni correction over the ``k`` tried:
+
+    * against the headings' own scatter about the line with the step (Student's t, ``n - 3`` degrees of
+      freedom), widened by their lag-1 correlation ``rho`` as an AR(1)'s long-run variance,
+      ``(1 + rho) / (1 - rho)``: headings smoother than white (a low-passed fused heading) wander like steps;
+    * with the grade's white heading noise ``sigma_heading`` (rad), against the scatter the specification
+      allows: a heading noisier than its grade makes no step.
+
+    Both add the grade's angle random walk ``q_arw`` (rad^2/s), ``q_arw sum_k dt_k (sum_{i >= k} w_i)^2``
+    for the step estimate's weights ``w``: a random walk is no line, and would otherwise step everywhere.
+    A step when the larger p-value, ``p``, is below ``alpha``. Returns the index of the first sample after
+    the step (None when there is none, or fewer than ``2 min_side + 2`` samples), the step's size (rad), its
+    standard deviation (rad: the larger of the two; 0 without a step), and ``p``.
+
+    >>> import numpy as np
+    >>> t = np.arange(0.0, 15.0, 0.1)
+    >>> noise = np.deg2rad(0.3) * np.random.default_rng(0).standard_normal(len(t))
+    >>> k, size, sd, p = stop_heading_step(t, 1.0 + noise + np.deg2rad(1.0) * (t >= 6.0))
+    >>> int(k), round(float(np.degrees(size)), 1), round(float(np.degrees(sd)), 2), bool(p < 1e-6)
+    (60, 1.0, 0.1, True)
+    >>> stop_heading_step(t, 1.0 + noise)[0] is None
+    True
+    >>> walk = np.deg2rad(0.3 / 60) * np.sqrt(0.1) * np.cumsum(np.random.default_rng(1).standard_normal(len(t)))
+    >>> stop_heading_step(t, 1.0 + walk, q_arw=np.deg2rad(0.3 / 60) ** 2)[0] is None  # its own walk: no step
+    True
+    """
+    from scipy.stats import t as t_dist
+
+    t = np.asarray(t, dtype=float)
+    h = np.unwrap(np.asarray(heading, dtype=float))
+    n = len(t)
+    if t.ndim != 1 or t.shape != h.shape:
+        raise ValueError(f"t and heading must be 1-D of the same length, got {t.shape} and {h.shape}")
+    if n < 2 * min_side + 2:
+        return None, 0.0, 0.0, 1.0
+    tc = t - t.mean()
+    tt = float(tc @ tc)
+    if not tt > 0:
+        raise ValueError("t must not be constant")
+    r = h - h.mean() - (tc @ h) / tt * tc  # the line's residuals
+    rss = float(r @ r)
+    # u_k = [i >= k] less its projection on (1, t): r . u_k = sum_{i >= k} r_i (r is orthogonal to both),
+    # u_k . u_k = m - m^2 / n - (sum_{i >= k} tc_i)^2 / tt with m = n - k samples after the step
+    ks = np.arange(min_side, n - min_side + 1)
+    rsum = np.cumsum(r[::-1])[::-1][ks]
+    tsum = np.cumsum(tc[::-1])[::-1][ks]
+    m = (n - ks).astype(float)
+    uu = m - m * m / n - tsum * tsum / tt
+    ok = uu > 1e-12 * n
+    drss = np.where(ok, rsum * rsum / np.where(ok, uu, 1.0), 0.0)
+    j = int(np.argmax(drss))
+    rest = rss - drss[j]
+    if not drss[j] > 0:
+        return None, 0.0, 0.0, 1.0
+    k, size = int(ks[j]), float(rsum[j] / uu[j])
+    # the step's estimate is w . h: u_k, less its projection on (1, t), over its sum of squares
+    u = (np.arange(n) >= k) - m[j] / n - tsum[j] / tt * tc
+    w = u / uu[j]
+    tail = np.cumsum(w[::-1])[::-1][1:]  # sum_{i >= k} w_i: a random walk's share
+    walk = q_arw * float(np.diff(t) @ tail**2)
+    # the residuals' own variance, with their lag-1 correlation rho as an AR(1)'s long-run factor
+    e = r - size * u
+    ee = float(e @ e)
+    rho = min(max(float(e[1:] @ e[:-1]) / ee, 0.0), 0.99) if ee > 0 else 0.0
+    var = ee / (n - 3) * float(w @ w) * (1.0 + rho) / (1.0 - rho) + walk
+    p = min(1.0, 2.0 * float(t_dist.sf(abs(size) / np.sqrt(var), n - 3)) * len(ks)) if var > 0 else 0.0
+    if sigma_heading is not None:
+        spec = sigma_heading**2 * float(w @ w) + walk
+        if spec > 0:
+            p = max(p, min(1.0, 2.0 * NormalDist().cdf(-abs(size) / np.sqrt(spec)) * len(ks)))
+        var = max(var, spec)
+    if p >= alpha:
+        return None, 0.0, 0.0, p
+    return k, size, float(np.sqrt(var)), p
 
 
 def gps_scale_mle(y, P, R, scale=1.0, iterations=20, rtol=1e-6):
@@ -604,13 +722,14 @@ class GPSDRFilter:
         The NIS of every accepted fix (:attr:`nis_mean` is their mean; 2 when consistent).
     nis_warnings : list of int
         The steps at which the consistency monitor warned.
-    n_zero_rate, n_zero_rate_rejected, n_zero_rate_held, n_zero_rate_reacquired, n_zero_rate_turned : int
+    n_zero_rate, n_zero_rate_rejected, n_zero_rate_held, n_zero_rate_reacquired, n_zero_rate_turned, n_zero_rate_stepped : int
         Stops whose heading slope updated the rate bias; stops whose slope the gate rejected; stops
         over which the heading did not change at all (held by its source, e.g. a fused or GPS-course
         heading, so it says nothing about the gyro: not used); re-acquisitions of the rate-bias state
         from stops it could not follow that agreed with each other; of the rejected stops, those whose
         heading turned faster than :data:`MAX_STOP_RATE_DEG_S` (the car moved while its speed read 0:
-        kept out of the re-acquisition too, with a warning at the first).
+        kept out of the re-acquisition too, with a warning at the first); stops whose headings stepped
+        (:func:`stop_heading_step`: the heading bias took the step, and the slope was fitted on either side).
     zero_rate_steps : list of tuple
         Per stop tested: ``(step, slope (rad/s), its standard deviation (rad/s), accepted)``.
     gps_correlation : float
@@ -749,7 +868,7 @@ class GPSDRFilter:
         if self.zero_rate_reacquire_after < 0:
             raise ValueError(f"zero_rate_reacquire_after must be >= 0 (0: never), got {zero_rate_reacquire_after}")
         self.n_zero_rate = self.n_zero_rate_rejected = self.n_zero_rate_held = self.n_zero_rate_reacquired = 0
-        self.n_zero_rate_turned = 0
+        self.n_zero_rate_turned = self.n_zero_rate_stepped = 0
         self.zero_rate_steps = []
         # (slope, var) of the stops in a row that the state could not follow
         self._zr_rejected = deque(maxlen=max(self.zero_rate_reacquire_after, 1))
@@ -1272,7 +1391,11 @@ class GPSDRFilter:
         if np.all(h == h[0]):  # held by its source (a fused or GPS-course heading), not measured by a gyro
             self.n_zero_rate_held += 1
             return
-        slope, var = stop_heading_slope(t, h, self.model.sigma_heading, self.model.q_bias)
+        sigma, q = self.model.sigma_heading, self.model.q_bias
+        k, size, sd, p = stop_heading_step(t, h, sigma, q)
+        if k is not None:
+            self._stepped(t, k, size, sd, p)
+        slope, var = stop_heading_slope(t, h, sigma, q, step_at=k)
         r = RATE  # the gyro rate bias
         S = self.kf.P[r, r] + var
         y = slope - self.kf.x[r]
@@ -1294,6 +1417,35 @@ class GPSDRFilter:
         self._zr_rejected.append((slope, var))
         if len(self._zr_rejected) == self.zero_rate_reacquire_after:
             self._zero_rate_reacquire()
+
+    def _stepped(self, t, k, size, sd, p):
+        """A stop whose headings stepped (:func:`stop_heading_step`): the measured heading's offset from the
+        car's changed by the step, so the heading bias takes it (its variance the step's), with the centre of
+        its calibration bound; counted, and warned at the first."""
+        kf, b = self.kf, HEADING_BIAS
+        x = kf.x.copy()
+        x[b] += size
+        kf.x = x
+        P = kf.P.copy()
+        P[b, b] += sd * sd
+        kf.P = P
+        if self._cal.size:
+            self._cal_mean[b - 6] += size
+        self._repair()
+        self._redraw_sigmas()
+        self.n_zero_rate_stepped += 1
+        if self.n_zero_rate_stepped > 1:
+            return
+        dt = self.model.dt
+        warnings.warn(
+            f"GPSDRFilter: over the {t[-1] - t[0]:.3g} s stop that ended at step {self.step} the heading stepped by "
+            f"{np.degrees(size):+.3g} deg at step {int(round(t[k] / dt))} (p = {p:.2g}) while the car stood: a heading "
+            "that re-aligns (a phone's fused orientation, a compass or GPS-course correction), not a gyro's drift. "
+            "The stop's drift is fitted on either side of the step (a step fitted as a drift reads as a rate bias "
+            "of 1.5 times the step over the stop), and the heading bias takes the step. "
+            "If the heading column comes from a fused orientation, a gyro-only heading (the gyro's yaw rate, "
+            "integrated) is what the model takes (later steps are counted in n_zero_rate_stepped)",
+            RuntimeWarning, stacklevel=4)
 
     def _turned(self, t, h, slope):
         """Count a stop whose heading turned faster than any gyro's bias (the car moved while its speed

@@ -12,8 +12,9 @@ import numpy as np
 import pytest
 
 from filterwnn.navigation.dead_reckoning import GPSDRModel
-from filterwnn.navigation.gpsdr import (KINDS, MAX_STOP_RATE_DEG_S, ZERO_RATE_GATE, ZERO_RATE_MIN_SAMPLES, GPSDRFilter,
-                                       stop_heading_slope)
+from filterwnn.navigation.gpsdr import (HEADING_BIAS, KINDS, MAX_STOP_RATE_DEG_S, RATE, STOP_STEP_MIN_SIDE,
+                                       ZERO_RATE_GATE, ZERO_RATE_MIN_SAMPLES, GPSDRFilter, stop_heading_slope,
+                                       stop_heading_step)
 
 DT = 0.1
 DEG = np.pi / 180.0
@@ -402,3 +403,75 @@ def test_stop_reopen_is_checked_and_off_by_default(phone):
 def test_the_command_passes_stop_reopen_to_the_filters(command_passes):
     assert command_passes("real_drive_outages", ["--stop-reopen", "2"])["stop_reopen"] == 2.0
     assert command_passes("real_drive_outages", [])["stop_reopen"] == 0.0
+
+
+def test_stop_heading_step_finds_a_step_past_the_grades_noise(phone):
+    """A 1.5 deg step 8 s into a 20 s stop, with the grade's noise: found before its sample, its size within
+    three of its standard deviations, and a slope fitted on either side of it near the drift; the line alone
+    reads the step as a drift many of its standard deviations off."""
+    rng = np.random.default_rng(20)
+    t = DT * np.arange(200)
+    h = 0.5 + _headings(rng, 200, 0.02 * DEG, phone.sigma_heading, phone.q_bias) + 1.5 * DEG * (t >= 8.0)
+    k, size, sd, p = stop_heading_step(t, h, phone.sigma_heading, phone.q_bias)
+    assert k == 80 and p < 1e-6
+    assert abs(size - 1.5 * DEG) < 3 * sd
+    slope, var = stop_heading_slope(t, h, phone.sigma_heading, phone.q_bias, step_at=k)
+    assert abs(slope - 0.02 * DEG) < 3 * np.sqrt(var)
+    line, line_var = stop_heading_slope(t, h, phone.sigma_heading, phone.q_bias)
+    assert abs(line - 0.02 * DEG) > 5 * np.sqrt(line_var)
+
+
+def test_headings_as_the_grade_describes_them_make_no_step(phone):
+    """Over 300 stops of 3-60 s with the grade's white noise and angle random walk, and 100 with the random
+    walk alone (a gyro heading without white noise, which is no line), no step is found."""
+    rng = np.random.default_rng(21)
+    found = 0
+    for i in range(400):
+        n = int(rng.integers(30, 600))
+        white = phone.sigma_heading if i < 300 else 0.0
+        h = 0.5 + _headings(rng, n, 0.03 * DEG, white, phone.q_bias)
+        found += stop_heading_step(DT * np.arange(n), h, phone.sigma_heading, phone.q_bias)[0] is not None
+    assert found == 0
+
+
+def test_a_low_passed_heading_is_not_taken_for_steps(phone):
+    """A fused heading smoother than white (AR(1) noise with a lag-1 correlation of 0.5, 0.3 deg): its own
+    scatter, widened by the correlation, keeps the test at its level (at most 1 in 100 stops of 15 s)."""
+    rng = np.random.default_rng(22)
+    found = 0
+    for _ in range(100):
+        e = rng.standard_normal(150)
+        for i in range(1, 150):
+            e[i] = 0.5 * e[i - 1] + np.sqrt(0.75) * e[i]
+        h = 0.5 + 0.3 * DEG * e
+        found += stop_heading_step(DT * np.arange(150), h, phone.sigma_heading, phone.q_bias)[0] is not None
+    assert found <= 1
+
+
+def test_stop_heading_step_needs_enough_samples_on_each_side():
+    t = DT * np.arange(2 * STOP_STEP_MIN_SIDE + 1)
+    assert stop_heading_step(t, 0.1 * (t > 0.3)) == (None, 0.0, 0.0, 1.0)
+    with pytest.raises(ValueError, match="same length"):
+        stop_heading_step(t, t[:-1])
+    with pytest.raises(ValueError, match="step_at"):
+        stop_heading_slope(t, t, 1e-3, 0.0, step_at=1)
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_a_heading_that_steps_during_a_stop_moves_the_heading_bias_not_the_rate_bias(phone, kind):
+    """A fused heading re-aligning by 2 deg halfway through a 20 s stop: the stop's drift is fitted on either
+    side (the rate bias near the truth, not the 0.15 deg/s a line reads), the heading bias takes the step
+    (against the same stop without it), the step is counted and warned once with its step and size."""
+    z = _stop(np.random.default_rng(23), phone, 0.02, 20.0)
+    stepped = z.copy()
+    stepped[100:-1, 0] = np.mod(stepped[100:-1, 0] + 2.0 * DEG + np.pi, 2 * np.pi) - np.pi
+    with pytest.warns(RuntimeWarning, match=r"stepped by \+2\.\d+ deg at step 100") as record:
+        f = _run(phone, stepped, kind)
+    assert sum("stepped" in str(w.message) for w in record) == 1
+    clean = _run(phone, z, kind)
+    assert f.n_zero_rate_stepped == 1 and clean.n_zero_rate_stepped == 0
+    assert f.n_zero_rate == 1 and f.zero_rate_steps[0][3]
+    assert abs(f.x[RATE] - 0.02 * DEG) < 3 * np.sqrt(f.P[RATE, RATE])
+    shift = f.x[HEADING_BIAS] - clean.x[HEADING_BIAS]
+    assert abs(shift - 2.0 * DEG) < 0.2 * DEG
+    assert f.P[HEADING_BIAS, HEADING_BIAS] > clean.P[HEADING_BIAS, HEADING_BIAS]
