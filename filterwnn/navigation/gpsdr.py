@@ -213,7 +213,7 @@ __all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS", "GATE", "REJ
            "CORRELATED_FIXES", "SCALE_WINDOW", "SCALE_TEST", "SCALE_WARN", "SCALE_ERROR_Z", "SCALE_ERROR_MIN", "DETECTED_SCALE_SD",
            "LATENCY_Z", "LATENCY_MIN", "DETECTED_LATENCY_SD", "ODOMETER_LATENCY_Z", "ODOMETER_LATENCY_MIN",
            "HEADING_BIAS", "RATE", "GYRO_SCALE", "gps_scale_mle", "gps_scale_loglik", "stop_heading_slope",
-           "stop_heading_step", "STOP_STEP_ALPHA", "STOP_STEP_MIN_SIDE"]
+           "stop_heading_step", "STOP_STEP_ALPHA", "STOP_STEP_MIN_SIDE", "CALIBRATION_ERROR_Z"]
 
 #: Default standstill threshold (m/s) on the odometer speed: 0.05 m/s = 0.11 mph, four
 #: times the creep of a standing car's CAN speed (0.001-0.03 mph).
@@ -315,6 +315,12 @@ FIX_GAPS = 10
 MIN_FIX_INTERVAL = 1.0
 #: The ways :class:`GPSDRFilter` can count correlated fixes (its ``correlated_fixes``).
 CORRELATED_FIXES = ("calibration", "inflate")
+#: The consistency monitor's z-score of the heading bias's or the gyro rate bias's error (one of its nuisance
+#: parameters, with the sandwich variance that counts correlated fixes at their worth) past which that state
+#: is taken to be off, and its gain is cut by the fixes' own correlation instead of the innovations' (their
+#: correlation is then partly the calibration's own error): the 99.9 % point of a normal, two-sided. Unlike the
+#: monitor's gates (:data:`SCALE_ERROR_Z`), which add a state once, it holds only while the error does.
+CALIBRATION_ERROR_Z = NormalDist().inv_cdf(1.0 - 0.5e-3)  # = 3.29
 #: Fixes over which the scale of the fixes' reported covariance is estimated when the estimate is
 #: switched on (``GPSDRFilter(scale_window=SCALE_WINDOW)``; off by default): the consistency monitor's
 #: window. With honest fixes the estimate's relative standard error is about ``1 / sqrt(SCALE_WINDOW)``
@@ -627,13 +633,25 @@ class GPSDRFilter:
     correlated_fixes : {"calibration", "inflate"}
         How ``gps_correlation`` counts the fixes. ``"calibration"`` (default): the heading bias
         and the gyro rate bias take ``1 / gps_correlation`` of their gain, and the other states take
-        each fix as independent. ``"inflate"``: each fix is tested with its reported covariance and
+        each fix as independent (while the consistency monitor finds either of the two off, past
+        ``calibration_error_z``, they take the fixes' own correlation instead: see below). ``"inflate"``: each fix is tested with its reported covariance and
         used with ``gps_correlation`` times it, so that correlated fixes count as the independent
         fixes they are worth, in every state. For fixes whose errors last (urban-canyon multipath);
         measured in ``docs/study-outputs/dr/inflation/RUN.md``: on the city analogs it lowers the
         medians at the outage ends (by 4.9 m over ten held-out seeds) but not every maximum, and a
         survey-grade recorded drive's worst outage end grows from 15.21 to 17.47 m (its innovations
         are correlated by the model's own errors, not the fixes').
+    calibration_error_z : float or None
+        The z-score past which the consistency monitor's estimate of the heading bias's or the gyro rate
+        bias's error (since it began listening; its sandwich standard deviation counts correlated fixes at
+        their worth) takes that state to be off (default :data:`CALIBRATION_ERROR_Z`, 3.29). A calibration
+        that is off makes the innovations correlated by itself (the car drifts sideways fix after fix), and
+        cutting its gain by that correlation keeps it off: a phone analog whose heading re-aligned by half a
+        degree at each stop ended its outages 38.19 / 74.12 m off, its heading bias 7 degrees from the
+        truth with a standard deviation of 1 (``docs/study-outputs/dr/log-faults/RUN.md``, stop 45). While
+        the monitor finds it, the two take ``1 / c`` of their gain with ``c`` the correlation of the
+        innovations less what the monitor's errors explain (when smaller), counted in
+        ``n_calibration_error`` and warned at the first. None: never.
     min_fix_interval : float
         Seconds after a fix used before the next is used; fixes that come faster are thinned
         (``n_thinned``, with one warning), and fixes at that rate or slower, with their jitter, are
@@ -716,6 +734,9 @@ class GPSDRFilter:
         drove farther than their sigma since it: a receiver that re-sends its last solution while it
         has none (one warning, with the step). Taken for fixes, a run of them first fails the gate and
         then re-acquires the filter onto a position left behind.
+    n_calibration_error : int
+        Fixes whose heading-bias and rate-bias gain took the fixes' own correlation because the consistency
+        monitor found one of the two off (``calibration_error_z``; the first warned).
     rejected_steps : list of int
         The steps whose fix was rejected.
     nis_accepted : list of float
@@ -778,7 +799,8 @@ class GPSDRFilter:
                  reject_gate=None, reacquire_after=REACQUIRE_AFTER, nis_window=NIS_WINDOW,
                  whiteness_window=WHITENESS_WINDOW, scale_window=0, zero_rate_update=True,
                  zero_rate_reacquire_after=ZERO_RATE_REACQUIRE_AFTER, correlated_fixes="calibration",
-                 min_fix_interval=0.0, scale_on_detection=True, latency_on_detection=True, stop_reopen=0.0):
+                 min_fix_interval=0.0, scale_on_detection=True, latency_on_detection=True, stop_reopen=0.0,
+                 calibration_error_z=CALIBRATION_ERROR_Z):
         if not isinstance(model, GPSDRModel):
             raise TypeError(f"model must be a GPSDRModel, got {type(model).__name__}")
         self.model = model
@@ -802,6 +824,9 @@ class GPSDRFilter:
         self.motion = None
         self._init_integrity(gate, reject_gate, reacquire_after, nis_window, self.kf.x)
         self.correlated_fixes = check_choice(correlated_fixes, "correlated_fixes", CORRELATED_FIXES)
+        self.calibration_error_z = (None if calibration_error_z is None
+                                    else check_positive(calibration_error_z, "calibration_error_z"))
+        self.n_calibration_error = 0
         self.min_fix_interval = float(min_fix_interval)
         if not (np.isfinite(self.min_fix_interval) and self.min_fix_interval >= 0):
             raise ValueError(f"min_fix_interval must be >= 0 s (0: every fix used), got {min_fix_interval}")
@@ -1739,6 +1764,8 @@ class GPSDRFilter:
         """
         held = self._held_rows(gps)
         c = self.gps_correlation if gps and self.correlated_fixes == "calibration" else 1.0
+        if c > 1.0 and self._calibration_off():
+            c = max(min(c, self._residual_c), 1.0)
         if not held.size and c <= 1.0:
             return None
         w = np.ones(self.model.dim_x)
@@ -1746,6 +1773,39 @@ class GPSDRFilter:
             w[self._cal[1:]] = 1.0 / c
         w[held] = 0.0
         return w
+
+    def _calibration_off(self):
+        """Whether the consistency monitor finds the heading bias or the gyro rate bias off, past
+        ``calibration_error_z`` (its estimate of that state's error since it began listening, over the
+        estimate's sandwich standard deviation), with a fixes' own correlation to take (``_residual_c``):
+        counted in ``n_calibration_error``, the first warned."""
+        if self.calibration_error_z is None or self._residual_c is None or self._theta is None:
+            return False
+        worst = None
+        for r in (HEADING_BIAS, RATE):
+            name = f"calibration {r}"
+            if name in self._hyp:
+                i = self._hyp.index(name)
+                z = abs(self._theta[i]) / np.sqrt(self._var[i]) if self._var[i] > 0 else 0.0
+                if z > self.calibration_error_z and (worst is None or z > worst[2]):
+                    worst = (r, float(self._theta[i]), float(z))
+        if worst is None:
+            return False
+        self.n_calibration_error += 1
+        if self.n_calibration_error == 1:
+            r, theta, z = worst
+            what = (f"the heading bias off by {np.degrees(theta):+.3g} deg" if r == HEADING_BIAS else
+                    f"the gyro rate bias off by {np.degrees(theta):+.3g} deg/s")
+            warnings.warn(
+                f"GPSDRFilter: at step {self.step} the consistency monitor finds {what} (z = {z:.3g}, past "
+                f"{self.calibration_error_z:.3g}), more than the correlated fixes explain. The innovations' "
+                f"correlation (gps_correlation {self.gps_correlation:.3g}) is then partly that error's own, and "
+                "cutting the calibration's gain by it would keep the error: while the monitor finds it, the heading "
+                f"bias and the rate bias take the fixes' own correlation ({self._residual_c:.3g}: the innovations "
+                "less what the monitor's errors explain) instead (n_calibration_error counts the fixes). A heading "
+                "that re-aligns (a fused orientation) or a gyro whose bias changed does this",
+                RuntimeWarning, stacklevel=4)
+        return True
 
     def _held_rows(self, gps):
         """The rows this update must not move: position and calibration without a fix; the
