@@ -144,7 +144,11 @@ What the filter does when GPS lies (each part a public setting, on by default):
   gain, as the Schmidt update is); position, velocity and the odometer scale take the full
   gain. (A miscalibrated filter's innovations are correlated too: with the scale
   de-weighted as well, a drive whose filter starts with a wrong heading kept a 3 % scale
-  error for minutes.) White innovations leave it at 1: no change.
+  error for minutes.) White innovations leave it at 1: no change. The same holds for the two
+  de-weighted states: while the consistency monitor below finds the heading bias or the rate
+  bias off (``calibration_error_z``), they take the correlation of the innovations less what the
+  monitor's errors explain instead, when smaller, so that the correlation their own error makes
+  does not keep it (``n_calibration_error``).
   ``correlated_fixes="inflate"`` instead tests each fix as one fix (its NIS against the gate,
   with its reported covariance ``R``: its marginal distribution) and uses it as
   ``1 / gps_correlation`` of one, in every state (its update takes ``gps_correlation * R``:

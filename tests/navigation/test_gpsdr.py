@@ -138,6 +138,10 @@ def test_filter_api_and_bad_arguments():
         f.batch_filter(np.zeros((3, 2)), [None])
     with pytest.raises(ValueError, match="x0 must have length 8"):
         GPSDRFilter(m, x0=np.zeros(6))
+    with pytest.raises(ValueError, match="calibration_error_z"):
+        GPSDRFilter(m, calibration_error_z=0.0)
+    assert GPSDRFilter(m, calibration_error_z=None).calibration_error_z is None
+    assert GPSDRFilter(m).calibration_error_z == pytest.approx(3.2905, abs=1e-4) and f.n_calibration_error == 0
 
 
 @pytest.mark.parametrize("kind", KINDS)

@@ -5,19 +5,26 @@ Run from the repository root, one BLAS thread (``steps`` or ``analogs``)::
 
     OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/log-faults/calibration_gain.py steps > docs/study-outputs/dr/log-faults/calibration_gain_steps.txt
     OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/log-faults/calibration_gain.py analogs > docs/study-outputs/dr/log-faults/calibration_gain_analogs.txt
+    OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/log-faults/calibration_gain.py analogs 10 30 innovations,default   # and 30 50: calibration_gain_analogs_10_49.txt
 
 With ``correlated_fixes="calibration"`` (the default) the heading bias and the gyro rate bias keep
 ``1 / gps_correlation`` of their gain, ``gps_correlation`` the integrated autocorrelation time of the accepted
 fixes' whitened innovations. A heading bias that is wrong by more than its standard deviation also makes the
 innovations correlated (the car drifts sideways, fix after fix), so the gain that would correct it is cut, and
-the error stays. The variant tried here (patched in at run time) takes, for those two states only, the
-correlation of the innovations less what the consistency monitor's errors explain (its nuisance parameters
-include every calibration state's error: ``GPSDRFilter._residual_correlation``), when it is smaller.
+the error stays. Three variants, each set at run time:
+
+* ``innovations`` (the filter before stop 45; ``calibration_error_z=None``): always ``gps_correlation``;
+* ``residual always`` (the experiment, patched in): for those two states, the correlation of the innovations
+  less what the consistency monitor's errors explain (its nuisance parameters include every calibration
+  state's error: ``GPSDRFilter._residual_correlation``) whenever it is smaller;
+* ``default`` (stop 45's filter): the residual correlation only while the monitor finds the heading bias or
+  the rate bias off (``calibration_error_z``, 3.29).
 
 ``steps``: the phone analog, seed 0, exact stops, with the 0.5 degree steps of ``heading_step.py``; per variant,
 EKF-8's 20 outage ends (m), their median / max, and every 600th sample the heading bias state against the
 measured heading's true offset from the car's course (deg), with ``gps_correlation`` and the mean NIS of
-the last 30 fixes. ``analogs``: the three analogs, seeds 0-9, EKF-8 median / max per variant.
+the last 30 fixes. ``analogs [FIRST END [VARIANTS]]``: the three analogs, seeds 0-9 (or ``FIRST`` to ``END - 1``),
+EKF-8 median / max per variant (every one, or those named, comma-separated).
 """
 
 import os
@@ -38,10 +45,11 @@ from filterwnn.navigation.drives import read_drive_csv  # noqa: E402
 from filterwnn.studies.dr import real_drive_outages  # noqa: E402
 
 DEFAULT = gpsdr.GPSDRFilter._gain_weights
+INIT = gpsdr.GPSDRFilter.__init__
 
 
 def residual_gain_weights(self, gps):
-    """The variant: the heading bias's and rate bias's share of the gain from the monitor's residual correlation."""
+    """The experiment: the heading bias's and rate bias's share of the gain from the monitor's residual correlation."""
     saved = self.gps_correlation
     if self._residual_c is not None and self._theta is not None:
         self.gps_correlation = max(min(saved, self._residual_c), 1.0)
@@ -51,7 +59,22 @@ def residual_gain_weights(self, gps):
         self.gps_correlation = saved
 
 
-VARIANTS = {"default": DEFAULT, "residual correlation": residual_gain_weights}
+def without_monitor_gate(self, *a, **k):
+    INIT(self, *a, **k)
+    self.calibration_error_z = None
+
+
+#: label: (the gain weights, the constructor)
+VARIANTS = {"innovations": (DEFAULT, without_monitor_gate), "residual always": (residual_gain_weights, without_monitor_gate),
+            "default": (DEFAULT, INIT)}
+
+
+def use(variant):
+    gpsdr.GPSDRFilter._gain_weights, gpsdr.GPSDRFilter.__init__ = VARIANTS[variant]
+
+
+def restore():
+    gpsdr.GPSDRFilter._gain_weights, gpsdr.GPSDRFilter.__init__ = DEFAULT, INIT
 
 
 def score(cols, tmp, trace=None):
@@ -69,7 +92,7 @@ def steps(tmp):
     offset = np.degrees(np.angle(np.exp(1j * (c["heading"][1:] - np.arctan2(de, dn)))))
     moving = np.hypot(de, dn) / (c["time"][1] - c["time"][0]) > 1.0
     update = gpsdr.GPSDRFilter.update
-    for name, weights in VARIANTS.items():
+    for name in VARIANTS:
         seen = []
 
         def spy(self, *a, **k):
@@ -80,11 +103,13 @@ def steps(tmp):
                              self.gps_correlation, float(np.mean(self.nis_accepted[-30:])) if self.nis_accepted else 0.0))
             return out
 
-        gpsdr.GPSDRFilter._gain_weights, gpsdr.GPSDRFilter.update = weights, spy
+        use(name)
+        gpsdr.GPSDRFilter.update = spy
         try:
             e = score(c, tmp)
         finally:
-            gpsdr.GPSDRFilter._gain_weights, gpsdr.GPSDRFilter.update = DEFAULT, update
+            restore()
+            gpsdr.GPSDRFilter.update = update
         print(f"{name}: EKF-8 {np.median(e):.2f} / {e.max():.2f} | outage ends {' '.join(f'{v:.1f}' for v in e)}")
         for step, hb, sd, corr, nis in seen[1:]:
             true = f"{offset[step - 1]:+.2f}" if moving[step - 1] else "(standing)"
@@ -92,21 +117,21 @@ def steps(tmp):
                   f"{corr:.2f}, mean NIS {nis:.2f}")
 
 
-def analogs(tmp):
+def analogs(tmp, first="0", end="10", variants=None):
     for name in ("phone", "city", "one_hz"):
-        for seed in range(10):
+        for seed in range(int(first), int(end)):
             cols = held_out.columns(name, seed)
             cells = []
-            for label, weights in VARIANTS.items():
-                gpsdr.GPSDRFilter._gain_weights = weights
+            for label in (variants.split(",") if variants else VARIANTS):
+                use(label)
                 try:
                     e = score(cols, tmp)
                 finally:
-                    gpsdr.GPSDRFilter._gain_weights = DEFAULT
+                    restore()
                 cells.append(f"{label} {np.median(e):.2f} / {e.max():.2f}")
             print(f"{name} seed {seed} | EKF-8 " + " | ".join(cells), flush=True)
 
 
 if __name__ == "__main__":
     with tempfile.TemporaryDirectory() as tmp:
-        {"steps": steps, "analogs": analogs}[sys.argv[1]](tmp)
+        {"steps": steps, "analogs": analogs}[sys.argv[1]](tmp, *sys.argv[2:])
