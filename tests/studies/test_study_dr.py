@@ -202,6 +202,11 @@ def test_drive_table_separates_the_causes():
     turned = dict(ig, n_zero_rate_rejected=3, n_zero_rate_turned=2)  # a drive with two turning crawls
     assert dr._real._integrity_cells(turned).endswith(
         f"| {ig['n_zero_rate']} / 3 (2 turned) / {ig['n_zero_rate_reacquired']} / {ig['n_zero_rate_held']}")
+    assert ig["n_zero_rate_stepped"] == 0 and ig["n_calibration_error"] == 0
+    stepped = dict(ig, n_zero_rate_stepped=4, n_calibration_error=17)  # a fused heading that re-aligns at stops
+    assert dr._real._integrity_cells(stepped).endswith(
+        f"| {ig['gps_correlation_mean']:.2f} (off at 17 fixes) | {ig['n_zero_rate']} / {ig['n_zero_rate_rejected']} / "
+        f"{ig['n_zero_rate_reacquired']} / {ig['n_zero_rate_held']} (4 stepped)")
     held = run._replace(z_dr=np.where((run.z_dr[:, 1:] == 0.0) | (run.z_dr[:, 1:] / run.scenario.dt < 0.05),
                                       [[0.5, 0.0]], run.z_dr))  # a heading source that holds 0.5 rad standing
     ig_held = dr.real_drive_outages(held, starts=[100.0], filters=("EKF-8",), use_gps_sigma=True,

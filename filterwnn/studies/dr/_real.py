@@ -93,8 +93,11 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         the rejected fixes, ``n_zero_rate``, ``n_zero_rate_rejected`` and ``n_zero_rate_held``, the stops
         whose heading drift updated the gyro rate bias, was rejected, or did not move at all (a heading
         held by its source), ``n_zero_rate_reacquired``, the rate-bias state's re-acquisitions from
-        stops it could not follow that agreed, and ``n_zero_rate_turned``, the rejected stops whose heading
-        turned faster than any gyro's bias, "(N turned)" in the table; None without a rate-bias state;
+        stops it could not follow that agreed, ``n_zero_rate_turned``, the rejected stops whose heading
+        turned faster than any gyro's bias, "(N turned)" in the table, and ``n_zero_rate_stepped``, the stops
+        whose heading stepped (a fused heading re-aligning), "(N stepped)"; None without a rate-bias state;
+        ``n_calibration_error``, the fixes at which the consistency monitor found the heading bias or the rate
+        bias off and their gain took the fixes' own correlation, "(off at N fixes)" after the correlation;
         ``gyro_scale_estimate`` and ``gyro_scale_z``, the scale-error monitor's estimate and z-score (None
         without it), ``gyro_scale_added``, the step at which it made the filter add the scale state (None:
         not), and ``gyro_scale``, that state's last value (None without one); ``latency_estimate``,
@@ -232,6 +235,8 @@ def _integrity(f, run):
             "n_zero_rate_held": f.n_zero_rate_held if f.zero_rate_update else None,
             "n_zero_rate_reacquired": f.n_zero_rate_reacquired if f.zero_rate_update else None,
             "n_zero_rate_turned": f.n_zero_rate_turned if f.zero_rate_update else None,
+            "n_zero_rate_stepped": f.n_zero_rate_stepped if f.zero_rate_update else None,
+            "n_calibration_error": f.n_calibration_error,
             "gyro_scale_estimate": f.gyro_scale_estimate, "gyro_scale_z": f.gyro_scale_z,
             "gyro_scale_added": f.gyro_scale_added,
             "gyro_scale": float(f.x[GYRO_SCALE]) if f.model.gyro_scale else None,
@@ -314,11 +319,14 @@ def _integrity_cells(ig):
         return "- | - | - | - | -"
     nis = "-" if ig["nis_mean"] is None else f"{ig['nis_mean']:.2f}"
     corr = "-" if ig.get("gps_correlation_mean") is None else f"{ig['gps_correlation_mean']:.2f}"
+    if ig.get("n_calibration_error"):
+        corr += f" (off at {ig['n_calibration_error']} fixes)"
     scale = "-" if ig.get("gps_scale_mean") is None else f"{ig['gps_scale_mean']:.2f}"
     turned = f" ({ig['n_zero_rate_turned']} turned)" if ig.get("n_zero_rate_turned") else ""
+    stepped = f" ({ig['n_zero_rate_stepped']} stepped)" if ig.get("n_zero_rate_stepped") else ""
     stops = ("-" if ig.get("n_zero_rate") is None
              else f"{ig['n_zero_rate']} / {ig['n_zero_rate_rejected']}{turned} / {ig['n_zero_rate_reacquired']} / "
-                  f"{ig['n_zero_rate_held']}")
+                  f"{ig['n_zero_rate_held']}{stepped}")
     unused = "".join(f" ({ig[f'n_{k}']} more {k})" for k in ("thinned", "stale") if ig.get(f"n_{k}"))
     return (f"{ig['n_rejected']} / {ig['n_downweighted']} / {ig['n_reacquired']} of {ig['n_fixes']}{unused} | {nis} | "
             f"{scale} | {corr} | {stops}")
