@@ -405,6 +405,13 @@ def test_the_command_passes_stop_reopen_to_the_filters(command_passes):
     assert command_passes("real_drive_outages", [])["stop_reopen"] == 0.0
 
 
+def test_the_command_passes_calibration_error_z_to_the_filters(command_passes):
+    assert command_passes("real_drive_outages", [])["calibration_error_z"] == pytest.approx(3.2905, abs=1e-4)
+    assert command_passes("real_drive_outages", ["--calibration-error-z", "5"])["calibration_error_z"] == 5.0
+    assert command_passes("real_drive_outages", ["--calibration-error-z", "off"])["calibration_error_z"] is None
+    assert command_passes("real_drive_outages", ["--calibration-error-z", "0"]) == {}  # refused: > 0 or off
+
+
 def test_stop_heading_step_finds_a_step_past_the_grades_noise(phone):
     """A 1.5 deg step 8 s into a 20 s stop, with the grade's noise: found before its sample, its size within
     three of its standard deviations, and a slope fitted on either side of it near the drift; the line alone

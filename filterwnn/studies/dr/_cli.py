@@ -2,11 +2,12 @@
 
 from __future__ import annotations
 
+import argparse
 import os
 
 from ...navigation.dead_reckoning import SENSOR_GRADES
 from ...navigation.drives import CAR_DRIVES, load_car_drive, read_drive_csv
-from ...navigation.gpsdr import CORRELATED_FIXES
+from ...navigation.gpsdr import CALIBRATION_ERROR_Z, CORRELATED_FIXES
 from ...navigation.scenarios import INTERVALS, SCENARIOS
 from .. import options, runner
 from ._filters import FILTER_TABLE, OPT_IN
@@ -101,6 +102,10 @@ def add_arguments(parser):
                         help="a stop that starts again within this many seconds, the car having moved at most "
                              "0.5 m, is the same stop to the gyro rate bias's update (GPSDRFilter's stop_reopen; "
                              "2 for a speed that does not read 0 at a standstill, a GNSS speed; default 0: off)")
+    parser.add_argument("--calibration-error-z", type=_z_or_off, default=CALIBRATION_ERROR_Z, metavar="Z",
+                        help="the consistency monitor's z-score past which the heading bias or the gyro rate bias "
+                             "is taken to be off, and their gain is cut by the fixes' own correlation instead of "
+                             "the innovations' (GPSDRFilter's calibration_error_z; default %(default).3g; off: never)")
     parser.add_argument("--grade", choices=sorted(SENSOR_GRADES), default=None,
                         help="sensor grade for the GPS/DR settings (survey, phone; see "
                              "filterwnn.navigation.dead_reckoning.SENSOR_GRADES); default phone for --drive, survey for --real")
@@ -120,13 +125,24 @@ def add_arguments(parser):
                              "latency, with a warning)")
 
 
+def _z_or_off(text):
+    """``off`` (None), or a z-score: a finite number > 0."""
+    if text.strip().lower() == "off":
+        return None
+    try:
+        return options.positive_float(text)
+    except argparse.ArgumentTypeError:
+        raise argparse.ArgumentTypeError(f"must be a finite number > 0 or off, got {text!r}") from None
+
+
 def _filter_options(args):
     """The GPS/DR filters' options of the command line (``real_drive_outages``'s), the same for ``--real``
     and ``--drive``."""
     return dict(scale_window=getattr(args, "gps_scale_window", 0),
                 correlated_fixes=getattr(args, "correlated_fixes", "calibration"),
                 min_fix_interval=getattr(args, "min_fix_interval", 0.0),
-                stop_reopen=getattr(args, "stop_reopen", 0.0))
+                stop_reopen=getattr(args, "stop_reopen", 0.0),
+                calibration_error_z=getattr(args, "calibration_error_z", CALIBRATION_ERROR_Z))
 
 
 def run(args):

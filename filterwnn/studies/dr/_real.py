@@ -15,7 +15,7 @@ import numpy as np
 from ..._warnings import folded_warnings
 from ...navigation.dead_reckoning import GPSDRModel
 from ...navigation.drives import CAR_DRIVE
-from ...navigation.gpsdr import GYRO_SCALE, GPSDRFilter
+from ...navigation.gpsdr import CALIBRATION_ERROR_Z, GYRO_SCALE, GPSDRFilter
 from ...navigation.scenarios import outage_starts
 from ._filters import FILTER_KIND
 
@@ -32,7 +32,8 @@ REAL_FILTERS = ("DR-mech", "EKF", "EKF-8", "UKF-8", "SUKF-8")
 def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "EKF", "EKF-8"),
                        model_kwargs=None, slow_speed=None, starts=None, min_speed=0.0,
                        use_gps_sigma=False, grade=None, gps_window=0, scale_window=0,
-                       correlated_fixes="calibration", min_fix_interval=0.0, stop_reopen=0.0):
+                       correlated_fixes="calibration", min_fix_interval=0.0, stop_reopen=0.0,
+                       calibration_error_z=CALIBRATION_ERROR_Z):
     """Cut GPS outages of ``length`` s into a drive and score each filter at each outage end.
 
     Placements: ``starts`` as given, or ``n_placements`` spread evenly over the windows whose mean
@@ -71,6 +72,10 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
     stop_reopen : float
         :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`'s: seconds within which a stop that starts again is
         the same stop to the zero angular rate update (0, the default: none).
+    calibration_error_z : float or None
+        :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`'s: the consistency monitor's z-score past which the
+        heading bias or the rate bias is taken to be off and their gain takes the fixes' own correlation
+        (default :data:`~filterwnn.navigation.gpsdr.CALIBRATION_ERROR_Z`; None: never).
     min_fix_interval : float
         :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`'s: seconds after a fix used before the next
         is used (0, the default: every fix).
@@ -112,7 +117,8 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
     out, windows = _outage_plan(run, length, starts, n_placements, min_speed)
     settings = dict(grade=grade, model_kwargs=model_kwargs, gps_window=gps_window, slow_speed=slow_speed,
                     filter_kw=dict(scale_window=scale_window, correlated_fixes=correlated_fixes,
-                                   min_fix_interval=min_fix_interval, stop_reopen=stop_reopen))
+                                   min_fix_interval=min_fix_interval, stop_reopen=stop_reopen,
+                                   calibration_error_z=calibration_error_z))
     for name in filters:
         _score_filter(out, name, run, windows, use_gps_sigma, settings)
     return out
