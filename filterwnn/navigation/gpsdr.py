@@ -367,6 +367,14 @@ def _gyro_bias_remedy(rate, least=""):
             "have told the bias end far off")
 
 
+def _walk_variance(t, w, q_arw):
+    """The variance an angle random walk of density ``q_arw`` (rad^2/s) adds to an estimate ``w . h`` from
+    headings ``h`` at times ``t``: ``q_arw sum_k (t_k - t_{k-1}) (sum_{i >= k} w_i)^2``, the walk's increment
+    between samples ``k - 1`` and ``k`` reaching every heading from ``k`` on."""
+    tail = np.cumsum(w[::-1])[::-1][1:]  # sum_{i >= k} w_i, k = 1 .. n-1
+    return q_arw * float(np.diff(t) @ tail**2)
+
+
 def stop_heading_slope(t, heading, sigma_heading, q_arw, step_at=None):
     """The gyro heading's drift rate over a stop and its variance: ``(slope (rad/s), variance)``.
 
@@ -414,8 +422,9 @@ def stop_heading_slope(t, heading, sigma_heading, q_arw, step_at=None):
         raise ValueError("t must not be constant")
     a = t / tt
     slope = float(a @ h)
-    tail = np.cumsum(a[::-1])[::-1][1:]  # sum_{i >= k} a_i, k = 1 .. n-1
-    var = sigma_heading**2 * float(a @ a) + q_arw * float(np.diff(t) @ tail**2)
+    # (with a step, the times are centred on each side, so their difference across the step is no interval;
+    # the weights after the step sum to 0, so it counts for nothing)
+    var = sigma_heading**2 * float(a @ a) + _walk_variance(t, a, q_arw)
     if n > fitted:
         if step_at is None:
             res = h - h.mean() - slope * t
@@ -474,7 +483,6 @@ def stop_heading_step(t, heading, sigma_heading=None, q_arw=0.0, alpha=STOP_STEP
     if not tt > 0:
         raise ValueError("t must not be constant")
     r = h - h.mean() - (tc @ h) / tt * tc  # the line's residuals
-    rss = float(r @ r)
     # u_k = [i >= k] less its projection on (1, t): r . u_k = sum_{i >= k} r_i (r is orthogonal to both),
     # u_k . u_k = m - m^2 / n - (sum_{i >= k} tc_i)^2 / tt with m = n - k samples after the step
     ks = np.arange(min_side, n - min_side + 1)
@@ -485,15 +493,13 @@ def stop_heading_step(t, heading, sigma_heading=None, q_arw=0.0, alpha=STOP_STEP
     ok = uu > 1e-12 * n
     drss = np.where(ok, rsum * rsum / np.where(ok, uu, 1.0), 0.0)
     j = int(np.argmax(drss))
-    rest = rss - drss[j]
     if not drss[j] > 0:
         return None, 0.0, 0.0, 1.0
     k, size = int(ks[j]), float(rsum[j] / uu[j])
     # the step's estimate is w . h: u_k, less its projection on (1, t), over its sum of squares
     u = (np.arange(n) >= k) - m[j] / n - tsum[j] / tt * tc
     w = u / uu[j]
-    tail = np.cumsum(w[::-1])[::-1][1:]  # sum_{i >= k} w_i: a random walk's share
-    walk = q_arw * float(np.diff(t) @ tail**2)
+    walk = _walk_variance(t, w, q_arw)
     # the residuals' own variance, with their lag-1 correlation rho as an AR(1)'s long-run factor
     e = r - size * u
     ee = float(e @ e)
