@@ -412,6 +412,13 @@ def test_the_command_passes_calibration_error_z_to_the_filters(command_passes):
     assert command_passes("real_drive_outages", ["--calibration-error-z", "0"]) == {}  # refused: > 0 or off
 
 
+def test_the_command_passes_heading_jump_z_to_the_filters(command_passes):
+    assert command_passes("real_drive_outages", [])["heading_jump_z"] == 6.1
+    assert command_passes("real_drive_outages", ["--heading-jump-z", "8"])["heading_jump_z"] == 8.0
+    assert command_passes("real_drive_outages", ["--heading-jump-z", "off"])["heading_jump_z"] is None
+    assert command_passes("real_drive_outages", ["--heading-jump-z", "-1"]) == {}  # refused: > 0 or off
+
+
 def test_stop_heading_step_finds_a_step_past_the_grades_noise(phone):
     """A 1.5 deg step 8 s into a 20 s stop, with the grade's noise: found before its sample, its size within
     three of its standard deviations, and a slope fitted on either side of it near the drift; the line alone

@@ -202,7 +202,10 @@ def test_drive_table_separates_the_causes():
     turned = dict(ig, n_zero_rate_rejected=3, n_zero_rate_turned=2)  # a drive with two turning crawls
     assert dr._real._integrity_cells(turned).endswith(
         f"| {ig['n_zero_rate']} / 3 (2 turned) / {ig['n_zero_rate_reacquired']} / {ig['n_zero_rate_held']}")
-    assert ig["n_zero_rate_stepped"] == 0 and ig["n_calibration_error"] == 0
+    assert ig["n_zero_rate_stepped"] == 0 and ig["n_calibration_error"] == 0 and ig["n_heading_jumps"] == 0
+    jumped = dict(ig, n_heading_jumps=2)  # a fused heading that re-aligns while the car moves
+    assert dr._real._integrity_cells(jumped).startswith(
+        f"{ig['n_rejected']} / {ig['n_downweighted']} / {ig['n_reacquired']} of {ig['n_fixes']} (2 jumped) | ")
     stepped = dict(ig, n_zero_rate_stepped=4, n_calibration_error=17)  # a fused heading that re-aligns at stops
     assert dr._real._integrity_cells(stepped).endswith(
         f"| {ig['gps_correlation_mean']:.2f} (off at 17 fixes) | {ig['n_zero_rate']} / {ig['n_zero_rate_rejected']} / "

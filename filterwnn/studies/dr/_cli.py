@@ -7,7 +7,7 @@ import os
 
 from ...navigation.dead_reckoning import SENSOR_GRADES
 from ...navigation.drives import CAR_DRIVES, load_car_drive, read_drive_csv
-from ...navigation.gpsdr import CALIBRATION_ERROR_Z, CORRELATED_FIXES
+from ...navigation.gpsdr import CALIBRATION_ERROR_Z, CORRELATED_FIXES, HEADING_JUMP_Z
 from ...navigation.scenarios import INTERVALS, SCENARIOS
 from .. import options, runner
 from ._filters import FILTER_TABLE, OPT_IN
@@ -106,6 +106,11 @@ def add_arguments(parser):
                         help="the consistency monitor's z-score past which the heading bias or the gyro rate bias "
                              "is taken to be off, and their gain is cut by the fixes' own correlation instead of "
                              "the innovations' (GPSDRFilter's calibration_error_z; default %(default).3g; off: never)")
+    parser.add_argument("--heading-jump-z", type=_z_or_off, default=HEADING_JUMP_Z, metavar="Z",
+                        help="the heading-jump detector's z-score past which the heading is taken to have stepped "
+                             "while the car moved (a fused orientation re-aligning), and the heading bias's variance "
+                             "is widened by the step (GPSDRFilter's heading_jump_z; default "
+                             "%(default).3g; off: not looked for)")
     parser.add_argument("--grade", choices=sorted(SENSOR_GRADES), default=None,
                         help="sensor grade for the GPS/DR settings (survey, phone; see "
                              "filterwnn.navigation.dead_reckoning.SENSOR_GRADES); default phone for --drive, survey for --real")
@@ -142,7 +147,8 @@ def _filter_options(args):
                 correlated_fixes=getattr(args, "correlated_fixes", "calibration"),
                 min_fix_interval=getattr(args, "min_fix_interval", 0.0),
                 stop_reopen=getattr(args, "stop_reopen", 0.0),
-                calibration_error_z=getattr(args, "calibration_error_z", CALIBRATION_ERROR_Z))
+                calibration_error_z=getattr(args, "calibration_error_z", CALIBRATION_ERROR_Z),
+                heading_jump_z=getattr(args, "heading_jump_z", HEADING_JUMP_Z))
 
 
 def run(args):

@@ -15,7 +15,7 @@ import numpy as np
 from ..._warnings import folded_warnings
 from ...navigation.dead_reckoning import GPSDRModel
 from ...navigation.drives import CAR_DRIVE
-from ...navigation.gpsdr import CALIBRATION_ERROR_Z, GYRO_SCALE, GPSDRFilter
+from ...navigation.gpsdr import CALIBRATION_ERROR_Z, GYRO_SCALE, HEADING_JUMP_Z, GPSDRFilter
 from ...navigation.scenarios import outage_starts
 from ._filters import FILTER_KIND
 
@@ -33,7 +33,7 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
                        model_kwargs=None, slow_speed=None, starts=None, min_speed=0.0,
                        use_gps_sigma=False, grade=None, gps_window=0, scale_window=0,
                        correlated_fixes="calibration", min_fix_interval=0.0, stop_reopen=0.0,
-                       calibration_error_z=CALIBRATION_ERROR_Z):
+                       calibration_error_z=CALIBRATION_ERROR_Z, heading_jump_z=HEADING_JUMP_Z):
     """Cut GPS outages of ``length`` s into a drive and score each filter at each outage end.
 
     Placements: ``starts`` as given, or ``n_placements`` spread evenly over the windows whose mean
@@ -76,6 +76,9 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`'s: the consistency monitor's z-score past which the
         heading bias or the rate bias is taken to be off and their gain takes the fixes' own correlation
         (default :data:`~filterwnn.navigation.gpsdr.CALIBRATION_ERROR_Z`; None: never).
+    heading_jump_z : float or None
+        :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`'s: the heading-jump detector's gate (a heading that
+        steps while the car moves; default :data:`~filterwnn.navigation.gpsdr.HEADING_JUMP_Z`; None: not looked for).
     min_fix_interval : float
         :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`'s: seconds after a fix used before the next
         is used (0, the default: every fix).
@@ -103,6 +106,8 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         whose heading stepped (a fused heading re-aligning), "(N stepped)"; None without a rate-bias state;
         ``n_calibration_error``, the fixes at which the consistency monitor found the heading bias or the rate
         bias off and their gain took the fixes' own correlation, "(off at N fixes)" after the correlation;
+        ``n_heading_jumps``, the steps of the heading the heading-jump detector found while the car moved,
+        "(N jumped)" after the fixes' counts;
         ``gyro_scale_estimate`` and ``gyro_scale_z``, the scale-error monitor's estimate and z-score (None
         without it), ``gyro_scale_added``, the step at which it made the filter add the scale state (None:
         not), and ``gyro_scale``, that state's last value (None without one); ``latency_estimate``,
@@ -118,7 +123,7 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
     settings = dict(grade=grade, model_kwargs=model_kwargs, gps_window=gps_window, slow_speed=slow_speed,
                     filter_kw=dict(scale_window=scale_window, correlated_fixes=correlated_fixes,
                                    min_fix_interval=min_fix_interval, stop_reopen=stop_reopen,
-                                   calibration_error_z=calibration_error_z))
+                                   calibration_error_z=calibration_error_z, heading_jump_z=heading_jump_z))
     for name in filters:
         _score_filter(out, name, run, windows, use_gps_sigma, settings)
     return out
@@ -242,7 +247,7 @@ def _integrity(f, run):
             "n_zero_rate_reacquired": f.n_zero_rate_reacquired if f.zero_rate_update else None,
             "n_zero_rate_turned": f.n_zero_rate_turned if f.zero_rate_update else None,
             "n_zero_rate_stepped": f.n_zero_rate_stepped if f.zero_rate_update else None,
-            "n_calibration_error": f.n_calibration_error,
+            "n_calibration_error": f.n_calibration_error, "n_heading_jumps": f.n_heading_jumps,
             "gyro_scale_estimate": f.gyro_scale_estimate, "gyro_scale_z": f.gyro_scale_z,
             "gyro_scale_added": f.gyro_scale_added,
             "gyro_scale": float(f.x[GYRO_SCALE]) if f.model.gyro_scale else None,
@@ -334,5 +339,7 @@ def _integrity_cells(ig):
              else f"{ig['n_zero_rate']} / {ig['n_zero_rate_rejected']}{turned} / {ig['n_zero_rate_reacquired']} / "
                   f"{ig['n_zero_rate_held']}{stepped}")
     unused = "".join(f" ({ig[f'n_{k}']} more {k})" for k in ("thinned", "stale") if ig.get(f"n_{k}"))
+    if ig.get("n_heading_jumps"):
+        unused += f" ({ig['n_heading_jumps']} jumped)"
     return (f"{ig['n_rejected']} / {ig['n_downweighted']} / {ig['n_reacquired']} of {ig['n_fixes']}{unused} | {nis} | "
             f"{scale} | {corr} | {stops}")
