@@ -883,7 +883,6 @@ class GPSDRFilter:
         self.heading_jump_z = None if heading_jump_z is None else check_positive(heading_jump_z, "heading_jump_z")
         self.n_heading_jumps = 0
         self.heading_jumps = []  # (step found, onset step, size (rad), z)
-        self._jz_max = 0.0  # the largest z-score the detector saw
         self.min_fix_interval = float(min_fix_interval)
         if not (np.isfinite(self.min_fix_interval) and self.min_fix_interval >= 0):
             raise ValueError(f"min_fix_interval must be >= 0 s (0: every fix used), got {min_fix_interval}")
@@ -1259,8 +1258,8 @@ class GPSDRFilter:
 
     def _drop_jumps(self):
         """Forget the heading-jump detector's onsets (:meth:`_test_jumps`): their sensitivities ``(dim_x, n)``,
-        onset steps, scores, information and score variance (their own, and their cross terms with the
-        monitor's hypotheses)."""
+        onset steps, scores, information (their own, and its cross terms with the monitor's hypotheses) and the
+        fixes' correlation each counts its fixes at."""
         m = len(self._hyp)
         n = self.model.dim_x
         self._js, self._jt = np.zeros((n, 0)), []
@@ -1289,8 +1288,8 @@ class GPSDRFilter:
 
     def _score_jumps(self, H, K, fix):
         """The onsets' share of :meth:`_monitor_errors`: at a scored ``fix = (y, S, G, c)`` their scores,
-        information and its cross terms with the monitor's hypotheses (``G`` their rows; the score's variance
-        at the same correlation ``c``); then their sensitivities ``s - K H s``."""
+        information and its cross terms with the monitor's hypotheses (``G`` their rows); then their
+        sensitivities ``s - K H s``."""
         A = H @ self._js
         if fix is not None:
             y, S, G, c = fix
@@ -1302,11 +1301,14 @@ class GPSDRFilter:
 
     def _test_jumps(self):
         """Willsky and Jones's generalized likelihood ratio test of a step in the heading bias at each onset
-        kept, jointly with the monitor's hypotheses (their information ``I``, score ``u`` and score variance
-        ``J``; per onset its own ``d``, ``u_j``, ``J_j`` and cross terms ``b``, ``b_J``): the estimate
-        ``(u_j - b^T I^-1 u) / s`` with ``s = d - b^T I^-1 b``, and its sandwich variance (the system's
-        inverse's last row about its score variance, never below ``1 / s``). Past :attr:`heading_jump_z`, with
-        an estimate of at least the grade's white heading noise, the filter takes the likeliest onset's step
+        kept, jointly with the monitor's hypotheses (their information ``I`` and score ``u``; per onset its own
+        information ``d``, score ``u_j`` and cross terms ``b``): the estimate ``(u_j - b^T I^-1 u) / s`` with
+        ``s = d - b^T I^-1 b`` (the information left for the step beyond the hypotheses), and its variance
+        ``c_j / s``, each fix counted at ``1 / c_j`` of one (``c_j`` the mean correlation of the fixes'
+        residuals before the onset: the sandwich variance of a correlation that stays as it was). Past
+        :attr:`heading_jump_z`, with an estimate of at least the grade's white heading noise and at most the
+        heading bias's calibration bound (:data:`CALIBRATION_SIGMAS` of its specification; a larger estimate
+        is past what the linear test can tell), the filter takes the likeliest onset's step
         (:meth:`_take_jump`)."""
         try:
             L = np.linalg.cholesky(self._I)
@@ -1324,7 +1326,6 @@ class GPSDRFilter:
         var = np.maximum(self._jc, 1.0) / s
         z = np.where(ok, theta / np.sqrt(var), 0.0)
         j = int(np.argmax(np.abs(z)))
-        self._jz_max = max(self._jz_max, abs(float(z[j])))
         most = CALIBRATION_SIGMAS * np.sqrt(self.model.P0[HEADING_BIAS, HEADING_BIAS])
         if abs(z[j]) > self.heading_jump_z and self.model.sigma_heading <= abs(theta[j]) <= most:
             self._take_jump(j, float(theta[j]), float(var[j]), float(z[j]))
@@ -1349,6 +1350,8 @@ class GPSDRFilter:
         self._widen((HEADING_BIAS,), (theta,))  # the heading bias as unsure as the step is large
         if self._cal.size:  # and its calibration bound as wide
             self._cal_P[HEADING_BIAS - 6, HEADING_BIAS - 6] += theta ** 2
+        # the hypotheses conditioned on the step (the system's Schur complement; its score variance is c_j times
+        # its information, as the onset's test has it)
         b, d = self._jB[:, j], self._jd[j]
         f = b / d
         self._u = self._u - f * self._ju[j]
