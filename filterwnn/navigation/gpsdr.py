@@ -342,7 +342,7 @@ CALIBRATION_ERROR_Z = NormalDist().inv_cdf(1.0 - 0.5e-3)  # = 3.29
 #: times: a step in the heading bias from each of the last :data:`HEADING_JUMP_WINDOW` s, one every
 #: :data:`HEADING_JUMP_SPACING` s, each tested jointly with the monitor's errors (a gyro scale error or a
 #: latency is not read as a step), its z-score counting the fixes at the mean correlation of their residuals so
-#: far (the monitor's, :meth:`GPSDRFilter._residual_correlation`; after a step the innovations are correlated by
+#: far (the consistency monitor's measure; after a step the innovations are correlated by
 #: the step's own drift, and counting them at that would hide it). As :data:`SCALE_ERROR_Z`: the monitor looks
 #: at every fix, and here at a dozen onsets each.
 HEADING_JUMP_Z = 6.1
@@ -699,7 +699,7 @@ class GPSDRFilter:
         would hide it). Past the gate, with a step of at least the grade's white heading noise and at most the
         heading bias's bound, the heading bias's variance is widened by the step (its cross-covariances
         dropped, its calibration bound widened too) and the fixes teach it again, the state not moved (a false
-        step costs less so: see :meth:`_take_jump`); the monitor's hypotheses keep what the fixes told of them
+        step costs less so: ``docs/study-outputs/dr/log-faults/RUN.md``, stop 46); the monitor's hypotheses keep what the fixes told of them
         beyond the step. Counted in ``n_heading_jumps`` (``heading_jumps``), the
         first warned. An outage (a gap in the fixes) starts the onsets again. None: not looked for.
     min_fix_interval : float
