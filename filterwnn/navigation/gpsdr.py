@@ -1292,7 +1292,7 @@ class GPSDRFilter:
         sensitivities ``s - K H s``."""
         A = H @ self._js
         if fix is not None:
-            y, S, G, c = fix
+            y, S, G, _ = fix  # (the fixes' correlation: each onset counts its fixes at its own, _jc)
             W = np.linalg.solve(S, A[2:])
             own, cross = (A[2:] * W).sum(axis=0), G.T @ W
             self._ju = self._ju + W.T @ y
@@ -1310,12 +1310,9 @@ class GPSDRFilter:
         heading bias's calibration bound (:data:`CALIBRATION_SIGMAS` of its specification; a larger estimate
         is past what the linear test can tell), the filter takes the likeliest onset's step
         (:meth:`_take_jump`)."""
-        try:
-            L = np.linalg.cholesky(self._I)
-        except np.linalg.LinAlgError:
+        Iinv = self._information_inverse(self._I)
+        if Iinv is None:
             return
-        Li = np.linalg.inv(L)
-        Iinv = Li.T @ Li
         IB = Iinv @ self._jB
         s = self._jd - (self._jB * IB).sum(axis=0)
         ok = s > 1e-9 * np.maximum(self._jd, 1e-300)
@@ -1446,14 +1443,22 @@ class GPSDRFilter:
         (never below the information's inverse: each fix counts at a correlation of 1 or more, and rounding
         could take it under, to zero or below, when the first fixes leave the information nearly singular).
         None while an error has no information yet."""
+        Iinv = GPSDRFilter._information_inverse(I)
+        if Iinv is None:
+            return None
+        return Iinv @ u, np.maximum(np.diag(Iinv @ J @ Iinv), np.diag(Iinv))
+
+    @staticmethod
+    def _information_inverse(I):
+        """The inverse of the monitor's information ``I`` (through its Cholesky factor), or None while it is not
+        positive definite (an error with no information yet)."""
         if not (np.diag(I) > 0.0).all():
             return None
         try:
             inv = np.linalg.inv(np.linalg.cholesky(I))
         except np.linalg.LinAlgError:
             return None
-        Iinv = inv.T @ inv
-        return Iinv @ u, np.maximum(np.diag(Iinv @ J @ Iinv), np.diag(Iinv))
+        return inv.T @ inv
 
     def _warn_error(self, name, theta, sd, z):
         if name == "gyro_scale":
