@@ -107,7 +107,8 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         ``n_calibration_error``, the fixes at which the consistency monitor found the heading bias or the rate
         bias off and their gain took the fixes' own correlation, "(off at N fixes)" after the correlation;
         ``n_heading_jumps``, the steps of the heading the heading-jump detector found while the car moved,
-        "(N jumped)" after the fixes' counts;
+        "(N jumped)" after the fixes' counts, and ``heading_jumps``, per step (step found, onset step,
+        estimate (rad), z-score);
         ``gyro_scale_estimate`` and ``gyro_scale_z``, the scale-error monitor's estimate and z-score (None
         without it), ``gyro_scale_added``, the step at which it made the filter add the scale state (None:
         not), and ``gyro_scale``, that state's last value (None without one); ``latency_estimate``,
@@ -248,6 +249,7 @@ def _integrity(f, run):
             "n_zero_rate_turned": f.n_zero_rate_turned if f.zero_rate_update else None,
             "n_zero_rate_stepped": f.n_zero_rate_stepped if f.zero_rate_update else None,
             "n_calibration_error": f.n_calibration_error, "n_heading_jumps": f.n_heading_jumps,
+            "heading_jumps": list(f.heading_jumps),
             "gyro_scale_estimate": f.gyro_scale_estimate, "gyro_scale_z": f.gyro_scale_z,
             "gyro_scale_added": f.gyro_scale_added,
             "gyro_scale": float(f.x[GYRO_SCALE]) if f.model.gyro_scale else None,

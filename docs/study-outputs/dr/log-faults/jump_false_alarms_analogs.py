@@ -27,7 +27,6 @@ ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", "..",
 sys.path.insert(0, os.path.join(ROOT, "tests"))
 
 import _held_out_drives as held_out  # noqa: E402
-import filterwnn.navigation.gpsdr as gpsdr  # noqa: E402
 from filterwnn.navigation.drives import read_drive_csv  # noqa: E402
 from filterwnn.studies.dr import real_drive_outages  # noqa: E402
 
@@ -35,27 +34,18 @@ KINDS = ("EKF-8", "UKF-8", "SUKF-8")
 
 
 def main(names, first, last):
-    filters = []
-    init = gpsdr.GPSDRFilter.__init__
-
-    def spy(self, *a, **k):  # keep the filter the study makes, to read its steps
-        init(self, *a, **k)
-        filters.append(self)
-
-    gpsdr.GPSDRFilter.__init__ = spy
     with tempfile.TemporaryDirectory() as tmp:
         for name in names:
             for seed in range(first, last + 1):
                 run = read_drive_csv(held_out.write_csv(os.path.join(tmp, "d.csv"), held_out.columns(name, seed)))
                 cells = []
                 for kind in KINDS:
-                    filters.clear()
                     with warnings.catch_warnings():
                         warnings.simplefilter("ignore")
-                        e = real_drive_outages(run, filters=(kind,), use_gps_sigma=True, grade="phone")[kind]
-                    found = "".join(f" [step {s} from {o}: {np.degrees(t):+.2f} deg, z {z:+.2f}]"
-                                    for s, o, t, z in filters[-1].heading_jumps)
-                    cells.append(f"{kind} {np.median(e):.2f} / {e.max():.2f}, found {len(filters[-1].heading_jumps)}"
+                        res = real_drive_outages(run, filters=(kind,), use_gps_sigma=True, grade="phone")
+                    e, jumps = res[kind], res["integrity"][kind]["heading_jumps"]
+                    found = "".join(f" [step {s} from {o}: {np.degrees(t):+.2f} deg, z {z:+.2f}]" for s, o, t, z in jumps)
+                    cells.append(f"{kind} {np.median(e):.2f} / {e.max():.2f}, found {len(jumps)}"
                                  + found)
                 print(f"{name} seed {seed} | " + " | ".join(cells), flush=True)
 
