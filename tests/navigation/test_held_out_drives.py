@@ -220,6 +220,8 @@ def test_a_heading_that_steps_while_the_car_moves_is_found_and_learnt_again(tmp_
     now, jumped, scale = ends(path)
     assert len(jumped) == 1 and "while the car moved" in jumped[0] and not scale
     assert now["integrity"]["EKF-8"]["n_heading_jumps"] == 1
+    (found, onset, size, _), = now["integrity"]["EKF-8"]["heading_jumps"]
+    assert 3600 - 100 <= onset < found and np.degrees(size) > 3.0
     assert not ends(held_out.write_csv(tmp_path / "clean.csv", clean))[1]
     init = gpsdr.GPSDRFilter.__init__
     monkeypatch.setattr(gpsdr.GPSDRFilter, "__init__",

@@ -203,6 +203,7 @@ def test_drive_table_separates_the_causes():
     assert dr._real._integrity_cells(turned).endswith(
         f"| {ig['n_zero_rate']} / 3 (2 turned) / {ig['n_zero_rate_reacquired']} / {ig['n_zero_rate_held']}")
     assert ig["n_zero_rate_stepped"] == 0 and ig["n_calibration_error"] == 0 and ig["n_heading_jumps"] == 0
+    assert ig["heading_jumps"] == []  # (step found, onset step, estimate, z) per step found
     jumped = dict(ig, n_heading_jumps=2)  # a fused heading that re-aligns while the car moves
     assert dr._real._integrity_cells(jumped).startswith(
         f"{ig['n_rejected']} / {ig['n_downweighted']} / {ig['n_reacquired']} of {ig['n_fixes']} (2 jumped) | ")
