@@ -1088,7 +1088,12 @@ class GPSDRFilter:
             c = self.gps_correlation  # the fixes so far: each carries 1 / c of an independent fix
             z_gps, gps_sigma = self._check_fix(z_gps, gps_sigma, test=not (adapt and self.gps_sigma_est is None),
                                                scaled=not adapt)
-            self._whiteness()
+            outage = self._fix_gaps()
+            if outage:
+                # the fixes after it carry the dead reckoning's error over it (which the filter's covariance
+                # accounts for), and an onset before or in it would read that as a step
+                self._drop_jumps()
+            self._whiteness(outage)
             if z_gps is not None and c > 1.0 and self.correlated_fixes == "inflate":  # tested as one, counted 1 / c
                 gps_sigma = self._fix_sigma(gps_sigma) * np.sqrt(c)
         z, R, kw = self.model.measurement_for(z_dr, z_gps, zupt=self.motion == "still",
@@ -1905,30 +1910,34 @@ class GPSDRFilter:
     def whiteness_fixes(self):
         """The fixes the whiteness window holds: ``whiteness_window`` seconds at the fixes' interval, the
         shortest of the last :data:`FIX_GAPS` between them (60 at 1 Hz, 300 at 5 Hz; at least 1), None before
-        the second fix. One early or doubled fix is forgotten after that many, and a receiver that changes
+        the second fix and with ``whiteness_window=0``. One early or doubled fix is forgotten after that many, and a receiver that changes
         its rate is followed as soon."""
-        if self._fix_gap is None:
+        if self._fix_gap is None or not self.whiteness_window:
             return None
         return max(int(round(self.whiteness_window / (self._fix_gap * self.model.dt))), 1)
 
-    def _whiteness(self):
+    def _fix_gaps(self):
+        """Note the gap since the last fix that reached the filter (not stale, not thinned) and keep the
+        shortest of the last :data:`FIX_GAPS` (:attr:`whiteness_fixes`); whether it was an outage, a gap over
+        twice that shortest one. Every setting: the heading-jump detector's onsets are dropped at one."""
+        last, self._last_fix_step = self._last_fix_step, self.step
+        if last is None:
+            return False
+        gap = self.step - last
+        self._seen_gaps.append(gap)
+        self._fix_gap = min(self._seen_gaps)
+        return gap > 2 * self._fix_gap
+
+    def _whiteness(self, outage=False):
         """Add the last fix's whitened innovation ``L^{-1} y`` to the window (a break instead
-        when it was not accepted as it is, or came after a gap over twice the shortest between fixes) and
+        when it was not accepted as it is, or came after an ``outage``, :meth:`_fix_gaps`) and
         re-estimate :attr:`gps_correlation` (:func:`~filterwnn.metrics.integrated_autocorrelation`)."""
         if not self.whiteness_window:
             return
-        if self._last_fix_step is not None:
-            gap = self.step - self._last_fix_step
-            self._seen_gaps.append(gap)
-            self._fix_gap = min(self._seen_gaps)
-            if self._white.maxlen != self.whiteness_fixes:  # the last ones kept
-                self._white = deque(self._white, maxlen=self.whiteness_fixes)
-            if gap > 2 * self._fix_gap:
-                self._white.append(None)
-                # an outage: the fixes after it carry the dead reckoning's error over it (which the filter's
-                # covariance accounts for), and an onset before or in it would read that as a step
-                self._drop_jumps()
-        self._last_fix_step = self.step
+        if self._white.maxlen != self.whiteness_fixes:  # the last ones kept
+            self._white = deque(self._white, maxlen=self.whiteness_fixes)
+        if outage:
+            self._white.append(None)
         if self.fix_status == "accepted":
             y, S = self._innovation
             self._white.append(np.linalg.solve(np.linalg.cholesky(S), y))

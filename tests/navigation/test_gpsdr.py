@@ -182,12 +182,15 @@ def test_a_heading_that_steps_while_the_car_moves_is_found_and_its_bias_learnt_a
     assert f.n_heading_jumps == 0 and not said and bias < 2.0 and f.n_reacquired >= 1
 
 
-def test_an_outage_starts_the_heading_jump_onsets_again():
+@pytest.mark.parametrize("whiteness_window", [60.0, 0.0])
+def test_an_outage_starts_the_heading_jump_onsets_again(whiteness_window):
     """The fixes after an outage carry the dead reckoning's error over it, which the filter's covariance
-    accounts for: an onset before or in it would read that as a step, so the first fix after it drops them."""
+    accounts for: an onset before or in it would read that as a step, so the first fix after it drops them.
+    With the fixes' whiteness off too (the gap is found where the fixes reach the filter)."""
     run = _turning_drive()
     gps = [None if 1000 <= k < 1300 else g for k, g in enumerate(run.gps_list())]
-    f = GPSDRFilter(GPSDRModel.from_grade("phone", 0.1), x0=np.r_[run.x0, 1.0, 0.0, 0.0])
+    f = GPSDRFilter(GPSDRModel.from_grade("phone", 0.1), x0=np.r_[run.x0, 1.0, 0.0, 0.0],
+                    whiteness_window=whiteness_window)
     for k in range(1320):
         f.predict()
         f.update(run.z_dr[k], gps[k])
