@@ -184,7 +184,8 @@ What the filter does when GPS lies (each part a public setting, on by default):
   largest), counted in ``n_repairs``, with a warning naming the step.
 * **Consistency monitor.** The mean NIS over the last :data:`NIS_WINDOW` fixes it used is compared
   with the 99.9 % point of its chi-square distribution; above it, a warning names the step
-  and the remedy (the fixes' reported accuracy is optimistic, or the grade too good).
+  and the remedy (the fixes' reported accuracy is optimistic, or the grade too good; with a rate-bias
+  state, or a gyro bias that moved faster than the grade's bias instability allows).
 
 >>> import numpy as np
 >>> from filterwnn.navigation.dead_reckoning import GPSDRModel
@@ -1898,12 +1899,17 @@ class GPSDRFilter:
         high = float(np.mean(self._nis)) > self._nis_bound
         if high and not self._inconsistent:
             self.nis_warnings.append(self.step)
+            # a gyro whose bias moved faster than the grade's random walk lets the rate bias follow: the
+            # innovations grow as the heading drifts (docs/study-outputs/dr/log-faults/RUN.md, stop 47)
+            gyro = ("; or the gyro's bias moved faster than the grade allows (its temperature): give its bias "
+                    "instability, gyro_bias_instability_deg_h in the grade (--gyro-bias-instability DEG_H; the "
+                    f"model's {np.degrees(np.sqrt(self.model.q_rate * 100.0)) * 3600.0:.3g})") if self.model.rate_bias else ""
             warnings.warn(
                 f"GPSDRFilter is inconsistent at step {self.step}: the mean NIS of the last {self.nis_window} "
                 f"fixes is {np.mean(self._nis):.1f}, above its 99.9 % bound {self._nis_bound:.2f} (2 expected); "
                 "the fixes' reported accuracy is optimistic or the sensor grade too good: pass the receiver's "
                 "accuracy as gps_sigma, use a lower grade, or estimate the fixes' covariance scale "
-                f"(scale_window={SCALE_WINDOW})", RuntimeWarning, stacklevel=4)
+                f"(scale_window={SCALE_WINDOW}){gyro}", RuntimeWarning, stacklevel=4)
         self._inconsistent = high
 
     @property

@@ -119,6 +119,21 @@ def test_the_command_takes_the_gyros_own_bias(tmp_path, command_passes):
     assert main(argv) == 2
 
 
+def test_the_command_takes_the_gyros_bias_instability(tmp_path, command_passes):
+    """--gyro-bias-instability: how fast the gyro's rate bias moves (deg/h) in place of the phone grade's 10 (the
+    consistency monitor's remedy for a bias that moved); refused with a grade that has no rate-bias state."""
+    from filterwnn.cli import main
+
+    grade = command_passes("real_drive_outages", ["--gyro-bias-instability", "100"])["grade"]
+    assert grade["gyro_bias_instability_deg_h"] == 100.0 and grade["rate_bias"] and grade["gyro_bias_deg_s"] == 0.05
+    argv = ["study", "dr", "--drive", "sample", "--out", str(tmp_path), "--grade", "survey",
+            "--gyro-bias-instability", "100"]
+    assert main(argv) == 2
+    with pytest.raises(SystemExit) as stopped:  # argparse's error: a rate above 0
+        main(["study", "dr", "--drive", "sample", "--out", str(tmp_path), "--gyro-bias-instability", "0"])
+    assert stopped.value.code == 2
+
+
 def _one_hz_filter(tmp_path, error, grade="phone"):
     path = held_out.write_csv(tmp_path / f"one_hz_{error}.csv", held_out.columns("one_hz", 0, gyro_scale=error))
     with warnings.catch_warnings():

@@ -233,6 +233,39 @@ def test_a_heading_that_steps_while_the_car_moves_is_found_and_learnt_again(tmp_
     assert now["EKF-8"][after].max() < 11.0 < 30.0 < before["EKF-8"][after].max()
 
 
+def _drifting_while_moving(cols, deg_s, at):
+    """The drive's heading drifting at ``deg_s`` from the first sample at or after ``at`` s at which the car moves
+    at 3 m/s or more: a gyro whose rate bias moved (with its temperature)."""
+    c = {k: np.asarray(v, dtype=float).copy() for k, v in cols.items()}
+    t = c["time"]
+    k = int(np.flatnonzero((t >= at) & (c["speed"] >= 3.0))[0])
+    c["heading"][k:] = np.mod(c["heading"][k:] + np.deg2rad(deg_s) * (t[k:] - t[k]), 2 * np.pi)
+    return c
+
+
+def test_a_gyro_bias_that_moves_is_warned_with_the_grade_that_follows_it(tmp_path):
+    """The phone analog (seed 0) whose gyro's rate bias moves by 0.05 deg/s at 40 % of the drive (a phone gyro
+    warming up), 180 deg/h against the phone grade's bias instability of 10: the rate-bias state's random walk
+    follows it slowly, and the outages end 23.96 / 53.04 m off (EKF-8; 6.68 / 28.16 without the drift). The
+    consistency monitor warns, and its remedy names the gyro's bias instability; a grade that gives it as 100
+    deg/h (``--gyro-bias-instability 100``) ends them 7.79 / 28.07 m off, unwarned."""
+    drifting = _drifting_while_moving(held_out.columns("phone", 0), 0.05, 360.0)
+    run = read_drive_csv(held_out.write_csv(tmp_path / "drift.csv", drifting))
+
+    def ends(grade):
+        with warnings.catch_warnings(record=True) as record:
+            warnings.simplefilter("always")
+            res = real_drive_outages(run, filters=("EKF-8",), use_gps_sigma=True, grade=grade)
+        return res["EKF-8"], [str(w.message) for w in record if "is inconsistent" in str(w.message)]
+
+    before, said = ends("phone")
+    assert len(said) == 1 and "gyro_bias_instability_deg_h" in said[0] and "--gyro-bias-instability" in said[0]
+    assert "the model's 10)" in said[0]
+    after, said = ends({"gyro_bias_instability_deg_h": 100.0})
+    assert not said
+    assert np.median(after) < 10.0 < 20.0 < np.median(before) and after.max() < 30.0 < 50.0 < before.max()
+
+
 def _ekf8_ends(path):
     """EKF-8's outage ends as the command scores them, and the warnings that say the monitor found a calibration off."""
     with warnings.catch_warnings(record=True) as record:

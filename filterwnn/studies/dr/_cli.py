@@ -123,6 +123,11 @@ def add_arguments(parser):
                              "in place of the grade's (phone: 0.05), the rate-bias state's prior and, three of it, "
                              "its bound; for a gyro outside the grade, which the filters warn of with the value to "
                              "give; needs the phone grade's rate-bias state (default: the grade's)")
+    parser.add_argument("--gyro-bias-instability", type=options.positive_float, default=None, metavar="DEG_H",
+                        help="with --drive: how fast the gyro's rate bias moves (deg/h, its data sheet's bias "
+                             "instability) in place of the grade's (phone: 10), the rate-bias state's random walk; "
+                             "for a gyro whose bias moves with its temperature, which the consistency monitor "
+                             "warns of; needs the phone grade's rate-bias state (default: the grade's)")
     parser.add_argument("--gps-latency-sd", type=options.nonnegative_float, default=0.0, metavar="SECONDS",
                         help="with --drive: estimate the fixes' latency against the DR samples as a state from the "
                              "start, its prior sd this many seconds (fixes and speed stamped by two clocks, or a "
@@ -187,15 +192,17 @@ def run(args):
 
 
 def _drive_grade(args):
-    """``--grade`` for ``--drive`` (default phone), with ``--gyro-scale-sd``, ``--gyro-bias`` and
-    ``--gps-latency-sd`` when given."""
+    """``--grade`` for ``--drive`` (default phone), with ``--gyro-scale-sd``, ``--gyro-bias``,
+    ``--gyro-bias-instability`` and ``--gps-latency-sd`` when given."""
     grade = getattr(args, "grade", None) or "phone"
     k = getattr(args, "gyro_scale_sd", 0.0)
     bias = getattr(args, "gyro_bias", None)
-    for flag, v in (("--gyro-scale-sd", k), ("--gyro-bias", bias)):
+    moves = getattr(args, "gyro_bias_instability", None)
+    for flag, v in (("--gyro-scale-sd", k), ("--gyro-bias", bias), ("--gyro-bias-instability", moves)):
         if v and not SENSOR_GRADES[grade]["rate_bias"]:
             raise ValueError(f"{flag} needs a grade with a gyro rate-bias state (phone), got --grade {grade}")
     extra = {key: v for key, v in (("gyro_scale_sd", k), ("gyro_bias_deg_s", bias),
+                                   ("gyro_bias_instability_deg_h", moves),
                                    ("gps_latency_sd", getattr(args, "gps_latency_sd", 0.0))) if v}
     return dict(SENSOR_GRADES[grade], **extra) if extra else grade
 
