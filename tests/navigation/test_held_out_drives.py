@@ -187,12 +187,14 @@ def _re_aligned_at_stops(cols, deg, seed):
     return c
 
 
-def _stepped_while_moving(cols, deg, at):
-    """The drive's heading stepped by ``deg`` from the first sample at or after ``at`` s at which the car moves
-    at 3 m/s or more: a fused heading re-aligning while the car drives."""
+def _stepped_while_moving(cols, deg, at, deg_s=0.0):
+    """The drive's heading stepped by ``deg`` (a fused heading re-aligning while the car drives), and drifting at
+    ``deg_s`` (a gyro whose rate bias moved with its temperature), from the first sample at or after ``at`` s at
+    which the car moves at 3 m/s or more."""
     c = {k: np.asarray(v, dtype=float).copy() for k, v in cols.items()}
-    k = int(np.flatnonzero((c["time"] >= at) & (c["speed"] >= 3.0))[0])
-    c["heading"][k:] = np.mod(c["heading"][k:] + np.deg2rad(deg), 2 * np.pi)
+    t = c["time"]
+    k = int(np.flatnonzero((t >= at) & (c["speed"] >= 3.0))[0])
+    c["heading"][k:] = np.mod(c["heading"][k:] + np.deg2rad(deg + deg_s * (t[k:] - t[k])), 2 * np.pi)
     return c
 
 
@@ -233,23 +235,13 @@ def test_a_heading_that_steps_while_the_car_moves_is_found_and_learnt_again(tmp_
     assert now["EKF-8"][after].max() < 11.0 < 30.0 < before["EKF-8"][after].max()
 
 
-def _drifting_while_moving(cols, deg_s, at):
-    """The drive's heading drifting at ``deg_s`` from the first sample at or after ``at`` s at which the car moves
-    at 3 m/s or more: a gyro whose rate bias moved (with its temperature)."""
-    c = {k: np.asarray(v, dtype=float).copy() for k, v in cols.items()}
-    t = c["time"]
-    k = int(np.flatnonzero((t >= at) & (c["speed"] >= 3.0))[0])
-    c["heading"][k:] = np.mod(c["heading"][k:] + np.deg2rad(deg_s) * (t[k:] - t[k]), 2 * np.pi)
-    return c
-
-
 def test_a_gyro_bias_that_moves_is_warned_with_the_grade_that_follows_it(tmp_path):
     """The phone analog (seed 0) whose gyro's rate bias moves by 0.05 deg/s at 40 % of the drive (a phone gyro
     warming up), 180 deg/h against the phone grade's bias instability of 10: the rate-bias state's random walk
     follows it slowly, and the outages end 23.96 / 53.04 m off (EKF-8; 6.68 / 28.16 without the drift). The
     consistency monitor warns, and its remedy names the gyro's bias instability; a grade that gives it as 100
     deg/h (``--gyro-bias-instability 100``) ends them 7.79 / 28.07 m off, unwarned."""
-    drifting = _drifting_while_moving(held_out.columns("phone", 0), 0.05, 360.0)
+    drifting = _stepped_while_moving(held_out.columns("phone", 0), 0.0, 360.0, deg_s=0.05)
     run = read_drive_csv(held_out.write_csv(tmp_path / "drift.csv", drifting))
 
     def ends(grade):
