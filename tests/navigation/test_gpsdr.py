@@ -459,13 +459,20 @@ def test_P_stays_positive_definite_at_any_rate(kind, dt):
 
 
 def test_the_consistency_monitor_warns_with_the_step_and_a_remedy():
+    """The remedy names the fixes' accuracy and the grade; with a rate-bias state, the gyro's bias instability
+    too (a gyro whose bias moved: ``test_held_out_drives.py``), as the model has it."""
     run, f = _steady(nis_window=10)
     fixes = [None if g is None else g + 3.0 * np.random.default_rng(k).standard_normal(2) * 2.0
              for k, g in enumerate(run.gps_list())]  # noise 3x what the model says
     with pytest.warns(RuntimeWarning, match=r"inconsistent at step \d+: the mean NIS of the last 10 fixes .* "
-                                            r"pass the receiver's accuracy as gps_sigma"):
+                                            r"pass the receiver's accuracy as gps_sigma") as seen:
         f.batch_filter(run.z_dr, fixes)
-    assert f.nis_warnings
+    assert f.nis_warnings and not any("bias instability" in str(w.message) for w in seen)
+    m = GPSDRModel.from_grade({"gyro_bias_instability_deg_h": 30.0}, run.scenario.dt)
+    g = GPSDRFilter(m, x0=np.r_[run.x0, m.x0[6:]], nis_window=10)
+    with pytest.warns(RuntimeWarning, match=r"inconsistent at step \d+: .* gyro_bias_instability_deg_h in the "
+                                            r"grade \(--gyro-bias-instability DEG_H; the model's 30\)"):
+        g.batch_filter(run.z_dr, fixes)
 
 
 def test_batch_filter_folds_a_warning_that_repeats_into_one_line_with_its_steps():
