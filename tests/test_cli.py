@@ -245,3 +245,57 @@ def test_wnn_help_states_the_default_cache_and_its_invalidation_rule():
     flat = " ".join(_commands()["study wnn"].format_help().split())
     block = flat[flat.index("--cache CACHE "):][:500]
     assert "default OUT/cache" in block and "hash of every filterwnn .py file" in block and "'none'" in block
+
+
+def test_dr_knows_which_options_apply_to_drives_only():
+    """Every option whose help says "with --drive" is in DRIVE_ONLY; those and ON_DRIVES are options of the command."""
+    from filterwnn.studies.dr._cli import DRIVE_ONLY, ON_DRIVES
+
+    actions = {s: a for a in _commands()["study dr"]._actions for s in a.option_strings}
+    said = {s for s, a in actions.items() if s.startswith("--") and (a.help or "").startswith("with --drive")}
+    assert said <= set(DRIVE_ONLY) and set(DRIVE_ONLY + ON_DRIVES) <= set(actions)
+    assert not set(DRIVE_ONLY) & set(ON_DRIVES)
+
+
+@pytest.mark.parametrize("argv, text", [
+    (["--gyro-bias", "0.3"], "--gyro-bias applies to --drive drives only"),
+    (["--real", "--fill-gaps", "1", "--heading-offset", "3"], "--fill-gaps, --heading-offset apply to --drive drives only"),
+    (["--outage-length", "60"], "--outage-length applies to drives (--drive or --real) only"),
+    (["--heading-jump-z", "off", "--grade", "phone"], "--heading-jump-z, --grade apply to drives (--drive or --real)"),
+    (["--real", "--drive", "sample"], "--real with --drive: --drive runs the given drives only"),
+])
+def test_dr_refuses_options_where_they_would_be_ignored(argv, text, tmp_path, capsys, monkeypatch):
+    """An option given where it does not apply is refused with one line, before anything runs (it was ignored:
+    ``--real --gyro-bias 0.3`` ran the survey grade's filters as if it were not there)."""
+    import filterwnn.studies.dr._cli as dr_cli
+
+    monkeypatch.setattr(dr_cli, "run_study", lambda **kw: pytest.fail("the study ran"))
+    assert main(["study", "dr", "--out", str(tmp_path), *argv]) == 2
+    assert text in capsys.readouterr().err
+
+
+def test_dr_real_drives_take_the_outages_options(tmp_path, monkeypatch):
+    """--real places its outages as --outages, --outage-length and --min-speed say (they applied to --drive
+    drives only, and --real used 20 of 30 s whatever was given)."""
+    import filterwnn.studies.dr._cli as dr_cli
+
+    seen = []
+
+    class Stop(Exception):
+        pass
+
+    def record(drive, **kw):
+        seen.append(kw)
+        raise Stop
+
+    monkeypatch.setattr(dr_cli, "run_study", lambda **kw: None)
+    monkeypatch.setattr(dr_cli, "write_outputs", lambda *a, **kw: [])
+    monkeypatch.setattr(dr_cli, "markdown_table", lambda res: "")
+    monkeypatch.setattr(dr_cli, "load_car_drive", lambda name: name)
+    monkeypatch.setattr(dr_cli, "real_drive_outages", record)
+    with pytest.raises(Stop):
+        dr_cli.run(_build_parser().parse_args(["study", "dr", "--real", "--outages", "7", "--outage-length", "45",
+                                               "--min-speed", "2", "--heading-jump-z", "off"]))
+    kw, = seen
+    assert (kw["n_placements"], kw["length"], kw["min_speed"], kw["heading_jump_z"]) == (7, 45.0, 2.0, None)
+    assert kw["grade"] == "survey"

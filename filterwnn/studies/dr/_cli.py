@@ -133,6 +133,47 @@ def add_arguments(parser):
                              "start, its prior sd this many seconds (fixes and speed stamped by two clocks, or a "
                              "receiver's unknown latency; default 0: the filters add the state when the fixes show a "
                              "latency, with a warning)")
+    _remember_defaults(parser)
+
+
+#: The options that apply to ``--drive`` drives only (their help says "with --drive"), and those that apply to
+#: drives, one's own or ``--real``'s (the outages' placement, the GPS/DR filters' settings): given where they
+#: do not apply, the command refuses them rather than ignore them.
+DRIVE_ONLY = ("--no-plausibility", "--fill-gaps", "--gps-latency", "--odometer-latency", "--heading-offset",
+              "--speed-scale", "--intervals", "--outage-starts", "--gyro-scale-sd", "--gyro-bias",
+              "--gyro-bias-instability", "--gps-latency-sd")
+ON_DRIVES = ("--outage-length", "--outages", "--min-speed", "--gps-scale-window", "--correlated-fixes",
+             "--min-fix-interval", "--stop-reopen", "--calibration-error-z", "--heading-jump-z", "--grade")
+
+
+def _dest(flag):
+    return flag.lstrip("-").replace("-", "_")
+
+
+def _remember_defaults(parser):
+    """Keep :data:`DRIVE_ONLY`'s and :data:`ON_DRIVES`' defaults with the options (``_defaults``), so that
+    :func:`_check_applies` can tell those given."""
+    parser.set_defaults(_defaults={_dest(f): parser.get_default(_dest(f)) for f in DRIVE_ONLY + ON_DRIVES})
+
+
+def _check_applies(args):
+    """Refuse options given where they do not apply (they would be ignored): :data:`DRIVE_ONLY` without
+    ``--drive``, :data:`ON_DRIVES` without ``--drive`` or ``--real``, and ``--real`` with ``--drive`` (which
+    runs the given drives only)."""
+    drives, real = getattr(args, "drive", None), getattr(args, "real", False)
+    if drives and real:
+        raise ValueError("--real with --drive: --drive runs the given drives only; run --real as a command of its own")
+    defaults = getattr(args, "_defaults", {})
+
+    def given(flags):
+        return [f for f in flags if _dest(f) in defaults and getattr(args, _dest(f)) != defaults[_dest(f)]]
+
+    for flags, where in ((DRIVE_ONLY, None if drives else "--drive drives"),
+                         (ON_DRIVES, None if drives or real else "drives (--drive or --real)")):
+        bad = given(flags) if where else []
+        if bad:
+            raise ValueError(f"{', '.join(bad)} appl{'ies' if len(bad) == 1 else 'y'} to {where} only, and would "
+                             "be ignored here")
 
 
 def _z_or_off(text):
@@ -158,6 +199,7 @@ def _filter_options(args):
 
 def run(args):
     """Entry point of ``filterwnn study dr``."""
+    _check_applies(args)
     drives = getattr(args, "drive", None)
     if drives:
         return _run_drives(args, drives, args.filters)
@@ -176,7 +218,10 @@ def run(args):
             except ImportError as exc:
                 print(f"skipping the real drives: {exc}")
                 break
-            rd = real_drive_outages(drive, grade=grade, use_gps_sigma=True, **_filter_options(args))
+            rd = real_drive_outages(drive, n_placements=getattr(args, "outages", 20),
+                                    length=getattr(args, "outage_length", 30.0),
+                                    min_speed=getattr(args, "min_speed", 0.0), grade=grade, use_gps_sigma=True,
+                                    **_filter_options(args))
             results.append(rd)
             texts.append(real_drive_table(rd))
             print(texts[-1])
