@@ -249,12 +249,13 @@ def test_wnn_help_states_the_default_cache_and_its_invalidation_rule():
 
 def test_dr_knows_which_options_apply_to_drives_only():
     """Every option whose help says "with --drive" is in DRIVE_ONLY; those and ON_DRIVES are options of the command."""
-    from filterwnn.studies.dr._cli import DRIVE_ONLY, ON_DRIVES
+    from filterwnn.studies.dr._cli import DRIVE_ONLY, ON_DRIVES, SIMULATED_ONLY
 
     actions = {s: a for a in _commands()["study dr"]._actions for s in a.option_strings}
     said = {s for s, a in actions.items() if s.startswith("--") and (a.help or "").startswith("with --drive")}
-    assert said <= set(DRIVE_ONLY) and set(DRIVE_ONLY + ON_DRIVES) <= set(actions)
-    assert not set(DRIVE_ONLY) & set(ON_DRIVES)
+    groups = set(DRIVE_ONLY), set(ON_DRIVES), set(SIMULATED_ONLY)
+    assert said <= groups[0] and set().union(*groups) <= set(actions)
+    assert sum(len(g) for g in groups) == len(set().union(*groups))  # apart
 
 
 @pytest.mark.parametrize("argv, text", [
@@ -263,6 +264,9 @@ def test_dr_knows_which_options_apply_to_drives_only():
     (["--outage-length", "60"], "--outage-length applies to drives (--drive or --real) only"),
     (["--heading-jump-z", "off", "--grade", "phone"], "--heading-jump-z, --grade apply to drives (--drive or --real)"),
     (["--real", "--drive", "sample"], "--real with --drive: --drive runs the given drives only"),
+    (["--drive", "sample", "--runs", "3", "--scenarios", "turns"],
+     "--runs, --scenarios apply to the simulated scenarios (not run with --drive) only"),
+    (["--scheduler", "tcp://127.0.0.1:8786"], "--scheduler applies with --backend dask only"),
 ])
 def test_dr_refuses_options_where_they_would_be_ignored(argv, text, tmp_path, capsys, monkeypatch):
     """An option given where it does not apply is refused with one line, before anything runs (it was ignored:

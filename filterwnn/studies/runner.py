@@ -465,8 +465,16 @@ def dask_client(backend, scheduler=None, n_jobs=-1):
     Yields
     ------
     dask.distributed.Client or None
+
+    Raises
+    ------
+    ValueError
+        A ``scheduler`` with another backend (it would be ignored).
     """
     if backend != "dask":
+        if scheduler:
+            raise ValueError(f"--scheduler applies with --backend dask only (got --backend {backend or 'loky'}), "
+                             "and would be ignored here")
         yield None
         return
     from dask.distributed import Client, LocalCluster

@@ -144,6 +144,8 @@ DRIVE_ONLY = ("--no-plausibility", "--fill-gaps", "--gps-latency", "--odometer-l
               "--gyro-bias-instability", "--gps-latency-sd")
 ON_DRIVES = ("--outage-length", "--outages", "--min-speed", "--gps-scale-window", "--correlated-fixes",
              "--min-fix-interval", "--stop-reopen", "--calibration-error-z", "--heading-jump-z", "--grade")
+#: ... and those of the simulated scenarios' Monte Carlo, which ``--drive`` does not run.
+SIMULATED_ONLY = ("--runs", "--seed", "--jobs", "--backend", "--scheduler", "--cache", "--scenarios", "--factor")
 
 
 def _dest(flag):
@@ -151,15 +153,16 @@ def _dest(flag):
 
 
 def _remember_defaults(parser):
-    """Keep :data:`DRIVE_ONLY`'s and :data:`ON_DRIVES`' defaults with the options (``_defaults``), so that
-    :func:`_check_applies` can tell those given."""
-    parser.set_defaults(_defaults={_dest(f): parser.get_default(_dest(f)) for f in DRIVE_ONLY + ON_DRIVES})
+    """Keep :data:`DRIVE_ONLY`'s, :data:`ON_DRIVES`' and :data:`SIMULATED_ONLY`'s defaults with the options
+    (``_defaults``), so that :func:`_check_applies` can tell those given."""
+    base = vars(parser.parse_args([]))  # the defaults as parsed (a list option's default is its text)
+    parser.set_defaults(_defaults={_dest(f): base[_dest(f)] for f in DRIVE_ONLY + ON_DRIVES + SIMULATED_ONLY})
 
 
 def _check_applies(args):
     """Refuse options given where they do not apply (they would be ignored): :data:`DRIVE_ONLY` without
-    ``--drive``, :data:`ON_DRIVES` without ``--drive`` or ``--real``, and ``--real`` with ``--drive`` (which
-    runs the given drives only)."""
+    ``--drive``, :data:`ON_DRIVES` without ``--drive`` or ``--real``, :data:`SIMULATED_ONLY` and ``--real``
+    with ``--drive`` (which runs the given drives only)."""
     drives, real = getattr(args, "drive", None), getattr(args, "real", False)
     if drives and real:
         raise ValueError("--real with --drive: --drive runs the given drives only; run --real as a command of its own")
@@ -169,7 +172,8 @@ def _check_applies(args):
         return [f for f in flags if _dest(f) in defaults and getattr(args, _dest(f)) != defaults[_dest(f)]]
 
     for flags, where in ((DRIVE_ONLY, None if drives else "--drive drives"),
-                         (ON_DRIVES, None if drives or real else "drives (--drive or --real)")):
+                         (ON_DRIVES, None if drives or real else "drives (--drive or --real)"),
+                         (SIMULATED_ONLY, "the simulated scenarios (not run with --drive)" if drives else None)):
         bad = given(flags) if where else []
         if bad:
             raise ValueError(f"{', '.join(bad)} appl{'ies' if len(bad) == 1 else 'y'} to {where} only, and would "
