@@ -303,3 +303,17 @@ def test_dr_real_drives_take_the_outages_options(tmp_path, monkeypatch):
     kw, = seen
     assert (kw["n_placements"], kw["length"], kw["min_speed"], kw["heading_jump_z"]) == (7, 45.0, 2.0, None)
     assert kw["grade"] == "survey"
+
+
+@pytest.mark.parametrize("argv, text", [
+    (["--no-paper-table", "--paper-runs", "5"], "--paper-runs does not apply with --no-paper-table"),
+    (["--no-paper-table", "--paper-pf-epochs", "5"], "--paper-pf-epochs does not apply with --no-paper-table"),
+    (["--sweep-particles", "", "--sweep-runs", "3"], "--sweep-runs does not apply with --sweep-particles ''"),
+    (["--cache", "none", "--cached-only"], "--cached-only does not apply with --cache none"),
+])
+def test_wnn_refuses_options_where_they_would_be_ignored(argv, text, tmp_path, capsys, monkeypatch):
+    import filterwnn.studies.wnn.cli as wnn_cli
+
+    monkeypatch.setattr(wnn_cli, "run_study", lambda **kw: pytest.fail("the study ran"))
+    assert main(["study", "wnn", "--out", str(tmp_path), *argv]) == 2
+    assert text in capsys.readouterr().err

@@ -60,12 +60,31 @@ def add_arguments(parser):
                         help="only summarize the fits already in the cache (run nothing)")
     parser.add_argument("--no-figures", action="store_true", help="write the tables only (no PNG figures)")
     options.add_progress_flag(parser)
+    parser.set_defaults(_defaults=vars(parser.parse_args([])))  # to tell the options given (_check_applies)
+
+
+#: ``(option, its dest, when it does not apply, why)``: refused there rather than ignored.
+_NOT_APPLYING = (
+    ("--paper-runs", "paper_runs", lambda a: a.no_paper_table, "with --no-paper-table"),
+    ("--paper-pf-epochs", "paper_pf_epochs", lambda a: a.no_paper_table, "with --no-paper-table"),
+    ("--sweep-runs", "sweep_runs", lambda a: not a.sweep_particles, "with --sweep-particles '' (no sweep)"),
+    ("--cached-only", "cached_only", lambda a: a.cache == "none", "with --cache none (no cache to read)"),
+)
+
+
+def _check_applies(args):
+    """Refuse an option given where it does not apply (it would be ignored), with one line."""
+    defaults = getattr(args, "_defaults", {})
+    for flag, dest, idle, why in _NOT_APPLYING:
+        if dest in defaults and getattr(args, dest) != defaults[dest] and idle(args):
+            raise ValueError(f"{flag} does not apply {why}, and would be ignored")
 
 
 def run(args):
     """Run the study from parsed arguments; prints the table and the files written."""
     import sys
 
+    _check_applies(args)
     trainers, sweep = list(args.trainers), list(args.sweep_particles)
     progress = (not args.no_progress) and sys.stderr.isatty()
     cache = os.path.join(args.out, "cache") if args.cache is None else (None if args.cache == "none" else args.cache)
