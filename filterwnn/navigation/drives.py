@@ -15,6 +15,7 @@ import csv
 import os
 import re
 import sys
+import warnings
 
 import numpy as np
 
@@ -38,7 +39,8 @@ DRIVE_CSV_COLUMNS = {
     "gps_north": ("m", "GPS fix north"),
     "gps_lat": ("deg", "GPS fix latitude, WGS84 (with gps_lon; instead of gps_east/gps_north)"),
     "gps_lon": ("deg", "GPS fix longitude"),
-    "gps_sigma": ("m", "optional: the fix's horizontal accuracy (standard deviation per axis)"),
+    "gps_sigma": ("m", "optional: the fix's horizontal accuracy (standard deviation per axis); a column empty "
+                       "on every fix is taken as absent, with a warning"),
     "true_east": ("m", "optional: reference east (with true_north), same frame as the fixes"),
     "true_north": ("m", "optional: reference north"),
     "true_lat": ("deg", "optional: reference latitude (with true_lon; needs gps_lat/gps_lon)"),
@@ -277,11 +279,16 @@ def _csv_fixes(path, header, col, column, t, origin, lines):
     else:
         kw["lat"], kw["lon"] = ga[fix], gb[fix]
         kw["origin"] = origin
-    if "gps_sigma" in col:
-        gs = column("gps_sigma", True)[fix]
+    gs = column("gps_sigma", True)[fix] if "gps_sigma" in col else None
+    if gs is not None and gs.size and not np.any(np.isfinite(gs)):  # a logger's column the receiver never filled
+        warnings.warn(f"{path}: column 'gps_sigma' is empty on every fix: taken as absent, every fix gets the "
+                      "grade's sigma (the filters' gps_sigma_m)", RuntimeWarning, stacklevel=4)
+        gs = None
+    if gs is not None:
         if np.any(~np.isfinite(gs)):
             r = int(np.flatnonzero(fix)[np.argmax(~np.isfinite(gs))])
-            raise ValueError(f"{path}: column 'gps_sigma' is empty on data row {r + 1}, which has a fix")
+            raise ValueError(f"{path}: column 'gps_sigma' is empty on data row {r + 1}, which has a fix (give "
+                             "every fix its accuracy, or drop the column to give every fix the grade's sigma)")
         if np.any(gs <= 0):
             r = int(np.flatnonzero(fix)[np.argmax(gs <= 0)])
             raise ValueError(f"{path}: column 'gps_sigma' must be > 0 (m) where there is a fix; data row {r + 1} "

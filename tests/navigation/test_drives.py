@@ -329,6 +329,21 @@ def test_a_loggers_faults_are_named_with_their_remedy(tmp_path):
         read_drive_csv(_write(tmp_path / "d.csv", c), fill_gaps=2.1)  # as the message says (2.1000000000000014)
 
 
+def test_a_gps_sigma_column_the_receiver_never_filled_is_taken_as_absent(tmp_path):
+    """A logger's ``gps_sigma`` column empty on every fix (a receiver that reports no accuracy) is no column: every
+    fix gets the grade's sigma, with a warning; one empty on some fixes only is refused with the remedy."""
+    c = _drive()
+    c["gps_sigma"][:] = np.nan
+    with pytest.warns(RuntimeWarning, match="'gps_sigma' is empty on every fix: taken as absent"):
+        run = read_drive_csv(_write(tmp_path / "d.csv", c))
+    assert run.gps_sigma is None and len(run.gps_steps) == 120
+    c = _drive()
+    c["gps_sigma"][np.flatnonzero(~np.isnan(c["gps_sigma"]))[5]] = np.nan
+    with pytest.raises(ValueError, match=r"'gps_sigma' is empty on data row 51, which has a fix \(give every fix "
+                                         r"its accuracy, or drop the column"):
+        read_drive_csv(_write(tmp_path / "d.csv", c))
+
+
 def test_stamps_that_jitter_about_a_regular_grid_give_each_speed_the_grids_interval(tmp_path):
     """A logger stamps regular samples up to 5 ms late: taken over its stamped interval each speed would
     add 0.067 m of noise to a step (each late stamp lengthens one interval and shortens the next); read
