@@ -28,7 +28,7 @@ __all__ = ["DRIVE_CSV_COLUMNS", "PROGRESS_BYTES", "read_drive_csv", "sample_driv
 
 #: The columns :func:`read_drive_csv` reads: ``{column: (unit, meaning)}``. ``time``, one of
 #: ``heading``/``heading_deg`` and one of ``speed``/``odometer`` are required; GPS columns
-#: are empty on rows without a fix.
+#: are empty on rows without a fix. Names are read whatever their case (``Time``, ``GPS_Lat``).
 DRIVE_CSV_COLUMNS = {
     "time": ("s", "DR sample time, strictly increasing, evenly spaced"),
     "heading": ("rad", "heading from north, clockwise (or heading_deg in degrees)"),
@@ -41,7 +41,8 @@ DRIVE_CSV_COLUMNS = {
     "gps_lon": ("deg", "GPS fix longitude"),
     "gps_sigma": ("m", "optional: the fix's horizontal accuracy (standard deviation per axis); a column empty "
                        "on every fix is taken as absent, with a warning"),
-    "true_east": ("m", "optional: reference east (with true_north), same frame as the fixes"),
+    "true_east": ("m", "optional: reference east (with true_north), same frame as the fixes; a pair of truth "
+                       "columns empty on every row is taken as absent, with a warning"),
     "true_north": ("m", "optional: reference north"),
     "true_lat": ("deg", "optional: reference latitude (with true_lon; needs gps_lat/gps_lon)"),
     "true_lon": ("deg", "optional: reference longitude"),
@@ -118,7 +119,7 @@ def _read_columns(path, progress=None):
             if not first.strip():
                 raise ValueError(f"{path}: the file is empty (expected a header row)")
             delim = _delimiter(path, first)
-            header = [h.strip() for h in next(csv.reader([first], delimiter=delim))]
+            header = [h.strip().lower() for h in next(csv.reader([first], delimiter=delim))]  # Time, GPS_Lat: as named
             if len(set(header)) != len(header):
                 raise ValueError(f"{path}: duplicated column names in the header {header}")
             known = [(i, h) for i, h in enumerate(header) if h in DRIVE_CSV_COLUMNS]
@@ -304,6 +305,11 @@ def _csv_truth(path, header, col, column, origin, kw):
     for a, b in (("true_east", "true_north"), ("true_lat", "true_lon")):
         if (a in col) != (b in col):
             raise ValueError(f"{path}: the columns {a!r} and {b!r} go together; found only one in {header}")
+    for a, b in (("true_east", "true_north"), ("true_lat", "true_lon")):
+        if a in col and not np.isfinite(column(a, True)).any() and not np.isfinite(column(b, True)).any():
+            warnings.warn(f"{path}: the columns {a!r} and {b!r} are empty on every row: taken as absent (a drive "
+                          "without a truth is scored against its own fixes)", RuntimeWarning, stacklevel=4)
+            del col[a], col[b]  # a template's truth the logger never filled
     if "true_east" in col and "true_lat" in col:
         raise ValueError(f"{path}: give the truth as true_east/true_north or true_lat/true_lon, not both")
     if "true_east" in col:

@@ -344,6 +344,26 @@ def test_a_gps_sigma_column_the_receiver_never_filled_is_taken_as_absent(tmp_pat
         read_drive_csv(_write(tmp_path / "d.csv", c))
 
 
+def test_column_names_are_read_whatever_their_case_and_an_empty_truth_is_no_truth(tmp_path):
+    """A header as a spreadsheet writes it (``Time``, ``GPS_Lat``) reads as the lower-case names; truth columns
+    empty on every row (a template the logger never filled) are taken as absent, with a warning, and the drive is
+    scored against its fixes."""
+    c = _drive()
+    plain = read_drive_csv(_write(tmp_path / "d.csv", c))
+    head, rest = (tmp_path / "d.csv").read_text().split("\n", 1)
+    (tmp_path / "caps.csv").write_text(head.title().replace("Gps_", "GPS_") + "\n" + rest)
+    caps = read_drive_csv(str(tmp_path / "caps.csv"))
+    np.testing.assert_array_equal(caps.z_gps, plain.z_gps)
+    np.testing.assert_array_equal(caps.x_true, plain.x_true)
+    c["true_lat"][:] = c["true_lon"][:] = np.nan
+    with pytest.warns(RuntimeWarning, match="'true_lat' and 'true_lon' are empty on every row: taken as absent"):
+        run = read_drive_csv(_write(tmp_path / "d.csv", c))
+    assert run.x_true is None and len(run.gps_steps) == 120
+    c["true_lat"][3] = 48.0  # one value: a truth with holes, refused as before
+    with pytest.raises(ValueError, match="true_lat"):
+        read_drive_csv(_write(tmp_path / "d.csv", c))
+
+
 def test_stamps_that_jitter_about_a_regular_grid_give_each_speed_the_grids_interval(tmp_path):
     """A logger stamps regular samples up to 5 ms late: taken over its stamped interval each speed would
     add 0.067 m of noise to a step (each late stamp lengthens one interval and shortens the next); read
