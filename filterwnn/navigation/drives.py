@@ -120,7 +120,8 @@ def _read_columns(path, progress=None):
                 raise ValueError(f"{path}: the file is empty (expected a header row)")
             delim = _delimiter(path, first)
             header = [h.strip().lower() for h in next(csv.reader([first], delimiter=delim))]  # Time, GPS_Lat: as named
-            if len(set(header)) != len(header):
+            named = [h for h in header if h]  # a trailing delimiter's unnamed columns are not read
+            if len(set(named)) != len(named):
                 raise ValueError(f"{path}: duplicated column names in the header {header}")
             known = [(i, h) for i, h in enumerate(header) if h in DRIVE_CSV_COLUMNS]
             idx = [i for i, _ in known]

@@ -364,6 +364,17 @@ def test_column_names_are_read_whatever_their_case_and_an_empty_truth_is_no_trut
         read_drive_csv(_write(tmp_path / "d.csv", c))
 
 
+def test_a_trailing_delimiter_on_every_line_is_read(tmp_path):
+    """A spreadsheet's export that ends every line with delimiters (unnamed, empty columns) reads as without them
+    (two of them were refused as duplicated column names)."""
+    plain = read_drive_csv(_write(tmp_path / "d.csv", _drive()))
+    text = (tmp_path / "d.csv").read_text().splitlines()
+    (tmp_path / "t.csv").write_text("\n".join(line + ",," for line in text) + "\n")
+    trailing = read_drive_csv(str(tmp_path / "t.csv"))
+    np.testing.assert_array_equal(trailing.z_dr, plain.z_dr)
+    np.testing.assert_array_equal(trailing.z_gps, plain.z_gps)
+
+
 def test_stamps_that_jitter_about_a_regular_grid_give_each_speed_the_grids_interval(tmp_path):
     """A logger stamps regular samples up to 5 ms late: taken over its stamped interval each speed would
     add 0.067 m of noise to a step (each late stamp lengthens one interval and shortens the next); read
