@@ -369,6 +369,17 @@ SCALE_TEST = NormalDist().inv_cdf(1.0 - 1e-3) ** 2  # = chi2.ppf(1 - 2e-3, 1) = 
 SCALE_WARN = 9.0
 
 
+def _no_fix(z_gps):
+    """Whether ``z_gps`` says there is no fix: ``None``, or two NaN (a row of an array of fixes)."""
+    if z_gps is None:
+        return True
+    try:
+        z = np.asarray(z_gps, dtype=float)
+    except (TypeError, ValueError):
+        return False  # refused, with its name, where the fix is read
+    return z.shape == (2,) and bool(np.all(np.isnan(z)))
+
+
 def _shear(M, b, k, d):
     """``T M T^T`` for ``T = I + d e_b e_k^T`` (row ``k`` added ``d`` times to row ``b``), symmetrised: the
     covariance map of a measured turn ``d`` for a scale factor error in row ``k`` of a heading bias in
@@ -1060,11 +1071,14 @@ class GPSDRFilter:
         z_dr : array-like of shape (2,)
             ``[heading (rad, from north, clockwise), distance since the last sample (m)]``.
         z_gps : array-like of shape (2,) or None
-            ``[e, n]`` (m), or ``None`` when there is no fix.
+            ``[e, n]`` (m), or ``None`` (or ``[nan, nan]``, an array's row) when there is no fix; a fix with
+            one coordinate NaN is refused.
         gps_sigma : float, optional
             This fix's standard deviation per axis (m); default the model's ``sigma_gps``.
         """
         z_dr = check_scale(as_state(z_dr, "z_dr", 2), "z_dr")  # a distance of 1e308 would give x = inf
+        if _no_fix(z_gps):
+            z_gps = gps_sigma = None
         if self.model.gyro_scale:
             self._turn(float(z_dr[0]))
         elif "gyro_scale" in self._hyp:
@@ -2161,9 +2175,10 @@ class GPSDRFilter:
         ----------
         z_dr : array-like of shape (n_steps, 2)
         z_gps : sequence of length n_steps, optional
-            Per step the fix ``(2,)`` or ``None`` (:meth:`filterwnn.navigation.scenarios.DRRun.gps_list`).
+            Per step the fix ``(2,)`` or ``None`` (:meth:`filterwnn.navigation.scenarios.DRRun.gps_list`), or an
+            array ``(n_steps, 2)`` whose rows without a fix are NaN.
         gps_sigma : sequence of length n_steps, optional
-            Per step the fix's sigma (m) or ``None``.
+            Per step the fix's sigma (m) or ``None`` (any value where there is no fix).
 
         Returns
         -------

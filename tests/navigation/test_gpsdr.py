@@ -889,3 +889,19 @@ def test_a_scale_past_its_plausible_bound_warns_once_with_the_step():
         warnings.simplefilter("always")
         g.batch_filter(run.z_dr, run.gps_list(), run.gps_sigma_list())
     assert not any("covariance scale reached" in str(w.message) for w in rec)
+
+
+def test_fixes_as_an_array_with_nan_rows_are_the_fixes_as_a_list_with_none():
+    """A user's fixes as an ``(n_steps, 2)`` array, NaN where there is none (pandas' way), run as the list of
+    fixes and None; a fix with one coordinate NaN is refused."""
+    run, f = _steady()
+    fixes = run.gps_list()
+    rows = np.array([[np.nan, np.nan] if g is None else g for g in fixes])
+    sigmas = np.where(np.isnan(rows[:, 0]), np.nan, 2.0)
+    a = f.batch_filter(run.z_dr, fixes, [None if g is None else 2.0 for g in fixes])
+    b = _steady()[1].batch_filter(run.z_dr, rows, sigmas)
+    np.testing.assert_array_equal(a, b)
+    g = _steady()[1]
+    g.predict()
+    with pytest.raises(ValueError, match=r"z_gps must be finite"):
+        g.update(run.z_dr[0], [1.0, np.nan])
