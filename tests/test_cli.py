@@ -317,3 +317,18 @@ def test_wnn_refuses_options_where_they_would_be_ignored(argv, text, tmp_path, c
     monkeypatch.setattr(wnn_cli, "run_study", lambda **kw: pytest.fail("the study ran"))
     assert main(["study", "wnn", "--out", str(tmp_path), *argv]) == 2
     assert text in capsys.readouterr().err
+
+
+def test_dr_reads_every_drive_and_places_its_outages_before_it_runs_one(tmp_path, capsys, monkeypatch):
+    """Several --drive: a file that cannot be read, or whose outages cannot be placed, is refused before any drive
+    runs (it stopped the command after the drives before it had run, their outputs unwritten)."""
+    import filterwnn.studies.dr._cli as dr_cli
+
+    bad = tmp_path / "bad.csv"
+    bad.write_text("time,heading,speed\n0,0,1\n")
+    monkeypatch.setattr(dr_cli, "real_drive_outages", lambda *a, **kw: pytest.fail("a drive ran"))
+    assert main(["study", "dr", "--drive", "sample", "--drive", str(bad), "--out", str(tmp_path)]) == 2
+    assert "bad.csv" in capsys.readouterr().err
+    argv = ["study", "dr", "--drive", "sample", "--outage-starts", "10,500", "--out", str(tmp_path)]
+    assert main(argv) == 2
+    assert "sample: starts must lie in [0, 150]" in capsys.readouterr().err

@@ -11,7 +11,7 @@ from ...navigation.gpsdr import CALIBRATION_ERROR_Z, CORRELATED_FIXES, HEADING_J
 from ...navigation.scenarios import INTERVALS, SCENARIOS
 from .. import options, runner
 from ._filters import FILTER_TABLE, OPT_IN
-from ._real import REAL_FILTERS, real_drive_outages, real_drive_table
+from ._real import REAL_FILTERS, _outage_plan, real_drive_outages, real_drive_table
 from ._run import DEFAULT_SCENARIOS, run_study
 from ._tables import markdown_table, write_outputs
 
@@ -263,8 +263,8 @@ def _run_drives(args, drives, filters):
     starts = args.outage_starts or None
     fl = tuple(filters) if filters else REAL_FILTERS
     grade = _drive_grade(args)
-    results = []
-    for path in drives:
+    runs = []
+    for path in drives:  # every drive read and its outages placed before any runs: a bad one stops nothing done
         run = read_drive_csv(sample_drive_path() if path == "sample" else path,
                              checks=not getattr(args, "no_plausibility", False),
                              fill_gaps=getattr(args, "fill_gaps", 0.0),
@@ -275,13 +275,19 @@ def _run_drives(args, drives, filters):
                              speed_scale=getattr(args, "speed_scale", 1.0),
                              progress=None if not getattr(args, "no_progress", False) else False)
         try:
-            res = real_drive_outages(run, n_placements=args.outages, length=args.outage_length, filters=fl,
-                                     starts=starts, min_speed=args.min_speed,
-                                     use_gps_sigma=run.gps_sigma is not None,
-                                     grade=grade, **_filter_options(args))
+            _outage_plan(run, args.outage_length, starts, args.outages, args.min_speed)
         except ValueError as exc:  # name the drive (and the options behind the outages)
             raise ValueError(f"{path}: {exc} (outages from --outage-length, --outages, --outage-starts, "
                              "--min-speed)") from None
+        runs.append((path, run))
+    results = []
+    for path, run in runs:
+        try:
+            res = real_drive_outages(run, n_placements=args.outages, length=args.outage_length, filters=fl,
+                                     starts=starts, min_speed=args.min_speed,
+                                     use_gps_sigma=run.gps_sigma is not None, grade=grade, **_filter_options(args))
+        except ValueError as exc:  # name the drive
+            raise ValueError(f"{path}: {exc}") from None
         results.append(res)
         print(real_drive_table(res))
     paths = write_outputs(None, args.out, figures=not args.no_figures, real_drives=results)
