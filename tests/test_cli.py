@@ -62,6 +62,8 @@ BAD = [
     (["study", "dr", "--filters", "EKF,ukf"], "--filters", "'ukf'; valid: EKF"),
     (["study", "dr", "--filters", "EKF,EKF"], "--filters", "repeat"),
     (["demo", "--seed", "-2"], "--seed", ">= 0"),
+    (["study", "dr", "--out", __file__], "--out", "must be a folder"),  # refused before the study runs
+    (["study", "wnn", "--out", __file__ + "/sub"], "--out", "is a file"),
 ]
 
 

@@ -114,6 +114,23 @@ def float_list(text):
     return [nonnegative_float(s.strip()) for s in str(text).split(",") if s.strip()]
 
 
+def output_folder(text):
+    """A folder to write into: any path but an existing file, or one under an existing file (refused before a
+    study runs, not when it writes its outputs)."""
+    import os
+
+    path = os.path.abspath(os.path.expanduser(str(text)))
+    probe = path
+    while probe and not os.path.exists(probe):
+        parent = os.path.dirname(probe)
+        if parent == probe:
+            break
+        probe = parent
+    if os.path.exists(probe) and not os.path.isdir(probe):
+        raise argparse.ArgumentTypeError(f"must be a folder, got {text!r}, and {probe!r} is a file")
+    return str(text)
+
+
 def joblib_backend(text):
     """A joblib backend name registered with joblib (``loky``, ``threading``, ``dask``, ...)."""
     from joblib import parallel

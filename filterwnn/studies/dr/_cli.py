@@ -44,7 +44,7 @@ def add_arguments(parser):
     parser.add_argument("--factor", type=options.positive_float, default=None,
                         help="override the DR noise factor at 150 s of the DR-only scenarios (default each "
                              "scenario's own)")
-    parser.add_argument("--out", default="results/dr", help="output folder")
+    parser.add_argument("--out", type=options.output_folder, default="results/dr", help="output folder")
     parser.add_argument("--no-figures", action="store_true", help="write the tables only (no PNG figures)")
     options.add_progress_flag(parser, "--quiet")
     parser.add_argument("--real", action="store_true",

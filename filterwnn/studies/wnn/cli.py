@@ -49,7 +49,7 @@ def add_arguments(parser):
                         help="joblib backend name (loky, threading, dask, ...); default joblib's (loky)")
     parser.add_argument("--scheduler", default=None,
                         help="with --backend dask: a dask.distributed scheduler address (default: a local cluster)")
-    parser.add_argument("--out", default="wnn-study", help="output folder")
+    parser.add_argument("--out", type=options.output_folder, default="wnn-study", help="output folder")
     parser.add_argument("--cache", default=None,
                         help="checkpoint folder (default OUT/cache): each finished fit is saved there as JSON "
                              "and reused, so an interrupted study resumes with the same numbers; an entry is "
