@@ -1915,9 +1915,12 @@ class GPSDRFilter:
             self.nis_warnings.append(self.step)
             # a gyro whose bias moved faster than the grade's random walk lets the rate bias follow: the
             # innovations grow as the heading drifts (docs/study-outputs/dr/log-faults/RUN.md, stop 47)
-            gyro = ("; or the gyro's bias moved faster than the grade allows (its temperature): give its bias "
-                    "instability, gyro_bias_instability_deg_h in the grade (--gyro-bias-instability DEG_H; the "
-                    f"model's {np.degrees(np.sqrt(self.model.q_rate * 100.0)) * 3600.0:.3g})") if self.model.rate_bias else ""
+            gyro = ""
+            if self.model.rate_bias:  # the grade's instability, from the rate bias's random walk (_grade_settings)
+                deg_h = np.degrees(np.sqrt(self.model.q_rate * 100.0)) * 3600.0
+                gyro = ("; or the gyro's bias moved faster than the grade allows (its temperature): give its bias "
+                        "instability, gyro_bias_instability_deg_h in the grade (--gyro-bias-instability DEG_H; the "
+                        f"model's {deg_h:.3g})")
             warnings.warn(
                 f"GPSDRFilter is inconsistent at step {self.step}: the mean NIS of the last {self.nis_window} "
                 f"fixes is {np.mean(self._nis):.1f}, above its 99.9 % bound {self._nis_bound:.2f} (2 expected); "
@@ -1930,8 +1933,8 @@ class GPSDRFilter:
     def whiteness_fixes(self):
         """The fixes the whiteness window holds: ``whiteness_window`` seconds at the fixes' interval, the
         shortest of the last :data:`FIX_GAPS` between them (60 at 1 Hz, 300 at 5 Hz; at least 1), None before
-        the second fix and with ``whiteness_window=0``. One early or doubled fix is forgotten after that many, and a receiver that changes
-        its rate is followed as soon."""
+        the second fix and with ``whiteness_window=0``. One early or doubled fix is forgotten after that many,
+        and a receiver that changes its rate is followed as soon."""
         if self._fix_gap is None or not self.whiteness_window:
             return None
         return max(int(round(self.whiteness_window / (self._fix_gap * self.model.dt))), 1)
