@@ -402,6 +402,14 @@ def _gyro_bias_remedy(rate, least=""):
             "have told the bias end far off")
 
 
+def _instability_remedy(model):
+    """The remedy a warning names for a gyro whose rate bias moved faster than ``model``'s random walk lets the
+    state follow (a phone warming up): its bias instability, in the grade (the model's value given back)."""
+    deg_h = np.degrees(np.sqrt(model.q_rate * 100.0)) * 3600.0  # the grade's, as _grade_settings maps it
+    return ("give the gyro's bias instability, gyro_bias_instability_deg_h in the grade (--gyro-bias-instability "
+            f"DEG_H; the model's {deg_h:.3g})")
+
+
 def _walk_variance(t, w, q_arw):
     """The variance an angle random walk of density ``q_arw`` (rad^2/s) adds to an estimate ``w . h`` from
     headings ``h`` at times ``t``: ``q_arw sum_k (t_k - t_{k-1}) (sum_{i >= k} w_i)^2``, the walk's increment
@@ -1743,7 +1751,9 @@ class GPSDRFilter:
         if self.n_zero_rate_reacquired == 1:
             deg = 180.0 / np.pi
             outside = abs(mean) > CALIBRATION_SIGMAS * np.sqrt(self.model.P0[r, r])  # past the grade's bound
-            remedy = ". " + _gyro_bias_remedy(abs(mean)) if outside else ""
+            remedy = ". " + (_gyro_bias_remedy(abs(mean)) if outside else "For a gyro whose bias moves faster than "
+                                                                          "the grade allows, "
+                                                                          + _instability_remedy(self.model))
             warnings.warn(
                 f"GPSDRFilter: the last {len(s)} stops measured the gyro rate bias at {mean * deg:+.3g} "
                 f"+- {np.sqrt(var) * deg:.2g} deg/s, which the state ({state * deg:+.3g} +- {sd * deg:.2g} deg/s) "
@@ -1915,12 +1925,8 @@ class GPSDRFilter:
             self.nis_warnings.append(self.step)
             # a gyro whose bias moved faster than the grade's random walk lets the rate bias follow: the
             # innovations grow as the heading drifts (docs/study-outputs/dr/log-faults/RUN.md, stop 47)
-            gyro = ""
-            if self.model.rate_bias:  # the grade's instability, from the rate bias's random walk (_grade_settings)
-                deg_h = np.degrees(np.sqrt(self.model.q_rate * 100.0)) * 3600.0
-                gyro = ("; or the gyro's bias moved faster than the grade allows (its temperature): give its bias "
-                        "instability, gyro_bias_instability_deg_h in the grade (--gyro-bias-instability DEG_H; the "
-                        f"model's {deg_h:.3g})")
+            gyro = ("; or the gyro's bias moved faster than the grade allows (its temperature): "
+                    + _instability_remedy(self.model)) if self.model.rate_bias else ""
             warnings.warn(
                 f"GPSDRFilter is inconsistent at step {self.step}: the mean NIS of the last {self.nis_window} "
                 f"fixes is {np.mean(self._nis):.1f}, above its 99.9 % bound {self._nis_bound:.2f} (2 expected); "
@@ -2041,8 +2047,9 @@ class GPSDRFilter:
                 "cutting the calibration's gain by it would keep the error: while the monitor finds it, the heading "
                 f"bias and the rate bias take the fixes' own correlation ({self._residual_c:.3g}: the innovations "
                 "less what the monitor's errors explain) instead (n_calibration_error counts the fixes). A heading "
-                "that re-aligns (a fused orientation) or a gyro whose bias changed does this",
-                RuntimeWarning, stacklevel=4)
+                "that re-aligns (a fused orientation) or a gyro whose bias changed does this"
+                + ("; for a gyro whose bias moves faster than the grade allows, " + _instability_remedy(self.model)
+                   if self.model.rate_bias else ""), RuntimeWarning, stacklevel=4)
         return True
 
     def _held_rows(self, gps):

@@ -265,7 +265,7 @@ def test_the_warning_names_the_gyros_own_specification_as_the_remedy(phone):
     """A gyro outside its grade (0.3 deg/s against the phone grade's 0.05): the re-acquisition's warning
     gives the value to state, gyro_bias_deg_s=0.31 (--gyro-bias 0.31), and a grade with it follows the same
     stops from the first, with no re-acquisition. A bias that jumped inside the grade (0.1 deg/s, its
-    bound 0.15) has no such remedy, and the warning names none."""
+    bound 0.15) has no such value: the warning names the gyro's bias instability instead (a bias that moves)."""
     z = _bias_jump(np.random.default_rng(12), phone, 0.3, n_before=0, n_after=4)
     with pytest.warns(RuntimeWarning, match=r"re-acquires from them .* turn-on bias is 0\.3\d? deg/s, more than "
                                             r"the grade's, .*gyro_bias_deg_s=0\.3\d? \(filterwnn study dr --gyro-bias 0\.3\d?\)"):
@@ -279,6 +279,8 @@ def test_the_warning_names_the_gyros_own_specification_as_the_remedy(phone):
         _run(phone, _bias_jump(np.random.default_rng(10), phone, 0.1))
     said = [str(w.message) for w in seen if "re-acquires from them" in str(w.message)]
     assert len(said) == 1 and "gyro_bias_deg_s" not in said[0]
+    assert "bias moves faster than the grade allows, give the gyro's bias instability, gyro_bias_instability_deg_h" \
+        in said[0] and "the model's 10)" in said[0]
 
 
 def test_each_calibration_bound_names_its_own_remedy(phone):
