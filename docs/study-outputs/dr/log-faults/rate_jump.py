@@ -4,9 +4,10 @@
 The prototype is ``rate_jump_prototype.patch`` (``GPSDRFilter(rate_jump_z=...)``: at each onset a step in the
 rate bias beside the heading's, tested alike, taken between the rate that moves the heading by the grade's white
 noise over the window and the rate bias's bound; on a find the rate bias and the heading bias are widened).
-It applies to 46d79f2. Run it from a worktree with the patch applied, one BLAS thread::
+It applies to 46d79f2. From the repository root, a worktree there with the patch applied, then this script
+on it (its first argument), one BLAS thread::
 
-    git worktree add /tmp/rj 46d79f2 && cd /tmp/rj && git apply docs/study-outputs/dr/log-faults/rate_jump_prototype.patch
+    git worktree add /tmp/rj 46d79f2 && git -C /tmp/rj apply "$PWD/docs/study-outputs/dr/log-faults/rate_jump_prototype.patch"
     OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/log-faults/rate_jump.py /tmp/rj phone "range(3)" EKF-8
     OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/log-faults/rate_jump.py /tmp/rj one_hz "range(3)" EKF-8
 
