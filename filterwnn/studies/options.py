@@ -131,6 +131,20 @@ def output_folder(text):
     return str(text)
 
 
+def remember_defaults(parser):
+    """Keep the parser's defaults, as parsed (a list option's default is its text), with the options it gives
+    (``args._defaults``): :func:`given` tells an option given from one left alone. Call it after the last
+    option is added."""
+    parser.set_defaults(_defaults=vars(parser.parse_args([])))
+
+
+def given(args, dest):
+    """Whether option ``dest`` was given a value other than its default (:func:`remember_defaults`; False for
+    arguments that do not carry their defaults)."""
+    defaults = getattr(args, "_defaults", {})
+    return dest in defaults and getattr(args, dest) != defaults[dest]
+
+
 def joblib_backend(text):
     """A joblib backend name registered with joblib (``loky``, ``threading``, ``dask``, ...)."""
     from joblib import parallel

@@ -133,7 +133,7 @@ def add_arguments(parser):
                              "start, its prior sd this many seconds (fixes and speed stamped by two clocks, or a "
                              "receiver's unknown latency; default 0: the filters add the state when the fixes show a "
                              "latency, with a warning)")
-    _remember_defaults(parser)
+    options.remember_defaults(parser)  # to tell the options given (_check_applies)
 
 
 #: The options that apply to ``--drive`` drives only (their help says "with --drive"), and those that apply to
@@ -152,13 +152,6 @@ def _dest(flag):
     return flag.lstrip("-").replace("-", "_")
 
 
-def _remember_defaults(parser):
-    """Keep :data:`DRIVE_ONLY`'s, :data:`ON_DRIVES`' and :data:`SIMULATED_ONLY`'s defaults with the options
-    (``_defaults``), so that :func:`_check_applies` can tell those given."""
-    base = vars(parser.parse_args([]))  # the defaults as parsed (a list option's default is its text)
-    parser.set_defaults(_defaults={_dest(f): base[_dest(f)] for f in DRIVE_ONLY + ON_DRIVES + SIMULATED_ONLY})
-
-
 def _check_applies(args):
     """Refuse options given where they do not apply (they would be ignored): :data:`DRIVE_ONLY` without
     ``--drive``, :data:`ON_DRIVES` without ``--drive`` or ``--real``, :data:`SIMULATED_ONLY` and ``--real``
@@ -166,15 +159,10 @@ def _check_applies(args):
     drives, real = getattr(args, "drive", None), getattr(args, "real", False)
     if drives and real:
         raise ValueError("--real with --drive: --drive runs the given drives only; run --real as a command of its own")
-    defaults = getattr(args, "_defaults", {})
-
-    def given(flags):
-        return [f for f in flags if _dest(f) in defaults and getattr(args, _dest(f)) != defaults[_dest(f)]]
-
     for flags, where in ((DRIVE_ONLY, None if drives else "--drive drives"),
                          (ON_DRIVES, None if drives or real else "drives (--drive or --real)"),
                          (SIMULATED_ONLY, "the simulated scenarios (not run with --drive)" if drives else None)):
-        bad = given(flags) if where else []
+        bad = [f for f in flags if options.given(args, _dest(f))] if where else []
         if bad:
             raise ValueError(f"{', '.join(bad)} appl{'ies' if len(bad) == 1 else 'y'} to {where} only, and would "
                              "be ignored here")
@@ -222,10 +210,8 @@ def run(args):
             except ImportError as exc:
                 print(f"skipping the real drives: {exc}")
                 break
-            rd = real_drive_outages(drive, n_placements=getattr(args, "outages", 20),
-                                    length=getattr(args, "outage_length", 30.0),
-                                    min_speed=getattr(args, "min_speed", 0.0), grade=grade, use_gps_sigma=True,
-                                    **_filter_options(args))
+            rd = real_drive_outages(drive, n_placements=args.outages, length=args.outage_length,
+                                    min_speed=args.min_speed, grade=grade, use_gps_sigma=True, **_filter_options(args))
             results.append(rd)
             texts.append(real_drive_table(rd))
             print(texts[-1])

@@ -60,7 +60,7 @@ def add_arguments(parser):
                         help="only summarize the fits already in the cache (run nothing)")
     parser.add_argument("--no-figures", action="store_true", help="write the tables only (no PNG figures)")
     options.add_progress_flag(parser)
-    parser.set_defaults(_defaults=vars(parser.parse_args([])))  # to tell the options given (_check_applies)
+    options.remember_defaults(parser)  # to tell the options given (_check_applies)
 
 
 #: ``(option, its dest, when it does not apply, why)``: refused there rather than ignored.
@@ -74,9 +74,8 @@ _NOT_APPLYING = (
 
 def _check_applies(args):
     """Refuse an option given where it does not apply (it would be ignored), with one line."""
-    defaults = getattr(args, "_defaults", {})
     for flag, dest, idle, why in _NOT_APPLYING:
-        if dest in defaults and getattr(args, dest) != defaults[dest] and idle(args):
+        if options.given(args, dest) and idle(args):
             raise ValueError(f"{flag} does not apply {why}, and would be ignored")
 
 
