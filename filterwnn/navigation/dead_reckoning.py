@@ -427,6 +427,18 @@ class DRModel(StateSpaceModel):
         return from_model(ExtendedKalmanFilter, self, x0=x0, P0=P0, R=R)
 
 
+def _rate_walk(instability_deg_h):
+    """The rate-bias state's random-walk density ``q_rate`` (rad^2/s^3) of a gyro whose bias instability is
+    ``instability_deg_h``: ``(instability * pi/180 / 3600)^2 / 100 s``."""
+    return (np.deg2rad(instability_deg_h) / 3600.0) ** 2 / 100.0
+
+
+def _rate_walk_instability(q_rate):
+    """The bias instability (deg/h) whose rate-bias random walk is ``q_rate``: the inverse of the grade's
+    mapping (:meth:`GPSDRModel.from_grade`), for a warning to name the model's value."""
+    return float(np.degrees(np.sqrt(q_rate * 100.0)) * 3600.0)
+
+
 def _grade_settings(spec, rate, augmented=True):
     """:class:`GPSDRModel` keyword arguments from a grade's specification ``spec``, one line per
     number (the mapping of :meth:`GPSDRModel.from_grade`); ``rate``: with a rate-bias state;
@@ -446,7 +458,7 @@ def _grade_settings(spec, rate, augmented=True):
     )
     if rate:
         kw.update(sd_rate=max(w, 1e-9),
-                  q_rate=(np.deg2rad(spec["gyro_bias_instability_deg_h"]) / 3600.0) ** 2 / 100.0)
+                  q_rate=_rate_walk(spec["gyro_bias_instability_deg_h"]))
     if not (augmented or rate):  # the 6-state model: no calibration states, so none of these
         return kw
     if spec["gyro_scale_sd"] > 0:

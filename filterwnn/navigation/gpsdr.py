@@ -215,7 +215,7 @@ from .._warnings import folded_warnings
 from ..metrics import integrated_autocorrelation
 from .._validation import as_state, check_choice, check_covariance, check_positive, check_positive_int, check_scale
 from ._plausibility import MAX_DRIFT_DEG_S
-from .dead_reckoning import GPSDRModel, dr_residual, gps_H, gps_hx, wrap_angle
+from .dead_reckoning import GPSDRModel, _rate_walk_instability, dr_residual, gps_H, gps_hx, wrap_angle
 from ..kalman.presets import make_points
 from ..models import from_model
 from ..kalman.unscented import UnscentedKalmanFilter
@@ -405,9 +405,8 @@ def _gyro_bias_remedy(rate, least=""):
 def _instability_remedy(model):
     """The remedy a warning names for a gyro whose rate bias moved faster than ``model``'s random walk lets the
     state follow (a phone warming up): its bias instability, in the grade (the model's value given back)."""
-    deg_h = np.degrees(np.sqrt(model.q_rate * 100.0)) * 3600.0  # the grade's, as _grade_settings maps it
     return ("give the gyro's bias instability, gyro_bias_instability_deg_h in the grade (--gyro-bias-instability "
-            f"DEG_H; the model's {deg_h:.3g})")
+            f"DEG_H; the model's {_rate_walk_instability(model.q_rate):.3g})")
 
 
 def _walk_variance(t, w, q_arw):
