@@ -306,7 +306,6 @@ def _csv_truth(path, header, col, column, origin, kw):
     for a, b in (("true_east", "true_north"), ("true_lat", "true_lon")):
         if (a in col) != (b in col):
             raise ValueError(f"{path}: the columns {a!r} and {b!r} go together; found only one in {header}")
-    for a, b in (("true_east", "true_north"), ("true_lat", "true_lon")):
         if a in col and not np.isfinite(column(a, True)).any() and not np.isfinite(column(b, True)).any():
             warnings.warn(f"{path}: the columns {a!r} and {b!r} are empty on every row: taken as absent (a drive "
                           "without a truth is scored against its own fixes)", RuntimeWarning, stacklevel=4)
