@@ -148,7 +148,6 @@ def test_filter_api_and_bad_arguments():
     assert GPSDRFilter(m).heading_jump_z == 6.1 and f.n_heading_jumps == 0 and f.heading_jumps == []
 
 
-
 def _turning_drive():
     sc = Scenario(name="turning", duration=300.0, speed=15.0, heading=30.0, sigma_heading=0.5, gps_rate=1.0,
                   sigma_gps=5.0, turns=((60.0, 80.0, 30.0), (150.0, 170.0, -40.0)))
