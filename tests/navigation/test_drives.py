@@ -706,3 +706,9 @@ def test_a_1_hz_speed_cannot_show_a_cutoff_under_3_m_s():
         warnings.simplefilter("error")
         DRRun.from_arrays(np.arange(len(v), dtype=float), np.zeros(len(v)), speed=np.where(v < 0.8, 0.0, v),
                           checks=False)
+
+
+def test_dr_takes_a_worker_count_with_drive(command_passes):
+    """--jobs changes no number, and scripts pass it whatever they run: --drive takes it (and runs its drives in
+    turn), where --runs or --scenarios are refused."""
+    assert command_passes("real_drive_outages", ["--jobs", "1"])["grade"] == "phone"

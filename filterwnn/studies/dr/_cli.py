@@ -144,8 +144,9 @@ DRIVE_ONLY = ("--no-plausibility", "--fill-gaps", "--gps-latency", "--odometer-l
               "--gyro-bias-instability", "--gps-latency-sd")
 ON_DRIVES = ("--outage-length", "--outages", "--min-speed", "--gps-scale-window", "--correlated-fixes",
              "--min-fix-interval", "--stop-reopen", "--calibration-error-z", "--heading-jump-z", "--grade")
-#: ... and those of the simulated scenarios' Monte Carlo, which ``--drive`` does not run.
-SIMULATED_ONLY = ("--runs", "--seed", "--jobs", "--backend", "--scheduler", "--cache", "--scenarios", "--factor")
+#: ... and those of the simulated scenarios' Monte Carlo, which ``--drive`` does not run. Not ``--jobs``: a
+#: worker count changes no number, and scripts pass ``--jobs 1`` whatever they run (``log_faults.py`` does).
+SIMULATED_ONLY = ("--runs", "--seed", "--backend", "--scheduler", "--cache", "--scenarios", "--factor")
 
 
 def _dest(flag):
