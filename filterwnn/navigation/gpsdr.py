@@ -1214,11 +1214,12 @@ class GPSDRFilter:
             self._J += c * info  # the score's variance: correlated fixes count less
         elif kw["gps"] and self._listening:
             self._residuals.append(None)
+        speed = None  # the speed's latency's fix rows, at a scored fix
         if self._so is not None:
-            self._monitor_speed(H, K, x_prior, kw, (y, S, G, c) if scored else None)
+            speed = self._monitor_speed(H, K, x_prior, kw, (y, S, G, c) if scored else None)
         self._sens = self._sens - K @ A
         if self._js.shape[1]:
-            self._score_jumps(H, K, (y, S, G, c) if scored else None)
+            self._score_jumps(H, K, (y, S, G, c) if scored else None, speed)
         if scored and self._js.shape[1] and self._adopt is None:
             self._test_jumps()
         if scored or self._restate:  # the estimates change with the score, the information, or a state added
@@ -1229,7 +1230,9 @@ class GPSDRFilter:
         """The speed's latency as one more hypothesis of :meth:`_monitor_errors`, its column kept apart so that
         the others are estimated as without it: its sensitivity (the DR measurement's own, :meth:`_speed_lag`,
         while the car moves), and at a scored ``fix = (y, S, G, c)`` its score, its information, and their
-        cross terms with the others' (``G`` their rows), the score's variance at the same correlation ``c``."""
+        cross terms with the others' (``G`` their rows), the score's variance at the same correlation ``c``.
+        Returns its rows of the fix (for the heading-jump onsets' cross terms, :meth:`_score_jumps`), None
+        at a fix not scored."""
         a = H @ self._so
         if self.motion != "still":
             a[:2] += self._speed_lag(x_prior, kw["velocity"])
@@ -1241,6 +1244,7 @@ class GPSDRFilter:
             self._Ixo, self._Ioo = self._Ixo + cross, self._Ioo + own
             self._Jxo, self._Joo = self._Jxo + c * cross, self._Joo + c * own
         self._so = self._so - K @ a
+        return None if fix is None else a[2:]
 
     def _speed_lag(self, x, velocity):
         """The DR measurement's sensitivity to the speed's latency ``t``: a speed sample that long late reads
@@ -1291,6 +1295,7 @@ class GPSDRFilter:
         n = self.model.dim_x
         self._js, self._jt = np.zeros((n, 0)), []
         self._ju, self._jd, self._jc, self._jB = np.zeros(0), np.zeros(0), np.zeros(0), np.zeros((m, 0))
+        self._jo = np.zeros(0)  # their cross terms with the speed's latency (:meth:`_monitor_speed`)
 
     def _spawn_jump(self):
         """Start an onset every :data:`HEADING_JUMP_SPACING` s (a step in the heading bias from here: its
@@ -1312,11 +1317,12 @@ class GPSDRFilter:
         c = self._rc_sum / self._rc_n if self._rc_n else max(self.gps_correlation, 1.0)
         self._jc = np.r_[self._jc[drop:], c]
         self._jB = np.hstack([self._jB[:, drop:], np.zeros((m, 1))])
+        self._jo = np.r_[self._jo[drop:], 0.0]
 
-    def _score_jumps(self, H, K, fix):
+    def _score_jumps(self, H, K, fix, speed=None):
         """The onsets' share of :meth:`_monitor_errors`: at a scored ``fix = (y, S, G, c)`` their scores,
-        information and its cross terms with the monitor's hypotheses (``G`` their rows); then their
-        sensitivities ``s - K H s``."""
+        information and its cross terms with the monitor's hypotheses (``G`` their rows) and with the speed's
+        latency (``speed`` its rows); then their sensitivities ``s - K H s``."""
         A = H @ self._js
         if fix is not None:
             y, S, G, _ = fix  # (the fixes' correlation: each onset counts its fixes at its own, _jc)
@@ -1324,6 +1330,8 @@ class GPSDRFilter:
             own, cross = (A[2:] * W).sum(axis=0), G.T @ W
             self._ju = self._ju + W.T @ y
             self._jd, self._jB = self._jd + own, self._jB + cross
+            if speed is not None:
+                self._jo = self._jo + W.T @ speed
         self._js = self._js - K @ A
 
     def _test_jumps(self):
@@ -1358,7 +1366,8 @@ class GPSDRFilter:
         """Take the step ``theta`` found at onset ``j``: the heading bias's variance ``+= theta^2`` (its
         cross-covariances dropped, :meth:`_widen`), its calibration bound as wide, so that the fixes teach it
         again; the state is not moved. The monitor's hypotheses keep what the fixes told of them beyond the
-        step (conditioned on it, as :meth:`_add_state` does); the onsets start again. Counted in
+        step (conditioned on it, as :meth:`_add_state` does), the speed's latency among them (through the onsets'
+        cross terms with it); the onsets start again. Counted in
         ``n_heading_jumps``, the first warned.
 
         Not the generalized likelihood ratio's jump compensation (``x += s theta``, ``P += s s^T var``): the
@@ -1382,6 +1391,14 @@ class GPSDRFilter:
         self._I = self._I - np.outer(b, b) / d
         self._J = self._J - (np.outer(f, b) + np.outer(b, f) - np.outer(f, f) * d) * self._jc[j]
         self._I, self._J = 0.5 * (self._I + self._I.T), 0.5 * (self._J + self._J.T)
+        if self._so is not None:  # the speed's latency likewise (its cross term with the onset o)
+            o, cj = self._jo[j], self._jc[j]
+            fo = o / d
+            self._uo -= fo * self._ju[j]
+            self._Ixo = self._Ixo - b * fo
+            self._Jxo = self._Jxo - (f * o + b * fo - f * fo * d) * cj
+            self._Ioo -= o * fo
+            self._Joo -= o * fo * cj
         self._residuals.clear()
         self._residual_c = None
         self._restate = True

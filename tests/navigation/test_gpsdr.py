@@ -181,6 +181,40 @@ def test_a_heading_that_steps_while_the_car_moves_is_found_and_its_bias_learnt_a
     assert f.n_heading_jumps == 0 and not said and bias < 2.0 and f.n_reacquired >= 1
 
 
+def test_a_step_taken_leaves_every_hypothesis_as_the_joint_system_would():
+    """When the detector takes a step, the monitor's hypotheses keep what the fixes told of them beyond it (their
+    system conditioned on the step, a Schur complement), the speed's latency among them: their estimates and
+    sandwich variances afterwards equal those of the joint system with the step as one more unknown. (Until
+    stop 48 the speed's latency kept the step's share: its onset cross terms were not tracked.)"""
+    run = _turning_drive()
+    z = run.z_dr.copy()
+    z[2000:, 0] += np.deg2rad(6.0)
+    f = GPSDRFilter(GPSDRModel.from_grade("phone", 0.1), x0=np.r_[run.x0, 1.0, 0.0, 0.0])
+    take, seen = f._take_jump, []
+
+    def block(A, cross, own, b, o, d):
+        return np.block([[A, cross[:, None], b[:, None]], [cross[None, :], np.array([[own, o]])],
+                         [b[None, :], np.array([[o, d]])]])
+
+    def taken(j, theta, var, z_score):
+        b, o, d, c = f._jB[:, j], f._jo[j], f._jd[j], f._jc[j]
+        joint = GPSDRFilter._solve(block(f._I, f._Ixo, f._Ioo, b, o, d), block(f._J, f._Jxo, f._Joo, c * b, c * o, c * d),
+                                   np.r_[f._u, f._uo, f._ju[j]])
+        take(j, theta, var, z_score)
+        I = np.block([[f._I, f._Ixo[:, None]], [f._Ixo[None, :], np.array([[f._Ioo]])]])
+        J = np.block([[f._J, f._Jxo[:, None]], [f._Jxo[None, :], np.array([[f._Joo]])]])
+        seen.append((joint, GPSDRFilter._solve(I, J, np.r_[f._u, f._uo])))
+
+    f._take_jump = taken
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        f.batch_filter(z, run.gps_list())
+    assert len(seen) == 1
+    (theta, var), (theta_c, var_c) = seen[0]
+    assert np.allclose(theta[:-1], theta_c, rtol=1e-6, atol=1e-12) and np.allclose(var[:-1], var_c, rtol=1e-6)
+    assert abs(theta_c[-1]) > 0.1  # the speed's latency's estimate is one the step's share would move
+
+
 @pytest.mark.parametrize("whiteness_window", [60.0, 0.0])
 def test_an_outage_starts_the_heading_jump_onsets_again(whiteness_window):
     """The fixes after an outage carry the dead reckoning's error over it, which the filter's covariance
