@@ -1416,7 +1416,19 @@ class GPSDRFilter:
             "heading bias the filter held that far off. The heading bias's variance is widened by it, and the "
             "fixes teach it again (later ones are counted in n_heading_jumps; heading_jump_z=None, --heading-jump-z "
             "off, does not look for them). If the heading column comes from a fused orientation, a gyro-only heading "
-            "(the gyro's yaw rate, integrated) is what the model takes", RuntimeWarning, stacklevel=5)
+            f"(the gyro's yaw rate, integrated) is what the model takes{self._speed_late_note()}", RuntimeWarning,
+            stacklevel=5)
+
+    def _speed_late_note(self):
+        """The heading-step warning's last words when the filter has warned of the speed's latency: a speed
+        stamped late moves the car along its track at every start and stop, and the onsets, tested without it,
+        can take it for a step (1 Hz analogs with the speed 0.5-1 s late: ``log-faults/speed_jumps.py``)."""
+        if "odometer_latency" not in self._warned_errors:
+            return ""
+        tau = self.odometer_latency_estimate
+        return (f". The filter has warned that the fixes show the speed late (now {tau:+.2g} s): a speed stamped "
+                "late can read as such a step; read the drive with each speed at its own time "
+                f"(odometer_latency={tau:.2g}, --odometer-latency {tau:.2g}) first")
 
     def _residual_correlation(self):
         """The correlation of the scored fixes' innovations less what the estimated errors explain (the

@@ -174,6 +174,7 @@ def test_a_heading_that_steps_while_the_car_moves_is_found_and_its_bias_learnt_a
         ends[gate] = np.degrees(est[-1, 7]), f, said
     bias, f, said = ends[6.1]
     assert f.n_heading_jumps == 1 and len(said) == 1 and "while the car moved" in said[0]
+    assert "odometer-latency" not in said[0]  # the speed's remedy only after the speed was found late
     found, onset, size, z_score = f.heading_jumps[0]
     assert 2000 < found < 2200 and abs(onset - 2000) <= 100 and np.degrees(size) > 3.0 and z_score > 6.1
     assert abs(bias - 6.0) < 1.0

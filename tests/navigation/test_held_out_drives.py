@@ -258,6 +258,24 @@ def test_a_gyro_bias_that_moves_is_warned_with_the_grade_that_follows_it(tmp_pat
     assert np.median(after) < 10.0 < 20.0 < np.median(before) and after.max() < 30.0 < 50.0 < before.max()
 
 
+def test_a_step_found_after_the_speed_was_found_late_names_the_speed_first(tmp_path):
+    """The 1 Hz analog (seed 0) with its speed 0.5 s late: the monitor warns of the speed's latency (steps
+    232-235), and later the SUKF-8's heading-jump detector takes part of what the late speed does at each start
+    and stop for a step (-1.76 deg at step 1219; there is none). That warning then names the speed's remedy
+    first (``log-faults/speed_jumps.py``: 15 such steps on the analogs with a late speed, all at 1 Hz)."""
+    cols = held_out.columns("one_hz", 0, odometer_latency=0.5)
+    run = read_drive_csv(held_out.write_csv(tmp_path / "late.csv", cols))
+    with warnings.catch_warnings(record=True) as record:
+        warnings.simplefilter("always")
+        res = real_drive_outages(run, filters=("SUKF-8",), use_gps_sigma=True, grade="phone")
+    said = [str(w.message) for w in record]
+    late = [m for m in said if "the speed's latency" in m]
+    stepped = [m for m in said if "the heading stepped by" in m]
+    assert late and len(stepped) == 1 and res["integrity"]["SUKF-8"]["n_heading_jumps"] == 1
+    assert "The filter has warned that the fixes show the speed late (now +0." in stepped[0]
+    assert "--odometer-latency 0." in stepped[0]
+
+
 def _ekf8_ends(path):
     """EKF-8's outage ends as the command scores them, and the warnings that say the monitor found a calibration off."""
     with warnings.catch_warnings(record=True) as record:
