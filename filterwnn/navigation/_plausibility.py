@@ -42,8 +42,9 @@ import warnings
 
 import numpy as np
 
-__all__ = ["check_drive", "heading_offset", "speed_scale", "MAX_DT", "MAX_ANGLE_DEG", "MAX_DRIFT_DEG_S",
-           "RATIO_RANGE", "HEADING_OFFSET_WARN_DEG", "SPEED_SCALE_WARN", "WARN_MIN_CHORDS"]
+__all__ = ["check_drive", "heading_offset", "speed_scale", "clock_offset", "MAX_DT", "MAX_ANGLE_DEG",
+           "MAX_DRIFT_DEG_S", "RATIO_RANGE", "HEADING_OFFSET_WARN_DEG", "SPEED_SCALE_WARN", "WARN_MIN_CHORDS",
+           "CLOCK_OFFSET_WARN_S", "CLOCK_OFFSET_SCAN_S"]
 
 #: The longest DR sample interval (s) accepted without ``checks=False``.
 MAX_DT = 2.0
@@ -67,6 +68,16 @@ SPEED_SCALE_WARN = 0.06
 #: otherwise read speed scales of 0.86-1.17 at "+- 1 %").
 WARN_MIN_CHORDS = 10
 _MIN_CHORDS = 3
+#: A clock offset between the fixes and the DR samples (s) past which the drive reader warns: the bound of the
+#: fixes' latency state that a GPS/DR filter adds when its monitor finds a latency (three of its 1 s
+#: specification, :data:`filterwnn.navigation.gpsdr.DETECTED_LATENCY_SD`); a smaller one the filters take.
+CLOCK_OFFSET_WARN_S = 3.0
+#: The clock offsets tried (s, either way): GPS time leads UTC by 18 s (since 2017), and a logger that stamps
+#: its fixes by one clock and its DR samples by the other carries that offset.
+CLOCK_OFFSET_SCAN_S = 30.0
+_CLOCK_STEP_S = 0.5
+#: The level of the clock offset's test (the gate's, 0.1 %), over all the offsets tried (Bonferroni).
+_CLOCK_LEVEL = 1e-3
 _OVERRIDE = "; if the drive really is so, pass checks=False (command line: --no-plausibility)"
 #: Length-ratio mistakes: (factor the ratio shows, the likely cause).
 _SCALES = ((3.6, "speed looks like km/h (divide by 3.6 for m/s)"),
@@ -261,6 +272,83 @@ def heading_offset(dt, heading, step, steps, z_gps, sigma=None):
     return _offset_fit(_chord_angles(heading, step, steps, z_gps, pairs)[0], steps, pairs, dt)[:4]
 
 
+def _chord_misfits(heading, step, steps, z_gps, pairs, dt, taus):
+    """Per offset in ``taus`` (s) and chord ``(len(taus), len(pairs))``: how far the dead-reckoned displacement
+    over the fixes' times less the offset is from the chord, once the chords' common rotation and scale are
+    taken out: ``|log(g / d) - median|`` for the chord ``g`` and the displacement ``d`` as complex numbers
+    (east + i north; the angle unwrapped, as :func:`_offset_fit` does); NaN where the moved stretch leaves the
+    drive or has no displacement (all NaN with fewer than three chords left)."""
+    cum = np.stack([np.r_[0.0, np.cumsum(step * np.sin(heading[1:]))], np.r_[0.0, np.cumsum(step * np.cos(heading[1:]))]])
+    grid = np.arange(cum.shape[1], dtype=float)
+    first = np.array([steps[i] + 1 for i, _ in pairs], dtype=float)  # the fix at step k is sample k + 1
+    last = np.array([steps[j] + 1 for _, j in pairs], dtype=float)
+    g = np.array([complex(*(z_gps[j] - z_gps[i])) for i, j in pairs])
+    out = np.full((len(taus), len(pairs)), np.nan)
+    for row, tau in zip(out, taus):
+        a, b = first - tau / dt, last - tau / dt
+        d = np.interp(b, grid, cum[0]) - np.interp(a, grid, cum[0]) + 1j * (np.interp(b, grid, cum[1])
+                                                                             - np.interp(a, grid, cum[1]))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            lr = np.log(g / d)
+        ok = (a >= 0) & (b <= grid[-1]) & np.isfinite(lr)
+        if ok.sum() >= _MIN_CHORDS:
+            ang = _unwrap(lr.imag[ok])
+            row[ok] = np.abs(lr.real[ok] - np.median(lr.real[ok]) + 1j * (ang - np.median(ang)))
+    return out
+
+
+def clock_offset(dt, heading, step, steps, z_gps, sigma=None, pairs=None):
+    """The clock offset between the fixes and the DR samples that the drive shows: ``(tau, p, wins, n)`` or
+    None with fewer than :data:`WARN_MIN_CHORDS` chords. ``tau`` (s; positive: each fix is the car's position
+    that long before its stamp) is the offset, of those tried every 0.5 s within :data:`CLOCK_OFFSET_SCAN_S`,
+    at which the chords' median misfit (:func:`_chord_misfits`: the dead-reckoned track against the fixes',
+    rotation and scale aside) is least; ``p`` a sign test that the misfit at ``tau`` is below the one at 0 on
+    more chords than chance gives (``wins`` of ``n``), times the number of offsets tried (each was a chance to
+    find one). A heading's offset or a speed's scale is common to every chord and is not an offset; only the
+    timing of the turns, starts and stops tells one. The other arguments are :func:`check_drive`'s."""
+    if pairs is None:
+        pairs = _chord_pairs(steps, z_gps, sigma, step)
+    if len(pairs) < WARN_MIN_CHORDS:
+        return None
+    half = round(CLOCK_OFFSET_SCAN_S / _CLOCK_STEP_S)
+    taus = _CLOCK_STEP_S * np.arange(-half, half + 1)
+    m = _chord_misfits(heading, step, steps, z_gps, pairs, dt, taus)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)  # an offset that leaves too few chords: all NaN
+        med = np.nanmedian(m, axis=1)
+    med[~np.isfinite(med)] = np.inf
+    k, k0 = int(np.argmin(med)), half
+    both = np.isfinite(m[k]) & np.isfinite(m[k0])
+    n, wins = int(both.sum()), int(np.sum(m[k0][both] > m[k][both]))
+    if k == k0 or n < WARN_MIN_CHORDS:
+        return 0.0, 1.0, 0, n
+    from scipy.stats import binom
+
+    p = float(binom.sf(wins - 1, n, 0.5)) * len(taus)
+    return float(taus[k]), min(p, 1.0), wins, n
+
+
+def _clock_told(dt, heading, step, steps, z_gps, pairs):
+    """The clock offset a warning or refusal names (:func:`clock_offset`'s), or None: past
+    :data:`CLOCK_OFFSET_WARN_S` and the test's level."""
+    found = clock_offset(dt, heading, step, steps, z_gps, pairs=pairs)
+    if found is None:
+        return None
+    tau, p = found[:2]
+    return found if abs(tau) > CLOCK_OFFSET_WARN_S and p <= _CLOCK_LEVEL else None
+
+
+def _clock_remedy(tau, p, wins, n):
+    """What a warning or a refusal says of a clock offset (:func:`clock_offset`'s)."""
+    return (f"the fixes match the dead-reckoned track best placed {abs(tau):g} s {'earlier' if tau > 0 else 'later'} "
+            f"than their time stamps (each fix the car's position {abs(tau):g} s {'before' if tau > 0 else 'after'} "
+            f"its stamp; the misfit there below the one as stamped on {wins} of {n} moving stretches between fixes): "
+            "a clock offset between the fixes and the DR samples (GPS time leads UTC by 18 s; two loggers' clocks), "
+            f"past the {CLOCK_OFFSET_WARN_S:g} s the GPS/DR filters' latency state takes. If the offset is the "
+            f"fixes', pass gps_latency={tau:g} (command line: --gps-latency {tau:g}), which places each fix at its "
+            "time; the heading's offset and the speed's scale are judged once the fixes are at their time")
+
+
 def _fits(angle, ratio):
     return angle <= MAX_ANGLE_DEG and RATIO_RANGE[0] <= ratio <= RATIO_RANGE[1]
 
@@ -296,15 +384,18 @@ def _ratio_cause(ratio):
     return None
 
 
-def _check_truth(steps, z_gps, truth, sigma):
-    """Refuse fixes that lie far from the truth at their samples (another frame, lat/lon swapped)."""
+def _check_truth(steps, z_gps, truth, sigma, clock=None):
+    """Refuse fixes that lie far from the truth at their samples (another frame, lat/lon swapped; a clock
+    offset, when ``clock`` has found one)."""
     if truth is None or not len(steps):
         return
     d = float(np.median(np.hypot(*(z_gps - truth[steps + 1]).T)))
     if d > max(100.0, 30.0 * sigma):
+        cause = ("the fixes and the truth must share one frame and origin (lat and lon swapped in one of them?)"
+                 if clock is None else _clock_remedy(*clock) + "; else the fixes and the truth must share one "
+                 "frame and origin")
         raise ValueError(f"plausibility: the GPS fixes lie a median {d:.4g} m from the truth at their samples: "
-                         "the fixes and the truth must share one frame and origin (lat and lon swapped in one "
-                         f"of them?){_OVERRIDE}")
+                         f"{cause}{_OVERRIDE}")
 
 
 def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth=None):
@@ -341,8 +432,9 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
         cause = "time looks like milliseconds (divide by 1000 for s)" if dt >= 10 else "resample the drive"
         raise ValueError(f"plausibility: the DR sample interval is {dt:g} s, longer than {MAX_DT:g} s (dead-"
                          f"reckoning sensors sample at 1-100 Hz): {cause}{_OVERRIDE}")
-    _check_truth(steps, z_gps, truth, 3.0 if sigma is None else float(sigma))
     pairs = _chord_pairs(steps, z_gps, sigma, step)
+    clock = _clock_told(dt, heading, step, steps, z_gps, pairs)
+    _check_truth(steps, z_gps, truth, 3.0 if sigma is None else float(sigma), clock)
     if len(pairs) < _MIN_CHORDS:
         return
     ang, ratios, lengths = _chord_angles(heading, step, steps, z_gps, pairs)  # once, for every test below
@@ -350,6 +442,9 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
     fit = _offset_fit(ang, steps, pairs, dt)
     told = _offset_told(fit)
     if _fits(angle, ratio) or (_fits(0.0, ratio) and _drifting_gyro(fit)):
+        if clock is not None:  # the chords as stamped are misplaced: neither offset nor scale can be judged
+            warnings.warn(f"plausibility: {_clock_remedy(*clock)}", RuntimeWarning, stacklevel=4)
+            return
         if told is not None:
             warnings.warn(f"plausibility: over {len(pairs)} moving stretches between GPS fixes, "
                           f"{_offset_remedy(*fit[:3], filters=True)}", RuntimeWarning, stacklevel=4)
@@ -357,7 +452,9 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
         return
     found = (f"median over {len(pairs)} moving stretches between GPS fixes: the dead-reckoned track is "
              f"{angle:.0f} degrees off the fixes' course and {ratio:.3g} times their distance")
-    if angle <= MAX_ANGLE_DEG:
+    if clock is not None:
+        cause = _clock_remedy(*clock) + "; else check the units, the heading's zero and sign, and the fixes' frame"
+    elif angle <= MAX_ANGLE_DEG:
         cause = _ratio_cause(ratio) or "check the units of speed/odometer and time"
     else:
         cause = (_track_cause(heading, step, steps, z_gps, pairs, swapped)

@@ -309,10 +309,13 @@ class DRRun(NamedTuple):
             to a few sample intervals.
         gps_latency : float
             Seconds by which each fix's position is older than its time stamp (the receiver's
-            latency, from its data sheet): the fix is placed at ``gps_t - gps_latency``. Default 0.
-            Unmodelled, 0.3 s at 23 m/s puts every fix 7 m behind the car along its track. An
-            unknown latency (or clock offset, of either sign) is what the GPS/DR filter's latency
-            monitor estimates (``GPSDRFilter(latency_on_detection=True)``, the default).
+            latency, from its data sheet; or the offset between the clocks that stamped the fixes and
+            the DR samples): the fix is placed at ``gps_t - gps_latency``; negative, a fix stamped
+            before its position. Default 0. Unmodelled, 0.3 s at 23 m/s puts every fix 7 m behind the
+            car along its track. An unknown latency of a second or two is what the GPS/DR filter's
+            latency monitor estimates (``GPSDRFilter(latency_on_detection=True)``, the default); one
+            past 3 s (GPS time against UTC is 18 s) the plausibility checks find from the turns, starts
+            and stops, with a warning that names its value.
         odometer_latency : float
             Seconds by which each ``speed`` (or ``distance``) sample is older than its time stamp (a CAN
             bus's or a logger's latency, from the vehicle's data sheet): the odometer is read at
@@ -373,7 +376,10 @@ class DRRun(NamedTuple):
                 speed = np.interp(t_read, t, _finite_1d(speed, "speed", len(t_read)))
             if distance is not None:
                 distance = np.interp(t_read, t, _finite_1d(distance, "distance", len(t_read)))
-        latency = check_positive(gps_latency, "gps_latency", strict=False)
+        latency = float(gps_latency)
+        if not np.isfinite(latency):
+            raise ValueError(f"gps_latency must be a finite number of seconds (negative: the fixes are stamped "
+                             f"early), got {gps_latency!r}")
         if gps_t is not None and latency:
             gps_t = np.asarray(gps_t, dtype=float) - latency
         off = float(heading_offset)

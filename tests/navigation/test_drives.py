@@ -432,12 +432,13 @@ def test_stamps_that_jitter_past_max_jitter_about_a_grid_are_read_and_dropped_sa
 def test_a_receivers_latency_places_each_fix_where_the_car_was(tmp_path):
     c = _drive(sigma=1e-9)
     late = {k: np.roll(v, 3) if k.startswith("gps_") else v for k, v in c.items()}  # stamped 0.3 s late
-    for latency, off in ((0.0, 3.0), (0.3, 0.0)):  # 10 m/s for 0.3 s: 3 m behind the car
+    # 10 m/s for 0.3 s: 3 m behind the car; a negative latency (a fix stamped early) places it later still
+    for latency, off in ((0.0, 3.0), (0.3, 0.0), (-0.3, 6.0)):
         run = read_drive_csv(_write(tmp_path / "late.csv", late), gps_latency=latency)
         err = np.hypot(*(run.z_gps - run.x_true[run.gps_steps][:, [0, 3]]).T)
         np.testing.assert_allclose(np.median(err), off, atol=0.01)
-    with pytest.raises(ValueError, match="gps_latency must be finite and >= 0"):
-        read_drive_csv(_write(tmp_path / "late.csv", late), gps_latency=-0.1)
+    with pytest.raises(ValueError, match="gps_latency must be a finite number of seconds"):
+        read_drive_csv(_write(tmp_path / "late.csv", late), gps_latency=np.nan)
 
 
 def _reversing_drive(sigma=3.0):

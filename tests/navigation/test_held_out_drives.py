@@ -276,6 +276,32 @@ def test_a_step_found_after_the_speed_was_found_late_names_the_speed_first(tmp_p
     assert "--odometer-latency 0." in stepped[0]
 
 
+def test_fixes_stamped_by_another_clock_are_named_with_the_offset(tmp_path):
+    """The phone analog (seed 0) with every fix stamped 18 s late (GPS time against UTC): with its truth the reader
+    refuses it, and the refusal names the clock offset it finds (17.5 s) and the reader's remedy, not another
+    frame; without the truth it warns of it, not of a heading offset. Read at the offset, neither. The same drive
+    with its fixes 5 s early is warned of with a negative offset (``log-faults/clock_offset.py``)."""
+    cols = held_out.columns("phone", 0, gps_latency=18.0)
+    path = held_out.write_csv(tmp_path / "late.csv", cols)
+    with pytest.raises(ValueError, match=r"median 22\d.\d m from the truth.*best placed 17.5 s earlier.*"
+                                         r"--gps-latency 17.5\)"):
+        read_drive_csv(path)
+    with warnings.catch_warnings(record=True) as record:
+        warnings.simplefilter("always")
+        read_drive_csv(path, gps_latency=17.5)
+    assert not [w for w in record if "plausibility" in str(w.message)]
+    untrue = dict(cols, true_east=np.full(len(cols["time"]), np.nan), true_north=np.full(len(cols["time"]), np.nan))
+    with warnings.catch_warnings(record=True) as record:
+        warnings.simplefilter("always")
+        read_drive_csv(held_out.write_csv(tmp_path / "untrue.csv", untrue))
+    said = [str(w.message) for w in record if "plausibility" in str(w.message)]
+    assert len(said) == 1 and "a clock offset between the fixes and the DR samples" in said[0]
+    assert "gps_latency=17.5" in said[0] and "heading_offset" not in said[0]
+    early = held_out.write_csv(tmp_path / "early.csv", held_out.columns("phone", 1, gps_latency=-5.0))
+    with pytest.warns(RuntimeWarning, match=r"best placed 4.5 s later than their time stamps.*--gps-latency -4.5\)"):
+        read_drive_csv(early)
+
+
 def _ekf8_ends(path):
     """EKF-8's outage ends as the command scores them, and the warnings that say the monitor found a calibration off."""
     with warnings.catch_warnings(record=True) as record:

@@ -61,10 +61,11 @@ def add_arguments(parser):
     parser.add_argument("--fill-gaps", type=options.nonnegative_float, default=0.0, metavar="SECONDS",
                         help="with --drive: fill gaps of dropped DR samples up to this long (s) by interpolation, "
                              "with a warning that counts them (default 0: a drive with dropped samples is refused)")
-    parser.add_argument("--gps-latency", type=options.nonnegative_float, default=0.0, metavar="SECONDS",
-                        help="with --drive: the receiver's latency (s, from its data sheet): each fix's position "
-                             "is that much older than its time stamp (default 0; an unknown one the filters "
-                             "estimate when the fixes show it, with a warning)")
+    parser.add_argument("--gps-latency", type=options.finite_float, default=0.0, metavar="SECONDS",
+                        help="with --drive: the receiver's latency (s, from its data sheet), or the offset between "
+                             "the fixes' clock and the DR samples': each fix's position is that much older than its "
+                             "time stamp, negative younger (default 0; an unknown one the filters estimate when the "
+                             "fixes show it, and one past 3 s the drive reader warns of, with its value)")
     parser.add_argument("--odometer-latency", type=options.finite_float, default=0.0, metavar="SECONDS",
                         help="with --drive: the speed's (or odometer's) latency (s, from the vehicle's data sheet, "
                              "e.g. a CAN bus's): each sample is that much older than its time stamp (default 0; negative: the "
