@@ -34,6 +34,13 @@ refusal that such an offset explains names the same remedy. Likewise a median le
 more than :data:`SPEED_SCALE_WARN` and the same point of its t-statistic (:func:`speed_scale`): a speed
 that reads high (a speedometer's signal) is warned with the ratio and ``speed_scale=`` /
 ``--speed-scale``, which divides it out.
+
+A drive whose fixes are stamped by another clock than its DR samples (GPS time leads UTC by 18 s) has every
+chord compared with the wrong stretch of dead reckoning: :func:`clock_offset` moves the stretches by each
+offset within :data:`CLOCK_OFFSET_SCAN_S` and finds the one the turns, starts and stops fit best (a sign test
+over the chords, at the 0.1 % level over all the offsets tried). Past :data:`CLOCK_OFFSET_WARN_S` the check
+warns with it and the reader's remedy (``gps_latency=``, ``--gps-latency``), in place of the offset and scale
+warnings, which misplaced chords cannot judge; a refusal names it first.
 """
 
 from __future__ import annotations
