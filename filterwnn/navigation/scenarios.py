@@ -522,8 +522,16 @@ def _sample_grid(t, max_jitter):
         raise ValueError(f"t must be evenly sampled (each interval within {max_jitter:.0%} of the median "
                          f"{dt:g} s); t[{k}] - t[{k - 1}] = {dts[k - 1]:g} s: resample the drive first"
                          + (" (dropped samples: fill_gaps=SECONDS, or --fill-gaps, interpolates gaps up to that "
-                            f"long; this one needs {_ceil_to(dts[k - 1], dt):g})" if round(dts[k - 1] / dt) >= 2 else ""))
+                            f"long; this one needs {_ceil_to(dts[k - 1], dt):g})" if round(dts[k - 1] / dt) >= 2 else "")
+                         + ("; dead reckoning interpolated over so long is a guess: for a log that paused, split the "
+                            f"file before t[{k}] and run each part as a drive of its own (the command takes several "
+                            "--drive)" if dts[k - 1] > LONG_GAP_S else ""))
     return dts, dt, stamps
+
+
+#: A gap in the DR samples (s) past which the refusal of an unevenly sampled drive also says to split it: as
+#: long as the longest sample interval the plausibility checks accept (dead-reckoning sensors sample at 1-100 Hz).
+LONG_GAP_S = 2.0
 
 
 def _odometer_steps(distance, speed, dts, n):
@@ -774,6 +782,11 @@ def _gps_fixes(gps_t, east, north, lat, lon, gps_sigma, origin, t, dt):
         if not np.all(np.isfinite(gs)) or np.any(gs <= 0):
             k = int(np.argmax(~np.isfinite(gs) | (gs <= 0)))
             raise ValueError(f"gps_sigma must be finite and > 0 (m); gps_sigma[{k}] = {float(gs[k])!r}")
+    held = _held_fixes(gps_t, e, nn, dt)
+    if held is not None:
+        gps_t, e, nn = gps_t[held], e[held], nn[held]
+        gs = gs[held] if gps_sigma is not None else None
+        swapped = None if swapped is None else swapped[held]
     # each fix on the sample nearest its time (ties to the earlier), as a step (sample i is step i - 1); not
     # by the nominal dt: with intervals within max_jitter whose mean is not their median (a logger that
     # is late one sample in ten by 15 ms), t0 + k dt drifts from the k-th sample, by 15 s after 1000 s
@@ -785,6 +798,33 @@ def _gps_fixes(gps_t, east, north, lat, lon, gps_sigma, origin, t, dt):
     sel = np.flatnonzero(keep)[idx]
     return (k_fix, np.stack([e[sel], nn[sel]], axis=1), (gs[sel] if gps_sigma is not None else None),
             None if swapped is None else swapped[sel])
+
+
+#: The share of the fixes that repeat the one on the row before, to the bit, past which a drive's GPS columns are
+#: read as a log that carries its last fix forward to every DR sample (see :func:`_held_fixes`).
+HELD_FIX_SHARE = 0.5
+
+
+def _held_fixes(gps_t, east, north, dt):
+    """Which fixes to keep when the fixes are a log's last fix carried forward (sample and hold): more than
+    :data:`HELD_FIX_SHARE` of them on the DR sample after the one before (within 1.5 sample intervals) with
+    the same position to the bit. Then only each run's first is a fix, with a warning; else None (every fix
+    kept: a receiver that holds its fix while the car stands, or re-sends it while it has none, repeats a few,
+    which the GPS/DR filter takes or leaves itself, ``n_stale``)."""
+    if len(gps_t) < 3:
+        return None
+    same = np.r_[False, (np.diff(gps_t) <= 1.5 * dt) & (np.diff(east) == 0.0) & (np.diff(north) == 0.0)]
+    if same.mean() <= HELD_FIX_SHARE:
+        return None
+    keep = ~same
+    runs = np.diff(np.r_[np.flatnonzero(keep), len(same)])
+    gaps = np.diff(gps_t[keep])
+    warnings.warn(f"the GPS columns repeat each fix on the rows after it ({int(same.sum())} of {len(same)} fix rows "
+                  f"repeat the one before to the bit, in runs of a median {np.median(runs):g} rows): a log that "
+                  "carries its last fix forward to every DR sample. Only each run's first row is taken for a fix "
+                  f"({int(keep.sum())} fixes, a median {np.median(gaps) if len(gaps) else 0:g} s apart); repeated, "
+                  "each would count as a new fix", RuntimeWarning, stacklevel=5)
+    return keep
 
 
 def _truth_states(truth, t):

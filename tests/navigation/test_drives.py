@@ -327,6 +327,9 @@ def test_a_loggers_faults_are_named_with_their_remedy(tmp_path):
     refused(c, r"= 2.1 s: .* this one needs 2.1\)", fill_gaps=2.0)
     with pytest.warns(RuntimeWarning, match="filled 1 gap"):
         read_drive_csv(_write(tmp_path / "d.csv", c), fill_gaps=2.1)  # as the message says (2.1000000000000014)
+    keep[500:800] = False  # a logger that paused for 30 s: interpolating it is a guess, so split it
+    refused({k: v[keep] for k, v in _drive().items()}, r"= 30.1 s: .* this one needs 30.1\); dead reckoning "
+            r"interpolated over so long is a guess: for a log that paused, split the file before t\[500\] \(line 502\)")
 
 
 def test_a_gps_sigma_column_the_receiver_never_filled_is_taken_as_absent(tmp_path):
@@ -439,6 +442,34 @@ def test_a_receivers_latency_places_each_fix_where_the_car_was(tmp_path):
         np.testing.assert_allclose(np.median(err), off, atol=0.01)
     with pytest.raises(ValueError, match="gps_latency must be a finite number of seconds"):
         read_drive_csv(_write(tmp_path / "late.csv", late), gps_latency=np.nan)
+
+
+def test_a_log_that_carries_its_last_fix_forward_is_read_as_its_fixes(tmp_path):
+    """A logger that writes the last fix on every DR row (sample and hold) makes each 1 Hz fix ten rows: each
+    would count as a new fix. Read as the fixes they are (each run's first row), with a warning; the drive
+    is then the one logged with its fixes alone. A receiver that holds its fix for a few rows (a standing car)
+    is read as it is, unwarned."""
+    c = _drive()
+    plain = read_drive_csv(_write(tmp_path / "plain.csv", c))
+    held = dict(c)
+    rows = np.flatnonzero(~np.isnan(c["gps_lat"]))
+    last = rows[np.searchsorted(rows, np.arange(len(c["time"])), side="right") - 1]
+    for k in ("gps_lat", "gps_lon", "gps_sigma"):
+        held[k] = c[k][last]
+    with pytest.warns(RuntimeWarning, match=r"repeat each fix on the rows after it \(1080 of 1201 fix rows.*runs of "
+                                            r"a median 10 rows.*121 fixes, a median 1 s apart"):
+        run = read_drive_csv(_write(tmp_path / "held.csv", held))
+    np.testing.assert_array_equal(run.gps_steps, plain.gps_steps)
+    np.testing.assert_array_equal(run.z_gps, plain.z_gps)
+    few = dict(c)  # the first 30 fixes held for two more rows each: a quarter of the fix rows repeat
+    for k in ("gps_lat", "gps_lon", "gps_sigma"):
+        few[k] = c[k].copy()
+        for r in rows[:30]:
+            few[k][r + 1:r + 3] = c[k][r]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        run = read_drive_csv(_write(tmp_path / "few.csv", few))
+    assert len(run.gps_steps) == 180
 
 
 def _reversing_drive(sigma=3.0):
