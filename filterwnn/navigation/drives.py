@@ -30,7 +30,8 @@ __all__ = ["DRIVE_CSV_COLUMNS", "PROGRESS_BYTES", "read_drive_csv", "sample_driv
 #: ``heading``/``heading_deg`` and one of ``speed``/``odometer`` are required; GPS columns
 #: are empty on rows without a fix. Names are read whatever their case (``Time``, ``GPS_Lat``).
 DRIVE_CSV_COLUMNS = {
-    "time": ("s", "DR sample time, strictly increasing, evenly spaced"),
+    "time": ("s", "DR sample time, strictly increasing, evenly spaced (on a row with a fix alone, its heading and "
+                  "speed empty: the fix's time)"),
     "heading": ("rad", "heading from north, clockwise (or heading_deg in degrees)"),
     "heading_deg": ("deg", "heading from north, clockwise (instead of heading)"),
     "speed": ("m/s", "odometer / CAN speed (or odometer)"),
@@ -175,7 +176,9 @@ def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2, checks=True,
 
     One row per DR sample, a header row with the column names; a GPS fix is the row's
     ``gps_east``/``gps_north`` (or ``gps_lat``/``gps_lon``) at the row's ``time``, empty
-    cells where there is none. With ``gps_lat``/``gps_lon`` and ``true_east``/``true_north``
+    cells where there is none. A log with a row per sensor message is read too: rows with a
+    fix alone (their heading and speed cells empty) are fixes at their own times, placed on
+    the DR sample nearest each, and the rows with a heading and a speed are the DR samples. With ``gps_lat``/``gps_lon`` and ``true_east``/``true_north``
     the truth must be about ``origin`` (default the first fix). Unknown columns are ignored.
     The delimiter is the header's comma, semicolon or tab; a UTF-8 byte-order mark (Excel's
     "CSV UTF-8") is dropped; decimal commas, ``nan`` and ``inf`` cells are refused (an empty
@@ -224,10 +227,20 @@ def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2, checks=True,
     def column(h, allow_empty=False):
         return _csv_column(path, cols, lines, h, allow_empty)
 
+    every_t = column("time")
+    dr = _dr_rows(path, cols, lines, hname, dname)
+    if dr is not None:  # one row per sensor message: the DR samples are the rows with a heading and a speed
+        rows, cols = cols, {h: v[dr] for h, v in cols.items()}
+        every_lines, lines = lines, lines[dr]
+
+        def every(h, allow_empty=False):
+            return _csv_column(path, rows, every_lines, h, allow_empty)
+    else:
+        every, every_lines = column, lines
     t = column("time")
     heading = np.deg2rad(column(hname)) if hname == "heading_deg" else column(hname)
     kw = {"distance" if dname == "odometer" else "speed": column(dname)}
-    kw.update(_csv_fixes(path, header, col, column, t, origin, lines))
+    kw.update(_csv_fixes(path, header, col, every, every_t, origin, every_lines))
     _csv_truth(path, header, col, column, origin, kw)
     try:
         return DRRun.from_arrays(t, heading, name=name or os.path.splitext(os.path.basename(path))[0],
@@ -236,6 +249,34 @@ def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2, checks=True,
                                  heading_offset=heading_offset, speed_scale=speed_scale, **kw)
     except ValueError as exc:
         raise _located(path, exc, lines) from None
+
+
+def _dr_rows(path, cols, lines, hname, dname):
+    """The rows that are DR samples when a drive CSV has one row per sensor message (a fix on a row of its own,
+    at its own time, with the heading and speed cells empty; a DR sample on another), else None (every row has a
+    heading and a speed, or no row is a fix alone: the column checks name the first empty cell). The fixes then
+    keep their own times (:meth:`DRRun.from_arrays` places each on the DR sample nearest it). In such a log a
+    row that is neither is refused, naming its line and what it lacks."""
+    have_h, have_d = np.isfinite(cols[hname]), np.isfinite(cols[dname])
+    dr = have_h & have_d
+    if dr.all():
+        return None
+    fix = np.zeros_like(dr)
+    for a, b in (("gps_east", "gps_north"), ("gps_lat", "gps_lon")):
+        if a in cols and b in cols:
+            fix |= np.isfinite(cols[a]) & np.isfinite(cols[b])
+    alone = fix & ~have_h & ~have_d
+    if not alone.any():
+        return None
+    bad = ~dr & ~alone
+    if bad.any():
+        r = int(np.argmax(bad))
+        what = (f"a {hname!r} but no {dname!r}" if have_h[r] else f"a {dname!r} but no {hname!r}" if have_d[r]
+                else f"no {hname!r}, no {dname!r} and no fix")
+        raise ValueError(f"{path}: data row {r + 1} (line {lines[r]}) has {what}: in a log with a row per sensor "
+                         f"message (rows with a fix alone, as data row {int(np.argmax(alone)) + 1}), every other row is "
+                         "a DR sample with both")
+    return dr
 
 
 def _csv_layout(path, header, lines):

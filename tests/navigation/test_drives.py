@@ -472,6 +472,37 @@ def test_a_log_that_carries_its_last_fix_forward_is_read_as_its_fixes(tmp_path):
     assert len(run.gps_steps) == 180
 
 
+def test_a_log_with_a_row_per_sensor_message_is_read_with_each_fix_at_its_time(tmp_path):
+    """A log that writes each sensor's message on a row of its own (a fix 30 ms after the DR sample it follows,
+    the heading and speed cells empty there; the DR rows without a fix): the DR samples are the rows with a
+    heading and a speed, and each fix keeps its own time, placed on the nearest sample as the arrays' reader
+    places it. The same drive as one row per DR sample, to the fixes' and the samples' last digit. A row that is
+    neither (a heading but no speed) is refused, naming its line and what it lacks."""
+    c = _drive()
+    plain = read_drive_csv(_write(tmp_path / "plain.csv", c))
+    fix = ~np.isnan(c["gps_lat"])
+    split = {k: [] for k in c}
+    for k in range(len(c["time"])):
+        for key in c:  # the DR row, its fix cells empty
+            split[key].append(np.nan if key.startswith("gps_") else c[key][k])
+        if fix[k]:  # the fix's own row, 30 ms later, with only its own cells
+            for key in c:
+                split[key].append(c["time"][k] + 0.03 if key == "time" else c[key][k] if key.startswith("gps_")
+                                  else np.nan)
+    split = {k: np.array(v) for k, v in split.items()}
+    run = read_drive_csv(_write(tmp_path / "split.csv", split))
+    np.testing.assert_array_equal(run.gps_steps, plain.gps_steps)
+    np.testing.assert_array_equal(run.z_gps, plain.z_gps)
+    np.testing.assert_array_equal(run.z_dr, plain.z_dr)
+    np.testing.assert_array_equal(run.x_true, plain.x_true)
+    lone = {k: v.copy() for k, v in split.items()}
+    lone["speed"][11] = np.nan  # a DR row with a heading and no speed
+    with pytest.raises(ValueError, match=r"data row 12 \(line 13\) has a 'heading' but no 'speed': in a log with a "
+                                         r"row per sensor message \(rows with a fix alone, as data row 2\), every "
+                                         r"other row is a DR sample with both"):
+        read_drive_csv(_write(tmp_path / "lone.csv", lone))
+
+
 def _reversing_drive(sigma=3.0):
     """East at 10 m/s, a stop, 8 s of reversing at up to 2 m/s (14 m), a stop, east again: 10 Hz
     signed speed, the gyro heading (the car's nose, east throughout), 1 Hz fixes and the truth."""
