@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import contextlib
 import csv
+import datetime
 import os
 import re
 import sys
@@ -31,7 +32,7 @@ __all__ = ["DRIVE_CSV_COLUMNS", "PROGRESS_BYTES", "read_drive_csv", "sample_driv
 #: are empty on rows without a fix. Names are read whatever their case (``Time``, ``GPS_Lat``).
 DRIVE_CSV_COLUMNS = {
     "time": ("s", "DR sample time, strictly increasing, evenly spaced (on a row with a fix alone, its heading and "
-                  "speed empty: the fix's time)"),
+                  "speed empty: the fix's time); seconds, or ISO 8601 date-times (2021-04-27T10:00:00.1Z)"),
     "heading": ("rad", "heading from north, clockwise (or heading_deg in degrees)"),
     "heading_deg": ("deg", "heading from north, clockwise (instead of heading)"),
     "speed": ("m/s", "odometer / CAN speed (or odometer)"),
@@ -67,14 +68,39 @@ def _delimiter(path, first):
     return ","
 
 
+#: An ISO 8601 date and time (a logger's time stamp): date, time of day, its fraction, and Z or an offset.
+_ISO_TIME = re.compile(r"^(\d{4}-\d\d-\d\d)[T ](\d\d:\d\d:\d\d)(?:[.,](\d+))?(Z|[+-]\d\d:?\d\d)?$")
+
+
+def _iso_seconds(cell):
+    """An ISO 8601 date and time (``2021-04-27T10:00:00.1Z``, ``2021-04-27 12:00:00.1+02:00``; without a zone
+    taken as UTC) as seconds since 1970 UTC, or None when the cell is not one."""
+    m = _ISO_TIME.match(cell)
+    if m is None:
+        return None
+    date, clock, frac, zone = m.groups()
+    try:
+        stamp = datetime.datetime.fromisoformat(f"{date}T{clock}")
+    except ValueError:
+        return None
+    if zone and zone != "Z":
+        sign = 1 if zone[0] == "+" else -1
+        stamp -= sign * datetime.timedelta(hours=int(zone[1:3]), minutes=int(zone[-2:]))
+    whole = (stamp - datetime.datetime(1970, 1, 1)).total_seconds()
+    return whole + (float("0." + frac) if frac else 0.0)
+
+
 def _cell(path, h, cell, row, line):
-    """One cell as a float (NaN when empty); ValueError naming the file, column, row, line and rule."""
+    """One cell as a float (NaN when empty; in the time column an ISO 8601 date and time as seconds since
+    1970 UTC); ValueError naming the file, column, row, line and rule."""
     cell = cell.strip()
     if cell == "":
         return np.nan
     try:
         v = float(cell)
     except ValueError:
+        if h == "time" and (v := _iso_seconds(cell)) is not None:
+            return v
         hint = ""
         if "," in cell:
             with contextlib.suppress(ValueError):

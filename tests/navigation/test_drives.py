@@ -503,6 +503,34 @@ def test_a_log_with_a_row_per_sensor_message_is_read_with_each_fix_at_its_time(t
         read_drive_csv(_write(tmp_path / "lone.csv", lone))
 
 
+def test_iso_8601_time_stamps_are_read_as_seconds(tmp_path):
+    """A logger's time column as ISO 8601 date-times (UTC with Z, an offset, or none, taken as UTC; a comma or a
+    point before the fraction) is read as seconds: the drive is the one with its times in seconds. Anything else
+    that is not a number is refused as before."""
+    import datetime
+
+    c = _drive()
+    plain = read_drive_csv(_write(tmp_path / "plain.csv", c))
+    base = datetime.datetime(2021, 4, 27, 10, 0, 0)
+    for zone, shift in (("Z", 0), ("+02:00", 2), ("", 0)):
+        stamps = [(base + datetime.timedelta(hours=shift, seconds=float(t))).isoformat(timespec="milliseconds")
+                  for t in c["time"]]
+        sep = ";" if zone == "+02:00" else ","  # a decimal comma in a file split by semicolons
+        if sep == ";":
+            stamps = [st.replace(".", ",") for st in stamps]
+        lines = [sep.join(COLUMNS)] + [sep.join([st + zone] + ["" if np.isnan(c[k][i]) else repr(float(c[k][i]))
+                                                             for k in COLUMNS[1:]]) for i, st in enumerate(stamps)]
+        (tmp_path / "iso.csv").write_text("\n".join(lines) + "\n")
+        run = read_drive_csv(str(tmp_path / "iso.csv"))
+        assert run.scenario.dt == plain.scenario.dt
+        np.testing.assert_array_equal(run.gps_steps, plain.gps_steps)
+        np.testing.assert_allclose(run.z_dr, plain.z_dr, rtol=1e-5)  # seconds since 1970 resolve 2.4e-7 s
+    (tmp_path / "bad.csv").write_text(",".join(COLUMNS) + "\n" + "\n".join("10:00:0%d,0,10,,,,48.1,11.5" % k
+                                                                        for k in range(3)) + "\n")
+    with pytest.raises(ValueError, match=r"column 'time' must hold numbers; data row 1 \(line 2\) has '10:00:00'"):
+        read_drive_csv(str(tmp_path / "bad.csv"))
+
+
 def _reversing_drive(sigma=3.0):
     """East at 10 m/s, a stop, 8 s of reversing at up to 2 m/s (14 m), a stop, east again: 10 Hz
     signed speed, the gyro heading (the car's nose, east throughout), 1 Hz fixes and the truth."""
