@@ -305,15 +305,53 @@ def _dr_rows(path, cols, lines, hname, dname):
     return dr
 
 
+#: Names loggers give the drive CSV's columns, for the reader's suggestions (:func:`_unread`); lowercase.
+_ALIASES = {"latitude": "gps_lat", "longitude": "gps_lon", "lng": "gps_lon", "long": "gps_lon",
+            "accuracy": "gps_sigma", "hacc": "gps_sigma", "horizontal_accuracy": "gps_sigma",
+            "velocity": "speed", "yaw": "heading", "timestamp": "time", "t": "time", "distance": "odometer",
+            "lat": "gps_lat", "lon": "gps_lon", "east": "gps_east", "north": "gps_north", "sigma": "gps_sigma"}
+
+
+def _unread(header):
+    """``{unread column: the known column it may be}``: a column of ``header`` the reader does not know whose name
+    is a logger's usual one for a known column (:data:`_ALIASES`), a known GPS column's without its prefix
+    (``east`` for ``gps_east``), or contains a known name (``speed_kmh``), where the header lacks that column."""
+    known = [k for k in DRIVE_CSV_COLUMNS if k not in header]
+    out = {}
+    for h in header:
+        if not h or h in DRIVE_CSV_COLUMNS:
+            continue
+        guess = _ALIASES.get(h) or ("gps_" + h if "gps_" + h in DRIVE_CSV_COLUMNS else None)
+        if guess is None:
+            inside = [k for k in known if k in h and len(k) >= 4]
+            guess = max(inside, key=len) if inside else None
+        if guess in known:
+            out[h] = guess
+    return out
+
+
+def _suggest(unread, wanted):
+    """The words a refusal or warning adds for the unread columns that may be ``wanted`` (known names)."""
+    hits = [(h, k) for h, k in unread.items() if k in wanted]
+    if not hits:
+        return ""
+    return "; the header's " + ", ".join(f"{h!r} may be {k!r} ({DRIVE_CSV_COLUMNS[k][0]}: {DRIVE_CSV_COLUMNS[k][1]})"
+                                         for h, k in hits) + f": rename {'it' if len(hits) == 1 else 'them'} so"
+
+
 def _csv_layout(path, header, lines):
     """``{column: index}`` of a drive CSV's ``header`` and the names of its heading and odometer
-    columns; a ``ValueError`` when a required column is missing or doubled, or under 3 rows."""
+    columns; a ``ValueError`` when a required column is missing or doubled, or under 3 rows (naming a
+    column that may be the missing one). Warns of unread columns that may be the fixes, their accuracy or
+    the truth."""
     col = {h: i for i, h in enumerate(header)}
+    unread = _unread(header)
 
     def need(*alts):
         have = [a for a in alts if a in col]
         if len(have) != 1:
-            raise ValueError(f"{path}: needs exactly one of the columns {list(alts)}, found {have} in {header}")
+            raise ValueError(f"{path}: needs exactly one of the columns {list(alts)}, found {have} in {header}"
+                             + _suggest(unread, alts))
         return have[0]
 
     need("time")
@@ -322,6 +360,13 @@ def _csv_layout(path, header, lines):
     if len(lines) < 3:
         raise ValueError(f"{path}: {len(lines)} data row{'s' * (len(lines) != 1)}; a drive needs at least 3 "
                          "(one row per DR sample, after the header)")
+    # the fixes, their accuracy and the truth, but not the other form of a pair the header has
+    pairs = (("gps_east", "gps_north"), ("gps_lat", "gps_lon"), ("true_east", "true_north"), ("true_lat", "true_lon"))
+    given = {p[0][:4] for p in pairs if p[0] in col or p[1] in col}
+    optional = ["gps_sigma"] + [k for p in pairs if p[0][:4] not in given for k in p]
+    said = _suggest(unread, optional)
+    if said:
+        warnings.warn(f"{path}: columns the reader does not know are not read{said}", RuntimeWarning, stacklevel=3)
     return col, hname, dname
 
 

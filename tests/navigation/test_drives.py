@@ -30,8 +30,8 @@ def _drive(n=1201, dt=0.1, v=10.0, bearing=0.6, turn=0.02, sigma=3.0, seed=0):
             "true_lat": tlat, "true_lon": tlon}
 
 
-def _write(path, cols, sep=",", bom=False, columns=COLUMNS):
-    lines = [sep.join(columns)]
+def _write(path, cols, sep=",", bom=False, columns=COLUMNS, header=None):
+    lines = [sep.join(header or columns)]
     for k in range(len(cols["time"])):
         lines.append(sep.join("" if np.isnan(cols[c][k]) else repr(float(cols[c][k])) for c in columns))
     path.write_text(("\ufeff" if bom else "") + "\n".join(lines) + "\n", encoding="utf-8")
@@ -531,6 +531,27 @@ def test_iso_8601_time_stamps_are_read_as_seconds(tmp_path):
         read_drive_csv(str(tmp_path / "bad.csv"))
 
 
+def test_columns_named_as_loggers_name_them_are_named_back(tmp_path):
+    """Unknown columns are not read. One whose name is a logger's for a known column (``east`` for ``gps_east``,
+    ``accuracy`` for ``gps_sigma``, ``speed_kmh`` containing ``speed``) is named in the warning, or in the
+    refusal of a missing required column, with what the reader would take it for; a drive whose columns all
+    have the reader's names is read without a word."""
+    c = _drive()
+    named = ["time", "heading", "speed", "latitude", "lon", "accuracy", "ref_lat", "ref_lon"]
+    with pytest.warns(RuntimeWarning, match=r"columns the reader does not know are not read; the header's 'latitude' "
+                                            r"may be 'gps_lat' \(deg: .*'lon' may be 'gps_lon' .*'accuracy' may be "
+                                            r"'gps_sigma' \(m: .*: rename them so"):
+        run = read_drive_csv(_write(tmp_path / "named.csv", c, columns=COLUMNS, header=named))
+    assert not len(run.gps_steps)
+    with pytest.raises(ValueError, match=r"needs exactly one of the columns \['speed', 'odometer'\], found \[\] in .*; "
+                                         r"the header's 'speed_kmh' may be 'speed' \(m/s: .*: rename it so"):
+        read_drive_csv(_write(tmp_path / "kmh.csv", c, columns=COLUMNS,
+                              header=["time", "heading", "speed_kmh"] + COLUMNS[3:]))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        read_drive_csv(_write(tmp_path / "plain.csv", c))  # the reader's own names: no word
+
+
 def _reversing_drive(sigma=3.0):
     """East at 10 m/s, a stop, 8 s of reversing at up to 2 m/s (14 m), a stop, east again: 10 Hz
     signed speed, the gyro heading (the car's nose, east throughout), 1 Hz fixes and the truth."""
@@ -752,6 +773,20 @@ def test_the_cli_fills_dropped_samples_on_request(tmp_path):
     assert proc.returncode == 2 and "--fill-gaps" in proc.stderr, proc.stderr
     proc = subprocess.run(argv + ["--fill-gaps", "0.5"], capture_output=True, text=True, timeout=300)
     assert proc.returncode == 0 and "filled 1 gap(s) of dropped DR samples" in proc.stderr, proc.stderr
+
+
+def test_the_cli_names_the_columns_when_a_drive_has_no_fix_and_no_truth(tmp_path):
+    """Fixes in columns the reader does not know (``latitude``, ``lon``): the command warns which they may be,
+    then refuses the drive for what it lacks, naming the columns a drive gives its fixes and truth in (it said
+    "no GPS fix in the outage at 0.0 s", and named the outage options)."""
+    c = _drive(n=601)
+    path = _write(tmp_path / "d.csv", c, header=["time", "heading", "speed", "latitude", "lon", "gps_sigma", "a", "b"])
+    argv = [sys.executable, "-m", "filterwnn.cli", "study", "dr", "--drive", path, "--out", str(tmp_path / "o"),
+            "--no-figures", "--no-progress", "--filters", "EKF"]
+    proc = subprocess.run(argv, capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 2 and "'latitude' may be 'gps_lat'" in proc.stderr, proc.stderr
+    assert "the drive has no truth and no GPS fix at all to score against (a drive CSV gives its fixes as " \
+           "gps_east/gps_north or gps_lat/gps_lon" in proc.stderr and "--outage-length" not in proc.stderr
 
 
 def test_the_cli_passes_the_latencies_and_the_intervals_to_the_reader(command_passes):
