@@ -1530,6 +1530,10 @@ class GPSDRFilter:
         elif name == "odometer_latency":
             then = (f"read the drive with each speed placed at its own time (odometer_latency={theta:.2g}, "
                     f"--odometer-latency {theta:.2g})")
+            if self.n_heading_jumps:  # a late speed reads as heading steps (log-faults/speed_jumps.py)
+                steps = ", ".join(str(found) for found, *_ in self.heading_jumps)
+                then += (f"; the {self.n_heading_jumps} heading step(s) found before it (at step(s) {steps}) may be "
+                         "its doing")
             what = (f"the speed {theta:+.2g} s (+- {sd:.2g} s) late against the heading and themselves (a CAN bus's "
                     f"latency, or the offset between the clocks that stamped them; z-score {z:+.3g}): each speed is "
                     "then that of that long before, and the distance lags every change of speed")

@@ -262,7 +262,8 @@ def test_a_step_found_after_the_speed_was_found_late_names_the_speed_first(tmp_p
     """The 1 Hz analog (seed 0) with its speed 0.5 s late: the monitor warns of the speed's latency (steps
     232-235), and later the SUKF-8's heading-jump detector takes part of what the late speed does at each start
     and stop for a step (-1.76 deg at step 1219; there is none). That warning then names the speed's remedy
-    first (``log-faults/speed_jumps.py``: 15 such steps on the analogs with a late speed, all at 1 Hz)."""
+    first (``log-faults/speed_jumps.py``: 15 such steps on the analogs with a late speed, all at 1 Hz). Where the
+    steps come first (seed 2, the speed 1 s late: five), the speed's warning names them."""
     cols = held_out.columns("one_hz", 0, odometer_latency=0.5)
     run = read_drive_csv(held_out.write_csv(tmp_path / "late.csv", cols))
     with warnings.catch_warnings(record=True) as record:
@@ -274,6 +275,17 @@ def test_a_step_found_after_the_speed_was_found_late_names_the_speed_first(tmp_p
     assert late and len(stepped) == 1 and res["integrity"]["SUKF-8"]["n_heading_jumps"] == 1
     assert "The filter has warned that the fixes show the speed late (now +0." in stepped[0]
     assert "--odometer-latency 0." in stepped[0]
+    # the other order: seed 2 with the speed 1 s late, the EKF-8 takes five steps, then finds the speed late
+    cols = held_out.columns("one_hz", 2, odometer_latency=1.0)
+    run = read_drive_csv(held_out.write_csv(tmp_path / "later.csv", cols))
+    with warnings.catch_warnings(record=True) as record:
+        warnings.simplefilter("always")
+        res = real_drive_outages(run, filters=("EKF-8",), use_gps_sigma=True, grade="phone")
+    late = [str(w.message) for w in record if "the speed's latency" in str(w.message)]
+    found = [k for k, *_ in res["integrity"]["EKF-8"]["heading_jumps"]]
+    assert len(late) == 1 and len(found) == 5
+    assert late[0].endswith(f"; the 5 heading step(s) found before it (at step(s) {', '.join(map(str, found))}) may be "
+                            "its doing")
 
 
 def test_fixes_stamped_by_another_clock_are_named_with_the_offset(tmp_path):
