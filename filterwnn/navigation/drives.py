@@ -263,7 +263,7 @@ def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2, checks=True,
             return _csv_column(path, rows, every_lines, h, allow_empty)
     else:
         every, every_lines = column, lines
-    t = column("time")
+    t = every_t if dr is None else every_t[dr]
     heading = np.deg2rad(column(hname)) if hname == "heading_deg" else column(hname)
     kw = {"distance" if dname == "odometer" else "speed": column(dname)}
     kw.update(_csv_fixes(path, header, col, every, every_t, origin, every_lines))
@@ -308,8 +308,7 @@ def _dr_rows(path, cols, lines, hname, dname):
 #: Names loggers give the drive CSV's columns, for the reader's suggestions (:func:`_unread`); lowercase.
 _ALIASES = {"latitude": "gps_lat", "longitude": "gps_lon", "lng": "gps_lon", "long": "gps_lon",
             "accuracy": "gps_sigma", "hacc": "gps_sigma", "horizontal_accuracy": "gps_sigma",
-            "velocity": "speed", "yaw": "heading", "timestamp": "time", "t": "time", "distance": "odometer",
-            "lat": "gps_lat", "lon": "gps_lon", "east": "gps_east", "north": "gps_north", "sigma": "gps_sigma"}
+            "velocity": "speed", "yaw": "heading", "timestamp": "time", "t": "time", "distance": "odometer"}
 
 
 def _unread(header):
