@@ -143,15 +143,24 @@ def _scores(heading, step, steps, z_gps, pairs):
     return _medians(*_chord_angles(heading, step, steps, z_gps, pairs)[:2])
 
 
+def _track(heading, step):
+    """The dead-reckoned track ``(2, n_samples)``: east and north of each sample from the first, the odometer's
+    steps along the headings."""
+    return np.stack([np.r_[0.0, np.cumsum(step * np.sin(heading[1:]))], np.r_[0.0, np.cumsum(step * np.cos(heading[1:]))]])
+
+
+def _chord_samples(steps, pairs):
+    """The samples at each chord's two fixes ``(first, last)`` (the fix at step ``k`` is sample ``k + 1``)."""
+    return np.array([steps[i] + 1 for i, _ in pairs]), np.array([steps[j] + 1 for _, j in pairs])
+
+
 def _chord_angles(heading, step, steps, z_gps, pairs):
     """Per chord, the signed angle (rad, in ``[-pi, pi)``) from the GPS chord to the DR one, and
     the path/chord length ratio, and the ratio of the dead-reckoned displacement's length to the chord's (a
     speed scale, which a bend does not lengthen as it does the path)."""
-    cum_e = np.r_[0.0, np.cumsum(step * np.sin(heading[1:]))]
-    cum_n = np.r_[0.0, np.cumsum(step * np.cos(heading[1:]))]
+    cum_e, cum_n = _track(heading, step)
     cum_l = np.r_[0.0, np.cumsum(step)]
-    a = np.array([steps[i] + 1 for i, _ in pairs])  # the fix at step k is sample k + 1
-    b = np.array([steps[j] + 1 for _, j in pairs])
+    a, b = _chord_samples(steps, pairs)
     dr = np.stack([cum_e[b] - cum_e[a], cum_n[b] - cum_n[a]], axis=1)
     gps = np.stack([z_gps[j] - z_gps[i] for i, j in pairs])
     ang = np.arctan2(dr[:, 0], dr[:, 1]) - np.arctan2(gps[:, 0], gps[:, 1])
@@ -285,10 +294,9 @@ def _chord_misfits(heading, step, steps, z_gps, pairs, dt, taus):
     taken out: ``|log(g / d) - median|`` for the chord ``g`` and the displacement ``d`` as complex numbers
     (east + i north; the angle unwrapped, as :func:`_offset_fit` does); NaN where the moved stretch leaves the
     drive or has no displacement (all NaN with fewer than three chords left)."""
-    cum = np.stack([np.r_[0.0, np.cumsum(step * np.sin(heading[1:]))], np.r_[0.0, np.cumsum(step * np.cos(heading[1:]))]])
+    cum = _track(heading, step)
     grid = np.arange(cum.shape[1], dtype=float)
-    first = np.array([steps[i] + 1 for i, _ in pairs], dtype=float)  # the fix at step k is sample k + 1
-    last = np.array([steps[j] + 1 for _, j in pairs], dtype=float)
+    first, last = _chord_samples(steps, pairs)
     g = np.array([complex(*(z_gps[j] - z_gps[i])) for i, j in pairs])
     out = np.full((len(taus), len(pairs)), np.nan)
     for row, tau in zip(out, taus):
