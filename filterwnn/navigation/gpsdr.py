@@ -1393,12 +1393,7 @@ class GPSDRFilter:
         self._I, self._J = 0.5 * (self._I + self._I.T), 0.5 * (self._J + self._J.T)
         if self._so is not None:  # the speed's latency likewise (its cross term with the onset o)
             o, cj = self._jo[j], self._jc[j]
-            fo = o / d
-            self._uo -= fo * self._ju[j]
-            self._Ixo = self._Ixo - b * fo
-            self._Jxo = self._Jxo - (f * o + b * fo - f * fo * d) * cj
-            self._Ioo -= o * fo
-            self._Joo -= o * fo * cj
+            self._condition_speed(self._ju[j], o, d, cj * o, cj * d, b, cj * b)
         self._residuals.clear()
         self._residual_c = None
         self._restate = True
@@ -1600,11 +1595,8 @@ class GPSDRFilter:
         L = np.eye(len(self._hyp))[rest]
         L[:, j] = -self._I[rest, j] / self._I[j, j]
         if self._so is not None:  # the speed's latency, conditioned the same way
-            f = self._Ixo[j] / self._I[j, j]
-            self._uo -= f * self._u[j]
-            self._Ioo -= f * self._Ixo[j]
-            self._Joo += f * (f * self._J[j, j] - 2.0 * self._Jxo[j])
-            self._Ixo, self._Jxo = L @ (self._Ixo - f * self._I[:, j]), L @ (self._Jxo - f * self._J[:, j])
+            self._condition_speed(self._u[j], self._Ixo[j], self._I[j, j], self._Jxo[j], self._J[j, j],
+                                  self._I[rest, j], self._J[rest, j], rest)
             self._so = np.insert(self._so, index, 0.0)
         self._u, self._I, self._J = L @ self._u, L @ self._I @ L.T, L @ self._J @ L.T
         self._residuals.clear()
@@ -1612,6 +1604,20 @@ class GPSDRFilter:
         self._sens = np.insert(self._sens[:, rest], index, 0.0, axis=0)
         self._hyp = [self._hyp[i] for i in rest]
         self._drop_jumps()  # their cross terms were with the hypotheses as they were
+
+    def _condition_speed(self, u, o, d, o_var, d_var, b, b_var, rest=None):
+        """Condition the speed's latency's score, information and score variance (and their cross terms with the
+        hypotheses ``rest``, default all) on a parameter taken as known: a heading step taken (:meth:`_take_jump`)
+        or an error added as a state (:meth:`_add_state`). The parameter's score ``u``, its information ``d`` and
+        its cross information with the speed's latency ``o`` and with the hypotheses ``b``; ``*_var`` the same of
+        the score's variance. The Schur complement, as for the hypotheses themselves."""
+        keep = slice(None) if rest is None else rest
+        fo, f = o / d, b / d
+        self._uo -= fo * u
+        self._Ixo = self._Ixo[keep] - b * fo
+        self._Jxo = self._Jxo[keep] - fo * b_var - f * o_var + f * fo * d_var
+        self._Ioo -= o * fo
+        self._Joo += fo * (fo * d_var - 2.0 * o_var)
 
     def _stale(self, z_gps, gps_sigma):
         """Whether this fix repeats the last different fix to the bit although the car drove farther
