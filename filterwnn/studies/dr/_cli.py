@@ -11,7 +11,7 @@ from ...navigation.gpsdr import CALIBRATION_ERROR_Z, CORRELATED_FIXES, HEADING_J
 from ...navigation.scenarios import INTERVALS, SCENARIOS
 from .. import options, runner
 from ._filters import FILTER_TABLE, OPT_IN
-from ._real import NO_REFERENCE, REAL_FILTERS, _outage_plan, real_drive_outages, real_drive_table
+from ._real import REAL_FILTERS, _outage_plan, check_reference, real_drive_outages, real_drive_table
 from ._run import DEFAULT_SCENARIOS, run_study
 from ._tables import markdown_table, write_outputs
 
@@ -262,8 +262,10 @@ def _run_drives(args, drives, filters):
                              heading_offset=getattr(args, "heading_offset", 0.0),
                              speed_scale=getattr(args, "speed_scale", 1.0),
                              progress=None if not getattr(args, "no_progress", False) else False)
-        if run.x_true is None and not len(run.gps_steps):
-            raise ValueError(f"{path}: {NO_REFERENCE}")
+        try:  # (not under the outage options' message: nothing to place them against)
+            check_reference(run)
+        except ValueError as exc:
+            raise ValueError(f"{path}: {exc}") from None
         try:
             _outage_plan(run, args.outage_length, starts, args.outages, args.min_speed)
         except ValueError as exc:  # name the drive (and the options behind the outages)

@@ -29,10 +29,12 @@ REAL_MODEL = dict(q=2.0, sigma_heading=np.deg2rad(1.0), sigma_odometer=0.02, sig
 REAL_FILTERS = ("DR-mech", "EKF", "EKF-8", "UKF-8", "SUKF-8")
 
 
-#: The refusal of a drive with neither a truth nor a fix: nothing to score the outages against.
-NO_REFERENCE = ("the drive has no truth and no GPS fix at all to score against (a drive CSV gives its fixes as "
-                "gps_east/gps_north or gps_lat/gps_lon, and its truth as true_east/true_north or true_lat/true_lon: "
-                "filterwnn.navigation.drives.DRIVE_CSV_COLUMNS)")
+def check_reference(run):
+    """Refuse a drive with neither a truth nor a fix: nothing to score its outages against."""
+    if run.x_true is None and not len(run.gps_steps):
+        raise ValueError("the drive has no truth and no GPS fix at all to score against (a drive CSV gives its fixes "
+                         "as gps_east/gps_north or gps_lat/gps_lon, and its truth as true_east/true_north or "
+                         "true_lat/true_lon: filterwnn.navigation.drives.DRIVE_CSV_COLUMNS)")
 
 
 def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "EKF", "EKF-8"),
@@ -174,9 +176,8 @@ def _score_filter(out, name, run, windows, use_gps_sigma, settings):
 def _outage_windows(run, starts, length):
     """The first and scored step of each outage, its reference east/north (the truth, else the
     last fix withheld), the distance driven in it, and the track ``(n_steps, 2)``."""
+    check_reference(run)
     truth = run.x_true is not None
-    if not truth and not len(run.gps_steps):
-        raise ValueError(NO_REFERENCE)
     cum = np.concatenate([[0.0], np.cumsum(run.z_dr[:, 1])])
     k0s, k1s, refs, moved = [], [], [], []
     gps_t = run.t[run.gps_steps]
