@@ -221,11 +221,18 @@ def columns(name, seed=0, **kw):
     return HELD_OUT[name](np.random.default_rng(np.random.SeedSequence([23, 100 + i, seed])), **kw)
 
 
-def write_csv(path, cols):
-    """Write the columns ``cols`` as a drive CSV (empty cells where a row has no fix)."""
+def write_csv(path, cols, odometer=False):
+    """Write the columns ``cols`` as a drive CSV (empty cells where a row has no fix). ``odometer=True``: a
+    cumulative odometer column in place of the speed, the trapezoid sum of the speed samples (the odometer of a
+    logger that integrates its speed)."""
+    names = list(COLUMNS)
+    if odometer:
+        t, v = cols["time"], cols["speed"]
+        cols = {**cols, "odometer": np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(t))])}
+        names[names.index("speed")] = "odometer"
     with open(path, "w") as fh:
-        fh.write(",".join(COLUMNS) + "\n")
+        fh.write(",".join(names) + "\n")
         for k in range(len(cols["time"])):
             fh.write(",".join("" if np.isnan(cols[c][k]) else f"{cols[c][k]:.6g}" if c in ("time", "gps_sigma")
-                              else f"{cols[c][k]:.4f}" for c in COLUMNS) + "\n")
+                              else f"{cols[c][k]:.4f}" for c in names) + "\n")
     return str(path)

@@ -36,7 +36,8 @@ DRIVE_CSV_COLUMNS = {
     "heading": ("rad", "heading from north, clockwise (or heading_deg in degrees)"),
     "heading_deg": ("deg", "heading from north, clockwise (instead of heading)"),
     "speed": ("m/s", "odometer / CAN speed (or odometer)"),
-    "odometer": ("m", "cumulative odometer distance (instead of speed)"),
+    "odometer": ("m", "cumulative odometer distance (instead of speed); each increment is the mean speed over its "
+                      "interval, and each sample's speed is read between the two beside it"),
     "gps_east": ("m", "GPS fix east in a local frame (with gps_north), empty without a fix"),
     "gps_north": ("m", "GPS fix north"),
     "gps_lat": ("deg", "GPS fix latitude, WGS84 (with gps_lon; instead of gps_east/gps_north)"),

@@ -267,7 +267,10 @@ class DRRun(NamedTuple):
             Gyro (or fused) heading in **radians**, from north, clockwise positive (values beyond
             ``+-2 pi`` are taken for degrees and refused).
         distance : array-like of shape (n_samples,), optional
-            Cumulative odometer reading (m), non-decreasing. Give this or ``speed``.
+            Cumulative odometer reading (m), non-decreasing. Give this or ``speed``. Each increment is the
+            mean speed over its interval, the speed at the interval's middle; each sample's speed is the two
+            beside it interpolated to its time (the first and last sample's, their one interval's), since the
+            models measure the speed at the samples.
         speed : array-like of shape (n_samples,), optional
             Odometer (wheel / CAN) speed (m/s); step ``k`` covers ``|speed[k]|`` times its interval
             (``intervals``). A signed speed below ``-REVERSING_SPEED`` is the car reversing: there the
@@ -546,9 +549,23 @@ def _odometer_steps(distance, speed, dts, n):
             k = int(np.argmax(dd < 0)) + 1
             raise ValueError(f"distance must be non-decreasing (a cumulative odometer); distance[{k}] = "
                              f"{float(distance[k])!r} < distance[{k - 1}] = {float(distance[k - 1])!r}")
-        return dd, dd[0] / dts[0]
+        speed = _odometer_speed(dd, dts)
+        return speed[1:] * dts, speed[0]
     speed = _finite_1d(speed, "speed", n)
     return speed[1:] * dts, speed[0]
+
+
+def _odometer_speed(dd, dts):
+    """The speed at each sample of a cumulative odometer whose increments over the intervals ``dts`` are ``dd``.
+
+    An increment over ``[t_k, t_k+1]`` is the mean speed over that interval, the speed at its middle; the
+    models measure the speed at each sample (step ``k`` is ``speed[k + 1]`` times its interval, as a speed
+    column's), so each sample's speed is the two interval means beside it interpolated to its time (the
+    first and last sample take their one interval's). Taken as the speed at the interval's end, as a speed
+    column's sample would be, each speed would be half an interval late: 0.5 s at 1 Hz, which the
+    consistency monitor tells as a speed stamped late (docs/study-outputs/dr/log-faults/RUN.md, stop 49)."""
+    ts = np.concatenate([[0.0], np.cumsum(dts)])  # the samples' times from the first
+    return np.interp(ts, 0.5 * (ts[:-1] + ts[1:]), dd / dts)
 
 
 #: A signed speed below minus this (m/s) is a car reversing: its samples' heading is turned half a turn to

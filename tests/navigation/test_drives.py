@@ -612,7 +612,8 @@ def test_a_signed_speed_reverses_the_car_along_its_heading():
 def test_an_odometers_latency_reads_each_speed_where_it_was_measured(tmp_path):
     """A CAN speed 0.5 s late (5 samples at 10 Hz) through stops and starts: with ``odometer_latency=0.5``
     the steps are the honest speed's but for the last 0.5 s (the last sample held); a cumulative odometer
-    late by as much reads the same way; a speed 0.5 s early reads back with -0.5 (the first sample held)."""
+    late by as much reads the same way (within its increments' read to each sample's time, 8e-5 m for this
+    speed's curvature); a speed 0.5 s early reads back with -0.5 (the first sample held)."""
     c = _drive()
     c["speed"] = 5.0 + 5.0 * np.sin(0.3 * c["time"])  # 0 to 10 m/s
     honest = read_drive_csv(_write(tmp_path / "h.csv", c), checks=False)
@@ -622,16 +623,42 @@ def test_an_odometers_latency_reads_each_speed_where_it_was_measured(tmp_path):
     run = read_drive_csv(path, checks=False, odometer_latency=0.5)
     np.testing.assert_allclose(run.z_dr[:-5], honest.z_dr[:-5], rtol=0, atol=1e-9)
     assert np.max(np.abs(as_logged.z_dr[:-5, 1] - honest.z_dr[:-5, 1])) > 0.07  # 0.5 s of 1.5 m/s^2: 0.075 m
-    odo = np.r_[0.0, np.cumsum(late["speed"][1:] * 0.1)]
+    t = c["time"] - 0.5  # the odometer 0.5 s late: the integral of the speed up to then
+    odo = 5.0 * t - 5.0 / 0.3 * np.cos(0.3 * t)
     cols = ["time", "heading", "odometer", "gps_lat", "gps_lon", "gps_sigma", "true_lat", "true_lon"]
     run = read_drive_csv(_write(tmp_path / "odo.csv", {**late, "odometer": odo}, columns=cols), checks=False,
                          odometer_latency=0.5)
-    np.testing.assert_allclose(run.z_dr[5:-5, 1], honest.z_dr[5:-5, 1], rtol=0, atol=1e-9)
+    np.testing.assert_allclose(run.z_dr[5:-6, 1], honest.z_dr[5:-6, 1], rtol=0, atol=1e-4)
     early = {**c, "speed": np.r_[c["speed"][5:], np.full(5, c["speed"][-1])]}
     run = read_drive_csv(_write(tmp_path / "early.csv", early), checks=False, odometer_latency=-0.5)
     np.testing.assert_allclose(run.z_dr[6:, 1], honest.z_dr[6:, 1], rtol=0, atol=1e-9)
     with pytest.raises(ValueError, match=r"odometer_latency must be a finite number of seconds \(negative"):
         read_drive_csv(path, odometer_latency=np.nan)
+
+
+def test_a_cumulative_odometer_gives_each_sample_the_speed_at_its_own_time(tmp_path):
+    """An odometer's increment over an interval is the mean speed over it, the speed at the interval's middle; the
+    models measure the speed at each sample, so the reader interpolates the means beside each sample to its time.
+    A car at 1 Hz pulling away at 1.5 m/s^2: each step is the speed at its sample times 1 s, as its speed column
+    gives it; taken as the speed at the interval's end (the reader until stop 49) each was the speed 0.5 s
+    before, 0.75 m short. At a constant speed nothing changes, and a jittered stamp keeps its own interval."""
+    c = _drive(n=21, dt=1.0)
+    t = c["time"]
+    accel = {**c, "speed": 1.5 * t}
+    cols = ["time", "heading", "odometer", "gps_lat", "gps_lon", "gps_sigma", "true_lat", "true_lon"]
+    from_speed = read_drive_csv(_write(tmp_path / "v.csv", accel), checks=False)
+    from_odo = read_drive_csv(_write(tmp_path / "o.csv", {**accel, "odometer": 0.75 * t ** 2}, columns=cols),
+                              checks=False)
+    np.testing.assert_allclose(from_odo.z_dr[:-1, 1], from_speed.z_dr[:-1, 1], rtol=0, atol=1e-9)
+    np.testing.assert_allclose(from_odo.z_dr[:-1, 1], 1.5 * t[1:-1], rtol=0, atol=1e-9)
+    assert from_odo.z_dr[-1, 1] == pytest.approx(1.5 * (t[-1] - 0.5))  # the last sample: its one interval's mean
+    assert from_odo.x0[1] ** 2 + from_odo.x0[4] ** 2 == pytest.approx(0.75 ** 2)  # the first: its one interval's
+    steady = read_drive_csv(_write(tmp_path / "s.csv", {**c, "odometer": 10.0 * t}, columns=cols), checks=False)
+    np.testing.assert_allclose(steady.z_dr[:, 1], 10.0, rtol=0, atol=1e-9)
+    t = t + np.where(np.arange(len(t)) == 10, 0.05, 0.0)  # one stamp 50 ms late
+    jitter = read_drive_csv(_write(tmp_path / "j.csv", {**c, "time": t, "odometer": 10.0 * t}, columns=cols),
+                            checks=False, intervals="stamps")
+    np.testing.assert_allclose(jitter.z_dr[:, 1], 10.0 * np.diff(t), rtol=0, atol=1e-9)
 
 
 def test_each_fix_lands_on_the_sample_nearest_its_time_when_the_intervals_vary():
