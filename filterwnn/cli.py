@@ -80,7 +80,7 @@ def _demo(args):
           "   scale and the gyro biases; no GPS from 100 s to 130 s):")
     gps_model = GPSDRModel.from_grade("phone", run.scenario.dt)
     kf = GPSDRFilter(gps_model, "ekf", x0=np.r_[run.x0, gps_model.x0[6:]])
-    est = kf.batch_filter(run.z_dr, run.gps_list(), run.gps_sigma_list())
+    est = kf.batch_filter(run.z_dr, run.gps_list(), run.gps_sigma_list(), run.gps_offset_list())
     k0, k1 = np.searchsorted(run.t, 100.0), np.searchsorted(run.t, 130.0) - 1
     z = run.z_dr[k0:k1 + 1]  # raw dead reckoning from the true position at the outage start
     raw = run.x_true[k0 - 1, [0, 3]] + z[:, 1] @ np.stack([np.sin(z[:, 0]), np.cos(z[:, 0])], axis=1)

@@ -213,7 +213,7 @@ from filterpy.kalman import ExtendedKalmanFilter
 from .._linalg import insert_state, repair_pd
 from .._warnings import folded_warnings
 from ..metrics import integrated_autocorrelation
-from .._validation import as_state, check_choice, check_covariance, check_positive, check_positive_int, check_scale
+from .._validation import as_real, as_state, check_choice, check_covariance, check_positive, check_positive_int, check_scale
 from ._plausibility import MAX_DRIFT_DEG_S
 from .dead_reckoning import GPSDRModel, _rate_walk_instability, dr_residual, gps_H, gps_hx, wrap_angle
 from ..kalman.presets import make_points
@@ -614,6 +614,14 @@ def gps_scale_loglik(y, P, R, scale):
     y = np.asarray(y, dtype=float)
     quad = np.einsum("ni,ni->", y, np.linalg.solve(S, y[..., None])[..., 0])
     return float(-0.5 * (np.linalg.slogdet(S)[1].sum() + quad))
+
+
+def _offset(gps_offset):
+    """A fix's time less its sample's, checked: a finite number of seconds."""
+    d = float(as_real(gps_offset, "gps_offset", "a number of seconds"))
+    if not np.isfinite(d):
+        raise ValueError(f"gps_offset must be a finite number of seconds (the fix's time less the sample's), got {d!r}")
+    return d
 
 
 class GPSDRFilter:
@@ -1070,7 +1078,7 @@ class GPSDRFilter:
             self._cal_P = self._cal_F @ self._cal_P @ self._cal_F.T + self._cal_Q
         return self
 
-    def update(self, z_dr, z_gps=None, gps_sigma=None):
+    def update(self, z_dr, z_gps=None, gps_sigma=None, gps_offset=None):
         """Update with one DR sample and an optional GPS fix.
 
         Parameters
@@ -1082,6 +1090,11 @@ class GPSDRFilter:
             one coordinate NaN is refused.
         gps_sigma : float, optional
             This fix's standard deviation per axis (m); default the model's ``sigma_gps``.
+        gps_offset : float, optional
+            The fix's time less this sample's (s; :meth:`DRRun.gps_offset_list
+            <filterwnn.navigation.scenarios.DRRun.gps_offset_list>`): the fix is the position that long after
+            the sample, and is moved back to the sample's time along the filter's velocity, ``z - v d``
+            (a fix logged between the samples of a 1 Hz log is up to 0.5 s, 10 m at 20 m/s, off). Default 0.
         """
         z_dr = check_scale(as_state(z_dr, "z_dr", 2), "z_dr")  # a distance of 1e308 would give x = inf
         if _no_fix(z_gps):
@@ -1098,6 +1111,8 @@ class GPSDRFilter:
         thinned = z_gps is not None and not stale and self._thin()
         if stale or thinned:
             z_gps = gps_sigma = None
+        if z_gps is not None and gps_offset:
+            z_gps = np.asarray(z_gps, dtype=float) - _offset(gps_offset) * self.kf.x[[1, 4]]
         adapt = self.gps_window > 0 and z_gps is not None and gps_sigma is None
         if adapt:
             # the fix's innovation and its predicted-state part, before the update
@@ -2216,7 +2231,7 @@ class GPSDRFilter:
         else:
             self.kf.update(z, R=R, gps=kw["gps"])
 
-    def batch_filter(self, z_dr, z_gps=None, gps_sigma=None):
+    def batch_filter(self, z_dr, z_gps=None, gps_sigma=None, gps_offset=None):
         """Run over a drive: ``predict`` then ``update`` at every DR sample.
 
         Parameters
@@ -2227,6 +2242,9 @@ class GPSDRFilter:
             array ``(n_steps, 2)`` whose rows without a fix are NaN.
         gps_sigma : sequence of length n_steps, optional
             Per step the fix's sigma (m) or ``None`` (any value where there is no fix).
+        gps_offset : sequence of length n_steps, optional
+            Per step the fix's time less the sample's (s) or ``None`` (:meth:`update`;
+            :meth:`~filterwnn.navigation.scenarios.DRRun.gps_offset_list`).
 
         Returns
         -------
@@ -2247,7 +2265,8 @@ class GPSDRFilter:
         n = len(z_dr)
         gps = [None] * n if z_gps is None else list(z_gps)
         sig = [None] * n if gps_sigma is None else list(gps_sigma)
-        for name, seq in (("z_gps", gps), ("gps_sigma", sig)):
+        off = [None] * n if gps_offset is None else list(gps_offset)
+        for name, seq in (("z_gps", gps), ("gps_sigma", sig), ("gps_offset", off)):
             if len(seq) != n:
                 raise ValueError(f"{name} must have one entry per DR sample ({n}), got {len(seq)}")
         width = self.model.dim_x
@@ -2255,6 +2274,6 @@ class GPSDRFilter:
         with folded_warnings():  # a long drive can warn many times for one cause: once per kind
             for k in range(n):
                 self.predict()
-                self.update(z_dr[k], gps[k], sig[k])
+                self.update(z_dr[k], gps[k], sig[k], off[k])
                 out[k] = self.kf.x[:width]  # the states of the model it started with (a scale state added is not)
         return out

@@ -217,6 +217,13 @@ class DRRun(NamedTuple):
     R_true : ndarray of shape (n_steps, 2)
         True DR noise variances ``[heading, odometer]`` at each step (for oracle filters).
     scenario : Scenario
+    gps_sigma : ndarray of shape (n_fixes,) or None
+        Each fix's reported standard deviation per axis (m), when the drive has them.
+    gps_offset : ndarray of shape (n_fixes,) or None
+        Each fix's time less its sample's (s): a fix is placed on the sample nearest its time, and is the
+        position that long after it (a fix logged between the samples of a slow DR log, or moved by a
+        ``gps_latency`` finer than the samples' interval). None when every fix is at its sample's time.
+        :class:`~filterwnn.navigation.gpsdr.GPSDRFilter` takes it (``gps_offset``; :meth:`gps_offset_list`).
     """
 
     t: np.ndarray
@@ -228,6 +235,7 @@ class DRRun(NamedTuple):
     R_true: np.ndarray
     scenario: Scenario
     gps_sigma: Optional[np.ndarray] = None
+    gps_offset: Optional[np.ndarray] = None
 
     def gps_list(self):
         """Per-step list: the fix ``(2,)`` or ``None`` (missing GPS is ``None``, never NaN)."""
@@ -242,6 +250,15 @@ class DRRun(NamedTuple):
         if self.gps_sigma is not None:
             for k, sd in zip(self.gps_steps, self.gps_sigma):
                 out[int(k)] = float(sd)
+        return out
+
+    def gps_offset_list(self):
+        """Per-step list: the fix's time less its sample's (s), or ``None`` (no fix, or every fix at its
+        sample's time). :class:`~filterwnn.navigation.gpsdr.GPSDRFilter` takes it as ``gps_offset``."""
+        out = [None] * len(self.t)
+        if self.gps_offset is not None:
+            for k, d in zip(self.gps_steps, self.gps_offset):
+                out[int(k)] = float(d)
         return out
 
     @property
@@ -447,9 +464,9 @@ def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps
     z_dr = np.stack([wrap_angle(heading[1:]), step], axis=1)
     steps = np.zeros(0, dtype=int)
     z_gps = np.zeros((0, 2))
-    sig = swapped = None
+    sig = swapped = offset = None
     if gps_t is not None:
-        steps, z_gps, sig, swapped = _gps_fixes(gps_t, east, north, lat, lon, gps_sigma, origin, t, dt)
+        steps, z_gps, sig, swapped, offset = _gps_fixes(gps_t, east, north, lat, lon, gps_sigma, origin, t, dt)
     x_true = None
     if truth is not None:
         x_true, p0 = _truth_states(truth, t)
@@ -465,7 +482,7 @@ def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps
     x0 = np.array([p0[0], v0 * np.sin(heading[0]), 0.0, p0[1], v0 * np.cos(heading[0]), 0.0])
     sc = _own_drive_scenario(name, n, dt, v0, heading[0], steps, sig)
     R_true = np.tile([np.deg2rad(1.0) ** 2, 0.02**2], (n - 1, 1))
-    return (dt * np.arange(1, n), x0, x_true, z_dr, steps, z_gps, R_true, sc, sig)
+    return (dt * np.arange(1, n), x0, x_true, z_dr, steps, z_gps, R_true, sc, sig, offset)
 
 
 #: How far past ``2 pi`` a heading in radians may read: a heading just under ``2 pi`` written
@@ -759,8 +776,9 @@ def _null_fixes(lat, lon):
 
 
 def _gps_fixes(gps_t, east, north, lat, lon, gps_sigma, origin, t, dt):
-    """The GPS fixes on the DR grid: their steps, east/north (m), sigmas (or None) and, for
-    lat/lon fixes, east/north read with lat and lon exchanged (or None)."""
+    """The GPS fixes on the DR grid: their steps, east/north (m), sigmas (or None), for lat/lon fixes
+    east/north read with lat and lon exchanged (or None), and each fix's time less its sample's (s; None
+    when every fix is at its sample's time)."""
     n = len(t)
     gps_t = _finite_1d(gps_t, "gps_t")
     m = len(gps_t)
@@ -813,8 +831,10 @@ def _gps_fixes(gps_t, east, north, lat, lon, gps_sigma, origin, t, dt):
     keep = (k_fix >= 0) & (gps_t <= t[-1] + 0.5 * dt)
     k_fix, idx = np.unique(k_fix[keep], return_index=True)
     sel = np.flatnonzero(keep)[idx]
+    offset = np.round(gps_t[sel] - t[k_fix + 1], 9)  # to the nanosecond: a fix on its sample is 0 exactly
     return (k_fix, np.stack([e[sel], nn[sel]], axis=1), (gs[sel] if gps_sigma is not None else None),
-            None if swapped is None else swapped[sel])
+            None if swapped is None else swapped[sel], offset if np.any(offset) else None)
+
 
 
 #: The share of the fixes that repeat the one on the row before, to the bit, past which a drive's GPS columns are
@@ -1017,7 +1037,9 @@ def with_outage(run, start, length):
     keep = ~((tf >= start) & (tf < start + length))
     sc = run.scenario.with_(outages=((float(start), float(start + length)),))
     sig = None if run.gps_sigma is None else run.gps_sigma[keep]
-    return run._replace(gps_steps=run.gps_steps[keep], z_gps=run.z_gps[keep], scenario=sc, gps_sigma=sig)
+    offset = None if run.gps_offset is None else run.gps_offset[keep]
+    return run._replace(gps_steps=run.gps_steps[keep], z_gps=run.z_gps[keep], scenario=sc, gps_sigma=sig,
+                        gps_offset=offset)
 
 
 def outage_starts(run, length=30.0, starts=None, n=20, min_speed=0.0):

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from filterwnn.navigation.drives import read_drive_csv
-from filterwnn.navigation.scenarios import DRRun, en_to_latlon
+from filterwnn.navigation.scenarios import DRRun, en_to_latlon, with_outage
 
 LAT0, LON0 = 48.137, 11.575
 COLUMNS = ["time", "heading", "speed", "gps_lat", "gps_lon", "gps_sigma", "true_lat", "true_lon"]
@@ -476,7 +476,8 @@ def test_a_log_with_a_row_per_sensor_message_is_read_with_each_fix_at_its_time(t
     """A log that writes each sensor's message on a row of its own (a fix 30 ms after the DR sample it follows,
     the heading and speed cells empty there; the DR rows without a fix): the DR samples are the rows with a
     heading and a speed, and each fix keeps its own time, placed on the nearest sample as the arrays' reader
-    places it. The same drive as one row per DR sample, to the fixes' and the samples' last digit. A row that is
+    places it, with its offset from it (stop 49). The same drive as one row per DR sample, to the fixes' and the
+    samples' last digit. A row that is
     neither (a heading but no speed) is refused, naming its line and what it lacks."""
     c = _drive()
     plain = read_drive_csv(_write(tmp_path / "plain.csv", c))
@@ -495,6 +496,8 @@ def test_a_log_with_a_row_per_sensor_message_is_read_with_each_fix_at_its_time(t
     np.testing.assert_array_equal(run.z_gps, plain.z_gps)
     np.testing.assert_array_equal(run.z_dr, plain.z_dr)
     np.testing.assert_array_equal(run.x_true, plain.x_true)
+    assert plain.gps_offset is None  # each fix 30 ms after its sample, which the GPS/DR filter moves it back by
+    np.testing.assert_allclose(run.gps_offset, 0.03, rtol=0, atol=1e-9)
     lone = {k: v.copy() for k, v in split.items()}
     lone["speed"][11] = np.nan  # a DR row with a heading and no speed
     with pytest.raises(ValueError, match=r"data row 12 \(line 13\) has a 'heading' but no 'speed': in a log with a "
@@ -675,6 +678,40 @@ def test_each_fix_lands_on_the_sample_nearest_its_time_when_the_intervals_vary()
     assert run.scenario.dt == 0.1 and len(run.gps_steps) == len(gps_t)
     # sample gps_steps + 1 is the fix's step's end: within half an interval of the fix's time
     assert np.max(np.abs(t[run.gps_steps + 1] - gps_t)) <= 0.0575 + 1e-9
+
+
+def test_fixes_between_slow_samples_keep_their_offset_and_the_filter_moves_them_to_the_sample():
+    """A fix is placed on the DR sample nearest its time. At 1 Hz, fixes logged 0.4 s past each sample were each
+    used 0.4 s off, and a ``gps_latency`` of 0.3 s moved no fix (each landed on its own sample again): the run
+    now keeps each fix's time less its sample's (``gps_offset``), and ``GPSDRFilter`` moves the fix back along
+    its velocity. A car at 10 m/s with exact fixes 0.4 s after their samples: 4 m behind with the fixes as
+    placed, on the truth with their offsets. Fixes on the samples keep none (every output as before)."""
+    from filterwnn.navigation.dead_reckoning import GPSDRModel
+    from filterwnn.navigation.gpsdr import GPSDRFilter
+
+    def read(dt, offset, **kw):
+        t = dt * np.arange(int(100 / dt) + 1)
+        gps_t = np.arange(1.0, 99.0, 1.0) + offset
+        return DRRun.from_arrays(t, np.zeros(len(t)), speed=np.full(len(t), 10.0), gps_t=gps_t,
+                                 east=np.zeros(len(gps_t)), north=10.0 * gps_t, gps_sigma=0.5, checks=False,
+                                 truth=np.stack([np.zeros(len(t)), 10.0 * t], axis=1), **kw)
+
+    run = read(1.0, 0.4)
+    np.testing.assert_allclose(run.gps_offset, 0.4, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(read(1.0, 0.0, gps_latency=0.3).gps_offset, -0.3, rtol=0, atol=1e-12)
+    assert read(1.0, 0.0).gps_offset is None and read(0.1, 0.0, gps_latency=0.3).gps_offset is None
+    assert with_outage(run, 20.0, 10.0).gps_offset.shape == (len(run.gps_steps) - 10,)
+    errors = []
+    for offsets in (None, run.gps_offset_list()):
+        model = GPSDRModel.from_grade("phone", 1.0)
+        kf = GPSDRFilter(model, "ekf", x0=np.r_[run.x0, model.x0[6:]])
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            est = kf.batch_filter(run.z_dr, run.gps_list(), run.gps_sigma_list(), offsets)
+        errors.append(float(np.median(np.abs(est[10:60, 3] - run.x_true[10:60, 3]))))
+    assert errors[0] > 3.0 and errors[1] < 0.3, errors
+    with pytest.raises(ValueError, match=r"gps_offset must be a finite number of seconds"):
+        kf.update(run.z_dr[0], [0.0, 0.0], None, np.nan)
 
 
 def test_from_arrays_checks_too():

@@ -159,7 +159,8 @@ def _gpsdr_steps(run, x0, rng, context, kind="ekf", augmented=False, gps=True):
     n = len(run.t)
     fixes = run.gps_list() if gps else [None] * n
     sigmas = run.gps_sigma_list() if gps else [None] * n
-    return _Steps(f.predict, lambda k: f.update(run.z_dr[k], fixes[k], sigmas[k]), lambda: f.kf.x)
+    offsets = run.gps_offset_list()
+    return _Steps(f.predict, lambda k: f.update(run.z_dr[k], fixes[k], sigmas[k], offsets[k]), lambda: f.kf.x)
 
 
 #: Every filter of the study, one row each (:class:`DRFilter`). The stream keys are
