@@ -389,7 +389,24 @@ def _track_cause(heading, step, steps, z_gps, pairs, swapped):
                                         "and longitude exchanged)"))
     scored = [(_badness(*_scores(h, step, steps, z, pairs)), cause) for h, z, cause in tries]
     best, cause = min(scored)
-    return cause if best <= 1.0 else None
+    if best <= 1.0:
+        return cause
+    return _mirrored_cause(heading, step, steps, z_gps, pairs)
+
+
+def _mirrored_cause(heading, step, steps, z_gps, pairs):
+    """A heading that turns the wrong way from some zero (a yaw angle counter-clockwise, as ROS and ENU frames
+    write it, from wherever its integration started): the fixes' course is ``c - heading`` for one ``c``, the
+    chords' circular mean with the heading negated. The words for it, with ``c`` and the remedy, or None."""
+    ang = _chord_angles(-heading, step, steps, z_gps, pairs)[0]
+    c = -float(np.arctan2(np.mean(np.sin(ang)), np.mean(np.cos(ang))))
+    if _badness(*_scores(c - heading, step, steps, z_gps, pairs)) > 1.0:
+        return None
+    deg = float(np.degrees(c)) % 360.0
+    return (f"the heading turns the wrong way (the GPS course matches {deg:.0f} deg - heading: a yaw angle "
+            f"counter-clockwise, as ROS and ENU frames write it, from a zero {deg:.0f} deg clockwise of north; the "
+            f"convention is clockwise from north): give heading_deg = {deg:.0f} - yaw_deg, or heading = "
+            f"{c % (2 * np.pi):.3f} - heading in radians")
 
 
 def _ratio_cause(ratio):

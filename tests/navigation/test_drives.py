@@ -254,6 +254,10 @@ MISTAKES = {
                                       "heading looks like degrees"),
     "heading counter-clockwise from east": (lambda c: {**c, "heading": np.pi / 2 - c["heading"]},
                                             "counter-clockwise from east"),
+    "heading counter-clockwise from another zero": (
+        lambda c: {**c, "heading": np.mod(np.deg2rad(200.0) - c["heading"], 2 * np.pi)},
+        r"the heading turns the wrong way \(the GPS course matches 200 deg - heading: .* give heading_deg = 200 - "
+        r"yaw_deg, or heading = 3.49\d - heading in radians"),
     "speed in km/h": (lambda c: {**c, "speed": c["speed"] * 3.6}, "speed looks like km/h"),
     "speed in mph": (lambda c: {**c, "speed": c["speed"] / 0.44704}, "speed looks like mph"),
     "lat and lon swapped": (lambda c: _swap(c, ("gps_lat", "gps_lon"), ("true_lat", "true_lon")),
