@@ -205,7 +205,9 @@ def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2, checks=True,
     ``gps_east``/``gps_north`` (or ``gps_lat``/``gps_lon``) at the row's ``time``, empty
     cells where there is none. A log with a row per sensor message is read too: rows with a
     fix alone (their heading and speed cells empty) are fixes at their own times, placed on
-    the DR sample nearest each, and the rows with a heading and a speed are the DR samples. With ``gps_lat``/``gps_lon`` and ``true_east``/``true_north``
+    the DR sample nearest each, and the rows with a heading and a speed are the DR samples; where the
+    heading and the speed (or odometer) each come on rows of their own, the DR samples are the rows of the
+    one with fewer, and the other is interpolated to their times (a heading along the shorter arc). With ``gps_lat``/``gps_lon`` and ``true_east``/``true_north``
     the truth must be about ``origin`` (default the first fix). Unknown columns are ignored.
     The delimiter is the header's comma, semicolon or tab; a UTF-8 byte-order mark (Excel's
     "CSV UTF-8") is dropped; decimal commas, ``nan`` and ``inf`` cells are refused (an empty
@@ -255,10 +257,12 @@ def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2, checks=True,
         return _csv_column(path, cols, lines, h, allow_empty)
 
     every_t = column("time")
-    dr = _dr_rows(path, cols, lines, hname, dname)
+    dr, fill = _dr_rows(path, cols, lines, hname, dname)
     if dr is not None:  # one row per sensor message: the DR samples are the rows with a heading and a speed
         rows, cols = cols, {h: v[dr] for h, v in cols.items()}
         every_lines, lines = lines, lines[dr]
+        if fill is not None:  # the heading and the speed on rows of their own: the other read at these rows' times
+            cols[fill] = _at_times(every_t[dr], every_t, rows[fill], fill)
 
         def every(h, allow_empty=False):
             return _csv_column(path, rows, every_lines, h, allow_empty)
@@ -279,22 +283,38 @@ def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2, checks=True,
 
 
 def _dr_rows(path, cols, lines, hname, dname):
-    """The rows that are DR samples when a drive CSV has one row per sensor message (a fix on a row of its own,
-    at its own time, with the heading and speed cells empty; a DR sample on another), else None (every row has a
-    heading and a speed, or no row is a fix alone: the column checks name the first empty cell). The fixes then
-    keep their own times (:meth:`DRRun.from_arrays` places each on the DR sample nearest it). In such a log a
-    row that is neither is refused, naming its line and what it lacks."""
+    """The rows that are DR samples when a drive CSV has one row per sensor message, and the column to read at
+    their times, else ``(None, None)`` (every row has a heading and a speed, or no row is a fix alone and no
+    sensor has rows of its own: the column checks name the first empty cell).
+
+    A fix on a row of its own (its heading and speed cells empty) keeps its own time
+    (:meth:`DRRun.from_arrays` places it on the DR sample nearest it). The DR samples are the rows with a
+    heading and a speed; where the heading and the speed each come on rows of their own, they are the rows of the
+    one with fewer, the other column read at their times (:func:`_at_times`) and returned as the second item. In
+    such a log a row with no heading, no speed and no fix is refused, naming its line; in a log whose DR rows
+    hold both, so is a row with one of them."""
     have_h, have_d = np.isfinite(cols[hname]), np.isfinite(cols[dname])
     dr = have_h & have_d
     if dr.all():
-        return None
+        return None, None
     fix = np.zeros_like(dr)
     for a, b in (("gps_east", "gps_north"), ("gps_lat", "gps_lon")):
         if a in cols and b in cols:
             fix |= np.isfinite(cols[a]) & np.isfinite(cols[b])
     alone = fix & ~have_h & ~have_d
-    if not alone.any():
-        return None
+    apart = (have_h & ~have_d).any() and (have_d & ~have_h).any()
+    if not alone.any() and not apart:
+        return None, None
+    if apart:  # each sensor on rows of its own: the samples are the rows of the one with fewer
+        bad = ~have_h & ~have_d & ~fix
+        if bad.any():
+            r = int(np.argmax(bad))
+            raise ValueError(f"{path}: data row {r + 1} (line {lines[r]}) has no {hname!r}, no {dname!r} and no fix: "
+                             f"in a log with a row per sensor message (the {hname!r} and the {dname!r} each on rows of "
+                             "their own), every row is one of them or a fix")
+        if have_h.sum() <= have_d.sum():
+            return have_h, dname
+        return have_d, hname
     bad = ~dr & ~alone
     if bad.any():
         r = int(np.argmax(bad))
@@ -303,7 +323,19 @@ def _dr_rows(path, cols, lines, hname, dname):
         raise ValueError(f"{path}: data row {r + 1} (line {lines[r]}) has {what}: in a log with a row per sensor "
                          f"message (rows with a fix alone, as data row {int(np.argmax(alone)) + 1}), every other row is "
                          "a DR sample with both")
-    return dr
+    return dr, None
+
+
+def _at_times(t, every_t, values, name):
+    """Column ``name`` (``values`` on every row, NaN where a row lacks it) read at the times ``t``: linearly
+    interpolated between its own rows (a heading along the shorter arc; a cumulative odometer's distance, so
+    that each step is what it counted), held beyond its first and last."""
+    have = np.isfinite(values)
+    src_t, src = every_t[have], values[have]
+    if name in ("heading", "heading_deg"):
+        period = 360.0 if name == "heading_deg" else 2 * np.pi
+        return np.mod(np.interp(t, src_t, np.unwrap(src, period=period)), period)
+    return np.interp(t, src_t, src)
 
 
 #: Names loggers give the drive CSV's columns, for the reader's suggestions (:func:`_unread`); lowercase.

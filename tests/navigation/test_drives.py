@@ -668,6 +668,49 @@ def test_a_cumulative_odometer_gives_each_sample_the_speed_at_its_own_time(tmp_p
     np.testing.assert_allclose(jitter.z_dr[:, 1], 10.0 * np.diff(t), rtol=0, atol=1e-9)
 
 
+def test_a_log_with_the_heading_and_the_speed_on_rows_of_their_own_reads_the_sparser_at_its_times(tmp_path):
+    """A log with a row per sensor message whose gyro heading (10 Hz) and wheel speed (5 Hz, 4 ms after the
+    heading) each come on rows of their own, the fixes on theirs (1 Hz, 30 ms after a heading): refused before
+    ("has a 'heading' but no 'speed'"). The DR samples are now the speed's rows, the heading interpolated to their
+    times along the shorter arc (here it turns steadily through north: exact), each fix at its own time. The
+    other way round (the speed the denser), the heading's rows are the samples. A row with none of them is
+    refused, naming its line."""
+    c = _drive(n=601, bearing=-0.3, turn=0.02)  # through north at t = 15 s
+    t = c["time"]
+    rows = {k: [] for k in c}
+
+    def add(time, **cells):
+        for key in c:
+            rows[key].append(time if key == "time" else cells.get(key, np.nan))
+
+    for k in range(len(t)):
+        add(t[k], heading=c["heading"][k])
+        if k % 2 == 0:
+            add(t[k] + 0.004, speed=10.0)
+        if k % 10 == 0:
+            add(t[k] + 0.03, **{key: c[key][k] for key in ("gps_lat", "gps_lon", "gps_sigma")})
+    log = {k: np.array(v) for k, v in rows.items()}
+    cols = ["time", "heading", "speed", "gps_lat", "gps_lon", "gps_sigma"]
+    run = read_drive_csv(_write(tmp_path / "apart.csv", log, columns=cols), checks=False)
+    assert run.scenario.dt == pytest.approx(0.2) and len(run.z_dr) == 300 and len(run.gps_steps) == 60
+    want = np.mod(-0.3 + 0.02 * (t[2::2] + 0.004), 2 * np.pi)
+    np.testing.assert_allclose(np.mod(run.z_dr[:-1, 0], 2 * np.pi), want[:-1], rtol=0, atol=1e-9)  # the last: held
+    np.testing.assert_allclose(run.z_dr[:, 1], 2.0, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(run.gps_offset, 0.026, rtol=0, atol=1e-9)  # 30 ms after a heading, 4 ms after a speed
+    extra = {key: t + 0.05 if key == "time" else np.full(len(t), 10.0 if key == "speed" else np.nan) for key in log}
+    with_more = {key: np.r_[log[key], extra[key]] for key in log}  # a speed row 50 ms after each heading too: 15 Hz
+    order = np.argsort(with_more["time"], kind="stable")
+    with_more = {key: v[order] for key, v in with_more.items()}
+    run = read_drive_csv(_write(tmp_path / "denser.csv", with_more, columns=cols), checks=False)
+    assert run.scenario.dt == pytest.approx(0.1) and len(run.z_dr) == 600
+    np.testing.assert_allclose(run.z_dr[:, 1], 1.0, rtol=0, atol=1e-9)
+    empty = {k: v.copy() for k, v in log.items()}
+    empty["heading"][3] = np.nan  # the fourth row, a heading's, left with nothing
+    with pytest.raises(ValueError, match=r"data row 4 \(line 5\) has no 'heading', no 'speed' and no fix: in a log "
+                                         r"with a row per sensor message \(the 'heading' and the 'speed' each on rows"):
+        read_drive_csv(_write(tmp_path / "empty.csv", empty, columns=cols), checks=False)
+
+
 def test_each_fix_lands_on_the_sample_nearest_its_time_when_the_intervals_vary():
     """One sample in ten 15 ms late (within max_jitter): the median interval is 0.1 s and the mean 0.1015 s,
     so t0 + k dt drifted from the samples, and after 1000 s the fixes landed 15 s (148 samples) early."""
