@@ -394,19 +394,31 @@ def _track_cause(heading, step, steps, z_gps, pairs, swapped):
     return _mirrored_cause(heading, step, steps, z_gps, pairs)
 
 
-def _mirrored_cause(heading, step, steps, z_gps, pairs):
-    """A heading that turns the wrong way from some zero (a yaw angle counter-clockwise, as ROS and ENU frames
-    write it, from wherever its integration started): the fixes' course is ``c - heading`` for one ``c``, the
-    chords' circular mean with the heading negated. The words for it, with ``c`` and the remedy, or None."""
+def _mirrored(heading, step, steps, z_gps, pairs):
+    """The zero ``c`` (rad) for which ``c - heading`` fits the fixes (a heading that turns the wrong way: a yaw angle
+    counter-clockwise, as ROS and ENU frames write it, from wherever its integration started), the chords' circular
+    mean with the heading negated; None when even that does not fit."""
     ang = _chord_angles(-heading, step, steps, z_gps, pairs)[0]
     c = -float(np.arctan2(np.mean(np.sin(ang)), np.mean(np.cos(ang))))
-    if _badness(*_scores(c - heading, step, steps, z_gps, pairs)) > 1.0:
+    return None if _badness(*_scores(c - heading, step, steps, z_gps, pairs)) > 1.0 else c
+
+
+def _mirrored_cause(heading, step, steps, z_gps, pairs):
+    """The words for a heading that turns the wrong way (:func:`_mirrored`), with its zero and the remedy, or None."""
+    c = _mirrored(heading, step, steps, z_gps, pairs)
+    if c is None:
         return None
     deg = float(np.degrees(c)) % 360.0
     return (f"the heading turns the wrong way (the GPS course matches {deg:.0f} deg - heading: a yaw angle "
             f"counter-clockwise, as ROS and ENU frames write it, from a zero {deg:.0f} deg clockwise of north; the "
             f"convention is clockwise from north): give heading_deg = {deg:.0f} - yaw_deg, or heading = "
             f"{c % (2 * np.pi):.3f} - heading in radians")
+
+
+#: A yaw rate's refusal when it turns the wrong way (:func:`check_drive` with ``yaw_rate=True``).
+_YAW_SIGN = ("the yaw rate turns the wrong way (the fixes' course matches the heading it integrates to turned the "
+             "other way): give it clockwise positive, a right turn positive (its negative: ROS and ENU frames count "
+             "counter-clockwise)")
 
 
 def _ratio_cause(ratio):
@@ -430,7 +442,7 @@ def _check_truth(steps, z_gps, truth, sigma, clock=None):
                          f"{cause}{_OVERRIDE}")
 
 
-def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth=None):
+def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth=None, yaw_rate=False):
     """Refuse a drive whose units or frame contradict its own GPS fixes (see the module docstring).
 
     Parameters
@@ -453,6 +465,9 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
     truth : ndarray of shape (n_samples, 2), optional
         Reference east/north (m): the fixes must lie near it (median within
         ``max(100 m, 30 sigma)``).
+    yaw_rate : bool
+        The heading is a yaw rate's integral (:meth:`DRRun.from_arrays`'s ``yaw_rate``): a track that fits
+        the fixes turned the other way is named as the yaw rate's sign.
 
     Raises
     ------
@@ -484,7 +499,9 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
         return
     found = (f"median over {len(pairs)} moving stretches between GPS fixes: the dead-reckoned track is "
              f"{angle:.0f} degrees off the fixes' course and {ratio:.3g} times their distance")
-    if clock is not None:
+    if yaw_rate and angle > MAX_ANGLE_DEG and _mirrored(heading, step, steps, z_gps, pairs) is not None:
+        cause = _YAW_SIGN  # (a track turned the wrong way also misplaces the chords, which a clock offset is sought in)
+    elif clock is not None:
         cause = _clock_remedy(*clock) + "; else check the units, the heading's zero and sign, and the fixes' frame"
     elif angle <= MAX_ANGLE_DEG:
         cause = _ratio_cause(ratio) or "check the units of speed/odometer and time"

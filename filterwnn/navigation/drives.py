@@ -28,13 +28,16 @@ __all__ = ["DRIVE_CSV_COLUMNS", "PROGRESS_BYTES", "read_drive_csv", "sample_driv
            "MIN_ODOMETER_SPEED"]
 
 #: The columns :func:`read_drive_csv` reads: ``{column: (unit, meaning)}``. ``time``, one of
-#: ``heading``/``heading_deg`` and one of ``speed``/``odometer`` are required; GPS columns
+#: ``heading``/``heading_deg``/``yaw_rate``/``yaw_rate_deg`` and one of ``speed``/``odometer`` are required; GPS columns
 #: are empty on rows without a fix. Names are read whatever their case (``Time``, ``GPS_Lat``).
 DRIVE_CSV_COLUMNS = {
     "time": ("s", "DR sample time, strictly increasing, evenly spaced (on a row with a fix alone, its heading and "
                   "speed empty: the fix's time); seconds, or ISO 8601 date-times (2021-04-27T10:00:00.1Z)"),
     "heading": ("rad", "heading from north, clockwise (or heading_deg in degrees)"),
     "heading_deg": ("deg", "heading from north, clockwise (instead of heading)"),
+    "yaw_rate": ("rad/s", "the gyro's yaw rate, clockwise (a right turn) positive, instead of a heading: integrated by "
+                          "the reader, its start the fixes' course (or yaw_rate_deg in deg/s)"),
+    "yaw_rate_deg": ("deg/s", "the gyro's yaw rate, clockwise positive (instead of yaw_rate)"),
     "speed": ("m/s", "odometer / CAN speed (or odometer)"),
     "odometer": ("m", "cumulative odometer distance (instead of speed); each increment is the mean speed over its "
                       "interval, and each sample's speed is read between the two beside it"),
@@ -194,6 +197,7 @@ def _located(path, exc, lines):
         return f"{m.group(0)} (line {lines[k]})" if k < len(lines) else m.group(0)
 
     msg = str(exc).replace("pass np.deg2rad(heading)", "name the column heading_deg, or write it in radians")
+    msg = msg.replace("pass np.deg2rad(yaw_rate)", "name the column yaw_rate_deg, or write it in rad/s")
     return ValueError(f"{path}: " + re.sub(r"\b(t|heading|speed|distance)\[(\d+)\]", line_of, msg))
 
 
@@ -269,8 +273,10 @@ def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2, checks=True,
     else:
         every, every_lines = column, lines
     t = every_t if dr is None else every_t[dr]
-    heading = np.deg2rad(column(hname)) if hname == "heading_deg" else column(hname)
+    heading = np.deg2rad(column(hname)) if hname.endswith("_deg") else column(hname)
     kw = {"distance" if dname == "odometer" else "speed": column(dname)}
+    if hname.startswith("yaw_rate"):  # integrated by the arrays' reader, started at the fixes' course
+        kw["yaw_rate"], heading = heading, None
     kw.update(_csv_fixes(path, header, col, every, every_t, origin, every_lines))
     _csv_truth(path, header, col, column, origin, kw)
     try:
@@ -387,7 +393,7 @@ def _csv_layout(path, header, lines):
         return have[0]
 
     need("time")
-    hname = need("heading", "heading_deg")
+    hname = need("heading", "heading_deg", "yaw_rate", "yaw_rate_deg")
     dname = need("speed", "odometer")
     if len(lines) < 3:
         raise ValueError(f"{path}: {len(lines)} data row{'s' * (len(lines) != 1)}; a drive needs at least 3 "

@@ -267,10 +267,10 @@ class DRRun(NamedTuple):
         return self.x_true is not None
 
     @classmethod
-    def from_arrays(cls, t, heading, *, distance=None, speed=None, gps_t=None, east=None, north=None,
+    def from_arrays(cls, t, heading=None, *, distance=None, speed=None, gps_t=None, east=None, north=None,
                     lat=None, lon=None, gps_sigma=None, truth=None, origin=None, name="drive",
                     max_jitter=0.2, checks=True, fill_gaps=0.0, gps_latency=0.0, intervals="auto",
-                    odometer_latency=0.0, heading_offset=0.0, speed_scale=1.0):
+                    odometer_latency=0.0, heading_offset=0.0, speed_scale=1.0, yaw_rate=None):
         """One's own drive from arrays: validated, on the DR sample grid, in local metres.
 
         Parameters
@@ -282,7 +282,13 @@ class DRRun(NamedTuple):
             a short interval: their lag-1 autocorrelation below ``GRID_CORRELATION``).
         heading : array-like of shape (n_samples,)
             Gyro (or fused) heading in **radians**, from north, clockwise positive (values beyond
-            ``+-2 pi`` are taken for degrees and refused).
+            ``+-2 pi`` are taken for degrees and refused). Give this or ``yaw_rate``.
+        yaw_rate : array-like of shape (n_samples,), optional
+            The gyro's yaw rate (rad/s, clockwise positive: a right turn), in place of ``heading``: integrated
+            by the trapezoid rule from the first sample, and started at the heading the fixes' course gives
+            (the line through the moving stretches' angles that ``heading_offset``'s check fits, at least
+            :data:`YAW_START_CHORDS` of them), with a warning that names it and its standard error. Values over
+            :data:`MAX_YAW_RATE` are refused as degrees per second.
         distance : array-like of shape (n_samples,), optional
             Cumulative odometer reading (m), non-decreasing. Give this or ``speed``. Each increment is the
             mean speed over its interval, the speed at the interval's middle; each sample's speed is the two
@@ -383,6 +389,15 @@ class DRRun(NamedTuple):
             both or neither of ``distance``/``speed``, both or neither of
             ``east``/``north`` and ``lat``/``lon``, a failed plausibility check (with its likely cause).
         """
+        if (heading is None) == (yaw_rate is None):
+            raise ValueError("give exactly one of heading (rad) and yaw_rate (rad/s), got "
+                             + ("both" if heading is not None else "neither"))
+        integrated = yaw_rate is not None
+        if integrated:
+            if heading_offset:
+                raise ValueError("heading_offset has no meaning with a yaw rate: the heading it integrates to starts "
+                                 "where the fixes' course says")
+            heading = _integrate_yaw(_finite_1d(t, "t"), yaw_rate)
         if fill_gaps:
             t, heading, distance, speed, truth = _fill_gaps(t, heading, distance, speed, truth,
                                                             check_positive(fill_gaps, "fill_gaps"), max_jitter)
@@ -410,7 +425,7 @@ class DRRun(NamedTuple):
             speed = None if speed is None else _finite_1d(speed, "speed") / scale
             distance = None if distance is None else _finite_1d(distance, "distance") / scale
         return cls(*_drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps_sigma,
-                                  truth, origin, name, max_jitter, checks, intervals, np.deg2rad(off)))
+                                  truth, origin, name, max_jitter, checks, intervals, np.deg2rad(off), integrated))
 
 
 def _fill_gaps(t, heading, distance, speed, truth, longest, max_jitter):
@@ -441,9 +456,10 @@ def _fill_gaps(t, heading, distance, speed, truth, longest, max_jitter):
 
 
 def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps_sigma, truth, origin, name,
-                  max_jitter, checks, intervals="auto", heading_offset=0.0):
+                  max_jitter, checks, intervals="auto", heading_offset=0.0, integrated=False):
     """The :class:`DRRun` fields of one's own drive (the work of :meth:`DRRun.from_arrays`, whose
-    arguments these are): checked arrays, the GPS fixes on the sample grid, ``x0`` and the scenario."""
+    arguments these are): checked arrays, the GPS fixes on the sample grid, ``x0`` and the scenario.
+    ``integrated``: the heading is a yaw rate's integral from 0, started here at the fixes' course."""
     t = _finite_1d(t, "t")
     n = len(t)
     dts, dt, stamps = _sample_grid(t, max_jitter)
@@ -461,12 +477,15 @@ def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps
     if speed is not None:
         _warn_speed_cutoff(speed, dt)
         heading, v0 = _reversing(t, heading, signed, dts), float(signed[0])
-    z_dr = np.stack([wrap_angle(heading[1:]), step], axis=1)
     steps = np.zeros(0, dtype=int)
     z_gps = np.zeros((0, 2))
     sig = swapped = offset = None
     if gps_t is not None:
         steps, z_gps, sig, swapped, offset = _gps_fixes(gps_t, east, north, lat, lon, gps_sigma, origin, t, dt)
+    if integrated:
+        heading = _yaw_start(dt, heading, step, steps, z_gps, None if sig is None or not len(sig) else
+                             float(np.median(sig)))
+    z_dr = np.stack([wrap_angle(heading[1:]), step], axis=1)
     x_true = None
     if truth is not None:
         x_true, p0 = _truth_states(truth, t)
@@ -478,7 +497,7 @@ def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps
         from ._plausibility import check_drive
 
         check_drive(dt, heading, step, steps, z_gps, None if sig is None or not len(sig) else float(np.median(sig)),
-                    swapped, None if truth is None else np.asarray(truth, dtype=float))
+                    swapped, None if truth is None else np.asarray(truth, dtype=float), yaw_rate=integrated)
     x0 = np.array([p0[0], v0 * np.sin(heading[0]), 0.0, p0[1], v0 * np.cos(heading[0]), 0.0])
     sc = _own_drive_scenario(name, n, dt, v0, heading[0], steps, sig)
     R_true = np.tile([np.deg2rad(1.0) ** 2, 0.02**2], (n - 1, 1))
@@ -488,6 +507,43 @@ def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps
 #: How far past ``2 pi`` a heading in radians may read: a heading just under ``2 pi`` written
 #: with a few decimals rounds up past it (6.2832 to four decimals, 6.3 to one: 0.017 over).
 HEADING_ROUNDING = 0.02
+
+
+#: A yaw rate (rad/s) past which the column is taken for degrees per second (a car turns at most about 1 rad/s).
+MAX_YAW_RATE = 3.0
+#: The moving stretches between fixes a yaw rate's start heading needs (the heading-offset check's least).
+YAW_START_CHORDS = 5
+
+
+def _integrate_yaw(t, yaw_rate):
+    """The heading (rad, wrapped) a yaw rate (rad/s, clockwise positive) integrates to from 0, by the trapezoid
+    rule over the samples' own intervals; refused when it looks like degrees per second."""
+    rate = _finite_1d(yaw_rate, "yaw_rate", len(t))
+    big = float(np.max(np.abs(rate)))
+    if big > MAX_YAW_RATE:
+        raise ValueError(f"yaw_rate must be in rad/s; max |yaw_rate| = {big:g} is past {MAX_YAW_RATE:g} rad/s, faster "
+                         "than a car turns, and looks like degrees per second: pass np.deg2rad(yaw_rate)")
+    return wrap_angle(np.concatenate([[0.0], np.cumsum(0.5 * (rate[1:] + rate[:-1]) * np.diff(t))]))
+
+
+def _yaw_start(dt, heading, step, steps, z_gps, sigma):
+    """The integrated heading started at the fixes' course: less the offset the moving stretches between fixes
+    give at the first of them (:func:`~filterwnn.navigation._plausibility.heading_offset`'s line), with a warning
+    naming it; ValueError with fewer than :data:`YAW_START_CHORDS` stretches."""
+    from ._plausibility import _chord_pairs, heading_offset
+
+    n = len(_chord_pairs(steps, z_gps, sigma, step)) if len(steps) else 0
+    fit = heading_offset(dt, heading, step, steps, z_gps, sigma) if n >= YAW_START_CHORDS else None
+    if fit is None:
+        raise ValueError(f"a yaw rate gives the heading but for its start, which the fixes' course gives: the drive has "
+                         f"{n} moving stretch(es) between fixes, fewer than {YAW_START_CHORDS}; give the heading "
+                         "instead")
+    offset, se, rate, resid = fit
+    start = (-offset + 180.0) % 360.0 - 180.0
+    warnings.warn(f"the heading is the yaw rate integrated from {start % 360.0:.1f} +- {se:.1g} deg at the start, the "
+                  f"fixes' course over {n} moving stretches (a line through their angles, drifting {rate:+.2g} deg/s "
+                  "from there: a gyro's rate bias, which the GPS/DR filters estimate)", RuntimeWarning, stacklevel=4)
+    return wrap_angle(heading - np.deg2rad(offset))
 
 
 def _heading_radians(heading, n):

@@ -711,6 +711,41 @@ def test_a_log_with_the_heading_and_the_speed_on_rows_of_their_own_reads_the_spa
         read_drive_csv(_write(tmp_path / "empty.csv", empty, columns=cols), checks=False)
 
 
+def test_a_yaw_rate_is_integrated_and_started_at_the_fixes_course(tmp_path):
+    """A log with the gyro's yaw rate in place of a heading (``yaw_rate_deg``, clockwise positive): the reader
+    integrates it and starts it at the heading the fixes' course gives, with a warning naming it (the drive turns
+    steadily from 34.4 deg at 0.02 rad/s: the heading read back within 0.5 deg). A yaw rate counter-clockwise
+    positive (ROS, ENU) is refused naming its sign; a yaw rate in deg/s given as rad/s, both a heading and a yaw rate, a heading offset with a yaw rate, and a drive with too few moving
+    stretches between fixes to start it are refused, each saying so."""
+    c = _drive()
+    cols = ["time", "yaw_rate_deg", "speed", "gps_lat", "gps_lon", "gps_sigma", "true_lat", "true_lon"]
+    rate = {**c, "yaw_rate_deg": np.full(len(c["time"]), np.degrees(0.02))}
+    with pytest.warns(RuntimeWarning, match=r"the heading is the yaw rate integrated from 34.\d \+- \d deg at the "
+                                            r"start, the fixes' course over \d+ moving stretches"):
+        run = read_drive_csv(_write(tmp_path / "yaw.csv", rate, columns=cols))
+    want = read_drive_csv(_write(tmp_path / "heading.csv", c))
+    d = np.degrees(np.abs((run.z_dr[:, 0] - want.z_dr[:, 0] + np.pi) % (2 * np.pi) - np.pi))
+    assert d.max() < 0.5, d.max()
+    np.testing.assert_allclose(run.z_dr[:, 1], want.z_dr[:, 1])
+    t, h, v = c["time"], c["heading"], c["speed"]
+    with pytest.raises(ValueError, match=r"yaw_rate must be in rad/s; max \|yaw_rate\| = 65.6 is past 3 rad/s"):
+        DRRun.from_arrays(t, yaw_rate=np.full(len(t), 65.6), speed=v)  # 65.6 deg/s, a sharp turn
+    with pytest.raises(ValueError, match=r"give exactly one of heading \(rad\) and yaw_rate \(rad/s\), got both"):
+        DRRun.from_arrays(t, h, yaw_rate=np.zeros(len(t)), speed=v)
+    with pytest.raises(ValueError, match=r"heading_offset has no meaning with a yaw rate"):
+        DRRun.from_arrays(t, yaw_rate=np.zeros(len(t)), speed=v, heading_offset=5.0)
+    with pytest.raises(ValueError, match=r"a yaw rate gives the heading but for its start, which the fixes' course "
+                                         r"gives: the drive has 0 moving stretch\(es\) between fixes"):
+        DRRun.from_arrays(t, yaw_rate=np.zeros(len(t)), speed=v)
+    ccw = {**rate, "yaw_rate_deg": -rate["yaw_rate_deg"]}  # counter-clockwise positive, as ROS and ENU count it
+    with pytest.warns(RuntimeWarning), pytest.raises(ValueError, match=r"the yaw rate turns the wrong way .* give it "
+                                                                       r"clockwise positive, a right turn positive"):
+        read_drive_csv(_write(tmp_path / "ccw.csv", ccw, columns=cols))
+    with pytest.raises(ValueError, match=r"name the column yaw_rate_deg, or write it in rad/s"):
+        read_drive_csv(_write(tmp_path / "deg.csv", {**c, "yaw_rate": np.full(len(t), 5.0)},
+                              columns=["time", "yaw_rate"] + cols[2:]))
+
+
 def test_each_fix_lands_on_the_sample_nearest_its_time_when_the_intervals_vary():
     """One sample in ten 15 ms late (within max_jitter): the median interval is 0.1 s and the mean 0.1015 s,
     so t0 + k dt drifted from the samples, and after 1000 s the fixes landed 15 s (148 samples) early."""
