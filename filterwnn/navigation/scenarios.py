@@ -287,8 +287,8 @@ class DRRun(NamedTuple):
             The gyro's yaw rate (rad/s, clockwise positive: a right turn), in place of ``heading``: integrated
             by the trapezoid rule from the first sample, and started at the heading the fixes' course gives
             (the line through the moving stretches' angles that ``heading_offset``'s check fits, at least
-            :data:`YAW_START_CHORDS` of them), with a warning that names it and its standard error. Values over
-            :data:`MAX_YAW_RATE` are refused as degrees per second.
+            ``YAW_START_CHORDS`` of them), with a warning that names it and its standard error. Values over
+            ``MAX_YAW_RATE`` are refused as degrees per second.
         distance : array-like of shape (n_samples,), optional
             Cumulative odometer reading (m), non-decreasing. Give this or ``speed``. Each increment is the
             mean speed over its interval, the speed at the interval's middle; each sample's speed is the two
@@ -529,7 +529,7 @@ def _integrate_yaw(t, yaw_rate):
 def _yaw_start(dt, heading, step, steps, z_gps, sigma):
     """The integrated heading started at the fixes' course: less the offset the moving stretches between fixes
     give at the first of them (:func:`~filterwnn.navigation._plausibility.heading_offset`'s line), with a warning
-    naming it; ValueError with fewer than :data:`YAW_START_CHORDS` stretches."""
+    naming it; ValueError with fewer than ``YAW_START_CHORDS`` stretches."""
     from ._plausibility import _chord_pairs, heading_offset
 
     n = len(_chord_pairs(steps, z_gps, sigma, step)) if len(steps) else 0
