@@ -89,6 +89,7 @@ _OVERRIDE = "; if the drive really is so, pass checks=False (command line: --no-
 #: Length-ratio mistakes: (factor the ratio shows, the likely cause).
 _SCALES = ((3.6, "speed looks like km/h (divide by 3.6 for m/s)"),
            (1 / 0.44704, "speed looks like mph (multiply by 0.44704 for m/s)"),
+           (1 / 0.514444, "speed looks like knots (multiply by 0.514444 for m/s)"),
            (1 / 1000.0, "the odometer looks like kilometres (multiply by 1000 for m)"),
            (1000.0, "time looks like milliseconds (divide by 1000 for s)"))
 
@@ -422,27 +423,34 @@ _YAW_SIGN = ("the yaw rate turns the wrong way (the fixes' course matches the he
 
 
 def _ratio_cause(ratio):
-    for factor, cause in _SCALES:
-        if abs(np.log(ratio / factor)) < np.log(1.25):
-            return cause
-    return None
+    """The unit mistake of :data:`_SCALES` nearest the track's length ratio (within a factor 1.25), or None: mph
+    (2.24) and knots (1.94) lie within that of each other, so the nearer names it."""
+    off, cause = min((abs(np.log(ratio / factor)), cause) for factor, cause in _SCALES)
+    return cause if off < np.log(1.25) else None
 
 
-def _check_truth(steps, z_gps, truth, sigma, clock=None):
-    """Refuse fixes that lie far from the truth at their samples (another frame, lat/lon swapped; a clock
-    offset, when ``clock`` has found one)."""
+#: The refusal's cause for fixes whose latitude and longitude look like radians (:func:`check_drive`'s ``radians``).
+_RADIANS = ("the fixes' lat and lon look like radians (every one within pi/2 and pi; read as degrees they lie tens of "
+            "times closer together than the car drove): give them in degrees (np.degrees)")
+
+
+def _check_truth(steps, z_gps, truth, sigma, clock=None, radians=False):
+    """Refuse fixes that lie far from the truth at their samples (another frame, lat/lon swapped, in radians; a
+    clock offset, when ``clock`` has found one)."""
     if truth is None or not len(steps):
         return
     d = float(np.median(np.hypot(*(z_gps - truth[steps + 1]).T)))
     if d > max(100.0, 30.0 * sigma):
-        cause = ("the fixes and the truth must share one frame and origin (lat and lon swapped in one of them?)"
+        cause = (_RADIANS if radians else
+                 "the fixes and the truth must share one frame and origin (lat and lon swapped in one of them?)"
                  if clock is None else _clock_remedy(*clock) + "; else the fixes and the truth must share one "
                  "frame and origin")
         raise ValueError(f"plausibility: the GPS fixes lie a median {d:.4g} m from the truth at their samples: "
                          f"{cause}{_OVERRIDE}")
 
 
-def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth=None, yaw_rate=False):
+def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth=None, yaw_rate=False,
+                radians=False):
     """Refuse a drive whose units or frame contradict its own GPS fixes (see the module docstring).
 
     Parameters
@@ -468,6 +476,9 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
     yaw_rate : bool
         The heading is a yaw rate's integral (:meth:`DRRun.from_arrays`'s ``yaw_rate``): a track that fits
         the fixes turned the other way is named as the yaw rate's sign.
+    radians : bool
+        The fixes came as latitude/longitude all within ``pi/2`` and ``pi``: fixes far from the truth, or a
+        track many times their length, are named as lat/lon in radians.
 
     Raises
     ------
@@ -481,7 +492,7 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
                          f"reckoning sensors sample at 1-100 Hz): {cause}{_OVERRIDE}")
     pairs = _chord_pairs(steps, z_gps, sigma, step)
     clock = _clock_told(dt, heading, step, steps, z_gps, pairs)
-    _check_truth(steps, z_gps, truth, 3.0 if sigma is None else float(sigma), clock)
+    _check_truth(steps, z_gps, truth, 3.0 if sigma is None else float(sigma), clock, radians)
     if len(pairs) < _MIN_CHORDS:
         return
     ang, ratios, lengths = _chord_angles(heading, step, steps, z_gps, pairs)  # once, for every test below
@@ -504,7 +515,8 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
     elif clock is not None:
         cause = _clock_remedy(*clock) + "; else check the units, the heading's zero and sign, and the fixes' frame"
     elif angle <= MAX_ANGLE_DEG:
-        cause = _ratio_cause(ratio) or "check the units of speed/odometer and time"
+        cause = ((_RADIANS if radians and ratio > 10.0 else None) or _ratio_cause(ratio)
+                 or "check the units of speed/odometer and time")
     else:
         cause = (_track_cause(heading, step, steps, z_gps, pairs, swapped)
                  or ((_offset_remedy(*fit[:3]) + "; else ") if told is not None and _fits(0.0, ratio) else "")

@@ -497,7 +497,9 @@ def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps
         from ._plausibility import check_drive
 
         check_drive(dt, heading, step, steps, z_gps, None if sig is None or not len(sig) else float(np.median(sig)),
-                    swapped, None if truth is None else np.asarray(truth, dtype=float), yaw_rate=integrated)
+                    swapped, None if truth is None else np.asarray(truth, dtype=float), yaw_rate=integrated,
+                    radians=lat is not None and bool(np.all(np.abs(np.asarray(lat, dtype=float)) <= np.pi / 2)
+                                                     and np.all(np.abs(np.asarray(lon, dtype=float)) <= np.pi)))
     x0 = np.array([p0[0], v0 * np.sin(heading[0]), 0.0, p0[1], v0 * np.cos(heading[0]), 0.0])
     sc = _own_drive_scenario(name, n, dt, v0, heading[0], steps, sig)
     R_true = np.tile([np.deg2rad(1.0) ** 2, 0.02**2], (n - 1, 1))
