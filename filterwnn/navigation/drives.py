@@ -267,6 +267,9 @@ def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2, checks=True,
         every_lines, lines = lines, lines[dr]
         if fill is not None:  # the heading and the speed on rows of their own: the other read at these rows' times
             cols[fill] = _at_times(every_t[dr], every_t, rows[fill], fill)
+        for h in _TRUTH:  # a reference with cells off the samples' rows (its own rows): read at the samples' times
+            if h in rows and not np.isfinite(cols[h]).all() and np.isfinite(rows[h]).sum() >= 2:
+                cols[h] = _at_times(every_t[dr], every_t, rows[h], h)
 
         def every(h, allow_empty=False):
             return _csv_column(path, rows, every_lines, h, allow_empty)
@@ -297,8 +300,9 @@ def _dr_rows(path, cols, lines, hname, dname):
     (:meth:`DRRun.from_arrays` places it on the DR sample nearest it). The DR samples are the rows with a
     heading and a speed; where the heading and the speed each come on rows of their own, they are the rows of the
     one with fewer, the other column read at their times (:func:`_at_times`) and returned as the second item. In
-    such a log a row with no heading, no speed and no fix is refused, naming its line; in a log whose DR rows
-    hold both, so is a row with one of them."""
+    such a log a row with a truth alone is a reference's (read at the samples' times); a row with no heading, no
+    speed, no fix and no truth is refused, naming its line; in a log whose DR rows hold both, so is a row with one
+    of them."""
     have_h, have_d = np.isfinite(cols[hname]), np.isfinite(cols[dname])
     dr = have_h & have_d
     if dr.all():
@@ -311,17 +315,18 @@ def _dr_rows(path, cols, lines, hname, dname):
     apart = (have_h & ~have_d).any() and (have_d & ~have_h).any()
     if not alone.any() and not apart:
         return None, None
+    ref = _truth_alone(cols, have_h | have_d | fix)  # a reference on rows of its own, read at the samples' times
     if apart:  # each sensor on rows of its own: the samples are the rows of the one with fewer
-        bad = ~have_h & ~have_d & ~fix
+        bad = ~have_h & ~have_d & ~fix & ~ref
         if bad.any():
             r = int(np.argmax(bad))
             raise ValueError(f"{path}: data row {r + 1} (line {lines[r]}) has no {hname!r}, no {dname!r} and no fix: "
                              f"in a log with a row per sensor message (the {hname!r} and the {dname!r} each on rows of "
-                             "their own), every row is one of them or a fix")
+                             "their own), every row is one of them, a fix or a truth")
         if have_h.sum() <= have_d.sum():
             return have_h, dname
         return have_d, hname
-    bad = ~dr & ~alone
+    bad = ~dr & ~alone & ~ref
     if bad.any():
         r = int(np.argmax(bad))
         what = (f"a {hname!r} but no {dname!r}" if have_h[r] else f"a {dname!r} but no {hname!r}" if have_d[r]
@@ -330,6 +335,18 @@ def _dr_rows(path, cols, lines, hname, dname):
                          f"message (rows with a fix alone, as data row {int(np.argmax(alone)) + 1}), every other row is "
                          "a DR sample with both")
     return dr, None
+
+
+_TRUTH = ("true_east", "true_north", "true_lat", "true_lon")
+
+
+def _truth_alone(cols, other):
+    """The rows with a truth cell and nothing ``other`` marks (a reference, an INS's, logged on rows of its own)."""
+    have = np.zeros(len(other), dtype=bool)
+    for h in _TRUTH:
+        if h in cols:
+            have |= np.isfinite(cols[h])
+    return have & ~other
 
 
 def _at_times(t, every_t, values, name):

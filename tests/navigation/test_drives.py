@@ -754,6 +754,37 @@ def test_a_yaw_rate_is_integrated_and_started_at_the_fixes_course(tmp_path):
                               columns=["time", "yaw_rate"] + cols[2:]))
 
 
+def test_a_truth_on_rows_of_its_own_in_a_log_with_a_row_per_message_is_read_at_the_samples_times(tmp_path):
+    """A reference (an INS's solution) logged on rows of its own beside a log with a row per message: each sample
+    takes it interpolated to its time; before, its rows were refused as rows with no heading, no speed and no fix.
+    The drive with its truth on its own rows 50 ms after each heading reads as with the truth on the heading's rows
+    (to 1 mm: the track is nearly straight over 50 ms)."""
+    c = _drive(n=301)
+    t = c["time"]
+    keys = list(c)
+    on_rows, apart = {k: [] for k in keys}, {k: [] for k in keys}
+
+    def add(log, time, **cells):
+        for key in keys:
+            log[key].append(time if key == "time" else cells.get(key, np.nan))
+
+    for k in range(len(t)):
+        truth = {key: c[key][k] for key in ("true_lat", "true_lon")}
+        add(on_rows, t[k], heading=c["heading"][k], **truth)
+        add(apart, t[k], heading=c["heading"][k])
+        for log in (on_rows, apart):
+            add(log, t[k] + 0.004, speed=10.0)
+            if k % 10 == 0:
+                add(log, t[k] + 0.03, **{key: c[key][k] for key in ("gps_lat", "gps_lon", "gps_sigma")})
+        later = k + 1 if k + 1 < len(t) else k  # the reference 50 ms after the heading: halfway to the next
+        add(apart, t[k] + 0.05, true_lat=0.5 * (c["true_lat"][k] + c["true_lat"][later]),
+            true_lon=0.5 * (c["true_lon"][k] + c["true_lon"][later]))
+    want = read_drive_csv(_write(tmp_path / "on.csv", {k: np.array(v) for k, v in on_rows.items()}), checks=False)
+    run = read_drive_csv(_write(tmp_path / "apart.csv", {k: np.array(v) for k, v in apart.items()}), checks=False)
+    assert run.has_truth and run.x_true.shape == want.x_true.shape
+    np.testing.assert_allclose(run.x_true[:-1, [0, 3]], want.x_true[:-1, [0, 3]], rtol=0, atol=1e-3)
+
+
 def test_each_fix_lands_on_the_sample_nearest_its_time_when_the_intervals_vary():
     """One sample in ten 15 ms late (within max_jitter): the median interval is 0.1 s and the mean 0.1015 s,
     so t0 + k dt drifted from the samples, and after 1000 s the fixes landed 15 s (148 samples) early."""
