@@ -254,6 +254,15 @@ def check_positive(value, name, *, strict=True):
     return value
 
 
+def check_finite(value, name, unit, note=""):
+    """Return ``value`` as a float of either sign, requiring it finite; the message names its ``unit`` and what
+    its sign means (``note``, e.g. ``" (negative: the speed is early)"``)."""
+    value_f = float(as_real(value, name, f"a number of {unit}"))
+    if not np.isfinite(value_f):
+        raise ValueError(f"{name} must be a finite number of {unit}{note}, got {value!r}")
+    return value_f
+
+
 def check_choice(value, name, choices):
     """Require ``value`` to be one of ``choices``; the message lists the valid names."""
     if value not in choices:

@@ -213,7 +213,7 @@ from filterpy.kalman import ExtendedKalmanFilter
 from .._linalg import insert_state, repair_pd
 from .._warnings import folded_warnings
 from ..metrics import integrated_autocorrelation
-from .._validation import as_real, as_state, check_choice, check_covariance, check_positive, check_positive_int, check_scale
+from .._validation import as_state, check_choice, check_covariance, check_finite, check_positive, check_positive_int, check_scale
 from ._plausibility import MAX_DRIFT_DEG_S
 from .dead_reckoning import GPSDRModel, _rate_walk_instability, dr_residual, gps_H, gps_hx, wrap_angle
 from ..kalman.presets import make_points
@@ -614,14 +614,6 @@ def gps_scale_loglik(y, P, R, scale):
     y = np.asarray(y, dtype=float)
     quad = np.einsum("ni,ni->", y, np.linalg.solve(S, y[..., None])[..., 0])
     return float(-0.5 * (np.linalg.slogdet(S)[1].sum() + quad))
-
-
-def _offset(gps_offset):
-    """A fix's time less its sample's, checked: a finite number of seconds."""
-    d = float(as_real(gps_offset, "gps_offset", "a number of seconds"))
-    if not np.isfinite(d):
-        raise ValueError(f"gps_offset must be a finite number of seconds (the fix's time less the sample's), got {d!r}")
-    return d
 
 
 class GPSDRFilter:
@@ -1112,7 +1104,8 @@ class GPSDRFilter:
         if stale or thinned:
             z_gps = gps_sigma = None
         if z_gps is not None and gps_offset:
-            z_gps = np.asarray(z_gps, dtype=float) - _offset(gps_offset) * self.kf.x[[1, 4]]
+            d = check_finite(gps_offset, "gps_offset", "seconds", " (the fix's time less the sample's)")
+            z_gps = np.asarray(z_gps, dtype=float) - d * self.kf.x[[1, 4]]
         adapt = self.gps_window > 0 and z_gps is not None and gps_sigma is None
         if adapt:
             # the fix's innovation and its predicted-state part, before the update

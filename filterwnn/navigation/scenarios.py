@@ -41,7 +41,7 @@ from typing import NamedTuple, Optional
 
 import numpy as np
 
-from .._validation import check_positive, check_rng
+from .._validation import check_finite, check_positive, check_rng
 from .dead_reckoning import dr_fx, wrap_angle
 
 __all__ = [
@@ -401,25 +401,17 @@ class DRRun(NamedTuple):
         if fill_gaps:
             t, heading, distance, speed, truth = _fill_gaps(t, heading, distance, speed, truth,
                                                             check_positive(fill_gaps, "fill_gaps"), max_jitter)
-        lag = float(odometer_latency)
-        if not np.isfinite(lag):
-            raise ValueError(f"odometer_latency must be a finite number of seconds (negative: the speed is early), "
-                             f"got {odometer_latency!r}")
+        lag = check_finite(odometer_latency, "odometer_latency", "seconds", " (negative: the speed is early)")
         if lag:  # the odometer's value at t is the one logged at t + lag
             t_read = _finite_1d(t, "t") + lag
             if speed is not None:
                 speed = np.interp(t_read, t, _finite_1d(speed, "speed", len(t_read)))
             if distance is not None:
                 distance = np.interp(t_read, t, _finite_1d(distance, "distance", len(t_read)))
-        latency = float(gps_latency)
-        if not np.isfinite(latency):
-            raise ValueError(f"gps_latency must be a finite number of seconds (negative: the fixes are stamped "
-                             f"early), got {gps_latency!r}")
+        latency = check_finite(gps_latency, "gps_latency", "seconds", " (negative: the fixes are stamped early)")
         if gps_t is not None and latency:
             gps_t = np.asarray(gps_t, dtype=float) - latency
-        off = float(heading_offset)
-        if not np.isfinite(off):
-            raise ValueError(f"heading_offset must be a finite number of degrees, got {heading_offset!r}")
+        off = check_finite(heading_offset, "heading_offset", "degrees")
         scale = check_positive(speed_scale, "speed_scale")
         if scale != 1.0:
             speed = None if speed is None else _finite_1d(speed, "speed") / scale
