@@ -274,16 +274,18 @@ def _warn_scale(ratio, n):
         RuntimeWarning, stacklevel=5)
 
 
-def heading_offset(dt, heading, step, steps, z_gps, sigma=None):
+def heading_offset(dt, heading, step, steps, z_gps, sigma=None, pairs=None):
     """How far the heading's zero looks off the GPS fixes' course at the start of a drive: ``(offset,
     standard error, rate, residual)`` (deg, deg, deg/s, deg), or None with fewer than three chords.
 
     The signed angle from each GPS chord to the dead-reckoned one (see the module docstring), as a
     straight line over time: its value at the first chord is the heading's offset (positive: the
     heading reads clockwise of the course), its slope a gyro's drift, the median absolute residual
-    the chords' scatter about it. The arguments are :func:`check_drive`'s.
+    the chords' scatter about it. The arguments are :func:`check_drive`'s (``pairs``: the chords, when the
+    caller has them).
     """
-    pairs = _chord_pairs(steps, z_gps, sigma, step)
+    if pairs is None:
+        pairs = _chord_pairs(steps, z_gps, sigma, step)
     if len(pairs) < _MIN_CHORDS:
         return None
     return _offset_fit(_chord_angles(heading, step, steps, z_gps, pairs)[0], steps, pairs, dt)[:4]

@@ -526,8 +526,9 @@ def _yaw_start(dt, heading, step, steps, z_gps, sigma):
     naming it; ValueError with fewer than ``YAW_START_CHORDS`` stretches."""
     from ._plausibility import _chord_pairs, heading_offset
 
-    n = len(_chord_pairs(steps, z_gps, sigma, step)) if len(steps) else 0
-    fit = heading_offset(dt, heading, step, steps, z_gps, sigma) if n >= YAW_START_CHORDS else None
+    pairs = _chord_pairs(steps, z_gps, sigma, step) if len(steps) else []
+    n = len(pairs)
+    fit = heading_offset(dt, heading, step, steps, z_gps, sigma, pairs) if n >= YAW_START_CHORDS else None
     if fit is None:
         raise ValueError(f"a yaw rate gives the heading but for its start, which the fixes' course gives: the drive has "
                          f"{n} moving stretch(es) between fixes, fewer than {YAW_START_CHORDS}; give the heading "
