@@ -166,8 +166,7 @@ def _score_filter(out, name, run, windows, use_gps_sigma, settings):
                                settings["gps_window"], settings["slow_speed"], **settings["filter_kw"])
         sig = run.gps_sigma_list() if use_gps_sigma else [None] * len(run.t)
         with folded_warnings(name):  # each warning names its filter, repeats folded
-            ends, begins = _outage_ends(f, name, run, k0s, k1s, out["starts"], run.gps_list(), sig,
-                                        run.gps_offset_list())
+            ends, begins = _outage_ends(f, name, run, k0s, k1s, out["starts"], run.gps_list(), sig)
         out["start_err"][name] = np.hypot(*(begins - _start_refs(run, k0s, track)).T)
         out["integrity"][name] = _integrity(f, run)
     out["end_xy"][name] = ends
@@ -268,12 +267,13 @@ def _integrity(f, run):
             "odometer_latency_estimate": f.odometer_latency_estimate, "odometer_latency_z": f.odometer_latency_z}
 
 
-def _outage_ends(f, name, run, k0s, k1s, starts, gps, sig, offsets):
+def _outage_ends(f, name, run, k0s, k1s, starts, gps, sig):
     """The east/north of filter ``f`` at the start (before step ``k0``) and the end of each
     outage: one pass with GPS over the whole drive, a snapshot at each outage start, then
     each outage alone (DR only)."""
     ends, begins = np.empty((len(k0s), 2)), np.empty((len(k0s), 2))
     snaps = {}
+    offsets = run.gps_offset_list()
     for k in range(len(run.t)):
         if k in k0s:
             snaps[k] = copy.deepcopy(f)
