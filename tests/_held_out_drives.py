@@ -221,11 +221,15 @@ def columns(name, seed=0, **kw):
     return HELD_OUT[name](np.random.default_rng(np.random.SeedSequence([23, 100 + i, seed])), **kw)
 
 
-def write_csv(path, cols, odometer=False):
+def write_csv(path, cols, odometer=False, accuracy="gps_sigma"):
     """Write the columns ``cols`` as a drive CSV (empty cells where a row has no fix). ``odometer=True``: a
     cumulative odometer column in place of the speed, the trapezoid sum of the speed samples (the odometer of a
-    logger that integrates its speed)."""
-    names = list(COLUMNS)
+    logger that integrates its speed). ``accuracy``: the name under which ``cols["gps_sigma"]`` is written
+    (``"gps_hdop"`` for an HDOP), None for none."""
+    names = [c for c in COLUMNS if c != "gps_sigma" or accuracy]
+    if accuracy and accuracy != "gps_sigma":
+        cols = {**cols, accuracy: cols["gps_sigma"]}
+        names[names.index("gps_sigma")] = accuracy
     if odometer:
         t, v = cols["time"], cols["speed"]
         cols = {**cols, "odometer": np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(t))])}
@@ -233,6 +237,6 @@ def write_csv(path, cols, odometer=False):
     with open(path, "w") as fh:
         fh.write(",".join(names) + "\n")
         for k in range(len(cols["time"])):
-            fh.write(",".join("" if np.isnan(cols[c][k]) else f"{cols[c][k]:.6g}" if c in ("time", "gps_sigma")
+            fh.write(",".join("" if np.isnan(cols[c][k]) else f"{cols[c][k]:.6g}" if c in ("time", accuracy)
                               else f"{cols[c][k]:.4f}" for c in names) + "\n")
     return str(path)

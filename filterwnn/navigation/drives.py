@@ -20,7 +20,7 @@ import warnings
 
 import numpy as np
 
-from .._validation import check_rng
+from .._validation import check_positive, check_rng
 from .dead_reckoning import wrap_angle
 from .scenarios import DRRun, Scenario, earth_radii, latlon_to_en, _null_fixes
 
@@ -45,8 +45,10 @@ DRIVE_CSV_COLUMNS = {
     "gps_north": ("m", "GPS fix north"),
     "gps_lat": ("deg", "GPS fix latitude, WGS84 (with gps_lon; instead of gps_east/gps_north)"),
     "gps_lon": ("deg", "GPS fix longitude"),
-    "gps_sigma": ("m", "optional: the fix's horizontal accuracy (standard deviation per axis); a column empty "
-                       "on every fix is taken as absent, with a warning"),
+    "gps_sigma": ("m", "optional: the fix's horizontal accuracy (standard deviation per axis: a phone's 68 % "
+                       "radius over 1.51); a column empty on every fix is taken as absent, with a warning"),
+    "gps_hdop": ("dimensionless", "optional, instead of gps_sigma: the fix's horizontal dilution of precision (NMEA GGA's HDOP, "
+                     "no unit); its sigma is the HDOP times read_drive_csv's hdop_sigma (m at HDOP 1)"),
     "true_east": ("m", "optional: reference east (with true_north), same frame as the fixes; a pair of truth "
                        "columns empty on every row is taken as absent, with a warning"),
     "true_north": ("m", "optional: reference north"),
@@ -202,7 +204,8 @@ def _located(path, exc, lines):
 
 
 def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2, checks=True, progress=None, fill_gaps=0.0,
-                   gps_latency=0.0, intervals="auto", odometer_latency=0.0, heading_offset=0.0, speed_scale=1.0):
+                   gps_latency=0.0, intervals="auto", odometer_latency=0.0, heading_offset=0.0, speed_scale=1.0,
+                   hdop_sigma=None):
     """Read one's own drive from a CSV file with the columns of :data:`DRIVE_CSV_COLUMNS`.
 
     One row per DR sample, a header row with the column names; a GPS fix is the row's
@@ -238,6 +241,11 @@ def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2, checks=True,
     progress : bool, optional
         A tqdm bar over the file's bytes; default one for files of :data:`PROGRESS_BYTES`
         or more when stderr is a terminal.
+    hdop_sigma : float, optional
+        With a ``gps_hdop`` column (a receiver's horizontal dilution of precision, as NMEA's GGA gives it, without
+        a unit): the sigma per axis (m) of a fix at HDOP 1, the receiver's UERE / sqrt(2); each fix's
+        ``gps_sigma`` is its HDOP times it. Required with that column (``filterwnn study dr --drive`` passes the
+        grade's ``gps_sigma_m``); not used without it.
 
     Returns
     -------
@@ -280,7 +288,8 @@ def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2, checks=True,
     kw = {"distance" if dname == "odometer" else "speed": column(dname)}
     if hname.startswith("yaw_rate"):  # integrated by the arrays' reader, started at the fixes' course
         kw["yaw_rate"], heading = heading, None
-    kw.update(_csv_fixes(path, header, col, every, every_t, origin, every_lines))
+    kw.update(_csv_fixes(path, header, col, every, every_t, origin, every_lines,
+                          None if hdop_sigma is None else check_positive(hdop_sigma, "hdop_sigma")))
     _csv_truth(path, header, col, column, origin, kw)
     try:
         return DRRun.from_arrays(t, heading, name=name or os.path.splitext(os.path.basename(path))[0],
@@ -364,6 +373,7 @@ def _at_times(t, every_t, values, name):
 #: Names loggers give the drive CSV's columns, for the reader's suggestions (:func:`_unread`); lowercase.
 _ALIASES = {"latitude": "gps_lat", "longitude": "gps_lon", "lng": "gps_lon", "long": "gps_lon",
             "accuracy": "gps_sigma", "hacc": "gps_sigma", "horizontal_accuracy": "gps_sigma",
+            "hdop": "gps_hdop", "dop": "gps_hdop",
             "velocity": "speed", "yaw": "heading", "timestamp": "time", "t": "time", "distance": "odometer"}
 
 
@@ -418,16 +428,18 @@ def _csv_layout(path, header, lines):
     # the fixes, their accuracy and the truth, but not the other form of a pair the header has
     pairs = (("gps_east", "gps_north"), ("gps_lat", "gps_lon"), ("true_east", "true_north"), ("true_lat", "true_lon"))
     given = {p[0][:4] for p in pairs if p[0] in col or p[1] in col}
-    optional = ["gps_sigma"] + [k for p in pairs if p[0][:4] not in given for k in p]
+    accuracy = [] if "gps_sigma" in col or "gps_hdop" in col else ["gps_sigma", "gps_hdop"]
+    optional = accuracy + [k for p in pairs if p[0][:4] not in given for k in p]
     said = _suggest(unread, optional)
     if said:
         warnings.warn(f"{path}: columns the reader does not know are not read{said}", RuntimeWarning, stacklevel=3)
     return col, hname, dname
 
 
-def _csv_fixes(path, header, col, column, t, origin, lines):
+def _csv_fixes(path, header, col, column, t, origin, lines, hdop_sigma=None):
     """The GPS keywords of :meth:`DRRun.from_arrays` from a drive CSV's columns (none without
-    GPS columns); ``column(name, allow_empty)`` reads one column."""
+    GPS columns); ``column(name, allow_empty)`` reads one column. Each fix's accuracy is its ``gps_sigma`` (m), or its
+    ``gps_hdop`` times ``hdop_sigma`` (m at HDOP 1)."""
     kw = {}
     pair = [p for p in (("gps_east", "gps_north"), ("gps_lat", "gps_lon")) if p[0] in col or p[1] in col]
     if len(pair) > 1:
@@ -448,21 +460,34 @@ def _csv_fixes(path, header, col, column, t, origin, lines):
     else:
         kw["lat"], kw["lon"] = ga[fix], gb[fix]
         kw["origin"] = origin
-    gs = column("gps_sigma", True)[fix] if "gps_sigma" in col else None
+    acc = [h for h in ("gps_sigma", "gps_hdop") if h in col]
+    if len(acc) > 1:
+        raise ValueError(f"{path}: give each fix's accuracy as 'gps_sigma' (m) or as 'gps_hdop' (no unit), not both")
+    acc = acc[0] if acc else None
+    gs = column(acc, True)[fix] if acc else None
     if gs is not None and gs.size and not np.any(np.isfinite(gs)):  # a logger's column the receiver never filled
-        warnings.warn(f"{path}: column 'gps_sigma' is empty on every fix: taken as absent, every fix gets the "
+        warnings.warn(f"{path}: column {acc!r} is empty on every fix: taken as absent, every fix gets the "
                       "grade's sigma (the filters' gps_sigma_m)", RuntimeWarning, stacklevel=4)
         gs = None
     if gs is not None:
+        unit = "m" if acc == "gps_sigma" else "no unit"
         if np.any(~np.isfinite(gs)):
             r = int(np.flatnonzero(fix)[np.argmax(~np.isfinite(gs))])
-            raise ValueError(f"{path}: column 'gps_sigma' is empty on data row {r + 1}, which has a fix (give "
+            raise ValueError(f"{path}: column {acc!r} is empty on data row {r + 1}, which has a fix (give "
                              "every fix its accuracy, or drop the column to give every fix the grade's sigma)")
         if np.any(gs <= 0):
             r = int(np.flatnonzero(fix)[np.argmax(gs <= 0)])
-            raise ValueError(f"{path}: column 'gps_sigma' must be > 0 (m) where there is a fix; data row {r + 1} "
+            raise ValueError(f"{path}: column {acc!r} must be > 0 ({unit}) where there is a fix; data row {r + 1} "
                              f"(line {lines[r]}) has {gs[gs <= 0][0]:g} (0 is how some receivers write 'unknown': "
                              "give that fix its accuracy, or drop the column to give every fix the grade's sigma)")
+        if acc == "gps_hdop":
+            if hdop_sigma is None:
+                raise ValueError(
+                    f"{path}: column 'gps_hdop' is a dilution of precision, without a unit: pass hdop_sigma, the "
+                    "sigma per axis (m) of a fix at HDOP 1 (the receiver's UERE / sqrt(2)), and each fix's sigma is "
+                    "its HDOP times it; `filterwnn study dr --drive` takes the grade's gps_sigma_m (5 m for "
+                    "'phone') unless --hdop-sigma says otherwise")
+            gs = gs * hdop_sigma
         kw["gps_sigma"] = gs
     return kw
 

@@ -185,7 +185,10 @@ What the filter does when GPS lies (each part a public setting, on by default):
 * **Consistency monitor.** The mean NIS over the last :data:`NIS_WINDOW` fixes it used is compared
   with the 99.9 % point of its chi-square distribution; above it, a warning names the step
   and the remedy (the fixes' reported accuracy is optimistic, or the grade too good; with a rate-bias
-  state, or a gyro bias that moved faster than the grade's bias instability allows).
+  state, or a gyro bias that moved faster than the grade's bias instability allows). Where the fixes carried
+  their own sigma, between :data:`HDOP_LOWEST` m and :data:`HDOP_GRADE` of the grade's, and their innovations
+  are at least :data:`HDOP_FACTOR` times it, it names an HDOP read as metres (a ``gps_sigma`` column holding
+  NMEA's dilution of precision) and the ``gps_hdop`` column that reads it.
 
 >>> import numpy as np
 >>> from filterwnn.navigation.dead_reckoning import GPSDRModel
@@ -224,7 +227,7 @@ __all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS", "GATE", "REJ
            "NIS_WINDOW", "CALIBRATION_SIGMAS", "ZERO_RATE_GATE", "ZERO_RATE_MIN_SAMPLES",
            "ZERO_RATE_REACQUIRE_AFTER", "STOP_REOPEN", "STOP_REOPEN_M", "MAX_STOP_RATE_DEG_S", "WHITENESS_WINDOW",
            "FIX_GAPS", "MIN_FIX_INTERVAL",
-           "CORRELATED_FIXES", "SCALE_WINDOW", "SCALE_TEST", "SCALE_WARN", "SCALE_ERROR_Z", "SCALE_ERROR_MIN", "DETECTED_SCALE_SD",
+           "CORRELATED_FIXES", "SCALE_WINDOW", "SCALE_TEST", "SCALE_WARN", "HDOP_FACTOR", "HDOP_LOWEST", "HDOP_GRADE", "SCALE_ERROR_Z", "SCALE_ERROR_MIN", "DETECTED_SCALE_SD",
            "LATENCY_Z", "LATENCY_MIN", "DETECTED_LATENCY_SD", "ODOMETER_LATENCY_Z", "ODOMETER_LATENCY_MIN",
            "HEADING_BIAS", "RATE", "GYRO_SCALE", "gps_scale_mle", "gps_scale_loglik", "stop_heading_slope",
            "stop_heading_step", "STOP_STEP_ALPHA", "STOP_STEP_MIN_SIDE", "CALIBRATION_ERROR_Z",
@@ -367,6 +370,17 @@ SCALE_TEST = NormalDist().inv_cdf(1.0 - 1e-3) ** 2  # = chi2.ppf(1 - 2e-3, 1) = 
 #: ``R`` from the innovations, Mehra 1972). On onavdata's 2021-04-27C drive the 6-state EKF's scale
 #: ran to 467 that way.
 SCALE_WARN = 9.0
+#: The consistency monitor's warning names an HDOP read as a sigma (m) when every fix of its window carried its
+#: own sigma, their median is at least :data:`HDOP_LOWEST` m and at most :data:`HDOP_GRADE` times the grade's GPS
+#: sigma (an HDOP is 0.5 or more, about 1: a phone's 5 m fix then claims 1 m; an RTK fix's centimetres are no
+#: HDOP), and their innovations are at least this many
+#: times it (``sqrt(mean NIS / 2)``). The analogs' honest and optimistic sigmas stay below it; fixes 1 s late
+#: in a 6-state EKF do not (2.3), but they claim the grade's accuracy.
+HDOP_FACTOR = 2.0
+#: See :data:`HDOP_FACTOR`: the least median sigma (m) taken for an HDOP...
+HDOP_LOWEST = 0.4
+#: ... and the most, over the grade's GPS sigma.
+HDOP_GRADE = 0.5
 
 
 def _no_fix(z_gps):
@@ -992,6 +1006,7 @@ class GPSDRFilter:
         # the window's mean NIS is chi-square(2 W) / W for a consistent filter
         self._nis_bound = float(chi2.ppf(0.999, 2 * self.nis_window)) / self.nis_window
         self._nis = deque(maxlen=self.nis_window)
+        self._own_sigma = deque(maxlen=self.nis_window)
         self.step, self.fix_status, self.nis = 0, "none", None
         self.n_fixes = self.n_rejected = self.n_downweighted = self.n_reacquired = self.n_repairs = 0
         self.rejected_steps, self.nis_accepted, self.nis_warnings = [], [], []
@@ -1850,6 +1865,7 @@ class GPSDRFilter:
         pos = [0, 3]
         lat = self.model.latency_index
         reported = check_positive(self._fix_sigma(gps_sigma), "gps_sigma")
+        own = np.nan if gps_sigma is None else reported  # the fix's own accuracy, for the monitor's words
         lam = self.gps_scale if scaled else 1.0
         if lam != 1.0:  # an unscaled fix keeps its sigma as given (bit for bit as without the estimate)
             gps_sigma = reported * np.sqrt(lam)
@@ -1868,7 +1884,7 @@ class GPSDRFilter:
         if scaled and self.scale_window:
             self.gps_scales.append(lam)
         if nis <= self.reject_gate or not test:  # the fixes it uses: the gate answers for the others
-            self._monitor(min(nis, self.reject_gate))
+            self._monitor(min(nis, self.reject_gate), own)
         if nis <= self.gate or not test:
             self._in_a_row = 0
             self.fix_status = "accepted"
@@ -1961,12 +1977,19 @@ class GPSDRFilter:
         if self.kind != "ekf":
             self.kf.compute_process_sigmas(self.model.dt, fx=lambda s, dt: s)
 
-    def _monitor(self, nis):
-        """Warn when the mean NIS over the last :attr:`nis_window` fixes leaves its 99.9 % bound."""
+    def _monitor(self, nis, own=np.nan):
+        """Warn when the mean NIS over the last :attr:`nis_window` fixes leaves its 99.9 % bound.
+
+        ``own``: the fix's reported sigma (m), NaN for a fix that gets the grade's. When every fix of the window
+        carried its own and their innovations are at least :data:`HDOP_FACTOR` times it, the warning names a
+        ``gps_sigma`` column that holds an HDOP (no unit; measured in ``docs/study-outputs/dr/log-faults/RUN.md``,
+        stop 50)."""
         self._nis.append(nis)
+        self._own_sigma.append(own)
         if len(self._nis) < self.nis_window:
             return
-        high = float(np.mean(self._nis)) > self._nis_bound
+        mean = float(np.mean(self._nis))
+        high = mean > self._nis_bound
         if high and not self._inconsistent:
             self.nis_warnings.append(self.step)
             # a gyro whose bias moved faster than the grade's random walk lets the rate bias follow: the
@@ -1978,8 +2001,24 @@ class GPSDRFilter:
                 f"fixes is {np.mean(self._nis):.1f}, above its 99.9 % bound {self._nis_bound:.2f} (2 expected); "
                 "the fixes' reported accuracy is optimistic or the sensor grade too good: pass the receiver's "
                 "accuracy as gps_sigma, use a lower grade, or estimate the fixes' covariance scale "
-                f"(scale_window={SCALE_WINDOW}){gyro}", RuntimeWarning, stacklevel=4)
+                f"(scale_window={SCALE_WINDOW}){gyro}{self._hdop_words(mean)}", RuntimeWarning, stacklevel=4)
         self._inconsistent = high
+
+    def _hdop_words(self, mean):
+        """The inconsistency warning's words for fixes whose own sigma is far below their innovations' (an HDOP
+        read as metres), or ``""``."""
+        own = np.asarray(self._own_sigma)
+        factor = np.sqrt(mean / 2.0)  # the innovations' size in the fixes' reported sigma (NIS clipped: at least)
+        if np.isnan(own).any() or factor < HDOP_FACTOR:
+            return ""
+        median, grade = float(np.median(own)), self.model.sigma_gps
+        if not HDOP_LOWEST <= median <= HDOP_GRADE * grade:
+            return ""
+        return (f". The window's innovations are at least {factor:.2g}x its fixes' own sigma (median "
+                f"{median:.2g} m, the grade's {grade:.2g} m): a gps_sigma column that holds an HDOP (a dilution of "
+                "precision, without a "
+                "unit; NMEA GGA's) reads so. Give it as gps_hdop (read_drive_csv's hdop_sigma, --hdop-sigma, the "
+                "sigma at HDOP 1), or drop the column (every fix then gets the grade's sigma)")
 
     @property
     def whiteness_fixes(self):

@@ -359,6 +359,35 @@ def test_a_gps_sigma_column_the_receiver_never_filled_is_taken_as_absent(tmp_pat
         read_drive_csv(_write(tmp_path / "d.csv", c))
 
 
+def test_an_hdop_column_is_read_as_a_sigma_through_the_sigma_at_hdop_1(tmp_path):
+    """``gps_hdop`` (NMEA GGA's dilution of precision, without a unit) gives each fix the sigma ``HDOP *
+    hdop_sigma``; without ``hdop_sigma`` it is refused with what to pass, beside ``gps_sigma`` as two accuracies,
+    and a column named ``hdop`` is named back as ``gps_hdop``. A 0 is refused as for ``gps_sigma``."""
+    c = _drive()
+    c["gps_hdop"] = c.pop("gps_sigma") / 3.0 * np.linspace(0.8, 1.6, 1201)  # 1 at 3 m, the geometry changing
+    cols = [k if k != "gps_sigma" else "gps_hdop" for k in COLUMNS]
+    path = _write(tmp_path / "d.csv", c, columns=cols)
+    run = read_drive_csv(path, hdop_sigma=3.0)
+    hdop = c["gps_hdop"][np.isfinite(c["gps_lat"])][1:]  # (the first fix is the start's, before step 0)
+    np.testing.assert_allclose(run.gps_sigma, 3.0 * hdop)
+    with pytest.raises(ValueError, match=r"column 'gps_hdop' is a dilution of precision, without a unit: pass "
+                                         r"hdop_sigma, the sigma per axis \(m\) of a fix at HDOP 1"):
+        read_drive_csv(path)
+    with pytest.raises(ValueError, match="hdop_sigma must be finite and > 0"):
+        read_drive_csv(path, hdop_sigma=0.0)
+    c["gps_sigma"] = c["gps_hdop"] * 3.0
+    with pytest.raises(ValueError, match=r"give each fix's accuracy as 'gps_sigma' \(m\) or as 'gps_hdop' \(no "
+                                         r"unit\), not both"):
+        read_drive_csv(_write(tmp_path / "both.csv", c, columns=cols + ["gps_sigma"]), hdop_sigma=3.0)
+    with pytest.warns(RuntimeWarning, match="the header's 'hdop' may be 'gps_hdop' "):
+        plain = read_drive_csv(_write(tmp_path / "named.csv", c, columns=cols, header=COLUMNS[:5] + ["hdop"]
+                                      + COLUMNS[6:]))
+    assert plain.gps_sigma is None  # not read: every fix gets the grade's sigma
+    c["gps_hdop"][np.flatnonzero(np.isfinite(c["gps_lat"]))[4]] = 0.0
+    with pytest.raises(ValueError, match=r"'gps_hdop' must be > 0 \(no unit\) where there is a fix; data row 41"):
+        read_drive_csv(_write(tmp_path / "d.csv", c, columns=cols), hdop_sigma=3.0)
+
+
 def test_column_names_are_read_whatever_their_case_and_an_empty_truth_is_no_truth(tmp_path):
     """A header as a spreadsheet writes it (``Time``, ``GPS_Lat``) reads as the lower-case names; truth columns
     empty on every row (a template the logger never filled) are taken as absent, with a warning, and the drive is

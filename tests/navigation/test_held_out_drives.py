@@ -360,3 +360,51 @@ def test_a_calibration_the_monitor_finds_off_is_not_kept_off_by_the_correlation_
     before, said = _ekf8_ends(path)
     assert not said
     assert np.median(now) < 0.5 * np.median(before) and now.max() < before.max()
+
+
+def test_an_hdop_read_as_a_sigma_is_named_and_read_as_gps_hdop_gives_the_sigma_numbers(tmp_path):
+    """The 1 Hz analog (seed 0) with its fixes' accuracy given as an NMEA HDOP (the sigma over 5 m, rounded to 0.1
+    as GGA writes it). In ``gps_sigma``, read as metres, each fix claims 3-8 times its accuracy: the EKF-8 ended its
+    outages 4.81 / 43.55 m off (1.63 / 6.28 m with the sigma; ``log-faults/accuracy_columns.py``), and its warning
+    of inconsistency now names an HDOP and the column for it. As ``gps_hdop`` with ``hdop_sigma=5`` (the phone
+    grade's, what the command passes) it gives the sigma's numbers, with no warning."""
+    cols = held_out.columns("one_hz", 0)
+    cols["gps_sigma"] = np.maximum(0.5, np.round(cols["gps_sigma"] / 5.0, 1))
+    for accuracy in ("gps_sigma", "gps_hdop"):
+        run = read_drive_csv(held_out.write_csv(tmp_path / f"{accuracy}.csv", cols, accuracy=accuracy), hdop_sigma=5.0)
+        with warnings.catch_warnings(record=True) as record:
+            warnings.simplefilter("always")
+            res = real_drive_outages(run, filters=("EKF-8",), use_gps_sigma=True, grade="phone")
+        said = [str(w.message) for w in record if "is inconsistent" in str(w.message)]
+        e = res["EKF-8"]
+        if accuracy == "gps_sigma":
+            assert len(said) == 1 and "a gps_sigma column that holds an HDOP" in said[0], said
+            assert "Give it as gps_hdop" in said[0] and e.max() > 20.0, e.max()
+        else:
+            assert not said and np.median(e) < 1.63 + 0.3 and e.max() < 6.28 + 0.5, (said, np.median(e), e.max())
+
+
+@pytest.mark.parametrize("grade, flag, expect", [("phone", [], 5.0), ("survey", [], 1.5),
+                                                  ("phone", ["--hdop-sigma", "2"], 2.0)])
+def test_the_command_reads_an_hdop_with_the_grades_sigma_at_hdop_1(tmp_path, monkeypatch, grade, flag, expect):
+    """``filterwnn study dr --drive`` reads a ``gps_hdop`` column with the grade's GPS sigma as the sigma at HDOP 1,
+    or ``--hdop-sigma``."""
+    from filterwnn.cli import main
+    from filterwnn.studies.dr import _cli
+
+    cols = {k: v[:300] for k, v in held_out.columns("one_hz", 0).items()}
+    cols["gps_sigma"] = np.round(cols["gps_sigma"] / 5.0, 1)
+    path = held_out.write_csv(tmp_path / "d.csv", cols, accuracy="gps_hdop")
+    seen = []
+
+    class Read(BaseException):
+        """Read and passed on: enough."""
+
+    def scored(run, **kw):
+        seen.append(run.gps_sigma / cols["gps_sigma"][np.isfinite(cols["gps_sigma"])][-len(run.gps_sigma):])
+        raise Read
+
+    monkeypatch.setattr(_cli, "real_drive_outages", scored)
+    with pytest.raises(Read):
+        main(["study", "dr", "--drive", path, "--grade", grade, "--no-figures", "--out", str(tmp_path)] + flag)
+    np.testing.assert_allclose(seen[0], expect)

@@ -74,6 +74,11 @@ def add_arguments(parser):
                         help="with --drive: degrees by which the heading reads clockwise of the car's course (its "
                              "zero off: a phone mounted askew; a magnetic heading, by the declination), subtracted "
                              "from every heading (default 0; the drive reader warns past 10 degrees, with the value)")
+    parser.add_argument("--hdop-sigma", type=options.positive_float, default=None, metavar="M",
+                        help="with --drive: for a drive whose fixes carry a gps_hdop column (a dilution of "
+                             "precision, without a unit), the sigma per axis (m) of a fix at HDOP 1, the receiver's "
+                             "UERE / sqrt(2); each fix's sigma is its HDOP times it (default the grade's GPS sigma, "
+                             "5 m for phone)")
     parser.add_argument("--speed-scale", type=options.positive_float, default=1.0, metavar="FACTOR",
                         help="with --drive: the factor by which the speed (or odometer) reads more than the car "
                              "drove (a speedometer's signal reads high by up to 10 %%), divided out (default 1; the "
@@ -141,7 +146,7 @@ def add_arguments(parser):
 #: drives, one's own or ``--real``'s (the outages' placement, the GPS/DR filters' settings): given where they
 #: do not apply, the command refuses them rather than ignore them.
 DRIVE_ONLY = ("--no-plausibility", "--fill-gaps", "--gps-latency", "--odometer-latency", "--heading-offset",
-              "--speed-scale", "--intervals", "--outage-starts", "--gyro-scale-sd", "--gyro-bias",
+              "--speed-scale", "--hdop-sigma", "--intervals", "--outage-starts", "--gyro-scale-sd", "--gyro-bias",
               "--gyro-bias-instability", "--gps-latency-sd")
 ON_DRIVES = ("--outage-length", "--outages", "--min-speed", "--gps-scale-window", "--correlated-fixes",
              "--min-fix-interval", "--stop-reopen", "--calibration-error-z", "--heading-jump-z", "--grade")
@@ -244,6 +249,11 @@ def _drive_grade(args):
     return dict(SENSOR_GRADES[grade], **extra) if extra else grade
 
 
+def _grade_spec(grade):
+    """The settings of a grade given by name or as a dict (:func:`_drive_grade`)."""
+    return SENSOR_GRADES[grade] if isinstance(grade, str) else grade
+
+
 def _run_drives(args, drives, filters):
     """``--drive``: the GPS/DR filters on one's own drives, with each fix's accuracy when given."""
     from ...navigation.drives import sample_drive_path
@@ -261,6 +271,7 @@ def _run_drives(args, drives, filters):
                              odometer_latency=getattr(args, "odometer_latency", 0.0),
                              heading_offset=getattr(args, "heading_offset", 0.0),
                              speed_scale=getattr(args, "speed_scale", 1.0),
+                             hdop_sigma=getattr(args, "hdop_sigma", None) or _grade_spec(grade)["gps_sigma_m"],
                              progress=None if not getattr(args, "no_progress", False) else False)
         try:  # (not under the outage options' message: nothing to place them against)
             check_reference(run)
