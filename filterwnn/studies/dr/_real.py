@@ -52,7 +52,8 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
     outage start (dead reckoning without a filter).
 
     The reference is the truth when the drive has one (``run.x_true``); otherwise the GPS fix
-    withheld last in the outage, so the score then includes that fix's own error.
+    withheld last in the outage, so the score then includes that fix's own error (for a fix logged between
+    the samples, the fixes' track at its sample's time: the errors of the two fixes beside it, interpolated).
 
     Parameters
     ----------
@@ -190,8 +191,9 @@ def _outage_windows(run, starts, length):
             inside = np.flatnonzero((gps_t >= a) & (gps_t < a + length))
             if len(inside) == 0:
                 raise ValueError(f"the drive has no truth and no GPS fix in the outage at {a:.1f} s to score against")
-            k1 = int(run.gps_steps[inside[-1]])
-            ref = run.z_gps[inside[-1]]
+            j = inside[-1]
+            k1 = int(run.gps_steps[j])
+            ref = _fix_at_sample(run, j)
         k0s.append(k0)
         k1s.append(k1)
         refs.append(ref)
@@ -200,8 +202,27 @@ def _outage_windows(run, starts, length):
     if truth:
         track = run.x_true[:, [0, 3]]
     else:
-        track = np.stack([np.interp(run.t, gps_t, run.z_gps[:, i]) for i in (0, 1)], axis=1)
+        track = np.stack([np.interp(run.t, _fix_times(run), run.z_gps[:, i]) for i in (0, 1)], axis=1)
     return k0s, k1s, np.array(refs), np.array(moved), track
+
+
+def _fix_times(run):
+    """Each fix's own time: its sample's, plus its offset from it (``run.gps_offset``: a fix logged between the
+    samples of a slow log)."""
+    t = run.t[run.gps_steps]
+    return t if run.gps_offset is None else t + run.gps_offset
+
+
+def _fix_at_sample(run, j):
+    """The fixes' track at the time of fix ``j``'s sample: the fix itself, or for a fix logged off its sample's
+    time, the track of the fixes at their own times interpolated to it (the fix and its neighbour on the other
+    side of the sample), so that a reference is not that fix's offset times the speed ahead of the position it
+    scores (the filters move such a fix likewise, ``GPSDRFilter.update(gps_offset=)``)."""
+    if run.gps_offset is None or run.gps_offset[j] == 0.0:
+        return np.asarray(run.z_gps[j], dtype=float)
+    at = run.t[run.gps_steps[j]]
+    ft = _fix_times(run)
+    return np.array([np.interp(at, ft, run.z_gps[:, i]) for i in (0, 1)])
 
 
 def _real_drive_filter(name, run, grade, model_kwargs, kw, gps_window, slow_speed, **filter_kw):
