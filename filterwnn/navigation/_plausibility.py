@@ -51,7 +51,8 @@ import numpy as np
 
 __all__ = ["check_drive", "heading_offset", "speed_scale", "clock_offset", "MAX_DT", "MAX_ANGLE_DEG",
            "MAX_DRIFT_DEG_S", "RATIO_RANGE", "HEADING_OFFSET_WARN_DEG", "SPEED_SCALE_WARN", "WARN_MIN_CHORDS",
-           "CLOCK_OFFSET_WARN_S", "CLOCK_OFFSET_SCAN_S"]
+           "CLOCK_OFFSET_WARN_S", "CLOCK_OFFSET_SCAN_S", "GPS_DERIVED_HELD", "GPS_DERIVED_AT_FIX",
+           "GPS_DERIVED_MIN_CHANGES", "GPS_DERIVED_MIN_RATIO", "GPS_DERIVED_SPEED"]
 
 #: The longest DR sample interval (s) accepted without ``checks=False``.
 MAX_DT = 2.0
@@ -86,6 +87,18 @@ _CLOCK_STEP_S = 0.5
 #: The level of the clock offset's test (the gate's, 0.1 %), over all the offsets tried (Bonferroni).
 _CLOCK_LEVEL = 1e-3
 _OVERRIDE = "; if the drive really is so, pass checks=False (command line: --no-plausibility)"
+#: A heading or speed held between the fixes and changing only at them (a receiver's course or Doppler speed
+#: logged on every DR row) is warned of where, while the car moves (:data:`GPS_DERIVED_SPEED` m/s), it is held
+#: over at least :data:`GPS_DERIVED_HELD` of the intervals and at least :data:`GPS_DERIVED_AT_FIX` of its
+#: changes come at a fix's sample or the one beside it, over :data:`GPS_DERIVED_MIN_CHANGES` changes or more,
+#: with at least :data:`GPS_DERIVED_MIN_RATIO` samples per fix (by chance, at most 3 in that many changes
+#: come beside a fix: the analogs' gyro headings and speeds, written to 4 decimals, are held over 0-1 % of their
+#: moving intervals and change beside a fix at that chance, 20 % at 10 Hz).
+GPS_DERIVED_HELD = 0.5
+GPS_DERIVED_AT_FIX = 0.9
+GPS_DERIVED_MIN_CHANGES = 30
+GPS_DERIVED_MIN_RATIO = 5
+GPS_DERIVED_SPEED = 2.0
 #: Length-ratio mistakes: (factor the ratio shows, the likely cause).
 _SCALES = ((3.6, "speed looks like km/h (divide by 3.6 for m/s)"),
            (1 / 0.44704, "speed looks like mph (multiply by 0.44704 for m/s)"),
@@ -451,6 +464,50 @@ def _check_truth(steps, z_gps, truth, sigma, clock=None, radians=False):
                          f"{cause}{_OVERRIDE}")
 
 
+def _held_at_fixes(values, moving, near):
+    """``(changes, share at a fix, share held)`` of ``values`` over the intervals ``moving``, or None when they do
+    not look held between the fixes (:data:`GPS_DERIVED_HELD`); ``near``: the intervals beside a fix's sample."""
+    changed = np.abs(np.diff(values)) > 1e-9 * (1.0 + np.abs(values[1:]))  # (a speed times stamped intervals: bits)
+    n = int(np.sum(changed & moving))
+    if moving.sum() < 2 * GPS_DERIVED_MIN_CHANGES or n < GPS_DERIVED_MIN_CHANGES:
+        return None
+    held, at = 1.0 - n / moving.sum(), float(np.sum(changed & moving & near)) / n
+    return (n, at, held) if held >= GPS_DERIVED_HELD and at >= GPS_DERIVED_AT_FIX else None
+
+
+#: What a column held between the fixes is, and what to give instead.
+_GPS_DERIVED = {"heading": ("a GPS course (a receiver's bearing), not a gyro's heading", "the gyro's heading, or its "
+                            "yaw rate (yaw_rate)"),
+                "speed": ("a GPS speed (a receiver's Doppler speed), not the car's", "the car's speed (its CAN bus, "
+                          "OBD or wheel ticks)")}
+
+
+def _gps_derived(dt, heading, step, steps):
+    """Warn of a heading or a speed that changes only at the fixes (:data:`GPS_DERIVED_HELD`): the receiver's, not
+    a dead-reckoning sensor's. Over a real outage it stays where the last fix left it, while outages cut into such a
+    drive still carry the withheld fixes' course or speed, and score better than dead reckoning could."""
+    n = len(heading)
+    if len(steps) < 2 or n < 3 or np.median(np.diff(steps)) < GPS_DERIVED_MIN_RATIO:
+        return
+    fix = np.zeros(n + 1, dtype=bool)
+    fix[np.clip(np.asarray(steps) + 1, 0, n - 1)] = True  # the fix at step k is sample k + 1
+    near = fix[:n - 1] | fix[1:n] | fix[2:n + 1]  # a change into sample i + 1: a fix at sample i, i + 1 or i + 2
+    moving = np.asarray(step, dtype=float) >= GPS_DERIVED_SPEED * dt
+    for name, values, intervals in (("heading", np.asarray(heading, dtype=float), moving),
+                                    ("speed", np.asarray(step, dtype=float), moving[1:] & moving[:-1])):
+        found = _held_at_fixes(values, intervals, near[:len(intervals)])
+        if found is None:
+            continue
+        k, at, held = found
+        what, remedy = _GPS_DERIVED[name]
+        warnings.warn(f"plausibility: while the car moves the {name} changes only where there is a GPS fix ({at:.0%} of "
+                      f"its {k} changes at a fix's sample or beside it, held over {held:.0%} of the intervals): "
+                      f"{what}. Dead reckoning then has no {name} of its own: over a real outage it stays where the "
+                      f"last fix left it, and outages cut into this drive (filterwnn study dr) are scored with the "
+                      f"withheld fixes' {name}, better than dead reckoning could do. Give {remedy}",
+                      RuntimeWarning, stacklevel=5)
+
+
 def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth=None, yaw_rate=False,
                 radians=False):
     """Refuse a drive whose units or frame contradict its own GPS fixes (see the module docstring).
@@ -492,6 +549,7 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
         cause = "time looks like milliseconds (divide by 1000 for s)" if dt >= 10 else "resample the drive"
         raise ValueError(f"plausibility: the DR sample interval is {dt:g} s, longer than {MAX_DT:g} s (dead-"
                          f"reckoning sensors sample at 1-100 Hz): {cause}{_OVERRIDE}")
+    _gps_derived(dt, heading, step, steps)
     pairs = _chord_pairs(steps, z_gps, sigma, step)
     clock = _clock_told(dt, heading, step, steps, z_gps, pairs)
     _check_truth(steps, z_gps, truth, 3.0 if sigma is None else float(sigma), clock, radians)

@@ -388,6 +388,24 @@ def test_an_hdop_column_is_read_as_a_sigma_through_the_sigma_at_hdop_1(tmp_path)
         read_drive_csv(_write(tmp_path / "d.csv", c, columns=cols), hdop_sigma=3.0)
 
 
+def test_a_heading_or_speed_that_changes_only_at_the_fixes_is_named_a_receivers(tmp_path):
+    """A phone log's GPS bearing or Doppler speed written on every DR row holds between the fixes and changes at
+    them: no dead-reckoning sensor, and outages cut into the drive carry the withheld fixes' course. Warned, naming
+    the column and what to give; a gyro's heading and a car's speed, as the plain drive has them, are not."""
+    c = _drive()
+    fix = np.isfinite(c["gps_lat"])
+    held = np.maximum.accumulate(np.where(fix, np.arange(1201), 0))  # each row: the last fix's row
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        read_drive_csv(_write(tmp_path / "d.csv", c))
+    for column in ("heading", "speed"):
+        g = dict(c)
+        g[column] = c[column][held] * (1.0 if column == "heading" else 1.0 + 0.1 * np.sin(held / 50.0))
+        with pytest.warns(RuntimeWarning, match=rf"while the car moves the {column} changes only where there is a GPS "
+                                                rf"fix \(100% of its \d+ changes .*: a GPS "):
+            read_drive_csv(_write(tmp_path / "d.csv", g))
+
+
 def test_column_names_are_read_whatever_their_case_and_an_empty_truth_is_no_truth(tmp_path):
     """A header as a spreadsheet writes it (``Time``, ``GPS_Lat``) reads as the lower-case names; truth columns
     empty on every row (a template the logger never filled) are taken as absent, with a warning, and the drive is
