@@ -460,12 +460,14 @@ def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps
         heading = wrap_angle(heading - heading_offset)
     signed = None
     if speed is not None:
-        signed = _speed_dropouts(t, _finite_1d(speed, "speed", n))
+        signed = _speed_spikes(t, _speed_dropouts(t, _finite_1d(speed, "speed", n)))
         speed = np.abs(signed)
         grid = _speed_interval(t, dts, dt, speed, intervals, stamps)
         if grid is not None:  # the stamps' grid: each speed covers its interval, and the filters run on it
             dts, dt = np.full_like(dts, grid), float(f"{grid:.6g}")
     step, v0 = _odometer_steps(distance, speed, dts, n)
+    if not integrated:  # (a yaw rate's integral has no sample of its own to leave and come back to)
+        heading = _heading_spikes(t, heading, step / dts)
     if speed is not None:
         _warn_speed_cutoff(speed, dt)
         heading, v0 = _reversing(t, heading, signed, dts), float(signed[0])
@@ -798,6 +800,101 @@ def _speed_dropouts(t, speed):
                   "wheel-speed signal's glitch), which taken for stops would hold the filters still while the car "
                   "moves on; they are interpolated from the samples beside them", RuntimeWarning, stacklevel=4)
     return out
+
+
+#: A car's largest lateral acceleration (m/s^2, 1 g: its tyres grip no more): at speed ``v`` it turns at most
+#: this over ``v`` rad/s...
+MAX_LATERAL_ACCEL = 10.0
+#: ... and at most ``v`` over its tightest turning radius (m; a car's turning circle is 9-12 m kerb to kerb):
+#: at most 1.4 rad/s, at 7 m/s.
+MIN_TURN_RADIUS = 5.0
+#: A heading that leaves and comes back by less than this (rad, 10 degrees) is never taken for a spike: a
+#: standing car's heading noise, a magnetometer's jitter.
+HEADING_SPIKE_MIN = np.deg2rad(10.0)
+
+
+#: The longest run of samples taken for one spike (a CAN bus that repeats a bad frame, a glitch over a few samples).
+MAX_SPIKE_RUN = 3
+
+
+def _spike_runs(jump, limit):
+    """The runs ``[i, j)`` of samples that a jump ``jump[i - 1]`` (from sample ``i - 1`` to ``i``) past its
+    ``limit`` leads into and one of the other sign past its limit ``jump[j - 1]`` leads out of, within
+    :data:`MAX_SPIKE_RUN` samples: out and back, faster than the limits allow each way."""
+    big = np.abs(jump) > limit
+    runs, i = [], 0
+    idx = np.flatnonzero(big)
+    while i < len(idx):
+        a = idx[i]
+        ahead = idx[(idx > a) & (idx <= a + MAX_SPIKE_RUN)]
+        back = [b for b in ahead if np.sign(jump[b]) == -np.sign(jump[a])]
+        if back:
+            runs.append((a + 1, back[0] + 1))
+            i = int(np.searchsorted(idx, back[0])) + 1
+        else:
+            i += 1
+    return runs
+
+
+def _fill_runs(t, values, runs, along=None):
+    """``values`` with each run ``[i, j)`` interpolated between samples ``i - 1`` and ``j`` (``along``: the
+    difference to use between them, the shorter arc for a heading)."""
+    out = np.array(values, dtype=float)
+    for i, j in runs:
+        d = values[j] - values[i - 1] if along is None else along(values[j] - values[i - 1])
+        out[i:j] = values[i - 1] + d * (t[i:j] - t[i - 1]) / (t[j] - t[i - 1])
+    return out
+
+
+def _speed_spikes(t, speed):
+    """``speed`` with its spikes interpolated from the samples beside them, with a warning.
+
+    A spike is a run of up to :data:`MAX_SPIKE_RUN` samples that the speed jumps into and back out of, each jump
+    faster than :data:`MAX_DROPOUT_ACCEL` (1 g) allows: a CAN frame's glitch (255 km/h), a wheel that slipped.
+    Integrated, each moved the track by its excess times its length: 20 such samples of 70.8 m/s over the phone
+    analog's 15 minutes took its EKF-8 from 6.68 / 28.16 to 58.54 / 306.49 m, and at 1 Hz from 1.63 / 6.28 to
+    43.26 / 1175.94 m (``docs/study-outputs/dr/log-faults/spikes.py``). A dropout to 0 is
+    :func:`_speed_dropouts`'s."""
+    if len(speed) < 3:
+        return speed
+    runs = _spike_runs(np.diff(speed), MAX_DROPOUT_ACCEL * np.diff(t))
+    if not runs:
+        return speed
+    i, j = runs[0]
+    warnings.warn(f"{sum(b - a for a, b in runs)} speed sample(s) in {len(runs)} run(s) jump away from the samples "
+                  f"beside them and back faster than a car can (over {MAX_DROPOUT_ACCEL:g} m/s^2 each way; the first "
+                  f"at t = {t[i]:g} s, {speed[i]:.4g} m/s between {speed[i - 1]:.4g} and {speed[j]:.4g}): spikes (a "
+                  "CAN frame's glitch, a wheel that slipped), which the filters would integrate into the track; each "
+                  "is interpolated from the samples beside it", RuntimeWarning, stacklevel=4)
+    return _fill_runs(t, speed, runs)
+
+
+def _heading_spikes(t, heading, speed):
+    """``heading`` with its spikes interpolated along the shorter arc, with a warning.
+
+    A spike is a run of up to :data:`MAX_SPIKE_RUN` samples that the heading turns into and back out of, each turn
+    faster than a car turns at its speed (``speed``, m/s over each interval): :data:`MAX_LATERAL_ACCEL` over the
+    speed, or the speed over :data:`MIN_TURN_RADIUS`, whichever is less, and by at least
+    :data:`HEADING_SPIKE_MIN` (an orientation glitch of a phone, a heading logged from another frame for a
+    sample). Integrated, each moved the track sideways: 20 such samples of 90 degrees took the 1 Hz
+    analog's EKF-8 from 1.63 / 6.28 to 6.89 / 1005.23 m (``docs/study-outputs/dr/log-faults/spikes.py``)."""
+    if len(heading) < 3:
+        return heading
+    v = np.maximum(speed, 1e-9)
+    rate = np.minimum(np.minimum(MAX_YAW_RATE, MAX_LATERAL_ACCEL / v), v / MIN_TURN_RADIUS)
+    jump = wrap_angle(np.diff(heading))
+    runs = _spike_runs(jump, np.maximum(rate * np.diff(t), HEADING_SPIKE_MIN))
+    if not runs:
+        return heading
+    i, j = runs[0]
+    warnings.warn(f"{sum(b - a for a, b in runs)} heading sample(s) in {len(runs)} run(s) turn away from the samples "
+                  f"beside them and back faster than a car turns (over {MAX_LATERAL_ACCEL:g} m/s^2 sideways at its "
+                  f"speed, or a {MIN_TURN_RADIUS:g} m turning radius, and by over "
+                  f"{np.rad2deg(HEADING_SPIKE_MIN):g} degrees; the first at t = {t[i]:g} s, "
+                  f"{np.rad2deg(jump[i - 1]):+.3g} degrees from the sample before): spikes (an orientation glitch), "
+                  "which the filters would integrate into the track; each is interpolated from the samples beside "
+                  "it", RuntimeWarning, stacklevel=4)
+    return _fill_runs(t, heading, runs, wrap_angle)
 
 
 def _warn_speed_cutoff(speed, dt):

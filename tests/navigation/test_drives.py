@@ -1,6 +1,7 @@
 """Drive files that are well-formed but wrong, or written by other tools: plausibility checks
 against the GPS fixes, delimiters, a byte-order mark, NaN cells, short files, a large file."""
 
+import os
 import subprocess
 import sys
 import warnings
@@ -10,6 +11,9 @@ import pytest
 
 from filterwnn.navigation.drives import read_drive_csv
 from filterwnn.navigation.scenarios import DRRun, en_to_latlon, with_outage
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+import _held_out_drives as held_out  # noqa: E402
 
 LAT0, LON0 = 48.137, 11.575
 COLUMNS = ["time", "heading", "speed", "gps_lat", "gps_lon", "gps_sigma", "true_lat", "true_lon"]
@@ -404,6 +408,38 @@ def test_a_heading_or_speed_that_changes_only_at_the_fixes_is_named_a_receivers(
         with pytest.warns(RuntimeWarning, match=rf"while the car moves the {column} changes only where there is a GPS "
                                                 rf"fix \(100% of its \d+ changes .*: a GPS "):
             read_drive_csv(_write(tmp_path / "d.csv", g))
+
+
+def test_speed_and_heading_spikes_are_interpolated_with_a_warning(tmp_path):
+    """A CAN glitch (255 km/h for a sample, or two) and a heading turned by 90 degrees for a sample leave the
+    samples beside them and come back faster than a car can: each is interpolated from its neighbours, with a
+    warning that counts them, and the drive reads as without them (``log-faults/spikes.py``: 20 such speed samples
+    had taken the phone analog's EKF-8 from 6.68 / 28.16 to 58.54 / 306.49 m)."""
+    c = _drive()
+    clean = read_drive_csv(_write(tmp_path / "d.csv", c))
+    g = dict(c, speed=c["speed"].copy())
+    g["speed"][[100, 400, 401, 900]] = 70.8
+    with pytest.warns(RuntimeWarning, match=r"4 speed sample\(s\) in 3 run\(s\) jump away from the samples beside "
+                                            r"them and back faster than a car can .* the first at t = 10 s, 70.8 m/s"):
+        run = read_drive_csv(_write(tmp_path / "d.csv", g))
+    np.testing.assert_allclose(run.z_dr, clean.z_dr, atol=1e-9)
+    g = dict(c, heading=c["heading"].copy())
+    g["heading"][[100, 700]] = np.mod(g["heading"][[100, 700]] + np.pi / 2, 2 * np.pi)
+    with pytest.warns(RuntimeWarning, match=r"2 heading sample\(s\) in 2 run\(s\) turn away .* the first at t = 10 s, "
+                                            r"\+90.1 degrees from the sample before"):
+        run = read_drive_csv(_write(tmp_path / "d.csv", g))
+    np.testing.assert_allclose(run.z_dr, clean.z_dr, atol=1e-9)
+
+
+def test_the_analogs_have_no_spikes_to_find(tmp_path):
+    """What a car does is no spike: the analogs' stops, pull-aways and turns (seed 0 of each, as written) read
+    without the warning."""
+    for name in ("phone", "city", "one_hz"):
+        cols = held_out.columns(name, 0)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            read_drive_csv(held_out.write_csv(tmp_path / f"{name}.csv", cols))
+        assert not [w for w in caught if "spikes (" in str(w.message)], name
 
 
 def test_column_names_are_read_whatever_their_case_and_an_empty_truth_is_no_truth(tmp_path):
