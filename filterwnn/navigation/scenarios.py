@@ -815,6 +815,15 @@ HEADING_SPIKE_MIN = np.deg2rad(10.0)
 
 #: The longest run of samples taken for one spike (a CAN bus that repeats a bad frame, a glitch over a few samples).
 MAX_SPIKE_RUN = 3
+#: A speed that jumps away and back by less than this (m/s, 18 km/h) is never taken for a spike: a speed sensor's
+#: noise and quantization at 20-100 Hz (a wheel tick's worth over 0.05 s) reach 1 g between samples (a random
+#: drive at 20 Hz, 0.3 m/s noise, had 0.5 m/s jumps taken for spikes), and so small a glitch moves the track
+#: little at such rates.
+SPEED_SPIKE_MIN = 5.0
+#: ... nor by less than this many times the drive's own jumps between samples (their median absolute jump over
+#: 0.6745, while the car moves): a speed or heading whose noise is large (a wheel-tick speed at 20 Hz jumps by
+#: 1.7 m/s on median in ``random_drives.py``'s protocol 1) has its own spikes by the thousand.
+SPIKE_NOISE = 8.0
 
 
 def _spike_runs(jump, limit):
@@ -836,6 +845,13 @@ def _spike_runs(jump, limit):
     return runs
 
 
+def _noise(jump, moving):
+    """The drive's own jump between samples, robustly: the median absolute ``jump`` over the intervals
+    ``moving``, over 0.6745 (a standard deviation for Gaussian jumps); 0 with none."""
+    j = np.abs(jump[moving])
+    return float(np.median(j)) / 0.6745 if len(j) else 0.0
+
+
 def _fill_runs(t, values, runs, along=None):
     """``values`` with each run ``[i, j)`` interpolated between samples ``i - 1`` and ``j`` (``along``: the
     difference to use between them, the shorter arc for a heading)."""
@@ -850,19 +866,26 @@ def _speed_spikes(t, speed):
     """``speed`` with its spikes interpolated from the samples beside them, with a warning.
 
     A spike is a run of up to :data:`MAX_SPIKE_RUN` samples that the speed jumps into and back out of, each jump
-    faster than :data:`MAX_DROPOUT_ACCEL` (1 g) allows: a CAN frame's glitch (255 km/h), a wheel that slipped.
+    faster than :data:`MAX_DROPOUT_ACCEL` (1 g) allows and by over :data:`SPEED_SPIKE_MIN` and :data:`SPIKE_NOISE`
+    times the speed's own jumps: a CAN frame's glitch
+    (255 km/h), a wheel that slipped. A run that reads 0 is :func:`_speed_dropouts`' to judge (a dropout, or a
+    sensor's cutoff at a crawl, which stays).
     Integrated, each moved the track by its excess times its length: 20 such samples of 70.8 m/s over the phone
     analog's 15 minutes took its EKF-8 from 6.68 / 28.16 to 58.54 / 306.49 m, and at 1 Hz from 1.63 / 6.28 to
     43.26 / 1175.94 m (``docs/study-outputs/dr/log-faults/spikes.py``). A dropout to 0 is
     :func:`_speed_dropouts`'s."""
     if len(speed) < 3:
         return speed
-    runs = _spike_runs(np.diff(speed), MAX_DROPOUT_ACCEL * np.diff(t))
+    jump = np.diff(speed)
+    floor = max(SPEED_SPIKE_MIN, SPIKE_NOISE * _noise(jump, (speed[1:] != 0.0) & (speed[:-1] != 0.0)))
+    runs = _spike_runs(jump, np.maximum(MAX_DROPOUT_ACCEL * np.diff(t), floor))
+    runs = [(i, j) for i, j in runs if np.any(speed[i:j] != 0.0)]  # a 0 is a dropout's or a cutoff's (above)
     if not runs:
         return speed
     i, j = runs[0]
     warnings.warn(f"{sum(b - a for a, b in runs)} speed sample(s) in {len(runs)} run(s) jump away from the samples "
-                  f"beside them and back faster than a car can (over {MAX_DROPOUT_ACCEL:g} m/s^2 each way; the first "
+                  f"beside them and back faster than a car can (over {MAX_DROPOUT_ACCEL:g} m/s^2 and {floor:.3g} m/s "
+                  f"each way; the first "
                   f"at t = {t[i]:g} s, {speed[i]:.4g} m/s between {speed[i - 1]:.4g} and {speed[j]:.4g}): spikes (a "
                   "CAN frame's glitch, a wheel that slipped), which the filters would integrate into the track; each "
                   "is interpolated from the samples beside it", RuntimeWarning, stacklevel=4)
@@ -874,8 +897,8 @@ def _heading_spikes(t, heading, speed):
 
     A spike is a run of up to :data:`MAX_SPIKE_RUN` samples that the heading turns into and back out of, each turn
     faster than a car turns at its speed (``speed``, m/s over each interval): :data:`MAX_LATERAL_ACCEL` over the
-    speed, or the speed over :data:`MIN_TURN_RADIUS`, whichever is less, and by at least
-    :data:`HEADING_SPIKE_MIN` (an orientation glitch of a phone, a heading logged from another frame for a
+    speed, or the speed over :data:`MIN_TURN_RADIUS`, whichever is less, and by over :data:`HEADING_SPIKE_MIN`
+    and :data:`SPIKE_NOISE` times the heading's own jumps while the car moves (an orientation glitch of a phone, a heading logged from another frame for a
     sample). Integrated, each moved the track sideways: 20 such samples of 90 degrees took the 1 Hz
     analog's EKF-8 from 1.63 / 6.28 to 6.89 / 1005.23 m (``docs/study-outputs/dr/log-faults/spikes.py``)."""
     if len(heading) < 3:
@@ -883,14 +906,15 @@ def _heading_spikes(t, heading, speed):
     v = np.maximum(speed, 1e-9)
     rate = np.minimum(np.minimum(MAX_YAW_RATE, MAX_LATERAL_ACCEL / v), v / MIN_TURN_RADIUS)
     jump = wrap_angle(np.diff(heading))
-    runs = _spike_runs(jump, np.maximum(rate * np.diff(t), HEADING_SPIKE_MIN))
+    floor = max(HEADING_SPIKE_MIN, SPIKE_NOISE * _noise(jump, speed > 0.0))
+    runs = _spike_runs(jump, np.maximum(rate * np.diff(t), floor))
     if not runs:
         return heading
     i, j = runs[0]
     warnings.warn(f"{sum(b - a for a, b in runs)} heading sample(s) in {len(runs)} run(s) turn away from the samples "
                   f"beside them and back faster than a car turns (over {MAX_LATERAL_ACCEL:g} m/s^2 sideways at its "
                   f"speed, or a {MIN_TURN_RADIUS:g} m turning radius, and by over "
-                  f"{np.rad2deg(HEADING_SPIKE_MIN):g} degrees; the first at t = {t[i]:g} s, "
+                  f"{np.rad2deg(floor):.3g} degrees; the first at t = {t[i]:g} s, "
                   f"{np.rad2deg(jump[i - 1]):+.3g} degrees from the sample before): spikes (an orientation glitch), "
                   "which the filters would integrate into the track; each is interpolated from the samples beside "
                   "it", RuntimeWarning, stacklevel=4)
