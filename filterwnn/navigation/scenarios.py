@@ -299,6 +299,10 @@ class DRRun(NamedTuple):
             (``intervals``). A signed speed below ``-REVERSING_SPEED`` is the car reversing: there the
             heading is turned by 180 degrees to be the direction of travel, with a warning. Warned
             too: a speed that reads 0 below a cutoff (``MAX_STOP_ACCEL``, ``SPEED_CUTOFF_WARN``).
+            Interpolated from the samples beside them, with a warning: a 0 between samples of a car that
+            cannot have stopped (``MAX_DROPOUT_ACCEL``), and a run of up to ``MAX_SPIKE_RUN`` samples that the
+            speed, or the heading, jumps into and back out of faster than a car can (``SPEED_SPIKE_MIN``,
+            ``MIN_TURN_RADIUS``, ``MAX_LATERAL_ACCEL``, ``HEADING_SPIKE_MIN``, ``SPIKE_NOISE``).
         gps_t : array-like of shape (n_fixes,), optional
             GPS fix times (s, same clock as ``t``), each to the nearest sample (fixes over half an
             interval outside the samples are dropped).
