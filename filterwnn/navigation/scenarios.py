@@ -288,7 +288,8 @@ class DRRun(NamedTuple):
             by the trapezoid rule from the first sample, and started at the heading the fixes' course gives
             (the line through the moving stretches' angles that ``heading_offset``'s check fits, at least
             ``YAW_START_CHORDS`` of them), with a warning that names it and its standard error. Values over
-            ``MAX_YAW_RATE`` are refused as degrees per second.
+            ``MAX_YAW_RATE`` are refused as degrees per second; a run of up to ``MAX_SPIKE_RUN`` samples past
+            what a car turns at the odometer's speed (``YAW_SPIKE_MIN``) is interpolated first, with a warning.
         distance : array-like of shape (n_samples,), optional
             Cumulative odometer reading (m), non-decreasing. Give this or ``speed``. Each increment is the
             mean speed over its interval, the speed at the interval's middle; each sample's speed is the two
@@ -401,7 +402,7 @@ class DRRun(NamedTuple):
             if heading_offset:
                 raise ValueError("heading_offset has no meaning with a yaw rate: the heading it integrates to starts "
                                  "where the fixes' course says")
-            heading = _integrate_yaw(_finite_1d(t, "t"), yaw_rate)
+            heading = _integrate_yaw(_finite_1d(t, "t"), yaw_rate, distance, speed)
         if fill_gaps:
             t, heading, distance, speed, truth = _fill_gaps(t, heading, distance, speed, truth,
                                                             check_positive(fill_gaps, "fill_gaps"), max_jitter)
@@ -515,14 +516,22 @@ MAX_YAW_RATE = 3.0
 YAW_START_CHORDS = 5
 
 
-def _integrate_yaw(t, yaw_rate):
+def _integrate_yaw(t, yaw_rate, distance=None, speed=None):
     """The heading (rad, wrapped) a yaw rate (rad/s, clockwise positive) integrates to from 0, by the trapezoid
-    rule over the samples' own intervals; refused when it looks like degrees per second."""
+    rule over the samples' own intervals, its spikes first interpolated (:func:`_rate_spikes`, at the speed the
+    odometer gives); refused when it looks like degrees per second."""
     rate = _finite_1d(yaw_rate, "yaw_rate", len(t))
     big = float(np.max(np.abs(rate)))
     if big > MAX_YAW_RATE:
         raise ValueError(f"yaw_rate must be in rad/s; max |yaw_rate| = {big:g} is past {MAX_YAW_RATE:g} rad/s, faster "
                          "than a car turns, and looks like degrees per second: pass np.deg2rad(yaw_rate)")
+    v = None
+    if speed is not None:
+        v = np.abs(np.asarray(speed, dtype=float))
+    elif distance is not None and len(t) >= 2:
+        v = np.abs(np.gradient(np.asarray(distance, dtype=float), t))
+    if v is not None and len(v) == len(t) and np.all(np.isfinite(v)):
+        rate = _rate_spikes(t, rate, v)
     return wrap_angle(np.concatenate([[0.0], np.cumsum(0.5 * (rate[1:] + rate[:-1]) * np.diff(t))]))
 
 
@@ -923,6 +932,40 @@ def _heading_spikes(t, heading, speed):
                   "which the filters would integrate into the track; each is interpolated from the samples beside "
                   "it", RuntimeWarning, stacklevel=4)
     return _fill_runs(t, heading, runs, wrap_angle)
+
+
+#: A yaw rate that leaves what a car can turn at its speed by less than this (rad/s) is never taken for a spike.
+YAW_SPIKE_MIN = 0.1
+
+
+def _rate_spikes(t, rate, speed):
+    """``rate`` (a yaw rate, rad/s) with its spikes interpolated from the samples beside them, with a warning.
+
+    A spike is a run of up to :data:`MAX_SPIKE_RUN` samples past what a car turns at its speed (``speed``, m/s at
+    each sample: :data:`MAX_LATERAL_ACCEL` over the speed, or the speed over :data:`MIN_TURN_RADIUS`) by over
+    :data:`YAW_SPIKE_MIN` and :data:`SPIKE_NOISE` times the rate's own jumps while the car moves, with the samples
+    beside it within it: a gyro's glitch. Integrated, each turned every later heading by its excess times its
+    interval (1.5 rad/s for a sample of a 1 Hz log: 86 degrees; ``docs/study-outputs/dr/log-faults/
+    yaw_rate_spikes.py``)."""
+    n = len(rate)
+    if n < 3:
+        return rate
+    v = np.maximum(speed, 1e-9)
+    bound = np.minimum(np.minimum(MAX_YAW_RATE, MAX_LATERAL_ACCEL / v), v / MIN_TURN_RADIUS)
+    moving = (speed[1:] > 0.0) & (speed[:-1] > 0.0)
+    past = np.abs(rate) > bound + max(YAW_SPIKE_MIN, SPIKE_NOISE * _noise(np.diff(rate), moving))
+    edges = np.diff(np.r_[0, past.astype(np.int8), 0])
+    runs = [(i, j) for i, j in zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1))
+            if i >= 1 and j <= n - 1 and j - i <= MAX_SPIKE_RUN]
+    if not runs:
+        return rate
+    i, j = runs[0]
+    warnings.warn(f"{sum(b - a for a, b in runs)} yaw rate sample(s) in {len(runs)} run(s) turn faster than a car can "
+                  f"at its speed while the samples beside them do not (over {MAX_LATERAL_ACCEL:g} m/s^2 sideways, or a "
+                  f"{MIN_TURN_RADIUS:g} m turning radius; the first at t = {t[i]:g} s, {rate[i]:+.3g} rad/s at "
+                  f"{speed[i]:.3g} m/s): spikes (a gyro's glitch), which integrated would turn every later heading; "
+                  "each is interpolated from the samples beside it", RuntimeWarning, stacklevel=5)
+    return _fill_runs(t, rate, runs)
 
 
 def _warn_speed_cutoff(speed, dt):

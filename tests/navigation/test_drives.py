@@ -802,6 +802,24 @@ def test_a_log_with_the_heading_and_the_speed_on_rows_of_their_own_reads_the_spa
         read_drive_csv(_write(tmp_path / "empty.csv", empty, columns=cols), checks=False)
 
 
+def test_a_yaw_rate_spike_is_interpolated_before_it_is_integrated(tmp_path):
+    """A gyro's glitch in a yaw-rate column (1.5 rad/s for a sample, where the car at 10 m/s turns at most 1 rad/s)
+    would turn every later heading by its excess: interpolated from its neighbours first, with a warning, and the
+    drive reads as without it."""
+    c = _drive()
+    cols = ["time", "yaw_rate", "speed", "gps_lat", "gps_lon", "gps_sigma", "true_lat", "true_lon"]
+    rate = {**c, "yaw_rate": np.full(len(c["time"]), 0.02)}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # (the start's warning)
+        clean = read_drive_csv(_write(tmp_path / "clean.csv", rate, columns=cols))
+    rate["yaw_rate"] = rate["yaw_rate"].copy()
+    rate["yaw_rate"][[300, 301, 800]] = 1.5
+    with pytest.warns(RuntimeWarning, match=r"3 yaw rate sample\(s\) in 2 run\(s\) turn faster than a car can at its "
+                                            r"speed .* the first at t = 30 s, \+1.5 rad/s at 10 m/s"):
+        run = read_drive_csv(_write(tmp_path / "spiked.csv", rate, columns=cols))
+    np.testing.assert_allclose(run.z_dr, clean.z_dr, atol=1e-9)
+
+
 def test_a_yaw_rate_is_integrated_and_started_at_the_fixes_course(tmp_path):
     """A log with the gyro's yaw rate in place of a heading (``yaw_rate_deg``, clockwise positive): the reader
     integrates it and starts it at the heading the fixes' course gives, with a warning naming it (the drive turns
