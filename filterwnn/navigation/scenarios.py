@@ -968,6 +968,16 @@ def _rate_spikes(t, rate, speed):
     return _fill_runs(t, rate, runs)
 
 
+def _ddmm_cause(lat, lon):
+    """The words a refusal of lat/lon past degrees adds where every value reads as NMEA's degrees and minutes
+    (``ddmm.mmmm``, ``dddmm.mmmm``: GGA's and RMC's 4807.038 is 48 degrees 7.038 minutes), else ``""``."""
+    a, o = np.abs(lat), np.abs(lon)
+    if not (np.all(a < 9000) and np.all(o < 18000) and np.all(a % 100 < 60) and np.all(o % 100 < 60)):
+        return ""
+    return ("; they read as NMEA's degrees and minutes (ddmm.mmmm, as GGA and RMC write them: 4807.038 is 48 degrees "
+            "7.038 minutes): give degrees, floor(x / 100) + (x % 100) / 60, negative for S and W")
+
+
 def _warn_speed_cutoff(speed, dt):
     """Warn when the speed reads 0 below some cutoff: at each of at least four start-ups and stops it steps
     between 0 and at least ``s`` within one sample, more than a car's speed changes in one
@@ -1013,7 +1023,7 @@ def _gps_fixes(gps_t, east, north, lat, lon, gps_sigma, origin, t, dt):
         la, lo = _finite_1d(lat, "lat", m), _finite_1d(lon, "lon", m)
         if np.any(np.abs(la) > 90) or np.any(np.abs(lo) > 360):
             raise ValueError(f"lat/lon must be degrees (|lat| <= 90, |lon| <= 360), got max |lat| = "
-                             f"{np.max(np.abs(la)):g}, max |lon| = {np.max(np.abs(lo)):g}")
+                             f"{np.max(np.abs(la)):g}, max |lon| = {np.max(np.abs(lo)):g}" + _ddmm_cause(la, lo))
         null = _null_fixes(la, lo)
         if null.any():  # a receiver's "no position" written as a position; as the origin it bent every fix
             if null.all():

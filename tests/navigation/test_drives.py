@@ -802,6 +802,18 @@ def test_a_log_with_the_heading_and_the_speed_on_rows_of_their_own_reads_the_spa
         read_drive_csv(_write(tmp_path / "empty.csv", empty, columns=cols), checks=False)
 
 
+def test_lat_lon_as_nmea_degrees_and_minutes_are_refused_naming_them(tmp_path):
+    """A log that copies GGA's latitude and longitude as written (ddmm.mmmm: 4808.2 for 48 degrees 8.2 minutes) is
+    refused, naming the format and the conversion."""
+    c = _drive()
+    for k in ("gps_lat", "gps_lon"):
+        d = np.floor(c[k])
+        c[k] = d * 100.0 + (c[k] - d) * 60.0
+    with pytest.raises(ValueError, match=r"lat/lon must be degrees .* they read as NMEA's degrees and minutes "
+                                         r"\(ddmm.mmmm, .*\): give degrees, floor\(x / 100\) \+ \(x % 100\) / 60"):
+        read_drive_csv(_write(tmp_path / "d.csv", c))
+
+
 def test_a_yaw_rate_spike_is_interpolated_before_it_is_integrated(tmp_path):
     """A gyro's glitch in a yaw-rate column (1.5 rad/s for a sample, where the car at 10 m/s turns at most 1 rad/s)
     would turn every later heading by its excess: interpolated from its neighbours first, with a warning, and the
