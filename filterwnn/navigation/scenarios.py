@@ -781,6 +781,14 @@ MAX_DROPOUT_ACCEL = 10.0
 MIN_DROPOUT_SPEED = 2.0
 
 
+def _inner_runs(mask):
+    """The runs ``[i, j)`` of ``mask`` (boolean) with a sample on either side: ``(starts, ends)``."""
+    edges = np.diff(np.r_[0, mask.astype(np.int8), 0])
+    starts, ends = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
+    inner = (starts >= 1) & (ends <= len(mask) - 1)
+    return starts[inner], ends[inner]
+
+
 def _speed_dropouts(t, speed):
     """``speed`` with its dropouts interpolated from the samples beside them, with a warning.
 
@@ -793,10 +801,7 @@ def _speed_dropouts(t, speed):
     low = speed == 0.0
     if not low.any():
         return speed
-    edges = np.diff(np.r_[0, low.astype(np.int8), 0])
-    starts, ends = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)  # runs [i, j)
-    inner = (starts >= 1) & (ends <= len(speed) - 1)
-    starts, ends = starts[inner], ends[inner]
+    starts, ends = _inner_runs(low)
     a, b = np.abs(speed[starts - 1]), np.abs(speed[ends])
     drop = ((a + b) / (t[ends] - t[starts - 1]) > MAX_DROPOUT_ACCEL) & (np.minimum(a, b) >= MIN_DROPOUT_SPEED)
     if not drop.any():
@@ -837,6 +842,13 @@ SPEED_SPIKE_MIN = 5.0
 #: 0.6745, while the car moves): a speed or heading whose noise is large (a wheel-tick speed at 20 Hz jumps by
 #: 1.7 m/s on median in ``random_drives.py``'s protocol 1) has its own spikes by the thousand.
 SPIKE_NOISE = 8.0
+
+
+def _turn_bound(speed):
+    """The fastest a car turns (rad/s) at ``speed`` (m/s): :data:`MAX_LATERAL_ACCEL` over the speed, or the speed
+    over :data:`MIN_TURN_RADIUS`, whichever is less, and at most :data:`MAX_YAW_RATE`."""
+    v = np.maximum(speed, 1e-9)
+    return np.minimum(np.minimum(MAX_YAW_RATE, MAX_LATERAL_ACCEL / v), v / MIN_TURN_RADIUS)
 
 
 def _spike_runs(jump, limit):
@@ -880,13 +892,11 @@ def _speed_spikes(t, speed):
 
     A spike is a run of up to :data:`MAX_SPIKE_RUN` samples that the speed jumps into and back out of, each jump
     faster than :data:`MAX_DROPOUT_ACCEL` (1 g) allows and by over :data:`SPEED_SPIKE_MIN` and :data:`SPIKE_NOISE`
-    times the speed's own jumps: a CAN frame's glitch
-    (255 km/h), a wheel that slipped. A run that reads 0 is :func:`_speed_dropouts`' to judge (a dropout, or a
-    sensor's cutoff at a crawl, which stays).
-    Integrated, each moved the track by its excess times its length: 20 such samples of 70.8 m/s over the phone
-    analog's 15 minutes took its EKF-8 from 6.68 / 28.16 to 58.54 / 306.49 m, and at 1 Hz from 1.63 / 6.28 to
-    43.26 / 1175.94 m (``docs/study-outputs/dr/log-faults/spikes.py``). A dropout to 0 is
-    :func:`_speed_dropouts`'s."""
+    times the speed's own jumps: a CAN frame's glitch (255 km/h), a wheel that slipped. A run that reads 0 is
+    :func:`_speed_dropouts`' to judge (a dropout, or a sensor's cutoff at a crawl, which stays). Integrated, each
+    moved the track by its excess times its length: 20 such samples of 70.8 m/s over the phone analog's 15 minutes
+    took its EKF-8 from 6.68 / 28.16 to 58.54 / 306.49 m, and at 1 Hz from 1.63 / 6.28 to 43.26 / 1175.94 m
+    (``docs/study-outputs/dr/log-faults/spikes.py``)."""
     if len(speed) < 3:
         return speed
     jump = np.diff(speed)
@@ -909,18 +919,15 @@ def _heading_spikes(t, heading, speed):
     """``heading`` with its spikes interpolated along the shorter arc, with a warning.
 
     A spike is a run of up to :data:`MAX_SPIKE_RUN` samples that the heading turns into and back out of, each turn
-    faster than a car turns at its speed (``speed``, m/s over each interval): :data:`MAX_LATERAL_ACCEL` over the
-    speed, or the speed over :data:`MIN_TURN_RADIUS`, whichever is less, and by over :data:`HEADING_SPIKE_MIN`
-    and :data:`SPIKE_NOISE` times the heading's own jumps while the car moves (an orientation glitch of a phone, a heading logged from another frame for a
-    sample). Integrated, each moved the track sideways: 20 such samples of 90 degrees took the 1 Hz
+    faster than a car turns at its speed (``speed``, m/s over each interval; :func:`_turn_bound`) and by over
+    :data:`HEADING_SPIKE_MIN` and :data:`SPIKE_NOISE` times the heading's own jumps while the car moves (an
+    orientation glitch of a phone, a heading logged from another frame for a sample). Integrated, each moved the track sideways: 20 such samples of 90 degrees took the 1 Hz
     analog's EKF-8 from 1.63 / 6.28 to 6.89 / 1005.23 m (``docs/study-outputs/dr/log-faults/spikes.py``)."""
     if len(heading) < 3:
         return heading
-    v = np.maximum(speed, 1e-9)
-    rate = np.minimum(np.minimum(MAX_YAW_RATE, MAX_LATERAL_ACCEL / v), v / MIN_TURN_RADIUS)
     jump = wrap_angle(np.diff(heading))
     floor = max(HEADING_SPIKE_MIN, SPIKE_NOISE * _noise(jump, speed > 0.0))
-    runs = _spike_runs(jump, np.maximum(rate * np.diff(t), floor))
+    runs = _spike_runs(jump, np.maximum(_turn_bound(speed) * np.diff(t), floor))
     if not runs:
         return heading
     i, j = runs[0]
@@ -942,21 +949,16 @@ def _rate_spikes(t, rate, speed):
     """``rate`` (a yaw rate, rad/s) with its spikes interpolated from the samples beside them, with a warning.
 
     A spike is a run of up to :data:`MAX_SPIKE_RUN` samples past what a car turns at its speed (``speed``, m/s at
-    each sample: :data:`MAX_LATERAL_ACCEL` over the speed, or the speed over :data:`MIN_TURN_RADIUS`) by over
+    each sample; :func:`_turn_bound`) by over
     :data:`YAW_SPIKE_MIN` and :data:`SPIKE_NOISE` times the rate's own jumps while the car moves, with the samples
     beside it within it: a gyro's glitch. Integrated, each turned every later heading by its excess times its
     interval (1.5 rad/s for a sample of a 1 Hz log: 86 degrees; ``docs/study-outputs/dr/log-faults/
     yaw_rate_spikes.py``)."""
-    n = len(rate)
-    if n < 3:
+    if len(rate) < 3:
         return rate
-    v = np.maximum(speed, 1e-9)
-    bound = np.minimum(np.minimum(MAX_YAW_RATE, MAX_LATERAL_ACCEL / v), v / MIN_TURN_RADIUS)
     moving = (speed[1:] > 0.0) & (speed[:-1] > 0.0)
-    past = np.abs(rate) > bound + max(YAW_SPIKE_MIN, SPIKE_NOISE * _noise(np.diff(rate), moving))
-    edges = np.diff(np.r_[0, past.astype(np.int8), 0])
-    runs = [(i, j) for i, j in zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1))
-            if i >= 1 and j <= n - 1 and j - i <= MAX_SPIKE_RUN]
+    past = np.abs(rate) > _turn_bound(speed) + max(YAW_SPIKE_MIN, SPIKE_NOISE * _noise(np.diff(rate), moving))
+    runs = [(i, j) for i, j in zip(*_inner_runs(past)) if j - i <= MAX_SPIKE_RUN]
     if not runs:
         return rate
     i, j = runs[0]

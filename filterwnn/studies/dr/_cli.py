@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import os
 
-from ...navigation.dead_reckoning import SENSOR_GRADES
+from ...navigation.dead_reckoning import SENSOR_GRADES, _grade
 from ...navigation.drives import CAR_DRIVES, load_car_drive, read_drive_csv
 from ...navigation.gpsdr import CALIBRATION_ERROR_Z, CORRELATED_FIXES, HEADING_JUMP_Z
 from ...navigation.scenarios import INTERVALS, SCENARIOS
@@ -249,11 +249,6 @@ def _drive_grade(args):
     return dict(SENSOR_GRADES[grade], **extra) if extra else grade
 
 
-def _grade_spec(grade):
-    """The settings of a grade given by name or as a dict (:func:`_drive_grade`)."""
-    return SENSOR_GRADES[grade] if isinstance(grade, str) else grade
-
-
 def _run_drives(args, drives, filters):
     """``--drive``: the GPS/DR filters on one's own drives, with each fix's accuracy when given."""
     from ...navigation.drives import sample_drive_path
@@ -271,7 +266,7 @@ def _run_drives(args, drives, filters):
                              odometer_latency=getattr(args, "odometer_latency", 0.0),
                              heading_offset=getattr(args, "heading_offset", 0.0),
                              speed_scale=getattr(args, "speed_scale", 1.0),
-                             hdop_sigma=getattr(args, "hdop_sigma", None) or _grade_spec(grade)["gps_sigma_m"],
+                             hdop_sigma=getattr(args, "hdop_sigma", None) or _grade(grade)["gps_sigma_m"],
                              progress=None if not getattr(args, "no_progress", False) else False)
         try:  # (not under the outage options' message: nothing to place them against)
             check_reference(run)
