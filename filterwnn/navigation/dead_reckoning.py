@@ -843,7 +843,7 @@ class GPSDRModel(StateSpaceModel):
         return w * np.array([np.sin(th), np.cos(th)]), Rw + 1e-12 * np.eye(2)
 
     def measurement_for(self, z_dr, z_gps=None, *, stationary=False, zupt=False, low_speed=False,
-                        gps_sigma=None, R=None):
+                        gps_sigma=None, R=None, velocity=False):
         """The measurement a filter update uses, for a DR sample and an optional GPS fix.
 
         Parameters
@@ -863,6 +863,11 @@ class GPSDRModel(StateSpaceModel):
             velocity vector of :meth:`velocity_measurement`, modelled as
             ``zeta R(b) [v_e, v_n]`` (smooth, no singularity at zero speed), because the
             odometer's Jacobian vanishes at zero estimated speed.
+        velocity : bool
+            The DR measurement enters as the measured velocity vector, as with ``low_speed``, without its
+            extra noise ``sigma_low_speed``: the same information as ``[theta, s]`` to first order, and
+            linear in the velocity (what a filter uses where the measured heading is far from its own, see
+            :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`'s ``heading_linear_limit``).
         gps_sigma : float, optional
             This fix's standard deviation per axis (m), e.g. the receiver's reported
             horizontal accuracy; replaces ``sigma_gps`` in ``R`` for this fix.
@@ -878,22 +883,22 @@ class GPSDRModel(StateSpaceModel):
             :meth:`HJacobian` for this measurement.
         """
         z, gps = self.measurement(z_dr, z_gps)
-        velocity = bool(zupt or low_speed)
+        as_velocity = bool(low_speed or velocity) and not zupt
         if zupt:
             z = z.copy()
             z[:2] = 0.0
-        elif low_speed:
+        elif as_velocity:
             z = z.copy()
             z[:2], Rv = self.velocity_measurement(z[:2])
         if R is None:
             R = self.R_for(gps, stationary, zupt)
-            if low_speed and not zupt:
+            if as_velocity:
                 R = R.copy()
-                R[:2, :2] = Rv + self.sigma_low_speed**2 * np.eye(2)
+                R[:2, :2] = Rv + (self.sigma_low_speed**2 * np.eye(2) if low_speed else 0.0)
             if gps and gps_sigma is not None:
                 R = R.copy()
                 R[2:, 2:] = check_positive(gps_sigma, "gps_sigma") ** 2 * np.eye(2)
-        return z, R, {"gps": gps, "velocity": velocity}
+        return z, R, {"gps": gps, "velocity": bool(zupt or as_velocity)}
 
     def ekf(self, x0=None, P0=None):
         """A filterpy ``ExtendedKalmanFilter`` on this model (or use :class:`filterwnn.navigation.gpsdr.GPSDRFilter`)."""

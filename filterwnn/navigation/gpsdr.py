@@ -12,11 +12,14 @@ DR measurement to use:
   so the test is a threshold, not an exact zero);
 * ``s / dt < low_speed``: the measured velocity vector ``s/dt [sin theta, cos theta]``,
   linear in the velocity (no singularity at zero speed);
-* faster: the paper's ``[heading, distance]`` measurement.
+* faster: the paper's ``[heading, distance]`` measurement, unless its heading (less the heading bias) is
+  more than ``heading_linear_limit`` (:data:`HEADING_LINEAR_LIMIT`, 30 degrees) from the filter's: that
+  update is linearised about the filter's heading and overshoots far from it, so such a sample enters as the
+  velocity vector too (a glitch, a start heading far off; counted in ``n_heading_far``, the first warned).
 
-Both thresholds are public attributes, on by default; set ``low_speed=0`` and
-``standstill_speed=0`` to switch the logic off. A GPS fix's own accuracy (e.g. the
-receiver's reported horizontal accuracy) is used as its noise when given
+Both thresholds are public attributes, on by default; set ``low_speed=0``,
+``standstill_speed=0`` and ``heading_linear_limit=None`` to switch the logic off. A GPS
+fix's own accuracy (e.g. the receiver's reported horizontal accuracy) is used as its noise when given
 (``update(..., gps_sigma=...)``); otherwise the model's ``sigma_gps``.
 
 What the filter does when GPS lies (each part a public setting, on by default):
@@ -231,7 +234,7 @@ __all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS", "GATE", "REJ
            "LATENCY_Z", "LATENCY_MIN", "DETECTED_LATENCY_SD", "ODOMETER_LATENCY_Z", "ODOMETER_LATENCY_MIN",
            "HEADING_BIAS", "RATE", "GYRO_SCALE", "gps_scale_mle", "gps_scale_loglik", "stop_heading_slope",
            "stop_heading_step", "STOP_STEP_ALPHA", "STOP_STEP_MIN_SIDE", "CALIBRATION_ERROR_Z",
-           "HEADING_JUMP_Z", "HEADING_JUMP_SPACING", "HEADING_JUMP_WINDOW"]
+           "HEADING_JUMP_Z", "HEADING_JUMP_SPACING", "HEADING_JUMP_WINDOW", "HEADING_LINEAR_LIMIT"]
 
 #: Default standstill threshold (m/s) on the odometer speed: 0.05 m/s = 0.11 mph, four
 #: times the creep of a standing car's CAN speed (0.001-0.03 mph).
@@ -352,6 +355,15 @@ CALIBRATION_ERROR_Z = NormalDist().inv_cdf(1.0 - 0.5e-3)  # = 3.29
 HEADING_JUMP_Z = 6.1
 #: Seconds between the onsets the heading-jump detector tries, and the seconds back it tries them.
 HEADING_JUMP_SPACING, HEADING_JUMP_WINDOW = 5.0, 60.0
+#: The largest difference (rad, 30 degrees) between a moving car's measured heading (less the heading bias)
+#: and the filter's own, ``atan2(v_e, v_n)``, that the ``[heading, distance]`` update takes as it is. It is
+#: linearised about the filter's heading: far from it the update moves the velocity along the tangent, past
+#: the measured heading and longer than the odometer's speed, and the acceleration state takes the
+#: difference, so the next step is farther off (one 90 degree heading glitch at 3 m/s as a 1 Hz car pulled
+#: away took an 8-state EKF's velocity to 51 m/s against an odometer of 15; an outage then ended 815 m off).
+#: Past it the sample enters as the measured velocity vector, linear in the velocity. On clean drives
+#: (the analogs, the sample, onavdata's) the difference stays under 13 degrees.
+HEADING_LINEAR_LIMIT = float(np.radians(30.0))
 #: Fixes over which the scale of the fixes' reported covariance is estimated when the estimate is
 #: switched on (``GPSDRFilter(scale_window=SCALE_WINDOW)``; off by default): the consistency monitor's
 #: window. With honest fixes the estimate's relative standard error is about ``1 / sqrt(SCALE_WINDOW)``
@@ -735,6 +747,13 @@ class GPSDRFilter:
         step costs less so: ``docs/study-outputs/dr/log-faults/RUN.md``, stop 46); the monitor's hypotheses keep what the fixes told of them
         beyond the step. Counted in ``n_heading_jumps`` (``heading_jumps``), the
         first warned. An outage (a gap in the fixes) starts the onsets again. None: not looked for.
+    heading_linear_limit : float or None
+        While the car moves, a DR sample whose heading (less the heading bias) is more than this (rad; default
+        :data:`HEADING_LINEAR_LIMIT`, 30 degrees) from the filter's own enters as the measured velocity
+        vector (``GPSDRModel.measurement_for(velocity=True)``, linear in the velocity) instead of as
+        ``[heading, distance]``, whose update is linearised about the filter's heading and overshoots far
+        from it. Counted in ``n_heading_far``, the first warned (a heading glitch the drive reader did not
+        catch, a heading in another convention, or a filter that lost its velocity). None: never.
     min_fix_interval : float
         Seconds after a fix used before the next is used; fixes that come faster are thinned
         (``n_thinned``, with one warning), and fixes at that rate or slower, with their jitter, are
@@ -820,6 +839,9 @@ class GPSDRFilter:
     n_calibration_error : int
         Fixes whose heading-bias and rate-bias gain took the fixes' own correlation because the consistency
         monitor found one of the two off (``calibration_error_z``; the first warned).
+    n_heading_far : int
+        DR samples taken as a velocity vector because their heading was farther than ``heading_linear_limit``
+        from the filter's (the first warned, with the step).
     n_heading_jumps, heading_jumps : int, list of tuple
         The steps of the heading the heading-jump detector found while the car moved (``heading_jump_z``), and
         per step ``(step found, onset step, its estimate (rad), z-score)``.
@@ -886,7 +908,8 @@ class GPSDRFilter:
                  whiteness_window=WHITENESS_WINDOW, scale_window=0, zero_rate_update=True,
                  zero_rate_reacquire_after=ZERO_RATE_REACQUIRE_AFTER, correlated_fixes="calibration",
                  min_fix_interval=0.0, scale_on_detection=True, latency_on_detection=True, stop_reopen=0.0,
-                 calibration_error_z=CALIBRATION_ERROR_Z, heading_jump_z=HEADING_JUMP_Z):
+                 calibration_error_z=CALIBRATION_ERROR_Z, heading_jump_z=HEADING_JUMP_Z,
+                 heading_linear_limit=HEADING_LINEAR_LIMIT):
         if not isinstance(model, GPSDRModel):
             raise TypeError(f"model must be a GPSDRModel, got {type(model).__name__}")
         self.model = model
@@ -916,6 +939,9 @@ class GPSDRFilter:
         self.heading_jump_z = None if heading_jump_z is None else check_positive(heading_jump_z, "heading_jump_z")
         self.n_heading_jumps = 0
         self.heading_jumps = []  # (step found, onset step, size (rad), z)
+        self.heading_linear_limit = (None if heading_linear_limit is None
+                                     else check_positive(heading_linear_limit, "heading_linear_limit"))
+        self.n_heading_far = 0
         self.min_fix_interval = float(min_fix_interval)
         if not (np.isfinite(self.min_fix_interval) and self.min_fix_interval >= 0):
             raise ValueError(f"min_fix_interval must be >= 0 s (0: every fix used), got {min_fix_interval}")
@@ -1142,7 +1168,8 @@ class GPSDRFilter:
             if z_gps is not None and c > 1.0 and self.correlated_fixes == "inflate":  # tested as one, counted 1 / c
                 gps_sigma = self._fix_sigma(gps_sigma) * np.sqrt(c)
         z, R, kw = self.model.measurement_for(z_dr, z_gps, zupt=self.motion == "still",
-                                              low_speed=self.motion == "slow", gps_sigma=gps_sigma)
+                                              low_speed=self.motion == "slow", gps_sigma=gps_sigma,
+                                              velocity=self.motion == "moving" and self._heading_far(z_dr))
         weights = self._gain_weights(kw["gps"])
         x_prior = self.kf.x.copy() if weights is not None or self._sens is not None else None
         if weights is not None:
@@ -1163,6 +1190,27 @@ class GPSDRFilter:
             self._add_state()
         self.step += 1
         return self
+
+    def _heading_far(self, z_dr):
+        """Whether the measured heading, less the heading bias, is farther than ``heading_linear_limit`` from
+        the filter's (counted; the first warns with the step, the difference and the speed)."""
+        if self.heading_linear_limit is None:
+            return False
+        x = self.kf.x
+        bias = x[HEADING_BIAS] if self.model.augmented else 0.0
+        d = float(wrap_angle(float(z_dr[0]) - bias - np.arctan2(x[1], x[4])))
+        if abs(d) <= self.heading_linear_limit:
+            return False
+        self.n_heading_far += 1
+        if self.n_heading_far == 1:
+            warnings.warn(
+                f"GPSDRFilter at step {self.step}: the measured heading is {np.degrees(d):+.0f} degrees from the "
+                f"filter's at {float(z_dr[1]) / self.model.dt:.1f} m/s by the odometer, too far for the "
+                f"[heading, distance] update (linearised about the filter's heading, it overshoots); the sample "
+                f"enters as the measured velocity vector, as do later ones so far off (n_heading_far). A heading "
+                f"glitch the drive reader did not catch, a heading in another convention or frame, or a filter that "
+                f"lost its velocity: check the drive there", RuntimeWarning, stacklevel=3)
+        return True
 
     def _turn(self, heading):
         """The gyro's scale factor error ``k``: a measured turn ``d`` (this heading less the last) adds

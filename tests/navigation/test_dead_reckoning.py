@@ -248,9 +248,9 @@ def test_pulling_away_from_rest_needs_the_low_speed_update():
     assert np.all(run.z_dr[run.t < 5.0, 1] == 0.0)          # odometer reads 0 at rest
     m = GPSDRModel(augmented=True)
 
-    def go(use_flags):  # standstill below 1e-9 m/s, the velocity form below 1 m/s; or neither
+    def go(use_flags, **kw):  # standstill below 1e-9 m/s, the velocity form below 1 m/s; or neither
         f = GPSDRFilter(m, x0=np.r_[run.x0, 1.0, 0.0], hold_without_gps=False,
-                        standstill_speed=1e-9 if use_flags else 0.0, low_speed=1.0 if use_flags else 0.0)
+                        standstill_speed=1e-9 if use_flags else 0.0, low_speed=1.0 if use_flags else 0.0, **kw)
         for k in range(len(run.t)):
             f.predict()
             f.update(run.z_dr[k], None)
@@ -259,8 +259,11 @@ def test_pulling_away_from_rest_needs_the_low_speed_update():
     x = go(True)
     assert np.all(np.isfinite(x))
     assert np.hypot(x[1] - run.x_true[-1, 1], x[4] - run.x_true[-1, 4]) < 0.5
-    stuck = go(False)
+    stuck = go(False, heading_linear_limit=None)
     assert np.hypot(stuck[1], stuck[4]) < 1.0                # never picks up speed
+    with pytest.warns(RuntimeWarning, match="the measured heading is"):
+        x = go(False)  # the far-heading rule alone: a standing filter's heading is far from any, velocity form
+    assert np.hypot(x[1] - run.x_true[-1, 1], x[4] - run.x_true[-1, 4]) < 0.5
 
 
 def test_velocity_measurement_is_polar_to_cartesian():

@@ -117,7 +117,8 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         bias off and their gain took the fixes' own correlation, "(off at N fixes)" after the correlation;
         ``n_heading_jumps``, the steps of the heading the heading-jump detector found while the car moved,
         "(N jumped)" after the fixes' counts, and ``heading_jumps``, per step (step found, onset step,
-        estimate (rad), z-score);
+        estimate (rad), z-score); ``n_heading_far``, the DR samples whose heading was so far from the filter's
+        that they entered as a velocity vector (``heading_linear_limit``), "(N headings far)";
         ``gyro_scale_estimate`` and ``gyro_scale_z``, the scale-error monitor's estimate and z-score (None
         without it), ``gyro_scale_added``, the step at which it made the filter add the scale state (None:
         not), and ``gyro_scale``, that state's last value (None without one); ``latency_estimate``,
@@ -279,6 +280,7 @@ def _integrity(f, run):
             "n_zero_rate_turned": f.n_zero_rate_turned if f.zero_rate_update else None,
             "n_zero_rate_stepped": f.n_zero_rate_stepped if f.zero_rate_update else None,
             "n_calibration_error": f.n_calibration_error, "n_heading_jumps": f.n_heading_jumps,
+            "n_heading_far": f.n_heading_far,
             "heading_jumps": list(f.heading_jumps),
             "gyro_scale_estimate": f.gyro_scale_estimate, "gyro_scale_z": f.gyro_scale_z,
             "gyro_scale_added": f.gyro_scale_added,
@@ -374,5 +376,7 @@ def _integrity_cells(ig):
     unused = "".join(f" ({ig[f'n_{k}']} more {k})" for k in ("thinned", "stale") if ig.get(f"n_{k}"))
     if ig.get("n_heading_jumps"):
         unused += f" ({ig['n_heading_jumps']} jumped)"
+    if ig.get("n_heading_far"):
+        unused += f" ({ig['n_heading_far']} headings far)"
     return (f"{ig['n_rejected']} / {ig['n_downweighted']} / {ig['n_reacquired']} of {ig['n_fixes']}{unused} | {nis} | "
             f"{scale} | {corr} | {stops}")
