@@ -205,7 +205,7 @@ def _located(path, exc, lines):
 
 def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2, checks=True, progress=None, fill_gaps=0.0,
                    gps_latency=0.0, intervals="auto", odometer_latency=0.0, heading_offset=0.0, speed_scale=1.0,
-                   hdop_sigma=None):
+                   hdop_sigma=None, heading_latency=0.0):
     """Read one's own drive from a CSV file with the columns of :data:`DRIVE_CSV_COLUMNS`.
 
     One row per DR sample, a header row with the column names; a GPS fix is the row's
@@ -229,11 +229,12 @@ def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2, checks=True,
     ----------
     path : str or path-like
     origin, name, max_jitter, checks, fill_gaps, gps_latency, intervals, odometer_latency, heading_offset,
-    speed_scale
+    speed_scale, heading_latency
         As :meth:`DRRun.from_arrays` (``checks``: the plausibility checks against the fixes;
         ``fill_gaps``: the longest gap of dropped DR samples, in s, to fill by interpolation;
         ``gps_latency``: the receiver's latency, s, by which each fix is older than its time;
-        ``odometer_latency``: the same for the speed or odometer column;
+        ``odometer_latency``: the same for the speed or odometer column; ``heading_latency``: for the heading
+        (a heading averaged over each sample's interval is half an interval late);
         ``heading_offset``: degrees by which the heading reads clockwise of the car's course, subtracted;
         ``speed_scale``: the factor by which the speed or odometer reads more than the car drove, divided out;
         ``intervals``: the interval each speed sample covers, its stamped one or the stamps'
@@ -295,7 +296,8 @@ def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2, checks=True,
         return DRRun.from_arrays(t, heading, name=name or os.path.splitext(os.path.basename(path))[0],
                                  max_jitter=max_jitter, checks=checks, fill_gaps=fill_gaps, gps_latency=gps_latency,
                                  intervals=intervals, odometer_latency=odometer_latency,
-                                 heading_offset=heading_offset, speed_scale=speed_scale, **kw)
+                                 heading_offset=heading_offset, speed_scale=speed_scale,
+                                 heading_latency=heading_latency, **kw)
     except ValueError as exc:
         raise _located(path, exc, lines) from None
 

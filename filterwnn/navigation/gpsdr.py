@@ -1485,6 +1485,25 @@ class GPSDRFilter:
             f"(the gyro's yaw rate, integrated) is what the model takes{self._speed_late_note()}", RuntimeWarning,
             stacklevel=5)
 
+    def _heading_late_note(self, name, theta):
+        """The fixes' or the speed's latency warning's last words when the other of the two shows the same sign (the
+        other warned already, or its z-score past :data:`CALIBRATION_ERROR_Z`): both early against the heading is
+        the heading late against both (a heading averaged over each sample's interval is half an interval late; on
+        the 1 Hz analogs with the heading 0.5 s late the fixes read -0.25 to -0.35 s and the speed -0.39 to -0.44 s:
+        ``log-faults/heading_latency.py``), which the drive reader's ``heading_latency`` gives back."""
+        other = "latency" if name == "odometer_latency" else "odometer_latency"
+        est, z = ((self.latency_estimate, self.latency_z) if other == "latency"
+                  else (self.odometer_latency_estimate, self.odometer_latency_z))
+        if est is None or np.sign(est) != np.sign(theta) or not (
+                other in self._warned_errors or (z is not None and abs(z) >= CALIBRATION_ERROR_Z)):
+            return ""
+        speed = theta if name == "odometer_latency" else est
+        fixes = "the fixes show themselves" if other == "latency" else "the speed shows itself"
+        return (f"; {fixes} {est:+.2g} s late too, and both {'early' if theta < 0 else 'late'} can be the heading "
+                f"{-speed:+.2g} s late against them (a heading averaged over each sample's interval is half an "
+                f"interval late, 0.5 s at 1 Hz): if so, read the drive with the heading at its own time "
+                f"(heading_latency={-speed:.2g}, --heading-latency {-speed:.2g}) instead")
+
     def _speed_late_note(self):
         """The heading-step warning's last words when the filter has warned of the speed's latency: a speed
         stamped late moves the car along its track at every start and stop, and the onsets, tested without it,
@@ -1603,6 +1622,7 @@ class GPSDRFilter:
             what = (f"the speed {theta:+.2g} s (+- {sd:.2g} s) late against the heading and themselves (a CAN bus's "
                     f"latency, or the offset between the clocks that stamped them; z-score {z:+.3g}): each speed is "
                     "then that of that long before, and the distance lags every change of speed")
+            then += self._heading_late_note(name, theta)
         else:
             if self.latency_on_detection:
                 then = ("the filter adds a latency state from here, started at that estimate "
@@ -1613,6 +1633,7 @@ class GPSDRFilter:
             what = (f"themselves {theta:+.2g} s (+- {sd:.2g} s) late against the DR samples (a receiver's latency, or "
                     f"the offset between the clocks that stamped them; z-score {z:+.3g}): each fix is then the "
                     "position that long before its time, behind the car by its speed times it")
+            then += self._heading_late_note(name, theta)
         # warn (1) <- _estimate_errors <- _monitor_errors <- update <- the caller (5)
         # each error's own kind before the step, so that a run's folded warnings keep them apart
         topic = {"gyro_scale": "the gyro's scale", "latency": "the fixes' latency",

@@ -270,7 +270,7 @@ class DRRun(NamedTuple):
     def from_arrays(cls, t, heading=None, *, distance=None, speed=None, gps_t=None, east=None, north=None,
                     lat=None, lon=None, gps_sigma=None, truth=None, origin=None, name="drive",
                     max_jitter=0.2, checks=True, fill_gaps=0.0, gps_latency=0.0, intervals="auto",
-                    odometer_latency=0.0, heading_offset=0.0, speed_scale=1.0, yaw_rate=None):
+                    odometer_latency=0.0, heading_offset=0.0, speed_scale=1.0, yaw_rate=None, heading_latency=0.0):
         """One's own drive from arrays: validated, on the DR sample grid, in local metres.
 
         Parameters
@@ -355,6 +355,12 @@ class DRRun(NamedTuple):
             Unmodelled, the dead-reckoned distance lags the heading and the fixes: 0.5 s took a phone-grade
             EKF-8's worst outage end from 28.16 to 33.01 m (docs/study-outputs/dr/sensor-faults). An unknown
             one is what the GPS/DR filter's monitor estimates and warns of, with this setting's value.
+        heading_latency : float
+            The same for the heading (or the yaw rate's integral): read at ``t + heading_latency``, along the
+            shorter arc. A heading averaged over each sample's interval (a log thinned to 1 Hz by averaging) is
+            half an interval late: 0.5 s at 1 Hz took the 1 Hz analogs' EKF-8 from 1.63-1.76 to 6.34-6.83 m
+            median (docs/study-outputs/dr/log-faults/heading_latency.py); the filter's monitor then tells the
+            fixes and the speed early against it, and names this setting. Default 0.
         heading_offset : float
             Degrees by which the heading reads clockwise of the car's course (its zero off: a phone mounted
             askew; a magnetic heading reads ``-D`` for a declination ``D`` east): subtracted from every heading.
@@ -413,6 +419,10 @@ class DRRun(NamedTuple):
                 speed = np.interp(t_read, t, _finite_1d(speed, "speed", len(t_read)))
             if distance is not None:
                 distance = np.interp(t_read, t, _finite_1d(distance, "distance", len(t_read)))
+        h_lag = check_finite(heading_latency, "heading_latency", "seconds", " (negative: the heading is early)")
+        if h_lag and heading is not None:  # the heading at t is the one logged at t + lag, along the shorter arc
+            t_h = _finite_1d(t, "t")
+            heading = wrap_angle(np.interp(t_h + h_lag, t_h, np.unwrap(_heading_radians(heading, len(t_h)))))
         latency = check_finite(gps_latency, "gps_latency", "seconds", " (negative: the fixes are stamped early)")
         if gps_t is not None and latency:
             gps_t = np.asarray(gps_t, dtype=float) - latency

@@ -1088,10 +1088,30 @@ def test_the_cli_names_the_columns_when_a_drive_has_no_fix_and_no_truth(tmp_path
 
 
 def test_the_cli_passes_the_latencies_and_the_intervals_to_the_reader(command_passes):
-    for argv, want in ((["--gps-latency", "0.3", "--intervals", "stamps", "--odometer-latency", "0.2"],
-                        (0.3, "stamps", 0.2)), ([], (0.0, "auto", 0.0))):
+    for argv, want in ((["--gps-latency", "0.3", "--intervals", "stamps", "--odometer-latency", "0.2",
+                         "--heading-latency", "0.5"], (0.3, "stamps", 0.2, 0.5)), ([], (0.0, "auto", 0.0, 0.0))):
         seen = command_passes("read_drive_csv", argv)
-        assert (seen["gps_latency"], seen["intervals"], seen["odometer_latency"]) == want
+        assert (seen["gps_latency"], seen["intervals"], seen["odometer_latency"], seen["heading_latency"]) == want
+
+
+def test_a_headings_latency_reads_each_heading_where_it_was_measured(tmp_path):
+    """A heading 0.5 s late (5 samples at 10 Hz; a heading averaged over each sample's interval is half an
+    interval late) through a turn that crosses north: with ``heading_latency=0.5`` the headings are the honest
+    ones but for the last 0.5 s (the last sample held), along the shorter arc; -0.5 reads an early one back."""
+    c = _drive(turn=0.2, bearing=5.5)  # 5.5 rad, turning 0.2 rad/s: through north after 4 s
+    honest = read_drive_csv(_write(tmp_path / "h.csv", c), checks=False)
+    late = {**c, "heading": np.r_[np.full(5, c["heading"][0]), c["heading"][:-5]]}
+    path = _write(tmp_path / "late.csv", late)
+    as_logged = read_drive_csv(path, checks=False)
+    run = read_drive_csv(path, checks=False, heading_latency=0.5)
+    off = lambda a, b: np.abs(np.angle(np.exp(1j * (a - b))))  # noqa: E731
+    assert off(run.z_dr[:-5, 0], honest.z_dr[:-5, 0]).max() < 1e-9
+    assert off(as_logged.z_dr[5:, 0], honest.z_dr[5:, 0]).min() > 0.09  # 0.5 s of 0.2 rad/s
+    early = {**c, "heading": np.r_[c["heading"][5:], np.full(5, c["heading"][-1])]}
+    run = read_drive_csv(_write(tmp_path / "early.csv", early), checks=False, heading_latency=-0.5)
+    assert off(run.z_dr[6:, 0], honest.z_dr[6:, 0]).max() < 1e-9
+    with pytest.raises(ValueError, match=r"heading_latency must be a finite number of seconds \(negative"):
+        read_drive_csv(path, heading_latency=np.inf)
 
 
 def _stop_and_go(dt, cycles=5, accel=1.5, top=8.0, stand=10.0):

@@ -327,6 +327,30 @@ def test_the_monitor_tells_a_speed_late_against_the_heading_and_names_the_reader
     assert abs(g.odometer_latency_z) < 3.0, g.odometer_latency_z
 
 
+def test_a_heading_late_against_the_speed_and_the_fixes_is_named_with_the_readers_setting(tmp_path):
+    """The 1 Hz analog (seed 0) with each heading the one half a second before its stamp (a heading averaged over
+    each second): the monitor tells the speed and the fixes early against it, and each warning names the heading
+    late, the other showing the same, with the reader's setting at the speed's estimate (measured: the speed
+    -0.38 s at step 244, the fixes -0.22 s then; the fixes -0.25 s at step 530, the speed -0.44 s then). Read with
+    ``heading_latency`` at the last, the drive leaves both quiet."""
+    cols = held_out.columns("one_hz", 0)
+    cols["heading"] = np.mod(np.interp(cols["time"] - 0.5, cols["time"], np.unwrap(cols["heading"])), 2 * np.pi)
+    path = held_out.write_csv(tmp_path / "heading_late.csv", cols)
+    run = read_drive_csv(path)
+    seen, _ = _step_through(_filter(run), run)
+    said = [str(w.message) for w in seen if "heading_latency=" in str(w.message)]
+    assert len(said) == 2 and "the speed's latency" in said[0] and "the fixes' latency" in said[1], said
+    assert re.search(r"the fixes show themselves -0\.\d+ s late too, and both early can be the heading \+0\.\d+ s late",
+                     said[0]), said[0]
+    m = re.search(r"the speed shows itself (-0\.\d+) s late too, and both early can be the heading \+(0\.\d+) s late "
+                  r"against them .* \(heading_latency=(0\.\d+), --heading-latency (0\.\d+)\) instead", said[1])
+    assert m and float(m.group(2)) == float(m.group(3)) == float(m.group(4)) == -float(m.group(1)), said[1]
+    assert 0.3 < float(m.group(3)) < 0.6
+    again = read_drive_csv(path, heading_latency=float(m.group(3)))
+    seen, _ = _step_through(_filter(again), again)
+    assert not [w for w in seen if "latency" in str(w.message)], [str(w.message) for w in seen]
+
+
 def test_a_runs_folded_warnings_keep_each_monitored_error_apart(tmp_path):
     """The 1 Hz analog with its speed 0.5 s early: the fixes' latency test takes it for fixes 0.54 s late first
     (both move the car along its track) and the speed's test tells it later; ``batch_filter`` folds a run's

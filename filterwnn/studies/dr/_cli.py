@@ -70,6 +70,11 @@ def add_arguments(parser):
                         help="with --drive: the speed's (or odometer's) latency (s, from the vehicle's data sheet, "
                              "e.g. a CAN bus's): each sample is that much older than its time stamp (default 0; negative: the "
                              "speed is early; an unknown one the filters warn of when the fixes show it, with its value)")
+    parser.add_argument("--heading-latency", type=options.finite_float, default=0.0, metavar="SECONDS",
+                        help="with --drive: the heading's (or yaw rate's) latency (s): each sample is that much older "
+                             "than its time stamp (default 0; a heading averaged over each sample's interval is half "
+                             "an interval late, 0.5 s at 1 Hz; negative: early; the filters warn when the fixes and the "
+                             "speed both show themselves early against it, with its value)")
     parser.add_argument("--heading-offset", type=options.finite_float, default=0.0, metavar="DEG",
                         help="with --drive: degrees by which the heading reads clockwise of the car's course (its "
                              "zero off: a phone mounted askew; a magnetic heading, by the declination), subtracted "
@@ -145,7 +150,8 @@ def add_arguments(parser):
 #: The options that apply to ``--drive`` drives only (their help says "with --drive"), and those that apply to
 #: drives, one's own or ``--real``'s (the outages' placement, the GPS/DR filters' settings): given where they
 #: do not apply, the command refuses them rather than ignore them.
-DRIVE_ONLY = ("--no-plausibility", "--fill-gaps", "--gps-latency", "--odometer-latency", "--heading-offset",
+DRIVE_ONLY = ("--no-plausibility", "--fill-gaps", "--gps-latency", "--odometer-latency", "--heading-latency",
+              "--heading-offset",
               "--speed-scale", "--hdop-sigma", "--intervals", "--outage-starts", "--gyro-scale-sd", "--gyro-bias",
               "--gyro-bias-instability", "--gps-latency-sd")
 ON_DRIVES = ("--outage-length", "--outages", "--min-speed", "--gps-scale-window", "--correlated-fixes",
@@ -264,6 +270,7 @@ def _run_drives(args, drives, filters):
                              gps_latency=getattr(args, "gps_latency", 0.0),
                              intervals=getattr(args, "intervals", "auto"),
                              odometer_latency=getattr(args, "odometer_latency", 0.0),
+                             heading_latency=getattr(args, "heading_latency", 0.0),
                              heading_offset=getattr(args, "heading_offset", 0.0),
                              speed_scale=getattr(args, "speed_scale", 1.0),
                              hdop_sigma=getattr(args, "hdop_sigma", None) or _grade(grade)["gps_sigma_m"],
