@@ -1487,15 +1487,14 @@ class GPSDRFilter:
 
     def _heading_late_note(self, name, theta):
         """The fixes' or the speed's latency warning's last words when the other of the two shows the same sign (the
-        other warned already, or its z-score past :data:`CALIBRATION_ERROR_Z`): both early against the heading is
-        the heading late against both (a heading averaged over each sample's interval is half an interval late; on
-        the 1 Hz analogs with the heading 0.5 s late the fixes read -0.25 to -0.35 s and the speed -0.39 to -0.44 s:
-        ``log-faults/heading_latency.py``), which the drive reader's ``heading_latency`` gives back."""
+        other warned already, or its z-score past :data:`CALIBRATION_ERROR_Z`): both early against the heading can
+        be the heading late against both (a heading averaged over each sample's interval is half an interval late;
+        on the 1 Hz analogs with the heading 0.5 s late the fixes read -0.25 to -0.39 s and the speed -0.44 to
+        -0.57 s: ``log-faults/heading_latency.py``), which the drive reader's ``heading_latency`` gives back. A speed
+        alone late or early made the fixes' test read the opposite sign (``log-faults/heading_latency_named.py``)."""
         other = "latency" if name == "odometer_latency" else "odometer_latency"
-        est, z = ((self.latency_estimate, self.latency_z) if other == "latency"
-                  else (self.odometer_latency_estimate, self.odometer_latency_z))
-        if est is None or np.sign(est) != np.sign(theta) or not (
-                other in self._warned_errors or (z is not None and abs(z) >= CALIBRATION_ERROR_Z)):
+        est = self._paired(other, theta)
+        if est is None:
             return ""
         speed = theta if name == "odometer_latency" else est
         fixes = "the fixes show themselves" if other == "latency" else "the speed shows itself"
@@ -1504,6 +1503,17 @@ class GPSDRFilter:
                 f"interval late, 0.5 s at 1 Hz): if so, read the drive with the heading at its own time "
                 f"(heading_latency={-speed:.2g}, --heading-latency {-speed:.2g}) instead")
 
+    def _paired(self, other, theta):
+        """The monitor's estimate of ``other`` (``"latency"``, the fixes', or ``"odometer_latency"``, the speed's)
+        where it has the sign of ``theta`` and was warned of or has a z-score past :data:`CALIBRATION_ERROR_Z`;
+        else None."""
+        est, z = ((self.latency_estimate, self.latency_z) if other == "latency"
+                  else (self.odometer_latency_estimate, self.odometer_latency_z))
+        if est is None or np.sign(est) != np.sign(theta) or not (
+                other in self._warned_errors or (z is not None and abs(z) >= CALIBRATION_ERROR_Z)):
+            return None
+        return est
+
     def _speed_late_note(self):
         """The heading-step warning's last words when the filter has warned of the speed's latency: a speed
         stamped late moves the car along its track at every start and stop, and the onsets, tested without it,
@@ -1511,9 +1521,13 @@ class GPSDRFilter:
         if "odometer_latency" not in self._warned_errors:
             return ""
         tau = self.odometer_latency_estimate
+        fixes = self._paired("latency", tau)
+        heading = "" if fixes is None else (
+            f" (or, the fixes showing themselves {fixes:+.2g} s late too, the heading {-tau:+.2g} s late against "
+            f"both: heading_latency={-tau:.2g}, --heading-latency {-tau:.2g})")
         return (f". The filter has warned that the fixes show the speed late (now {tau:+.2g} s): a speed stamped "
                 "late can read as such a step; read the drive with each speed at its own time "
-                f"(odometer_latency={tau:.2g}, --odometer-latency {tau:.2g}) first")
+                f"(odometer_latency={tau:.2g}, --odometer-latency {tau:.2g}){heading} first")
 
     def _residual_correlation(self):
         """The correlation of the scored fixes' innovations less what the estimated errors explain (the

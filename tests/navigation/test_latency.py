@@ -338,8 +338,11 @@ def test_a_heading_late_against_the_speed_and_the_fixes_is_named_with_the_reader
     path = held_out.write_csv(tmp_path / "heading_late.csv", cols)
     run = read_drive_csv(path)
     seen, _ = _step_through(_filter(run), run)
-    said = [str(w.message) for w in seen if "heading_latency=" in str(w.message)]
-    assert len(said) == 2 and "the speed's latency" in said[0] and "the fixes' latency" in said[1], said
+    named = [str(w.message) for w in seen if "heading_latency=" in str(w.message)]
+    said = [m for m in named if "latency: by step" in m]
+    assert len(said) == 2 and "the speed's latency" in said[0] and "the fixes' latency" in said[1], named
+    # the false heading step the late heading made names it too, beside the speed's remedy
+    assert [m for m in named if "the heading stepped" in m and "the heading +0." in m], named
     assert re.search(r"the fixes show themselves -0\.\d+ s late too, and both early can be the heading \+0\.\d+ s late",
                      said[0]), said[0]
     m = re.search(r"the speed shows itself (-0\.\d+) s late too, and both early can be the heading \+(0\.\d+) s late "
