@@ -8,8 +8,10 @@ before the update (degrees), its 99.9th percentile and the samples past 20 and 3
 
     OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/log-faults/heading_innovations.py ROOT analogs 0 3
     OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/log-faults/heading_innovations.py ROOT recorded
+    OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/log-faults/heading_innovations.py ROOT analogs 3 10
 
-(``heading_innovations.txt``: the two in turn; ``recorded`` needs the ``data`` extra.)
+(``heading_innovations.txt``: the three in turn, the last on stop 51's code; ``recorded`` needs the ``data``
+extra.)
 """
 import os
 import sys
