@@ -9,8 +9,12 @@ speed spikes, the reader's spike rules off. Run with the package at ``ROOT``, on
 
     OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/log-faults/dr_nis.py ROOT analogs
     OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/log-faults/dr_nis.py ROOT spikes
+    OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/log-faults/dr_nis.py ROOT analogs 2 10
+    OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/log-faults/dr_nis.py ROOT random 2 0 55
+    OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/log-faults/dr_nis.py ROOT random 2 55 110
 
-(``dr_nis.txt``: the two in turn, on stop 51's code.)
+(``dr_nis.txt``: the first two in turn, on stop 51's code; ``dr_nis_more.txt``: the other three, on 0d2c451:
+``random`` runs ``random-drives/random_drives.py``'s drives of the protocol given, seeds from, to.)
 """
 import os
 import sys
@@ -52,15 +56,25 @@ def go(label, run, grade="phone", sig=True, kinds=("EKF-8",)):
 tmp = tempfile.mkdtemp()
 which = sys.argv[2]
 if which == "analogs":
+    lo, hi = (int(sys.argv[3]), int(sys.argv[4])) if len(sys.argv) > 4 else (0, 2)
     for name in ("one_hz", "phone", "city"):
-        for seed in (0, 1):
+        for seed in range(lo, hi):
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
                 run = read_drive_csv(held_out.write_csv(os.path.join(tmp, "d.csv"), held_out.columns(name, seed)))
             go(f"{name} {seed}", run)
-    run = read_drive_csv(sample_drive_path()); go("sample", run)
-    for d in CAR_DRIVES:
-        go(d, load_car_drive(d), "survey", sig=False)
+    if lo == 0:
+        run = read_drive_csv(sample_drive_path()); go("sample", run)
+        for d in CAR_DRIVES:
+            go(d, load_car_drive(d), "survey", sig=False)
+elif which == "random":
+    import random_drives  # noqa: E402
+    for seed in range(int(sys.argv[4]), int(sys.argv[5])):
+        d, cols, _ = random_drives.drive(seed, int(sys.argv[3]))
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            run = read_drive_csv(held_out.write_csv(os.path.join(tmp, "d.csv"), cols))
+        go(f"protocol {sys.argv[3]} seed {seed} dt {d['dt']:g}", run)
 elif which == "spikes":
     scenarios._heading_spikes = lambda t, h, s: h
     scenarios._speed_spikes = lambda t, s: s
