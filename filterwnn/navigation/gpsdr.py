@@ -1193,12 +1193,11 @@ class GPSDRFilter:
 
     def _heading_far(self, z_dr):
         """Whether the measured heading, less the heading bias, is farther than ``heading_linear_limit`` from
-        the filter's (counted; the first warns with the step, the difference and the speed)."""
+        the filter's: the heading row of the ``[heading, distance]`` update's own residual at the prior (counted;
+        the first warns with the step, the difference and the speed)."""
         if self.heading_linear_limit is None:
             return False
-        x = self.kf.x
-        bias = x[HEADING_BIAS] if self.model.augmented else 0.0
-        d = float(wrap_angle(float(z_dr[0]) - bias - np.arctan2(x[1], x[4])))
+        d = float(dr_residual(np.asarray(z_dr, dtype=float), self.model.hx(self.kf.x, gps=False))[0])
         if abs(d) <= self.heading_linear_limit:
             return False
         self.n_heading_far += 1
@@ -1636,7 +1635,6 @@ class GPSDRFilter:
             what = (f"the speed {theta:+.2g} s (+- {sd:.2g} s) late against the heading and themselves (a CAN bus's "
                     f"latency, or the offset between the clocks that stamped them; z-score {z:+.3g}): each speed is "
                     "then that of that long before, and the distance lags every change of speed")
-            then += self._heading_late_note(name, theta)
         else:
             if self.latency_on_detection:
                 then = ("the filter adds a latency state from here, started at that estimate "
@@ -1647,6 +1645,7 @@ class GPSDRFilter:
             what = (f"themselves {theta:+.2g} s (+- {sd:.2g} s) late against the DR samples (a receiver's latency, or "
                     f"the offset between the clocks that stamped them; z-score {z:+.3g}): each fix is then the "
                     "position that long before its time, behind the car by its speed times it")
+        if name != "gyro_scale":  # the fixes' or the speed's latency: both of one sign can be the heading's
             then += self._heading_late_note(name, theta)
         # warn (1) <- _estimate_errors <- _monitor_errors <- update <- the caller (5)
         # each error's own kind before the step, so that a run's folded warnings keep them apart

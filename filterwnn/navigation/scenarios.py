@@ -420,9 +420,9 @@ class DRRun(NamedTuple):
             if distance is not None:
                 distance = np.interp(t_read, t, _finite_1d(distance, "distance", len(t_read)))
         h_lag = check_finite(heading_latency, "heading_latency", "seconds", " (negative: the heading is early)")
-        if h_lag and heading is not None:  # the heading at t is the one logged at t + lag, along the shorter arc
+        if h_lag and heading is not None:  # the heading at t is the one logged at t + lag
             t_h = _finite_1d(t, "t")
-            heading = wrap_angle(np.interp(t_h + h_lag, t_h, np.unwrap(_heading_radians(heading, len(t_h)))))
+            heading = _heading_at(t_h + h_lag, t_h, heading)
         latency = check_finite(gps_latency, "gps_latency", "seconds", " (negative: the fixes are stamped early)")
         if gps_t is not None and latency:
             gps_t = np.asarray(gps_t, dtype=float) - latency
@@ -450,7 +450,7 @@ def _fill_gaps(t, heading, distance, speed, truth, longest, max_jitter):
     parts = [t[:1]] + [np.linspace(t[i], t[i + 1], int(k[i]) + 1)[1:] if gap[i] else t[i + 1:i + 2]
                        for i in range(len(t) - 1)]
     new_t = np.concatenate(parts)
-    h = np.unwrap(_heading_radians(heading, len(t)))  # degrees are refused here, with their values
+    h = _heading_at(new_t, t, heading)  # degrees are refused here, with their values
 
     def interp(a, name):
         return None if a is None else np.interp(new_t, t, _finite_1d(a, name, len(t)))
@@ -459,7 +459,13 @@ def _fill_gaps(t, heading, distance, speed, truth, longest, max_jitter):
     i = int(np.flatnonzero(gap)[np.argmax(dts[gap])])
     warnings.warn(f"filled {int(gap.sum())} gap(s) of dropped DR samples with {len(new_t) - len(t)} interpolated "
                   f"sample(s); the longest {dts[i]:g} s after t = {t[i]:g} s", RuntimeWarning, stacklevel=3)
-    return new_t, wrap_angle(np.interp(new_t, t, h)), interp(distance, "distance"), interp(speed, "speed"), tr
+    return new_t, h, interp(distance, "distance"), interp(speed, "speed"), tr
+
+
+def _heading_at(new_t, t, heading):
+    """``heading`` (rad, at the times ``t``) at the times ``new_t``, linearly interpolated along the shorter arc
+    (held beyond the first and last), wrapped; degrees are refused here, with their values."""
+    return wrap_angle(np.interp(new_t, t, np.unwrap(_heading_radians(heading, len(t)))))
 
 
 def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps_sigma, truth, origin, name,
