@@ -17,6 +17,17 @@ DR measurement to use:
   update is linearised about the filter's heading and overshoots far from it, so such a sample enters as the
   velocity vector too (a glitch, a start heading far off; counted in ``n_heading_far``, the first warned).
 
+An unsigned speed (a CAN bus's, OBD's) cannot say that the car reverses, and the heading is the car's nose, so
+dead reckoning takes a car backing out of a parking space forward: the fixes and the prediction part at twice the
+distance reversed. While the car moves the filter tests the fixes against the dead reckoning's displacement, taken
+the way it goes and the other way (``reversing_test``, Wald's sequential test at :data:`REVERSING_ALPHA`, each path
+also with an unknown constant offset of its fixes, so that a street's multipath that lasts does not read as
+reversing); when the other way wins, the position goes to the test's start less the displacement, the velocity
+turns, and the samples until the next stop (or the next such decision: a 1 Hz log may change direction with no
+standing sample) enter with their heading turned by half a turn (counted in ``n_reversing`` and
+``n_forward_again``, the first of each warned). With no fixes (an outage) nothing can tell; a signed speed tells
+the drive reader instead.
+
 Both thresholds are public attributes, on by default; set ``low_speed=0``,
 ``standstill_speed=0`` and ``heading_linear_limit=None`` to switch the logic off. A GPS
 fix's own accuracy (e.g. the receiver's reported horizontal accuracy) is used as its noise when given
@@ -234,7 +245,8 @@ __all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS", "GATE", "REJ
            "LATENCY_Z", "LATENCY_MIN", "DETECTED_LATENCY_SD", "ODOMETER_LATENCY_Z", "ODOMETER_LATENCY_MIN",
            "HEADING_BIAS", "RATE", "GYRO_SCALE", "gps_scale_mle", "gps_scale_loglik", "stop_heading_slope",
            "stop_heading_step", "STOP_STEP_ALPHA", "STOP_STEP_MIN_SIDE", "CALIBRATION_ERROR_Z",
-           "HEADING_JUMP_Z", "HEADING_JUMP_SPACING", "HEADING_JUMP_WINDOW", "HEADING_LINEAR_LIMIT"]
+           "HEADING_JUMP_Z", "HEADING_JUMP_SPACING", "HEADING_JUMP_WINDOW", "HEADING_LINEAR_LIMIT",
+           "REVERSING_ALPHA", "REVERSING_FIXES"]
 
 #: Default standstill threshold (m/s) on the odometer speed: 0.05 m/s = 0.11 mph, four
 #: times the creep of a standing car's CAN speed (0.001-0.03 mph).
@@ -364,6 +376,15 @@ HEADING_JUMP_SPACING, HEADING_JUMP_WINDOW = 5.0, 60.0
 #: Past it the sample enters as the measured velocity vector, linear in the velocity. On clean drives
 #: (the analogs, the sample, onavdata's) the difference stays under 13 degrees.
 HEADING_LINEAR_LIMIT = float(np.radians(30.0))
+#: The reversing test's error probability: a moving car on an unsigned speed is taken to move against the
+#: direction taken (reversing after a stop, or forward again) when the log-likelihood ratio of its fixes, the other
+#: way against this, divided by the fixes' correlation, passes ``log(1 / REVERSING_ALPHA)`` (Wald's sequential
+#: test; below minus that the direction holds and the test starts again). As the fixes' reject gate, 1e-9.
+REVERSING_ALPHA = 1e-9
+#: ... and the last this many fixes (one a second) must each be past the gate from the direction taken and inside it
+#: from the other, with at least one fix before them since the test started: one fix that jumped (a street's
+#: multipath) is not a car that turned round, and the offset path needs a fix before a jump to tell it.
+REVERSING_FIXES = 2
 #: Fixes over which the scale of the fixes' reported covariance is estimated when the estimate is
 #: switched on (``GPSDRFilter(scale_window=SCALE_WINDOW)``; off by default): the consistency monitor's
 #: window. With honest fixes the estimate's relative standard error is about ``1 / sqrt(SCALE_WINDOW)``
@@ -754,6 +775,24 @@ class GPSDRFilter:
         ``[heading, distance]``, whose update is linearised about the filter's heading and overshoots far
         from it. Counted in ``n_heading_far``, the first warned (a heading glitch the drive reader did not
         catch, a heading in another convention, or a filter that lost its velocity). None: never.
+    reversing_test : bool
+        While the car moves, test the fixes for it moving against the direction taken on an unsigned speed
+        (reversing after a stop, which starts forward; forward again): Wald's sequential probability ratio test of
+        the fixes against the test's start (the stop, or its last decision) plus, and minus, the dead reckoning's
+        displacement since (the start's position covariance, the fix's, and the displacement times the odometer
+        scale's and heading bias's uncertainty; each fix counted at the fixes' correlation, and at most one a
+        second, :data:`MIN_FIX_INTERVAL`), error probability :data:`REVERSING_ALPHA`; and the same two paths each
+        with a constant unknown offset of its fixes (a generalized likelihood ratio, the offset least squares), so
+        that fixes displaced for a while (a street's multipath) do not read as reversing. Both past
+        ``log(1 / REVERSING_ALPHA)``, with the fix past the reject gate from the direction taken (the filter would
+        reject it), and the last :data:`REVERSING_FIXES` fixes each past the gate from the direction taken and
+        inside it from the other, after at least one fix since the test started: the car moves the other way from
+        there, until it next
+        stands or the test decides again. The position goes to the start less the displacement, velocity and
+        acceleration turn, and the samples' headings are turned by half a turn while reversing (as the drive
+        reader turns a negative speed's). Either below minus the bound: the direction holds and the test starts
+        again. Counted in ``n_reversing`` and ``n_forward_again`` (``reversing_steps``), the first of each warned.
+        Default True; a signed speed never reads as reversing here (the reader turned its heading).
     min_fix_interval : float
         Seconds after a fix used before the next is used; fixes that come faster are thinned
         (``n_thinned``, with one warning), and fixes at that rate or slower, with their jitter, are
@@ -842,6 +881,9 @@ class GPSDRFilter:
     n_heading_far : int
         DR samples taken as a velocity vector because their heading was farther than ``heading_linear_limit``
         from the filter's (the first warned, with the step).
+    n_reversing, n_forward_again, reversing_steps : int, int, list of int
+        The times the fixes showed the car reversing, and driving forward again without a stop between
+        (``reversing_test``), and the steps of both (the first of each warned).
     n_heading_jumps, heading_jumps : int, list of tuple
         The steps of the heading the heading-jump detector found while the car moved (``heading_jump_z``), and
         per step ``(step found, onset step, its estimate (rad), z-score)``.
@@ -909,7 +951,7 @@ class GPSDRFilter:
                  zero_rate_reacquire_after=ZERO_RATE_REACQUIRE_AFTER, correlated_fixes="calibration",
                  min_fix_interval=0.0, scale_on_detection=True, latency_on_detection=True, stop_reopen=0.0,
                  calibration_error_z=CALIBRATION_ERROR_Z, heading_jump_z=HEADING_JUMP_Z,
-                 heading_linear_limit=HEADING_LINEAR_LIMIT):
+                 heading_linear_limit=HEADING_LINEAR_LIMIT, reversing_test=True):
         if not isinstance(model, GPSDRModel):
             raise TypeError(f"model must be a GPSDRModel, got {type(model).__name__}")
         self.model = model
@@ -942,6 +984,12 @@ class GPSDRFilter:
         self.heading_linear_limit = (None if heading_linear_limit is None
                                      else check_positive(heading_linear_limit, "heading_linear_limit"))
         self.n_heading_far = 0
+        self.reversing_test = bool(reversing_test)
+        # the fixes' decisions that the car reverses, that it drives forward again, and the steps of both
+        self.n_reversing, self.n_forward_again, self.reversing_steps = 0, 0, []
+        # the stretch since the car last stood (_direction): its start step, the position and its covariance
+        # then, the DR displacement since (forward), the log-likelihood ratio so far and whether it is reversing
+        self._stretch = None
         self.min_fix_interval = float(min_fix_interval)
         if not (np.isfinite(self.min_fix_interval) and self.min_fix_interval >= 0):
             raise ValueError(f"min_fix_interval must be >= 0 s (0: every fix used), got {min_fix_interval}")
@@ -1139,6 +1187,8 @@ class GPSDRFilter:
         self.motion = self.classify(z_dr)
         if self.zero_rate_update:
             self._zero_rate(z_dr[0])
+        if self.reversing_test:
+            z_dr = self._direction(z_dr)
         self._driven += float(z_dr[1])
         stale = z_gps is not None and self._stale(z_gps, gps_sigma)
         thinned = z_gps is not None and not stale and self._thin()
@@ -1155,6 +1205,8 @@ class GPSDRFilter:
             if self.gps_sigma_est is not None:
                 gps_sigma = self.gps_sigma_est
         self.fix_status = "stale" if stale else "thinned" if thinned else "none"
+        if z_gps is not None and self._stretch is not None:
+            z_dr = self._test_reversing(z_dr, z_gps, gps_sigma)
         if z_gps is not None:  # a noise still being learnt from the innovations cannot judge them yet
             c = self.gps_correlation  # the fixes so far: each carries 1 / c of an independent fix
             z_gps, gps_sigma = self._check_fix(z_gps, gps_sigma, test=not (adapt and self.gps_sigma_est is None),
@@ -1210,6 +1262,111 @@ class GPSDRFilter:
                 f"glitch the drive reader did not catch, a heading in another convention or frame, or a filter that "
                 f"lost its velocity: check the drive there", RuntimeWarning, stacklevel=3)
         return True
+
+    def _direction(self, z_dr):
+        """The stretch the reversing test looks at (``reversing_test``): a standstill sample ends one, and the
+        next sample (or the first of all) starts one, forward. A sample in a stretch taken as reversing has its
+        heading turned by half a turn: the direction of travel, as the drive reader turns it for a negative
+        speed. Each sample adds its displacement to the test's (:meth:`_restart_direction`): the distance (less
+        the odometer's scale) along the heading so used (less the heading bias)."""
+        if self.motion == "still":
+            self._stretch = None
+            return z_dr
+        if self._stretch is None:
+            self._stretch = {"step": self.step, "reversing": False}
+            self._restart_direction()
+        st, x = self._stretch, self.kf.x
+        if st["reversing"]:
+            z_dr = np.array([float(wrap_angle(z_dr[0] + np.pi)), float(z_dr[1])])
+        h, d = float(z_dr[0]), float(z_dr[1])
+        if self.model.augmented:
+            h, d = h - float(x[HEADING_BIAS]), d / float(x[6])
+        st["D"] += d * np.array([np.sin(h), np.cos(h)])
+        return z_dr
+
+    def _restart_direction(self):
+        """Start the reversing test again from the filter's position and its covariance now (a stretch's start,
+        a direction taken): no displacement, no evidence."""
+        pos = [0, 3]
+        self._stretch.update(since=self.step, p=self.kf.x[pos].copy(), P=self.kf.P[np.ix_(pos, pos)].copy(),
+                             D=np.zeros(2), llr=0.0, glr=0.0, n=0, streak=0, last=self.step, A=np.zeros((2, 2)),
+                             b=np.zeros((2, 2)), c=np.zeros(2))
+
+    def _test_reversing(self, z_dr, z_gps, gps_sigma):
+        """Wald's sequential test of the direction the car moves in (:data:`REVERSING_ALPHA`): on an unsigned
+        speed a car moves along its displacement or against it. Each fix adds the log-likelihood ratio of the
+        test's start less and plus the displacement since (the start's position covariance, the fix's, and the
+        displacement times the odometer scale's and the heading bias's uncertainty), over the fixes'
+        correlation, one fix a second at most (:data:`MIN_FIX_INTERVAL`: faster fixes carry less than one
+        independent fix a second); beside it, the same two paths each with an unknown constant offset of its
+        fixes (their weighted least-squares residuals: a street's multipath that lasts, the start's own error).
+        Either below minus the bound: the direction taken holds, and the test starts again from here. Both above
+        it, with this fix past the reject gate from the direction taken, the last :data:`REVERSING_FIXES` fixes
+        each past the gate from it and inside the gate from the other, and a fix before them, the car moves the
+        other way from here: the position is the start less the displacement, the velocity and
+        acceleration turn (their covariance with them), this and later samples' headings turn by half a turn
+        (reversing, or forward again), and the test starts again (counted, the first of each warned)."""
+        st, x, pos = self._stretch, self.kf.x, [0, 3]
+        if st["n"] and (self.step - st["last"]) * self.model.dt < MIN_FIX_INTERVAL - 1e-9:
+            return z_dr  # fixes faster than one a second carry less than one independent fix a second
+        st["last"] = self.step
+        D = st["D"]
+        rel = float(self.kf.P[6, 6] + self.kf.P[HEADING_BIAS, HEADING_BIAS]) if self.model.augmented else 0.0
+        R = self._fix_sigma(gps_sigma) ** 2 * self.gps_scale * np.eye(2)
+        S = st["P"] + R + float(D @ D) * rel * np.eye(2)
+        e0 = np.asarray(z_gps, dtype=float) - st["p"] - D
+        e1 = e0 + 2.0 * D
+        n0, n1 = float(e0 @ np.linalg.solve(S, e0)), float(e1 @ np.linalg.solve(S, e1))
+        c = max(self.gps_correlation, 1.0)
+        st["llr"] += 0.5 * (n0 - n1) / c
+        st["n"] += 1
+        W = np.linalg.inv(S - st["P"])
+        st["A"] += W
+        for i, e in enumerate((e0, e1)):
+            st["b"][i] += W @ e
+            st["c"][i] += float(e @ W @ e)
+        rss = st["c"] - np.einsum("ij,jk,ik->i", st["b"], np.linalg.inv(st["A"]), st["b"])
+        st["glr"] = 0.5 * float(rss[0] - rss[1]) / c
+        st["streak"] = st["streak"] + 1 if n0 > self.gate >= n1 else 0
+        bound = float(np.log(1.0 / REVERSING_ALPHA))
+        if st["llr"] < -bound or st["glr"] < -bound:
+            self._restart_direction()
+            return z_dr
+        if not (min(st["llr"], st["glr"]) > bound and n0 > self.reject_gate and st["streak"] >= REVERSING_FIXES
+                and st["n"] > REVERSING_FIXES):
+            return z_dr
+        st["reversing"] = back = not st["reversing"]
+        self.reversing_steps.append(self.step)
+        if back:
+            self.n_reversing += 1
+        else:
+            self.n_forward_again += 1
+        T = np.ones(self.model.dim_x)
+        T[[1, 2, 4, 5]] = -1.0
+        x = x * T
+        x[pos] = st["p"] - D
+        P = self.kf.P * np.outer(T, T)
+        P[pos, :] = P[:, pos] = 0.0
+        P[np.ix_(pos, pos)] = S - R
+        self.kf.x, self.kf.P = x, P
+        if self._sens is not None:
+            self._sens *= T[:, None]
+        if self._so is not None:
+            self._so *= T
+        if self._js.shape[1]:
+            self._js *= T[:, None]
+        self._redraw_sigmas()
+        if (self.n_reversing if back else self.n_forward_again) == 1:
+            what, against = ("reversing", "driving forward") if back else ("driving forward again", "reversing")
+            warnings.warn(
+                f"GPSDRFilter: the fixes show the car {what} at step {self.step}, since step {st['since']} ({st['n']} "
+                f"fixes, a log-likelihood ratio of {st['llr']:.3g} against {against}, {np.hypot(*D):.3g} m): its "
+                f"speed is unsigned. Until the car next stands or the fixes show it turn again, its samples are "
+                f"taken as {'reversing, their heading turned by half a turn' if back else 'forward'} (n_reversing, "
+                f"n_forward_again, reversing_steps). A signed speed (negative when reversing) tells the drive reader "
+                f"so, also where no fixes come", RuntimeWarning, stacklevel=3)
+        self._restart_direction()
+        return np.array([float(wrap_angle(z_dr[0] + np.pi)), float(z_dr[1])])
 
     def _turn(self, heading):
         """The gyro's scale factor error ``k``: a measured turn ``d`` (this heading less the last) adds

@@ -707,6 +707,112 @@ def test_a_signed_speed_reverses_the_car_along_its_heading():
         assert ends[0] < ends[1] + 0.5 and ends[2] > 20.0, (kind, ends)  # 3.53, 3.74, 31.66 m with the EKF
 
 
+def _unsigned_reversing_run(offset=None, speed=None):
+    """The reversing drive with its speed unsigned (a CAN speed), its fixes optionally displaced by ``offset``
+    (east, m, per sample), or the car driving ``speed`` instead (a car that never reverses)."""
+    t, v, e, fix, noise = _reversing_drive()
+    v = v if speed is None else speed
+    truth = np.r_[0.0, np.cumsum(v[1:] * 0.1)]
+    off = np.zeros_like(t) if offset is None else offset
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        return DRRun.from_arrays(t, np.full(len(t), np.pi / 2), speed=np.abs(v), gps_t=t[fix],
+                                 east=truth[fix] + noise[fix, 0] + off[fix], north=noise[fix, 1], gps_sigma=3.0,
+                                 truth=np.stack([truth, np.zeros_like(truth)], axis=1))
+
+
+def _errors(run, kind, **kw):
+    from filterwnn import GPSDRFilter
+    from filterwnn.navigation.dead_reckoning import GPSDRModel
+
+    model = GPSDRModel.from_grade("phone", run.scenario.dt)
+    kf = GPSDRFilter(model, kind, x0=np.r_[run.x0, model.x0[6:]], **kw)
+    est = kf.batch_filter(run.z_dr, run.gps_list(), run.gps_sigma_list())
+    return kf, np.hypot(est[:, 0] - run.x_true[:, 0], est[:, 3] - run.x_true[:, 3])
+
+
+def test_the_fixes_tell_a_car_reversing_on_an_unsigned_speed():
+    """A CAN speed is unsigned: dead reckoning takes the 14 m the car reverses (40-48 s) forward, and the
+    fixes, there all the time, part from it at twice the distance. The filter's reversing test finds it from
+    the fixes after the stop (Wald's test at 1e-9, the fifth to seventh fix), warns once with the step, turns
+    the stretch's headings and velocity, and every kind stays within 4 m of the truth from 48 s on; without
+    the test the fixes are first down-weighted, then rejected, and the filter ends the reversing over 20 m off
+    (26.4 m with the EKF) until it re-acquires."""
+    run = _unsigned_reversing_run()
+    after = run.t >= 48.0
+    for kind in ("ekf", "ukf", "sukf"):
+        with pytest.warns(RuntimeWarning, match=r"GPSDRFilter: the fixes show the car reversing at step 4\d\d, since "
+                                                r"step 4\d\d \(\d fixes, a log-likelihood ratio of [\d.]+ against "
+                                                r"driving forward, [\d.]+ m\): its speed is unsigned"):
+            kf, err = _errors(run, kind)
+        assert kf.n_reversing == 1 and 430 <= kf.reversing_steps[0] < 480, (kind, kf.reversing_steps)
+        assert err[after].max() < 4.0, (kind, err[after].max())  # 2.93 m with the EKF
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            off, err_off = _errors(run, kind, reversing_test=False)
+        assert off.n_reversing == 0 and err_off[after].max() > 20.0, (kind, err_off[after].max())
+
+
+def test_a_one_hz_log_that_reverses_with_no_standing_sample_turns_twice():
+    """At 1 Hz a car that stops for an instant, reverses 16 m and drives on may show no standing sample (here
+    0.5 m/s at the slowest): the test, running while the car moves, finds it reversing and then driving forward
+    again, each warned once with its step; the EKF-8 ends the manoeuvre at most 15.6 m off (34.0 m without)."""
+    fine = 0.01 * np.arange(12001)
+    v_fine = np.interp(fine, [0, 30, 35.5, 37.5, 45.5, 47.5, 55, 120], [10, 10, 0, -2, -2, 0, 10, 10])
+    e_fine = np.r_[0.0, np.cumsum((v_fine[1:] + v_fine[:-1]) / 2 * 0.01)]
+    t = np.arange(121.0)
+    v, e = np.interp(t, fine, v_fine), np.interp(t, fine, e_fine)
+    assert np.abs(v).min() == 0.5
+    noise = np.random.default_rng(5).normal(0.0, 3.0, (len(t), 2))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        run = DRRun.from_arrays(t, np.full(len(t), np.pi / 2), speed=np.abs(v), gps_t=t, east=e + noise[:, 0],
+                                north=noise[:, 1], gps_sigma=3.0, truth=np.stack([e, np.zeros_like(e)], axis=1))
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        kf, err = _errors(run, "ekf")
+    said = [str(w.message) for w in seen]
+    assert any("show the car reversing at step 4" in m for m in said), said
+    assert any("show the car driving forward again at step 5" in m for m in said), said
+    assert (kf.n_reversing, kf.n_forward_again) == (1, 1) and err.max() < 20.0, (kf.reversing_steps, err.max())
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        _, err_off = _errors(run, "ekf", reversing_test=False)
+    assert err_off.max() > 30.0
+
+
+@pytest.mark.parametrize("jump, length", [(20.0, 10.0), (60.0, 20.0)])
+def test_fixes_displaced_backward_as_the_car_pulls_away_are_not_reversing(jump, length):
+    """A car that only drives forward, pulling away slowly (to 2 m/s in 8 s) while its fixes sit ``jump`` m
+    behind for ``length`` s (a street's multipath): their displacement grows against the dead reckoning's as
+    a reversing car's would at first. The test's second path, with a constant unknown offset of the fixes,
+    keeps it from reading as reversing (without it, the first version of the test turned every kind round
+    and left it 44-83 m off); no kind takes it for reversing."""
+    t = 0.1 * np.arange(1201)
+    speed = np.interp(t, [0, 30, 35, 40, 48, 120], [10, 10, 0, 0, 2, 2])
+    run = _unsigned_reversing_run(offset=np.where((t >= 40.0) & (t < 40.0 + length), -jump, 0.0), speed=speed)
+    for kind in ("ekf", "ukf", "sukf"):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            kf, _ = _errors(run, kind)
+        assert kf.n_reversing == 0, kind
+
+
+def test_the_drive_table_counts_the_stretches_taken_as_reversing(command_passes):
+    """``filterwnn study dr --drive`` reports the stretches taken as reversing after the fixes' counts, and
+    ``--no-reversing-test`` switches the test off."""
+    from filterwnn.studies.dr import real_drive_outages, real_drive_table
+
+    run = _unsigned_reversing_run()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        res = real_drive_outages(run, filters=("EKF-8",), starts=[80.0], use_gps_sigma=True, grade="phone")
+    assert res["integrity"]["EKF-8"]["n_reversing"] == 1
+    assert " (1 reversing) |" in real_drive_table(res)
+    assert command_passes("real_drive_outages", ["--no-reversing-test"])["reversing_test"] is False
+    assert command_passes("real_drive_outages", [])["reversing_test"] is True
+
+
 def test_an_odometers_latency_reads_each_speed_where_it_was_measured(tmp_path):
     """A CAN speed 0.5 s late (5 samples at 10 Hz) through stops and starts: with ``odometer_latency=0.5``
     the steps are the honest speed's but for the last 0.5 s (the last sample held); a cumulative odometer

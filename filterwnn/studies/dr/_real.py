@@ -41,7 +41,7 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
                        model_kwargs=None, slow_speed=None, starts=None, min_speed=0.0,
                        use_gps_sigma=False, grade=None, gps_window=0, scale_window=0,
                        correlated_fixes="calibration", min_fix_interval=0.0, stop_reopen=0.0,
-                       calibration_error_z=CALIBRATION_ERROR_Z, heading_jump_z=HEADING_JUMP_Z):
+                       calibration_error_z=CALIBRATION_ERROR_Z, heading_jump_z=HEADING_JUMP_Z, reversing_test=True):
     """Cut GPS outages of ``length`` s into a drive and score each filter at each outage end.
 
     Placements: ``starts`` as given, or ``n_placements`` spread evenly over the windows whose mean
@@ -88,6 +88,9 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
     heading_jump_z : float or None
         :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`'s: the heading-jump detector's gate (a heading that
         steps while the car moves; default :data:`~filterwnn.navigation.gpsdr.HEADING_JUMP_Z`; None: not looked for).
+    reversing_test : bool
+        :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`'s: test the fixes for the car reversing on an unsigned
+        speed (default True).
     min_fix_interval : float
         :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`'s: seconds after a fix used before the next
         is used (0, the default: every fix).
@@ -118,7 +121,8 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         ``n_heading_jumps``, the steps of the heading the heading-jump detector found while the car moved,
         "(N jumped)" after the fixes' counts, and ``heading_jumps``, per step (step found, onset step,
         estimate (rad), z-score); ``n_heading_far``, the DR samples whose heading was so far from the filter's
-        that they entered as a velocity vector (``heading_linear_limit``), "(N headings far)";
+        that they entered as a velocity vector (``heading_linear_limit``), "(N headings far)"; ``n_reversing``,
+        the times the fixes showed the car reversing on an unsigned speed (``reversing_test``), "(N reversing)", and ``n_forward_again``, forward again with no stop between;
         ``gyro_scale_estimate`` and ``gyro_scale_z``, the scale-error monitor's estimate and z-score (None
         without it), ``gyro_scale_added``, the step at which it made the filter add the scale state (None:
         not), and ``gyro_scale``, that state's last value (None without one); ``latency_estimate``,
@@ -134,7 +138,8 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
     settings = dict(grade=grade, model_kwargs=model_kwargs, gps_window=gps_window, slow_speed=slow_speed,
                     filter_kw=dict(scale_window=scale_window, correlated_fixes=correlated_fixes,
                                    min_fix_interval=min_fix_interval, stop_reopen=stop_reopen,
-                                   calibration_error_z=calibration_error_z, heading_jump_z=heading_jump_z))
+                                   calibration_error_z=calibration_error_z, heading_jump_z=heading_jump_z,
+                                   reversing_test=reversing_test))
     for name in filters:
         _score_filter(out, name, run, windows, use_gps_sigma, settings)
     return out
@@ -280,7 +285,8 @@ def _integrity(f, run):
             "n_zero_rate_turned": f.n_zero_rate_turned if f.zero_rate_update else None,
             "n_zero_rate_stepped": f.n_zero_rate_stepped if f.zero_rate_update else None,
             "n_calibration_error": f.n_calibration_error, "n_heading_jumps": f.n_heading_jumps,
-            "n_heading_far": f.n_heading_far,
+            "n_heading_far": f.n_heading_far, "n_reversing": f.n_reversing,
+            "n_forward_again": f.n_forward_again,
             "heading_jumps": list(f.heading_jumps),
             "gyro_scale_estimate": f.gyro_scale_estimate, "gyro_scale_z": f.gyro_scale_z,
             "gyro_scale_added": f.gyro_scale_added,
@@ -378,5 +384,9 @@ def _integrity_cells(ig):
         unused += f" ({ig['n_heading_jumps']} jumped)"
     if ig.get("n_heading_far"):
         unused += f" ({ig['n_heading_far']} headings far)"
+    if ig.get("n_reversing"):
+        unused += f" ({ig['n_reversing']} reversing)"
+    if ig.get("n_forward_again"):
+        unused += f" ({ig['n_forward_again']} forward again)"
     return (f"{ig['n_rejected']} / {ig['n_downweighted']} / {ig['n_reacquired']} of {ig['n_fixes']}{unused} | {nis} | "
             f"{scale} | {corr} | {stops}")

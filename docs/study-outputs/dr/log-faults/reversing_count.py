@@ -1,0 +1,91 @@
+"""Does the reversing test fire on drives that never reverse? (issue 23, stop 52)
+
+Stop 52's ``reversing_test`` (``GPSDRFilter``: after each stop, Wald's sequential test of the fixes against the
+dead reckoning's displacement taken forward and backward) changes nothing where it never decides. Per drive and
+kind (phone grade unless named, as ``filterwnn study dr --drive FILE`` scores it, every pass: the one with the fixes
+and each outage's), the stretches taken as reversing (``rev``), the largest log-likelihood ratio any stretch reached
+against forward (``llr``, the sequential test's without an offset) and the largest of the smaller of it and the
+offset test's (``both``; it decides where both pass log(1e9) = 20.7, with its fix inside the gate backward and
+outside it forward), and the outage ends' median / max (m). Run with the package at ``ROOT``, one BLAS thread::
+
+    OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/log-faults/reversing_count.py ROOT analogs 0 10
+    OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/log-faults/reversing_count.py ROOT recorded
+    OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/log-faults/reversing_count.py ROOT random 1 0 110
+    OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/log-faults/reversing_count.py ROOT hard
+
+(``recorded`` needs the ``data`` extra; ``random P LO HI``: ``random_drives.drive(seed, P)``, EKF-8 only; ``hard``:
+``tests/navigation/test_hard_drives.py``'s five drives, scored as there.)
+"""
+import os
+import sys
+import tempfile
+import warnings
+
+import numpy as np
+ROOT = os.path.abspath(sys.argv[1])
+sys.path[:0] = [ROOT, ROOT + "/tests", ROOT + "/docs/study-outputs/dr/random-drives"]
+import _held_out_drives as held_out  # noqa: E402
+from filterwnn.navigation import gpsdr  # noqa: E402
+from filterwnn.navigation.drives import read_drive_csv, sample_drive_path, load_car_drive, CAR_DRIVES  # noqa: E402
+from filterwnn.studies.dr import real_drive_outages  # noqa: E402
+C = {"n": 0, "llr": -np.inf, "both": -np.inf}
+orig = gpsdr.GPSDRFilter._test_reversing
+
+
+def test(self, z_dr, z_gps, gps_sigma):
+    before = self.n_reversing
+    out = orig(self, z_dr, z_gps, gps_sigma)
+    st = self._stretch
+    C["llr"] = max(C["llr"], st["llr"])
+    C["both"] = max(C["both"], min(st["llr"], st["glr"]))
+    C["n"] += self.n_reversing - before
+    return out
+
+
+gpsdr.GPSDRFilter._test_reversing = test
+
+
+def go(label, run, kinds=("EKF-8", "UKF-8", "SUKF-8"), grade="phone", sig=True, **kw):
+    out = []
+    for kd in kinds:
+        C["n"], C["llr"], C["both"] = 0, -np.inf, -np.inf
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            res = real_drive_outages(run, filters=(kd,), use_gps_sigma=sig and run.gps_sigma is not None, grade=grade,
+                                     **kw)
+        out.append(f"{kd} {np.median(res[kd]):.2f}/{res[kd].max():.2f} rev {C['n']} llr {C['llr']:.1f} both {C['both']:.1f}")
+    print(label, "|", " | ".join(out), flush=True)
+
+
+def read(tmp, cols):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return read_drive_csv(held_out.write_csv(os.path.join(tmp, "d.csv"), cols))
+
+
+which = sys.argv[2]
+tmp = tempfile.mkdtemp()
+if which == "analogs":
+    for name in ("one_hz", "phone", "city"):
+        for seed in range(int(sys.argv[3]), int(sys.argv[4])):
+            go(f"{name} {seed}", read(tmp, held_out.columns(name, seed)))
+elif which == "recorded":
+    run = read_drive_csv(sample_drive_path())
+    go("sample phone", run)
+    go("sample survey", run, grade="survey")
+    for d in CAR_DRIVES:
+        run = load_car_drive(d)
+        go(f"{d} phone", run)
+        go(f"{d} survey", run, grade="survey")
+elif which == "random":
+    import random_drives  # noqa: E402
+    proto = int(sys.argv[3])
+    for seed in range(int(sys.argv[4]), int(sys.argv[5])):
+        go(f"{proto} {seed}", read(tmp, random_drives.drive(seed, proto)[1]), kinds=("EKF-8",))
+elif which == "hard":
+    sys.path.insert(0, ROOT + "/tests/navigation")
+    import test_hard_drives as hard  # noqa: E402
+    for make in hard.DRIVES:
+        rng = np.random.default_rng(np.random.SeedSequence([23, hard.DRIVES.index(make)]))
+        run, grade, first = make(rng)
+        go(make.__name__, run, grade=grade, length=30.0, starts=np.linspace(first, run.t[-1] - 32.0, 4))
