@@ -209,6 +209,44 @@ def one_hz_drive(rng, rate_bias=0.05, gyro_scale=0.0, gps_latency=0.0, odometer_
     return _columns(t, x, heading, speed, rows, err, np.round(acc, 1), gps_latency, odometer_latency)
 
 
+def parking_drive(rng, signed=False, laps=8):
+    """A 15-minute drive that parks ``laps`` times, reversing 12 m into each space while turning 45 degrees (not
+    one of the three held-out drives; stop 52's): 10 Hz heading with a 0.005 deg/s bias and 0.1 deg of noise, the
+    speed unsigned (a CAN bus's; ``signed=True``: negative while reversing), 1 Hz fixes of 4 m with their sigma.
+    The CSV columns."""
+    dt = 0.1
+    knots_t, knots_v, knots_r = [0.0], [0.0], [0.0]  # time, signed speed, turn rate (deg/s) up to each knot
+
+    def add(duration, v_end, rate=0.0):
+        knots_t.append(knots_t[-1] + duration)
+        knots_v.append(v_end)
+        knots_r.append(rate)
+
+    for _ in range(laps):
+        add(8.0, 12.0)  # pull away
+        for _ in range(4):  # drive with turns
+            add(12.0, 12.0, rng.uniform(-6.0, 6.0))
+            add(6.0, 12.0)
+        add(6.0, 0.0)  # stop
+        add(8.0, 0.0)
+        add(2.0, -1.5)  # reverse 12 m into a space, turning 45 degrees
+        add(6.0, -1.5, 45.0 / 6.0 * np.sign(rng.uniform(-1, 1)))
+        add(2.0, 0.0)
+        add(10.0, 0.0)  # parked
+    t = np.arange(0.0, knots_t[-1], dt)
+    v = np.interp(t, knots_t, knots_v)
+    rate = np.asarray(knots_r)[np.minimum(np.searchsorted(knots_t, t, side="right"), len(knots_t) - 1)]
+    rate[np.abs(v) < 0.5] = 0.0
+    psi = np.radians(30.0) + np.cumsum(np.radians(rate) * dt)
+    x = np.zeros((len(t), 6))
+    x[:, 0] = np.r_[0.0, np.cumsum(v[:-1] * np.sin(psi[:-1]) * dt)]
+    x[:, 3] = np.r_[0.0, np.cumsum(v[:-1] * np.cos(psi[:-1]) * dt)]
+    rows = np.isclose(t % 1.0, 0.0) | np.isclose(t % 1.0, 1.0)
+    gyro = psi + np.radians(0.005) * t + np.radians(rng.normal(0.0, 0.1, len(t)))
+    err = rng.normal(0.0, 4.0, (int(rows.sum()), 2))
+    return _columns(t, x, np.arctan2(np.sin(gyro), np.cos(gyro)), v if signed else np.abs(v), rows, err, 4.0)
+
+
 #: ``{name: generator}``; :func:`columns` calls each with its own seeded generator.
 HELD_OUT = {"phone": phone_drive, "city": city_drive, "one_hz": one_hz_drive}
 

@@ -246,7 +246,7 @@ __all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS", "GATE", "REJ
            "HEADING_BIAS", "RATE", "GYRO_SCALE", "gps_scale_mle", "gps_scale_loglik", "stop_heading_slope",
            "stop_heading_step", "STOP_STEP_ALPHA", "STOP_STEP_MIN_SIDE", "CALIBRATION_ERROR_Z",
            "HEADING_JUMP_Z", "HEADING_JUMP_SPACING", "HEADING_JUMP_WINDOW", "HEADING_LINEAR_LIMIT",
-           "REVERSING_ALPHA", "REVERSING_FIXES"]
+           "REVERSING_ALPHA", "REVERSING_FIXES", "REVERSING_OFFSET_ALPHA"]
 
 #: Default standstill threshold (m/s) on the odometer speed: 0.05 m/s = 0.11 mph, four
 #: times the creep of a standing car's CAN speed (0.001-0.03 mph).
@@ -385,6 +385,11 @@ REVERSING_ALPHA = 1e-9
 #: from the other, with at least one fix before them since the test started: one fix that jumped (a street's
 #: multipath) is not a car that turned round, and the offset path needs a fix before a jump to tell it.
 REVERSING_FIXES = 2
+#: ... and the offset path (the same two paths, each with an unknown constant offset of its fixes: a street's
+#: multipath that lasts) must favour the other way too, its likelihood ratio past ``log(1 / REVERSING_OFFSET_ALPHA)``:
+#: a guard, not a test of its own (a constant offset takes the start's error and the fixes' bias both, so that it
+#: learns the direction only from how the fixes move, and a 12 m reversal with 4 m fixes gives it about 7).
+REVERSING_OFFSET_ALPHA = 0.01
 #: Fixes over which the scale of the fixes' reported covariance is estimated when the estimate is
 #: switched on (``GPSDRFilter(scale_window=SCALE_WINDOW)``; off by default): the consistency monitor's
 #: window. With honest fixes the estimate's relative standard error is about ``1 / sqrt(SCALE_WINDOW)``
@@ -780,18 +785,17 @@ class GPSDRFilter:
         (reversing after a stop, which starts forward; forward again): Wald's sequential probability ratio test of
         the fixes against the test's start (the stop, or its last decision) plus, and minus, the dead reckoning's
         displacement since (the start's position covariance, the fix's, and the displacement times the odometer
-        scale's and heading bias's uncertainty; each fix counted at the fixes' correlation, and at most one a
-        second, :data:`MIN_FIX_INTERVAL`), error probability :data:`REVERSING_ALPHA`; and the same two paths each
+        scale's and heading bias's uncertainty; each fix counted at the fixes' correlation, at most one a second,
+        :data:`MIN_FIX_INTERVAL`, and its normalised innovations clipped at the gate), error probability :data:`REVERSING_ALPHA`; and the same two paths each
         with a constant unknown offset of its fixes (a generalized likelihood ratio, the offset least squares), so
-        that fixes displaced for a while (a street's multipath) do not read as reversing. Both past
-        ``log(1 / REVERSING_ALPHA)``, with the fix past the reject gate from the direction taken (the filter would
-        reject it), and the last :data:`REVERSING_FIXES` fixes each past the gate from the direction taken and
-        inside it from the other, after at least one fix since the test started: the car moves the other way from
-        there, until it next
+        that fixes displaced for a while (a street's multipath) do not read as reversing. The first past
+        ``log(1 / REVERSING_ALPHA)``, the second past ``log(1 / REVERSING_OFFSET_ALPHA)`` (a guard), and the last
+        :data:`REVERSING_FIXES` fixes each past the gate from the direction taken and inside it from the other,
+        after at least one fix since the test started: the car moves the other way from there, until it next
         stands or the test decides again. The position goes to the start less the displacement, velocity and
         acceleration turn, and the samples' headings are turned by half a turn while reversing (as the drive
-        reader turns a negative speed's). Either below minus the bound: the direction holds and the test starts
-        again. Counted in ``n_reversing`` and ``n_forward_again`` (``reversing_steps``), the first of each warned.
+        reader turns a negative speed's). Either below minus the first bound: the direction holds and the test
+        starts again. Counted in ``n_reversing`` and ``n_forward_again`` (``reversing_steps``), the first of each warned.
         Default True; a signed speed never reads as reversing here (the reader turned its heading).
     min_fix_interval : float
         Seconds after a fix used before the next is used; fixes that come faster are thinned
@@ -1298,12 +1302,13 @@ class GPSDRFilter:
         test's start less and plus the displacement since (the start's position covariance, the fix's, and the
         displacement times the odometer scale's and the heading bias's uncertainty), over the fixes'
         correlation, one fix a second at most (:data:`MIN_FIX_INTERVAL`: faster fixes carry less than one
-        independent fix a second); beside it, the same two paths each with an unknown constant offset of its
+        independent fix a second), each fix's normalised innovations clipped at the gate (a fix that jumped
+        counts as one at the gate, as the update's Huber weight has it); beside it, the same two paths each with an unknown constant offset of its
         fixes (their weighted least-squares residuals: a street's multipath that lasts, the start's own error).
-        Either below minus the bound: the direction taken holds, and the test starts again from here. Both above
-        it, with this fix past the reject gate from the direction taken, the last :data:`REVERSING_FIXES` fixes
-        each past the gate from it and inside the gate from the other, and a fix before them, the car moves the
-        other way from here: the position is the start less the displacement, the velocity and
+        Either below minus the bound: the direction taken holds, and the test starts again from here. The
+        sequential test above it, the offset path's above ``log(1 / REVERSING_OFFSET_ALPHA)`` (a guard), the last
+        :data:`REVERSING_FIXES` fixes each past the gate from the direction taken and inside it from the other,
+        and a fix before them: the car moves the other way from here: the position is the start less the displacement, the velocity and
         acceleration turn (their covariance with them), this and later samples' headings turn by half a turn
         (reversing, or forward again), and the test starts again (counted, the first of each warned)."""
         st, x, pos = self._stretch, self.kf.x, [0, 3]
@@ -1318,7 +1323,8 @@ class GPSDRFilter:
         e1 = e0 + 2.0 * D
         n0, n1 = float(e0 @ np.linalg.solve(S, e0)), float(e1 @ np.linalg.solve(S, e1))
         c = max(self.gps_correlation, 1.0)
-        st["llr"] += 0.5 * (n0 - n1) / c
+        # each fix's share clipped at the gate's: one fix that jumped (past the gate from both) moves it little
+        st["llr"] += 0.5 * (min(n0, self.gate) - min(n1, self.gate)) / c
         st["n"] += 1
         W = np.linalg.inv(S - st["P"])
         st["A"] += W
@@ -1332,8 +1338,8 @@ class GPSDRFilter:
         if st["llr"] < -bound or st["glr"] < -bound:
             self._restart_direction()
             return z_dr
-        if not (min(st["llr"], st["glr"]) > bound and n0 > self.reject_gate and st["streak"] >= REVERSING_FIXES
-                and st["n"] > REVERSING_FIXES):
+        if not (st["llr"] > bound and st["glr"] > np.log(1.0 / REVERSING_OFFSET_ALPHA)
+                and st["streak"] >= REVERSING_FIXES and st["n"] > REVERSING_FIXES):
             return z_dr
         st["reversing"] = back = not st["reversing"]
         self.reversing_steps.append(self.step)

@@ -4,9 +4,10 @@ Stop 52's ``reversing_test`` (``GPSDRFilter``: after each stop, Wald's sequentia
 dead reckoning's displacement taken forward and backward) changes nothing where it never decides. Per drive and
 kind (phone grade unless named, as ``filterwnn study dr --drive FILE`` scores it, every pass: the one with the fixes
 and each outage's), the stretches taken as reversing (``rev``), the largest log-likelihood ratio any stretch reached
-against forward (``llr``, the sequential test's without an offset) and the largest of the smaller of it and the
-offset test's (``both``; it decides where both pass log(1e9) = 20.7, with its fix inside the gate backward and
-outside it forward), and the outage ends' median / max (m). Run with the package at ``ROOT``, one BLAS thread::
+against the direction taken (``llr``, the sequential test's, which must pass log(1e9) = 20.7), the largest of the
+smaller of it and the offset path's (``both``), and where the sequential test and the last two fixes would turn the
+car (``REVERSING_FIXES``), the largest the offset path's guard reached (``guard``, which must pass log(100) = 4.6;
+"-": never got so far), and the outage ends' median / max (m). Run with the package at ``ROOT``, one BLAS thread::
 
     OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/log-faults/reversing_count.py ROOT analogs 0 10
     OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/log-faults/reversing_count.py ROOT recorded
@@ -28,17 +29,21 @@ import _held_out_drives as held_out  # noqa: E402
 from filterwnn.navigation import gpsdr  # noqa: E402
 from filterwnn.navigation.drives import read_drive_csv, sample_drive_path, load_car_drive, CAR_DRIVES  # noqa: E402
 from filterwnn.studies.dr import real_drive_outages  # noqa: E402
-C = {"n": 0, "llr": -np.inf, "both": -np.inf}
+C = {"n": 0, "llr": -np.inf, "both": -np.inf, "guard": -np.inf}
 orig = gpsdr.GPSDRFilter._test_reversing
 
 
 def test(self, z_dr, z_gps, gps_sigma):
-    before = self.n_reversing
-    out = orig(self, z_dr, z_gps, gps_sigma)
+    before = self.n_reversing + self.n_forward_again
     st = self._stretch
-    C["llr"] = max(C["llr"], st["llr"])
-    C["both"] = max(C["both"], min(st["llr"], st["glr"]))
-    C["n"] += self.n_reversing - before
+    out = orig(self, z_dr, z_gps, gps_sigma)
+    if self.n_reversing + self.n_forward_again > before:
+        C["n"] += 1
+    elif self._stretch is st:  # not started again: the statistics of this fix
+        C["llr"] = max(C["llr"], st["llr"])
+        C["both"] = max(C["both"], min(st["llr"], st["glr"]))
+        if st["llr"] > np.log(1e9) and st["streak"] >= gpsdr.REVERSING_FIXES and st["n"] > gpsdr.REVERSING_FIXES:
+            C["guard"] = max(C["guard"], st["glr"])
     return out
 
 
@@ -48,12 +53,13 @@ gpsdr.GPSDRFilter._test_reversing = test
 def go(label, run, kinds=("EKF-8", "UKF-8", "SUKF-8"), grade="phone", sig=True, **kw):
     out = []
     for kd in kinds:
-        C["n"], C["llr"], C["both"] = 0, -np.inf, -np.inf
+        C["n"], C["llr"], C["both"], C["guard"] = 0, -np.inf, -np.inf, -np.inf
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             res = real_drive_outages(run, filters=(kd,), use_gps_sigma=sig and run.gps_sigma is not None, grade=grade,
                                      **kw)
-        out.append(f"{kd} {np.median(res[kd]):.2f}/{res[kd].max():.2f} rev {C['n']} llr {C['llr']:.1f} both {C['both']:.1f}")
+        out.append(f"{kd} {np.median(res[kd]):.2f}/{res[kd].max():.2f} rev {C['n']} llr {C['llr']:.1f} both {C['both']:.1f} "
+                   f"guard {'-' if C['guard'] == -np.inf else format(C['guard'], '.1f')}")
     print(label, "|", " | ".join(out), flush=True)
 
 
