@@ -432,6 +432,12 @@ def _no_fix(z_gps):
     return z.shape == (2,) and bool(np.all(np.isnan(z)))
 
 
+def _half_turn(z_dr):
+    """A DR sample ``[heading, distance]`` with its heading turned by half a turn (a reversing car's direction of
+    travel)."""
+    return np.array([float(wrap_angle(z_dr[0] + np.pi)), float(z_dr[1])])
+
+
 def _shear(M, b, k, d):
     """``T M T^T`` for ``T = I + d e_b e_k^T`` (row ``k`` added ``d`` times to row ``b``), symmetrised: the
     covariance map of a measured turn ``d`` for a scale factor error in row ``k`` of a heading bias in
@@ -786,17 +792,18 @@ class GPSDRFilter:
         the fixes against the test's start (the stop, or its last decision) plus, and minus, the dead reckoning's
         displacement since (the start's position covariance, the fix's, and the displacement times the odometer
         scale's and heading bias's uncertainty; each fix counted at the fixes' correlation, at most one a second,
-        :data:`MIN_FIX_INTERVAL`, and its normalised innovations clipped at the gate), error probability :data:`REVERSING_ALPHA`; and the same two paths each
-        with a constant unknown offset of its fixes (a generalized likelihood ratio, the offset least squares), so
-        that fixes displaced for a while (a street's multipath) do not read as reversing. The first past
+        :data:`MIN_FIX_INTERVAL`, and its normalised innovations clipped at the gate), error probability
+        :data:`REVERSING_ALPHA`; and the same two paths each with a constant unknown offset of its fixes (a
+        generalized likelihood ratio, the offset least squares), so that fixes displaced for a while (a street's
+        multipath) do not read as reversing. The first past
         ``log(1 / REVERSING_ALPHA)``, the second past ``log(1 / REVERSING_OFFSET_ALPHA)`` (a guard), and the last
         :data:`REVERSING_FIXES` fixes each past the gate from the direction taken and inside it from the other,
         after at least one fix since the test started: the car moves the other way from there, until it next
         stands or the test decides again. The position goes to the start less the displacement, velocity and
         acceleration turn, and the samples' headings are turned by half a turn while reversing (as the drive
         reader turns a negative speed's). Either below minus the first bound: the direction holds and the test
-        starts again. Counted in ``n_reversing`` and ``n_forward_again`` (``reversing_steps``), the first of each warned.
-        Default True; a signed speed never reads as reversing here (the reader turned its heading).
+        starts again. Counted in ``n_reversing`` and ``n_forward_again`` (``reversing_steps``), the first of each
+        warned. Default True; a signed speed never reads as reversing here (the reader turned its heading).
     min_fix_interval : float
         Seconds after a fix used before the next is used; fixes that come faster are thinned
         (``n_thinned``, with one warning), and fixes at that rate or slower, with their jitter, are
@@ -991,8 +998,8 @@ class GPSDRFilter:
         self.reversing_test = bool(reversing_test)
         # the fixes' decisions that the car reverses, that it drives forward again, and the steps of both
         self.n_reversing, self.n_forward_again, self.reversing_steps = 0, 0, []
-        # the stretch since the car last stood (_direction): its start step, the position and its covariance
-        # then, the DR displacement since (forward), the log-likelihood ratio so far and whether it is reversing
+        # the stretch since the car last stood (_direction): whether it is taken as reversing, and the test's
+        # state since its start (_restart_direction); None while the car stands
         self._stretch = None
         self.min_fix_interval = float(min_fix_interval)
         if not (np.isfinite(self.min_fix_interval) and self.min_fix_interval >= 0):
@@ -1277,11 +1284,11 @@ class GPSDRFilter:
             self._stretch = None
             return z_dr
         if self._stretch is None:
-            self._stretch = {"step": self.step, "reversing": False}
+            self._stretch = {"reversing": False}
             self._restart_direction()
         st, x = self._stretch, self.kf.x
         if st["reversing"]:
-            z_dr = np.array([float(wrap_angle(z_dr[0] + np.pi)), float(z_dr[1])])
+            z_dr = _half_turn(z_dr)
         h, d = float(z_dr[0]), float(z_dr[1])
         if self.model.augmented:
             h, d = h - float(x[HEADING_BIAS]), d / float(x[6])
@@ -1303,14 +1310,16 @@ class GPSDRFilter:
         displacement times the odometer scale's and the heading bias's uncertainty), over the fixes'
         correlation, one fix a second at most (:data:`MIN_FIX_INTERVAL`: faster fixes carry less than one
         independent fix a second), each fix's normalised innovations clipped at the gate (a fix that jumped
-        counts as one at the gate, as the update's Huber weight has it); beside it, the same two paths each with an unknown constant offset of its
-        fixes (their weighted least-squares residuals: a street's multipath that lasts, the start's own error).
+        counts as one at the gate, as the update's Huber weight has it); beside it, the same two paths each with
+        an unknown constant offset of its fixes (their weighted least-squares residuals: a street's multipath that
+        lasts, the start's own error).
         Either below minus the bound: the direction taken holds, and the test starts again from here. The
         sequential test above it, the offset path's above ``log(1 / REVERSING_OFFSET_ALPHA)`` (a guard), the last
         :data:`REVERSING_FIXES` fixes each past the gate from the direction taken and inside it from the other,
-        and a fix before them: the car moves the other way from here: the position is the start less the displacement, the velocity and
-        acceleration turn (their covariance with them), this and later samples' headings turn by half a turn
-        (reversing, or forward again), and the test starts again (counted, the first of each warned)."""
+        and a fix before them: the car moves the other way from here: the position is the start less the
+        displacement, the velocity and acceleration turn (their covariance with them), this and later samples'
+        headings turn by half a turn (reversing, or forward again), and the test starts again (counted, the first
+        of each warned)."""
         st, x, pos = self._stretch, self.kf.x, [0, 3]
         if st["n"] and (self.step - st["last"]) * self.model.dt < MIN_FIX_INTERVAL - 1e-9:
             return z_dr  # fixes faster than one a second carry less than one independent fix a second
@@ -1372,7 +1381,7 @@ class GPSDRFilter:
                 f"n_forward_again, reversing_steps). A signed speed (negative when reversing) tells the drive reader "
                 f"so, also where no fixes come", RuntimeWarning, stacklevel=3)
         self._restart_direction()
-        return np.array([float(wrap_angle(z_dr[0] + np.pi)), float(z_dr[1])])
+        return _half_turn(z_dr)
 
     def _turn(self, heading):
         """The gyro's scale factor error ``k``: a measured turn ``d`` (this heading less the last) adds

@@ -122,7 +122,8 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         "(N jumped)" after the fixes' counts, and ``heading_jumps``, per step (step found, onset step,
         estimate (rad), z-score); ``n_heading_far``, the DR samples whose heading was so far from the filter's
         that they entered as a velocity vector (``heading_linear_limit``), "(N headings far)"; ``n_reversing``,
-        the times the fixes showed the car reversing on an unsigned speed (``reversing_test``), "(N reversing)", and ``n_forward_again``, forward again with no stop between;
+        the times the fixes showed the car reversing on an unsigned speed (``reversing_test``), "(N reversing)",
+        and ``n_forward_again``, driving forward again with no stop between, "(N forward again)";
         ``gyro_scale_estimate`` and ``gyro_scale_z``, the scale-error monitor's estimate and z-score (None
         without it), ``gyro_scale_added``, the step at which it made the filter add the scale state (None:
         not), and ``gyro_scale``, that state's last value (None without one); ``latency_estimate``,
