@@ -244,7 +244,8 @@ __all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS", "GATE", "REJ
            "CORRELATED_FIXES", "SCALE_WINDOW", "SCALE_TEST", "SCALE_WARN", "HDOP_FACTOR", "HDOP_LOWEST", "HDOP_GRADE", "SCALE_ERROR_Z", "SCALE_ERROR_MIN", "DETECTED_SCALE_SD",
            "LATENCY_Z", "LATENCY_MIN", "DETECTED_LATENCY_SD", "ODOMETER_LATENCY_Z", "ODOMETER_LATENCY_MIN",
            "HEADING_BIAS", "RATE", "GYRO_SCALE", "gps_scale_mle", "gps_scale_loglik", "stop_heading_slope",
-           "stop_heading_step", "STOP_STEP_ALPHA", "STOP_STEP_MIN_SIDE", "CALIBRATION_ERROR_Z",
+           "stop_heading_step", "STOP_STEP_ALPHA", "STOP_STEP_MIN_SIDE", "STOP_STEP_WITHIN",
+           "STOP_STEP_TURN_Z", "CALIBRATION_ERROR_Z",
            "HEADING_JUMP_Z", "HEADING_JUMP_SPACING", "HEADING_JUMP_WINDOW", "HEADING_LINEAR_LIMIT",
            "REVERSING_ALPHA", "REVERSING_FIXES", "REVERSING_OFFSET_ALPHA"]
 
@@ -310,6 +311,16 @@ STOP_STEP_ALPHA = 1e-3
 #: Samples a step in a stop's headings must leave on each side of it to be tested (so ``2 * 3 + 2 = 8`` samples
 #: at least).
 STOP_STEP_MIN_SIDE = 3
+#: A step in a stop's headings is a jump: the headings' means over this many seconds on either side of it (less the
+#: stop's drift) must not differ by less than half the step (:data:`STOP_STEP_TURN_Z`). A car that turns while its
+#: speed reads 0 (creeping below a speed sensor's cutoff, a car park) turns a few degrees a second, and a long turn
+#: fits a step too: a 103 degree crawl round a corner taken for a heading step turned the heading bias by that and
+#: an outage ended 745 m off.
+STOP_STEP_WITHIN = 1.0
+#: ... by more than this many standard deviations of that difference (the grade's heading noise over the samples
+#: averaged), so that a small step at 1 Hz, one sample either side, is not lost to the noise: 3.29, the 99.9 %
+#: two-sided point, as the stop's turned check.
+STOP_STEP_TURN_Z = 3.29
 #: The fastest heading drift (deg/s) a stop's slope is taken to measure: a gyro's rate bias (a MEMS gyro's
 #: turn-on bias reaches about 0.7 deg/s; the drive reader's plausibility check allows this 1 deg/s). A stop
 #: whose heading turned faster, by more than its slope's noise allows (the gate's 3.29 sigma), is a car
@@ -553,9 +564,13 @@ def stop_heading_step(t, heading, sigma_heading=None, q_arw=0.0, alpha=STOP_STEP
 
     Both add the grade's angle random walk ``q_arw`` (rad^2/s), ``q_arw sum_k dt_k (sum_{i >= k} w_i)^2``
     for the step estimate's weights ``w``: a random walk is no line, and would otherwise step everywhere.
-    A step when the larger p-value, ``p``, is below ``alpha``. Returns the index of the first sample after
-    the step (None when there is none, or fewer than ``2 min_side + 2`` samples), the step's size (rad), its
-    standard deviation (rad: the larger of the two; 0 without a step), and ``p``.
+    A step when the larger p-value, ``p``, is below ``alpha``, unless the headings' means over
+    :data:`STOP_STEP_WITHIN` s before and after it, less the line's slope, differ by less than half the step and by
+    :data:`STOP_STEP_TURN_Z` of their difference's standard deviation less than the step (``sigma_heading``'s, else
+    the residuals' scatter, with the walk): a step is a jump, and a car turning while its speed reads 0 turns a
+    few degrees a second, which fits a step too. Returns the index of the first sample after the step (None when
+    there is none, or fewer than ``2 min_side + 2`` samples), the step's size (rad), its standard deviation (rad:
+    the larger of the two; 0 without a step), and ``p`` (below ``alpha`` with None: a turn, not a jump).
 
     >>> import numpy as np
     >>> t = np.arange(0.0, 15.0, 0.1)
@@ -612,6 +627,16 @@ def stop_heading_step(t, heading, sigma_heading=None, q_arw=0.0, alpha=STOP_STEP
             p = max(p, min(1.0, 2.0 * NormalDist().cdf(-abs(size) / np.sqrt(spec)) * len(ks)))
         var = max(var, spec)
     if p >= alpha:
+        return None, 0.0, 0.0, p
+    d = h - float(tc @ (h - size * (np.arange(n) >= k))) / tt * tc  # less the drift about the step
+    before = d[:k][t[:k] >= t[k] - STOP_STEP_WITHIN - 1e-9]
+    after = d[k:][t[k:] <= t[k - 1] + STOP_STEP_WITHIN + 1e-9]
+    near = float(after.mean() - before.mean()) * np.sign(size)  # the step's share near it
+    # the noise of that difference: the grade's white noise (or the residuals' scatter) and the walk over the span
+    white = ee / (n - 3) if sigma_heading is None else sigma_heading**2
+    span = t[k] - t[k - 1] + 2.0 * STOP_STEP_WITHIN
+    sd_near = np.sqrt(white * (1.0 / len(before) + 1.0 / len(after)) + q_arw * span)
+    if near < abs(size) / 2.0 and abs(size) - near > STOP_STEP_TURN_Z * sd_near:
         return None, 0.0, 0.0, p
     return k, size, float(np.sqrt(var)), p
 

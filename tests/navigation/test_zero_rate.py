@@ -12,9 +12,9 @@ import numpy as np
 import pytest
 
 from filterwnn.navigation.dead_reckoning import GPSDRModel
-from filterwnn.navigation.gpsdr import (HEADING_BIAS, KINDS, MAX_STOP_RATE_DEG_S, RATE, STOP_STEP_MIN_SIDE,
-                                       ZERO_RATE_GATE, ZERO_RATE_MIN_SAMPLES, GPSDRFilter, stop_heading_slope,
-                                       stop_heading_step)
+from filterwnn.navigation.gpsdr import (HEADING_BIAS, KINDS, MAX_STOP_RATE_DEG_S, RATE, STOP_STEP_ALPHA,
+                                       STOP_STEP_MIN_SIDE, ZERO_RATE_GATE, ZERO_RATE_MIN_SAMPLES, GPSDRFilter,
+                                       stop_heading_slope, stop_heading_step)
 
 DT = 0.1
 DEG = np.pi / 180.0
@@ -435,6 +435,25 @@ def test_stop_heading_step_finds_a_step_past_the_grades_noise(phone):
     assert abs(slope - 0.02 * DEG) < 3 * np.sqrt(var)
     line, line_var = stop_heading_slope(t, h, phone.sigma_heading, phone.q_bias)
     assert abs(line - 0.02 * DEG) > 5 * np.sqrt(line_var)
+
+
+def test_a_turn_while_the_speed_reads_zero_is_no_step(phone):
+    """A car creeping round a corner while its speed reads 0 (a queue under a speed sensor's cutoff) turns its
+    heading by 103 degrees over 12 s of a 57 s "stop" (a 5 m radius at 0.8 m/s): a step fits that better than a
+    line (p = 3e-6, below the test's 1e-3), but the headings' means over a second either side of it differ by
+    about 17 degrees, not half the step: no step (the stop is a turn, rejected as such); the same 103 degrees in
+    one sample is one, and so is a 2 degree re-alignment spread over half a second."""
+    rng = np.random.default_rng(23)
+    t = DT * np.arange(570)
+    noise = _headings(rng, 570, 0.02 * DEG, phone.sigma_heading, phone.q_bias)
+    turn = 103.0 * DEG * np.clip((t - 20.0) / 12.0, 0.0, 1.0)
+    k, size, sd, p = stop_heading_step(t, 0.5 + noise + turn, phone.sigma_heading, phone.q_bias)
+    assert k is None and size == 0.0 and p < STOP_STEP_ALPHA, (k, p)
+    k, size, sd, p = stop_heading_step(t, 0.5 + noise + 103.0 * DEG * (t >= 29.0), phone.sigma_heading, phone.q_bias)
+    assert k == 290 and abs(size - 103.0 * DEG) < 3 * sd
+    smooth = 2.0 * DEG * np.clip((t - 29.0) / 0.5, 0.0, 1.0)
+    k, size, sd, p = stop_heading_step(t, 0.5 + noise + smooth, phone.sigma_heading, phone.q_bias)
+    assert k is not None and 289 <= k <= 296 and abs(size - 2.0 * DEG) < 0.5 * DEG, (k, np.degrees(size))
 
 
 def test_headings_as_the_grade_describes_them_make_no_step(phone):
