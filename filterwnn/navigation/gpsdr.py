@@ -28,6 +28,14 @@ standing sample) enter with their heading turned by half a turn (counted in ``n_
 ``n_forward_again``, the first of each warned). With no fixes (an outage) nothing can tell; a signed speed tells
 the drive reader instead.
 
+A speed sensor that reads 0 below a cutoff (a wheel-speed sensor's, a CAN speed's) makes a car creeping in a queue
+a standing one, and the zero-velocity update holds it where it stopped. While the speed reads 0 the filter tests
+the fixes against the position where the car stopped and against a crawl along its heading at an unknown speed
+(``crawl_test``, a generalized likelihood ratio at :data:`CRAWL_ALPHA`, each with an unknown constant offset of
+the fixes, and guarded against fixes that jump while the car stands); when the crawl wins, the position moves
+along the heading to where the fixes put it and the test starts again from there (counted in ``n_crawl``, the
+first warned).
+
 Both thresholds are public attributes, on by default; set ``low_speed=0``,
 ``standstill_speed=0`` and ``heading_linear_limit=None`` to switch the logic off. A GPS
 fix's own accuracy (e.g. the receiver's reported horizontal accuracy) is used as its noise when given
@@ -247,7 +255,8 @@ __all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS", "GATE", "REJ
            "stop_heading_step", "STOP_STEP_ALPHA", "STOP_STEP_MIN_SIDE", "STOP_STEP_WITHIN",
            "STOP_STEP_TURN_Z", "CALIBRATION_ERROR_Z",
            "HEADING_JUMP_Z", "HEADING_JUMP_SPACING", "HEADING_JUMP_WINDOW", "HEADING_LINEAR_LIMIT",
-           "REVERSING_ALPHA", "REVERSING_FIXES", "REVERSING_OFFSET_ALPHA"]
+           "REVERSING_ALPHA", "REVERSING_FIXES", "REVERSING_OFFSET_ALPHA", "CRAWL_ALPHA", "CRAWL_JUMP_ALPHA",
+           "CRAWL_MIN_FIXES"]
 
 #: Default standstill threshold (m/s) on the odometer speed: 0.05 m/s = 0.11 mph, four
 #: times the creep of a standing car's CAN speed (0.001-0.03 mph).
@@ -401,6 +410,18 @@ REVERSING_FIXES = 2
 #: a guard, not a test of its own (a constant offset takes the start's error and the fixes' bias both, so that it
 #: learns the direction only from how the fixes move, and a 12 m reversal with 4 m fixes gives it about 7).
 REVERSING_OFFSET_ALPHA = 0.01
+#: The crawl test's error probability: a car whose speed reads 0 is taken to creep along its heading (under a speed
+#: sensor's cutoff) when the generalized likelihood ratio of its fixes, a constant offset and a crawl at the speed
+#: that fits them best against the offset alone, divided by the fixes' correlation when the car stopped, passes
+#: ``log(1 / CRAWL_ALPHA)``. As the reversing test's, 1e-9.
+CRAWL_ALPHA = 1e-9
+#: ... and the crawl must fit the fixes better than an offset that jumps once (at whichever fix fits best: a
+#: street's multipath that comes or goes while the car stands), its likelihood ratio past
+#: ``log(1 / CRAWL_JUMP_ALPHA)``: a guard, as :data:`REVERSING_OFFSET_ALPHA` (without it fixes 20 m ahead for
+#: 10 s of a stop read as a crawl, and the filter went 18 m off, 5 m without the test).
+CRAWL_JUMP_ALPHA = 0.01
+#: ... after at least this many fixes (one a second) since the test started.
+CRAWL_MIN_FIXES = 3
 #: Fixes over which the scale of the fixes' reported covariance is estimated when the estimate is
 #: switched on (``GPSDRFilter(scale_window=SCALE_WINDOW)``; off by default): the consistency monitor's
 #: window. With honest fixes the estimate's relative standard error is about ``1 / sqrt(SCALE_WINDOW)``
@@ -829,6 +850,19 @@ class GPSDRFilter:
         reader turns a negative speed's). Either below minus the first bound: the direction holds and the test
         starts again. Counted in ``n_reversing`` and ``n_forward_again`` (``reversing_steps``), the first of each
         warned. Default True; a signed speed never reads as reversing here (the reader turned its heading).
+    crawl_test : bool
+        While the speed reads 0 (a standstill sample), test the fixes for the car creeping along its heading (a speed
+        sensor that reads 0 below a cutoff: a queue): a generalized likelihood ratio of the fixes, one a second at
+        most, less the test's start (the filter's position when the car stopped, or at its last decision) as an
+        unknown constant offset plus ``v`` times the path the heading (less the heading bias) draws at unit speed
+        since, ``v >= 0``, against the offset alone (weighted least squares, each fix's residual from the fit so
+        far clipped at the gate), divided by the fixes' correlation when the car stopped, past
+        ``log(1 / CRAWL_ALPHA)`` after :data:`CRAWL_MIN_FIXES` fixes; and the crawl must fit better than an offset
+        that jumps once, past ``log(1 / CRAWL_JUMP_ALPHA)`` (a guard: multipath that comes while the car stands).
+        Then the position moves by the fitted crawl and its covariance along it widens by the move and its
+        variance (the fixes place the car), the zero-velocity update holds it there, and the test starts again.
+        Counted in ``n_crawl`` (``crawl_steps``, ``crawl_moved``), the first warned. Default True. A creeping car
+        that reverses, or crawls in an outage, is not found.
     min_fix_interval : float
         Seconds after a fix used before the next is used; fixes that come faster are thinned
         (``n_thinned``, with one warning), and fixes at that rate or slower, with their jitter, are
@@ -920,6 +954,9 @@ class GPSDRFilter:
     n_reversing, n_forward_again, reversing_steps : int, int, list of int
         The times the fixes showed the car reversing, and driving forward again without a stop between
         (``reversing_test``), and the steps of both (the first of each warned).
+    n_crawl, crawl_steps, crawl_moved : int, list of int, float
+        The times the fixes showed the car creeping while its speed read 0 (``crawl_test``), their steps (the first
+        warned), and the distance (m) the position moved at them in all.
     n_heading_jumps, heading_jumps : int, list of tuple
         The steps of the heading the heading-jump detector found while the car moved (``heading_jump_z``), and
         per step ``(step found, onset step, its estimate (rad), z-score)``.
@@ -987,7 +1024,7 @@ class GPSDRFilter:
                  zero_rate_reacquire_after=ZERO_RATE_REACQUIRE_AFTER, correlated_fixes="calibration",
                  min_fix_interval=0.0, scale_on_detection=True, latency_on_detection=True, stop_reopen=0.0,
                  calibration_error_z=CALIBRATION_ERROR_Z, heading_jump_z=HEADING_JUMP_Z,
-                 heading_linear_limit=HEADING_LINEAR_LIMIT, reversing_test=True):
+                 heading_linear_limit=HEADING_LINEAR_LIMIT, reversing_test=True, crawl_test=True):
         if not isinstance(model, GPSDRModel):
             raise TypeError(f"model must be a GPSDRModel, got {type(model).__name__}")
         self.model = model
@@ -1026,6 +1063,10 @@ class GPSDRFilter:
         # the stretch since the car last stood (_direction): whether it is taken as reversing, and the test's
         # state since its start (_restart_direction); None while the car stands
         self._stretch = None
+        self.crawl_test = bool(crawl_test)
+        self.n_crawl, self.crawl_steps, self.crawl_moved = 0, [], 0.0
+        # the standstill since the car last moved (_crawl_sample): the crawl test's state; None while it moves
+        self._crawl = None
         self.min_fix_interval = float(min_fix_interval)
         if not (np.isfinite(self.min_fix_interval) and self.min_fix_interval >= 0):
             raise ValueError(f"min_fix_interval must be >= 0 s (0: every fix used), got {min_fix_interval}")
@@ -1225,6 +1266,8 @@ class GPSDRFilter:
             self._zero_rate(z_dr[0])
         if self.reversing_test:
             z_dr = self._direction(z_dr)
+        if self.crawl_test:
+            self._crawl_sample(z_dr)
         self._driven += float(z_dr[1])
         stale = z_gps is not None and self._stale(z_gps, gps_sigma)
         thinned = z_gps is not None and not stale and self._thin()
@@ -1243,6 +1286,8 @@ class GPSDRFilter:
         self.fix_status = "stale" if stale else "thinned" if thinned else "none"
         if z_gps is not None and self._stretch is not None:
             z_dr = self._test_reversing(z_dr, z_gps, gps_sigma)
+        if z_gps is not None and self._crawl is not None:
+            self._test_crawl(z_gps, gps_sigma)
         if z_gps is not None:  # a noise still being learnt from the innovations cannot judge them yet
             c = self.gps_correlation  # the fixes so far: each carries 1 / c of an independent fix
             z_gps, gps_sigma = self._check_fix(z_gps, gps_sigma, test=not (adapt and self.gps_sigma_est is None),
@@ -1407,6 +1452,101 @@ class GPSDRFilter:
                 f"so, also where no fixes come", RuntimeWarning, stacklevel=3)
         self._restart_direction()
         return _half_turn(z_dr)
+
+    def _crawl_sample(self, z_dr):
+        """The standstill the crawl test looks at (``crawl_test``): a moving sample ends one, and the next standstill
+        sample starts one, with the fixes' correlation then (a crawl makes the innovations that measure it
+        correlated). Each standstill sample adds to the path the heading (less the heading bias) draws at unit
+        speed since the test's start: where a car creeping at ``v`` would be is the start plus ``v`` times it."""
+        if self.motion != "still":
+            self._crawl = None
+            return
+        if self._crawl is None:
+            self._crawl = {"c": max(self.gps_correlation, 1.0)}
+            self._restart_crawl()
+        h = float(z_dr[0]) - (float(self.kf.x[HEADING_BIAS]) if self.model.augmented else 0.0)
+        self._crawl["U"] += self.model.dt * np.array([np.sin(h), np.cos(h)])
+
+    def _restart_crawl(self):
+        """Start the crawl test again from the filter's position now: no path, no evidence."""
+        self._crawl.update(since=self.step, p=self.kf.x[[0, 3]].copy(), U=np.zeros(2), n=0, last=self.step,
+                           A=np.zeros((3, 3)), g=np.zeros(3), fit=np.zeros(3), glr=0.0, jump=0.0, fixes=[])
+
+    @staticmethod
+    def _crawl_jump_rss(fixes):
+        """The least weighted residual sum of squares of the fixes ``[(e, W), ...]`` as a constant offset that jumps
+        once (between any two fixes): what fixes that jumped while the car stood give (a street's multipath)."""
+        A = np.cumsum([W for _, W in fixes], axis=0)
+        g = np.cumsum([W @ e for e, W in fixes], axis=0)
+        ee = sum(float(e @ W @ e) for e, W in fixes)
+        best = np.inf
+        for j in range(1, len(fixes)):
+            a2, g2 = A[-1] - A[j - 1], g[-1] - g[j - 1]
+            rss = ee - float(g[j - 1] @ np.linalg.solve(A[j - 1], g[j - 1])) - float(g2 @ np.linalg.solve(a2, g2))
+            best = min(best, rss)
+        return best
+
+    def _test_crawl(self, z_gps, gps_sigma):
+        """The generalized likelihood ratio of a crawl along the heading against standing (:data:`CRAWL_ALPHA`):
+        each fix ``z`` (one a second at most, :data:`MIN_FIX_INTERVAL`) less the test's start ``p`` is ``o + v U``
+        (an unknown constant offset ``o``: the start's own error, a street's multipath that lasts; the unit-speed
+        path ``U`` since the start; the crawl's speed ``v >= 0``) plus noise of the fix's covariance ``R``. ``o``
+        and ``v`` are fitted by weighted least squares, each fix's residual from the fit so far clipped at the gate
+        (a fix that jumped counts as one at the gate), and the likelihood ratio against ``v = 0`` is divided by the
+        fixes' correlation when the car stopped. Past ``log(1 / CRAWL_ALPHA)`` after :data:`CRAWL_MIN_FIXES`
+        fixes, and past ``log(1 / CRAWL_JUMP_ALPHA)`` against an offset that jumps once (:meth:`_crawl_jump_rss`):
+        the car crept, the position moves by ``v U`` and its covariance along ``U`` widens by the move and its
+        uncertainty, ``(v^2 + var v) U U^T`` (so that this fix and the next place it), the zero-velocity update
+        holds it there, and the test starts again (counted, the first warned)."""
+        cr, pos = self._crawl, [0, 3]
+        if cr["n"] and (self.step - cr["last"]) * self.model.dt < MIN_FIX_INTERVAL - 1e-9:
+            return
+        cr["last"] = self.step
+        W = np.linalg.inv(self._fix_sigma(gps_sigma) ** 2 * self.gps_scale * np.eye(2))
+        G = np.column_stack([np.eye(2), cr["U"]])  # [offset east, offset north, crawl speed]
+        e = np.asarray(z_gps, dtype=float) - cr["p"]
+        fit = G @ cr["fit"]
+        q = float((e - fit) @ W @ (e - fit))
+        if q > self.gate:
+            e = fit + (e - fit) * np.sqrt(self.gate / q)
+        cr["A"] += G.T @ W @ G
+        cr["g"] += G.T @ W @ e
+        cr["fixes"].append((e, W))
+        cr["n"] += 1
+        A, g, c = cr["A"], cr["g"], cr["c"]
+        if cr["n"] < 2:
+            cr["fit"] = np.r_[e, 0.0]
+            return
+        sol = np.linalg.lstsq(A, g, rcond=None)[0]
+        o = np.linalg.solve(A[:2, :2], g[:2])  # the offset alone
+        cr["fit"] = sol if sol[2] > 0 else np.r_[o, 0.0]
+        cr["glr"] = 0.5 * float(g @ sol - g[:2] @ o) / c if sol[2] > 0 else 0.0
+        if not (cr["glr"] > np.log(1.0 / CRAWL_ALPHA) and cr["n"] >= CRAWL_MIN_FIXES):
+            return
+        cr["jump"] = 0.5 * (self._crawl_jump_rss(cr["fixes"]) - sum(float(e @ W @ e) for e, W in cr["fixes"])
+                            + float(g @ sol)) / c
+        if cr["jump"] <= np.log(1.0 / CRAWL_JUMP_ALPHA):
+            return
+        v = float(sol[2])
+        var = c * float(np.linalg.inv(A)[2, 2])
+        moved = v * cr["U"]
+        self.n_crawl += 1
+        self.crawl_steps.append(self.step)
+        self.crawl_moved += float(np.hypot(*moved))
+        x, P = self.kf.x.copy(), self.kf.P.copy()
+        x[pos] += moved
+        P[np.ix_(pos, pos)] += (v * v + var) * np.outer(cr["U"], cr["U"])
+        self.kf.x, self.kf.P = x, P
+        self._redraw_sigmas()
+        if self.n_crawl == 1:
+            warnings.warn(
+                f"GPSDRFilter: the fixes show the car creeping at step {self.step} while its speed reads 0, since step "
+                f"{cr['since']} ({cr['n']} fixes, a log-likelihood ratio of {cr['glr']:.3g} against standing, "
+                f"{np.hypot(*moved):.3g} m along its heading at {v:.2g} m/s): a speed sensor that reads 0 below a "
+                f"cutoff (a queue). The position moves to the fixes' crawl and the test starts again (n_crawl, "
+                f"crawl_steps, crawl_moved). A speed that reads down to 0, such as the wheel-tick distance given as "
+                f"the drive's odometer column, tells it also where no fixes come", RuntimeWarning, stacklevel=3)
+        self._restart_crawl()
 
     def _turn(self, heading):
         """The gyro's scale factor error ``k``: a measured turn ``d`` (this heading less the last) adds

@@ -829,6 +829,87 @@ def test_the_drive_table_counts_the_stretches_taken_as_reversing(command_passes)
     assert command_passes("real_drive_outages", [])["reversing_test"] is True
 
 
+def _crawl_run(crawl=True, sigma=3.0, jump=None, tau=None, stop=50.0, seed=5):
+    """East at 10 m/s, a stop at 35 s, a crawl at 0.5 m/s from 40 to 80 s (19.5 m) whose speed reads 0 (a
+    wheel-speed sensor's 0.8 m/s cutoff), a stop, east again at 85 s: 10 Hz, 1 Hz fixes of ``sigma`` m with that
+    sigma, and the truth. ``crawl=False``: the car stands for ``stop`` s instead; ``jump=(m, t0, t1)``: the fixes
+    that many metres ahead (east) from t0 to t1 s; ``tau``: the fixes' errors a first-order Gauss-Markov process
+    of that correlation time (s), as a phone's."""
+    t = 0.1 * np.arange(int((stop + 80.0) * 10) + 1)
+    if crawl:
+        v = np.interp(t, [0, 30, 35, 40, 41, 79, 80, 85, 90, 130], [10, 10, 0, 0, 0.5, 0.5, 0, 0, 10, 10])
+    else:
+        v = np.interp(t, [0, 30, 35, 35 + stop, 40 + stop, t[-1]], [10, 10, 0, 0, 10, 10])
+    e = np.r_[0.0, np.cumsum(v[1:] * 0.1)]
+    rng = np.random.default_rng(seed)
+    fix = np.arange(len(t)) % 10 == 0
+    noise = rng.normal(0.0, sigma, (fix.sum(), 2))
+    if tau is not None:
+        a = np.exp(-1.0 / tau)
+        for i in range(1, len(noise)):
+            noise[i] = a * noise[i - 1] + np.sqrt(1.0 - a * a) * noise[i]
+    off = np.zeros(len(t)) if jump is None else np.where((t >= jump[1]) & (t < jump[2]), jump[0], 0.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        return DRRun.from_arrays(t, np.full(len(t), np.pi / 2), speed=np.where(v < 0.8, 0.0, v), gps_t=t[fix],
+                                 east=e[fix] + noise[:, 0] + off[fix], north=noise[:, 1], gps_sigma=sigma,
+                                 truth=np.stack([e, np.zeros_like(e)], axis=1))
+
+
+def test_the_fixes_tell_a_car_creeping_while_its_speed_reads_zero():
+    """A speed that reads 0 below a cutoff makes a car creeping 19.5 m through a queue a standing one, and the
+    zero-velocity update holds it where it stopped: every kind is over 12 m off from when the car drives on (90 s)
+    to the end. The crawl test finds it from the fixes (at 68.9 s, 18.5 m along the heading), warns once with the
+    step, moves the position to the fixes' crawl, and every kind is under 6 m off from 90 s on (3.92-3.96 m)."""
+    run = _crawl_run()
+    after = run.t >= 90.0
+    for kind in ("ekf", "ukf", "sukf"):
+        with pytest.warns(RuntimeWarning, match=r"GPSDRFilter: the fixes show the car creeping at step [67]\d\d while "
+                                                r"its speed reads 0, since step 3\d\d \(\d\d fixes, a log-likelihood "
+                                                r"ratio of [\d.]+ against standing, [\d.]+ m along its heading"):
+            kf, err = _errors(run, kind)
+        assert kf.n_crawl >= 1 and 600 <= kf.crawl_steps[0] < 760 and kf.crawl_moved > 10.0, (kind, kf.crawl_steps)
+        assert err[after].max() < 6.0, (kind, err[after].max())
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            off, err_off = _errors(run, kind, crawl_test=False)
+        assert off.n_crawl == 0 and err_off[after].max() > 10.0, (kind, err_off[after].max())
+
+
+@pytest.mark.parametrize("seed", [0, 4])
+def test_a_standing_car_whose_fixes_wander_together_is_not_taken_for_creeping(seed):
+    """Two minutes at a standstill with fixes whose 5 m errors wander together (correlated over 20 s, as a
+    phone's): a crawl fits them better than standing now and then, but not by the test's 1e-9 with their offset
+    free (its statistic at most 7.6 of 20.7 on 40 seeds, seed 4's, ``sensor-faults/crawl_test.txt``); and fixes
+    20 m ahead for 10 s or 40 s of a 50 s stop (multipath) fit a jump better than a crawl. No decision, the filter
+    as without the test."""
+    runs = [_crawl_run(crawl=False, sigma=5.0, tau=20.0, stop=120.0, seed=seed),
+            _crawl_run(crawl=False, jump=(20.0, 40.0 + 5.0 * seed, 50.0 + 5.0 * seed), seed=seed)]
+    if seed == 0:
+        runs.append(_crawl_run(crawl=False, jump=(20.0, 40.0, 80.0), seed=seed))
+    for run in runs:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            kf, err = _errors(run, "ekf")
+            _, err_off = _errors(run, "ekf", crawl_test=False)
+        assert kf.n_crawl == 0, kf.crawl_steps
+        np.testing.assert_array_equal(err, err_off)
+
+
+def test_the_drive_table_counts_the_crawls_found(command_passes):
+    """``filterwnn study dr --drive`` reports the crawls found after the fixes' counts, and ``--no-crawl-test``
+    switches the test off."""
+    from filterwnn.studies.dr import real_drive_outages, real_drive_table
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        res = real_drive_outages(_crawl_run(), filters=("EKF-8",), starts=[95.0], use_gps_sigma=True, grade="phone")
+    assert res["integrity"]["EKF-8"]["n_crawl"] >= 1 and res["integrity"]["EKF-8"]["crawl_moved"] > 10.0
+    assert f" ({res['integrity']['EKF-8']['n_crawl']} crawling) |" in real_drive_table(res)
+    assert command_passes("real_drive_outages", ["--no-crawl-test"])["crawl_test"] is False
+    assert command_passes("real_drive_outages", [])["crawl_test"] is True
+
+
 def test_an_odometers_latency_reads_each_speed_where_it_was_measured(tmp_path):
     """A CAN speed 0.5 s late (5 samples at 10 Hz) through stops and starts: with ``odometer_latency=0.5``
     the steps are the honest speed's but for the last 0.5 s (the last sample held); a cumulative odometer

@@ -125,6 +125,9 @@ def add_arguments(parser):
     parser.add_argument("--no-reversing-test", action="store_true",
                         help="do not test the fixes for the car reversing on an unsigned speed "
                              "(GPSDRFilter's reversing_test=False; a signed speed needs no test)")
+    parser.add_argument("--no-crawl-test", action="store_true",
+                        help="do not test the fixes for the car creeping while its speed reads 0 "
+                             "(GPSDRFilter's crawl_test=False; a speed that reads down to 0 needs no test)")
     parser.add_argument("--grade", choices=sorted(SENSOR_GRADES), default=None,
                         help="sensor grade for the GPS/DR settings (survey, phone; see "
                              "filterwnn.navigation.dead_reckoning.SENSOR_GRADES); default phone for --drive, survey for --real")
@@ -159,7 +162,7 @@ DRIVE_ONLY = ("--no-plausibility", "--fill-gaps", "--gps-latency", "--odometer-l
               "--gyro-bias-instability", "--gps-latency-sd")
 ON_DRIVES = ("--outage-length", "--outages", "--min-speed", "--gps-scale-window", "--correlated-fixes",
              "--min-fix-interval", "--stop-reopen", "--calibration-error-z", "--heading-jump-z", "--no-reversing-test",
-             "--grade")
+             "--no-crawl-test", "--grade")
 #: ... and those of the simulated scenarios' Monte Carlo, which ``--drive`` does not run. Not ``--jobs``: a
 #: worker count changes no number, and scripts pass ``--jobs 1`` whatever they run (``log_faults.py`` does).
 SIMULATED_ONLY = ("--runs", "--seed", "--backend", "--scheduler", "--cache", "--scenarios", "--factor")
@@ -204,7 +207,8 @@ def _filter_options(args):
                 stop_reopen=getattr(args, "stop_reopen", 0.0),
                 calibration_error_z=getattr(args, "calibration_error_z", CALIBRATION_ERROR_Z),
                 heading_jump_z=getattr(args, "heading_jump_z", HEADING_JUMP_Z),
-                reversing_test=not getattr(args, "no_reversing_test", False))
+                reversing_test=not getattr(args, "no_reversing_test", False),
+                crawl_test=not getattr(args, "no_crawl_test", False))
 
 
 def run(args):

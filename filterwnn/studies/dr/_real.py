@@ -41,7 +41,8 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
                        model_kwargs=None, slow_speed=None, starts=None, min_speed=0.0,
                        use_gps_sigma=False, grade=None, gps_window=0, scale_window=0,
                        correlated_fixes="calibration", min_fix_interval=0.0, stop_reopen=0.0,
-                       calibration_error_z=CALIBRATION_ERROR_Z, heading_jump_z=HEADING_JUMP_Z, reversing_test=True):
+                       calibration_error_z=CALIBRATION_ERROR_Z, heading_jump_z=HEADING_JUMP_Z, reversing_test=True,
+                       crawl_test=True):
     """Cut GPS outages of ``length`` s into a drive and score each filter at each outage end.
 
     Placements: ``starts`` as given, or ``n_placements`` spread evenly over the windows whose mean
@@ -91,6 +92,9 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
     reversing_test : bool
         :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`'s: test the fixes for the car reversing on an unsigned
         speed (default True).
+    crawl_test : bool
+        :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`'s: test the fixes for the car creeping while its speed
+        reads 0 (default True).
     min_fix_interval : float
         :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`'s: seconds after a fix used before the next
         is used (0, the default: every fix).
@@ -123,7 +127,9 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         estimate (rad), z-score); ``n_heading_far``, the DR samples whose heading was so far from the filter's
         that they entered as a velocity vector (``heading_linear_limit``), "(N headings far)"; ``n_reversing``,
         the times the fixes showed the car reversing on an unsigned speed (``reversing_test``), "(N reversing)",
-        and ``n_forward_again``, driving forward again with no stop between, "(N forward again)";
+        and ``n_forward_again``, driving forward again with no stop between, "(N forward again)"; ``n_crawl``, the
+        times the fixes showed the car creeping while its speed read 0 (``crawl_test``), "(N crawling)", and
+        ``crawl_moved``, how far (m) the position moved at them in all;
         ``gyro_scale_estimate`` and ``gyro_scale_z``, the scale-error monitor's estimate and z-score (None
         without it), ``gyro_scale_added``, the step at which it made the filter add the scale state (None:
         not), and ``gyro_scale``, that state's last value (None without one); ``latency_estimate``,
@@ -140,7 +146,7 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
                     filter_kw=dict(scale_window=scale_window, correlated_fixes=correlated_fixes,
                                    min_fix_interval=min_fix_interval, stop_reopen=stop_reopen,
                                    calibration_error_z=calibration_error_z, heading_jump_z=heading_jump_z,
-                                   reversing_test=reversing_test))
+                                   reversing_test=reversing_test, crawl_test=crawl_test))
     for name in filters:
         _score_filter(out, name, run, windows, use_gps_sigma, settings)
     return out
@@ -287,7 +293,7 @@ def _integrity(f, run):
             "n_zero_rate_stepped": f.n_zero_rate_stepped if f.zero_rate_update else None,
             "n_calibration_error": f.n_calibration_error, "n_heading_jumps": f.n_heading_jumps,
             "n_heading_far": f.n_heading_far, "n_reversing": f.n_reversing,
-            "n_forward_again": f.n_forward_again,
+            "n_forward_again": f.n_forward_again, "n_crawl": f.n_crawl, "crawl_moved": f.crawl_moved,
             "heading_jumps": list(f.heading_jumps),
             "gyro_scale_estimate": f.gyro_scale_estimate, "gyro_scale_z": f.gyro_scale_z,
             "gyro_scale_added": f.gyro_scale_added,
@@ -389,5 +395,7 @@ def _integrity_cells(ig):
         unused += f" ({ig['n_reversing']} reversing)"
     if ig.get("n_forward_again"):
         unused += f" ({ig['n_forward_again']} forward again)"
+    if ig.get("n_crawl"):
+        unused += f" ({ig['n_crawl']} crawling)"
     return (f"{ig['n_rejected']} / {ig['n_downweighted']} / {ig['n_reacquired']} of {ig['n_fixes']}{unused} | {nis} | "
             f"{scale} | {corr} | {stops}")
