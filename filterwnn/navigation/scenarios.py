@@ -1012,8 +1012,9 @@ def _warn_speed_cutoff(speed, dt):
                   f"m/s within one {dt:g} s sample, more than a car's speed changes in one ({MAX_STOP_ACCEL:g} "
                   f"m/s^2): the speed sensor reads 0 below about {s:.2g} m/s (a wheel-speed sensor's cutoff). A car "
                   "creeping slower, in a queue, is taken to stand, and the zero-velocity update holds its position "
-                  "while it moves (a turn while creeping is warned of by the filter). If the log has the wheel-tick "
-                  "distance, give it as the odometer column instead", RuntimeWarning, stacklevel=4)
+                  "while it moves (the filters find a long crawl from the fixes, and warn of a turn while creeping). "
+                  "If the log has the wheel-tick distance, give it as the odometer column instead", RuntimeWarning,
+                  stacklevel=4)
 
 
 def _null_fixes(lat, lon):
