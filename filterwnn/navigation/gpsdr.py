@@ -1391,9 +1391,8 @@ class GPSDRFilter:
         headings turn by half a turn (reversing, or forward again), and the test starts again (counted, the first
         of each warned)."""
         st, x, pos = self._stretch, self.kf.x, [0, 3]
-        if st["n"] and (self.step - st["last"]) * self.model.dt < MIN_FIX_INTERVAL - 1e-9:
-            return z_dr  # fixes faster than one a second carry less than one independent fix a second
-        st["last"] = self.step
+        if self._too_soon(st):
+            return z_dr
         D = st["D"]
         rel = float(self.kf.P[6, 6] + self.kf.P[HEADING_BIAS, HEADING_BIAS]) if self.model.augmented else 0.0
         R = self._fix_sigma(gps_sigma) ** 2 * self.gps_scale * np.eye(2)
@@ -1453,6 +1452,15 @@ class GPSDRFilter:
         self._restart_direction()
         return _half_turn(z_dr)
 
+    def _too_soon(self, test):
+        """Whether this fix comes sooner than :data:`MIN_FIX_INTERVAL` after the last one the reversing or crawl test
+        ``test`` (its state: ``n`` fixes taken, the ``last`` one's step) took, else take it: faster fixes carry less
+        than one independent fix a second."""
+        if test["n"] and (self.step - test["last"]) * self.model.dt < MIN_FIX_INTERVAL - 1e-9:
+            return True
+        test["last"] = self.step
+        return False
+
     def _crawl_sample(self, z_dr):
         """The standstill the crawl test looks at (``crawl_test``): a moving sample ends one, and the next standstill
         sample starts one, with the fixes' correlation then (a crawl makes the innovations that measure it
@@ -1470,21 +1478,18 @@ class GPSDRFilter:
     def _restart_crawl(self):
         """Start the crawl test again from the filter's position now: no path, no evidence."""
         self._crawl.update(since=self.step, p=self.kf.x[[0, 3]].copy(), U=np.zeros(2), n=0, last=self.step,
-                           A=np.zeros((3, 3)), g=np.zeros(3), fit=np.zeros(3), glr=0.0, jump=0.0, fixes=[])
+                           A=np.zeros((3, 3)), g=np.zeros(3), fit=np.zeros(3), glr=0.0, fixes=[])
 
     @staticmethod
-    def _crawl_jump_rss(fixes):
-        """The least weighted residual sum of squares of the fixes ``[(e, W), ...]`` as a constant offset that jumps
-        once (between any two fixes): what fixes that jumped while the car stood give (a street's multipath)."""
+    def _crawl_jump_fit(fixes):
+        """The most of the fixes' weighted sum of squares ``[(e, W), ...]`` that a constant offset jumping once
+        (between any two fixes) explains, ``max_j (g_1 A_1^-1 g_1 + g_2 A_2^-1 g_2)`` over the fixes before and from
+        ``j``: what fixes that jumped while the car stood give (a street's multipath)."""
         A = np.cumsum([W for _, W in fixes], axis=0)
         g = np.cumsum([W @ e for e, W in fixes], axis=0)
-        ee = sum(float(e @ W @ e) for e, W in fixes)
-        best = np.inf
-        for j in range(1, len(fixes)):
-            a2, g2 = A[-1] - A[j - 1], g[-1] - g[j - 1]
-            rss = ee - float(g[j - 1] @ np.linalg.solve(A[j - 1], g[j - 1])) - float(g2 @ np.linalg.solve(a2, g2))
-            best = min(best, rss)
-        return best
+        a1, g1, a2, g2 = A[:-1], g[:-1], A[-1] - A[:-1], g[-1] - g[:-1]
+        explained = [(gi * np.linalg.solve(ai, gi[:, :, None])[:, :, 0]).sum(axis=1) for ai, gi in ((a1, g1), (a2, g2))]
+        return float(np.max(explained[0] + explained[1]))
 
     def _test_crawl(self, z_gps, gps_sigma):
         """The generalized likelihood ratio of a crawl along the heading against standing (:data:`CRAWL_ALPHA`):
@@ -1494,14 +1499,13 @@ class GPSDRFilter:
         and ``v`` are fitted by weighted least squares, each fix's residual from the fit so far clipped at the gate
         (a fix that jumped counts as one at the gate), and the likelihood ratio against ``v = 0`` is divided by the
         fixes' correlation when the car stopped. Past ``log(1 / CRAWL_ALPHA)`` after :data:`CRAWL_MIN_FIXES`
-        fixes, and past ``log(1 / CRAWL_JUMP_ALPHA)`` against an offset that jumps once (:meth:`_crawl_jump_rss`):
+        fixes, and past ``log(1 / CRAWL_JUMP_ALPHA)`` against an offset that jumps once (:meth:`_crawl_jump_fit`):
         the car crept, the position moves by ``v U`` and its covariance along ``U`` widens by the move and its
         uncertainty, ``(v^2 + var v) U U^T`` (so that this fix and the next place it), the zero-velocity update
         holds it there, and the test starts again (counted, the first warned)."""
         cr, pos = self._crawl, [0, 3]
-        if cr["n"] and (self.step - cr["last"]) * self.model.dt < MIN_FIX_INTERVAL - 1e-9:
+        if self._too_soon(cr):
             return
-        cr["last"] = self.step
         W = np.linalg.inv(self._fix_sigma(gps_sigma) ** 2 * self.gps_scale * np.eye(2))
         G = np.column_stack([np.eye(2), cr["U"]])  # [offset east, offset north, crawl speed]
         e = np.asarray(z_gps, dtype=float) - cr["p"]
@@ -1523,10 +1527,8 @@ class GPSDRFilter:
         cr["glr"] = 0.5 * float(g @ sol - g[:2] @ o) / c if sol[2] > 0 else 0.0
         if not (cr["glr"] > np.log(1.0 / CRAWL_ALPHA) and cr["n"] >= CRAWL_MIN_FIXES):
             return
-        cr["jump"] = 0.5 * (self._crawl_jump_rss(cr["fixes"]) - sum(float(e @ W @ e) for e, W in cr["fixes"])
-                            + float(g @ sol)) / c
-        if cr["jump"] <= np.log(1.0 / CRAWL_JUMP_ALPHA):
-            return
+        if 0.5 * (float(g @ sol) - self._crawl_jump_fit(cr["fixes"])) / c <= np.log(1.0 / CRAWL_JUMP_ALPHA):
+            return  # a jump of the offset fits about as well
         v = float(sol[2])
         var = c * float(np.linalg.inv(A)[2, 2])
         moved = v * cr["U"]
