@@ -48,3 +48,16 @@ def test_the_demo_prints_what_the_readme_shows(capsys):
 def test_ci_runs_the_readme_test_command():
     ci = (README.parent / ".ci" / "run").read_text()
     assert 'pip install ".[test]" && python -m pytest' in ci
+
+
+def test_the_test_command_runs_a_worker_a_core_each_with_one_blas_thread():
+    """``python -m pytest`` spreads the suite over the machine's cores (``-n auto`` in
+    ``setup.cfg``, pytest-xdist): a worker's BLAS must not start a thread a core as well."""
+    import os
+
+    from threadpoolctl import threadpool_info
+
+    if not os.environ.get("PYTEST_XDIST_WORKER"):
+        pytest.skip("run in one process (-n 0 or -p no:xdist)")
+    blas = [lib for lib in threadpool_info() if lib["user_api"] == "blas"]
+    assert blas and all(lib["num_threads"] == 1 for lib in blas), blas
