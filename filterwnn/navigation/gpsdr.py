@@ -1497,7 +1497,8 @@ class GPSDRFilter:
         (an unknown constant offset ``o``: the start's own error, a street's multipath that lasts; the unit-speed
         path ``U`` since the start; the crawl's speed ``v >= 0``) plus noise of the fix's covariance ``R``. ``o``
         and ``v`` are fitted by weighted least squares, each fix's residual from the fit so far clipped at the gate
-        (a fix that jumped counts as one at the gate), and the likelihood ratio against ``v = 0`` is divided by the
+        (a fix that jumped counts as one at the gate; the residual's covariance is ``R`` plus the fit's, which
+        two fixes, or one with a far larger sigma, leave wide along ``U``), and the likelihood ratio against ``v = 0`` is divided by the
         fixes' correlation when the car stopped. Past ``log(1 / CRAWL_ALPHA)`` after :data:`CRAWL_MIN_FIXES`
         fixes, and past ``log(1 / CRAWL_JUMP_ALPHA)`` against an offset that jumps once (:meth:`_crawl_jump_fit`):
         the car crept, the position moves by ``v U`` and its covariance along ``U`` widens by the move and its
@@ -1510,7 +1511,10 @@ class GPSDRFilter:
         G = np.column_stack([np.eye(2), cr["U"]])  # [offset east, offset north, crawl speed]
         e = np.asarray(z_gps, dtype=float) - cr["p"]
         fit = G @ cr["fit"]
-        q = float((e - fit) @ W @ (e - fit))
+        S = np.linalg.inv(W)
+        if cr["n"] >= 2:  # the fit's own uncertainty: an offset and a speed from two fixes may be far off
+            S = S + cr["c"] * G @ np.linalg.pinv(cr["A"]) @ G.T
+        q = float((e - fit) @ np.linalg.solve(S, e - fit))
         if q > self.gate:
             e = fit + (e - fit) * np.sqrt(self.gate / q)
         cr["A"] += G.T @ W @ G

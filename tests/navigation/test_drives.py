@@ -896,6 +896,27 @@ def test_a_standing_car_whose_fixes_wander_together_is_not_taken_for_creeping(se
         np.testing.assert_array_equal(err, err_off)
 
 
+@pytest.mark.parametrize("at", [36.0, 37.0])
+def test_a_far_fix_with_a_far_larger_sigma_early_in_a_stop_is_no_crawl(at):
+    """A receiver that writes a placeholder fix (500 m ahead, sigma 9999 m) as the car stands: the crawl test's fit
+    after two fixes, one of them that one, was an offset and a speed that met it exactly (47 m/s), the next fixes
+    were clipped towards that fit, and the test moved a standing car 146 m (found on the 1 Hz analog with 5 % of
+    its fixes so; here 1,736 m with the placeholder the stop's second fix). The clip now counts the fit's own
+    uncertainty: no decision, and the filter as without the test."""
+    run = _crawl_run(crawl=False, stop=50.0, seed=3)
+    k = int(np.flatnonzero(np.isclose(run.t[run.gps_steps], at))[0])
+    z, sig = run.z_gps.copy(), np.full(len(run.gps_steps), 3.0)
+    z[k] += [500.0, -100.0]
+    sig[k] = 9999.0
+    run = run._replace(z_gps=z, gps_sigma=sig)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        kf, err = _errors(run, "ekf")
+        _, err_off = _errors(run, "ekf", crawl_test=False)
+    assert kf.n_crawl == 0, (kf.crawl_steps, kf.crawl_moved)
+    np.testing.assert_array_equal(err, err_off)
+
+
 def test_the_drive_table_counts_the_crawls_found(command_passes):
     """``filterwnn study dr --drive`` reports the crawls found after the fixes' counts, and ``--no-crawl-test``
     switches the test off."""
