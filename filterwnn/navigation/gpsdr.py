@@ -451,6 +451,13 @@ HDOP_FACTOR = 2.0
 HDOP_LOWEST = 0.4
 #: ... and the most, over the grade's GPS sigma.
 HDOP_GRADE = 0.5
+#: The consistency monitor's warning names fixes that report an accuracy far better than they have (a
+#: receiver's placeholder sigma, a jump in its reported accuracy) when every fix of its window carried its own
+#: sigma, some under this fraction of the window's median, and with those at the median, and again with the
+#: grade's sigma for every fix, the window's mean NIS would be inside its bound (stop 54: the 1 Hz analog with
+#: 5 % of its fixes reporting 0.3 m; its own 3-5 m are never under 0.6 of their median, the phone analog's 5-8 m
+#: never under 0.75, and a gyro outside its grade, or every fix reporting half its error, is told without it).
+FAR_BETTER = 0.5
 
 
 def _no_fix(z_gps):
@@ -1158,6 +1165,7 @@ class GPSDRFilter:
         self._nis_bound = float(chi2.ppf(0.999, 2 * self.nis_window)) / self.nis_window
         self._nis = deque(maxlen=self.nis_window)
         self._own_sigma = deque(maxlen=self.nis_window)
+        self._innovations = deque(maxlen=self.nis_window)
         self.step, self.fix_status, self.nis = 0, "none", None
         self.n_fixes = self.n_rejected = self.n_downweighted = self.n_reacquired = self.n_repairs = 0
         self.rejected_steps, self.nis_accepted, self.nis_warnings = [], [], []
@@ -2309,7 +2317,7 @@ class GPSDRFilter:
         if scaled and self.scale_window:
             self.gps_scales.append(lam)
         if nis <= self.reject_gate or not test:  # the fixes it uses: the gate answers for the others
-            self._monitor(min(nis, self.reject_gate), own)
+            self._monitor(min(nis, self.reject_gate), own, (y, P_pos, lam))
         if nis <= self.gate or not test:
             self._in_a_row = 0
             self.fix_status = "accepted"
@@ -2402,15 +2410,18 @@ class GPSDRFilter:
         if self.kind != "ekf":
             self.kf.compute_process_sigmas(self.model.dt, fx=lambda s, dt: s)
 
-    def _monitor(self, nis, own=np.nan):
+    def _monitor(self, nis, own=np.nan, innovation=None):
         """Warn when the mean NIS over the last :attr:`nis_window` fixes leaves its 99.9 % bound.
 
         ``own``: the fix's reported sigma (m), NaN for a fix that gets the grade's. When every fix of the window
         carried its own and their innovations are at least :data:`HDOP_FACTOR` times it, the warning names a
         ``gps_sigma`` column that holds an HDOP (no unit; measured in ``docs/study-outputs/dr/log-faults/RUN.md``,
-        stop 50)."""
+        stop 50). ``innovation``: the fix's ``(y, P_pos, scale)``; where the window's fixes that report an
+        accuracy far better than its others carry the excess, the warning says so (:meth:`_floored_words`;
+        ``docs/study-outputs/dr/sensor-faults/RUN.md``, stop 54)."""
         self._nis.append(nis)
         self._own_sigma.append(own)
+        self._innovations.append(innovation)
         if len(self._nis) < self.nis_window:
             return
         mean = float(np.mean(self._nis))
@@ -2426,8 +2437,38 @@ class GPSDRFilter:
                 f"fixes is {np.mean(self._nis):.1f}, above its 99.9 % bound {self._nis_bound:.2f} (2 expected); "
                 "the fixes' reported accuracy is optimistic or the sensor grade too good: pass the receiver's "
                 "accuracy as gps_sigma, use a lower grade, or estimate the fixes' covariance scale "
-                f"(scale_window={SCALE_WINDOW}){gyro}{self._hdop_words(mean)}", RuntimeWarning, stacklevel=4)
+                f"(scale_window={SCALE_WINDOW}){gyro}{self._hdop_words(mean) or self._floored_words()}",
+                RuntimeWarning, stacklevel=4)
         self._inconsistent = high
+
+    def _floored_words(self):
+        """The inconsistency warning's words where every fix of the window carried its own sigma and the window's
+        mean NIS would be inside its bound both had its fixes that report a sigma under :data:`FAR_BETTER` times
+        the window's median reported the median and had every fix the grade's sigma: the excess comes from fixes
+        that report an accuracy far better than they have (a receiver's, on some fixes), and the grade's sigma
+        would do. ``""`` otherwise: where the fixes are
+        all a little optimistic, or worse than the grade (a city's), or the model is wrong (a gyro outside its
+        grade), the other remedies stand."""
+        own = np.asarray(self._own_sigma)
+        if np.isnan(own).any():
+            return ""
+        floor = float(np.median(own))
+        far = own < FAR_BETTER * floor
+        if not far.any():
+            return ""
+
+        def mean_nis(sigma):
+            return np.mean([min(float(y @ np.linalg.solve(P + s * s * lam * np.eye(2), y)), self.reject_gate)
+                            for s, (y, P, lam) in zip(sigma, self._innovations)])
+
+        floored, graded = mean_nis(np.where(far, floor, own)), mean_nis(np.full(len(own), self.model.sigma_gps))
+        if max(floored, graded) > self._nis_bound:
+            return ""
+        return (f". Its fixes that report an accuracy far better than the others carry the excess (down to "
+                f"{own.min():.2g} m, the window's median {floor:.2g} m): with those at the median the window's mean "
+                f"NIS would be {floored:.2g}, with the grade's {self.model.sigma_gps:.2g} m for every fix "
+                f"{graded:.2g}, inside the bound. If the receiver's reported accuracy is what is optimistic, drop the "
+                "gps_sigma column (every fix then gets the grade's sigma)")
 
     def _hdop_words(self, mean):
         """The inconsistency warning's words for fixes whose own sigma is far below their innovations' (an HDOP
