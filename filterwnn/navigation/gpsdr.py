@@ -1506,8 +1506,8 @@ class GPSDRFilter:
         path ``U`` since the start; the crawl's speed ``v >= 0``) plus noise of the fix's covariance ``R``. ``o``
         and ``v`` are fitted by weighted least squares, each fix's residual from the fit so far clipped at the gate
         (a fix that jumped counts as one at the gate; the residual's covariance is ``R`` plus the fit's, which
-        two fixes, or one with a far larger sigma, leave wide along ``U``), and the likelihood ratio against ``v = 0`` is divided by the
-        fixes' correlation when the car stopped. Past ``log(1 / CRAWL_ALPHA)`` after :data:`CRAWL_MIN_FIXES`
+        two fixes, or one with a far larger sigma, leave wide along ``U``), and the likelihood ratio against
+        ``v = 0`` is divided by the fixes' correlation when the car stopped. Past ``log(1 / CRAWL_ALPHA)`` after :data:`CRAWL_MIN_FIXES`
         fixes, and past ``log(1 / CRAWL_JUMP_ALPHA)`` against an offset that jumps once (:meth:`_crawl_jump_fit`):
         the car crept, the position moves by ``v U`` and its covariance along ``U`` widens by the move and its
         uncertainty, ``(v^2 + var v) U U^T`` (so that this fix and the next place it), the zero-velocity update
@@ -2446,9 +2446,8 @@ class GPSDRFilter:
         mean NIS would be inside its bound both had its fixes that report a sigma under :data:`FAR_BETTER` times
         the window's median reported the median and had every fix the grade's sigma: the excess comes from fixes
         that report an accuracy far better than they have (a receiver's, on some fixes), and the grade's sigma
-        would do. ``""`` otherwise: where the fixes are
-        all a little optimistic, or worse than the grade (a city's), or the model is wrong (a gyro outside its
-        grade), the other remedies stand."""
+        would do. ``""`` otherwise: where the fixes are all a little optimistic, or worse than the grade (a
+        city's), or the model is wrong (a gyro outside its grade), the other remedies stand."""
         own = np.asarray(self._own_sigma)
         if np.isnan(own).any():
             return ""
