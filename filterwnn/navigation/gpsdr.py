@@ -863,7 +863,7 @@ class GPSDRFilter:
         most, less the test's start (the filter's position when the car stopped, or at its last decision) as an
         unknown constant offset plus ``v`` times the path the heading (less the heading bias) draws at unit speed
         since, ``v >= 0``, against the offset alone (weighted least squares, each fix's residual from the fit so
-        far clipped at the gate), divided by the fixes' correlation when the car stopped, past
+        far clipped at the gate, by the fix's covariance and the fit's own), divided by the fixes' correlation when the car stopped, past
         ``log(1 / CRAWL_ALPHA)`` after :data:`CRAWL_MIN_FIXES` fixes; and the crawl must fit better than an offset
         that jumps once, past ``log(1 / CRAWL_JUMP_ALPHA)`` (a guard: multipath that comes while the car stands).
         Then the position moves by the fitted crawl and its covariance along it widens by the move and its
@@ -1515,13 +1515,14 @@ class GPSDRFilter:
         cr, pos = self._crawl, [0, 3]
         if self._too_soon(cr):
             return
-        W = np.linalg.inv(self._fix_sigma(gps_sigma) ** 2 * self.gps_scale * np.eye(2))
+        R = self._fix_sigma(gps_sigma) ** 2 * self.gps_scale * np.eye(2)
+        W = np.linalg.inv(R)
         G = np.column_stack([np.eye(2), cr["U"]])  # [offset east, offset north, crawl speed]
         e = np.asarray(z_gps, dtype=float) - cr["p"]
         fit = G @ cr["fit"]
-        S = np.linalg.inv(W)
+        S = R
         if cr["n"] >= 2:  # the fit's own uncertainty: an offset and a speed from two fixes may be far off
-            S = S + cr["c"] * G @ np.linalg.pinv(cr["A"]) @ G.T
+            S = R + cr["c"] * G @ np.linalg.pinv(cr["A"]) @ G.T
         q = float((e - fit) @ np.linalg.solve(S, e - fit))
         if q > self.gate:
             e = fit + (e - fit) * np.sqrt(self.gate / q)
