@@ -17,21 +17,20 @@ car (``REVERSING_FIXES``), the largest the offset path's guard reached (``guard`
     OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/log-faults/reversing_count.py ROOT random 1 55 110 > b.txt
     cat a.txt b.txt > reversing_count_random_1.txt  # and protocol 2 likewise, reversing_count_random_2.txt
 
-(``recorded`` needs the ``data`` extra; ``random P LO HI``: ``random_drives.drive(seed, P)``, EKF-8 only; ``hard``:
+(The sets are ``../drive_sets.py``'s, shared with ``../sensor-faults/crawl_count.py``; ``recorded`` needs the
+``data`` extra; ``random P LO HI``: ``random_drives.drive(seed, P)``, EKF-8 only; ``hard``:
 ``tests/navigation/test_hard_drives.py``'s five drives, scored as there. Stop 52 ran it on 5db4d1c.)
 """
 import os
 import sys
-import tempfile
 import warnings
 
 import numpy as np
 ROOT = os.path.abspath(sys.argv[1])
-sys.path[:0] = [ROOT, ROOT + "/tests", ROOT + "/docs/study-outputs/dr/random-drives"]
-import _held_out_drives as held_out  # noqa: E402
+sys.path[:0] = [ROOT, ROOT + "/tests", ROOT + "/docs/study-outputs/dr", ROOT + "/docs/study-outputs/dr/random-drives"]
 from filterwnn.navigation import gpsdr  # noqa: E402
-from filterwnn.navigation.drives import read_drive_csv, sample_drive_path, load_car_drive, CAR_DRIVES  # noqa: E402
 from filterwnn.studies.dr import real_drive_outages  # noqa: E402
+from drive_sets import run_set  # noqa: E402
 C = {"n": 0, "llr": -np.inf, "both": -np.inf, "guard": -np.inf}
 orig = gpsdr.GPSDRFilter._test_reversing
 
@@ -66,35 +65,5 @@ def go(label, run, kinds=("EKF-8", "UKF-8", "SUKF-8"), grade="phone", sig=True, 
     print(label, "|", " | ".join(out), flush=True)
 
 
-def read(tmp, cols):
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        return read_drive_csv(held_out.write_csv(os.path.join(tmp, "d.csv"), cols))
-
-
 which = sys.argv[2]
-tmp = tempfile.mkdtemp()
-if which == "analogs":
-    for name in ("one_hz", "phone", "city"):
-        for seed in range(int(sys.argv[3]), int(sys.argv[4])):
-            go(f"{name} {seed}", read(tmp, held_out.columns(name, seed)))
-elif which == "recorded":
-    run = read_drive_csv(sample_drive_path())
-    go("sample phone", run)
-    go("sample survey", run, grade="survey")
-    for d in CAR_DRIVES:
-        run = load_car_drive(d)
-        go(f"{d} phone", run)
-        go(f"{d} survey", run, grade="survey")
-elif which == "random":
-    import random_drives  # noqa: E402
-    proto = int(sys.argv[3])
-    for seed in range(int(sys.argv[4]), int(sys.argv[5])):
-        go(f"{proto} {seed}", read(tmp, random_drives.drive(seed, proto)[1]), kinds=("EKF-8",))
-elif which == "hard":
-    sys.path.insert(0, ROOT + "/tests/navigation")
-    import test_hard_drives as hard  # noqa: E402
-    for make in hard.DRIVES:
-        rng = np.random.default_rng(np.random.SeedSequence([23, hard.DRIVES.index(make)]))
-        run, grade, first = make(rng)
-        go(make.__name__, run, grade=grade, length=30.0, starts=np.linspace(first, run.t[-1] - 32.0, 4))
+run_set(ROOT, which, sys.argv[3:], go)

@@ -13,23 +13,23 @@ log(100)), and the outage ends' median / max (m). Run with the package at ``ROOT
     OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/sensor-faults/crawl_count.py ROOT random 1 0 40 > crawl_count_random_1.txt
     OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/sensor-faults/crawl_count.py ROOT random 2 0 40 > crawl_count_random_2.txt
 
-(``recorded`` needs the ``data`` extra; ``random P LO HI``: ``random_drives.drive(seed, P)``, EKF-8 only; ``hard``:
+(The sets but ``files`` are ``../drive_sets.py``'s, shared with ``../log-faults/reversing_count.py``; ``recorded``
+needs the ``data`` extra; ``random P LO HI``: ``random_drives.drive(seed, P)``, EKF-8 only; ``hard``:
 ``tests/navigation/test_hard_drives.py``'s five drives, scored as there; ``analogs LO HI [NAMES]``: the analogs of
 ``tests/_held_out_drives.py``; ``files CSV ...``: drive CSVs, each with the test and without, ``KINDS`` from the
 environment.)
 """
 import os
 import sys
-import tempfile
 import warnings
 
 import numpy as np
 ROOT = os.path.abspath(sys.argv[1])
-sys.path[:0] = [ROOT, ROOT + "/tests", ROOT + "/docs/study-outputs/dr/random-drives"]
-import _held_out_drives as held_out  # noqa: E402
+sys.path[:0] = [ROOT, ROOT + "/tests", ROOT + "/docs/study-outputs/dr", ROOT + "/docs/study-outputs/dr/random-drives"]
 from filterwnn.navigation import gpsdr  # noqa: E402
-from filterwnn.navigation.drives import read_drive_csv, sample_drive_path, load_car_drive, CAR_DRIVES  # noqa: E402
+from filterwnn.navigation.drives import read_drive_csv  # noqa: E402
 from filterwnn.studies.dr import real_drive_outages  # noqa: E402
+from drive_sets import run_set  # noqa: E402
 C = {"n": 0, "glr": -np.inf}
 orig = gpsdr.GPSDRFilter._test_crawl
 
@@ -59,20 +59,8 @@ def go(label, run, kinds=("EKF-8", "UKF-8", "SUKF-8"), grade="phone", sig=True, 
     print(label, "|", " | ".join(out), flush=True)
 
 
-def read(tmp, cols):
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        return read_drive_csv(held_out.write_csv(os.path.join(tmp, "d.csv"), cols))
-
-
 which = sys.argv[2]
-tmp = tempfile.mkdtemp()
-if which == "analogs":
-    names = sys.argv[5].split(",") if len(sys.argv) > 5 else ("one_hz", "phone", "city")
-    for name in names:
-        for seed in range(int(sys.argv[3]), int(sys.argv[4])):
-            go(f"{name} {seed}", read(tmp, held_out.columns(name, seed)))
-elif which == "files":
+if which == "files":
     kinds = tuple(os.environ.get("KINDS", "EKF-8,UKF-8,SUKF-8").split(","))
     for f in sys.argv[3:]:
         with warnings.catch_warnings():
@@ -80,23 +68,5 @@ elif which == "files":
             run = read_drive_csv(f)
         go(os.path.basename(f), run, kinds=kinds)
         go(os.path.basename(f) + " off", run, kinds=kinds, crawl_test=False)
-elif which == "recorded":
-    run = read_drive_csv(sample_drive_path())
-    go("sample phone", run)
-    go("sample survey", run, grade="survey")
-    for d in CAR_DRIVES:
-        run = load_car_drive(d)
-        go(f"{d} phone", run)
-        go(f"{d} survey", run, grade="survey")
-elif which == "random":
-    import random_drives  # noqa: E402
-    proto = int(sys.argv[3])
-    for seed in range(int(sys.argv[4]), int(sys.argv[5])):
-        go(f"{proto} {seed}", read(tmp, random_drives.drive(seed, proto)[1]), kinds=("EKF-8",))
-elif which == "hard":
-    sys.path.insert(0, ROOT + "/tests/navigation")
-    import test_hard_drives as hard  # noqa: E402
-    for make in hard.DRIVES:
-        rng = np.random.default_rng(np.random.SeedSequence([23, hard.DRIVES.index(make)]))
-        run, grade, first = make(rng)
-        go(make.__name__, run, grade=grade, length=30.0, starts=np.linspace(first, run.t[-1] - 32.0, 4))
+else:
+    run_set(ROOT, which, sys.argv[3:], go)
