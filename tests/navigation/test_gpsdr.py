@@ -1006,3 +1006,51 @@ def test_the_velocity_form_without_the_low_speed_noise():
     assert kw == {"gps": False, "velocity": True}
     _, R_low, _ = model.measurement_for(z_dr, low_speed=True)
     np.testing.assert_allclose(R_low - R, model.sigma_low_speed**2 * np.eye(2))
+
+
+def test_a_fix_reporting_far_better_than_those_before_it_is_floored():
+    """Fixes of 3 m, one of them reporting 0.1 m: it is taken as a quarter of the fixes' reported sigma before it
+    (the lower of the medians of the last three and of the last thirty, so two placeholders of 9999 m in a row do
+    not floor the honest fixes after them), once with a warning naming the step and the remedy (``gps_sigma_floor=0``), and counted; with
+    ``gps_sigma_floor=0`` it is taken as reported. Fixes whose reported sigma wanders (1-4 m) are taken as
+    reported, to the bit."""
+    run, f = _steady(kind="ekf")
+    fixes, sigmas = list(run.gps_list()), [None if z is None else 3.0 for z in run.gps_list()]
+    k = run.gps_steps[30]
+    sigmas[k] = 0.1
+    for j in run.gps_steps[40:42]:  # two placeholders in a row (no fix: 9999 m) raise no floor on the fixes after
+        sigmas[j] = 9999.0
+    seen = {}
+    orig = f._check_fix
+
+    def check(z, s, **kw):
+        seen[f.step] = s
+        return orig(z, s, **kw)
+
+    f._check_fix = check
+    said = (rf"takes the fix at step {k} as 0.75 m, not the 0.1 m it reports: under 0.25 of the fixes' reported "
+            r"sigma before it \(3 m, the lower of the medians of the last 3 and the last 30 reported, this one's among "
+            r"them\).*gps_sigma_floor=0")
+    with pytest.warns(RuntimeWarning, match=said) as rec:
+        f.batch_filter(run.z_dr, fixes, sigmas)
+    assert seen[k] == pytest.approx(0.75) and f.n_floored == 1 and f.floored_steps == [k]
+    assert sum("takes the fix" in str(w.message) for w in rec) == 1
+    _, off = _steady(kind="ekf", gps_sigma_floor=0)
+    with warnings.catch_warnings(record=True) as rec:
+        warnings.simplefilter("always")
+        off.batch_filter(run.z_dr, fixes, sigmas)
+    assert off.n_floored == 0 and not any("takes the fix" in str(w.message) for w in rec)
+    # honest sigmas that wander (1-4 m) stay as reported: the same estimates as with the floor off
+    wander = [None if z is None else 1.0 + 3.0 * np.random.default_rng(k).random() for k, z in enumerate(fixes)]
+    _, a = _steady(kind="ekf")
+    _, b = _steady(kind="ekf", gps_sigma_floor=0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)  # 1-4 m for 3 m fixes: inconsistent, as it warns
+        assert np.array_equal(a.batch_filter(run.z_dr, fixes, wander), b.batch_filter(run.z_dr, fixes, wander))
+    assert a.n_floored == 0
+
+
+@pytest.mark.parametrize("bad", [-0.1, 1.5, np.nan])
+def test_gps_sigma_floor_is_checked(bad):
+    with pytest.raises(ValueError, match="gps_sigma_floor must be in"):
+        _steady(gps_sigma_floor=bad)

@@ -7,7 +7,7 @@ import os
 
 from ...navigation.dead_reckoning import SENSOR_GRADES, _grade
 from ...navigation.drives import CAR_DRIVES, load_car_drive, read_drive_csv
-from ...navigation.gpsdr import CALIBRATION_ERROR_Z, CORRELATED_FIXES, HEADING_JUMP_Z
+from ...navigation.gpsdr import CALIBRATION_ERROR_Z, CORRELATED_FIXES, HEADING_JUMP_Z, SIGMA_FLOOR
 from ...navigation.scenarios import INTERVALS, SCENARIOS
 from .. import options, runner
 from ._filters import FILTER_TABLE, OPT_IN
@@ -128,6 +128,11 @@ def add_arguments(parser):
     parser.add_argument("--no-crawl-test", action="store_true",
                         help="do not test the fixes for the car creeping while its speed reads 0 "
                              "(GPSDRFilter's crawl_test=False; a speed that reads down to 0 needs no test)")
+    parser.add_argument("--gps-sigma-floor", type=_fraction, default=SIGMA_FLOOR, metavar="FRACTION",
+                        help="take a fix's reported sigma (a drive's gps_sigma column) no smaller than this fraction "
+                             "of the median of the last three fixes' (GPSDRFilter's gps_sigma_floor: a fix that reports "
+                             "far better than both fixes before it, a receiver's placeholder accuracy, is not trusted "
+                             "beyond that; default %(default)g; 0: as reported)")
     parser.add_argument("--grade", choices=sorted(SENSOR_GRADES), default=None,
                         help="sensor grade for the GPS/DR settings (survey, phone; see "
                              "filterwnn.navigation.dead_reckoning.SENSOR_GRADES); default phone for --drive, survey for --real")
@@ -162,7 +167,7 @@ DRIVE_ONLY = ("--no-plausibility", "--fill-gaps", "--gps-latency", "--odometer-l
               "--gyro-bias-instability", "--gps-latency-sd")
 ON_DRIVES = ("--outage-length", "--outages", "--min-speed", "--gps-scale-window", "--correlated-fixes",
              "--min-fix-interval", "--stop-reopen", "--calibration-error-z", "--heading-jump-z", "--no-reversing-test",
-             "--no-crawl-test", "--grade")
+             "--no-crawl-test", "--gps-sigma-floor", "--grade")
 #: ... and those of the simulated scenarios' Monte Carlo, which ``--drive`` does not run. Not ``--jobs``: a
 #: worker count changes no number, and scripts pass ``--jobs 1`` whatever they run (``log_faults.py`` does).
 SIMULATED_ONLY = ("--runs", "--seed", "--backend", "--scheduler", "--cache", "--scenarios", "--factor")
@@ -188,6 +193,14 @@ def _check_applies(args):
                              "be ignored here")
 
 
+def _fraction(text):
+    """A number from 0 to 1."""
+    value = options.nonnegative_float(text)
+    if value > 1.0:
+        raise argparse.ArgumentTypeError(f"must be from 0 to 1, got {text!r}")
+    return value
+
+
 def _z_or_off(text):
     """``off`` (None), or a z-score: a finite number > 0."""
     if text.strip().lower() == "off":
@@ -208,7 +221,8 @@ def _filter_options(args):
                 calibration_error_z=getattr(args, "calibration_error_z", CALIBRATION_ERROR_Z),
                 heading_jump_z=getattr(args, "heading_jump_z", HEADING_JUMP_Z),
                 reversing_test=not getattr(args, "no_reversing_test", False),
-                crawl_test=not getattr(args, "no_crawl_test", False))
+                crawl_test=not getattr(args, "no_crawl_test", False),
+                gps_sigma_floor=getattr(args, "gps_sigma_floor", SIGMA_FLOOR))
 
 
 def run(args):
