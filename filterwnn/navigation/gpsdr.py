@@ -903,6 +903,14 @@ class GPSDRFilter:
         (with 5 % of the 1 Hz analog's fixes claiming 0.3 m the EKF-8's outages ended 2.68 / 46.53 m off; floored,
         2.85 / 7.15 m: ``docs/study-outputs/dr/sensor-faults/RUN.md``, stop 55). Counted in ``n_floored``
         (``floored_steps``), the first warned. Fixes without a reported sigma (the grade's) are not floored.
+    floor_on_detection : bool
+        When the consistency monitor finds that fixes reporting far better than the others carry its excess (its
+        warning names them; see :data:`FAR_BETTER`), take every fix's sigma from then on no smaller than the median
+        of the last :data:`FLOOR_WINDOW` reported (``floor_raised``, the step; those fixes counted in
+        ``n_floored``): runs of such fixes pass the floor above, and two in a row, one second apart, put a
+        velocity into the filter that its heading bias takes (stop 55: the 1 Hz analog with 5 % of its fixes
+        claiming 0.3 m in pairs ended an outage 55.66 m off with no floor). Default True; False only warns. Where
+        the monitor does not name such fixes, nothing changes.
     min_fix_interval : float
         Seconds after a fix used before the next is used; fixes that come faster are thinned
         (``n_thinned``, with one warning), and fixes at that rate or slower, with their jitter, are
@@ -1065,7 +1073,7 @@ class GPSDRFilter:
                  min_fix_interval=0.0, scale_on_detection=True, latency_on_detection=True, stop_reopen=0.0,
                  calibration_error_z=CALIBRATION_ERROR_Z, heading_jump_z=HEADING_JUMP_Z,
                  heading_linear_limit=HEADING_LINEAR_LIMIT, reversing_test=True, crawl_test=True,
-                 gps_sigma_floor=SIGMA_FLOOR):
+                 gps_sigma_floor=SIGMA_FLOOR, floor_on_detection=True):
         if not isinstance(model, GPSDRModel):
             raise TypeError(f"model must be a GPSDRModel, got {type(model).__name__}")
         self.model = model
@@ -1173,8 +1181,10 @@ class GPSDRFilter:
         if not 0.0 <= self.gps_sigma_floor <= 1.0:
             raise ValueError(f"gps_sigma_floor must be in [0, 1] (a fraction of the recent fixes' median reported "
                              f"sigma; 0: every fix's sigma as reported), got {gps_sigma_floor}")
-        self._reported = None  # the last nis_window reported sigmas, from the first fix that carries one
+        self._reported = deque(maxlen=FLOOR_WINDOW)  # the last reported sigmas
         self.n_floored, self.floored_steps = 0, []
+        self.floor_on_detection = bool(floor_on_detection)
+        self.floor_raised = None  # the step from which every fix's sigma is floored at the median (the monitor's)
         self.zero_rate_update = bool(zero_rate_update) and model.rate_bias
         self._stop = []  # (time, heading) of the standstill samples of the stop going on
         self._last_stop = None  # (its samples, the step it ended, the distance driven then): stop_reopen
@@ -1305,7 +1315,7 @@ class GPSDRFilter:
         z_dr = check_scale(as_state(z_dr, "z_dr", 2), "z_dr")  # a distance of 1e308 would give x = inf
         if _no_fix(z_gps):
             z_gps = gps_sigma = None
-        if gps_sigma is not None and self.gps_sigma_floor:
+        if gps_sigma is not None:
             gps_sigma = self._floor_sigma(gps_sigma)
         if self.model.gyro_scale:
             self._turn(float(z_dr[0]))
@@ -2326,20 +2336,26 @@ class GPSDRFilter:
     def _floor_sigma(self, gps_sigma):
         """A fix's reported sigma, taken no smaller than ``gps_sigma_floor`` times the lower of the medians of the
         last :data:`FLOOR_FIXES` and :data:`FLOOR_WINDOW` fixes' reported sigmas (this one's among them; see
-        ``gps_sigma_floor``). Counted in ``n_floored`` (the steps in ``floored_steps``), the first with a
-        warning."""
+        ``gps_sigma_floor``), and, once the consistency monitor found fixes reporting far better than they are
+        (``floor_on_detection``, ``floor_raised``), than the median of the last :data:`FLOOR_WINDOW`. Counted in
+        ``n_floored`` (the steps in ``floored_steps``), the first with a warning."""
         reported = check_positive(float(gps_sigma), "gps_sigma")
-        if self._reported is None:
-            self._reported = deque(maxlen=FLOOR_WINDOW)
         self._reported.append(reported)
-        last = list(self._reported)
-        typical = min(float(np.median(last[-FLOOR_FIXES:])), float(np.median(last)))
-        floor = self.gps_sigma_floor * typical
+        if self.floor_raised is not None:
+            typical = float(np.median(self._reported))
+            floor = typical
+        elif not self.gps_sigma_floor:
+            return gps_sigma
+        else:
+            last = list(self._reported)
+            typical = min(float(np.median(last[-FLOOR_FIXES:])), float(np.median(last)))
+            floor = self.gps_sigma_floor * typical
         if reported >= floor:
             return gps_sigma
         self.n_floored += 1
         self.floored_steps.append(self.step)
-        if self.n_floored == 1:
+        if self.n_floored == 1 and self.floor_raised is None:
+            last = self._reported
             warnings.warn(
                 f"GPSDRFilter takes the fix at step {self.step} as {floor:.3g} m, not the {reported:.3g} m it "
                 f"reports: under {self.gps_sigma_floor:g} of the fixes' reported sigma before it ({typical:.3g} m, "
@@ -2508,9 +2524,20 @@ class GPSDRFilter:
                 f"fixes is {np.mean(self._nis):.1f}, above its 99.9 % bound {self._nis_bound:.2f} (2 expected); "
                 "the fixes' reported accuracy is optimistic or the sensor grade too good: pass the receiver's "
                 "accuracy as gps_sigma, use a lower grade, or estimate the fixes' covariance scale "
-                f"(scale_window={SCALE_WINDOW}){gyro}{self._hdop_words(mean) or self._floored_words()}",
+                f"(scale_window={SCALE_WINDOW}){gyro}{self._hdop_words(mean) or self._raise_floor()}",
                 RuntimeWarning, stacklevel=4)
         self._inconsistent = high
+
+    def _raise_floor(self):
+        """The inconsistency warning's words on fixes that report far better than they are
+        (:meth:`_floored_words`), and with ``floor_on_detection``, every fix's sigma floored at the median of the
+        last :data:`FLOOR_WINDOW` reported from here (``floor_raised``, the step)."""
+        words = self._floored_words()
+        if not words or not self.floor_on_detection:
+            return words
+        self.floor_raised = self.step
+        return (words + f". From here the filter takes every fix's sigma no smaller than the median of the last "
+                f"{FLOOR_WINDOW} reported (floor_on_detection=False: it only warns)")
 
     def _floored_words(self):
         """The inconsistency warning's words where every fix of the window carried its own sigma and the window's

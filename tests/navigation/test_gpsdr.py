@@ -1035,15 +1035,15 @@ def test_a_fix_reporting_far_better_than_those_before_it_is_floored():
         f.batch_filter(run.z_dr, fixes, sigmas)
     assert seen[k] == pytest.approx(0.75) and f.n_floored == 1 and f.floored_steps == [k]
     assert sum("takes the fix" in str(w.message) for w in rec) == 1
-    _, off = _steady(kind="ekf", gps_sigma_floor=0)
+    _, off = _steady(kind="ekf", gps_sigma_floor=0, floor_on_detection=False)
     with warnings.catch_warnings(record=True) as rec:
         warnings.simplefilter("always")
         off.batch_filter(run.z_dr, fixes, sigmas)
     assert off.n_floored == 0 and not any("takes the fix" in str(w.message) for w in rec)
     # honest sigmas that wander (1-4 m) stay as reported: the same estimates as with the floor off
     wander = [None if z is None else 1.0 + 3.0 * np.random.default_rng(k).random() for k, z in enumerate(fixes)]
-    _, a = _steady(kind="ekf")
-    _, b = _steady(kind="ekf", gps_sigma_floor=0)
+    _, a = _steady(kind="ekf", floor_on_detection=False)  # (1 m for 3 m fixes: the monitor names them)
+    _, b = _steady(kind="ekf", gps_sigma_floor=0, floor_on_detection=False)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)  # 1-4 m for 3 m fixes: inconsistent, as it warns
         assert np.array_equal(a.batch_filter(run.z_dr, fixes, wander), b.batch_filter(run.z_dr, fixes, wander))

@@ -130,9 +130,14 @@ def add_arguments(parser):
                              "(GPSDRFilter's crawl_test=False; a speed that reads down to 0 needs no test)")
     parser.add_argument("--gps-sigma-floor", type=_fraction, default=SIGMA_FLOOR, metavar="FRACTION",
                         help="take a fix's reported sigma (a drive's gps_sigma column) no smaller than this fraction "
-                             "of the median of the last three fixes' (GPSDRFilter's gps_sigma_floor: a fix that reports "
-                             "far better than both fixes before it, a receiver's placeholder accuracy, is not trusted "
-                             "beyond that; default %(default)g; 0: as reported)")
+                             "of the fixes' before it, the lower of the medians of the last 3 and the last 30 reported "
+                             "(GPSDRFilter's gps_sigma_floor: a fix that reports far better than both fixes before it, "
+                             "a receiver's placeholder accuracy, is not trusted beyond that; default %(default)g; 0: as "
+                             "reported)")
+    parser.add_argument("--no-floor-on-detection", action="store_true",
+                        help="when the consistency monitor names fixes that report an accuracy far better than they "
+                             "have, only warn (GPSDRFilter's floor_on_detection=False); by default every fix's sigma "
+                             "is then floored at the median of the last 30 reported")
     parser.add_argument("--grade", choices=sorted(SENSOR_GRADES), default=None,
                         help="sensor grade for the GPS/DR settings (survey, phone; see "
                              "filterwnn.navigation.dead_reckoning.SENSOR_GRADES); default phone for --drive, survey for --real")
@@ -167,7 +172,7 @@ DRIVE_ONLY = ("--no-plausibility", "--fill-gaps", "--gps-latency", "--odometer-l
               "--gyro-bias-instability", "--gps-latency-sd")
 ON_DRIVES = ("--outage-length", "--outages", "--min-speed", "--gps-scale-window", "--correlated-fixes",
              "--min-fix-interval", "--stop-reopen", "--calibration-error-z", "--heading-jump-z", "--no-reversing-test",
-             "--no-crawl-test", "--gps-sigma-floor", "--grade")
+             "--no-crawl-test", "--gps-sigma-floor", "--no-floor-on-detection", "--grade")
 #: ... and those of the simulated scenarios' Monte Carlo, which ``--drive`` does not run. Not ``--jobs``: a
 #: worker count changes no number, and scripts pass ``--jobs 1`` whatever they run (``log_faults.py`` does).
 SIMULATED_ONLY = ("--runs", "--seed", "--backend", "--scheduler", "--cache", "--scenarios", "--factor")
@@ -222,7 +227,8 @@ def _filter_options(args):
                 heading_jump_z=getattr(args, "heading_jump_z", HEADING_JUMP_Z),
                 reversing_test=not getattr(args, "no_reversing_test", False),
                 crawl_test=not getattr(args, "no_crawl_test", False),
-                gps_sigma_floor=getattr(args, "gps_sigma_floor", SIGMA_FLOOR))
+                gps_sigma_floor=getattr(args, "gps_sigma_floor", SIGMA_FLOOR),
+                floor_on_detection=not getattr(args, "no_floor_on_detection", False))
 
 
 def run(args):

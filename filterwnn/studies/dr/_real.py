@@ -42,7 +42,7 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
                        use_gps_sigma=False, grade=None, gps_window=0, scale_window=0,
                        correlated_fixes="calibration", min_fix_interval=0.0, stop_reopen=0.0,
                        calibration_error_z=CALIBRATION_ERROR_Z, heading_jump_z=HEADING_JUMP_Z, reversing_test=True,
-                       crawl_test=True, gps_sigma_floor=SIGMA_FLOOR):
+                       crawl_test=True, gps_sigma_floor=SIGMA_FLOOR, floor_on_detection=True):
     """Cut GPS outages of ``length`` s into a drive and score each filter at each outage end.
 
     Placements: ``starts`` as given, or ``n_placements`` spread evenly over the windows whose mean
@@ -102,6 +102,9 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`'s: with ``use_gps_sigma``, a fix's reported sigma is
         taken no smaller than this fraction of the median of the last fixes' (default
         :data:`~filterwnn.navigation.gpsdr.SIGMA_FLOOR`; 0: as reported).
+    floor_on_detection : bool
+        :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`'s: once the consistency monitor names fixes that report far
+        better than they are, floor every fix's sigma at the median of the last reported (default True).
 
     Returns
     -------
@@ -134,7 +137,8 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         and ``n_forward_again``, driving forward again with no stop between, "(N forward again)"; ``n_crawl``, the
         times the fixes showed the car creeping while its speed read 0 (``crawl_test``), "(N crawling)", and
         ``crawl_moved``, how far (m) the position moved at them in all; ``n_floored``, the fixes whose reported
-        sigma was under the floor (``gps_sigma_floor``), "(N floored)";
+        sigma was under the floor (``gps_sigma_floor``), "(N floored)", and ``floor_raised``, the step from which the
+        floor was the median (``floor_on_detection``; None: never), "(floor raised at step N)";
         ``gyro_scale_estimate`` and ``gyro_scale_z``, the scale-error monitor's estimate and z-score (None
         without it), ``gyro_scale_added``, the step at which it made the filter add the scale state (None:
         not), and ``gyro_scale``, that state's last value (None without one); ``latency_estimate``,
@@ -152,7 +156,7 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
                                    min_fix_interval=min_fix_interval, stop_reopen=stop_reopen,
                                    calibration_error_z=calibration_error_z, heading_jump_z=heading_jump_z,
                                    reversing_test=reversing_test, crawl_test=crawl_test,
-                                   gps_sigma_floor=gps_sigma_floor))
+                                   gps_sigma_floor=gps_sigma_floor, floor_on_detection=floor_on_detection))
     for name in filters:
         _score_filter(out, name, run, windows, use_gps_sigma, settings)
     return out
@@ -300,7 +304,7 @@ def _integrity(f, run):
             "n_calibration_error": f.n_calibration_error, "n_heading_jumps": f.n_heading_jumps,
             "n_heading_far": f.n_heading_far, "n_reversing": f.n_reversing,
             "n_forward_again": f.n_forward_again, "n_crawl": f.n_crawl, "crawl_moved": f.crawl_moved,
-            "n_floored": f.n_floored,
+            "n_floored": f.n_floored, "floor_raised": f.floor_raised,
             "heading_jumps": list(f.heading_jumps),
             "gyro_scale_estimate": f.gyro_scale_estimate, "gyro_scale_z": f.gyro_scale_z,
             "gyro_scale_added": f.gyro_scale_added,
@@ -406,5 +410,7 @@ def _integrity_cells(ig):
         unused += f" ({ig['n_crawl']} crawling)"
     if ig.get("n_floored"):
         unused += f" ({ig['n_floored']} floored)"
+    if ig.get("floor_raised") is not None:
+        unused += f" (floor raised at step {ig['floor_raised']})"
     return (f"{ig['n_rejected']} / {ig['n_downweighted']} / {ig['n_reacquired']} of {ig['n_fixes']}{unused} | {nis} | "
             f"{scale} | {corr} | {stops}")
