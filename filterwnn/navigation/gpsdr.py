@@ -195,7 +195,9 @@ What the filter does when GPS lies (each part a public setting, on by default):
 * **A fix that reports far better than those before it** (``gps_sigma_floor``, on by default): its reported
   sigma is taken no smaller than :data:`SIGMA_FLOOR` (a quarter) of the lower of the medians of the last
   :data:`FLOOR_FIXES` and :data:`FLOOR_WINDOW` reported sigmas, so that a receiver's placeholder accuracy, which
-  the gate cannot tell, does not move the calibration (``n_floored``, one warning).
+  the gate cannot tell, does not move the calibration (``n_floored``, one warning); once the consistency
+  monitor names such fixes (``floor_on_detection``), every fix's sigma is floored at the median of the last
+  :data:`FLOOR_WINDOW` reported, so that runs of them do not pass either.
 * **A heading that steps while the car moves** (``heading_jump_z``; a phone's fused orientation
   re-aligning to its compass, a logger's heading to GPS). The consistency monitor's nuisance
   parameters are the calibration's errors when it began listening, so a step later is none of them,
