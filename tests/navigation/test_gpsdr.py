@@ -1054,3 +1054,12 @@ def test_a_fix_reporting_far_better_than_those_before_it_is_floored():
 def test_gps_sigma_floor_is_checked(bad):
     with pytest.raises(ValueError, match="gps_sigma_floor must be in"):
         _steady(gps_sigma_floor=bad)
+
+
+@pytest.mark.parametrize("n", [1, 2, 3, 4, 29, 30])
+def test_the_floors_median_is_numpys_to_the_bit(n):
+    from filterwnn.navigation.gpsdr import _median
+
+    for seed in range(20):
+        v = np.exp(np.random.default_rng(seed).normal(1.0, 1.0, n)).tolist()
+        assert _median(v) == np.median(v)
