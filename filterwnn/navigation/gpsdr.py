@@ -2363,12 +2363,12 @@ class GPSDRFilter:
         self.n_floored += 1
         self.floored_steps.append(self.step)
         if self.n_floored == 1 and self.floor_raised is None:
-            last = self._reported
+            n = len(self._reported)
             warnings.warn(
                 f"GPSDRFilter takes the fix at step {self.step} as {floor:.3g} m, not the {reported:.3g} m it "
                 f"reports: under {self.gps_sigma_floor:g} of the fixes' reported sigma before it ({typical:.3g} m, "
-                + (f"the lower of the medians of the last {FLOOR_FIXES} and the last {len(last)} reported"
-                   if len(last) > FLOOR_FIXES else f"the median of the {len(last)} reported so far")
+                + (f"the lower of the medians of the last {FLOOR_FIXES} and the last {n} reported"
+                   if n > FLOOR_FIXES else f"the median of the {n} reported so far")
                 + ", this one's among them), and a receiver's accuracy moves little between fixes (a placeholder "
                 "accuracy, or a jump in the receiver's estimate). Later fixes so are counted in n_floored; "
                 "gps_sigma_floor=0 takes every fix's sigma as reported",

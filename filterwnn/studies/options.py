@@ -100,6 +100,11 @@ def nonnegative_float(text):
     return _number(text, float, lambda v: math.isfinite(v) and v >= 0, "a finite number >= 0")
 
 
+def fraction(text):
+    """A number from 0 to 1."""
+    return _number(text, float, lambda v: 0.0 <= v <= 1.0, "a number from 0 to 1")
+
+
 def finite_float(text):
     """A finite number, of either sign."""
     return _number(text, float, math.isfinite, "a finite number")

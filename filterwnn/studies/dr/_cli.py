@@ -128,7 +128,7 @@ def add_arguments(parser):
     parser.add_argument("--no-crawl-test", action="store_true",
                         help="do not test the fixes for the car creeping while its speed reads 0 "
                              "(GPSDRFilter's crawl_test=False; a speed that reads down to 0 needs no test)")
-    parser.add_argument("--gps-sigma-floor", type=_fraction, default=SIGMA_FLOOR, metavar="FRACTION",
+    parser.add_argument("--gps-sigma-floor", type=options.fraction, default=SIGMA_FLOOR, metavar="FRACTION",
                         help="take a fix's reported sigma (a drive's gps_sigma column) no smaller than this fraction "
                              "of the fixes' before it, the lower of the medians of the last 3 and the last 30 reported "
                              "(GPSDRFilter's gps_sigma_floor: a fix that reports far better than both fixes before it, "
@@ -196,14 +196,6 @@ def _check_applies(args):
         if bad:
             raise ValueError(f"{', '.join(bad)} appl{'ies' if len(bad) == 1 else 'y'} to {where} only, and would "
                              "be ignored here")
-
-
-def _fraction(text):
-    """A number from 0 to 1."""
-    value = options.nonnegative_float(text)
-    if value > 1.0:
-        raise argparse.ArgumentTypeError(f"must be from 0 to 1, got {text!r}")
-    return value
 
 
 def _z_or_off(text):

@@ -100,11 +100,11 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         is used (0, the default: every fix).
     gps_sigma_floor : float
         :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`'s: with ``use_gps_sigma``, a fix's reported sigma is
-        taken no smaller than this fraction of the median of the last fixes' (default
-        :data:`~filterwnn.navigation.gpsdr.SIGMA_FLOOR`; 0: as reported).
+        taken no smaller than this fraction of the lower of the medians of the last 3 and the last 30 reported
+        (default :data:`~filterwnn.navigation.gpsdr.SIGMA_FLOOR`; 0: as reported).
     floor_on_detection : bool
         :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`'s: once the consistency monitor names fixes that report far
-        better than they are, floor every fix's sigma at the median of the last reported (default True).
+        better than they are, floor every fix's sigma at the median of the last 30 reported (default True).
 
     Returns
     -------
