@@ -916,8 +916,8 @@ class GPSDRFilter:
         When the consistency monitor finds that fixes reporting far better than the others carry its excess (its
         warning names them; see :data:`FAR_BETTER`), take every fix's sigma from then on no smaller than the median
         of the last :data:`FLOOR_WINDOW` reported (``floor_raised``, the step; those fixes counted in
-        ``n_floored``): runs of such fixes pass the floor above, and two in a row, one second apart, put a
-        velocity into the filter that its heading bias takes (stop 55: the 1 Hz analog with 5 % of its fixes
+        ``n_floored``): runs of such fixes pass the floor above, and two in a row, one second apart, are as harmful as
+        one (our reading: they set a velocity that the heading bias takes; stop 55: the 1 Hz analog with 5 % of its fixes
         claiming 0.3 m in pairs ended an outage 55.66 m off with no floor). Default True; False only warns. Where
         the monitor does not name such fixes, nothing changes.
     min_fix_interval : float
