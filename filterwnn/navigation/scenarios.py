@@ -917,10 +917,29 @@ def _speed_spikes(t, speed):
         return speed
     jump = np.diff(speed)
     floor = max(SPEED_SPIKE_MIN, SPIKE_NOISE * _noise(jump, (speed[1:] != 0.0) & (speed[:-1] != 0.0)))
-    runs = _spike_runs(jump, np.maximum(MAX_DROPOUT_ACCEL * np.diff(t), floor))
+    limit = np.maximum(MAX_DROPOUT_ACCEL * np.diff(t), floor)
+    runs = _spike_runs(jump, limit)
     runs = [(i, j) for i, j in runs if np.any(speed[i:j] != 0.0)]  # a 0 is a dropout's or a cutoff's (above)
     if not runs:
         return speed
+    out = _fill_runs(t, speed, runs)
+    for _ in range(MAX_SPIKE_RUN - 1):
+        # a glitch of two kinds side by side (a spike, then a dropout interpolated from it: 15, 70.8, 0, 15.8 m/s
+        # reads 15, 70.8, 43.3, 15.8, whose first run is the 70.8 alone) leaves a spike where a run was filled:
+        # judged again there only, it is filled from the samples beside the whole glitch
+        near = lambda a, b: any(a <= j and b >= i for i, j in runs)  # noqa: E731 (touches a filled run)
+        more = [(a, b) for a, b in _spike_runs(np.diff(out), limit) if near(a, b)]
+        if not more:
+            break
+        out = _fill_runs(t, out, more)
+        runs = sorted(runs + more)
+    merged = []
+    for a, b in runs:  # the runs as one per glitch, for the warning
+        if merged and a <= merged[-1][1]:
+            merged[-1] = (merged[-1][0], max(merged[-1][1], b))
+        else:
+            merged.append((a, b))
+    runs = merged
     i, j = runs[0]
     warnings.warn(f"{sum(b - a for a, b in runs)} speed sample(s) in {len(runs)} run(s) jump away from the samples "
                   f"beside them and back faster than a car can (over {MAX_DROPOUT_ACCEL:g} m/s^2 and {floor:.3g} m/s "
@@ -928,7 +947,7 @@ def _speed_spikes(t, speed):
                   f"at t = {t[i]:g} s, {speed[i]:.4g} m/s between {speed[i - 1]:.4g} and {speed[j]:.4g}): spikes (a "
                   "CAN frame's glitch, a wheel that slipped), which the filters would integrate into the track; each "
                   "is interpolated from the samples beside it", RuntimeWarning, stacklevel=4)
-    return _fill_runs(t, speed, runs)
+    return out
 
 
 def _heading_spikes(t, heading, speed):

@@ -431,6 +431,23 @@ def test_speed_and_heading_spikes_are_interpolated_with_a_warning(tmp_path):
     np.testing.assert_allclose(run.z_dr, clean.z_dr, atol=1e-9)
 
 
+def test_a_spike_beside_a_dropout_is_interpolated_as_one_glitch(tmp_path):
+    """A CAN glitch of 255 km/h and a lost frame logged as 0 side by side (stop 56's protocol 3 drew them on the 1
+    Hz analog): the dropout was interpolated from the spike (70.8, 0 -> 70.8, 43) and the spike's run ended at the
+    first sample back down, so 43 m/s stayed in the drive. Both orders now read as the drive without them."""
+    c = _drive()
+    clean = read_drive_csv(_write(tmp_path / "d.csv", c))
+    for rows in ([100, 101], [101, 100]):  # the spike first, then the dropout; and the other way round
+        g = dict(c, speed=c["speed"].copy())
+        g["speed"][rows] = [70.8, 0.0]
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            run = read_drive_csv(_write(tmp_path / "d.csv", g))
+        said = " ".join(str(w.message) for w in caught)
+        assert "the speed reads 0 for 1 sample(s)" in said and "2 speed sample(s) in 1 run(s) jump away" in said, said
+        np.testing.assert_allclose(run.z_dr, clean.z_dr, atol=1e-9)
+
+
 def test_the_analogs_have_no_spikes_to_find(tmp_path):
     """What a car does is no spike: the analogs' stops, pull-aways and turns (seed 0 of each, as written) read
     without the warning."""
