@@ -928,7 +928,7 @@ def _speed_spikes(t, speed):
         # reads 15, 70.8, 43.3, 15.8, whose first run is the 70.8 alone) leaves a spike where a run was filled:
         # judged again there only, it is filled from the samples beside the whole glitch
         near = lambda a, b: any(a <= j and b >= i for i, j in runs)  # noqa: E731 (touches a filled run)
-        more = [(a, b) for a, b in _spike_runs(np.diff(out), limit) if near(a, b)]
+        more = [(a, b) for a, b in _spike_runs(np.diff(out), limit) if near(a, b) and np.any(out[a:b] != 0.0)]
         if not more:
             break
         out = _fill_runs(t, out, more)
