@@ -870,8 +870,8 @@ def _turn_bound(speed):
 def _spike_runs(jump, limit):
     """The runs ``[i, j)`` of samples that a jump ``jump[i - 1]`` (from sample ``i - 1`` to ``i``) past its
     ``limit`` leads into and one of the other sign past its limit ``jump[j - 1]`` leads out of, within
-    :data:`MAX_SPIKE_RUN` samples: out and back, faster than the limits allow each way (of several such jumps
-    back, the one that lands nearest the level before the run)."""
+    :data:`MAX_SPIKE_RUN` samples: out and back, faster than the limits allow each way (back: the first such jump
+    that lands within half the jump out of the level before the run, else the one that lands nearest it)."""
     big = np.abs(jump) > limit
     runs, i = [], 0
     idx = np.flatnonzero(big)
@@ -880,9 +880,11 @@ def _spike_runs(jump, limit):
         ahead = idx[(idx > a) & (idx <= a + MAX_SPIKE_RUN)]
         back = [b for b in ahead if np.sign(jump[b]) == -np.sign(jump[a])]
         if back:
-            # of the jumps back, the one that lands nearest the level before the run (a spike, then a dropout
-            # interpolated from it, jumps back down twice: to the interpolated sample and on to the drive)
-            b = min(back, key=lambda b: abs(np.sum(jump[a:b + 1])))
+            # the first jump back that lands within half the jump out of the level before the run, else the one
+            # that lands nearest it (a spike, then a dropout interpolated from it, jumps back down twice: to the
+            # interpolated sample, half-way, and on to the drive)
+            off = {b: abs(np.sum(jump[a:b + 1])) for b in back}
+            b = next((b for b in back if off[b] <= 0.5 * abs(jump[a])), min(back, key=off.get))
             runs.append((a + 1, b + 1))
             i = int(np.searchsorted(idx, b)) + 1
         else:
