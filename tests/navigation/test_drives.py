@@ -434,7 +434,8 @@ def test_speed_and_heading_spikes_are_interpolated_with_a_warning(tmp_path):
 def test_a_spike_beside_a_dropout_is_interpolated_as_one_glitch(tmp_path):
     """A CAN glitch of 255 km/h and a lost frame logged as 0 side by side (stop 56's protocol 3 drew them on the 1
     Hz analog): the dropout was interpolated from the spike (70.8, 0 -> 70.8, 43) and the spike's run ended at the
-    first sample back down, so 43 m/s stayed in the drive. Both orders now read as the drive without them."""
+    first sample back down, so 43 m/s stayed in the drive. Both orders now read as the drive without them, and so
+    does a spike between two dropouts (at 1 Hz it had left a ramp of 24-43 m/s)."""
     c = _drive()
     clean = read_drive_csv(_write(tmp_path / "d.csv", c))
     for rows in ([100, 101], [101, 100]):  # the spike first, then the dropout; and the other way round
@@ -446,6 +447,15 @@ def test_a_spike_beside_a_dropout_is_interpolated_as_one_glitch(tmp_path):
         said = " ".join(str(w.message) for w in caught)
         assert "the speed reads 0 for 1 sample(s)" in said and "2 speed sample(s) in 1 run(s) jump away" in said, said
         np.testing.assert_allclose(run.z_dr, clean.z_dr, atol=1e-9)
+    g = dict(c, speed=c["speed"].copy())
+    g["speed"][[100, 101, 102]] = [0.0, 70.8, 0.0]  # a spike between two dropouts: its jump back is the second down
+    g["speed"][[300, 302]] = 70.8  # two spikes with a good sample between them: two runs, the sample kept
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        run = read_drive_csv(_write(tmp_path / "d.csv", g))
+    said = " ".join(str(w.message) for w in caught)
+    assert "5 speed sample(s) in 3 run(s) jump away" in said, said
+    np.testing.assert_allclose(run.z_dr, clean.z_dr, atol=1e-9)
 
 
 def test_the_analogs_have_no_spikes_to_find(tmp_path):
