@@ -447,6 +447,8 @@ def test_a_spike_beside_a_dropout_is_interpolated_as_one_glitch(tmp_path):
         said = " ".join(str(w.message) for w in caught)
         assert "the speed reads 0 for 1 sample(s)" in said and "2 speed sample(s) in 1 run(s) jump away" in said, said
         np.testing.assert_allclose(run.z_dr, clean.z_dr, atol=1e-9)
+    c = _drive(dt=1.0, v=15.0)  # at 1 Hz a car's 1 g is 9.8 m/s a sample
+    clean = read_drive_csv(_write(tmp_path / "d.csv", c))
     g = dict(c, speed=c["speed"].copy())
     g["speed"][[100, 101, 102]] = [0.0, 70.8, 0.0]  # a spike between two dropouts: its jump back is the second down
     g["speed"][[300, 302]] = 70.8  # two spikes with a good sample between them: two runs, the sample kept
