@@ -65,30 +65,31 @@ def test_the_sensor_faults_probe_gives_its_stored_summary(tmp_path):
 RANDOM = Path(__file__).parents[2] / "docs" / "study-outputs" / "dr" / "random-drives"
 
 
-def _drive_lines(text):
-    """{(seed, grade): (numbers of the line, its flags)} from a ``random_drives.py`` output."""
-    lines, seed = {}, None
-    for line in text.splitlines():
-        if line.startswith("seed "):
-            seed = int(line.split(":")[0].split()[1])
-        elif line.strip().startswith(("phone |", "survey |")) and seed is not None:
-            cells = [c.strip() for c in line.split("|")]
-            numbers = [float(n) for c in cells[2:-2] for n in NUMBER.findall(c.split(" ", 1)[-1])]
-            lines[seed, cells[0]] = (numbers, cells[-1])
+def _drive_lines(path):
+    """{(seed, grade): (the numbers of the line, its flags)} of a ``random_drives.py`` output, as its own
+    ``compare_protocols.py`` reads it."""
+    sys.path.insert(0, str(RANDOM))
+    from compare_protocols import read
+    lines = {}
+    for seed, drive in read(path).items():
+        for grade in ("phone", "survey"):
+            cells, flags = drive[grade]
+            lines[seed, grade] = ([n for cell in cells.values() for n in cell], flags)
     return lines
 
 
 @pytest.mark.slow
-def test_protocol_3s_random_drives_give_their_stored_lines():
+def test_protocol_3s_random_drives_give_their_stored_lines(tmp_path):
     """Three drives of ``random_drives.py --protocol 3`` (stop 56: the faults together; seed 232 has a speed spike
     beside a dropout, rerun on the reader that reads it as one glitch) rerun as stored: every command exits 0, the
     flags are the same, every number within 0.5 + 5 % of the stored one."""
-    stored = _drive_lines((RANDOM / "random_drives_protocol3_200_239.txt").read_text())
-    stored.update(_drive_lines((RANDOM / "random_drives_protocol3_232_84eaabb.txt").read_text()))
+    stored = _drive_lines(RANDOM / "random_drives_protocol3_200_239.txt")
+    stored.update(_drive_lines(RANDOM / "random_drives_protocol3_232_84eaabb.txt"))
     run = subprocess.run([sys.executable, str(RANDOM / "random_drives.py"), "--protocol", "3", "--seeds", "201,212,232",
                           "--jobs", "1"], capture_output=True, text=True, timeout=3600, cwd=RANDOM.parents[3])
     assert run.returncode == 0, run.stderr[-3000:]
-    rerun = _drive_lines(run.stdout)
+    (tmp_path / "rerun.txt").write_text(run.stdout)
+    rerun = _drive_lines(tmp_path / "rerun.txt")
     assert len(rerun) == 6 and all(rerun[key][1] == stored[key][1] for key in rerun), run.stdout
     for key, (new, _) in rerun.items():
         old = stored[key][0]
