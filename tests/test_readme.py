@@ -61,3 +61,13 @@ def test_the_test_command_runs_a_worker_a_core_each_with_one_blas_thread():
         pytest.skip("run in one process (-n 0 or -p no:xdist)")
     blas = [lib for lib in threadpool_info() if lib["user_api"] == "blas"]
     assert blas and all(lib["num_threads"] == 1 for lib in blas), blas
+
+
+@pytest.mark.parametrize("page", ["README.md", "docs/gps_dr.md"])
+def test_every_repository_path_a_page_names_exists(page):
+    """A path into the repository that the README or the GPS/DR page names (a script, a study's
+    output, a test) is there: moved or renamed, the page must say so."""
+    text = (README.parent / page).read_text()
+    named = set(re.findall(r"(?<![\w/.-])((?:docs|tests|benchmarks|notebooks|filterwnn)/[\w/.\-]+\w)", text))
+    missing = sorted(p for p in named if "_build" not in p and not (README.parent / p.split("::")[0]).exists())
+    assert not missing, f"{page} names paths that do not exist: {missing}"

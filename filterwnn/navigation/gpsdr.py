@@ -964,8 +964,8 @@ class GPSDRFilter:
         made the filter trust them less, its innovations grew and the scale with them (a mean of
         5.35 over the fixes for the 8-state EKF, 467 for the 6-state one), and the 30 s outages
         ended at a median of 1.96 m (8-state EKF; 1.65 m off) and 10.82 m (6-state; 1.59 m off).
-        On the simulated drives it stayed at 1 and changed almost nothing (the README's "When
-        GPS lies": one 1 Hz analog's SUKF-8 median 2.73 -> 2.84 m).
+        On the simulated drives it stayed at 1 and changed almost nothing (``docs/gps_dr.md``,
+        "The covariance scale on the analogs and the recorded drives": one 1 Hz analog's SUKF-8 median 2.73 -> 2.84 m).
 
     zero_rate_update : bool
         At the end of every stop, update the gyro rate bias with the slope of the measured
