@@ -8,21 +8,20 @@ phone 10 / 30, city 20 / 50, 1 Hz 6 / 30 m), then each seed missed with the wors
 reckoning's from the true start. The README's table of seeds comes from this (stop 57: ``count_met_0_69.txt``).
 """
 import argparse
+import pathlib
 import re
+import sys
 
-T = {"phone": (10, 30), "city": (20, 50), "one_hz": (6, 30)}
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "zero-rate"))
+from summarise import T, met, parse, worst  # noqa: E402  (the targets, and the worst kind as summarise.py reads it)
+
+DR = re.compile(r"(\w+) seed (\d+) .*?DR-mech ([\d.]+) / ([\d.]+)")
 
 
-def parse(files):
-    out = {}
-    for fn in files:
-        for line in open(fn):
-            m = re.match(r"(\w+) seed (\d+) ", line)
-            if m:
-                cells = {k: (float(a), float(b)) for k, a, b in
-                         re.findall(r"(DR-mech|EKF-8|UKF-8|SUKF-8) ([\d.]+) / ([\d.]+)", line)}
-                out[m.group(1), int(m.group(2))] = cells
-    return out
+def dead_reckoning(files):
+    """``{(analog, seed): (median, max)}`` of dead reckoning from the true start, from the files' lines."""
+    return {(m.group(1), int(m.group(2))): (float(m.group(3)), float(m.group(4)))
+            for fn in files for m in map(DR.match, open(fn)) if m}
 
 
 def main():
@@ -30,21 +29,20 @@ def main():
     ap.add_argument("files", nargs="+")
     ap.add_argument("--blocks", default="0-19,20-29,30-39,40-49,50-59,60-69")
     args = ap.parse_args()
-    rows = parse(args.files)
+    rows, dr = parse(args.files), dead_reckoning(args.files)
     blocks = [tuple(int(x) for x in b.split("-")) for b in args.blocks.split(",")]
-    for name, (tm, tx) in T.items():
+    for name in T:
         counts, missed = [], []
         for lo, hi in blocks:
             seeds = [s for s in range(lo, hi + 1) if (name, s) in rows]
-            met = 0
+            met_here = 0
             for s in seeds:
-                c = rows[name, s]
-                w = (max(c[k][0] for k in ("EKF-8", "UKF-8", "SUKF-8")), max(c[k][1] for k in ("EKF-8", "UKF-8", "SUKF-8")))
-                if w[0] <= tm and w[1] <= tx:
-                    met += 1
+                w = worst(rows[name, s])
+                if met(name, w):
+                    met_here += 1
                 else:
-                    missed.append(f"{s} ({w[0]:.2f} / {w[1]:.2f}; DR {c['DR-mech'][0]:.2f} / {c['DR-mech'][1]:.2f})")
-            counts.append(f"{lo}-{hi}: {met} of {len(seeds)}")
+                    missed.append(f"{s} ({w[0]:.2f} / {w[1]:.2f}; DR {dr[name, s][0]:.2f} / {dr[name, s][1]:.2f})")
+            counts.append(f"{lo}-{hi}: {met_here} of {len(seeds)}")
         print(f"{name}: " + ", ".join(counts))
         print(f"  missed: {', '.join(missed) if missed else 'none'}")
 

@@ -36,15 +36,20 @@ def met(name, w):
     return w[0] <= T[name][0] and w[1] <= T[name][1]
 
 
-old, new = parse(sys.argv[1].split(",")), parse(sys.argv[2].split(","))
-for name in T:
-    seeds = sorted(s for nm, s in new if nm == name)
-    wo, wn = np.array([worst(old[name, s]) for s in seeds]), np.array([worst(new[name, s]) for s in seeds])
-    for s, o, w in zip(seeds, wo, wn):
-        e = new[name, s]["EKF-8"]
-        print(f"{name:7s} {s:2d} old {o[0]:6.2f} / {o[1]:6.2f} {'met' if met(name, o) else 'MISS'}  "
-              f"new {w[0]:6.2f} / {w[1]:6.2f} {'met' if met(name, w) else 'MISS'}   (EKF-8 {e[0]:.2f}/{e[1]:.2f})")
-    print(f"{name}: met old {sum(met(name, o) for o in wo)}, new {sum(met(name, w) for w in wn)} of {len(seeds)}; "
-          f"median over the seeds of the worst median {np.median(wo[:, 0]):.2f} -> {np.median(wn[:, 0]):.2f}, "
-          f"of the worst max {np.median(wo[:, 1]):.2f} -> {np.median(wn[:, 1]):.2f}; lower median on "
-          f"{int((wn[:, 0] < wo[:, 0]).sum())}, lower max on {int((wn[:, 1] < wo[:, 1]).sum())} of {len(seeds)}\n")
+def main():
+    old, new = parse(sys.argv[1].split(",")), parse(sys.argv[2].split(","))
+    for name in T:
+        seeds = sorted(s for nm, s in new if nm == name)
+        wo, wn = np.array([worst(old[name, s]) for s in seeds]), np.array([worst(new[name, s]) for s in seeds])
+        for s, o, w in zip(seeds, wo, wn):
+            e = new[name, s]["EKF-8"]
+            print(f"{name:7s} {s:2d} old {o[0]:6.2f} / {o[1]:6.2f} {'met' if met(name, o) else 'MISS'}  "
+                  f"new {w[0]:6.2f} / {w[1]:6.2f} {'met' if met(name, w) else 'MISS'}   (EKF-8 {e[0]:.2f}/{e[1]:.2f})")
+        print(f"{name}: met old {sum(met(name, o) for o in wo)}, new {sum(met(name, w) for w in wn)} of {len(seeds)}; "
+              f"median over the seeds of the worst median {np.median(wo[:, 0]):.2f} -> {np.median(wn[:, 0]):.2f}, "
+              f"of the worst max {np.median(wo[:, 1]):.2f} -> {np.median(wn[:, 1]):.2f}; lower median on "
+              f"{int((wn[:, 0] < wo[:, 0]).sum())}, lower max on {int((wn[:, 1] < wo[:, 1]).sum())} of {len(seeds)}\n")
+
+
+if __name__ == "__main__":
+    main()
