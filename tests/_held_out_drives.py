@@ -166,12 +166,16 @@ def phone_drive(rng, rate_bias=0.005, gyro_scale=0.0, gps_latency=0.0, odometer_
         scale=1.02, odo=0.01, offset=1.0, rate_bias=rate_bias, arw=0.3, white=0.3, gyro_scale=gyro_scale),
         accel=1.5, exact_stops=exact_stops)
     rows = _fix_rows(t)
-    m = int(rows.sum())
+    err, reported = phone_fixes(rng, int(rows.sum()))
+    return _columns(t, x, heading, speed, rows, err, reported, gps_latency, odometer_latency)
+
+
+def phone_fixes(rng, m):
+    """The phone's ``m`` fixes at 1 Hz: their errors ``(m, 2)`` (m) and the sigmas they report, 5-8 m."""
     acc = 6.5 + 1.5 * np.tanh(gauss_markov(rng, m, 1.0, 60.0))  # reported 5-8 m, changing slowly
     # half the variance correlated over 20 s (the phone's own filter, lasting multipath), half white
     slow, white = gauss_markov(rng, m, 1.0, 20.0, (2,)), rng.standard_normal((m, 2))
-    err = acc[:, None] * np.sqrt(0.5) * (slow + white)
-    return _columns(t, x, heading, speed, rows, err, np.round(acc, 1), gps_latency, odometer_latency)
+    return acc[:, None] * np.sqrt(0.5) * (slow + white), np.round(acc, 1)
 
 
 def city_drive(rng, rate_bias=0.015, gps_rate=1.0, gyro_scale=0.0, gps_latency=0.0, odometer_latency=0.0,
@@ -183,7 +187,13 @@ def city_drive(rng, rate_bias=0.015, gps_rate=1.0, gyro_scale=0.0, gps_latency=0
         scale=1.01, odo=0.01, offset=0.0, rate_bias=rate_bias, arw=0.5, white=0.2, gyro_scale=gyro_scale),
         accel=1.5, turn_every=25.0, exact_stops=exact_stops)
     rows = _fix_rows(t, gps_rate)
-    m = int(rows.sum())
+    err, reported = city_fixes(rng, int(rows.sum()), gps_rate)
+    return _columns(t, x, heading, speed, rows, err, reported, gps_latency, odometer_latency)
+
+
+def city_fixes(rng, m, gps_rate=1.0):
+    """The city's ``m`` urban-canyon fixes, ``gps_rate`` a second: their errors ``(m, 2)`` (m) and the
+    optimistic sigmas they report."""
     # a street's multipath: a per-axis sigma that changes every 20-60 s (log-normal), a bias
     # correlated over 15 s, and jumps of 20-80 m on 4 % of the fixes
     edges = np.cumsum(rng.uniform(20.0, 60.0, m))
@@ -192,8 +202,7 @@ def city_drive(rng, rate_bias=0.015, gps_rate=1.0, gyro_scale=0.0, gps_latency=0
     jump = rng.random(m) < 0.04
     ang = rng.uniform(0.0, 2 * np.pi, m)
     err += (jump * rng.uniform(20.0, 80.0, m))[:, None] * np.stack([np.sin(ang), np.cos(ang)], axis=1)
-    reported = np.round(1.05 * level * np.exp(rng.normal(0.0, 0.25, m)), 1)
-    return _columns(t, x, heading, speed, rows, err, reported, gps_latency, odometer_latency)
+    return err, np.round(1.05 * level * np.exp(rng.normal(0.0, 0.25, m)), 1)
 
 
 def one_hz_drive(rng, rate_bias=0.05, gyro_scale=0.0, gps_latency=0.0, odometer_latency=0.0, exact_stops=False):
@@ -203,10 +212,14 @@ def one_hz_drive(rng, rate_bias=0.05, gyro_scale=0.0, gps_latency=0.0, odometer_
         scale=1.015, odo=0.1, offset=0.0, rate_bias=rate_bias, arw=1.0, white=0.5, gyro_scale=gyro_scale),
         accel=2.0, exact_stops=exact_stops)
     rows = _fix_rows(t)
-    m = int(rows.sum())
+    err, reported = one_hz_fixes(rng, int(rows.sum()))
+    return _columns(t, x, heading, speed, rows, err, reported, gps_latency, odometer_latency)
+
+
+def one_hz_fixes(rng, m):
+    """The 1 Hz drive's ``m`` fixes: their errors ``(m, 2)`` (m), white, and the sigmas they report, 3-5 m."""
     acc = rng.uniform(3.0, 5.0, m)
-    err = acc[:, None] * rng.standard_normal((m, 2))
-    return _columns(t, x, heading, speed, rows, err, np.round(acc, 1), gps_latency, odometer_latency)
+    return acc[:, None] * rng.standard_normal((m, 2)), np.round(acc, 1)
 
 
 def parking_drive(rng, signed=False, laps=8):

@@ -43,11 +43,10 @@ KINDS = ("EKF-8", "UKF-8", "SUKF-8")
 
 def variant(run, name, rng):
     """The drive's CSV columns with the variant's odometer, fixes (and, at 1 Hz, gyro bias and thinning)."""
-    dt = run.scenario.dt
     t, x = run.t - run.t[0], run.x_true
     heading = np.asarray(run.z_dr[:, 0], dtype=float)
     v = np.hypot(x[:, 1], x[:, 4])
-    scale, odo, rate = {"phone": (1.02, 0.01, 1.0), "city": (1.01, 0.01, 1.0), "one_hz": (1.015, 0.1, 1.0)}[name]
+    scale, odo = {"phone": (1.02, 0.01), "city": (1.01, 0.01), "one_hz": (1.015, 0.1)}[name]
     if name == "city":  # 5 Hz odometry
         keep = np.arange(0, len(t), 2)
     elif name == "one_hz":
@@ -58,24 +57,9 @@ def variant(run, name, rng):
     t, x, heading, v = t[keep], x[keep], heading[keep], v[keep]
     step = t[1] - t[0]
     speed = np.where(v > 0.05, np.maximum(scale * v + odo / step * rng.standard_normal(len(t)), 0.0), 0.0)
-    rows = held_out._fix_rows(t, rate)
-    m = int(rows.sum())
-    if name == "phone":
-        acc = 6.5 + 1.5 * np.tanh(held_out.gauss_markov(rng, m, 1.0, 60.0))
-        err = acc[:, None] * np.sqrt(0.5) * (held_out.gauss_markov(rng, m, 1.0, 20.0, (2,)) + rng.standard_normal((m, 2)))
-        reported = np.round(acc, 1)
-    elif name == "city":
-        edges = np.cumsum(rng.uniform(20.0, 60.0, m))
-        level = np.exp(rng.normal(np.log(18.5), 0.3, m))[np.searchsorted(edges, np.arange(m))]
-        err = level[:, None] * held_out.gauss_markov(rng, m, 1.0, 15.0, (2,))
-        jump = rng.random(m) < 0.04
-        ang = rng.uniform(0.0, 2 * np.pi, m)
-        err += (jump * rng.uniform(20.0, 80.0, m))[:, None] * np.stack([np.sin(ang), np.cos(ang)], axis=1)
-        reported = np.round(1.05 * level * np.exp(rng.normal(0.0, 0.25, m)), 1)
-    else:
-        acc = rng.uniform(3.0, 5.0, m)
-        err = acc[:, None] * rng.standard_normal((m, 2))
-        reported = np.round(acc, 1)
+    rows = held_out._fix_rows(t)  # 1 Hz
+    fixes = {"phone": held_out.phone_fixes, "city": held_out.city_fixes, "one_hz": held_out.one_hz_fixes}[name]
+    err, reported = fixes(rng, int(rows.sum()))
     return held_out._columns(t, x, np.mod(heading, 2 * np.pi), speed, rows, err, reported)
 
 
