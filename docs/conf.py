@@ -5,8 +5,8 @@ Build it from the repository root (the tests do, with warnings as errors)::
     sphinx-build -W -b html docs docs/_build/html
 
 The pages are ``index.rst``, ``guide.md`` (the README), ``gps_dr.md`` (GPS/DR on one's own drive, in
-detail), ``notebooks.rst`` with the four
-notebooks (rendered from the stored files, never executed: ``nb_execution_mode = "off"``)
+detail), ``wnn_study.md`` (the first paper's study in full), ``performance.md`` (the benchmarks'
+findings), ``notebooks.rst`` with the four notebooks (rendered from the stored files, never executed: ``nb_execution_mode = "off"``)
 and one page per public module under ``api/``. ``figures/`` and ``study-outputs/`` hold
 files the README links to; only their Markdown tables are pages.
 """

@@ -45,7 +45,7 @@ def test_sphinx_build_has_no_warnings(tmp_path):
     )
     assert proc.returncode == 0, proc.stderr[-6000:]
     assert "WARNING" not in proc.stderr and "ERROR" not in proc.stderr, proc.stderr[-6000:]
-    for page in ["index", "guide", "gps_dr", "api/index", "api/filterwnn.kalman.unscented", "api/filterwnn.cli"]:
+    for page in ["index", "guide", "gps_dr", "wnn_study", "performance", "api/index", "api/filterwnn.kalman.unscented", "api/filterwnn.cli"]:
         assert (out / f"{page}.html").exists(), page
     # the README is the guide, with its figures copied in
     guide = (out / "guide.html").read_text()

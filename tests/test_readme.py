@@ -63,9 +63,9 @@ def test_the_test_command_runs_a_worker_a_core_each_with_one_blas_thread():
     assert blas and all(lib["num_threads"] == 1 for lib in blas), blas
 
 
-@pytest.mark.parametrize("page", ["README.md", "docs/gps_dr.md"])
+@pytest.mark.parametrize("page", ["README.md", "docs/gps_dr.md", "docs/wnn_study.md", "docs/performance.md"])
 def test_every_repository_path_a_page_names_exists(page):
-    """A path into the repository that the README or the GPS/DR page names (a script, a study's
+    """A path into the repository that the README or a page of docs/ beside it names (a script, a study's
     output, a test) is there: moved or renamed, the page must say so."""
     text = (README.parent / page).read_text()
     named = set(re.findall(r"(?<![\w/.-])((?:docs|tests|benchmarks|notebooks|filterwnn)/[\w/.\-]+\w)", text))
