@@ -262,6 +262,20 @@ def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2, checks=True,
         :meth:`DRRun.from_arrays` refuses (a failed plausibility check names its likely
         cause).
     """
+    caught = []
+    try:  # the reader's warnings, issued where they arise, are shown at the caller's line, not at one of ours
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            return _read_drive_csv(path, origin, name, max_jitter, checks, progress, fill_gaps, gps_latency, intervals,
+                                   odometer_latency, heading_offset, speed_scale, hdop_sigma, heading_latency)
+    finally:
+        for w in caught:
+            warnings.warn(w.message, w.category, stacklevel=2)
+
+
+def _read_drive_csv(path, origin, name, max_jitter, checks, progress, fill_gaps, gps_latency, intervals,
+                    odometer_latency, heading_offset, speed_scale, hdop_sigma, heading_latency):
+    """:func:`read_drive_csv`'s body."""
     path = str(path)
     header, cols, lines = _read_columns(path, progress)
     col, hname, dname = _csv_layout(path, header, lines)

@@ -42,7 +42,7 @@ from typing import NamedTuple, Optional
 import numpy as np
 
 from .._validation import check_finite, check_positive, check_rng
-from .dead_reckoning import dr_fx, wrap_angle
+from .dead_reckoning import SENSOR_GRADES, dr_fx, wrap_angle
 
 __all__ = [
     "Scenario",
@@ -481,7 +481,10 @@ def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps
         heading = wrap_angle(heading - heading_offset)
     signed = None
     if speed is not None:
-        signed = _speed_spikes(t, _speed_dropouts(t, _finite_1d(speed, "speed", n)))
+        raw = _finite_1d(speed, "speed", n)
+        if checks:
+            _speed_sentinel(t, raw)
+        signed = _speed_spikes(t, _speed_dropouts(t, raw))
         speed = np.abs(signed)
         grid = _speed_interval(t, dts, dt, speed, intervals, stamps)
         if grid is not None:  # the stamps' grid: each speed covers its interval, and the filters run on it
@@ -530,6 +533,10 @@ HEADING_ROUNDING = 0.02
 MAX_YAW_RATE = 3.0
 #: The moving stretches between fixes a yaw rate's start heading needs (the heading-offset check's least).
 YAW_START_CHORDS = 5
+#: A yaw rate whose heading drifts from the fixes' course faster than this many times the phone grade's
+#: ``gyro_bias_deg_s`` (its one sigma) has its drift named as the grade's setting in the reader's warning (a raw
+#: phone gyro's 0.3 deg/s, where the grade's state had learnt 0.16 deg/s after 600 s and 5 stops: stop 58).
+YAW_BIAS_SIGMAS = 3.0
 
 
 def _integrate_yaw(t, yaw_rate, distance=None, speed=None):
@@ -566,9 +573,15 @@ def _yaw_start(dt, heading, step, steps, z_gps, sigma):
                          "instead")
     offset, se, rate, resid = fit
     start = (-offset + 180.0) % 360.0 - 180.0
+    spec = SENSOR_GRADES["phone"]["gyro_bias_deg_s"]
+    bias = (f"; at {abs(rate):.2g} deg/s it is past {YAW_BIAS_SIGMAS:g} times the phone grade's {spec:g} deg/s (one "
+            "sigma), which its rate-bias state learns only after several stops or minutes of fixes: give it from "
+            f"the start, gyro_bias_deg_s in the grade (--gyro-bias {abs(rate):.2g})"
+            if abs(rate) > YAW_BIAS_SIGMAS * spec else "")
     warnings.warn(f"the heading is the yaw rate integrated from {start % 360.0:.1f} +- {se:.1g} deg at the start, the "
                   f"fixes' course over {n} moving stretches (a line through their angles, drifting {rate:+.2g} deg/s "
-                  "from there: a gyro's rate bias, which the GPS/DR filters estimate)", RuntimeWarning, stacklevel=4)
+                  f"from there: a gyro's rate bias, which the GPS/DR filters estimate{bias})", RuntimeWarning,
+                  stacklevel=4)
     return wrap_angle(heading - np.deg2rad(offset))
 
 
@@ -601,6 +614,19 @@ def _ceil_to(gap, dt):
     return float(np.ceil(gap * 10**digits - 1e-9) / 10**digits)
 
 
+def _rounded_stamps(t, dts):
+    """The refusal's words for times written with too few digits, or None: repeated times on most rows, the rest
+    stepping by one unit of the digits they kept (an epoch in seconds written with ``%.10g``: stop 58)."""
+    rises = dts[dts > 0]
+    if np.mean(dts == 0) < 0.5 or not len(rises):
+        return None
+    unit = float(np.min(rises))
+    digits = int(np.floor(np.log10(max(abs(float(t[-1])), 1e-300)))) - int(np.round(np.log10(unit))) + 1
+    return (f": {int(np.sum(dts == 0))} of the {len(dts)} intervals are 0 and the rest at least {unit:g} s, as times "
+            f"written with {digits} significant digits are (an epoch in seconds needs 13 for its milliseconds): "
+            "write the time column with more digits")
+
+
 def _sample_grid(t, max_jitter):
     """The intervals of the sample times ``t``, their median ``dt``, and :func:`_stamp_grid`'s answer when
     an interval strays past ``max_jitter`` (else None); ValueError unless there are 3 or more, strictly
@@ -612,7 +638,8 @@ def _sample_grid(t, max_jitter):
     if np.any(dts <= 0):
         k = int(np.argmax(dts <= 0)) + 1
         raise ValueError(f"t must be strictly increasing; t[{k}] = {float(t[k])!r} <= t[{k - 1}] = {float(t[k - 1])!r}"
-                         + (": a sample logged twice? drop the repeated rows" if dts[k - 1] == 0 else ""))
+                         + ((_rounded_stamps(t, dts) or ": a sample logged twice? drop the repeated rows")
+                            if dts[k - 1] == 0 else ""))
     dt = float(f"{np.median(dts):.9g}")  # 0.1, not 0.09999999999999787
     # times far from 0 (Unix epoch seconds, 1.7e9) are stored to 2.4e-7 s: round dt to what they resolve
     # (0.1, not 0.0999999046, which made 1 Hz fixes look faster than one a second)
@@ -671,6 +698,32 @@ def _odometer_speed(dd, dts):
 #: be the direction of travel. Between it and 0 a speed is a standstill's dither (``GPSDRFilter``'s
 #: ``standstill_speed``), whose heading is kept, so that a stop's headings stay the gyro's.
 REVERSING_SPEED = 0.05
+
+
+#: The value a phone's logger writes for a speed it does not know (iOS's ``CLLocation.speed``, which loggers such as
+#: SensorLog write as they get it, at a standstill and between fixes).
+SPEED_SENTINEL = -1.0
+#: The least samples at :data:`SPEED_SENTINEL`, and their least share of the negative speeds, that make it the
+#: logger's mark rather than a car reversing at exactly that speed.
+SENTINEL_MIN_SAMPLES, SENTINEL_SHARE = 10, 0.9
+
+
+def _speed_sentinel(t, speed):
+    """Refuse a speed whose negative values are nearly all exactly :data:`SPEED_SENTINEL` (a logger's mark for an
+    unknown speed): read as a signed speed, it is a car reversing at 1 m/s wherever the speed was unknown (stop
+    58: a phone log's GPS speed, -1 while the car stood, read as 255 m of reversing; EKF-8 20.40 / 56.67 m at the
+    outage ends, 5.78 / 12.54 m with those samples 0)."""
+    neg = speed < 0.0
+    at = speed == SPEED_SENTINEL
+    if at.sum() < SENTINEL_MIN_SAMPLES or at.sum() < SENTINEL_SHARE * neg.sum():
+        return
+    k = int(np.argmax(at))
+    raise ValueError(f"the speed is exactly {SPEED_SENTINEL:g} on {int(at.sum())} of its {int(neg.sum())} negative "
+                     f"samples (the first speed[{k}], {float(t[k] - t[0]):g} s after the first sample): a logger's mark for a speed it does not know "
+                     "(iOS writes -1 for an invalid speed, at a standstill and between fixes), not a car reversing at "
+                     "1 m/s: give those samples' speed as 0 where the car stood (np.where(speed < 0, 0, speed)), or the "
+                     "speed interpolated between the samples beside them; if the car really reversed at exactly 1 "
+                     "m/s, pass checks=False (command line: --no-plausibility)")
 
 
 def _reversing(t, heading, speed, dts):

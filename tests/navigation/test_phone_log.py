@@ -1,0 +1,165 @@
+"""A phone's log, converted as a user would (stop 58): what a new user's drive showed the reader getting wrong.
+
+A drive of right-angle turns that spends most of its time on one street axis, logged at 10 Hz with 1 Hz fixes whose
+errors are correlated (the phone analog's, ``tests/_held_out_drives.py``): a fused yaw negated but its zero left
+142 degrees off was refused as "counter-clockwise from east", whose remedy made a heading that turns the wrong way,
+which the reader then took (its median stretch fitted: that street's stretches); a logger's -1 for an unknown speed
+was read as a car reversing; a raw gyro's 0.3 deg/s bias was named without the setting the phone grade needs, and
+counted counter-clockwise it was refused as a clock offset; 1 Hz fixes reaching the log on its first row after them
+were warned of as coming faster than one a second; epoch times written with 10 digits were refused as samples logged
+twice; and the reader's warnings named a line of its own instead of the caller's
+(``docs/study-outputs/dr/phone-log/``; ``docs/gps_dr.md``, "A phone's log").
+"""
+
+import os
+import sys
+import warnings
+
+import numpy as np
+import pytest
+
+from filterwnn.navigation.dead_reckoning import GPSDRModel
+from filterwnn.navigation.drives import read_drive_csv
+from filterwnn.navigation.gpsdr import GPSDRFilter
+from filterwnn.navigation.scenarios import en_to_latlon
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+import _held_out_drives as held_out  # noqa: E402
+
+LAT0, LON0 = 48.137, 11.575
+AXIS = 30.0  # deg: the street the drive spends most of its time on
+#: (seconds, speed at the end (m/s), turn over the segment (deg)): stops at lights, right-angle turns, most of the
+#: driving along AXIS and its reverse
+PLAN = [(8, 0, 0), (8, 12, 0), (40, 12, 0), (6, 6, 90), (6, 12, 0), (10, 12, 0), (6, 6, 90), (6, 12, 0),
+        (40, 12, 0), (6, 0, 0), (30, 0, 0), (8, 12, 0), (45, 12, 0), (6, 6, -90), (6, 12, 0), (10, 12, 0),
+        (6, 6, -90), (6, 12, 0), (40, 12, 0), (6, 0, 0), (60, 0, 0), (8, 12, 0), (40, 12, 0), (6, 6, 90),
+        (6, 12, 0), (10, 12, 0), (6, 6, 90), (6, 12, 0), (40, 12, 0), (6, 0, 0), (10, 0, 0)]
+COLUMNS = ["time", "heading_deg", "speed", "gps_lat", "gps_lon", "gps_sigma", "true_lat", "true_lon"]
+
+
+def _grid_drive(seed=0, dt=0.1, jitter_rows=0):
+    """The drive's columns: its clockwise heading (deg), speed, 1 Hz fixes with the phone analog's correlated
+    errors and reported sigmas (each on the row ``0..jitter_rows`` after its time, drawn: a logger's), the truth."""
+    rng = np.random.default_rng(seed)
+    knots_t, knots_v, rates = [0.0], [0.0], []
+    for secs, v_end, turn in PLAN:
+        knots_t.append(knots_t[-1] + secs)
+        knots_v.append(float(v_end))
+        rates.append(turn / secs)
+    t = np.arange(0.0, knots_t[-1], dt)
+    v = np.interp(t, knots_t, knots_v)
+    rate = np.asarray(rates)[np.minimum(np.searchsorted(knots_t, t, side="right") - 1, len(rates) - 1)]
+    psi = np.deg2rad(AXIS) + np.cumsum(np.deg2rad(rate) * dt)
+    e = np.r_[0.0, np.cumsum(v[:-1] * np.sin(psi[:-1]) * dt)]
+    n = np.r_[0.0, np.cumsum(v[:-1] * np.cos(psi[:-1]) * dt)]
+    fix_rows = np.flatnonzero(np.isclose(t % 1.0, 0.0) | np.isclose(t % 1.0, 1.0))
+    err, reported = held_out.phone_fixes(rng, len(fix_rows))
+    at = np.minimum(fix_rows + rng.integers(0, jitter_rows + 1, len(fix_rows)), len(t) - 1)
+    glat, glon = en_to_latlon(e[fix_rows] + err[:, 0], n[fix_rows] + err[:, 1], LAT0, LON0)
+    tlat, tlon = en_to_latlon(e, n, LAT0, LON0)
+    cols = {"time": t, "heading_deg": np.mod(np.rad2deg(psi) + rng.normal(0.0, 0.2, len(t)), 360.0),
+            "speed": v, "true_lat": tlat, "true_lon": tlon}
+    for name, values in (("gps_lat", glat), ("gps_lon", glon), ("gps_sigma", reported)):
+        cols[name] = np.full(len(t), np.nan)
+        cols[name][at] = values
+    return cols
+
+
+def _write(path, cols, columns=COLUMNS):
+    lines = [",".join(columns)]
+    for k in range(len(cols["time"])):
+        lines.append(",".join("" if np.isnan(cols[c][k]) else repr(float(cols[c][k])) for c in columns))
+    path.write_text("\n".join(lines) + "\n")
+    return str(path)
+
+
+@pytest.fixture(scope="module")
+def drive():
+    return _grid_drive()
+
+
+def test_the_drive_as_logged_reads(tmp_path, drive):
+    run = read_drive_csv(_write(tmp_path / "d.csv", drive))
+    assert len(run.gps_steps) == 496
+
+
+def test_a_yaw_whose_zero_is_142_degrees_off_is_named_as_an_offset_not_as_counter_clockwise(tmp_path, drive):
+    """The heading turns the right way; only its zero is off. Every stretch between fixes fits that offset, and
+    about half of them (one street axis) the "counter-clockwise from east" the reader named before."""
+    off = {**drive, "heading_deg": np.mod(drive["heading_deg"] - 142.0, 360.0)}
+    with pytest.raises(ValueError, match=r"starts \+?-?14[0-4] .* heading_offset=-14[0-4] ") as info:
+        read_drive_csv(_write(tmp_path / "off.csv", off))
+    assert "counter-clockwise from east" not in str(info.value)
+    read_drive_csv(_write(tmp_path / "off.csv", off), heading_offset=-142.0)  # the remedy reads it
+
+
+def test_a_heading_that_turns_the_wrong_way_is_refused_even_where_its_median_stretch_fits(tmp_path, drive):
+    """``60 - heading``: mirrored about the street axis (30 degrees), where the drive's stretches along the axis fit
+    within 30 degrees (81 % of them, and so their median); turned the other way, every one fits. A phone's yaw
+    negated and then "corrected" as counter-clockwise from east, ``90 - (heading - 142)``, was such a heading."""
+    mirrored = {**drive, "heading_deg": np.mod(2 * AXIS - drive["heading_deg"], 360.0)}
+    with pytest.raises(ValueError, match=r"but it fits \d+% of the stretches within 30 degrees, and 100% turned the "
+                                         r"other way: the heading turns the wrong way .* give heading_deg = 60 - "
+                                         r"yaw_deg"):
+        read_drive_csv(_write(tmp_path / "mirrored.csv", mirrored))
+    read_drive_csv(_write(tmp_path / "mirrored.csv", mirrored), checks=False)  # the override reads it
+
+
+def test_a_loggers_minus_one_for_an_unknown_speed_is_refused_not_read_as_reversing(tmp_path, drive):
+    marked = {**drive, "speed": np.where(drive["speed"] == 0.0, -1.0, drive["speed"])}
+    path = _write(tmp_path / "m1.csv", marked)
+    with pytest.raises(ValueError, match=r"the speed is exactly -1 on \d+ of its \d+ negative samples \(the first "
+                                         r"speed\[0\] \(line 2\), 0 s after the first sample\): a logger's mark"):
+        read_drive_csv(path)
+    # a car that really reversed, at speeds of its own, is still read as reversing
+    back = {**drive, "speed": np.where(drive["speed"] == 0.0, -np.linspace(0.5, 1.5, len(drive["speed"])),
+                                       drive["speed"])}
+    with pytest.warns(RuntimeWarning, match="the car reversed"):
+        read_drive_csv(_write(tmp_path / "back.csv", back), checks=False)
+
+
+def test_a_raw_gyros_bias_past_the_phone_grade_is_named_with_its_setting(tmp_path, drive):
+    """A yaw rate 0.3 deg/s off: the reader names the drift, and, past three times the phone grade's 0.05 deg/s,
+    the ``--gyro-bias`` to give."""
+    h = np.unwrap(np.deg2rad(drive["heading_deg"]))
+    rate = np.gradient(h, drive["time"]) + np.deg2rad(0.3)
+    cols = {**drive, "yaw_rate_deg": np.rad2deg(rate)}
+    columns = ["time", "yaw_rate_deg"] + COLUMNS[2:]
+    with pytest.warns(RuntimeWarning, match=r"drifting \+0.3 deg/s .* past 3 times the phone grade's 0.05 deg/s .* "
+                                            r"\(--gyro-bias 0.3\)") as seen:
+        read_drive_csv(_write(tmp_path / "gyro.csv", cols, columns))
+    assert all(w.filename == __file__ for w in seen), [w.filename for w in seen]  # the caller's line, not ours
+
+
+def test_a_raw_gyros_rate_counted_counter_clockwise_is_named_so_not_as_a_clock_offset(tmp_path, drive):
+    """The same yaw rate as logged, counter-clockwise: its heading, turned the other way, fits the fixes as a
+    drifting gyro's does; until stop 58 the refusal named a clock offset of the fixes instead."""
+    h = np.unwrap(np.deg2rad(drive["heading_deg"]))
+    rate = -(np.gradient(h, drive["time"]) + np.deg2rad(0.3))
+    cols = {**drive, "yaw_rate_deg": np.rad2deg(rate)}
+    with pytest.warns(RuntimeWarning, match="integrated from"), \
+            pytest.raises(ValueError, match="the yaw rate turns the wrong way") as info:
+        read_drive_csv(_write(tmp_path / "ccw.csv", cols, ["time", "yaw_rate_deg"] + COLUMNS[2:]))
+    assert "clock offset" not in str(info.value)
+
+
+def test_epoch_times_written_with_too_few_digits_are_named_so(tmp_path, drive):
+    """An epoch in seconds written with 10 significant digits repeats each second's stamp on its ten rows: refused
+    naming the digits, not as samples logged twice."""
+    cols = {**drive, "time": np.round(1715674893.156 + drive["time"])}
+    with pytest.raises(ValueError, match=r"t\[1\] \(line 3\) .* as times written with 10 significant digits are"):
+        read_drive_csv(_write(tmp_path / "t.csv", cols))
+
+
+def test_one_hz_fixes_reaching_the_log_late_are_not_warned_of_as_faster_than_one_a_second(tmp_path):
+    """Each fix on the row 0-3 samples after its time: ten gaps' median is often 0.9 s, their mean 1 s."""
+    run = read_drive_csv(_write(tmp_path / "late.csv", _grid_drive(jitter_rows=3)))
+    gaps = np.diff(run.gps_steps)
+    assert gaps.min() < 9 and gaps.max() > 11  # they do reach it late
+    model = GPSDRModel.from_grade("phone", run.scenario.dt)
+    f = GPSDRFilter(model, "ekf", x0=np.r_[run.x0, model.x0[6:]])
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        f.batch_filter(run.z_dr, run.gps_list(), run.gps_sigma_list(), run.gps_offset_list())
+    assert f.gps_correlation_mean > 1.5  # correlated, so a fast stream would be warned of
+    assert not [w for w in seen if "fixes come every" in str(w.message)]
