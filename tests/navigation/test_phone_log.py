@@ -151,15 +151,33 @@ def test_epoch_times_written_with_too_few_digits_are_named_so(tmp_path, drive):
         read_drive_csv(_write(tmp_path / "t.csv", cols))
 
 
-def test_one_hz_fixes_reaching_the_log_late_are_not_warned_of_as_faster_than_one_a_second(tmp_path):
-    """Each fix on the row 0-3 samples after its time: ten gaps' median is often 0.9 s, their mean 1 s."""
-    run = read_drive_csv(_write(tmp_path / "late.csv", _grid_drive(jitter_rows=3)))
-    gaps = np.diff(run.gps_steps)
-    assert gaps.min() < 9 and gaps.max() > 11  # they do reach it late
+@pytest.fixture(scope="module")
+def late_fixes(tmp_path_factory):
+    """The drive with each fix on the row 0-3 samples after its time, through the phone grade's EKF-8: the
+    filter and the warnings it gave."""
+    run = read_drive_csv(_write(tmp_path_factory.mktemp("late") / "late.csv", _grid_drive(jitter_rows=3)))
     model = GPSDRModel.from_grade("phone", run.scenario.dt)
     f = GPSDRFilter(model, "ekf", x0=np.r_[run.x0, model.x0[6:]])
     with warnings.catch_warnings(record=True) as seen:
         warnings.simplefilter("always")
         f.batch_filter(run.z_dr, run.gps_list(), run.gps_sigma_list(), run.gps_offset_list())
+    return run, f, [str(w.message) for w in seen]
+
+
+def test_one_hz_fixes_reaching_the_log_late_are_not_warned_of_as_faster_than_one_a_second(late_fixes):
+    """Each fix on the row 0-3 samples after its time: ten gaps' median is often 0.9 s, their mean 1 s."""
+    run, f, said = late_fixes
+    gaps = np.diff(run.gps_steps)
+    assert gaps.min() < 9 and gaps.max() > 11  # they do reach it late
     assert f.gps_correlation_mean > 1.5  # correlated, so a fast stream would be warned of
-    assert not [w for w in seen if "fixes come every" in str(w.message)]
+    assert not [m for m in said if "fixes come every" in m]
+
+
+def test_an_inconsistency_among_correlated_fixes_gives_the_drives_mean_nis_beside_it(late_fixes):
+    """The fixes' errors correlated over 20 s (``gps_correlation`` about 6): a window of 30 holds about 5
+    independent ones and passes its white bound more often; the warning says so, with the mean NIS so far."""
+    run, f, said = late_fixes
+    inconsistent = [m for m in said if "is inconsistent" in m]
+    assert inconsistent
+    for m in inconsistent:
+        assert "Its fixes' errors are correlated (gps_correlation" in m and "fixes accepted so far is" in m, m
