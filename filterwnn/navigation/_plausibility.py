@@ -184,6 +184,68 @@ def _chord_angles(heading, step, steps, z_gps, pairs):
     return (ang + np.pi) % (2 * np.pi) - np.pi, ratio, length
 
 
+#: A change of the fixes' course from one chord to the next (deg) that :func:`_turn_ratio` counts as a turn (a
+#: chord is at least 8 sigma of the fixes long, so their noise turns it by about 10 degrees at most).
+TURN_DEG = 45.0
+#: The chords over which :func:`_turn_ratio` takes each change of direction.
+TURN_CHORDS = 4
+#: The turns :func:`_turn_ratio` needs for a slope.
+MIN_TURNS = 5
+
+
+def _median3(x):
+    """Each value of ``x`` replaced by the median of it and its two neighbours (the ends kept)."""
+    if len(x) < 3:
+        return x
+    return np.r_[x[0], np.median(np.stack([x[:-2], x[1:-1], x[2:]]), axis=0), x[-1]]
+
+
+def _turn_ratio(heading, step, steps, z_gps, pairs):
+    """How much the dead-reckoned course turns where the fixes' course turns: ``(slope, turns)``, the least-squares
+    slope through 0 of the dead-reckoned chords' change of direction from one chord to the next against the
+    fixes' chords', over the ``turns`` changes of the fixes' of :data:`TURN_DEG` to 180 less it (1 for a heading that follows
+    the car, 0 for one that does not turn, -1 for one that turns the wrong way); ``(nan, turns)`` with fewer
+    than :data:`MIN_TURNS`."""
+    cum_e, cum_n = _track(heading, step)
+    a, b = _chord_samples(steps, pairs)
+    dr = np.arctan2(cum_e[b] - cum_e[a], cum_n[b] - cum_n[a])
+    gps = np.array([np.arctan2(*(z_gps[j] - z_gps[i])) for i, j in pairs])
+    # each direction unwrapped (:func:`_unwrap`) and the median of it and its neighbours (a chord to or from a fix
+    # jumped by multipath points anywhere, and is left out so), then its change over TURN_CHORDS chords (a turn
+    # spreads over several), in windows that do not overlap
+    dd, dg = [np.diff(_median3(_unwrap(x))[::TURN_CHORDS]) for x in (dr, gps)]
+    # turns of 45-135 degrees, the dead-reckoned one taken within half a turn of the fixes' (each unwrapped on its
+    # own, one U-turn read -170 and the other +176 degrees; a turn of half a turn either way is left out)
+    big = (np.abs(dg) >= np.deg2rad(TURN_DEG)) & (np.abs(dg) <= np.pi - np.deg2rad(TURN_DEG))
+    dd = dg + (dd - dg + np.pi) % (2 * np.pi) - np.pi
+    turns = int(big.sum())
+    if turns < MIN_TURNS:
+        return float("nan"), turns
+    return float(dd[big] @ dg[big] / (dg[big] @ dg[big])), turns
+
+
+#: A dead-reckoned course that turns less than this share of the fixes' turns (:func:`_turn_ratio`) does not follow
+#: the car: a gyro's wrong axis (a phone upright on a dashboard, its z axis given, read and scored 122.84 / 809.64
+#: m at the outage ends: 0.09 of the turns; stop 58). The headings of the analogs (seeds 0-9), of the random
+#: drives of protocols 2 and 3 (seeds 200-279, multipath, drifting gyros, every fault) and of two new users' logs
+#: turn 0.68-1.15 of them, where they have five turns (182 drives).
+STILL_TURNS = 0.3
+
+
+def _still_cause(heading, step, steps, z_gps, pairs):
+    """The words for a heading that does not follow the car's turns (:data:`STILL_TURNS`), or ``""``."""
+    slope, turns = _turn_ratio(heading, step, steps, z_gps, pairs)
+    if not slope < STILL_TURNS:  # (nan: too few turns)
+        return ""
+    if not _turn_ratio(-heading, step, steps, z_gps, pairs)[0] < STILL_TURNS:  # it turns the wrong way: named so
+        return ""
+    return (f"over {turns} turns of the fixes' course ({TURN_DEG:g} degrees or more over {TURN_CHORDS} moving "
+            f"stretches between fixes), the dead-reckoned course turned {slope:.2g} times as much: the heading does not "
+            "follow the car's turns. A gyro's wrong axis reads so (a phone upright on a dashboard mount turns with the "
+            "car about its y axis, one lying flat about its z: give the rate about the axis nearest the vertical), or "
+            "a column that holds another angle (a pitch or a roll)")
+
+
 def _offset_fit(ang, steps, pairs, dt):
     """The line through the chords' signed angles ``ang`` (:func:`_chord_angles`') over time: ``(offset
     (deg) at the first chord, its standard error (deg), rate (deg/s), median absolute residual (deg), chords
@@ -380,6 +442,12 @@ def _clock_remedy(tau, p, wins, n):
             "time; the heading's offset and the speed's scale are judged once the fixes are at their time")
 
 
+#: A dead-reckoned track shorter than this share of the fixes' distance (its median stretch) has a speed that reads
+#: 0 where the car moves: its refusal says so rather than naming a heading's cause (an OBD logger's local time read
+#: as UTC, whose speed was 0 over the whole drive, was refused as a yaw rate turning the wrong way: stop 58).
+STILL_RATIO = 0.05
+
+
 def _fits(angle, ratio):
     return angle <= MAX_ANGLE_DEG and RATIO_RANGE[0] <= ratio <= RATIO_RANGE[1]
 
@@ -512,6 +580,8 @@ _YAW_SIGN = ("the yaw rate turns the wrong way (the fixes' course matches the he
 def _ratio_cause(ratio):
     """The unit mistake of :data:`_SCALES` nearest the track's length ratio (within a factor 1.25), or None: mph
     (2.24) and knots (1.94) lie within that of each other, so the nearer names it."""
+    if not ratio > 0:
+        return None
     off, cause = min((abs(np.log(ratio / factor)), cause) for factor, cause in _SCALES)
     return cause if off < np.log(1.25) else None
 
@@ -637,6 +707,9 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
         if clock is not None:  # the chords as stamped are misplaced: neither offset nor scale can be judged
             warnings.warn(f"plausibility: {_clock_remedy(*clock)}", RuntimeWarning, stacklevel=4)
             return
+        still = _still_cause(heading, step, steps, z_gps, pairs)  # (nor turns: fixes 18 s late turn 18 s late)
+        if still:
+            raise ValueError(f"plausibility: {still}{_OVERRIDE}")
         if told is not None:
             warnings.warn(f"plausibility: over {len(pairs)} moving stretches between GPS fixes, "
                           f"{_offset_remedy(*fit[:3], filters=True)}", RuntimeWarning, stacklevel=4)
@@ -644,11 +717,18 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
         return
     found = (f"median over {len(pairs)} moving stretches between GPS fixes: the dead-reckoned track is "
              f"{angle:.0f} degrees off the fixes' course and {ratio:.3g} times their distance")
-    if yaw_rate and angle > MAX_ANGLE_DEG and (_mirrored(heading, step, steps, z_gps, pairs) is not None
+    still = _still_cause(heading, step, steps, z_gps, pairs)
+    if ratio < STILL_RATIO:  # (no angle means anything then)
+        cause = (f"the speed moves the dead-reckoned track {ratio:.2g} times the fixes' distance: it reads 0, or "
+                 "nearly, where the fixes move (a speed from a logger of its own whose times do not overlap the "
+                 "drive's: a local time read as UTC, a clock offset of hours; or a speed in the wrong unit)")
+    elif yaw_rate and angle > MAX_ANGLE_DEG and (_mirrored(heading, step, steps, z_gps, pairs) is not None
                                               or _mirrored_drifting(heading, step, steps, z_gps, pairs, dt)):
         cause = _YAW_SIGN  # (a track turned the wrong way also misplaces the chords, which a clock offset is sought in)
     elif clock is not None:
         cause = _clock_remedy(*clock) + "; else check the units, the heading's zero and sign, and the fixes' frame"
+    elif still and RATIO_RANGE[0] <= ratio <= RATIO_RANGE[1]:  # (a track of another length turns elsewhere)
+        cause = still
     elif angle <= MAX_ANGLE_DEG:
         cause = ((_RADIANS if radians and ratio > 10.0 else None) or _ratio_cause(ratio)
                  or "check the units of speed/odometer and time")

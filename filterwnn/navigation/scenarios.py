@@ -500,9 +500,10 @@ def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps
     sig = swapped = offset = None
     if gps_t is not None:
         steps, z_gps, sig, swapped, offset = _gps_fixes(gps_t, east, north, lat, lon, gps_sigma, origin, t, dt)
+    started = None
     if integrated:
-        heading = _yaw_start(dt, heading, step, steps, z_gps, None if sig is None or not len(sig) else
-                             float(np.median(sig)))
+        heading, started = _yaw_start(dt, heading, step, steps, z_gps, None if sig is None or not len(sig) else
+                                      float(np.median(sig)))
     z_dr = np.stack([wrap_angle(heading[1:]), step], axis=1)
     x_true = None
     if truth is not None:
@@ -518,6 +519,8 @@ def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps
                     swapped, None if truth is None else np.asarray(truth, dtype=float), yaw_rate=integrated,
                     radians=lat is not None and bool(np.all(np.abs(np.asarray(lat, dtype=float)) <= np.pi / 2)
                                                      and np.all(np.abs(np.asarray(lon, dtype=float)) <= np.pi)))
+    if started:  # (after the checks: a drive they refuse is not started, and its start's words would mislead)
+        warnings.warn(started, RuntimeWarning, stacklevel=3)
     x0 = np.array([p0[0], v0 * np.sin(heading[0]), 0.0, p0[1], v0 * np.cos(heading[0]), 0.0])
     sc = _own_drive_scenario(name, n, dt, v0, heading[0], steps, sig)
     R_true = np.tile([np.deg2rad(1.0) ** 2, 0.02**2], (n - 1, 1))
@@ -560,8 +563,9 @@ def _integrate_yaw(t, yaw_rate, distance=None, speed=None):
 
 def _yaw_start(dt, heading, step, steps, z_gps, sigma):
     """The integrated heading started at the fixes' course: less the offset the moving stretches between fixes
-    give at the first of them (:func:`~filterwnn.navigation._plausibility.heading_offset`'s line), with a warning
-    naming it; ValueError with fewer than ``YAW_START_CHORDS`` stretches."""
+    give at the first of them (:func:`~filterwnn.navigation._plausibility.heading_offset`'s line), and the words of
+    the warning that names it (given once the drive has passed its checks); ValueError with fewer than
+    ``YAW_START_CHORDS`` stretches."""
     from ._plausibility import _chord_pairs, heading_offset
 
     pairs = _chord_pairs(steps, z_gps, sigma, step) if len(steps) else []
@@ -578,11 +582,11 @@ def _yaw_start(dt, heading, step, steps, z_gps, sigma):
             "sigma), which its rate-bias state learns only after several stops or minutes of fixes: give it from "
             f"the start, gyro_bias_deg_s in the grade (--gyro-bias {abs(rate):.2g})"
             if abs(rate) > YAW_BIAS_SIGMAS * spec else "")
-    warnings.warn(f"the heading is the yaw rate integrated from {start % 360.0:.1f} +- {se:.1g} deg at the start, the "
-                  f"fixes' course over {n} moving stretches (a line through their angles, drifting {rate:+.2g} deg/s "
-                  f"from there: a gyro's rate bias, which the GPS/DR filters estimate{bias})", RuntimeWarning,
-                  stacklevel=4)
-    return wrap_angle(heading - np.deg2rad(offset))
+    words = (f"the heading is the yaw rate integrated from {start % 360.0:.1f} +- {se:.1g} deg at the start, the "
+             f"fixes' course over {n} moving stretches (a line through their angles, drifting {rate:+.2g} deg/s from "
+             f"there: a gyro's rate bias, which the phone grade's 8-state filters estimate; the survey grade and the "
+             f"6-state EKF have no rate-bias state{bias})")
+    return wrap_angle(heading - np.deg2rad(offset)), words
 
 
 def _heading_radians(heading, n):

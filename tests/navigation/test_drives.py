@@ -1112,9 +1112,13 @@ def test_a_yaw_rate_is_integrated_and_started_at_the_fixes_course(tmp_path):
                                          r"gives: the drive has 0 moving stretch\(es\) between fixes"):
         DRRun.from_arrays(t, yaw_rate=np.zeros(len(t)), speed=v)
     ccw = {**rate, "yaw_rate_deg": -rate["yaw_rate_deg"]}  # counter-clockwise positive, as ROS and ENU count it
-    with pytest.warns(RuntimeWarning), pytest.raises(ValueError, match=r"the yaw rate turns the wrong way .* give it "
-                                                                       r"clockwise positive, a right turn positive"):
+    with warnings.catch_warnings(record=True) as seen, \
+            pytest.raises(ValueError, match=r"the yaw rate turns the wrong way .* give it clockwise positive, a right "
+                                            r"turn positive"):
+        warnings.simplefilter("always")
         read_drive_csv(_write(tmp_path / "ccw.csv", ccw, columns=cols))
+    # the start is named once the drive passes its checks (stop 58): a refused one's would mislead
+    assert not [w for w in seen if "integrated from" in str(w.message)]
     with pytest.raises(ValueError, match=r"name the column yaw_rate_deg, or write it in rad/s"):
         read_drive_csv(_write(tmp_path / "deg.csv", {**c, "yaw_rate": np.full(len(t), 5.0)},
                               columns=["time", "yaw_rate"] + cols[2:]))

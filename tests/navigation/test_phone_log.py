@@ -137,10 +137,36 @@ def test_a_raw_gyros_rate_counted_counter_clockwise_is_named_so_not_as_a_clock_o
     h = np.unwrap(np.deg2rad(drive["heading_deg"]))
     rate = -(np.gradient(h, drive["time"]) + np.deg2rad(0.3))
     cols = {**drive, "yaw_rate_deg": np.rad2deg(rate)}
-    with pytest.warns(RuntimeWarning, match="integrated from"), \
-            pytest.raises(ValueError, match="the yaw rate turns the wrong way") as info:
+    with pytest.raises(ValueError, match="the yaw rate turns the wrong way") as info:
         read_drive_csv(_write(tmp_path / "ccw.csv", cols, ["time", "yaw_rate_deg"] + COLUMNS[2:]))
     assert "clock offset" not in str(info.value)
+
+
+def test_a_gyros_wrong_axis_is_refused_as_a_heading_that_does_not_follow_the_turns(tmp_path, drive):
+    """A phone upright on a dashboard mount turns with the car about its y axis; its z axis, given as the yaw rate,
+    reads a pitch's wobble. Started at the fixes' course and drifting within a gyro's bias, such a heading was read,
+    and a second new user's drive so read ended its outages 122.84 / 809.64 m off (stop 58); over the fixes' turns
+    it turns 0.09 times as much, where every other drive tried turns 0.68-1.15."""
+    rng = np.random.default_rng(3)
+    wobble = 0.3 * np.sin(2 * np.pi * drive["time"] / 7.0) + rng.normal(0.0, 0.2, len(drive["time"]))  # deg/s
+    cols = {**drive, "yaw_rate_deg": wobble}
+    with pytest.raises(ValueError, match=r"over \d+ turns of the fixes' course .* the dead-reckoned course turned "
+                                         r"-?0\.\d+ times as much: the heading does not follow the car's turns"):
+        read_drive_csv(_write(tmp_path / "z.csv", cols, ["time", "yaw_rate_deg"] + COLUMNS[2:]))
+    with pytest.warns(RuntimeWarning, match="integrated from"):  # the override reads it, and names its start
+        read_drive_csv(_write(tmp_path / "z.csv", cols, ["time", "yaw_rate_deg"] + COLUMNS[2:]), checks=False)
+
+
+def test_a_speed_that_reads_0_where_the_fixes_move_is_named_so(tmp_path, drive):
+    """An OBD logger's local time read as UTC put its speed hours from the drive: 0 on every sample, refused until
+    stop 58 as a yaw rate turning the wrong way (and a bare numpy warning of a log of 0)."""
+    cols = {**drive, "speed": np.zeros(len(drive["time"]))}
+    with warnings.catch_warnings(record=True) as seen, \
+            pytest.raises(ValueError, match=r"the speed moves the dead-reckoned track 0 times the fixes' distance: it "
+                                            r"reads 0, or nearly, where the fixes move"):
+        warnings.simplefilter("always")
+        read_drive_csv(_write(tmp_path / "still.csv", cols))
+    assert not [w for w in seen if "divide by zero" in str(w.message)]
 
 
 def test_epoch_times_written_with_too_few_digits_are_named_so(tmp_path, drive):
