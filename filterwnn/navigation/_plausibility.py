@@ -184,8 +184,8 @@ def _chord_angles(heading, step, steps, z_gps, pairs):
     return (ang + np.pi) % (2 * np.pi) - np.pi, ratio, length
 
 
-#: A change of the fixes' course from one chord to the next (deg) that :func:`_turn_ratio` counts as a turn (a
-#: chord is at least 8 sigma of the fixes long, so their noise turns it by about 10 degrees at most).
+#: A change of the fixes' course over :data:`TURN_CHORDS` chords (deg) that :func:`_turn_ratio` counts as a turn (a
+#: chord is at least 8 sigma of the fixes long, so their noise turns it by about 10 degrees).
 TURN_DEG = 45.0
 #: The chords over which :func:`_turn_ratio` takes each change of direction.
 TURN_CHORDS = 4
@@ -202,10 +202,9 @@ def _median3(x):
 
 def _turn_ratio(heading, step, steps, z_gps, pairs):
     """How much the dead-reckoned course turns where the fixes' course turns: ``(slope, turns)``, the least-squares
-    slope through 0 of the dead-reckoned chords' change of direction from one chord to the next against the
-    fixes' chords', over the ``turns`` changes of the fixes' of :data:`TURN_DEG` to 180 less it (1 for a heading that follows
-    the car, 0 for one that does not turn, -1 for one that turns the wrong way); ``(nan, turns)`` with fewer
-    than :data:`MIN_TURNS`."""
+    slope through 0 of the dead-reckoned chords' change of direction over :data:`TURN_CHORDS` chords against the
+    fixes' chords', over the ``turns`` changes of the fixes' of :data:`TURN_DEG` to 180 less it (1 for a heading
+    that follows the car, 0 for one that does not turn); ``(nan, turns)`` with fewer than :data:`MIN_TURNS`."""
     cum_e, cum_n = _track(heading, step)
     a, b = _chord_samples(steps, pairs)
     dr = np.arctan2(cum_e[b] - cum_e[a], cum_n[b] - cum_n[a])
@@ -240,10 +239,10 @@ def _still_cause(heading, step, steps, z_gps, pairs):
     if not _turn_ratio(-heading, step, steps, z_gps, pairs)[0] < STILL_TURNS:  # it turns the wrong way: named so
         return ""
     return (f"over {turns} turns of the fixes' course ({TURN_DEG:g} degrees or more over {TURN_CHORDS} moving "
-            f"stretches between fixes), the dead-reckoned course turned {slope:.2g} times as much: the heading does not "
-            "follow the car's turns. A gyro's wrong axis reads so (a phone upright on a dashboard mount turns with the "
-            "car about its y axis, one lying flat about its z: give the rate about the axis nearest the vertical), or "
-            "a column that holds another angle (a pitch or a roll)")
+            f"stretches between fixes), the dead-reckoned course turned {slope:.2g} times as much: the heading does "
+            "not follow the car's turns. A gyro's wrong axis reads so (a phone upright on a dashboard mount turns with "
+            "the car about its y axis, one lying flat about its z: give the rate about the axis nearest the "
+            "vertical), or a column that holds another angle (a pitch or a roll)")
 
 
 def _offset_fit(ang, steps, pairs, dt):
@@ -556,8 +555,8 @@ MIRRORED_SHARE = 0.8
 def _refuse_mirrored(heading, step, steps, z_gps, pairs, ang, yaw_rate, n, angle, ratio):
     """Refuse a heading whose median chord fits but which turns the wrong way: turned the other way (from the zero
     that fits best, :func:`_mirrored`) it fits :data:`SHARE_MARGIN` more of the chords (:func:`_share`; ``ang``:
-    the heading's own chord angles), and at least :data:`MIRRORED_SHARE` of them. A heading mirrored about the street the car drove most on fits that street's
-    chords, and their median on a drive of right-angle turns."""
+    the heading's own chord angles), and at least :data:`MIRRORED_SHARE` of them. A heading mirrored about the
+    street the car drove most on fits that street's chords, and their median on a drive of right-angle turns."""
     c = _mirrored(heading, step, steps, z_gps, pairs)
     if c is None:
         return

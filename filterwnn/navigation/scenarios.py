@@ -723,11 +723,12 @@ def _speed_sentinel(t, speed):
         return
     k = int(np.argmax(at))
     raise ValueError(f"the speed is exactly {SPEED_SENTINEL:g} on {int(at.sum())} of its {int(neg.sum())} negative "
-                     f"samples (the first speed[{k}], {float(t[k] - t[0]):g} s after the first sample): a logger's mark for a speed it does not know "
-                     "(iOS writes -1 for an invalid speed, at a standstill and between fixes), not a car reversing at "
-                     "1 m/s: give those samples' speed as 0 where the car stood (np.where(speed < 0, 0, speed)), or the "
-                     "speed interpolated between the samples beside them; if the car really reversed at exactly 1 "
-                     "m/s, pass checks=False (command line: --no-plausibility)")
+                     f"samples (the first speed[{k}], {float(t[k] - t[0]):g} s after the first sample): a logger's "
+                     "mark for a speed it does not know (iOS writes -1 for an invalid speed, at a standstill and "
+                     "between fixes), not a car reversing at 1 m/s: give those samples' speed as 0 where the car "
+                     "stood (np.where(speed < 0, 0, speed)), or the speed interpolated between the samples beside "
+                     "them; if the car really reversed at exactly 1 m/s, pass checks=False (command line: "
+                     "--no-plausibility)")
 
 
 def _reversing(t, heading, speed, dts):
