@@ -168,15 +168,21 @@ def _chord_samples(steps, pairs):
     return np.array([steps[i] + 1 for i, _ in pairs]), np.array([steps[j] + 1 for _, j in pairs])
 
 
+def _chord_vectors(heading, step, steps, z_gps, pairs):
+    """Per chord, the dead-reckoned displacement and the fixes' ``(n_chords, 2)`` (east, north, m)."""
+    cum_e, cum_n = _track(heading, step)
+    a, b = _chord_samples(steps, pairs)
+    return (np.stack([cum_e[b] - cum_e[a], cum_n[b] - cum_n[a]], axis=1),
+            np.stack([z_gps[j] - z_gps[i] for i, j in pairs]))
+
+
 def _chord_angles(heading, step, steps, z_gps, pairs):
     """Per chord, the signed angle (rad, in ``[-pi, pi)``) from the GPS chord to the DR one, and
     the path/chord length ratio, and the ratio of the dead-reckoned displacement's length to the chord's (a
     speed scale, which a bend does not lengthen as it does the path)."""
-    cum_e, cum_n = _track(heading, step)
     cum_l = np.r_[0.0, np.cumsum(step)]
     a, b = _chord_samples(steps, pairs)
-    dr = np.stack([cum_e[b] - cum_e[a], cum_n[b] - cum_n[a]], axis=1)
-    gps = np.stack([z_gps[j] - z_gps[i] for i, j in pairs])
+    dr, gps = _chord_vectors(heading, step, steps, z_gps, pairs)
     ang = np.arctan2(dr[:, 0], dr[:, 1]) - np.arctan2(gps[:, 0], gps[:, 1])
     chord = np.hypot(gps[:, 0], gps[:, 1])
     with np.errstate(divide="ignore", invalid="ignore"):  # a fix re-sent (stale) while the car moved: inf
@@ -205,10 +211,7 @@ def _turn_ratio(heading, step, steps, z_gps, pairs):
     slope through 0 of the dead-reckoned chords' change of direction over :data:`TURN_CHORDS` chords against the
     fixes' chords', over the ``turns`` changes of the fixes' of :data:`TURN_DEG` to 180 less it (1 for a heading
     that follows the car, 0 for one that does not turn); ``(nan, turns)`` with fewer than :data:`MIN_TURNS`."""
-    cum_e, cum_n = _track(heading, step)
-    a, b = _chord_samples(steps, pairs)
-    dr = np.arctan2(cum_e[b] - cum_e[a], cum_n[b] - cum_n[a])
-    gps = np.array([np.arctan2(*(z_gps[j] - z_gps[i])) for i, j in pairs])
+    dr, gps = [np.arctan2(v[:, 0], v[:, 1]) for v in _chord_vectors(heading, step, steps, z_gps, pairs)]
     # each direction unwrapped (:func:`_unwrap`) and the median of it and its neighbours (a chord to or from a fix
     # jumped by multipath points anywhere, and is left out so), then its change over TURN_CHORDS chords (a turn
     # spreads over several), in windows that do not overlap
@@ -497,7 +500,7 @@ def _track_cause(heading, step, steps, z_gps, pairs, swapped, offset=None):
         others.append((heading - np.deg2rad(offset), z_gps, "offset"))
     c = _mirrored(heading, step, steps, z_gps, pairs)
     if c is not None:
-        others.append((c - heading, z_gps, _mirrored_cause(heading, step, steps, z_gps, pairs)))
+        others.append((c - heading, z_gps, _mirrored_cause(c)))
 
     def fitting(tries):
         out = []
@@ -533,11 +536,9 @@ def _mirrored_drifting(heading, step, steps, z_gps, pairs, dt):
     return abs(rate) <= MAX_DRIFT_DEG_S and resid <= MAX_ANGLE_DEG
 
 
-def _mirrored_cause(heading, step, steps, z_gps, pairs):
-    """The words for a heading that turns the wrong way (:func:`_mirrored`), with its zero and the remedy, or None."""
-    c = _mirrored(heading, step, steps, z_gps, pairs)
-    if c is None:
-        return None
+def _mirrored_cause(c):
+    """The words for a heading that turns the wrong way from the zero ``c`` (rad, :func:`_mirrored`'s), with the
+    remedy."""
     deg = float(np.degrees(c)) % 360.0
     return (f"the heading turns the wrong way (the GPS course matches {deg:.0f} deg - heading: a yaw angle "
             f"counter-clockwise, as ROS and ENU frames write it, from a zero {deg:.0f} deg clockwise of north; the "
@@ -563,7 +564,7 @@ def _refuse_mirrored(heading, step, steps, z_gps, pairs, ang, yaw_rate, n, angle
     own, other = _share(ang), _share(_chord_angles(c - heading, step, steps, z_gps, pairs)[0])
     if other < max(own + SHARE_MARGIN, MIRRORED_SHARE):
         return
-    cause = _YAW_SIGN if yaw_rate else _mirrored_cause(heading, step, steps, z_gps, pairs)
+    cause = _YAW_SIGN if yaw_rate else _mirrored_cause(c)
     raise ValueError(f"plausibility: over {n} moving stretches between GPS fixes, the dead-reckoned track's median "
                      f"is {angle:.0f} degrees off the fixes' course and {ratio:.3g} times their distance, but it "
                      f"fits {own:.0%} of the stretches within {MAX_ANGLE_DEG:g} degrees, and {other:.0%} turned the "
@@ -716,7 +717,6 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
         return
     found = (f"median over {len(pairs)} moving stretches between GPS fixes: the dead-reckoned track is "
              f"{angle:.0f} degrees off the fixes' course and {ratio:.3g} times their distance")
-    still = _still_cause(heading, step, steps, z_gps, pairs)
     if ratio < STILL_RATIO:  # (no angle means anything then)
         cause = (f"the speed moves the dead-reckoned track {ratio:.2g} times the fixes' distance: it reads 0, or "
                  "nearly, where the fixes move (a speed from a logger of its own whose times do not overlap the "
@@ -726,7 +726,8 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
         cause = _YAW_SIGN  # (a track turned the wrong way also misplaces the chords, which a clock offset is sought in)
     elif clock is not None:
         cause = _clock_remedy(*clock) + "; else check the units, the heading's zero and sign, and the fixes' frame"
-    elif still and RATIO_RANGE[0] <= ratio <= RATIO_RANGE[1]:  # (a track of another length turns elsewhere)
+    elif (RATIO_RANGE[0] <= ratio <= RATIO_RANGE[1]  # (a track of another length turns elsewhere)
+          and (still := _still_cause(heading, step, steps, z_gps, pairs))):
         cause = still
     elif angle <= MAX_ANGLE_DEG:
         cause = ((_RADIANS if radians and ratio > 10.0 else None) or _ratio_cause(ratio)
