@@ -107,6 +107,23 @@ _SCALES = ((3.6, "speed looks like km/h (divide by 3.6 for m/s)"),
            (1000.0, "time looks like milliseconds (divide by 1000 for s)"))
 
 
+#: Time units a DR sample interval over :data:`MAX_DT` seconds may be written in: (the factor from seconds, the
+#: unit). A ROS log's stamps are nanoseconds since the epoch (an int64), a CAN logger's often microseconds.
+_TIME_UNITS = ((1e9, "nanoseconds"), (1e6, "microseconds"), (1e3, "milliseconds"))
+
+
+def interval_refusal(dt):
+    """The words refusing a DR sample interval of ``dt`` s past :data:`MAX_DT`, naming the unit the time looks
+    written in: the one that makes the interval 1-100 Hz's (the largest whose interval is at least 0.005 s)."""
+    cause = "resample the drive"
+    if dt >= 10:
+        factor, unit = next(((f, u) for f, u in _TIME_UNITS if dt / f >= 0.005), _TIME_UNITS[-1])
+        cause = (f"time looks like {unit} (divide by {factor:.0e} for s".replace("e+0", "e") + f": a {dt / factor:.3g} "
+                 "s interval)")
+    return (f"plausibility: the DR sample interval is {dt:.3g} s, longer than {MAX_DT:g} s (dead-reckoning sensors "
+            f"sample at 1-100 Hz): {cause}{_OVERRIDE}")
+
+
 def _chords(n, apart):
     """Index pairs ``(i, j)`` of ``n`` fixes with ``apart(i, j)`` (far enough apart), each starting where the
     last ended."""
@@ -688,9 +705,7 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
         length ratio outside :data:`RATIO_RANGE`, with the likely cause.
     """
     if dt > MAX_DT:
-        cause = "time looks like milliseconds (divide by 1000 for s)" if dt >= 10 else "resample the drive"
-        raise ValueError(f"plausibility: the DR sample interval is {dt:g} s, longer than {MAX_DT:g} s (dead-"
-                         f"reckoning sensors sample at 1-100 Hz): {cause}{_OVERRIDE}")
+        raise ValueError(interval_refusal(dt))
     _gps_derived(dt, heading, step, steps)
     pairs = _chord_pairs(steps, z_gps, sigma, step)
     clock = _clock_told(dt, heading, step, steps, z_gps, pairs)

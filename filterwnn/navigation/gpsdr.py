@@ -105,7 +105,10 @@ What the filter does when GPS lies (each part a public setting, on by default):
   :data:`ZERO_RATE_MIN_SAMPLES` samples ends, the filter fits the slope of the measured heading
   over it (least squares) and updates the rate-bias state with it, the slope's variance taken
   from the grade's heading noise (white) and angle random walk, or the fit's own standard error
-  when the headings scatter more than the grade says: the zero angular rate update of inertial
+  when the headings scatter more than the grade says, or the walk the stop's own headings show
+  when it is past four times the grade's (:func:`stop_heading_walk`: a gyro noisier than its grade,
+  whose stops the fit's standard error, taking a walk for white, made look several times more
+  precise than they were): the zero angular rate update of inertial
   navigation (Groves, *Principles of GNSS, Inertial, and Multisensor Integrated Navigation
   Systems*, 2nd ed., 2013, on zero updates). The slope is tested against the state first (its NIS, chi-square
   with 1 degree of freedom, against the 99.9 % point :data:`ZERO_RATE_GATE`; a car that crept
@@ -253,12 +256,12 @@ from ..kalman.unscented import UnscentedKalmanFilter
 
 __all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS", "GATE", "REJECT_GATE", "REACQUIRE_AFTER",
            "NIS_WINDOW", "CALIBRATION_SIGMAS", "ZERO_RATE_GATE", "ZERO_RATE_MIN_SAMPLES",
-           "ZERO_RATE_REACQUIRE_AFTER", "STOP_REOPEN", "STOP_REOPEN_M", "MAX_STOP_RATE_DEG_S", "WHITENESS_WINDOW",
+           "ZERO_RATE_REACQUIRE_AFTER", "WALK_PAST_GRADE", "WALK_MIN_SAMPLES", "WALK_BIAS", "STOP_REOPEN", "STOP_REOPEN_M", "MAX_STOP_RATE_DEG_S", "WHITENESS_WINDOW",
            "FIX_GAPS", "MIN_FIX_INTERVAL",
            "CORRELATED_FIXES", "SCALE_WINDOW", "SCALE_TEST", "SCALE_WARN", "HDOP_FACTOR", "HDOP_LOWEST", "HDOP_GRADE", "SCALE_ERROR_Z", "SCALE_ERROR_MIN", "DETECTED_SCALE_SD",
            "LATENCY_Z", "LATENCY_MIN", "DETECTED_LATENCY_SD", "ODOMETER_LATENCY_Z", "ODOMETER_LATENCY_MIN",
            "HEADING_BIAS", "RATE", "GYRO_SCALE", "gps_scale_mle", "gps_scale_loglik", "stop_heading_slope",
-           "stop_heading_step", "STOP_STEP_ALPHA", "STOP_STEP_MIN_SIDE", "STOP_STEP_WITHIN",
+           "stop_heading_step", "stop_heading_walk", "STOP_STEP_ALPHA", "STOP_STEP_MIN_SIDE", "STOP_STEP_WITHIN",
            "STOP_STEP_TURN_Z", "CALIBRATION_ERROR_Z",
            "HEADING_JUMP_Z", "HEADING_JUMP_SPACING", "HEADING_JUMP_WINDOW", "HEADING_LINEAR_LIMIT",
            "REVERSING_ALPHA", "REVERSING_FIXES", "REVERSING_OFFSET_ALPHA", "CRAWL_ALPHA", "CRAWL_JUMP_ALPHA",
@@ -349,6 +352,17 @@ MAX_STOP_RATE_DEG_S = MAX_DRIFT_DEG_S
 #: them: the GPS fixes' :data:`REACQUIRE_AFTER`, for a sensor sampled at each stop, not each second (a
 #: gyro whose bias jumps would otherwise be rejected at every stop).
 ZERO_RATE_REACQUIRE_AFTER = 3
+#: A stop's headings walk more than the grade says (a gyro noisier than its grade, :func:`stop_heading_walk`) when
+#: their variogram shows a walk past this many times the grade's angle random walk density (an angle random walk
+#: twice the grade's): an estimate from lags of a quarter of the stop has a few degrees of freedom, and passes
+#: 4 times its true value about once in 300 stops.
+WALK_PAST_GRADE = 4.0
+#: The fewest samples a stop needs for its headings' walk to be measured (:func:`stop_heading_walk`): with fewer,
+#: an eighth of the stop is too short a lag to tell a walk from white noise, and a step from either.
+WALK_MIN_SAMPLES = 30
+#: The share of a walk's variogram that an eighth of the stop keeps once the drift fitted to the same headings is
+#: taken out (:func:`stop_heading_walk` divides by it): 0.58-0.67 on simulated walks of 100-2000 samples.
+WALK_BIAS = 0.6
 #: The ``stop_reopen`` (s) to use for a standstill whose speed does not read 0 (``GPSDRFilter(stop_reopen=
 #: STOP_REOPEN)``; off by default): a stop that ends and starts again within it, the car having moved at most
 #: :data:`STOP_REOPEN_M` between, is one stop to the zero angular rate update.
@@ -607,6 +621,89 @@ def stop_heading_slope(t, heading, sigma_heading, q_arw, step_at=None):
     return slope, var
 
 
+def _best_step(t, h, min_side):
+    """The step that reduces the residual sum of squares of the line through the headings ``h`` (rad, unwrapped)
+    at times ``t`` the most, leaving ``min_side`` samples on each side: ``(k, size, u, w, r, tc, tt, n_k)``, with
+    ``u`` the step's regressor less its projection on ``(1, t)``, ``w = u / (u . u)`` the weights of its estimate
+    ``w . h``, ``r`` the line's residuals, ``tc`` the centred times, ``tt = tc . tc`` and ``n_k`` the steps tried;
+    None when there is none. ValueError for constant times."""
+    n = len(t)
+    tc = t - t.mean()
+    tt = float(tc @ tc)
+    if not tt > 0:
+        raise ValueError("t must not be constant")
+    r = h - h.mean() - (tc @ h) / tt * tc  # the line's residuals
+    # u_k = [i >= k] less its projection on (1, t): r . u_k = sum_{i >= k} r_i (r is orthogonal to both),
+    # u_k . u_k = m - m^2 / n - (sum_{i >= k} tc_i)^2 / tt with m = n - k samples after the step
+    ks = np.arange(min_side, n - min_side + 1)
+    if not len(ks):
+        return None
+    rsum = np.cumsum(r[::-1])[::-1][ks]
+    tsum = np.cumsum(tc[::-1])[::-1][ks]
+    m = (n - ks).astype(float)
+    uu = m - m * m / n - tsum * tsum / tt
+    ok = uu > 1e-12 * n
+    drss = np.where(ok, rsum * rsum / np.where(ok, uu, 1.0), 0.0)
+    j = int(np.argmax(drss))
+    if not drss[j] > 0:
+        return None
+    k, size = int(ks[j]), float(rsum[j] / uu[j])
+    # the step's estimate is w . h: u_k, less its projection on (1, t), over its sum of squares
+    u = (np.arange(n) >= k) - m[j] / n - tsum[j] / tt * tc
+    return k, size, u, u / uu[j], r, tc, tt, len(ks)
+
+
+def stop_heading_walk(t, heading, q_arw, min_side=STOP_STEP_MIN_SIDE):
+    """The angle random walk density (rad^2/s) a stop's headings show, when past :data:`WALK_PAST_GRADE` times
+    the grade's ``q_arw``; else ``q_arw``.
+
+    A heading integrated from a gyro noisier than its grade walks more than the grade says: a walk is no line,
+    and with the grade's walk the stop's slope (:func:`stop_heading_slope`) reads as measured several times
+    more precisely than it is (its own standard error takes the residuals for white), stops that agree read as
+    disagreeing, and the walk reads as a heading step (:func:`stop_heading_step`). The walk is read from the
+    variogram of the headings ``heading (n,)`` (rad) at times ``t (n,)`` (s), ``v(L)``, the variance of their
+    change over ``L`` samples (about its mean, the drift), which grows as ``q L dt`` for a walk of density ``q``
+    and stays flat for white noise: ``q`` is ``v(L) - v(2)`` over ``(L - 2) dt`` for ``L`` an eighth of the
+    stop (short correlations, such as a log's averaging or a trapezoidal integral leaves, cancel), divided by
+    :data:`WALK_BIAS` (the drift fitted to the same walk takes a share of it), and is taken only when
+    ``v(L)`` is past twice ``v(2)`` (the walk, not white noise, makes the change over ``L``). The changes
+    across the best single step (:func:`stop_heading_step`'s) are left out, so that a fused heading's real step
+    is not read as a walk. Stops of fewer than :data:`WALK_MIN_SAMPLES` samples give ``q_arw``.
+
+    >>> import numpy as np
+    >>> t = np.arange(0.0, 25.0, 0.05)
+    >>> q = np.deg2rad(0.1) ** 2  # a walk of 0.1 deg / sqrt(s), 20 times the phone grade's 0.3 deg / sqrt(h)
+    >>> h = np.sqrt(q * 0.05) * np.cumsum(np.random.default_rng(0).standard_normal(len(t)))
+    >>> grade = np.deg2rad(0.3 / 60) ** 2
+    >>> bool(0.5 < stop_heading_walk(t, h, grade) / q < 2), bool(stop_heading_walk(t, 0.0 * h, grade) == grade)
+    (True, True)
+    """
+    t = np.asarray(t, dtype=float)
+    h = np.unwrap(np.asarray(heading, dtype=float))
+    n = len(t)
+    if t.ndim != 1 or t.shape != h.shape:
+        raise ValueError(f"t and heading must be 1-D of the same length, got {t.shape} and {h.shape}")
+    if n < max(WALK_MIN_SAMPLES, 2 * min_side + 2):
+        return q_arw
+    best = _best_step(t, h, min_side)
+    k = None if best is None else best[0]
+
+    def variogram(lag):
+        d = h[lag:] - h[:-lag]
+        if k is not None:  # none across the step
+            i = np.arange(n - lag)
+            d = d[(i + lag < k) | (i >= k)]
+        d = d - d.mean()  # less the drift
+        return float(d @ d) / len(d)
+
+    short, long = 2, max(4, n // 8)
+    v_short, v_long = variogram(short), variogram(long)
+    if not v_long > 2.0 * v_short:
+        return q_arw
+    q = (v_long - v_short) / ((long - short) * float(np.mean(np.diff(t)))) / WALK_BIAS
+    return q if q > WALK_PAST_GRADE * q_arw else q_arw
+
+
 def stop_heading_step(t, heading, sigma_heading=None, q_arw=0.0, alpha=STOP_STEP_ALPHA, min_side=STOP_STEP_MIN_SIDE):
     """The most likely step in a stop's headings, and whether it is one: ``(index or None, size, sd, p)``.
 
@@ -655,38 +752,21 @@ def stop_heading_step(t, heading, sigma_heading=None, q_arw=0.0, alpha=STOP_STEP
         raise ValueError(f"t and heading must be 1-D of the same length, got {t.shape} and {h.shape}")
     if n < 2 * min_side + 2:
         return None, 0.0, 0.0, 1.0
-    tc = t - t.mean()
-    tt = float(tc @ tc)
-    if not tt > 0:
-        raise ValueError("t must not be constant")
-    r = h - h.mean() - (tc @ h) / tt * tc  # the line's residuals
-    # u_k = [i >= k] less its projection on (1, t): r . u_k = sum_{i >= k} r_i (r is orthogonal to both),
-    # u_k . u_k = m - m^2 / n - (sum_{i >= k} tc_i)^2 / tt with m = n - k samples after the step
-    ks = np.arange(min_side, n - min_side + 1)
-    rsum = np.cumsum(r[::-1])[::-1][ks]
-    tsum = np.cumsum(tc[::-1])[::-1][ks]
-    m = (n - ks).astype(float)
-    uu = m - m * m / n - tsum * tsum / tt
-    ok = uu > 1e-12 * n
-    drss = np.where(ok, rsum * rsum / np.where(ok, uu, 1.0), 0.0)
-    j = int(np.argmax(drss))
-    if not drss[j] > 0:
+    best = _best_step(t, h, min_side)
+    if best is None:
         return None, 0.0, 0.0, 1.0
-    k, size = int(ks[j]), float(rsum[j] / uu[j])
-    # the step's estimate is w . h: u_k, less its projection on (1, t), over its sum of squares
-    u = (np.arange(n) >= k) - m[j] / n - tsum[j] / tt * tc
-    w = u / uu[j]
+    k, size, u, w, r, tc, tt, n_k = best
     walk = _walk_variance(t, w, q_arw)
     # the residuals' own variance, with their lag-1 correlation rho as an AR(1)'s long-run factor
     e = r - size * u
     ee = float(e @ e)
     rho = min(max(float(e[1:] @ e[:-1]) / ee, 0.0), 0.99) if ee > 0 else 0.0
     var = ee / (n - 3) * float(w @ w) * (1.0 + rho) / (1.0 - rho) + walk
-    p = min(1.0, 2.0 * float(t_dist.sf(abs(size) / np.sqrt(var), n - 3)) * len(ks)) if var > 0 else 0.0
+    p = min(1.0, 2.0 * float(t_dist.sf(abs(size) / np.sqrt(var), n - 3)) * n_k) if var > 0 else 0.0
     if sigma_heading is not None:
         spec = sigma_heading**2 * float(w @ w) + walk
         if spec > 0:
-            p = max(p, min(1.0, 2.0 * NormalDist().cdf(-abs(size) / np.sqrt(spec)) * len(ks)))
+            p = max(p, min(1.0, 2.0 * NormalDist().cdf(-abs(size) / np.sqrt(spec)) * n_k))
         var = max(var, spec)
     if p >= alpha:
         return None, 0.0, 0.0, p
@@ -2204,7 +2284,8 @@ class GPSDRFilter:
         if np.all(h == h[0]):  # held by its source (a fused or GPS-course heading), not measured by a gyro
             self.n_zero_rate_held += 1
             return
-        sigma, q = self.model.sigma_heading, self.model.q_bias
+        sigma = self.model.sigma_heading
+        q = stop_heading_walk(t, h, self.model.q_bias)  # the grade's walk, or the stop's own when past it
         k, size, sd, p = stop_heading_step(t, h, sigma, q)
         if k is not None:
             self._stepped(t, k, size, sd, p)

@@ -403,6 +403,12 @@ class DRRun(NamedTuple):
         if (heading is None) == (yaw_rate is None):
             raise ValueError("give exactly one of heading (rad) and yaw_rate (rad/s), got "
                              + ("both" if heading is not None else "neither"))
+        if checks:  # a time in another unit, before any warning read in it (spikes, jitter, reversing)
+            from ._plausibility import MAX_DT, interval_refusal
+
+            t_s = _finite_1d(t, "t")
+            if len(t_s) > 1 and float(np.median(np.diff(t_s))) > MAX_DT:
+                raise ValueError(interval_refusal(float(f"{np.median(np.diff(t_s)):.9g}")))
         integrated = yaw_rate is not None
         if integrated:
             if heading_offset:

@@ -254,6 +254,10 @@ def _swap(cols, *pairs):
 
 MISTAKES = {
     "time in milliseconds": (lambda c: {**c, "time": c["time"] * 1000}, "time looks like milliseconds"),
+    "time in microseconds": (lambda c: {**c, "time": c["time"] * 1e6}, r"time looks like microseconds \(divide by 1e6"),
+    # a ROS log's int64 stamps, refused before any warning read in them (spikes, jitter: stop 59)
+    "time in nanoseconds from the epoch": (lambda c: {**c, "time": 1.718e18 + c["time"] * 1e9},
+                                           r"time looks like nanoseconds \(divide by 1e9 for s: a 0.1 s interval\)"),
     "heading in degrees under 2 pi": (lambda c: {**c, "heading": np.full_like(c["heading"], 3.0)},
                                       "heading looks like degrees"),
     "heading counter-clockwise from east": (lambda c: {**c, "heading": np.pi / 2 - c["heading"]},

@@ -13,8 +13,8 @@ import pytest
 
 from filterwnn.navigation.dead_reckoning import GPSDRModel
 from filterwnn.navigation.gpsdr import (HEADING_BIAS, KINDS, MAX_STOP_RATE_DEG_S, RATE, STOP_STEP_ALPHA,
-                                       STOP_STEP_MIN_SIDE, ZERO_RATE_GATE, ZERO_RATE_MIN_SAMPLES, GPSDRFilter,
-                                       stop_heading_slope, stop_heading_step)
+                                       STOP_STEP_MIN_SIDE, WALK_MIN_SAMPLES, ZERO_RATE_GATE, ZERO_RATE_MIN_SAMPLES,
+                                       GPSDRFilter, stop_heading_slope, stop_heading_step, stop_heading_walk)
 
 DT = 0.1
 DEG = np.pi / 180.0
@@ -510,3 +510,46 @@ def test_a_heading_that_steps_during_a_stop_moves_the_heading_bias_not_the_rate_
     shift = f.x[HEADING_BIAS] - clean.x[HEADING_BIAS]
     assert abs(shift - 2.0 * DEG) < 0.2 * DEG
     assert f.P[HEADING_BIAS, HEADING_BIAS] > clean.P[HEADING_BIAS, HEADING_BIAS]
+
+
+def _noisy_gyro_stops(rng, model, rate_deg_s, walk, n=4, seconds=25.0):
+    """``n`` stops, with moving stretches between, of a heading integrated from a gyro of rate bias ``rate_deg_s``
+    whose angle random walk is ``walk`` times the grade's (density; no white part: a yaw rate's integral)."""
+    def stop():
+        k = int(round(seconds / DT))
+        h = 0.5 + _headings(rng, k, rate_deg_s * DEG, 0.0, walk * model.q_bias)
+        return np.vstack([np.stack([h, np.zeros(k)], axis=1), [[0.5, 1.0 * DT]], MOVING])
+    return np.vstack([stop() for _ in range(n)])
+
+
+def test_a_walk_is_measured_only_past_the_grades():
+    """stop_heading_walk reads a walk 400 times the grade's density (20 times its angle random walk) within a
+    factor of two, and gives the grade's for white headings, for a walk of the grade's own, and for a white
+    heading that steps (the changes across the step left out)."""
+    rng = np.random.default_rng(30)
+    t = DT * np.arange(250)
+    grade = (0.3 * DEG / 60.0) ** 2
+    ratios = [stop_heading_walk(t, _headings(rng, 250, 0.4 * DEG, 0.0, 400 * grade), grade) / (400 * grade)
+              for _ in range(20)]
+    assert 0.5 < np.median(ratios) < 2.0 and min(ratios) > 0.2
+    for h in (_headings(rng, 250, 0.0, 0.5 * DEG, 0.0), _headings(rng, 250, 0.01 * DEG, 0.0, grade),
+              _headings(rng, 250, 0.0, 0.1 * DEG, 0.0) + 2.0 * DEG * (t >= 10.0)):
+        assert stop_heading_walk(t, h, grade) == grade
+    assert stop_heading_walk(t[:WALK_MIN_SAMPLES - 1], _headings(rng, WALK_MIN_SAMPLES - 1, 0.0, 0.0, 400 * grade),
+                             grade) == grade
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_a_gyro_noisier_than_its_grade_is_followed_from_the_third_stop(phone, kind):
+    """A gyro outside the phone grade (0.4 deg/s) whose angle random walk is 20 times the grade's (a simulated
+    ROS drive's, stop 59): each stop's slope scatters by about 0.02 deg/s, while the grade's walk and white
+    noise said 0.002-0.007, so the stops, which agree, were taken to disagree, the state was not re-acquired
+    until three happened to agree (two thirds into that drive: EKF-8 251 / 634 m at the outage ends), and the
+    walk read as a heading step. With the walk measured from the stops, the third re-acquires, no step is
+    found, and the state ends within three of its sigmas of 0.4 deg/s."""
+    z = _noisy_gyro_stops(np.random.default_rng(31), phone, -0.4, 400.0)
+    with pytest.warns(RuntimeWarning, match="re-acquires from them"):
+        f = _run(phone, z, kind)
+    assert f.n_zero_rate_reacquired == 1 and f.n_zero_rate_stepped == 0
+    assert [ok for *_, ok in f.zero_rate_steps][:3] == [False] * 3
+    assert abs(f.x[8] + 0.4 * DEG) < 3 * np.sqrt(f.P[8, 8])
