@@ -251,6 +251,29 @@ def _turn_ratio(heading, step, steps, z_gps, pairs):
 STILL_TURNS = 0.3
 
 
+#: A yaw rate's integral that does not follow the car's turns (:data:`STILL_TURNS`) but, multiplied by ``180 / pi``,
+#: turns as the fixes do within this factor (:func:`_turn_ratio`), is a rate in rad/s given as deg/s
+#: (``yaw_rate_deg``): a ROS log's ``angular_velocity.z`` (stop 59; the right conversions turned 0.68-1.15 of them).
+YAW_UNIT_TOLERANCE = 1.5
+
+
+def _yaw_unit_cause(heading, step, steps, z_gps, pairs):
+    """The words for a yaw rate in rad/s read as deg/s (its integral turns ``pi / 180`` of the fixes' turns, within a
+    factor :data:`YAW_UNIT_TOLERANCE`), or ``""``."""
+    slope, turns = _turn_ratio(heading, step, steps, z_gps, pairs)
+    if not slope < STILL_TURNS:  # (nan: too few turns)
+        return ""
+    scaled = _turn_ratio(np.unwrap(heading) * (180.0 / np.pi), step, steps, z_gps, pairs)[0]
+    if not abs(np.log(scaled)) < np.log(YAW_UNIT_TOLERANCE):
+        return ""
+    return (f"over {turns} turns of the fixes' course ({TURN_DEG:g} degrees or more over {TURN_CHORDS} moving "
+            f"stretches between fixes), the yaw rate's integral turned {slope:.2g} times as much, and {scaled:.2g} "
+            "times as much read as radians a second: the "
+            "yaw rate looks like radians a second given as degrees a second (a ROS Imu's angular_velocity.z is in "
+            "rad/s): give it as yaw_rate, clockwise positive (its negative, for a rate counter-clockwise as ROS and "
+            "ENU frames write it)")
+
+
 def _still_cause(heading, step, steps, z_gps, pairs):
     """The words for a heading that does not follow the car's turns (:data:`STILL_TURNS`), or ``""``."""
     slope, turns = _turn_ratio(heading, step, steps, z_gps, pairs)
@@ -722,7 +745,8 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
         if clock is not None:  # the chords as stamped are misplaced: neither offset nor scale can be judged
             warnings.warn(f"plausibility: {_clock_remedy(*clock)}", RuntimeWarning, stacklevel=4)
             return
-        still = _still_cause(heading, step, steps, z_gps, pairs)  # (nor turns: fixes 18 s late turn 18 s late)
+        still = ((yaw_rate and _yaw_unit_cause(heading, step, steps, z_gps, pairs))
+                 or _still_cause(heading, step, steps, z_gps, pairs))  # (nor turns: fixes 18 s late turn 18 s late)
         if still:
             raise ValueError(f"plausibility: {still}{_OVERRIDE}")
         if told is not None:
@@ -736,6 +760,8 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
         cause = (f"the speed moves the dead-reckoned track {ratio:.2g} times the fixes' distance: it reads 0, or "
                  "nearly, where the fixes move (a speed from a logger of its own whose times do not overlap the "
                  "drive's: a local time read as UTC, a clock offset of hours; or a speed in the wrong unit)")
+    elif yaw_rate and (unit := _yaw_unit_cause(heading, step, steps, z_gps, pairs)):
+        cause = unit  # (a course that hardly turns fits a mirrored zero as well as any)
     elif yaw_rate and angle > MAX_ANGLE_DEG and (_mirrored(heading, step, steps, z_gps, pairs) is not None
                                               or _mirrored_drifting(heading, step, steps, z_gps, pairs, dt)):
         cause = _YAW_SIGN  # (a track turned the wrong way also misplaces the chords, which a clock offset is sought in)
@@ -747,6 +773,9 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
     elif angle <= MAX_ANGLE_DEG:
         cause = ((_RADIANS if radians and ratio > 10.0 else None) or _ratio_cause(ratio)
                  or "check the units of speed/odometer and time")
+    elif _ratio_cause(ratio) and _drifting_gyro(fit):  # a drifting gyro's angle, and a length in another unit
+        cause = (_ratio_cause(ratio) + f"; the angle is a gyro's drift ({fit[2]:+.2g} deg/s from a heading right at "
+                 "the start)")
     else:
         cause = _track_cause(heading, step, steps, z_gps, pairs, swapped,
                              told if told is not None and _fits(0.0, ratio) else None)

@@ -1166,12 +1166,35 @@ def _gps_fixes(gps_t, east, north, lat, lon, gps_sigma, origin, t, dt):
     i = np.where(gps_t - t[i - 1] <= t[i] - gps_t, i - 1, i)
     k_fix = i - 1
     keep = (k_fix >= 0) & (gps_t <= t[-1] + 0.5 * dt)
+    _fixes_outside(gps_t, (gps_t >= t[0] - 0.5 * dt) & (gps_t <= t[-1] + 0.5 * dt), t)
     k_fix, idx = np.unique(k_fix[keep], return_index=True)
+    if len(idx) < int(keep.sum()):
+        warnings.warn(f"{int(keep.sum()) - len(idx)} GPS fix(es) share their nearest DR sample with an earlier fix "
+                      f"(the first at t = {float(gps_t[keep][np.setdiff1d(np.arange(int(keep.sum())), idx)[0]]):.10g} "
+                      "s): each sample takes one fix, the first; fixes faster than the samples, or stamps that jitter "
+                      "by more than half a sample interval, do so", RuntimeWarning, stacklevel=5)
     sel = np.flatnonzero(keep)[idx]
     offset = np.round(gps_t[sel] - t[k_fix + 1], 9)  # to the nanosecond: a fix on its sample is 0 exactly
     return (k_fix, np.stack([e[sel], nn[sel]], axis=1), (gs[sel] if gps_sigma is not None else None),
             None if swapped is None else swapped[sel], offset if np.any(offset) else None)
 
+
+
+def _fixes_outside(gps_t, keep, t):
+    """``keep``: the fixes within half a sample interval of the samples' span. Refuse fixes whose times mostly lie outside the DR samples' (two clocks: a receiver's UTC time of day against
+    a logger's time from its start, stop 59), naming both spans; warn of the few that do (the log's ends)."""
+    out = int(len(keep) - keep.sum())
+    if not out:
+        return
+    spans = (f"the fixes' times run {float(gps_t.min()):.10g}-{float(gps_t.max()):.10g} s, the DR samples' "
+             f"{float(t[0]):.10g}-{float(t[-1]):.10g} s")
+    if out > 0.5 * len(keep):
+        raise ValueError(f"{out} of the {len(keep)} GPS fixes lie outside the DR samples' time span ({spans}): the "
+                         "fixes and the samples are on two clocks (a receiver's UTC time of day, or seconds of the GPS "
+                         "week, against a logger's time from its start?): put both on one clock (the logger's start "
+                         "in UTC added to its times, or the fixes' date added to theirs)")
+    warnings.warn(f"{out} GPS fix(es) lie outside the DR samples' time span ({spans}) and are not used",
+                  RuntimeWarning, stacklevel=6)
 
 
 #: The share of the fixes that repeat the one on the row before, to the bit, past which a drive's GPS columns are

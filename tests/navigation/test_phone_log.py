@@ -207,3 +207,63 @@ def test_an_inconsistency_among_correlated_fixes_gives_the_drives_mean_nis_besid
     assert inconsistent
     for m in inconsistent:
         assert "Its fixes' errors are correlated (gps_correlation" in m and "fixes accepted so far is" in m, m
+
+
+def test_a_yaw_rate_in_rad_s_given_as_deg_s_is_named_so(tmp_path, drive):
+    """A ROS Imu's angular_velocity.z (rad/s, negated to clockwise) written into ``yaw_rate_deg``: its integral turns
+    pi / 180 of the car's turns. Until stop 59 it was refused as a yaw rate turning the wrong way."""
+    h = np.unwrap(np.deg2rad(drive["heading_deg"]))
+    cols = {**drive, "yaw_rate_deg": np.gradient(h, drive["time"]) + np.deg2rad(0.3)}  # rad/s
+    with pytest.raises(ValueError, match=r"turned 0\.0\d+ times as much, and (0\.[6-9]\d*|1|1\.[0-3]\d*) times as much "
+                                         r"read as radians a second: the yaw rate looks like radians a second given "
+                                         r"as degrees a second") as info:
+        read_drive_csv(_write(tmp_path / "rad.csv", cols, ["time", "yaw_rate_deg"] + COLUMNS[2:]))
+    assert "wrong way" not in str(info.value)
+    with pytest.warns(RuntimeWarning, match="integrated from"):  # given as yaw_rate, it reads
+        read_drive_csv(_write(tmp_path / "rad.csv", {**cols, "yaw_rate": cols["yaw_rate_deg"]},
+                              ["time", "yaw_rate"] + COLUMNS[2:]))
+
+
+def test_a_speed_in_km_h_with_a_drifting_gyro_is_named_as_km_h(tmp_path, drive):
+    """Wheel speeds left in km/h beside a yaw rate 0.3 deg/s off: the track is 3.6 times the fixes' length and its
+    angle the gyro's drift. Until stop 59 the refusal named the heading's zero and sign, not the unit."""
+    h = np.unwrap(np.deg2rad(drive["heading_deg"]))
+    cols = {**drive, "yaw_rate_deg": np.rad2deg(np.gradient(h, drive["time"]) + np.deg2rad(0.3)),
+            "speed": 3.6 * drive["speed"]}
+    with pytest.raises(ValueError, match=r"speed looks like km/h \(divide by 3.6 for m/s\); the angle is a gyro's drift"):
+        read_drive_csv(_write(tmp_path / "kmh.csv", cols, ["time", "yaw_rate_deg"] + COLUMNS[2:]))
+
+
+def _fix_rows(drive, shift, repeat=0.0):
+    """The drive with its fixes on rows of their own at their time plus ``shift`` (s), and, with ``repeat``, each
+    fix again ``repeat`` s later (a 5 Hz receiver's next fix, stamped by a logger on receipt)."""
+    fix = ~np.isnan(drive["gps_lat"])
+    t = [drive["time"], drive["time"][fix] + shift] + ([drive["time"][fix] + shift + repeat] if repeat else [])
+    out = {"time": np.concatenate(t)}
+    for c in COLUMNS[1:]:
+        dr = np.where(fix, np.nan, drive[c]) if c.startswith("gps_") else drive[c]
+        fixes = np.where(fix, drive[c], np.nan)[fix] if c.startswith("gps_") else np.full(fix.sum(), np.nan)
+        out[c] = np.concatenate([dr, fixes] + ([fixes] if repeat else []))
+    order = np.argsort(out["time"], kind="stable")
+    return {c: v[order] for c, v in out.items()}
+
+
+def test_fixes_on_another_clock_are_refused_naming_both_spans(tmp_path, drive):
+    """NMEA's UTC time of day (9 h) beside a logger's time from its start: every fix lies past the samples. Until
+    stop 59 the refusal said the drive had no moving stretches between fixes; a few outside are warned of."""
+    with pytest.raises(ValueError, match=r"lie outside the DR samples' time span \(the fixes' times run 32\d+.* the "
+                                         r"DR samples' 0-\d+.* s\): the fixes and the samples are on two clocks"):
+        read_drive_csv(_write(tmp_path / "utc.csv", _fix_rows(drive, 32400.0)))
+    cols = _fix_rows(drive, 0.0)
+    late = {c: np.r_[v, np.nan if c != "time" else v[-1] + 5.0] for c, v in cols.items()}  # a last fix 5 s on
+    for c in ("gps_lat", "gps_lon", "gps_sigma"):
+        late[c][-1] = late[c][np.flatnonzero(~np.isnan(late[c]))[-1]]
+    with pytest.warns(RuntimeWarning, match=r"1 GPS fix\(es\) lie outside the DR samples' time span"):
+        read_drive_csv(_write(tmp_path / "late.csv", late))
+
+
+def test_fixes_that_share_a_sample_are_warned_of(tmp_path, drive):
+    """A fix again 0.03 s after each (a 5 Hz receiver's stamps on a 10 Hz log): one of each pair was dropped with
+    nothing said until stop 59."""
+    with pytest.warns(RuntimeWarning, match=r"\d+ GPS fix\(es\) share their nearest DR sample with an earlier fix"):
+        read_drive_csv(_write(tmp_path / "pairs.csv", _fix_rows(drive, 0.0, repeat=0.03)))
