@@ -657,7 +657,10 @@ def _sample_grid(t, max_jitter):
     jit = np.abs(dts / dt - 1.0)
     stamps = _stamp_grid(t, dts) if np.any(jit > max_jitter) else None
     if stamps is not None and not stamps[1]:  # regular samples whose stamps jitter pass
-        k = int(np.argmax(jit)) + 1
+        gap = _dropped(dts, dt)
+        if not np.any(gap):  # stamps that jitter independently, no sample dropped: read, each over its interval
+            return dts, dt, stamps
+        k = int(np.argmax(np.where(gap, jit, -1.0))) + 1  # the longest
         raise ValueError(f"t must be evenly sampled (each interval within {max_jitter:.0%} of the median "
                          f"{dt:g} s); t[{k}] - t[{k - 1}] = {dts[k - 1]:g} s: resample the drive first"
                          + (" (dropped samples: fill_gaps=SECONDS, or --fill-gaps, interpolates gaps up to that "
@@ -666,6 +669,17 @@ def _sample_grid(t, max_jitter):
                             f"file before t[{k}] and run each part as a drive of its own (the command takes several "
                             "--drive)" if dts[k - 1] > LONG_GAP_S else ""))
     return dts, dt, stamps
+
+
+def _dropped(dts, dt):
+    """Which intervals look like dropped samples: at least 1.5 sample intervals, and not made up by a short one
+    beside them (their sum with either neighbour at least 2.75 intervals). A stamp written late makes its interval
+    long and the next one short (a ROS bag's receipt times, a 100 Hz IMU's stamps jittering by a millisecond: stop
+    59); a dropped sample leaves one interval of two with regular ones beside it."""
+    long = dts >= 1.5 * dt
+    before = np.r_[np.inf, dts[:-1] + dts[1:]]
+    after = np.r_[dts[:-1] + dts[1:], np.inf]
+    return long & (before >= 2.75 * dt) & (after >= 2.75 * dt)
 
 
 #: A gap in the DR samples (s) past which the refusal of an unevenly sampled drive also says to split it: as
@@ -833,7 +847,11 @@ def _warn_stamp_jitter(dts, dt, noise, rho):
     their lag-1 autocorrelation, when measured)."""
     if noise > STAMP_JITTER_M:
         why = "" if rho is None else (f" (their lag-1 correlation {rho:.2f}, not below {GRID_CORRELATION:g}: they "
-                                      "vary independently, not about a regular grid)")
+                                      "vary independently, not about a regular grid)" if rho >= GRID_CORRELATION else
+                                      f" (their lag-1 correlation {rho:.2f} is that of stamps jittering about a grid, "
+                                      f"but some lie more than {GRID_TOLERANCE:g} of an interval off any regular one: "
+                                      "stamps late by varying amounts, as a message's time of receipt is (a ROS "
+                                      "bag's; its header stamp is the sample's own time), or a rate that drifts)")
         warnings.warn(f"the sample times jitter by {1e3 * float(np.std(dts - dt)):.2g} ms (sd of the intervals about "
                       f"{dt:g} s){why}: speed times interval then adds {noise:.2g} m of noise to each step at the "
                       "median speed, more than a wheel odometer's 0.01-0.02 m. If the samples are regular and only "

@@ -541,8 +541,7 @@ def test_stamps_that_jitter_about_a_regular_grid_give_each_speed_the_grids_inter
 def test_stamps_that_jitter_past_max_jitter_about_a_grid_are_read_and_dropped_samples_are_not():
     """Stamps with a 6 ms sd about a 0.1 s grid make intervals up to 27 % off their median (past
     max_jitter's 20 %): the samples are regular, and the drive is read. A dropped sample among such
-    stamps leaves those after it an interval late, and is refused with the fill_gaps it needs, as
-    are intervals that vary by 25 % independently."""
+    stamps leaves those after it an interval late, and is refused with the fill_gaps it needs."""
     rng = np.random.default_rng(0)
     n = 3001
     t = 0.1 * np.arange(n) + rng.normal(0.0, 0.006, n)
@@ -555,9 +554,30 @@ def test_stamps_that_jitter_past_max_jitter_about_a_grid_are_read_and_dropped_sa
         t = np.delete(0.1 * np.arange(n), m) + rng.uniform(-0.01, 0.01, n - 1)
         with pytest.raises(ValueError, match=r"resample the drive first \(dropped samples: fill_gaps"):
             DRRun.from_arrays(t, np.zeros(n - 1), speed=np.full(n - 1, 23.0), checks=False)
+    # intervals that vary by 25 % independently, no sample dropped (refused until stop 59): read, each speed over
+    # its own interval, with the jitter's noise warned of
     t = np.r_[0.0, np.cumsum(0.1 * (1.0 + rng.uniform(-0.25, 0.25, n - 1)))]
-    with pytest.raises(ValueError, match="t must be evenly sampled"):
-        DRRun.from_arrays(t, np.zeros(n), speed=np.full(n, 23.0), checks=False)
+    with pytest.warns(RuntimeWarning, match="they vary independently, not about a regular grid"):
+        run = DRRun.from_arrays(t, np.zeros(n), speed=np.full(n, 23.0), checks=False)
+    np.testing.assert_allclose(run.z_dr[:, 1], 23.0 * np.diff(t))
+
+
+def test_stamps_late_by_varying_amounts_are_read_with_each_speed_over_its_own_interval():
+    """A ROS bag's times of receipt: 20 Hz samples each received 2-40 ms after its time (a queue's delays), so
+    that one interval is 0.021 s and the next 0.079: no regular grid holds them within a quarter interval, and
+    until stop 59 the drive was refused ("resample the drive first"). No sample is dropped: it is read, each
+    speed over its stamped interval, and the warning names a message's time of receipt; a dropped sample among
+    such stamps is still refused."""
+    rng = np.random.default_rng(5)
+    n = 2001
+    t = 0.05 * np.arange(n) + 0.002 + rng.exponential(0.008, n).clip(0.0, 0.038)
+    with pytest.warns(RuntimeWarning, match="some lie more than 0.25 of an interval off any regular one: stamps late "
+                                            "by varying amounts, as a message's time of receipt is"):
+        run = DRRun.from_arrays(t, np.zeros(n), speed=np.full(n, 10.0), checks=False)
+    assert run.scenario.dt == pytest.approx(0.05, abs=1e-3)
+    np.testing.assert_allclose(run.z_dr[:, 1], 10.0 * np.diff(t))
+    with pytest.raises(ValueError, match=r"evenly sampled.*dropped samples: fill_gaps"):
+        DRRun.from_arrays(np.delete(t, 700), np.zeros(n - 1), speed=np.full(n - 1, 10.0), checks=False)
 
 
 def test_a_receivers_latency_places_each_fix_where_the_car_was(tmp_path):
