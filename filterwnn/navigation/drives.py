@@ -487,6 +487,8 @@ def _csv_fixes(path, header, col, column, t, origin, lines, hdop_sigma=None):
         gs = None
     if gs is not None:
         unit = "m" if acc == "gps_sigma" else "no unit"
+        if a == "gps_lat":  # a receiver's null fixes (dropped, with a warning) need no accuracy: a tunnel's rows
+            gs = np.where(_null_fixes(ga[fix], gb[fix]) & ~(gs > 0), 1.0, gs)  # written 0,0 with it empty (stop 59)
         if np.any(~np.isfinite(gs)):
             r = int(np.flatnonzero(fix)[np.argmax(~np.isfinite(gs))])
             raise ValueError(f"{path}: column {acc!r} is empty on data row {r + 1}, which has a fix (give "

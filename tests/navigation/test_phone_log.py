@@ -267,3 +267,15 @@ def test_fixes_that_share_a_sample_are_warned_of(tmp_path, drive):
     nothing said until stop 59."""
     with pytest.warns(RuntimeWarning, match=r"\d+ GPS fix\(es\) share their nearest DR sample with an earlier fix"):
         read_drive_csv(_write(tmp_path / "pairs.csv", _fix_rows(drive, 0.0, repeat=0.03)))
+
+
+def test_a_tunnels_null_fixes_with_no_accuracy_are_dropped_not_refused(tmp_path, drive):
+    """A receiver in a tunnel writes its fixes as lat = lon = 0 with an empty accuracy; until stop 59 the reader
+    refused the drive as a fix without its accuracy. They are null fixes, dropped with the warning."""
+    cols = {c: v.copy() for c, v in drive.items()}
+    rows = np.flatnonzero(~np.isnan(cols["gps_lat"]))[100:130]
+    cols["gps_lat"][rows] = cols["gps_lon"][rows] = 0.0
+    cols["gps_sigma"][rows] = np.nan
+    with pytest.warns(RuntimeWarning, match=r"dropped 30 GPS fix\(es\) at lat = lon = 0"):
+        run = read_drive_csv(_write(tmp_path / "tunnel.csv", cols))
+    assert len(run.gps_steps) == int(np.sum(~np.isnan(drive["gps_lat"]))) - 30 - 1  # (the first row's has no step)
