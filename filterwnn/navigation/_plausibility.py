@@ -99,6 +99,11 @@ GPS_DERIVED_AT_FIX = 0.9
 GPS_DERIVED_MIN_CHANGES = 30
 GPS_DERIVED_MIN_RATIO = 5
 GPS_DERIVED_SPEED = 2.0
+#: With fixes every 2 to :data:`GPS_DERIVED_MIN_RATIO` samples (a 5 Hz receiver on a 10 Hz log: stop 59), a change
+#: beside a fix is no sign, so the changes are counted at the fix's own sample (1 in 2-4 by chance), and the values
+#: held over at least :data:`GPS_DERIVED_HELD` of the samples between fixes; with a fix on nearly every sample
+#: (fewer than this many samples per fix) there is nothing to tell.
+GPS_DERIVED_FAST_RATIO = 1.5
 #: Length-ratio mistakes: (factor the ratio shows, the likely cause).
 _SCALES = ((3.6, "speed looks like km/h (divide by 3.6 for m/s)"),
            (1 / 0.44704, "speed looks like mph (multiply by 0.44704 for m/s)"),
@@ -646,15 +651,16 @@ def _check_truth(steps, z_gps, truth, sigma, clock=None, radians=False):
                          f"{cause}{_OVERRIDE}")
 
 
-def _held_at_fixes(values, moving, near):
+def _held_at_fixes(values, moving, near, least_held=GPS_DERIVED_HELD):
     """``(changes, share at a fix, share held)`` of ``values`` over the intervals ``moving``, or None when they do
-    not look held between the fixes (:data:`GPS_DERIVED_HELD`); ``near``: the intervals beside a fix's sample."""
+    not look held between the fixes (held over ``least_held`` of them at least); ``near``: the intervals beside a
+    fix's sample."""
     changed = np.abs(np.diff(values)) > 1e-9 * (1.0 + np.abs(values[1:]))  # (a speed times stamped intervals: bits)
     n = int(np.sum(changed & moving))
     if moving.sum() < 2 * GPS_DERIVED_MIN_CHANGES or n < GPS_DERIVED_MIN_CHANGES:
         return None
     held, at = 1.0 - n / moving.sum(), float(np.sum(changed & moving & near)) / n
-    return (n, at, held) if held >= GPS_DERIVED_HELD and at >= GPS_DERIVED_AT_FIX else None
+    return (n, at, held) if held >= least_held and at >= GPS_DERIVED_AT_FIX else None
 
 
 #: What a column held between the fixes is, and what to give instead.
@@ -669,15 +675,22 @@ def _gps_derived(dt, heading, step, steps):
     a dead-reckoning sensor's. Over a real outage it stays where the last fix left it, while outages cut into such a
     drive still carry the withheld fixes' course or speed, and score better than dead reckoning could."""
     n = len(heading)
-    if len(steps) < 2 or n < 3 or np.median(np.diff(steps)) < GPS_DERIVED_MIN_RATIO:
+    if len(steps) < 2 or n < 3:
+        return
+    ratio = float(np.median(np.diff(steps)))
+    if ratio < GPS_DERIVED_FAST_RATIO:  # a fix on (nearly) every sample: nothing to tell the samples from the fixes
         return
     fix = np.zeros(n + 1, dtype=bool)
     fix[np.clip(np.asarray(steps) + 1, 0, n - 1)] = True  # the fix at step k is sample k + 1
-    near = fix[:n - 1] | fix[1:n] | fix[2:n + 1]  # a change into sample i + 1: a fix at sample i, i + 1 or i + 2
     moving = np.asarray(step, dtype=float) >= GPS_DERIVED_SPEED * dt
-    for name, values, intervals in (("heading", np.asarray(heading, dtype=float), moving),
-                                    ("speed", np.asarray(step, dtype=float), moving[1:] & moving[:-1])):
-        found = _held_at_fixes(values, intervals, near[:len(intervals)])
+    for name, values, intervals, at in (("heading", np.asarray(heading, dtype=float), moving, 1),
+                                        ("speed", np.asarray(step, dtype=float), moving[1:] & moving[:-1], 2)):
+        if ratio >= GPS_DERIVED_MIN_RATIO:  # a change into sample i + 1: a fix at sample i, i + 1 or i + 2
+            near, held = fix[:n - 1] | fix[1:n] | fix[2:n + 1], GPS_DERIVED_HELD
+        else:  # fixes every 2-4 samples (5 Hz on a 10 Hz log): changes at the fix's own sample (a step's distance,
+            # step k, is sample k + 1's speed), held over the rest
+            near, held = fix[at:n - 1 + at], GPS_DERIVED_HELD * (1.0 - 1.0 / ratio)
+        found = _held_at_fixes(values, intervals, near[:len(intervals)], held)
         if found is None:
             continue
         k, at, held = found
