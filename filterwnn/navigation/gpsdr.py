@@ -127,9 +127,11 @@ What the filter does when GPS lies (each part a public setting, on by default):
   heading bias takes the step (its variance the step's), the stop is counted
   (``n_zero_rate_stepped``), and the first is warned with its step and size.
   When :data:`ZERO_RATE_REACQUIRE_AFTER` stops in a row are ones the state could not follow
-  (rejected by the gate, or used but held at the calibration bound) and their slopes agree
+  (rejected by the gate, or used but held at the calibration bound), their slopes agree
   with each other (their spread about their weighted mean passes chi-square with ``N - 1``
-  degrees of freedom at 99.9 %), the state, not the stops, is taken to be wrong (the gyro's
+  degrees of freedom at 99.9 %) and together they fail the state's gate (their weighted mean,
+  with its variance, against the state: short stops held at the bound measure little), the
+  state, not the stops, is taken to be wrong (the gyro's
   bias changed, or it is outside the grade): its variance is raised by the squared difference
   (its cross-covariances dropped), it updates with the stops' weighted mean, and the filter
   warns with the step (``n_zero_rate_reacquired``), as the fixes re-acquire the position. The
@@ -256,7 +258,7 @@ from ..kalman.unscented import UnscentedKalmanFilter
 
 __all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS", "GATE", "REJECT_GATE", "REACQUIRE_AFTER",
            "NIS_WINDOW", "CALIBRATION_SIGMAS", "ZERO_RATE_GATE", "ZERO_RATE_MIN_SAMPLES",
-           "ZERO_RATE_REACQUIRE_AFTER", "WALK_PAST_GRADE", "WALK_MIN_SAMPLES", "WALK_BIAS", "STOP_REOPEN", "STOP_REOPEN_M", "MAX_STOP_RATE_DEG_S", "WHITENESS_WINDOW",
+           "ZERO_RATE_REACQUIRE_AFTER", "ZERO_RATE_WINDOW", "WALK_PAST_GRADE", "WALK_MIN_SAMPLES", "WALK_BIAS", "STOP_REOPEN", "STOP_REOPEN_M", "MAX_STOP_RATE_DEG_S", "WHITENESS_WINDOW",
            "FIX_GAPS", "MIN_FIX_INTERVAL",
            "CORRELATED_FIXES", "SCALE_WINDOW", "SCALE_TEST", "SCALE_WARN", "HDOP_FACTOR", "HDOP_LOWEST", "HDOP_GRADE", "SCALE_ERROR_Z", "SCALE_ERROR_MIN", "DETECTED_SCALE_SD",
            "LATENCY_Z", "LATENCY_MIN", "DETECTED_LATENCY_SD", "ODOMETER_LATENCY_Z", "ODOMETER_LATENCY_MIN",
@@ -350,8 +352,17 @@ MAX_STOP_RATE_DEG_S = MAX_DRIFT_DEG_S
 #: Stops in a row that the rate-bias state could not follow (rejected by the gate, or held at the
 #: calibration bound) after which, when their slopes agree with each other, the state re-acquires from
 #: them: the GPS fixes' :data:`REACQUIRE_AFTER`, for a sensor sampled at each stop, not each second (a
-#: gyro whose bias jumps would otherwise be rejected at every stop).
-ZERO_RATE_REACQUIRE_AFTER = 3
+#: gyro whose bias jumps would otherwise be rejected at every stop). 3 until stop 59, when two new users' gyros
+#: outside the phone grade (0.2 and 0.4 deg/s) were followed only from a drive's third stop, their first outages
+#: ending 170-222 m off; with 2, the analogs' stops (seeds 0-9, never two rejected in a row) are as before.
+ZERO_RATE_REACQUIRE_AFTER = 2
+#: The most stops the state could not follow that the re-acquisition keeps (a deque): from
+#: :data:`ZERO_RATE_REACQUIRE_AFTER` on, they re-acquire once they agree and together fail the state's gate, so that
+#: short stops held at the bound, each measuring little, add up (the phone analog with a 0.3 deg/s gyro, 72 stops
+#: of a few seconds: stop 59); the oldest leave first, and where they disagree. A stop the state followed clears
+#: them only where it contradicts them (its slope fails the gate against their weighted mean): a crawl's second
+#: at 0 m/s, whose slope says nothing, no longer does.
+ZERO_RATE_WINDOW = 6
 #: A stop's headings walk more than the grade says (a gyro noisier than its grade, :func:`stop_heading_walk`) when
 #: their variogram shows a walk past this many times the grade's angle random walk density (an angle random walk
 #: twice the grade's): an estimate from lags of a quarter of the stop has a few degrees of freedom, and passes
@@ -1287,7 +1298,7 @@ class GPSDRFilter:
         self.n_zero_rate_turned = self.n_zero_rate_stepped = 0
         self.zero_rate_steps = []
         # (slope, var) of the stops in a row that the state could not follow
-        self._zr_rejected = deque(maxlen=max(self.zero_rate_reacquire_after, 1))
+        self._zr_rejected = deque(maxlen=max(self.zero_rate_reacquire_after, ZERO_RATE_WINDOW))
         self._rate_clamped_since = None  # the step from which the bound holds the rate bias (_track_rate_hold)
 
     def _init_integrity(self, gate, reject_gate, reacquire_after, nis_window, x0):
@@ -2298,7 +2309,11 @@ class GPSDRFilter:
         if ok:
             self.n_zero_rate += 1
             if not self._rate_update(slope, var):
-                self._zr_rejected.clear()
+                if self._zr_rejected:  # followed: the stops kept so far go, where this one contradicts them
+                    s_, v_ = (np.array(a) for a in zip(*self._zr_rejected))
+                    w = 1.0 / v_
+                    if (slope - float(w @ s_ / w.sum())) ** 2 > ZERO_RATE_GATE * (var + 1.0 / w.sum()):
+                        self._zr_rejected.clear()
                 return
             # used, but the calibration bound held the state: it could not follow this stop either
         else:
@@ -2309,7 +2324,7 @@ class GPSDRFilter:
         if not self.zero_rate_reacquire_after:
             return
         self._zr_rejected.append((slope, var))
-        if len(self._zr_rejected) == self.zero_rate_reacquire_after:
+        if len(self._zr_rejected) >= self.zero_rate_reacquire_after:
             self._zero_rate_reacquire()
 
     def _stepped(self, t, k, size, sd, p):
@@ -2361,18 +2376,28 @@ class GPSDRFilter:
     def _zero_rate_reacquire(self):
         """After :attr:`zero_rate_reacquire_after` stops in a row that the state could not follow (rejected by
         the gate, or used but held at the calibration bound): when their slopes agree (their weighted spread
-        passes chi-square(N - 1) at 99.9 %), re-acquire the rate bias from their weighted mean."""
+        passes chi-square(N - 1) at 99.9 %) and their weighted mean, with its variance, fails the state's gate
+        (:data:`ZERO_RATE_GATE`: together they tell the state wrong), re-acquire the rate bias from it."""
         from scipy.stats import chi2
 
-        s, v = (np.array(a) for a in zip(*self._zr_rejected))
-        w = 1.0 / v
-        mean, var = float(w @ s / w.sum()), float(1.0 / w.sum())
-        if len(s) > 1 and float(w @ (s - mean) ** 2) > chi2.ppf(0.999, len(s) - 1):
-            return  # they disagree (creeping, a jumping heading): keep waiting, the oldest leaves the window
-        self._zr_rejected.clear()
+        while True:
+            s, v = (np.array(a) for a in zip(*self._zr_rejected))
+            w = 1.0 / v
+            mean, var = float(w @ s / w.sum()), float(1.0 / w.sum())
+            if len(s) < 2 or float(w @ (s - mean) ** 2) <= chi2.ppf(0.999, len(s) - 1):
+                break
+            self._zr_rejected.popleft()  # they disagree (creeping, a jumping heading): the oldest leaves
+        if len(s) < self.zero_rate_reacquire_after:
+            return  # keep waiting
         r = RATE
         kf = self.kf
         state, sd = float(kf.x[r]), float(np.sqrt(kf.P[r, r]))
+        if (mean - state) ** 2 <= ZERO_RATE_GATE * (var + sd * sd):
+            # together they do not tell the state wrong: stops too short to measure the bias, used but held at
+            # the bound (two 1 s stops agreeing loosely on 1.8 +- 1.9 deg/s once re-acquired a UKF to divergence);
+            # they are kept, and the next such stops add to them (up to ZERO_RATE_WINDOW)
+            return
+        self._zr_rejected.clear()
         # while the bound held the rate bias, the heading bias integrated a rate bias about (mean - state)
         # off: it lags by up to that times the time held, and is widened by it as the rate bias is by its
         # own difference (else GPS catches the heading up through the rate bias, which overshoots: a

@@ -224,6 +224,10 @@ class DRRun(NamedTuple):
         position that long after it (a fix logged between the samples of a slow DR log, or moved by a
         ``gps_latency`` finer than the samples' interval). None when every fix is at its sample's time.
         :class:`~filterwnn.navigation.gpsdr.GPSDRFilter` takes it (``gps_offset``; :meth:`gps_offset_list`).
+    reversed_by_speed : bool
+        The drive's speed is signed and told the car reversing (a sample below ``-REVERSING_SPEED``): the
+        reversal is in the dead reckoning already, and ``filterwnn study dr`` runs the filters without the
+        fixes' test for it (``GPSDRFilter(reversing_test=False)``), which could then only be wrong.
     """
 
     t: np.ndarray
@@ -236,6 +240,7 @@ class DRRun(NamedTuple):
     scenario: Scenario
     gps_sigma: Optional[np.ndarray] = None
     gps_offset: Optional[np.ndarray] = None
+    reversed_by_speed: bool = False
 
     def gps_list(self):
         """Per-step list: the fix ``(2,)`` or ``None`` (missing GPS is ``None``, never NaN)."""
@@ -530,7 +535,8 @@ def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps
     x0 = np.array([p0[0], v0 * np.sin(heading[0]), 0.0, p0[1], v0 * np.cos(heading[0]), 0.0])
     sc = _own_drive_scenario(name, n, dt, v0, heading[0], steps, sig)
     R_true = np.tile([np.deg2rad(1.0) ** 2, 0.02**2], (n - 1, 1))
-    return (dt * np.arange(1, n), x0, x_true, z_dr, steps, z_gps, R_true, sc, sig, offset)
+    backed = signed is not None and bool(np.any(signed[1:] < -REVERSING_SPEED))
+    return (dt * np.arange(1, n), x0, x_true, z_dr, steps, z_gps, R_true, sc, sig, offset, backed)
 
 
 #: How far past ``2 pi`` a heading in radians may read: a heading just under ``2 pi`` written

@@ -742,6 +742,7 @@ def test_a_signed_speed_reverses_the_car_along_its_heading():
         return r.x0[0] + np.sum(r.z_dr[:, 1] * np.sin(r.z_dr[:, 0]))
 
     assert abs(dr_end(run) - e[-1]) < 0.2 and abs(dr_end(unsigned) - e[-1]) > 26.0
+    assert run.reversed_by_speed and not unsigned.reversed_by_speed
     stands = np.maximum(v, 0.0)  # the control: the car stands instead of reversing
     es = np.r_[0.0, np.cumsum(stands[1:] * 0.1)]
     control = DRRun.from_arrays(t, heading, speed=stands, **{**gps, "east": es[fix] + noise[fix, 0],
@@ -782,6 +783,26 @@ def _errors(run, kind, **kw):
     kf = GPSDRFilter(model, kind, x0=np.r_[run.x0, model.x0[6:]], **kw)
     est = kf.batch_filter(run.z_dr, run.gps_list(), run.gps_sigma_list())
     return kf, np.hypot(est[:, 0] - run.x_true[:, 0], est[:, 3] - run.x_true[:, 3])
+
+
+def test_the_study_tests_the_fixes_for_reversing_only_where_the_speed_could_not_tell(monkeypatch):
+    """A signed speed that told the car reversing has its reversals in the dead reckoning: the fixes' test for one
+    could then only be wrong (a new user's drive with a signed speed was warned of reversing by it, stop 59), so
+    the study runs the filters without it there, and with it on an unsigned speed."""
+    import filterwnn.studies.dr._real as real
+
+    t, v, e, fix, noise = _reversing_drive()
+    gps = dict(gps_t=t[fix], east=e[fix] + noise[fix, 0], north=noise[fix, 1], gps_sigma=3.0,
+               truth=np.stack([e, np.zeros_like(e)], axis=1))
+    seen = []
+    monkeypatch.setattr(real, "_score_filter", lambda out, name, run, windows, use, settings: seen.append(
+        settings["filter_kw"]["reversing_test"]))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for speed in (v, np.abs(v)):
+            run = DRRun.from_arrays(t, np.full(len(t), np.pi / 2), speed=speed, **gps)
+            real.real_drive_outages(run, filters=("EKF-8",), length=10.0, starts=[20.0])
+    assert seen == [False, True]
 
 
 def test_the_fixes_tell_a_car_reversing_on_an_unsigned_speed():

@@ -91,7 +91,7 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         steps while the car moves; default :data:`~filterwnn.navigation.gpsdr.HEADING_JUMP_Z`; None: not looked for).
     reversing_test : bool
         :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`'s: test the fixes for the car reversing on an unsigned
-        speed (default True).
+        speed (default True; off for a drive whose signed speed told its reversals, ``run.reversed_by_speed``).
     crawl_test : bool
         :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`'s: test the fixes for the car creeping while its speed
         reads 0 (default True).
@@ -155,7 +155,8 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
                     filter_kw=dict(scale_window=scale_window, correlated_fixes=correlated_fixes,
                                    min_fix_interval=min_fix_interval, stop_reopen=stop_reopen,
                                    calibration_error_z=calibration_error_z, heading_jump_z=heading_jump_z,
-                                   reversing_test=reversing_test, crawl_test=crawl_test,
+                                   reversing_test=reversing_test and not getattr(run, "reversed_by_speed", False),
+                                   crawl_test=crawl_test,
                                    gps_sigma_floor=gps_sigma_floor, floor_on_detection=floor_on_detection))
     for name in filters:
         _score_filter(out, name, run, windows, use_gps_sigma, settings)

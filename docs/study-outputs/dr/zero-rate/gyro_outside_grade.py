@@ -8,7 +8,8 @@ Run from the repository root, one BLAS thread::
 
 Per drive: dead reckoning alone from the true start; the EKF-8 (median / max at the ends of the 20
 outages of 30 s, as ``filterwnn study dr --drive FILE --grade phone`` scores it) with the stops'
-re-acquisition (``zero_rate_reacquire_after=3``, the default) and without (0), with the stops used /
+re-acquisition (``zero_rate_reacquire_after``, the default: 3 until stop 59, then 2; the stop-58 output is
+``gyro_outside_grade_three_stops.txt``) and without (0), with the stops used /
 rejected / re-acquisitions and how many different warnings the filter gave (their first 60 characters); then the
 default's UKF-8 and SUKF-8, the values the re-acquisitions' warnings name (``--gyro-bias X``, read from their text), and the three
 kinds run again with the largest (``grade={"gyro_bias_deg_s": X}``, what ``--gyro-bias X`` passes). The analogs are
@@ -44,7 +45,7 @@ for name in sys.argv[1].split(","):
             warnings.simplefilter("ignore")
             run = read_drive_csv(h.write_csv(os.path.join(tmp, "d.csv"), h.columns(name, 0, rate_bias=bias)))
         cells, said = [], []
-        for n in (3, 0):
+        for n in (gpsdr.ZERO_RATE_REACQUIRE_AFTER, 0):
             gpsdr.GPSDRFilter.__init__.__kwdefaults__["zero_rate_reacquire_after"] = n
             res, msgs = score(run, ("DR-mech", "EKF-8"))
             ig = res["integrity"]["EKF-8"]
@@ -52,7 +53,7 @@ for name in sys.argv[1].split(","):
                          f"{ig['n_zero_rate_reacquired']} warns {len({m[:60] for m in msgs})}")
             if n:
                 said, default = msgs, res
-        gpsdr.GPSDRFilter.__init__.__kwdefaults__["zero_rate_reacquire_after"] = 3
+        gpsdr.GPSDRFilter.__init__.__kwdefaults__["zero_rate_reacquire_after"] = gpsdr.ZERO_RATE_REACQUIRE_AFTER
         res, msgs = score(run, KINDS[1:])
         default.update(res)
         said += msgs
