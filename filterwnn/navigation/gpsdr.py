@@ -126,7 +126,9 @@ What the filter does when GPS lies (each part a public setting, on by default):
   and the grade's heading noise; when there is one, the slope is fitted on either side of it, the
   heading bias takes the step (its variance the step's), the stop is counted
   (``n_zero_rate_stepped``), and the first is warned with its step and size.
-  When :data:`ZERO_RATE_REACQUIRE_AFTER` stops in a row are ones the state could not follow
+  When :data:`ZERO_RATE_REACQUIRE_AFTER` stops (:data:`ZERO_RATE_REACQUIRE_OUTSIDE` where they
+  measure a bias outside the grade's bound; up to :data:`ZERO_RATE_WINDOW` kept, cleared only by a
+  followed stop that contradicts them) are ones the state could not follow
   (rejected by the gate, or used but held at the calibration bound), their slopes agree
   with each other (their spread about their weighted mean passes chi-square with ``N - 1``
   degrees of freedom at 99.9 %) and together they fail the state's gate (their weighted mean,
@@ -258,7 +260,7 @@ from ..kalman.unscented import UnscentedKalmanFilter
 
 __all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS", "GATE", "REJECT_GATE", "REACQUIRE_AFTER",
            "NIS_WINDOW", "CALIBRATION_SIGMAS", "ZERO_RATE_GATE", "ZERO_RATE_MIN_SAMPLES",
-           "ZERO_RATE_REACQUIRE_AFTER", "ZERO_RATE_WINDOW", "WALK_PAST_GRADE", "WALK_MIN_SAMPLES", "WALK_BIAS", "STOP_REOPEN", "STOP_REOPEN_M", "MAX_STOP_RATE_DEG_S", "WHITENESS_WINDOW",
+           "ZERO_RATE_REACQUIRE_AFTER", "ZERO_RATE_REACQUIRE_OUTSIDE", "ZERO_RATE_WINDOW", "WALK_PAST_GRADE", "WALK_MIN_SAMPLES", "WALK_BIAS", "STOP_REOPEN", "STOP_REOPEN_M", "MAX_STOP_RATE_DEG_S", "WHITENESS_WINDOW",
            "FIX_GAPS", "MIN_FIX_INTERVAL",
            "CORRELATED_FIXES", "SCALE_WINDOW", "SCALE_TEST", "SCALE_WARN", "HDOP_FACTOR", "HDOP_LOWEST", "HDOP_GRADE", "SCALE_ERROR_Z", "SCALE_ERROR_MIN", "DETECTED_SCALE_SD",
            "LATENCY_Z", "LATENCY_MIN", "DETECTED_LATENCY_SD", "ODOMETER_LATENCY_Z", "ODOMETER_LATENCY_MIN",
@@ -352,10 +354,14 @@ MAX_STOP_RATE_DEG_S = MAX_DRIFT_DEG_S
 #: Stops in a row that the rate-bias state could not follow (rejected by the gate, or held at the
 #: calibration bound) after which, when their slopes agree with each other, the state re-acquires from
 #: them: the GPS fixes' :data:`REACQUIRE_AFTER`, for a sensor sampled at each stop, not each second (a
-#: gyro whose bias jumps would otherwise be rejected at every stop). 3 until stop 59, when two new users' gyros
-#: outside the phone grade (0.2 and 0.4 deg/s) were followed only from a drive's third stop, their first outages
-#: ending 170-222 m off; with 2, the analogs' stops (seeds 0-9, never two rejected in a row) are as before.
-ZERO_RATE_REACQUIRE_AFTER = 2
+#: gyro whose bias jumps would otherwise be rejected at every stop).
+ZERO_RATE_REACQUIRE_AFTER = 3
+#: ... and after this many when the stops' weighted mean lies outside the grade's calibration bound (three prior
+#: sigmas): a gyro outside its grade, which the grade's prior holds far off until then (stop 59: two new users'
+#: gyros outside the phone grade, 0.2 and 0.4 deg/s, were followed only from a drive's third stop, their first
+#: outages ending 170-222 m off). Inside the bound the third is still waited for: a fused heading that re-aligns
+#: by a little at each stop makes each stop's slope a little off, and two such agree more often than three.
+ZERO_RATE_REACQUIRE_OUTSIDE = 2
 #: The most stops the state could not follow that the re-acquisition keeps (a deque): from
 #: :data:`ZERO_RATE_REACQUIRE_AFTER` on, they re-acquire once they agree and together fail the state's gate, so that
 #: short stops held at the bound, each measuring little, add up (the phone analog with a 0.3 deg/s gyro, 72 stops
@@ -2324,7 +2330,7 @@ class GPSDRFilter:
         if not self.zero_rate_reacquire_after:
             return
         self._zr_rejected.append((slope, var))
-        if len(self._zr_rejected) >= self.zero_rate_reacquire_after:
+        if len(self._zr_rejected) >= min(self.zero_rate_reacquire_after, ZERO_RATE_REACQUIRE_OUTSIDE):
             self._zero_rate_reacquire()
 
     def _stepped(self, t, k, size, sd, p):
@@ -2387,7 +2393,9 @@ class GPSDRFilter:
             if len(s) < 2 or float(w @ (s - mean) ** 2) <= chi2.ppf(0.999, len(s) - 1):
                 break
             self._zr_rejected.popleft()  # they disagree (creeping, a jumping heading): the oldest leaves
-        if len(s) < self.zero_rate_reacquire_after:
+        outside = abs(mean) > CALIBRATION_SIGMAS * np.sqrt(self.model.P0[RATE, RATE])  # past the grade's bound
+        if len(s) < (min(self.zero_rate_reacquire_after, ZERO_RATE_REACQUIRE_OUTSIDE) if outside
+                     else self.zero_rate_reacquire_after):
             return  # keep waiting
         r = RATE
         kf = self.kf

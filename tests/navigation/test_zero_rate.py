@@ -185,16 +185,16 @@ def _bias_jump(rng, model, after, before=0.0, n_before=3, n_after=3, seconds=20.
 @pytest.mark.parametrize("kind", KINDS)
 def test_a_bias_that_jumped_is_reacquired_from_the_stops(phone, kind):
     """Three stops teach a rate bias of 0; it then jumps to 0.1 deg/s (inside the grade's 3-sigma bound
-    of 0.15). The next stop disagrees with the now-confident state and is rejected; the second in a
-    row agrees with it, so the state re-acquires from them, with a warning naming the step, the third is
-    used, and the state ends within three of its standard deviations of 0.1 deg/s. Without re-acquisition
-    it would reject every stop for ever and keep 0."""
+    of 0.15). Every later stop disagrees with the now-confident state and is rejected; the third in a
+    row agrees with the other two (inside the bound two are not enough), so the state re-acquires from
+    them, with a warning naming the step, and ends within three of its standard deviations of 0.1 deg/s.
+    Without re-acquisition it would reject every stop for ever and keep 0."""
     z = _bias_jump(np.random.default_rng(10), phone, 0.1)
-    with pytest.warns(RuntimeWarning, match=r"the last 2 stops measured the gyro rate bias at \+0\.09.* re-acquires "
+    with pytest.warns(RuntimeWarning, match=r"the last 3 stops measured the gyro rate bias at \+0\.09.* re-acquires "
                                             r"from them at step \d+"):
         f = _run(phone, z, kind)
-    assert f.n_zero_rate == 4 and f.n_zero_rate_rejected == 2 and f.n_zero_rate_reacquired == 1
-    assert [ok for *_, ok in f.zero_rate_steps] == [True] * 3 + [False] * 2 + [True]
+    assert f.n_zero_rate == 3 and f.n_zero_rate_rejected == 3 and f.n_zero_rate_reacquired == 1
+    assert [ok for *_, ok in f.zero_rate_steps] == [True] * 3 + [False] * 3
     assert abs(f.x[8] - 0.1 * DEG) < 3 * np.sqrt(f.P[8, 8]) and np.sqrt(f.P[8, 8]) < 0.01 * DEG
     assert np.all(np.linalg.eigvalsh(f.P) > 0)
     never = _run(phone, z, kind, zero_rate_reacquire_after=0)
@@ -249,7 +249,8 @@ def test_zero_rate_reacquire_after_is_checked(phone):
 
 def test_a_gyro_outside_its_grade_is_followed_with_a_warning(phone):
     """A rate bias of 0.3 deg/s against the phone grade's 0.05 (its bound: three prior sigmas, 0.15 and
-    growing slowly). The stops are rejected; the second in a row re-acquires, and the calibration bounds
+    growing slowly). The stops are rejected; the second in a row, outside the bound, re-acquires (until stop 59
+    the third), and the calibration bounds
     restart from the stops' value, so the state follows the gyro (within three of its sigmas of 0.3)
     instead of being held at the bound. Without re-acquisition it stays under the grade's bound."""
     z = _bias_jump(np.random.default_rng(12), phone, 0.3, n_before=0, n_after=4)
@@ -302,7 +303,8 @@ def test_each_calibration_bound_names_its_own_remedy(phone):
 def test_stops_held_at_the_bound_count_as_not_followed(phone):
     """Short stops (3 s) at 0.3 deg/s each pass the gate (their slopes are uncertain), so the state climbs
     until the calibration bound holds it near 0.15 deg/s. Stops the bound holds are ones the state could
-    not follow, as rejected ones are: two in a row that agree re-acquire, and the state follows the gyro."""
+    not follow, as rejected ones are: those that agree and measure a bias outside the bound re-acquire, and the
+    state follows the gyro."""
     z = _bias_jump(np.random.default_rng(13), phone, 0.3, n_before=0, n_after=20, seconds=3.0)
     with pytest.warns(RuntimeWarning, match="held at its calibration bound"):
         f = _run(phone, z)
