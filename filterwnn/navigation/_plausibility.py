@@ -268,6 +268,8 @@ def _yaw_unit_cause(heading, step, steps, z_gps, pairs):
     slope, turns = _turn_ratio(heading, step, steps, z_gps, pairs)
     if not slope < STILL_TURNS:  # (nan: too few turns)
         return ""
+    if not _turn_ratio(-heading, step, steps, z_gps, pairs)[0] < STILL_TURNS:  # it turns the wrong way: named so
+        return ""  # (a right-angle turn the wrong way reads as any ratio, and so does it magnified)
     scaled = _turn_ratio(np.unwrap(heading) * (180.0 / np.pi), step, steps, z_gps, pairs)[0]
     if not abs(np.log(scaled)) < np.log(YAW_UNIT_TOLERANCE):
         return ""

@@ -222,6 +222,12 @@ def test_a_yaw_rate_in_rad_s_given_as_deg_s_is_named_so(tmp_path, drive):
     with pytest.warns(RuntimeWarning, match="integrated from"):  # given as yaw_rate, it reads
         read_drive_csv(_write(tmp_path / "rad.csv", {**cols, "yaw_rate": cols["yaw_rate_deg"]},
                               ["time", "yaw_rate"] + COLUMNS[2:]))
+    # as ROS writes it, counter-clockwise, in yaw_rate: turning the wrong way, not a unit (a right-angle turn the
+    # wrong way reads as any turn ratio, magnified too: the first form of the unit's test named it so)
+    with pytest.raises(ValueError, match="the yaw rate turns the wrong way") as info:
+        read_drive_csv(_write(tmp_path / "ccw.csv", {**cols, "yaw_rate": -cols["yaw_rate_deg"]},
+                              ["time", "yaw_rate"] + COLUMNS[2:]))
+    assert "radians a second" not in str(info.value)
 
 
 def test_a_speed_in_km_h_with_a_drifting_gyro_is_named_as_km_h(tmp_path, drive):

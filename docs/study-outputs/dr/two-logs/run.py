@@ -7,7 +7,8 @@ speeds in km/h, an ISO 8855 yaw rate, the gear) on the logger's own clock; ``ros
 CSV per topic (/imu/data at 100 Hz, /odom at 20 Hz, /gps/fix NavSatFix at 1 Hz). Each simulator and converter is
 the helper's own, unchanged; each writes next to itself, so both are copied into ``DIR/<log>/`` and run there.
 For every variant of each converter (the right conversion and the mistakes a user makes) it says what the drive
-reader does (read, with its warnings but the stamps' jitter, or its refusal); then it scores the runs of ``RUNS``
+reader does (read, with its warnings but the stamps' jitter, but where receipt times are the variant, or its
+refusal); then it scores the runs of ``RUNS``
 as ``filterwnn study dr --drive FILE`` does, run as a user runs it, and prints each filter's median / max at the
 outage ends (m; DR-mech: dead reckoning from the true start).
 """
@@ -68,7 +69,7 @@ def main():
                 said = "REFUSED: " + str(exc).split(": ", 1)[1][:400]
         print(f"{log} {v}: {said}")
         for w in seen:
-            if "jitter" not in str(w.message) or v == "bag_receipt_stamps":
+            if not str(w.message).startswith("the sample times jitter") or v == "bag_receipt_stamps":
                 print(f"  warns: {str(w.message)[:300]}")
         sys.stdout.flush()
     for log, v, grade, extra in RUNS:
