@@ -262,14 +262,23 @@ STILL_TURNS = 0.3
 YAW_UNIT_TOLERANCE = 1.5
 
 
+def _not_turning(heading, step, steps, z_gps, pairs):
+    """``(slope, turns)`` of :func:`_turn_ratio` for a heading that follows the car's turns neither way (under
+    :data:`STILL_TURNS`), else None: one that turns the wrong way is named so elsewhere (a right-angle turn the wrong
+    way reads as any ratio, and so does it magnified)."""
+    slope, turns = _turn_ratio(heading, step, steps, z_gps, pairs)
+    if not slope < STILL_TURNS or not _turn_ratio(-heading, step, steps, z_gps, pairs)[0] < STILL_TURNS:
+        return None  # (nan: too few turns)
+    return slope, turns
+
+
 def _yaw_unit_cause(heading, step, steps, z_gps, pairs):
     """The words for a yaw rate in rad/s read as deg/s (its integral turns ``pi / 180`` of the fixes' turns, within a
     factor :data:`YAW_UNIT_TOLERANCE`), or ``""``."""
-    slope, turns = _turn_ratio(heading, step, steps, z_gps, pairs)
-    if not slope < STILL_TURNS:  # (nan: too few turns)
+    found = _not_turning(heading, step, steps, z_gps, pairs)
+    if found is None:
         return ""
-    if not _turn_ratio(-heading, step, steps, z_gps, pairs)[0] < STILL_TURNS:  # it turns the wrong way: named so
-        return ""  # (a right-angle turn the wrong way reads as any ratio, and so does it magnified)
+    slope, turns = found
     scaled = _turn_ratio(np.unwrap(heading) * (180.0 / np.pi), step, steps, z_gps, pairs)[0]
     if not abs(np.log(scaled)) < np.log(YAW_UNIT_TOLERANCE):
         return ""
@@ -283,11 +292,10 @@ def _yaw_unit_cause(heading, step, steps, z_gps, pairs):
 
 def _still_cause(heading, step, steps, z_gps, pairs):
     """The words for a heading that does not follow the car's turns (:data:`STILL_TURNS`), or ``""``."""
-    slope, turns = _turn_ratio(heading, step, steps, z_gps, pairs)
-    if not slope < STILL_TURNS:  # (nan: too few turns)
+    found = _not_turning(heading, step, steps, z_gps, pairs)
+    if found is None:
         return ""
-    if not _turn_ratio(-heading, step, steps, z_gps, pairs)[0] < STILL_TURNS:  # it turns the wrong way: named so
-        return ""
+    slope, turns = found
     return (f"over {turns} turns of the fixes' course ({TURN_DEG:g} degrees or more over {TURN_CHORDS} moving "
             f"stretches between fixes), the dead-reckoned course turned {slope:.2g} times as much: the heading does "
             "not follow the car's turns. A gyro's wrong axis reads so (a phone upright on a dashboard mount turns with "

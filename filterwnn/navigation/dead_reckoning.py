@@ -284,7 +284,7 @@ def gps_H(x, dim_x, latency=None):
 #: own calibration), a CAN odometer (1 cm per 0.1 s sample, a few per cent scale from tyres).
 #: ``gyro_bias_deg_s``: the gyro's residual rate bias (deg/s, one sigma; the rate-bias state's prior, and
 #: three of it its calibration bound). A gyro outside it (an uncalibrated MEMS gyro's turn-on bias reaches
-#: 0.7 deg/s) is followed once two stops in a row agree on it, and the filter then warns with the value to give
+#: 0.7 deg/s) is followed once two stops it could not follow agree on it, and the filter warns with the value to give
 #: (``{"gyro_bias_deg_s": 0.31}``, ``--gyro-bias 0.31``): given from the start, the outages before those
 #: stops are right too (docs/study-outputs/dr/zero-rate/RUN.md).
 #: ``gyro_scale_sd``: the gyro's scale factor error (its sensitivity tolerance, a fraction, one sigma),

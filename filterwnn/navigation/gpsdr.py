@@ -260,7 +260,8 @@ from ..kalman.unscented import UnscentedKalmanFilter
 
 __all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS", "GATE", "REJECT_GATE", "REACQUIRE_AFTER",
            "NIS_WINDOW", "CALIBRATION_SIGMAS", "ZERO_RATE_GATE", "ZERO_RATE_MIN_SAMPLES",
-           "ZERO_RATE_REACQUIRE_AFTER", "ZERO_RATE_REACQUIRE_OUTSIDE", "ZERO_RATE_WINDOW", "WALK_PAST_GRADE", "WALK_MIN_SAMPLES", "WALK_BIAS", "STOP_REOPEN", "STOP_REOPEN_M", "MAX_STOP_RATE_DEG_S", "WHITENESS_WINDOW",
+           "ZERO_RATE_REACQUIRE_AFTER", "ZERO_RATE_REACQUIRE_OUTSIDE", "ZERO_RATE_WINDOW", "WALK_PAST_GRADE",
+           "WALK_MIN_SAMPLES", "WALK_BIAS", "STOP_REOPEN", "STOP_REOPEN_M", "MAX_STOP_RATE_DEG_S", "WHITENESS_WINDOW",
            "FIX_GAPS", "MIN_FIX_INTERVAL",
            "CORRELATED_FIXES", "SCALE_WINDOW", "SCALE_TEST", "SCALE_WARN", "HDOP_FACTOR", "HDOP_LOWEST", "HDOP_GRADE", "SCALE_ERROR_Z", "SCALE_ERROR_MIN", "DETECTED_SCALE_SD",
            "LATENCY_Z", "LATENCY_MIN", "DETECTED_LATENCY_SD", "ODOMETER_LATENCY_Z", "ODOMETER_LATENCY_MIN",
@@ -1303,7 +1304,7 @@ class GPSDRFilter:
         self.n_zero_rate = self.n_zero_rate_rejected = self.n_zero_rate_held = self.n_zero_rate_reacquired = 0
         self.n_zero_rate_turned = self.n_zero_rate_stepped = 0
         self.zero_rate_steps = []
-        # (slope, var) of the stops in a row that the state could not follow
+        # (slope, var) of the kept stops that the state could not follow (_zero_rate_reacquire)
         self._zr_rejected = deque(maxlen=max(self.zero_rate_reacquire_after, ZERO_RATE_WINDOW))
         self._rate_clamped_since = None  # the step from which the bound holds the rate bias (_track_rate_hold)
 
@@ -2316,9 +2317,8 @@ class GPSDRFilter:
             self.n_zero_rate += 1
             if not self._rate_update(slope, var):
                 if self._zr_rejected:  # followed: the stops kept so far go, where this one contradicts them
-                    s_, v_ = (np.array(a) for a in zip(*self._zr_rejected))
-                    w = 1.0 / v_
-                    if (slope - float(w @ s_ / w.sum())) ** 2 > ZERO_RATE_GATE * (var + 1.0 / w.sum()):
+                    *_, mean, mean_var = self._kept_stops()
+                    if (slope - mean) ** 2 > ZERO_RATE_GATE * (var + mean_var):
                         self._zr_rejected.clear()
                 return
             # used, but the calibration bound held the state: it could not follow this stop either
@@ -2330,8 +2330,20 @@ class GPSDRFilter:
         if not self.zero_rate_reacquire_after:
             return
         self._zr_rejected.append((slope, var))
-        if len(self._zr_rejected) >= min(self.zero_rate_reacquire_after, ZERO_RATE_REACQUIRE_OUTSIDE):
+        if len(self._zr_rejected) >= self._stops_needed(outside=True):
             self._zero_rate_reacquire()
+
+    def _kept_stops(self):
+        """The kept stops' slopes, variances and weights, and their weighted mean and its variance."""
+        s, v = (np.array(a) for a in zip(*self._zr_rejected))
+        w = 1.0 / v
+        return s, v, w, float(w @ s / w.sum()), float(1.0 / w.sum())
+
+    def _stops_needed(self, outside):
+        """The stops the state could not follow that re-acquire it: :attr:`zero_rate_reacquire_after`, or at most
+        :data:`ZERO_RATE_REACQUIRE_OUTSIDE` where they measure a bias ``outside`` the grade's bound."""
+        n = self.zero_rate_reacquire_after
+        return min(n, ZERO_RATE_REACQUIRE_OUTSIDE) if outside else n
 
     def _stepped(self, t, k, size, sd, p):
         """A stop whose headings stepped (:func:`stop_heading_step`): the measured heading's offset from the
@@ -2380,22 +2392,20 @@ class GPSDRFilter:
             "errors after slow traffic (later ones are counted)", RuntimeWarning, stacklevel=4)
 
     def _zero_rate_reacquire(self):
-        """After :attr:`zero_rate_reacquire_after` stops in a row that the state could not follow (rejected by
-        the gate, or used but held at the calibration bound): when their slopes agree (their weighted spread
-        passes chi-square(N - 1) at 99.9 %) and their weighted mean, with its variance, fails the state's gate
-        (:data:`ZERO_RATE_GATE`: together they tell the state wrong), re-acquire the rate bias from it."""
+        """After :attr:`zero_rate_reacquire_after` kept stops that the state could not follow (rejected by the
+        gate, or used but held at the calibration bound; :data:`ZERO_RATE_REACQUIRE_OUTSIDE` where they measure a
+        bias outside the grade's bound): when their slopes agree (their weighted spread passes chi-square(N - 1)
+        at 99.9 %, the oldest leaving until it does) and their weighted mean, with its variance, fails the state's
+        gate (:data:`ZERO_RATE_GATE`: together they tell the state wrong), re-acquire the rate bias from it."""
         from scipy.stats import chi2
 
         while True:
-            s, v = (np.array(a) for a in zip(*self._zr_rejected))
-            w = 1.0 / v
-            mean, var = float(w @ s / w.sum()), float(1.0 / w.sum())
+            s, v, w, mean, var = self._kept_stops()
             if len(s) < 2 or float(w @ (s - mean) ** 2) <= chi2.ppf(0.999, len(s) - 1):
                 break
             self._zr_rejected.popleft()  # they disagree (creeping, a jumping heading): the oldest leaves
         outside = abs(mean) > CALIBRATION_SIGMAS * np.sqrt(self.model.P0[RATE, RATE])  # past the grade's bound
-        if len(s) < (min(self.zero_rate_reacquire_after, ZERO_RATE_REACQUIRE_OUTSIDE) if outside
-                     else self.zero_rate_reacquire_after):
+        if len(s) < self._stops_needed(outside):
             return  # keep waiting
         r = RATE
         kf = self.kf
@@ -2423,7 +2433,6 @@ class GPSDRFilter:
         self.n_zero_rate_reacquired += 1
         if self.n_zero_rate_reacquired == 1:
             deg = 180.0 / np.pi
-            outside = abs(mean) > CALIBRATION_SIGMAS * np.sqrt(self.model.P0[r, r])  # past the grade's bound
             remedy = ". " + (_gyro_bias_remedy(abs(mean)) if outside else "For a gyro whose bias moves faster than "
                                                                           "the grade allows, "
                                                                           + _instability_remedy(self.model))

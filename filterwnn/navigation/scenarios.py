@@ -412,8 +412,9 @@ class DRRun(NamedTuple):
             from ._plausibility import MAX_DT, interval_refusal
 
             t_s = _finite_1d(t, "t")
-            if len(t_s) > 1 and float(np.median(np.diff(t_s))) > MAX_DT:
-                raise ValueError(interval_refusal(float(f"{np.median(np.diff(t_s)):.9g}")))
+            median = float(f"{np.median(np.diff(t_s)):.9g}") if len(t_s) > 1 else 0.0
+            if median > MAX_DT:
+                raise ValueError(interval_refusal(median))
         integrated = yaw_rate is not None
         if integrated:
             if heading_offset:
@@ -1192,11 +1193,13 @@ def _gps_fixes(gps_t, east, north, lat, lon, gps_sigma, origin, t, dt):
     keep = (k_fix >= 0) & (gps_t <= t[-1] + 0.5 * dt)
     _fixes_outside(gps_t, (gps_t >= t[0] - 0.5 * dt) & (gps_t <= t[-1] + 0.5 * dt), t)
     k_fix, idx = np.unique(k_fix[keep], return_index=True)
-    if len(idx) < int(keep.sum()):
-        warnings.warn(f"{int(keep.sum()) - len(idx)} GPS fix(es) share their nearest DR sample with an earlier fix "
-                      f"(the first at t = {float(gps_t[keep][np.setdiff1d(np.arange(int(keep.sum())), idx)[0]]):.10g} "
-                      "s): each sample takes one fix, the first; fixes faster than the samples, or stamps that jitter "
-                      "by more than half a sample interval, do so", RuntimeWarning, stacklevel=5)
+    shared = np.ones(int(keep.sum()), dtype=bool)
+    shared[idx] = False  # the fixes a sample's first fix left out
+    if shared.any():
+        warnings.warn(f"{int(shared.sum())} GPS fix(es) share their nearest DR sample with an earlier fix "
+                      f"(the first at t = {float(gps_t[keep][shared][0]):.10g} s): each sample takes one fix, the "
+                      "first; fixes faster than the samples, or stamps that jitter by more than half a sample "
+                      "interval, do so", RuntimeWarning, stacklevel=5)
     sel = np.flatnonzero(keep)[idx]
     offset = np.round(gps_t[sel] - t[k_fix + 1], 9)  # to the nanosecond: a fix on its sample is 0 exactly
     return (k_fix, np.stack([e[sel], nn[sel]], axis=1), (gs[sel] if gps_sigma is not None else None),
@@ -1205,8 +1208,9 @@ def _gps_fixes(gps_t, east, north, lat, lon, gps_sigma, origin, t, dt):
 
 
 def _fixes_outside(gps_t, keep, t):
-    """``keep``: the fixes within half a sample interval of the samples' span. Refuse fixes whose times mostly lie outside the DR samples' (two clocks: a receiver's UTC time of day against
-    a logger's time from its start, stop 59), naming both spans; warn of the few that do (the log's ends)."""
+    """Refuse fixes whose times mostly lie outside the DR samples' (two clocks: a receiver's UTC time of day
+    against a logger's time from its start, stop 59), naming both spans; warn of the few that do (the log's ends).
+    ``keep``: the fixes within half a sample interval of the samples' span."""
     out = int(len(keep) - keep.sum())
     if not out:
         return

@@ -155,7 +155,7 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
                     filter_kw=dict(scale_window=scale_window, correlated_fixes=correlated_fixes,
                                    min_fix_interval=min_fix_interval, stop_reopen=stop_reopen,
                                    calibration_error_z=calibration_error_z, heading_jump_z=heading_jump_z,
-                                   reversing_test=reversing_test and not getattr(run, "reversed_by_speed", False),
+                                   reversing_test=reversing_test and not run.reversed_by_speed,
                                    crawl_test=crawl_test,
                                    gps_sigma_floor=gps_sigma_floor, floor_on_detection=floor_on_detection))
     for name in filters:
