@@ -24,28 +24,57 @@ import contextlib
 import re
 import warnings
 
+import numpy as np
+
 #: Steps a folded warning lists before "...".
 STEPS_LISTED = 8
 
 _STEP = re.compile(r"\bstep (\d+)")
 
 
-def fold_messages(texts):
-    """The first of ``texts`` (warnings of one kind) with a note of the others' steps."""
-    line = texts[0]
+def _time(times, k):
+    """The time of step ``k`` as text (``None`` past the end of ``times``)."""
+    if not 0 <= k < len(times):
+        return None
+    return np.format_float_positional(float(times[k]), precision=2, trim="-")
+
+
+def with_times(text, times):
+    """``text`` with each ``step N`` followed by the time of step N, ``times[N]`` (a drive's own
+    time column, in seconds): ``"at step 508"`` -> ``"at step 508 (t = 1508.2 s)"``. A step
+    past the end of ``times`` is left as it is.
+
+    >>> with_times("P lost positive definiteness at step 2", [10.0, 10.2, 10.4])
+    'P lost positive definiteness at step 2 (t = 10.4 s)'
+    """
+    def at(m):
+        t = _time(times, int(m.group(1)))
+        return m.group(0) if t is None else f"{m.group(0)} (t = {t} s)"
+    return _STEP.sub(at, text)
+
+
+def fold_messages(texts, times=None):
+    """The first of ``texts`` (warnings of one kind) with a note of the others' steps; with
+    ``times`` (the time of each step), each step named is followed by its time."""
+    line = texts[0] if times is None else with_times(texts[0], times)
     if len(texts) > 1:
         steps = [m.group(1) for m in (_STEP.search(t) for t in texts[1:]) if m]
-        listed = ", ".join(steps[:STEPS_LISTED]) + (", ..." if len(steps) > STEPS_LISTED else "")
+        shown = steps[:STEPS_LISTED]
+        listed = ", ".join(shown) + (", ..." if len(steps) > STEPS_LISTED else "")
         at = f", at step{'s' if len(steps) > 1 else ''} {listed}" if steps else ""
+        stamps = [] if times is None else [_time(times, int(k)) for k in shown]
+        if stamps and None not in stamps:
+            at += f" (t = {', '.join(stamps)}{', ...' if len(steps) > STEPS_LISTED else ''} s)"
         line += f" (and {len(texts) - 1} more like it{at})"
     return line
 
 
 @contextlib.contextmanager
-def folded_warnings(prefix=None, stacklevel=4):
+def folded_warnings(prefix=None, stacklevel=4, times=None):
     """Collect the block's warnings and re-issue them folded, one per kind, each prefixed with
     ``prefix + ": "`` when given. ``stacklevel`` 4 points them at the caller of the function whose
-    ``with`` statement this is."""
+    ``with`` statement this is. ``times``, the time of each step (a drive's ``t``), follows each
+    step the lines name with its time, so that a warning can be found in the user's own log."""
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         yield
@@ -54,5 +83,5 @@ def folded_warnings(prefix=None, stacklevel=4):
         text = str(w.message)
         groups.setdefault((w.category, _STEP.split(text)[0]), []).append(text)
     for (category, _), texts in groups.items():
-        line = fold_messages(texts)
+        line = fold_messages(texts, times)
         warnings.warn(line if prefix is None else f"{prefix}: {line}", category, stacklevel=stacklevel)

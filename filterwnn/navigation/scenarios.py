@@ -228,6 +228,10 @@ class DRRun(NamedTuple):
         The drive's speed is signed and told the car reversing (a sample below ``-REVERSING_SPEED``): the
         reversal is in the dead reckoning already, and ``filterwnn study dr`` runs the filters without the
         fixes' test for it (``GPSDRFilter(reversing_test=False)``), which could then only be wrong.
+    t_start : float
+        The time of the drive's first sample on its own clock (s; :meth:`from_arrays`' first ``t``): step ``k``
+        is at ``t_start + t[k]`` there (``filterwnn study dr --drive`` names its warnings' steps so). 0 for a
+        simulated drive.
     """
 
     t: np.ndarray
@@ -241,6 +245,7 @@ class DRRun(NamedTuple):
     gps_sigma: Optional[np.ndarray] = None
     gps_offset: Optional[np.ndarray] = None
     reversed_by_speed: bool = False
+    t_start: float = 0.0
 
     def gps_list(self):
         """Per-step list: the fix ``(2,)`` or ``None`` (missing GPS is ``None``, never NaN)."""
@@ -444,7 +449,8 @@ class DRRun(NamedTuple):
             speed = None if speed is None else _finite_1d(speed, "speed") / scale
             distance = None if distance is None else _finite_1d(distance, "distance") / scale
         return cls(*_drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps_sigma,
-                                  truth, origin, name, max_jitter, checks, intervals, np.deg2rad(off), integrated))
+                                  truth, origin, name, max_jitter, checks, intervals, np.deg2rad(off), integrated),
+                   t_start=float(np.asarray(t, dtype=float).ravel()[0]))
 
 
 def _fill_gaps(t, heading, distance, speed, truth, longest, max_jitter):
@@ -1110,6 +1116,16 @@ def _ddmm_cause(lat, lon):
             "7.038 minutes): give degrees, floor(x / 100) + (x % 100) / 60, negative for S and W")
 
 
+def _e7_cause(lat, lon):
+    """The words a refusal of lat/lon past degrees adds where every value reads as degrees times 1e7 (the integers
+    of u-blox's UBX and of many binary protocols: 481370000 is 48.137 degrees), else ``""``."""
+    a, o = np.abs(lat), np.abs(lon)
+    if not (np.all(a <= 90e7) and np.all(o <= 360e7) and np.max(np.r_[a, o]) > 1e5):
+        return ""
+    return ("; they read as degrees times 1e7 (the integers of u-blox's UBX and many binary protocols: 481370000 is "
+            "48.137 degrees): divide by 1e7")
+
+
 def _warn_speed_cutoff(speed, dt):
     """Warn when the speed reads 0 below some cutoff: at each of at least four start-ups and stops it steps
     between 0 and at least ``s`` within one sample, more than a car's speed changes in one
@@ -1156,7 +1172,8 @@ def _gps_fixes(gps_t, east, north, lat, lon, gps_sigma, origin, t, dt):
         la, lo = _finite_1d(lat, "lat", m), _finite_1d(lon, "lon", m)
         if np.any(np.abs(la) > 90) or np.any(np.abs(lo) > 360):
             raise ValueError(f"lat/lon must be degrees (|lat| <= 90, |lon| <= 360), got max |lat| = "
-                             f"{np.max(np.abs(la)):g}, max |lon| = {np.max(np.abs(lo)):g}" + _ddmm_cause(la, lo))
+                             f"{np.max(np.abs(la)):g}, max |lon| = {np.max(np.abs(lo)):g}"
+                             + (_ddmm_cause(la, lo) or _e7_cause(la, lo)))
         null = _null_fixes(la, lo)
         if null.any():  # a receiver's "no position" written as a position; as the origin it bent every fix
             if null.all():

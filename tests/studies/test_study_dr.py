@@ -251,6 +251,15 @@ def test_a_filters_warnings_name_it_and_repeats_are_summarised():
     assert lines == ["EKF-8: GPSDRFilter is inconsistent at step 5: NIS 5 (and 2 more like it, at steps 9, 12)",
                      "EKF-8: GPSDRFilter: the heading bias state ran past 3 sigma at step 7 (x) (and 1 more like it, "
                      "at step 8)"]
+    with pytest.warns(RuntimeWarning) as record:  # with the drive's time column, each step named gets its time
+        with _warnings_named("EKF-8", times=100.0 + 0.2 * np.arange(20)):
+            for step in (5, 9, 12):
+                warnings.warn(f"GPSDRFilter is inconsistent at step {step}: NIS {step}", RuntimeWarning)
+            warnings.warn("GPSDRFilter: a stop since step 3 ended at step 19, and at step 20", RuntimeWarning)
+    assert [str(w.message) for w in record] == [
+        "EKF-8: GPSDRFilter is inconsistent at step 5 (t = 101 s): NIS 5 (and 2 more like it, at steps 9, 12 "
+        "(t = 101.8, 102.4 s))",
+        "EKF-8: GPSDRFilter: a stop since step 3 (t = 100.6 s) ended at step 19 (t = 103.8 s), and at step 20"]
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # the outer filters still apply: -W error raises
         with pytest.raises(RuntimeWarning, match="^UKF-8: no step here$"):

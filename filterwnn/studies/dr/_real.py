@@ -190,7 +190,7 @@ def _score_filter(out, name, run, windows, use_gps_sigma, settings):
         f = _real_drive_filter(name, run, settings["grade"], settings["model_kwargs"], kw,
                                settings["gps_window"], settings["slow_speed"], **settings["filter_kw"])
         sig = run.gps_sigma_list() if use_gps_sigma else [None] * len(run.t)
-        with folded_warnings(name):  # each warning names its filter, repeats folded
+        with folded_warnings(name, times=run.t_start + run.t):  # each names its filter and time; repeats folded
             ends, begins = _outage_ends(f, name, run, k0s, k1s, out["starts"], run.gps_list(), sig)
         out["start_err"][name] = np.hypot(*(begins - _start_refs(run, k0s, track)).T)
         out["integrity"][name] = _integrity(f, run)
