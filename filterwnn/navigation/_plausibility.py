@@ -41,6 +41,10 @@ offset within :data:`CLOCK_OFFSET_SCAN_S` and finds the one the turns, starts an
 over the chords, at the 0.1 % level over all the offsets tried). Past :data:`CLOCK_OFFSET_WARN_S` the check
 warns with it and the reader's remedy (``gps_latency=``, ``--gps-latency``), in place of the offset and scale
 warnings, which misplaced chords cannot judge; a refusal names it first.
+
+Fixes whose reported accuracy (``gps_sigma``) has a median past :data:`SIGMA_UNIT_MIN` and
+:data:`SIGMA_PAST_SCATTER` times the fixes' own scatter about the dead-reckoned track are refused as a
+column not in metres (millimetres, centimetres, a variance): the filters would all but ignore them.
 """
 
 from __future__ import annotations
@@ -52,7 +56,8 @@ import numpy as np
 __all__ = ["check_drive", "heading_offset", "speed_scale", "clock_offset", "MAX_DT", "MAX_ANGLE_DEG",
            "MAX_DRIFT_DEG_S", "RATIO_RANGE", "HEADING_OFFSET_WARN_DEG", "SPEED_SCALE_WARN", "WARN_MIN_CHORDS",
            "CLOCK_OFFSET_WARN_S", "CLOCK_OFFSET_SCAN_S", "GPS_DERIVED_HELD", "GPS_DERIVED_AT_FIX",
-           "GPS_DERIVED_MIN_CHANGES", "GPS_DERIVED_MIN_RATIO", "GPS_DERIVED_SPEED"]
+           "GPS_DERIVED_MIN_CHANGES", "GPS_DERIVED_MIN_RATIO", "GPS_DERIVED_SPEED", "SIGMA_UNIT_MIN",
+           "SIGMA_PAST_SCATTER"]
 
 #: The longest DR sample interval (s) accepted without ``checks=False``.
 MAX_DT = 2.0
@@ -86,6 +91,15 @@ CLOCK_OFFSET_SCAN_S = 30.0
 _CLOCK_STEP_S = 0.5
 #: The level of the clock offset's test (the gate's, 0.1 %), over all the offsets tried (Bonferroni).
 _CLOCK_LEVEL = 1e-3
+#: A median ``gps_sigma`` (m) past which the fixes' own scatter is measured against it: no receiver's fixes report
+#: that, per axis, over a whole drive; a column in millimetres (a u-blox ``hAcc``) or centimetres does.
+SIGMA_UNIT_MIN = 50.0
+#: The factor by which a median ``gps_sigma`` past :data:`SIGMA_UNIT_MIN` may exceed the fixes' scatter (the
+#: median misfit of their stretches' lengths to the dead-reckoned track's, at least 1 m) before the column is
+#: refused as not in metres. A sigma in millimetres is 500-1000 times it (the 1 Hz analog: 4.0 m of fixes reporting
+#: 4000: the filters, all but ignoring them, ended its outages 81.62 / 143.69 m off, 1.63 / 6.28 with metres),
+#: a variance of honest 3-10 m fixes 2-7 times.
+SIGMA_PAST_SCATTER = 20.0
 _OVERRIDE = "; if the drive really is so, pass checks=False (command line: --no-plausibility)"
 #: A heading or speed held between the fixes and changing only at them (a receiver's course or Doppler speed
 #: logged on every DR row) is warned of where, while the car moves (:data:`GPS_DERIVED_SPEED` m/s), it is held
@@ -109,7 +123,13 @@ _SCALES = ((3.6, "speed looks like km/h (divide by 3.6 for m/s)"),
            (1 / 0.44704, "speed looks like mph (multiply by 0.44704 for m/s)"),
            (1 / 0.514444, "speed looks like knots (multiply by 0.514444 for m/s)"),
            (1 / 1000.0, "the odometer looks like kilometres (multiply by 1000 for m)"),
-           (1000.0, "time looks like milliseconds (divide by 1000 for s)"))
+           (100.0, "speed looks like cm/s (divide by 100 for m/s), or the odometer like centimetres"),
+           (1000.0, "speed looks like mm/s (divide by 1000 for m/s; u-blox's gSpeed), or the odometer like "
+                    "millimetres, or time like milliseconds (divide by 1000 for s)"))
+#: The factor within which :func:`_ratio_cause` names a mistake of :data:`_SCALES` a decade or more from 1 (those
+#: nearer 1 are named within 1.25). Between fixes a second apart the fixes' noise lengthens the chord, so a speed
+#: in mm/s shows 784 (the phone-log drive of ``tests/navigation/test_phone_log.py``), in cm/s 82.
+_DECADE_TOLERANCE = 2.0
 
 
 #: Time units a DR sample interval over :data:`MAX_DT` seconds may be written in: (the factor from seconds, the
@@ -301,6 +321,32 @@ def _still_cause(heading, step, steps, z_gps, pairs):
             "not follow the car's turns. A gyro's wrong axis reads so (a phone upright on a dashboard mount turns with "
             "the car about its y axis, one lying flat about its z: give the rate about the axis nearest the "
             "vertical), or a column that holds another angle (a pitch or a roll)")
+
+
+def _sigma_unit(heading, step, steps, z_gps, sigma):
+    """The refusal's words where the fixes' median reported ``sigma`` (m) is past :data:`SIGMA_UNIT_MIN` and
+    :data:`SIGMA_PAST_SCATTER` times their scatter, else None. The scatter is the median misfit of each
+    stretch's fix-to-fix length to the dead-reckoned displacement's (scaled by their median ratio), which a
+    heading's zero or sign does not change; the stretches are those of fixes of 3 m."""
+    if sigma is None or not sigma > SIGMA_UNIT_MIN:
+        return None
+    pairs = _chord_pairs(steps, z_gps, None, step)
+    if len(pairs) < _MIN_CHORDS:
+        return None
+    dr, gps = _chord_vectors(heading, step, steps, z_gps, pairs)
+    d, g = np.hypot(*dr.T), np.hypot(*gps.T)
+    ok = d > 0
+    if ok.sum() < _MIN_CHORDS:
+        return None
+    scale = float(np.median(g[ok] / d[ok]))
+    scatter = float(np.median(np.abs(g[ok] - scale * d[ok])))
+    if sigma <= SIGMA_PAST_SCATTER * max(scatter, 1.0):
+        return None
+    return (f"the fixes' median gps_sigma is {sigma:.4g} m, {sigma / max(scatter, 1.0):.0f} times what they scatter "
+            f"about the dead-reckoned track (over {len(pairs)} moving stretches between fixes, their lengths agree "
+            f"with it to {scatter:.2g} m, median): gps_sigma is a standard deviation per axis in metres; a column "
+            "in millimetres (a u-blox hAcc) is divided by 1000, one in centimetres by 100, and a variance (m^2) "
+            "is given as its square root")
 
 
 def _offset_fit(ang, steps, pairs, dt):
@@ -633,12 +679,14 @@ _YAW_SIGN = ("the yaw rate turns the wrong way (the fixes' course matches the he
 
 
 def _ratio_cause(ratio):
-    """The unit mistake of :data:`_SCALES` nearest the track's length ratio (within a factor 1.25), or None: mph
-    (2.24) and knots (1.94) lie within that of each other, so the nearer names it."""
+    """The unit mistake of :data:`_SCALES` nearest the track's length ratio (within a factor 1.25, or
+    :data:`_DECADE_TOLERANCE` for those a decade or more from 1), or None: mph (2.24) and knots (1.94) lie within
+    that of each other, so the nearer names it."""
     if not ratio > 0:
         return None
-    off, cause = min((abs(np.log(ratio / factor)), cause) for factor, cause in _SCALES)
-    return cause if off < np.log(1.25) else None
+    off, factor, cause = min((abs(np.log(ratio / factor)), factor, cause) for factor, cause in _SCALES)
+    tolerance = _DECADE_TOLERANCE if not 0.1 < factor < 10.0 else 1.25
+    return cause if off < np.log(tolerance) else None
 
 
 #: The refusal's cause for fixes whose latitude and longitude look like radians (:func:`check_drive`'s ``radians``).
@@ -747,12 +795,15 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
     Raises
     ------
     ValueError
-        ``dt`` over :data:`MAX_DT`, or a median chord angle over :data:`MAX_ANGLE_DEG` or
-        length ratio outside :data:`RATIO_RANGE`, with the likely cause.
+        ``dt`` over :data:`MAX_DT`, a ``sigma`` not in metres (:data:`SIGMA_PAST_SCATTER`), or a median
+        chord angle over :data:`MAX_ANGLE_DEG` or length ratio outside :data:`RATIO_RANGE`, with the likely cause.
     """
     if dt > MAX_DT:
         raise ValueError(interval_refusal(dt))
     _gps_derived(dt, heading, step, steps)
+    unit = _sigma_unit(heading, step, steps, z_gps, sigma)
+    if unit:
+        raise ValueError(f"plausibility: {unit}{_OVERRIDE}")
     pairs = _chord_pairs(steps, z_gps, sigma, step)
     clock = _clock_told(dt, heading, step, steps, z_gps, pairs)
     _check_truth(steps, z_gps, truth, 3.0 if sigma is None else float(sigma), clock, radians)
@@ -790,6 +841,8 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
         cause = _YAW_SIGN  # (a track turned the wrong way also misplaces the chords, which a clock offset is sought in)
     elif clock is not None:
         cause = _clock_remedy(*clock) + "; else check the units, the heading's zero and sign, and the fixes' frame"
+    elif not 0.1 < ratio < 10.0 and _ratio_cause(ratio):  # (chords a fix or two long: their angles are noise)
+        cause = _ratio_cause(ratio)
     elif (RATIO_RANGE[0] <= ratio <= RATIO_RANGE[1]  # (a track of another length turns elsewhere)
           and (still := _still_cause(heading, step, steps, z_gps, pairs))):
         cause = still

@@ -22,7 +22,7 @@ import numpy as np
 
 from .._validation import check_positive, check_rng
 from .dead_reckoning import wrap_angle
-from .scenarios import DRRun, Scenario, earth_radii, latlon_to_en, _null_fixes
+from .scenarios import HEADING_ROUNDING, DRRun, Scenario, earth_radii, latlon_to_en, _null_fixes
 
 __all__ = ["DRIVE_CSV_COLUMNS", "PROGRESS_BYTES", "read_drive_csv", "sample_drive_path", "load_car_drive", "CAR_DRIVE", "CAR_DRIVES",
            "MIN_ODOMETER_SPEED"]
@@ -299,7 +299,7 @@ def _read_drive_csv(path, origin, name, max_jitter, checks, progress, fill_gaps,
     else:
         every, every_lines = column, lines
     t = every_t if dr is None else every_t[dr]
-    heading = np.deg2rad(column(hname)) if hname.endswith("_deg") else column(hname)
+    heading = np.deg2rad(_degrees(path, column(hname), hname)) if hname.endswith("_deg") else column(hname)
     kw = {"distance" if dname == "odometer" else "speed": column(dname)}
     if hname.startswith("yaw_rate"):  # integrated by the arrays' reader, started at the fixes' course
         kw["yaw_rate"], heading = heading, None
@@ -374,6 +374,23 @@ def _truth_alone(cols, other):
     return have & ~other
 
 
+#: Heading units of loggers past degrees: (factor, the words).
+_HEADING_SCALES = ((1e5, "1e-5 degrees (u-blox's headMot and headVeh): divide by 1e5"),
+                   (100.0, "centidegrees: divide by 100"))
+
+
+def _degrees(path, values, name):
+    """``values`` of the ``*_deg`` column ``name``; a ``ValueError`` where a heading's exceed 360 degrees (and
+    their rounding), naming a logger's scaled integers where they fit. A yaw rate is not bounded so."""
+    big = float(np.nanmax(np.abs(values))) if name == "heading_deg" and np.isfinite(values).any() else 0.0
+    if big <= 360.0 + np.degrees(HEADING_ROUNDING):
+        return values
+    unit = next((words for factor, words in sorted(_HEADING_SCALES) if big / factor <= 360.0 + 1e-9), None)
+    raise ValueError(f"{path}: column 'heading_deg' must be degrees (|heading_deg| <= 360), got max {big:g}"
+                     + (f": it reads as {unit}" if unit else "")
+                     + "; a heading unwrapped past a turn is given modulo 360")
+
+
 def _at_times(t, every_t, values, name):
     """Column ``name`` (``values`` on every row, NaN where a row lacks it) read at the times ``t``: linearly
     interpolated between its own rows (a heading along the shorter arc; a cumulative odometer's distance, so
@@ -417,7 +434,12 @@ def _suggest(unread, wanted):
     if not hits:
         return ""
     return "; the header's " + ", ".join(f"{h!r} may be {k!r} ({DRIVE_CSV_COLUMNS[k][0]}: {DRIVE_CSV_COLUMNS[k][1]})"
-                                         for h, k in hits) + f": rename {'it' if len(hits) == 1 else 'them'} so"
+                                         + _UNITS_OF.get(h, "") for h, k in hits) + \
+        f": rename {'it' if len(hits) == 1 else 'them'} so"
+
+
+#: What a logger's column named so holds, for :func:`_suggest`.
+_UNITS_OF = {"hacc": " (u-blox's hAcc is in millimetres: divide by 1000)"}
 
 
 def _csv_layout(path, header, lines):

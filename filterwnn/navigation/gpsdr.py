@@ -223,7 +223,9 @@ What the filter does when GPS lies (each part a public setting, on by default):
   state, or a gyro bias that moved faster than the grade's bias instability allows). Where the fixes carried
   their own sigma, between :data:`HDOP_LOWEST` m and :data:`HDOP_GRADE` of the grade's, and their innovations
   are at least :data:`HDOP_FACTOR` times it, it names an HDOP read as metres (a ``gps_sigma`` column holding
-  NMEA's dilution of precision) and the ``gps_hdop`` column that reads it.
+  NMEA's dilution of precision) and the ``gps_hdop`` column that reads it. Below :data:`NIS_FAR_BELOW` it
+  warns once (``nis_low_step``) that the fixes' sigma, or the grade's, is far larger than their errors (a
+  ``gps_sigma`` in millimetres, centimetres or a variance): the filter then all but ignores them.
 
 >>> import numpy as np
 >>> from filterwnn.navigation.dead_reckoning import GPSDRModel
@@ -263,7 +265,8 @@ __all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS", "GATE", "REJ
            "ZERO_RATE_REACQUIRE_AFTER", "ZERO_RATE_REACQUIRE_OUTSIDE", "ZERO_RATE_WINDOW", "WALK_PAST_GRADE",
            "WALK_MIN_SAMPLES", "WALK_BIAS", "STOP_REOPEN", "STOP_REOPEN_M", "MAX_STOP_RATE_DEG_S", "WHITENESS_WINDOW",
            "FIX_GAPS", "MIN_FIX_INTERVAL",
-           "CORRELATED_FIXES", "SCALE_WINDOW", "SCALE_TEST", "SCALE_WARN", "HDOP_FACTOR", "HDOP_LOWEST", "HDOP_GRADE", "SCALE_ERROR_Z", "SCALE_ERROR_MIN", "DETECTED_SCALE_SD",
+           "CORRELATED_FIXES", "SCALE_WINDOW", "SCALE_TEST", "SCALE_WARN", "HDOP_FACTOR", "HDOP_LOWEST", "HDOP_GRADE",
+           "NIS_FAR_BELOW", "SCALE_ERROR_Z", "SCALE_ERROR_MIN", "DETECTED_SCALE_SD",
            "LATENCY_Z", "LATENCY_MIN", "DETECTED_LATENCY_SD", "ODOMETER_LATENCY_Z", "ODOMETER_LATENCY_MIN",
            "HEADING_BIAS", "RATE", "GYRO_SCALE", "gps_scale_mle", "gps_scale_loglik", "stop_heading_slope",
            "stop_heading_step", "stop_heading_walk", "STOP_STEP_ALPHA", "STOP_STEP_MIN_SIDE", "STOP_STEP_WITHIN",
@@ -488,6 +491,13 @@ SCALE_WARN = 9.0
 #: times it (``sqrt(mean NIS / 2)``). The analogs' honest and optimistic sigmas stay below it; fixes 1 s late
 #: in a 6-state EKF do not (2.3), but they claim the grade's accuracy.
 HDOP_FACTOR = 2.0
+#: A window's mean NIS under which the consistency monitor warns, once, that the fixes' sigma (their own, or the
+#: grade's) is far larger than their errors: 2/100, a sigma 10 times their error. The filter then all but ignores
+#: them: the 1 Hz analog's fixes given in millimetres (windows of 2e-6) ended its outages 81.62 / 143.69 m off
+#: (1.63 / 6.28 in metres), the city analog's given as variances (its first window 0.009) 18.56 / 45.00 (16.43 /
+#: 26.30). A phone's 95 % radius given as a sigma (2.45 times: about 0.33) and the variances of the 1 Hz analog's
+#: 3-5 m fixes (windows down to 0.072, and no worse outages) are not warned of.
+NIS_FAR_BELOW = 0.02
 #: See :data:`HDOP_FACTOR`: the least median sigma (m) taken for an HDOP...
 HDOP_LOWEST = 0.4
 #: ... and the most, over the grade's GPS sigma.
@@ -1124,6 +1134,9 @@ class GPSDRFilter:
         The NIS of every accepted fix (:attr:`nis_mean` is their mean; 2 when consistent).
     nis_warnings : list of int
         The steps at which the consistency monitor warned.
+    nis_low_step : int or None
+        The step at which the consistency monitor found the fixes' sigma far larger than their errors (a window's
+        mean NIS under :data:`NIS_FAR_BELOW`; warned once), None if never.
     n_zero_rate, n_zero_rate_rejected, n_zero_rate_held, n_zero_rate_reacquired, n_zero_rate_turned, n_zero_rate_stepped : int
         Stops whose heading slope updated the rate bias; stops whose slope the gate rejected; stops
         over which the heading did not change at all (held by its source, e.g. a fused or GPS-course
@@ -1329,7 +1342,7 @@ class GPSDRFilter:
         self.step, self.fix_status, self.nis = 0, "none", None
         self.n_fixes = self.n_rejected = self.n_downweighted = self.n_reacquired = self.n_repairs = 0
         self.rejected_steps, self.nis_accepted, self.nis_warnings = [], [], []
-        self._in_a_row, self._inconsistent = 0, False
+        self._in_a_row, self._inconsistent, self.nis_low_step = 0, False, None
         cal = np.arange(6, self.model.dim_x)
         self._cal = cal
         self._cal_mean = np.asarray(x0, dtype=float)[cal].copy()
@@ -2661,6 +2674,24 @@ class GPSDRFilter:
                 f"(scale_window={SCALE_WINDOW}){gyro}{self._hdop_words(mean) or self._raise_floor()}"
                 f"{self._correlated_words()}", RuntimeWarning, stacklevel=4)
         self._inconsistent = high
+        if mean < NIS_FAR_BELOW and self.nis_low_step is None:
+            self.nis_low_step = self.step
+            warnings.warn(self._far_below_words(mean), RuntimeWarning, stacklevel=4)
+
+    def _far_below_words(self, mean):
+        """The warning of a window whose mean NIS is under :data:`NIS_FAR_BELOW`: the fixes' own sigma (every fix of
+        the window carried one) or the grade's is far larger than their errors."""
+        own = np.asarray(self._own_sigma)
+        said = (f"GPSDRFilter: at step {self.step} the mean NIS of the last {self.nis_window} fixes is {mean:.2g}, "
+                f"under {NIS_FAR_BELOW:g} (2 expected): ")
+        if np.isnan(own).any():
+            return said + (f"the grade's GPS sigma ({self.model.sigma_gps:.3g} m) is far larger than the fixes' "
+                           "errors, and the filter all but ignores them: pass the receiver's accuracy as gps_sigma, "
+                           "or use a better grade")
+        return said + (f"the fixes' own sigma (median {float(np.median(own)):.4g} m) is far larger than their errors, "
+                       "and the filter all but ignores them: gps_sigma is a standard deviation per axis in metres (a "
+                       "column in millimetres, a u-blox hAcc, is divided by 1000, one in centimetres by 100, and a "
+                       "variance, m^2, is given as its square root)")
 
     def _correlated_words(self):
         """The inconsistency warning's words where the fixes' errors are correlated (``gps_correlation`` at least
