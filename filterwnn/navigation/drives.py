@@ -22,7 +22,7 @@ import numpy as np
 
 from .._validation import check_positive, check_rng
 from .dead_reckoning import wrap_angle
-from .scenarios import HEADING_ROUNDING, DRRun, Scenario, earth_radii, latlon_to_en, _null_fixes
+from .scenarios import HEADING_ROUNDING, MAX_YAW_RATE, DRRun, Scenario, earth_radii, latlon_to_en, _null_fixes
 
 __all__ = ["DRIVE_CSV_COLUMNS", "PROGRESS_BYTES", "read_drive_csv", "sample_drive_path", "load_car_drive", "CAR_DRIVE", "CAR_DRIVES",
            "MIN_ODOMETER_SPEED"]
@@ -379,10 +379,39 @@ _HEADING_SCALES = ((1e5, "1e-5 degrees (u-blox's headMot and headVeh): divide by
                    (100.0, "centidegrees: divide by 100"))
 
 
+#: u-blox ESF-MEAS's gyro field: a signed 24-bit integer of 2^-12 deg/s, so its negative rates read unsigned lie
+#: just under 4096 deg/s.
+_ESF_GYRO_LSB = 2.0**-12
+_ESF_GYRO_WRAP = 2.0**24 * _ESF_GYRO_LSB
+
+
+def _rate_degrees(path, values):
+    """``values`` of a ``yaw_rate_deg`` column; a ``ValueError`` past what a car turns (``MAX_YAW_RATE``, 3 rad/s),
+    naming u-blox ESF-MEAS's raw gyro field (2^-12 deg/s) or its negative rates read unsigned where they fit."""
+    big = float(np.nanmax(np.abs(values))) if np.isfinite(values).any() else 0.0
+    limit = np.degrees(MAX_YAW_RATE)
+    if big <= limit:
+        return values
+    v = values[np.isfinite(values)]
+    if _ESF_GYRO_WRAP - limit <= big <= _ESF_GYRO_WRAP and abs(float(np.median(v))) <= limit:  # (mostly a car's)
+        unit = (f"a signed 24-bit field (u-blox ESF-MEAS's gyro, 2^-12 deg/s) read unsigned: its negative rates lie "
+                f"just under {_ESF_GYRO_WRAP:g} deg/s; subtract {_ESF_GYRO_WRAP:g} from the values past "
+                f"{_ESF_GYRO_WRAP / 2:g}")
+    elif big * _ESF_GYRO_LSB <= limit:
+        unit = f"u-blox ESF-MEAS's raw gyro field, in 2^-12 deg/s: divide by {1 / _ESF_GYRO_LSB:g}"
+    else:
+        unit = None
+    raise ValueError(f"{path}: column 'yaw_rate_deg' is in deg/s, and a car turns at under {limit:.0f} deg/s "
+                     f"({MAX_YAW_RATE:g} rad/s); got max {big:g}" + (f": it reads as {unit}" if unit else ""))
+
+
 def _degrees(path, values, name):
     """``values`` of the ``*_deg`` column ``name``; a ``ValueError`` where a heading's exceed 360 degrees (and
-    their rounding), naming a logger's scaled integers where they fit. A yaw rate is not bounded so."""
-    big = float(np.nanmax(np.abs(values))) if name == "heading_deg" and np.isfinite(values).any() else 0.0
+    their rounding), or a yaw rate's what a car turns (:func:`_rate_degrees`), naming a logger's scaled integers
+    where they fit."""
+    if name == "yaw_rate_deg":
+        return _rate_degrees(path, values)
+    big = float(np.nanmax(np.abs(values))) if np.isfinite(values).any() else 0.0
     if big <= 360.0 + np.degrees(HEADING_ROUNDING):
         return values
     unit = next((words for factor, words in sorted(_HEADING_SCALES) if big / factor <= 360.0 + 1e-9), None)

@@ -355,8 +355,8 @@ class DRRun(NamedTuple):
             before its position. Default 0. Unmodelled, 0.3 s at 23 m/s puts every fix 7 m behind the
             car along its track. An unknown latency of a second or two is what the GPS/DR filter's
             latency monitor estimates (``GPSDRFilter(latency_on_detection=True)``, the default); one
-            past 3 s (GPS time against UTC is 18 s) the plausibility checks find from the turns, starts
-            and stops, with a warning that names its value.
+            past 1 s (GPS time against UTC is 18 s) the plausibility checks find from the turns, starts
+            and stops, with a warning that names its value (the filters take it only once their monitor has).
         odometer_latency : float
             Seconds by which each ``speed`` (or ``distance``) sample is older than its time stamp (a CAN
             bus's or a logger's latency, from the vehicle's data sheet): the odometer is read at
@@ -521,7 +521,7 @@ def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps
     started = None
     if integrated:
         heading, started = _yaw_start(dt, heading, step, steps, z_gps, None if sig is None or not len(sig) else
-                                      float(np.median(sig)))
+                                      float(np.median(sig)), checks)
     z_dr = np.stack([wrap_angle(heading[1:]), step], axis=1)
     x_true = None
     if truth is not None:
@@ -580,16 +580,24 @@ def _integrate_yaw(t, yaw_rate, distance=None, speed=None):
     return wrap_angle(np.concatenate([[0.0], np.cumsum(0.5 * (rate[1:] + rate[:-1]) * np.diff(t))]))
 
 
-def _yaw_start(dt, heading, step, steps, z_gps, sigma):
+def _yaw_start(dt, heading, step, steps, z_gps, sigma, checks=True):
     """The integrated heading started at the fixes' course: less the offset the moving stretches between fixes
     give at the first of them (:func:`~filterwnn.navigation._plausibility.heading_offset`'s line), and the words of
     the warning that names it (given once the drive has passed its checks); ValueError with fewer than
-    ``YAW_START_CHORDS`` stretches."""
-    from ._plausibility import _chord_pairs, heading_offset
+    ``YAW_START_CHORDS`` stretches, or (with ``checks``) a ``sigma`` not in metres, whose stretches are too long to
+    count (:func:`~filterwnn.navigation._plausibility._sigma_unit`)."""
+    from ._plausibility import _OVERRIDE, _chord_pairs, _sigma_unit, heading_offset
 
     pairs = _chord_pairs(steps, z_gps, sigma, step) if len(steps) else []
     n = len(pairs)
     fit = heading_offset(dt, heading, step, steps, z_gps, sigma, pairs) if n >= YAW_START_CHORDS else None
+    unit = fit is None and _sigma_unit(heading, step, steps, z_gps, sigma)  # (a sigma in mm: stretches of km)
+    if unit and checks:
+        raise ValueError(f"plausibility: {unit}{_OVERRIDE}")
+    if unit:  # past the checks: the stretches of fixes of 3 m (the filter warns of the sigma)
+        pairs = _chord_pairs(steps, z_gps, None, step)
+        n = len(pairs)
+        fit = heading_offset(dt, heading, step, steps, z_gps, None, pairs) if n >= YAW_START_CHORDS else None
     if fit is None:
         raise ValueError(f"a yaw rate gives the heading but for its start, which the fixes' course gives: the drive has "
                          f"{n} moving stretch(es) between fixes, fewer than {YAW_START_CHORDS}; give the heading "
@@ -662,7 +670,7 @@ def _sample_grid(t, max_jitter):
         k = int(np.argmax(dts <= 0)) + 1
         raise ValueError(f"t must be strictly increasing; t[{k}] = {float(t[k])!r} <= t[{k - 1}] = {float(t[k - 1])!r}"
                          + ((_rounded_stamps(t, dts) or ": a sample logged twice? drop the repeated rows")
-                            if dts[k - 1] == 0 else ""))
+                            if dts[k - 1] == 0 else _wrap_cause(dts[k - 1], t)))
     dt = float(f"{np.median(dts):.9g}")  # 0.1, not 0.09999999999999787
     # times far from 0 (Unix epoch seconds, 1.7e9) are stored to 2.4e-7 s: round dt to what they resolve
     # (0.1, not 0.0999999046, which made 1 Hz fixes look faster than one a second)
@@ -674,14 +682,38 @@ def _sample_grid(t, max_jitter):
         if not np.any(gap):  # stamps that jitter independently, no sample dropped: read, each over its interval
             return dts, dt, stamps
         k = int(np.argmax(np.where(gap, jit, -1.0))) + 1  # the longest
-        raise ValueError(f"t must be evenly sampled (each interval within {max_jitter:.0%} of the median "
-                         f"{dt:g} s); t[{k}] - t[{k - 1}] = {dts[k - 1]:g} s: resample the drive first"
+        said = (f"t must be evenly sampled (each interval within {max_jitter:.0%} of the median {dt:g} s); "
+                f"t[{k}] - t[{k - 1}] = {dts[k - 1]:g} s")
+        wrapped = _wrap_cause(dts[k - 1], t)
+        if wrapped:
+            raise ValueError(said + wrapped)
+        raise ValueError(said + ": resample the drive first"
                          + (" (dropped samples: fill_gaps=SECONDS, or --fill-gaps, interpolates gaps up to that "
                             f"long; this one needs {_ceil_to(dts[k - 1], dt):g})" if round(dts[k - 1] / dt) >= 2 else "")
                          + ("; dead reckoning interpolated over so long is a guess: for a log that paused, split the "
                             f"file before t[{k}] and run each part as a drive of its own (the command takes several "
                             "--drive)" if dts[k - 1] > LONG_GAP_S else ""))
     return dts, dt, stamps
+
+
+#: The ranges (s) of the clocks that wrap in drive logs, and the words that name them.
+_CLOCK_WRAPS = ((2.0**32 / 1e3, "a 32-bit millisecond counter (u-blox ESF's sTtag, a logger's tick)"),
+                (2.0**32 / 1e6, "a 32-bit microsecond counter"),
+                (604800.0, "the GPS week's seconds (iTOW, the time of week, at the week's end)"),
+                (86400.0, "a time of day (past midnight)"))
+
+
+def _wrap_cause(interval, t):
+    """The refusal's words for a step of the sample times by about a wrapping clock's range (:data:`_CLOCK_WRAPS`,
+    either way, give or take the drive's own span), else ``""``."""
+    span = float(np.max(t) - np.min(t)) - abs(float(interval))
+    for period, what in _CLOCK_WRAPS:
+        if abs(abs(float(interval)) - period) <= max(span, 0.0) + 1.0 and abs(float(interval)) > 0.5 * period:
+            remedy = (f"add {period:.10g} s to every time after it" if interval < 0 else
+                      f"the rows run across the wrap out of order (sorted by the wrapped time?): unwrap the clock, adding "
+                      f"{period:.10g} s to the times after it wrapped, before sorting")
+            return f": a step of {float(interval):+.7g} s, about {period:.10g} s, is {what} that wrapped; {remedy}"
+    return ""
 
 
 def _dropped(dts, dt):
@@ -700,6 +732,10 @@ def _dropped(dts, dt):
 LONG_GAP_S = 2.0
 
 
+#: A fall of a cumulative odometer (m) past which its refusal names a counter that wrapped or was reset.
+ODOMETER_WRAP_M = 100.0
+
+
 def _odometer_steps(distance, speed, dts, n):
     """The distance of each step and the first speed, from a cumulative odometer or speeds."""
     if (distance is None) == (speed is None):
@@ -710,8 +746,12 @@ def _odometer_steps(distance, speed, dts, n):
         dd = np.diff(distance)
         if np.any(dd < 0):
             k = int(np.argmax(dd < 0)) + 1
+            drop = float(distance[k - 1] - distance[k])
             raise ValueError(f"distance must be non-decreasing (a cumulative odometer); distance[{k}] = "
-                             f"{float(distance[k])!r} < distance[{k - 1}] = {float(distance[k - 1])!r}")
+                             f"{float(distance[k])!r} < distance[{k - 1}] = {float(distance[k - 1])!r}"
+                             + (f": a drop of {drop:.6g} m, a counter that wrapped (add its range back to every "
+                                "reading after it, before scaling to metres: 2^23 ticks for u-blox ESF's wheel ticks) "
+                                "or an odometer reset" if drop > ODOMETER_WRAP_M else ""))
         speed = _odometer_speed(dd, dts)
         return speed[1:] * dts, speed[0]
     speed = _finite_1d(speed, "speed", n)
@@ -1224,6 +1264,10 @@ def _gps_fixes(gps_t, east, north, lat, lon, gps_sigma, origin, t, dt):
 
 
 
+#: The units of fixes' times that :func:`_fixes_outside` names: (factor to seconds, the unit).
+_TIME_FACTORS = ((1e3, "milliseconds"), (1e6, "microseconds"), (1e9, "nanoseconds"))
+
+
 def _fixes_outside(gps_t, keep, t):
     """Refuse fixes whose times mostly lie outside the DR samples' (two clocks: a receiver's UTC time of day
     against a logger's time from its start, stop 59), naming both spans; warn of the few that do (the log's ends).
@@ -1234,6 +1278,13 @@ def _fixes_outside(gps_t, keep, t):
     spans = (f"the fixes' times run {float(gps_t.min()):.10g}-{float(gps_t.max()):.10g} s, the DR samples' "
              f"{float(t[0]):.10g}-{float(t[-1]):.10g} s")
     if out > 0.5 * len(keep):
+        for factor, unit in _TIME_FACTORS:  # the fixes' times in another unit than the samples'
+            scaled = gps_t / factor
+            inside = (scaled >= t[0] - 1.0) & (scaled <= t[-1] + 1.0)
+            if inside.mean() > 0.5 and np.ptp(scaled) >= 0.5 * (t[-1] - t[0]):  # (and as long as the drive)
+                raise ValueError(f"{out} of the {len(keep)} GPS fixes lie outside the DR samples' time span ({spans}): "
+                                 f"the fixes' times look like {unit} (divided by {factor:g} they lie in the samples' "
+                                 f"span; u-blox's iTOW is in milliseconds): give them in seconds")
         raise ValueError(f"{out} of the {len(keep)} GPS fixes lie outside the DR samples' time span ({spans}): the "
                          "fixes and the samples are on two clocks (a receiver's UTC time of day, or seconds of the GPS "
                          "week, against a logger's time from its start?): put both on one clock (the logger's start "

@@ -93,5 +93,5 @@ if __name__ == "__main__":
                 starts = t_pre + np.linspace(0.0, dur - 31.0, 20)
                 res = real_drive_outages(run, filters=("EKF-8",), grade="phone", use_gps_sigma=True, starts=starts)
             e = res["EKF-8"]
-            print(f"{name} seed {seed} prefix {km:>3} km bearing {bearing:>2}: EKF-8 {np.median(e):6.2f} / {e.max():6.2f}"
+            print(f"{name} seed {seed} prefix {km:>3} km bearing {bearing:>2}{' (in metres, no map)' if FLAT else ''}: EKF-8 {np.median(e):6.2f} / {e.max():6.2f}"
                   f"  ({len(w)} warnings{': ' + str(w[0].message)[:150] if w else ''})", flush=True)
