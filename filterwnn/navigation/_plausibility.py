@@ -687,8 +687,8 @@ def _per_sample_cause(ratio, dt):
     if not (ratio > 0 and dt <= 0.5 and abs(np.log(ratio / dt)) < np.log(1.25)):
         return None
     return (f"the dead-reckoned track is the sample interval ({dt:g} s) times the fixes' distance: the speed column "
-            f"holds each sample's distance (m), not m/s; divide it by the interval, or give its cumulative sum as "
-            f"the odometer column")
+            "holds each sample's distance (m), not m/s; divide it by the interval, or give its cumulative sum as "
+            "the odometer column")
 
 
 def _ratio_cause(ratio):

@@ -462,9 +462,9 @@ def _suggest(unread, wanted):
     hits = [(h, k) for h, k in unread.items() if k in wanted]
     if not hits:
         return ""
-    return "; the header's " + ", ".join(f"{h!r} may be {k!r} ({DRIVE_CSV_COLUMNS[k][0]}: {DRIVE_CSV_COLUMNS[k][1]})"
-                                         + _UNITS_OF.get(h, "") for h, k in hits) + \
-        f": rename {'it' if len(hits) == 1 else 'them'} so"
+    said = ", ".join(f"{h!r} may be {k!r} ({DRIVE_CSV_COLUMNS[k][0]}: {DRIVE_CSV_COLUMNS[k][1]}){_UNITS_OF.get(h, '')}"
+                     for h, k in hits)
+    return f"; the header's {said}: rename {'it' if len(hits) == 1 else 'them'} so"
 
 
 #: What a logger's column named so holds, for :func:`_suggest`.

@@ -234,3 +234,13 @@ def test_a_clock_two_seconds_off_is_warned_of_with_the_setting(tmp_path):
             read_drive_csv(path)
         said = [str(w.message) for w in record if "a clock offset between the fixes" in str(w.message)]
         assert bool(said) == want and (not want or "gps_latency=2 " in said[0]), (late, said)
+
+
+def test_an_hacc_column_is_named_back_as_gps_sigma_with_its_millimetres(tmp_path):
+    """A column named as u-blox names the accuracy, ``hAcc``, is not read; the warning names ``gps_sigma`` for it, and
+    its millimetres."""
+    cols = _ublox_cols(120.0)
+    cols["hAcc"] = cols.pop("gps_sigma") * 1000.0
+    with pytest.warns(RuntimeWarning, match=r"'hacc' may be 'gps_sigma' .*\(u-blox's hAcc is in millimetres: divide "
+                                            r"by 1000\): rename it so"):
+        read_drive_csv(_write(tmp_path / "d.csv", cols))
