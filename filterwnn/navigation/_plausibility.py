@@ -103,6 +103,10 @@ SIGMA_UNIT_MIN = 50.0
 #: 4000: the filters, all but ignoring them, ended its outages 81.62 / 143.69 m off, 1.63 / 6.28 with metres),
 #: a variance of honest 3-10 m fixes 2-7 times.
 SIGMA_PAST_SCATTER = 20.0
+#: What the reader's refusal and the filter's warning of a ``gps_sigma`` not in metres say to do.
+SIGMA_UNITS_REMEDY = ("gps_sigma is a standard deviation per axis in metres; a column in millimetres (a u-blox "
+                      "hAcc) is divided by 1000, one in centimetres by 100, and a variance (m^2) is given as its "
+                      "square root")
 _OVERRIDE = "; if the drive really is so, pass checks=False (command line: --no-plausibility)"
 #: A heading or speed held between the fixes and changing only at them (a receiver's course or Doppler speed
 #: logged on every DR row) is warned of where, while the car moves (:data:`GPS_DERIVED_SPEED` m/s), it is held
@@ -129,9 +133,13 @@ _SCALES = ((3.6, "speed looks like km/h (divide by 3.6 for m/s)"),
            (100.0, "speed looks like cm/s (divide by 100 for m/s), or the odometer like centimetres"),
            (1000.0, "speed looks like mm/s (divide by 1000 for m/s; u-blox's gSpeed), or the odometer like "
                     "millimetres, or time like milliseconds (divide by 1000 for s)"))
-#: The factor within which :func:`_ratio_cause` names a mistake of :data:`_SCALES` a decade or more from 1 (those
-#: nearer 1 are named within 1.25). Between fixes a second apart the fixes' noise lengthens the chord, so a speed
-#: in mm/s shows 784 (the phone-log drive of ``tests/navigation/test_phone_log.py``), in cm/s 82.
+#: The factor within which :func:`_ratio_cause` names a mistake of :data:`_SCALES` near 1, and
+#: :func:`_per_sample_cause` a length ratio at the sample interval.
+_UNIT_TOLERANCE = 1.25
+#: The factor within which :func:`_ratio_cause` names a mistake of :data:`_SCALES` a decade or more from 1
+#: (:func:`_decade_off`; those nearer 1 are named within :data:`_UNIT_TOLERANCE`). Between fixes a second apart
+#: the fixes' noise lengthens the chord, so a speed in mm/s shows 784 (the phone-log drive of
+#: ``tests/navigation/test_phone_log.py``), in cm/s 82.
 _DECADE_TOLERANCE = 2.0
 
 
@@ -347,9 +355,7 @@ def _sigma_unit(heading, step, steps, z_gps, sigma):
         return None
     return (f"the fixes' median gps_sigma is {sigma:.4g} m, {sigma / max(scatter, 1.0):.0f} times what they scatter "
             f"about the dead-reckoned track (over {len(pairs)} moving stretches between fixes, their lengths agree "
-            f"with it to {scatter:.2g} m, median): gps_sigma is a standard deviation per axis in metres; a column "
-            "in millimetres (a u-blox hAcc) is divided by 1000, one in centimetres by 100, and a variance (m^2) "
-            "is given as its square root")
+            f"with it to {scatter:.2g} m, median): {SIGMA_UNITS_REMEDY}")
 
 
 def _offset_fit(ang, steps, pairs, dt):
@@ -681,10 +687,15 @@ _YAW_SIGN = ("the yaw rate turns the wrong way (the fixes' course matches the he
              "counter-clockwise)")
 
 
+def _decade_off(ratio):
+    """Whether a length ratio is a decade or more off 1 (a unit's factor of 10 or more)."""
+    return not 0.1 < ratio < 10.0
+
+
 def _per_sample_cause(ratio, dt):
     """The refusal's cause for a track whose length ratio is the sample interval ``dt`` (within 1.25; at most 0.5 s):
     a speed column holding each sample's distance (a tick count's difference scaled to metres), else None."""
-    if not (ratio > 0 and dt <= 0.5 and abs(np.log(ratio / dt)) < np.log(1.25)):
+    if not (ratio > 0 and dt <= 0.5 and abs(np.log(ratio / dt)) < np.log(_UNIT_TOLERANCE)):
         return None
     return (f"the dead-reckoned track is the sample interval ({dt:g} s) times the fixes' distance: the speed column "
             "holds each sample's distance (m), not m/s; divide it by the interval, or give its cumulative sum as "
@@ -698,7 +709,7 @@ def _ratio_cause(ratio):
     if not ratio > 0:
         return None
     off, factor, cause = min((abs(np.log(ratio / factor)), factor, cause) for factor, cause in _SCALES)
-    tolerance = _DECADE_TOLERANCE if not 0.1 < factor < 10.0 else 1.25
+    tolerance = _DECADE_TOLERANCE if _decade_off(factor) else _UNIT_TOLERANCE
     return cause if off < np.log(tolerance) else None
 
 
@@ -856,7 +867,7 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
         cause = _clock_remedy(*clock) + "; else check the units, the heading's zero and sign, and the fixes' frame"
     elif per_sample := _per_sample_cause(ratio, dt):
         cause = per_sample
-    elif not 0.1 < ratio < 10.0 and not (radians and ratio > 10.0):  # (chords a fix or two long, or many: the
+    elif _decade_off(ratio) and not (radians and ratio > 10.0):  # (chords a fix or two long, or many: the
         # angle says nothing then; lat and lon in radians, read as degrees, lie that much closer together)
         cause = _ratio_cause(ratio) or (
             f"the speed or the odometer is in another unit: the dead-reckoned track is {ratio:.3g} times the fixes' "

@@ -374,9 +374,9 @@ def _truth_alone(cols, other):
     return have & ~other
 
 
-#: Heading units of loggers past degrees: (factor, the words).
-_HEADING_SCALES = ((1e5, "1e-5 degrees (u-blox's headMot and headVeh): divide by 1e5"),
-                   (100.0, "centidegrees: divide by 100"))
+#: Heading units of loggers past degrees, the smallest factor first: (factor, the words).
+_HEADING_SCALES = ((100.0, "centidegrees: divide by 100"),
+                   (1e5, "1e-5 degrees (u-blox's headMot and headVeh): divide by 1e5"))
 
 
 #: u-blox ESF-MEAS's gyro field: a signed 24-bit integer of 2^-12 deg/s, so its negative rates read unsigned lie
@@ -385,10 +385,10 @@ _ESF_GYRO_LSB = 2.0**-12
 _ESF_GYRO_WRAP = 2.0**24 * _ESF_GYRO_LSB
 
 
-def _rate_degrees(path, values):
-    """``values`` of a ``yaw_rate_deg`` column; a ``ValueError`` past what a car turns (``MAX_YAW_RATE``, 3 rad/s),
-    naming u-blox ESF-MEAS's raw gyro field (2^-12 deg/s) or its negative rates read unsigned where they fit."""
-    big = float(np.nanmax(np.abs(values))) if np.isfinite(values).any() else 0.0
+def _rate_degrees(path, values, big):
+    """``values`` of a ``yaw_rate_deg`` column, whose largest magnitude is ``big``; a ``ValueError`` past what a car
+    turns (``MAX_YAW_RATE``, 3 rad/s), naming u-blox ESF-MEAS's raw gyro field (2^-12 deg/s) or its negative rates
+    read unsigned where they fit."""
     limit = np.degrees(MAX_YAW_RATE)
     if big <= limit:
         return values
@@ -409,12 +409,12 @@ def _degrees(path, values, name):
     """``values`` of the ``*_deg`` column ``name``; a ``ValueError`` where a heading's exceed 360 degrees (and
     their rounding), or a yaw rate's what a car turns (:func:`_rate_degrees`), naming a logger's scaled integers
     where they fit."""
-    if name == "yaw_rate_deg":
-        return _rate_degrees(path, values)
     big = float(np.nanmax(np.abs(values))) if np.isfinite(values).any() else 0.0
+    if name == "yaw_rate_deg":
+        return _rate_degrees(path, values, big)
     if big <= 360.0 + np.degrees(HEADING_ROUNDING):
         return values
-    unit = next((words for factor, words in sorted(_HEADING_SCALES) if big / factor <= 360.0 + 1e-9), None)
+    unit = next((words for factor, words in _HEADING_SCALES if big / factor <= 360.0 + 1e-9), None)
     raise ValueError(f"{path}: column 'heading_deg' must be degrees (|heading_deg| <= 360), got max {big:g}"
                      + (f": it reads as {unit}" if unit else "")
                      + "; a heading unwrapped past a turn is given modulo 360")

@@ -254,7 +254,7 @@ from .._linalg import insert_state, repair_pd
 from .._warnings import folded_warnings
 from ..metrics import integrated_autocorrelation
 from .._validation import as_state, check_choice, check_covariance, check_finite, check_positive, check_positive_int, check_scale
-from ._plausibility import MAX_DRIFT_DEG_S
+from ._plausibility import MAX_DRIFT_DEG_S, SIGMA_UNITS_REMEDY
 from .dead_reckoning import GPSDRModel, _rate_walk_instability, dr_residual, gps_H, gps_hx, wrap_angle
 from ..kalman.presets import make_points
 from ..models import from_model
@@ -2703,9 +2703,7 @@ class GPSDRFilter:
                            "errors, and the filter all but ignores them: pass the receiver's accuracy as gps_sigma, "
                            "or use a better grade")
         return said + (f"the fixes' own sigma (median {float(np.median(own)):.4g} m) is far larger than their errors, "
-                       "and the filter all but ignores them: gps_sigma is a standard deviation per axis in metres (a "
-                       "column in millimetres, a u-blox hAcc, is divided by 1000, one in centimetres by 100, and a "
-                       "variance, m^2, is given as its square root)")
+                       f"and the filter all but ignores them: {SIGMA_UNITS_REMEDY}")
 
     def _correlated_words(self):
         """The inconsistency warning's words where the fixes' errors are correlated (``gps_correlation`` at least

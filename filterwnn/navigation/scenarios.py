@@ -706,13 +706,15 @@ _CLOCK_WRAPS = ((2.0**32 / 1e3, "a 32-bit millisecond counter (u-blox ESF's sTta
 def _wrap_cause(interval, t):
     """The refusal's words for a step of the sample times by about a wrapping clock's range (:data:`_CLOCK_WRAPS`,
     either way, give or take the drive's own span), else ``""``."""
-    span = float(np.max(t) - np.min(t)) - abs(float(interval))
+    interval = float(interval)
+    size = abs(interval)
+    span = max(float(np.max(t) - np.min(t)) - size, 0.0)
     for period, what in _CLOCK_WRAPS:
-        if abs(abs(float(interval)) - period) <= max(span, 0.0) + 1.0 and abs(float(interval)) > 0.5 * period:
+        if abs(size - period) <= span + 1.0 and size > 0.5 * period:
             remedy = (f"add {period:.10g} s to every time after it" if interval < 0 else
                       f"the rows run across the wrap out of order (sorted by the wrapped time?): unwrap the clock, adding "
                       f"{period:.10g} s to the times after it wrapped, before sorting")
-            return f": a step of {float(interval):+.7g} s, about {period:.10g} s, is {what} that wrapped; {remedy}"
+            return f": a step of {interval:+.7g} s, about {period:.10g} s, is {what} that wrapped; {remedy}"
     return ""
 
 
@@ -1264,10 +1266,6 @@ def _gps_fixes(gps_t, east, north, lat, lon, gps_sigma, origin, t, dt):
 
 
 
-#: The units of fixes' times that :func:`_fixes_outside` names: (factor to seconds, the unit).
-_TIME_FACTORS = ((1e3, "milliseconds"), (1e6, "microseconds"), (1e9, "nanoseconds"))
-
-
 def _fixes_outside(gps_t, keep, t):
     """Refuse fixes whose times mostly lie outside the DR samples' (two clocks: a receiver's UTC time of day
     against a logger's time from its start, stop 59), naming both spans; warn of the few that do (the log's ends).
@@ -1278,7 +1276,9 @@ def _fixes_outside(gps_t, keep, t):
     spans = (f"the fixes' times run {float(gps_t.min()):.10g}-{float(gps_t.max()):.10g} s, the DR samples' "
              f"{float(t[0]):.10g}-{float(t[-1]):.10g} s")
     if out > 0.5 * len(keep):
-        for factor, unit in _TIME_FACTORS:  # the fixes' times in another unit than the samples'
+        from ._plausibility import _TIME_UNITS
+
+        for factor, unit in _TIME_UNITS:  # the fixes' times in another unit than the samples'
             scaled = gps_t / factor
             inside = (scaled >= t[0] - 1.0) & (scaled <= t[-1] + 1.0)
             if inside.mean() > 0.5 and np.ptp(scaled) >= 0.5 * (t[-1] - t[0]):  # (and as long as the drive)
