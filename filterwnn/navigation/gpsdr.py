@@ -263,7 +263,7 @@ from ..kalman.unscented import UnscentedKalmanFilter
 __all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS", "GATE", "REJECT_GATE", "REACQUIRE_AFTER",
            "NIS_WINDOW", "CALIBRATION_SIGMAS", "ZERO_RATE_GATE", "ZERO_RATE_MIN_SAMPLES",
            "ZERO_RATE_REACQUIRE_AFTER", "ZERO_RATE_REACQUIRE_OUTSIDE", "ZERO_RATE_WINDOW", "WALK_PAST_GRADE",
-           "WALK_MIN_SAMPLES", "WALK_BIAS", "STOP_REOPEN", "STOP_REOPEN_M", "MAX_STOP_RATE_DEG_S", "WHITENESS_WINDOW",
+           "WALK_MIN_SAMPLES", "WALK_BIAS", "STOP_REOPEN", "STOP_REOPEN_M", "REOPEN_PIECES", "MAX_STOP_RATE_DEG_S", "WHITENESS_WINDOW",
            "FIX_GAPS", "MIN_FIX_INTERVAL",
            "CORRELATED_FIXES", "SCALE_WINDOW", "SCALE_TEST", "SCALE_WARN", "HDOP_FACTOR", "HDOP_LOWEST", "HDOP_GRADE",
            "NIS_FAR_BELOW", "SCALE_ERROR_Z", "SCALE_ERROR_MIN", "DETECTED_SCALE_SD",
@@ -390,6 +390,11 @@ WALK_BIAS = 0.6
 STOP_REOPEN = 2.0
 #: The most the car may move (m) between two stops that ``stop_reopen`` makes one.
 STOP_REOPEN_M = 0.5
+#: The pieces a standstill is cut into (each ended by a speed over ``standstill_speed`` within :data:`STOP_REOPEN`
+#: of the last, the car having moved at most :data:`STOP_REOPEN_M`) at which, when the rate-bias state cannot follow
+#: them, the filter takes each standstill whole from then on (``reopen_on_detection``): 3, the fewest that are a
+#: pattern rather than one wobble of the speed.
+REOPEN_PIECES = 3
 #: Seconds of fixes over which the whiteness of the GPS innovations is estimated (lags up to a quarter
 #: of it): 60 fixes at 1 Hz, 300 at 5 Hz. In seconds, not fixes, because the errors it looks for last
 #: a time (a street's multipath, a phone's own smoothing), whatever the receiver's rate: a window of
@@ -1051,7 +1056,17 @@ class GPSDRFilter:
         13.79 / 30.73 m). Not the default: on a plain drive from rest with no gyro bias to find, the whole
         stop's slope only adds its noise (outage ends 3.35 -> 4.61 m median over 20 seeds), and every drive's
         numbers move with it (the update comes up to 2 s later): ``docs/study-outputs/dr/analog-seeds/RUN.md``,
-        stop 44.
+        stop 44. Switched on where it is needed (``reopen_on_detection``).
+    reopen_on_detection : bool
+        With ``stop_reopen`` 0: when a stop that the rate-bias state could not follow (rejected by the gate, or
+        held at its calibration bound) is the :data:`REOPEN_PIECES`-th piece or later of one standstill (each
+        piece within :data:`STOP_REOPEN` s and :data:`STOP_REOPEN_M` m of the last), warn with the step and take
+        each standstill whole from then on (``stop_reopen`` = :data:`STOP_REOPEN`; ``stops_cut_step`` the
+        step). A speed that does not read 0 while the car stands (a GNSS speed given as the speed) cuts each stop
+        into pieces too short to measure the gyro's bias, and a bias outside the grade was then held at its bound
+        (stop 61: a u-blox log's GNSS speed, EKF-8 outage ends 7.32 / 173.35 -> 4.97 / 21.85 m). Default True;
+        False only warns. Of 271 drives at hand (the analogs' seeds 0-9, 220 random drives, the tests' drive from
+        rest over 20 seeds, the sample) it fired on one, a drive from rest whose stop reads noise (0.52 -> 0.71 m).
     scale_on_detection : bool
         With a rate-bias state and no scale state: when the scale-error monitor finds a gyro scale
         factor error (see ``gyro_scale_z``), add the state from its estimate (``gyro_scale_added``;
@@ -1147,6 +1162,9 @@ class GPSDRFilter:
         (:func:`stop_heading_step`: the heading bias took the step, and the slope was fitted on either side).
     zero_rate_steps : list of tuple
         Per stop tested: ``(step, slope (rad/s), its standard deviation (rad/s), accepted)``.
+    stops_cut_step : int or None
+        The step at which a standstill cut into pieces left the rate-bias state unable to follow one
+        (``reopen_on_detection``; warned once), None if never.
     gps_correlation : float
         The integrated autocorrelation time of the accepted fixes' whitened innovations, in
         fixes (1: white); the heading bias and rate bias take ``1 / gps_correlation`` of their gain (with
@@ -1196,7 +1214,7 @@ class GPSDRFilter:
                  min_fix_interval=0.0, scale_on_detection=True, latency_on_detection=True, stop_reopen=0.0,
                  calibration_error_z=CALIBRATION_ERROR_Z, heading_jump_z=HEADING_JUMP_Z,
                  heading_linear_limit=HEADING_LINEAR_LIMIT, reversing_test=True, crawl_test=True,
-                 gps_sigma_floor=SIGMA_FLOOR, floor_on_detection=True):
+                 gps_sigma_floor=SIGMA_FLOOR, floor_on_detection=True, reopen_on_detection=True):
         if not isinstance(model, GPSDRModel):
             raise TypeError(f"model must be a GPSDRModel, got {type(model).__name__}")
         self.model = model
@@ -1311,6 +1329,11 @@ class GPSDRFilter:
         self.zero_rate_update = bool(zero_rate_update) and model.rate_bias
         self._stop = []  # (time, heading) of the standstill samples of the stop going on
         self._last_stop = None  # (its samples, the step it ended, the distance driven then): stop_reopen
+        self.reopen_on_detection = bool(reopen_on_detection)
+        self.stops_cut_step = None  # the step at which _stops_cut found standstills cut into pieces
+        self._piece_end = None  # (the step, the distance driven) where the last piece of a standstill ended
+        self._pieces = 0  # the pieces of the standstill going on (REOPEN_PIECES)
+        self._odometer = 0.0  # m driven since the start (the stop_reopen test's; _driven restarts at each fix)
         self.zero_rate_reacquire_after = int(zero_rate_reacquire_after)
         if self.zero_rate_reacquire_after < 0:
             raise ValueError(f"zero_rate_reacquire_after must be >= 0 (0: never), got {zero_rate_reacquire_after}")
@@ -1452,6 +1475,7 @@ class GPSDRFilter:
         if self.crawl_test:
             self._crawl_sample(z_dr)
         self._driven += float(z_dr[1])
+        self._odometer += float(z_dr[1])
         stale = z_gps is not None and self._stale(z_gps, gps_sigma)
         thinned = z_gps is not None and not stale and self._thin()
         if stale or thinned:
@@ -2297,14 +2321,18 @@ class GPSDRFilter:
         if self.motion == "still":
             if self._last_stop is not None:  # back to a standstill within stop_reopen: the same stop
                 self._stop, self._last_stop = self._last_stop[0], None
+            elif not self._stop:
+                self._count_piece()
             self._stop.append((self.step * self.model.dt, float(heading)))
             return
+        if self._stop:
+            self._piece_end = (self.step, self._odometer)
         if self._stop and self.stop_reopen > 0:  # the stop may go on: its update waits
-            self._last_stop, self._stop = (self._stop, self.step, self._driven), []
+            self._last_stop, self._stop = (self._stop, self.step, self._odometer), []
             return
         if self._last_stop is not None:
             stop, ended, driven = self._last_stop
-            if (self.step - ended) * self.model.dt <= self.stop_reopen and self._driven - driven <= STOP_REOPEN_M:
+            if (self.step - ended) * self.model.dt <= self.stop_reopen and self._odometer - driven <= STOP_REOPEN_M:
                 return
             self._last_stop = None
         else:
@@ -2339,11 +2367,50 @@ class GPSDRFilter:
             # used, but the calibration bound held the state: it could not follow this stop either
         else:
             self.n_zero_rate_rejected += 1
+        self._stops_cut(slope, var)
         if not self.zero_rate_reacquire_after:
             return
         self._zr_rejected.append((slope, var))
         if len(self._zr_rejected) >= self._stops_needed(outside=True):
             self._zero_rate_reacquire()
+
+    def _count_piece(self):
+        """A standstill begins: the next piece of the last (:data:`REOPEN_PIECES`) when that ended within
+        :data:`STOP_REOPEN` and :data:`STOP_REOPEN_M`, else its first."""
+        end = self._piece_end
+        near = (end is not None and (self.step - end[0]) * self.model.dt <= STOP_REOPEN
+                and self._odometer - end[1] <= STOP_REOPEN_M)
+        self._pieces = self._pieces + 1 if near else 1
+
+    def _stops_cut(self, slope, var):
+        """A stop the rate-bias state could not follow (rejected, or held at its calibration bound) that is the
+        :data:`REOPEN_PIECES`-th piece or later of one standstill: its speed does not read 0 while the car stands,
+        and the pieces are too short to measure the gyro's bias (a u-blox log's GNSS speed given as the speed:
+        47 pieces used, the state held at its bound until step 5630, outages ending 7.32 / 173.35 m off). From
+        here each standstill is taken whole (``stop_reopen`` = :data:`STOP_REOPEN`, with ``reopen_on_detection``;
+        ``stops_cut_step`` the step), warned once."""
+        if self.stop_reopen > 0 or self._pieces < REOPEN_PIECES or self.stops_cut_step is not None:
+            return
+        self.stops_cut_step = self.step
+        deg = 180.0 / np.pi
+        r = RATE
+        state, sd = float(self.kf.x[r]) * deg, float(np.sqrt(self.kf.P[r, r])) * deg
+        if self.reopen_on_detection:
+            self.stop_reopen = STOP_REOPEN
+            done = (f"From here each standstill is taken whole: a stop that starts again within {STOP_REOPEN:g} s, "
+                    f"the car having moved at most {STOP_REOPEN_M:g} m, is the same stop (stop_reopen="
+                    f"{STOP_REOPEN:g}; reopen_on_detection=False only warns)")
+        else:
+            done = (f"Pass stop_reopen={STOP_REOPEN:g} (command line: --stop-reopen {STOP_REOPEN:g}), which takes "
+                    "each standstill whole")
+        warnings.warn(
+            f"GPSDRFilter: the stop that ended at step {self.step} is piece {self._pieces} of one standstill (its "
+            f"speed read over standstill_speed, {self.standstill_speed:g} m/s, between them, each within "
+            f"{STOP_REOPEN:g} s of the last and the car moving at most {STOP_REOPEN_M:g} m): a speed that does not "
+            "read 0 while the car stands (a GNSS speed, or a wheel speed with noise) cuts each stop into pieces "
+            "too short to measure the gyro's rate bias, and the rate-bias state could not follow this one "
+            f"({slope * deg:+.3g} +- {np.sqrt(var) * deg:.2g} deg/s; the state {state:+.3g} +- {sd:.2g}). {done}. "
+            "Where the log has a wheel speed or an odometer, give that as the speed", RuntimeWarning, stacklevel=4)
 
     def _stop_turned(self, t, h, sigma, k, slope, var, q):
         """Whether the stop's heading turned faster than any gyro's bias (:data:`MAX_STOP_RATE_DEG_S`, past the gate's

@@ -112,7 +112,12 @@ def add_arguments(parser):
     parser.add_argument("--stop-reopen", type=options.nonnegative_float, default=0.0, metavar="SECONDS",
                         help="a stop that starts again within this many seconds, the car having moved at most "
                              "0.5 m, is the same stop to the gyro rate bias's update (GPSDRFilter's stop_reopen; "
-                             "2 for a speed that does not read 0 at a standstill, a GNSS speed; default 0: off)")
+                             "2 for a speed that does not read 0 at a standstill, a GNSS speed; default 0: off, until "
+                             "the filters find a standstill cut into pieces that the rate-bias state cannot follow)")
+    parser.add_argument("--no-reopen-on-detection", action="store_true",
+                        help="when a standstill is cut into pieces by a speed that does not read 0 and the gyro rate "
+                             "bias cannot follow them, only warn (GPSDRFilter's reopen_on_detection=False); by default "
+                             "each standstill is then taken whole, as --stop-reopen 2 does")
     parser.add_argument("--calibration-error-z", type=_z_or_off, default=CALIBRATION_ERROR_Z, metavar="Z",
                         help="the consistency monitor's z-score past which the heading bias or the gyro rate bias "
                              "is taken to be off, and their gain is cut by the fixes' own correlation instead of "
@@ -172,7 +177,8 @@ DRIVE_ONLY = ("--no-plausibility", "--fill-gaps", "--gps-latency", "--odometer-l
               "--gyro-bias-instability", "--gps-latency-sd")
 ON_DRIVES = ("--outage-length", "--outages", "--min-speed", "--gps-scale-window", "--correlated-fixes",
              "--min-fix-interval", "--stop-reopen", "--calibration-error-z", "--heading-jump-z", "--no-reversing-test",
-             "--no-crawl-test", "--gps-sigma-floor", "--no-floor-on-detection", "--grade")
+             "--no-crawl-test", "--gps-sigma-floor", "--no-floor-on-detection", "--no-reopen-on-detection",
+             "--grade")
 #: ... and those of the simulated scenarios' Monte Carlo, which ``--drive`` does not run. Not ``--jobs``: a
 #: worker count changes no number, and scripts pass ``--jobs 1`` whatever they run (``log_faults.py`` does).
 SIMULATED_ONLY = ("--runs", "--seed", "--backend", "--scheduler", "--cache", "--scenarios", "--factor")
@@ -220,7 +226,8 @@ def _filter_options(args):
                 reversing_test=not getattr(args, "no_reversing_test", False),
                 crawl_test=not getattr(args, "no_crawl_test", False),
                 gps_sigma_floor=getattr(args, "gps_sigma_floor", SIGMA_FLOOR),
-                floor_on_detection=not getattr(args, "no_floor_on_detection", False))
+                floor_on_detection=not getattr(args, "no_floor_on_detection", False),
+                reopen_on_detection=not getattr(args, "no_reopen_on_detection", False))
 
 
 def run(args):

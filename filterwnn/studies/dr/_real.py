@@ -42,7 +42,8 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
                        use_gps_sigma=False, grade=None, gps_window=0, scale_window=0,
                        correlated_fixes="calibration", min_fix_interval=0.0, stop_reopen=0.0,
                        calibration_error_z=CALIBRATION_ERROR_Z, heading_jump_z=HEADING_JUMP_Z, reversing_test=True,
-                       crawl_test=True, gps_sigma_floor=SIGMA_FLOOR, floor_on_detection=True):
+                       crawl_test=True, gps_sigma_floor=SIGMA_FLOOR, floor_on_detection=True,
+                       reopen_on_detection=True):
     """Cut GPS outages of ``length`` s into a drive and score each filter at each outage end.
 
     Placements: ``starts`` as given, or ``n_placements`` spread evenly over the windows whose mean
@@ -105,6 +106,10 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
     floor_on_detection : bool
         :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`'s: once the consistency monitor names fixes that report far
         better than they are, floor every fix's sigma at the median of the last 30 reported (default True).
+    reopen_on_detection : bool
+        :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`'s: once a standstill cut into pieces by a speed that does
+        not read 0 leaves the rate-bias state unable to follow a piece, take each standstill whole from then on
+        (``stop_reopen`` 2 s; default True).
 
     Returns
     -------
@@ -138,7 +143,10 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         times the fixes showed the car creeping while its speed read 0 (``crawl_test``), "(N crawling)", and
         ``crawl_moved``, how far (m) the position moved at them in all; ``n_floored``, the fixes whose reported
         sigma was under the floor (``gps_sigma_floor``), "(N floored)", and ``floor_raised``, the step from which the
-        floor was the median (``floor_on_detection``; None: never), "(floor raised at step N)";
+        floor was the median (``floor_on_detection``; None: never), "(floor raised at step N)"; ``stops_cut``, the
+        step at which the filter found a standstill cut into pieces that the rate-bias state could not follow, from
+        which it took each standstill whole (``reopen_on_detection``; None: never), "(whole from step N)" after the
+        stops' counts;
         ``gyro_scale_estimate`` and ``gyro_scale_z``, the scale-error monitor's estimate and z-score (None
         without it), ``gyro_scale_added``, the step at which it made the filter add the scale state (None:
         not), and ``gyro_scale``, that state's last value (None without one); ``latency_estimate``,
@@ -157,7 +165,8 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
                                    calibration_error_z=calibration_error_z, heading_jump_z=heading_jump_z,
                                    reversing_test=reversing_test and not run.reversed_by_speed,
                                    crawl_test=crawl_test,
-                                   gps_sigma_floor=gps_sigma_floor, floor_on_detection=floor_on_detection))
+                                   gps_sigma_floor=gps_sigma_floor, floor_on_detection=floor_on_detection,
+                                   reopen_on_detection=reopen_on_detection))
     for name in filters:
         _score_filter(out, name, run, windows, use_gps_sigma, settings)
     return out
@@ -302,6 +311,7 @@ def _integrity(f, run):
             "n_zero_rate_reacquired": f.n_zero_rate_reacquired if f.zero_rate_update else None,
             "n_zero_rate_turned": f.n_zero_rate_turned if f.zero_rate_update else None,
             "n_zero_rate_stepped": f.n_zero_rate_stepped if f.zero_rate_update else None,
+            "stops_cut": f.stops_cut_step if f.zero_rate_update else None,
             "n_calibration_error": f.n_calibration_error, "n_heading_jumps": f.n_heading_jumps,
             "n_heading_far": f.n_heading_far, "n_reversing": f.n_reversing,
             "n_forward_again": f.n_forward_again, "n_crawl": f.n_crawl, "crawl_moved": f.crawl_moved,
@@ -395,9 +405,10 @@ def _integrity_cells(ig):
     scale = "-" if ig.get("gps_scale_mean") is None else f"{ig['gps_scale_mean']:.2f}"
     turned = f" ({ig['n_zero_rate_turned']} turned)" if ig.get("n_zero_rate_turned") else ""
     stepped = f" ({ig['n_zero_rate_stepped']} stepped)" if ig.get("n_zero_rate_stepped") else ""
+    cut = f" (whole from step {ig['stops_cut']})" if ig.get("stops_cut") is not None else ""
     stops = ("-" if ig.get("n_zero_rate") is None
              else f"{ig['n_zero_rate']} / {ig['n_zero_rate_rejected']}{turned} / {ig['n_zero_rate_reacquired']} / "
-                  f"{ig['n_zero_rate_held']}{stepped}")
+                  f"{ig['n_zero_rate_held']}{stepped}{cut}")
     unused = "".join(f" ({ig[f'n_{k}']} more {k})" for k in ("thinned", "stale") if ig.get(f"n_{k}"))
     if ig.get("n_heading_jumps"):
         unused += f" ({ig['n_heading_jumps']} jumped)"

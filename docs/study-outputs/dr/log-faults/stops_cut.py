@@ -1,0 +1,50 @@
+"""Where the filter's finding of standstills cut into pieces (``reopen_on_detection``, stop 61) fires on the drives
+at hand: the tests' drive from rest (``FROM_REST``) over seeds 0-19, the analogs' seeds 0-9, the random drives 0-29
+and 200-279 of protocols 2 and 3, and the shipped sample; each through the phone grade's EKF-8 with its fixes, the
+step printed (None: never). Half the drives for ``part`` 0, the other half for 1 (two processes). Run from the
+repository root::
+
+    python docs/study-outputs/dr/log-faults/stops_cut.py 0 > docs/study-outputs/dr/log-faults/stops_cut_0.txt
+    python docs/study-outputs/dr/log-faults/stops_cut.py 1 > docs/study-outputs/dr/log-faults/stops_cut_1.txt
+"""
+import os, sys, tempfile, warnings
+import numpy as np
+HERE = os.path.dirname(os.path.abspath(__file__))
+TESTS = os.path.join(HERE, "..", "..", "..", "..", "tests")
+sys.path[:0] = [TESTS, os.path.join(TESTS, "navigation"), os.path.join(HERE, "..", "random-drives")]
+import _held_out_drives as held_out, random_drives
+from filterwnn.navigation.drives import read_drive_csv, sample_drive_path
+from filterwnn.navigation.scenarios import simulate_scenario
+from filterwnn.navigation.dead_reckoning import GPSDRModel
+from filterwnn.navigation.gpsdr import GPSDRFilter
+part = int(sys.argv[1])
+drives = {}
+from test_gpsdr import FROM_REST
+for s in range(20):
+    drives[f"rest{s}"] = lambda s=s: simulate_scenario(FROM_REST, rng=s)
+for name in ("phone", "city", "one_hz"):
+    for seed in range(10):
+        drives[f"{name}{seed}"] = lambda name=name, seed=seed: held_out.columns(name, seed)
+for s in list(range(0, 30)) + list(range(200, 280)):
+    for p in (2, 3):
+        drives[f"p{p} s{s}"] = lambda s=s, p=p: random_drives.drive(s, p)[1]
+drives["sample"] = sample_drive_path
+keys = list(drives)[part::2]
+fired = []
+with tempfile.TemporaryDirectory() as tmp, warnings.catch_warnings():
+    warnings.simplefilter("ignore")
+    for key in keys:
+        obj = drives[key]()
+        if isinstance(obj, str):
+            run = read_drive_csv(obj)
+        elif hasattr(obj, "z_dr"):
+            run = obj
+        else:
+            run = read_drive_csv(held_out.write_csv(os.path.join(tmp, "d.csv"), obj))
+        model = GPSDRModel.from_grade("phone", run.scenario.dt)
+        f = GPSDRFilter(model, "ekf", x0=np.r_[run.x0, model.x0[6:]])
+        f.batch_filter(run.z_dr, run.gps_list(), run.gps_sigma_list(), run.gps_offset_list())
+        if f.stops_cut_step is not None:
+            fired.append((key, f.stops_cut_step))
+        print(key, f.stops_cut_step, flush=True)
+print("DONE", len(keys), "drives; fired:", fired)
