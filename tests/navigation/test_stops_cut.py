@@ -114,3 +114,20 @@ def test_the_drive_table_says_from_which_step_standstills_were_taken_whole(gnss_
     step = res["integrity"]["EKF-8"]["stops_cut"]
     assert step is not None and off["integrity"]["EKF-8"]["stops_cut"] == step
     assert f"(whole from step {step})" in real_drive_table(res)
+
+
+def test_stop_reopen_measures_the_distance_across_fixes():
+    """``stop_reopen`` joins two stops only where the car moved at most 0.5 m between them: measured since the
+    drive's start, not since the last fix (whose distance restarted at each new fix, so with 10 Hz fixes a car that
+    drove 2.7 m between two stops, 0.3 m between fixes, passed as having stood)."""
+    model = GPSDRModel.from_grade("phone", 0.1)
+    f = GPSDRFilter(model, "ekf", x0=np.r_[0.0, 0.0, 0.0, 0.0, 0.0, 0.0, model.x0[6:]], stop_reopen=2.0)
+    rng = np.random.default_rng(0)
+    north = 0.0
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for ds in [0.0] * 40 + [0.3] * 9 + [0.0] * 40 + [1.0] * 30:  # a stop, 2.7 m in 0.9 s, a stop, away
+            north += ds
+            f.predict()
+            f.update(np.array([rng.normal(0.0, 1e-3), ds]), np.array([0.0, north]) + rng.normal(0.0, 0.5, 2), 0.5)
+    assert len(f.zero_rate_steps) == 2  # two stops, not one

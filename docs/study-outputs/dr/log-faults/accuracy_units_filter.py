@@ -9,19 +9,13 @@ for ``part`` 0, the other half for 1 (two processes). Run from the repository ro
 import os, sys, tempfile, warnings
 import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path[:0] = [os.path.join(HERE, "..", "..", "..", "..", "tests"), os.path.join(HERE, "..", "random-drives")]
-import _held_out_drives as held_out, random_drives
+sys.path.insert(0, HERE)
+from at_hand import drives_at_hand, held_out
 from filterwnn.navigation.drives import read_drive_csv
 from filterwnn.navigation.dead_reckoning import GPSDRModel
 from filterwnn.navigation.gpsdr import GPSDRFilter
 part = int(sys.argv[1])
-drives = {}
-for name in ("phone", "city", "one_hz"):
-    for seed in range(10):
-        drives[f"{name}{seed}"] = lambda name=name, seed=seed: held_out.columns(name, seed)
-for s in list(range(0, 30)) + list(range(200, 280)):
-    for p in (2, 3):
-        drives[f"p{p} s{s}"] = lambda s=s, p=p: random_drives.drive(s, p)[1]
+drives = drives_at_hand()
 keys = list(drives)[part::2]
 fired = []
 with tempfile.TemporaryDirectory() as tmp, warnings.catch_warnings():

@@ -6,16 +6,10 @@ and the largest median sigmas. Run from the repository root:
 import os, sys, tempfile, warnings
 import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path[:0] = [os.path.join(HERE, "..", "..", "..", "..", "tests"), os.path.join(HERE, "..", "random-drives")]
-import _held_out_drives as held_out, random_drives
+sys.path.insert(0, HERE)
+from at_hand import drives_at_hand, held_out
 from filterwnn.navigation.drives import read_drive_csv
-drives = {}
-for name in ("phone", "city", "one_hz"):
-    for seed in range(10):
-        drives[f"{name}{seed}"] = held_out.columns(name, seed)
-for s in list(range(0, 30)) + list(range(200, 280)):
-    for p in (2, 3):
-        drives[f"p{p} s{s}"] = random_drives.drive(s, p)[1]
+drives = {key: make() for key, make in drives_at_hand().items()}
 bad = []
 med = []
 with tempfile.TemporaryDirectory() as tmp, warnings.catch_warnings():

@@ -10,24 +10,16 @@ repository root::
 import os, sys, tempfile, warnings
 import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
-TESTS = os.path.join(HERE, "..", "..", "..", "..", "tests")
-sys.path[:0] = [TESTS, os.path.join(TESTS, "navigation"), os.path.join(HERE, "..", "random-drives")]
-import _held_out_drives as held_out, random_drives
+sys.path.insert(0, HERE)
+from at_hand import drives_at_hand, held_out  # puts tests/ and tests/navigation on the path
+from test_gpsdr import FROM_REST
 from filterwnn.navigation.drives import read_drive_csv, sample_drive_path
 from filterwnn.navigation.scenarios import simulate_scenario
 from filterwnn.navigation.dead_reckoning import GPSDRModel
 from filterwnn.navigation.gpsdr import GPSDRFilter
 part = int(sys.argv[1])
-drives = {}
-from test_gpsdr import FROM_REST
-for s in range(20):
-    drives[f"rest{s}"] = lambda s=s: simulate_scenario(FROM_REST, rng=s)
-for name in ("phone", "city", "one_hz"):
-    for seed in range(10):
-        drives[f"{name}{seed}"] = lambda name=name, seed=seed: held_out.columns(name, seed)
-for s in list(range(0, 30)) + list(range(200, 280)):
-    for p in (2, 3):
-        drives[f"p{p} s{s}"] = lambda s=s, p=p: random_drives.drive(s, p)[1]
+drives = {f"rest{s}": (lambda s=s: simulate_scenario(FROM_REST, rng=s)) for s in range(20)}
+drives.update(drives_at_hand())
 drives["sample"] = sample_drive_path
 keys = list(drives)[part::2]
 fired = []

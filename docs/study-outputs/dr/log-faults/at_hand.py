@@ -1,0 +1,23 @@
+"""The drives at hand that the log-faults probes scan for false alarms (stops 60-61): the analogs' seeds 0-9 (phone,
+city, 1 Hz) and the random drives of protocols 2 and 3, seeds 0-29 and 200-279; 250 drives, each a function that
+builds its drive CSV's columns (``_held_out_drives.write_csv`` writes them), in this order."""
+import os
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+TESTS = os.path.join(HERE, "..", "..", "..", "..", "tests")
+sys.path[:0] = [TESTS, os.path.join(TESTS, "navigation"), os.path.join(HERE, "..", "random-drives")]
+import _held_out_drives as held_out  # noqa: E402
+import random_drives  # noqa: E402
+
+
+def drives_at_hand():
+    """``{name: function returning the drive's columns}`` for the 250 drives."""
+    drives = {}
+    for name in ("phone", "city", "one_hz"):
+        for seed in range(10):
+            drives[f"{name}{seed}"] = lambda name=name, seed=seed: held_out.columns(name, seed)
+    for s in list(range(0, 30)) + list(range(200, 280)):
+        for p in (2, 3):
+            drives[f"p{p} s{s}"] = lambda s=s, p=p: random_drives.drive(s, p)[1]
+    return drives
