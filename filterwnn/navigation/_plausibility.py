@@ -56,7 +56,8 @@ import numpy as np
 __all__ = ["check_drive", "heading_offset", "speed_scale", "clock_offset", "MAX_DT", "MAX_ANGLE_DEG",
            "MAX_DRIFT_DEG_S", "RATIO_RANGE", "HEADING_OFFSET_WARN_DEG", "SPEED_SCALE_WARN", "WARN_MIN_CHORDS",
            "CLOCK_OFFSET_WARN_S", "CLOCK_OFFSET_SCAN_S", "GPS_DERIVED_HELD", "GPS_DERIVED_AT_FIX",
-           "GPS_DERIVED_MIN_CHANGES", "GPS_DERIVED_MIN_RATIO", "GPS_DERIVED_SPEED", "SIGMA_UNIT_MIN",
+           "GPS_DERIVED_AT_FIX_LINEAR", "GPS_DERIVED_SLOPE_TOL", "GPS_DERIVED_MIN_CHANGES", "TILTED_TURNS",
+           "GPS_DERIVED_MIN_RATIO", "GPS_DERIVED_SPEED", "SIGMA_UNIT_MIN",
            "SIGMA_PAST_SCATTER"]
 
 #: The longest DR sample interval (s) accepted without ``checks=False``.
@@ -125,6 +126,14 @@ GPS_DERIVED_SPEED = 2.0
 #: held over at least :data:`GPS_DERIVED_HELD` of the samples between fixes; with a fix on nearly every sample
 #: (fewer than this many samples per fix) there is nothing to tell.
 GPS_DERIVED_FAST_RATIO = 1.5
+#: A column interpolated between the fixes (a receiver's 1 Hz speed on a 10 Hz log: a u-blox user's gSpeed, stop
+#: 61) is found as one held, on its slope (its change from sample to sample): held over :data:`GPS_DERIVED_HELD` of
+#: the moving intervals, with at least this share of its changes at a fix (lower than :data:`GPS_DERIVED_AT_FIX`:
+#: a receiver that goes on giving its speed in a tunnel, with no fix, puts knots there; the u-blox log's 90 %, the
+#: analogs' and that log's wheel speeds 27-29 %, chance), and a change only past :data:`GPS_DERIVED_SLOPE_TOL`
+#: (relative; a CSV's 10 digits and the reader's arithmetic leave slopes that differ by 1e-9).
+GPS_DERIVED_AT_FIX_LINEAR = 0.8
+GPS_DERIVED_SLOPE_TOL = 1e-6
 #: Length-ratio mistakes: (factor the ratio shows, the likely cause).
 _SCALES = ((3.6, "speed looks like km/h (divide by 3.6 for m/s)"),
            (1 / 0.44704, "speed looks like mph (multiply by 0.44704 for m/s)"),
@@ -291,6 +300,29 @@ STILL_TURNS = 0.3
 #: turns as the fixes do within this factor (:func:`_turn_ratio`), is a rate in rad/s given as deg/s
 #: (``yaw_rate_deg``): a ROS log's ``angular_velocity.z`` (stop 59; the right conversions turned 0.68-1.15 of them).
 YAW_UNIT_TOLERANCE = 1.5
+
+
+#: A dead-reckoned course that turns at least :data:`STILL_TURNS` but less than this share of the fixes' turns is
+#: warned of as a gyro axis tilted off the vertical, which turns with cos(tilt) of the car (stop 61: an OBD-II user's
+#: phone reclined 30 degrees in its mount, its screen's axis given, 0.45 of the turns; the careful conversion and
+#: the axis nearest the vertical 0.87, and the right conversions of stop 58's 182 drives 0.68-1.15: the ratio reads
+#: low by the fixes' noise, so only a tilt past about 45 degrees shows here; a smaller one the filters' scale
+#: monitor tells, ``TILT_SCALE``).
+TILTED_TURNS = 0.6
+
+
+def _warn_tilted(heading, step, steps, z_gps, pairs):
+    """Warn of a course that turns :data:`STILL_TURNS` to :data:`TILTED_TURNS` of the fixes' turns."""
+    slope, turns = _turn_ratio(heading, step, steps, z_gps, pairs)
+    if not STILL_TURNS <= slope < TILTED_TURNS:
+        return
+    warnings.warn(f"plausibility: over {turns} turns of the fixes' course ({TURN_DEG:g} degrees or more over "
+                  f"{TURN_CHORDS} moving stretches between fixes), the dead-reckoned course turned {slope:.2g} times "
+                  "as much: a gyro axis tilted far off the vertical reads so (it turns with cos(tilt) of the car's "
+                  "turns: a phone in a reclined mount, the axis out of its screen given), and the filters read it as a "
+                  "gyro scale error far past any sensor's, a rate bias, or the car reversing. Rotate the gyro's rates "
+                  "onto the vertical (the accelerometer's gravity, averaged while the car stands, gives it) and give "
+                  "that rate", RuntimeWarning, stacklevel=5)
 
 
 def _not_turning(heading, step, steps, z_gps, pairs):
@@ -733,16 +765,23 @@ def _check_truth(steps, z_gps, truth, sigma, clock=None, radians=False):
                          f"{cause}{_OVERRIDE}")
 
 
-def _held_at_fixes(values, moving, near, least_held=GPS_DERIVED_HELD):
+def _held_at_fixes(values, moving, near, least_held=GPS_DERIVED_HELD, tol=1e-9, least_at=GPS_DERIVED_AT_FIX):
     """``(changes, share at a fix, share held)`` of ``values`` over the intervals ``moving``, or None when they do
-    not look held between the fixes (held over ``least_held`` of them at least); ``near``: the intervals beside a
-    fix's sample."""
-    changed = np.abs(np.diff(values)) > 1e-9 * (1.0 + np.abs(values[1:]))  # (a speed times stamped intervals: bits)
+    not look held between the fixes (held over ``least_held`` of them at least, ``least_at`` of the changes at a
+    fix); ``near``: the intervals beside a fix's sample; ``tol``: the relative change that is one."""
+    changed = np.abs(np.diff(values)) > tol * (1.0 + np.abs(values[1:]))  # (a speed times stamped intervals: bits)
     n = int(np.sum(changed & moving))
     if moving.sum() < 2 * GPS_DERIVED_MIN_CHANGES or n < GPS_DERIVED_MIN_CHANGES:
         return None
     held, at = 1.0 - n / moving.sum(), float(np.sum(changed & moving & near)) / n
-    return (n, at, held) if held >= least_held and at >= GPS_DERIVED_AT_FIX else None
+    return (n, at, held) if held >= least_held and at >= least_at else None
+
+
+def _interpolated_at_fixes(values, moving, near, least_held):
+    """:func:`_held_at_fixes` of ``values``' slope: a column interpolated between the fixes (its knots at them)."""
+    both = moving[1:] & moving[:-1]
+    return _held_at_fixes(np.diff(values), both, near[:len(both)], least_held, tol=GPS_DERIVED_SLOPE_TOL,
+                          least_at=GPS_DERIVED_AT_FIX_LINEAR)
 
 
 #: What a column held between the fixes is, and what to give instead.
@@ -773,15 +812,21 @@ def _gps_derived(dt, heading, step, steps):
             # step k, is sample k + 1's speed), held over the rest
             near, held = fix[at:n - 1 + at], GPS_DERIVED_HELD * (1.0 - 1.0 / ratio)
         found = _held_at_fixes(values, intervals, near[:len(intervals)], held)
+        how = ("changes only where there is a GPS fix", "changes at a fix's sample or beside it, held over",
+               "stays where the last fix left it")
+        if found is None:
+            found = _interpolated_at_fixes(values, intervals, near, held)
+            how = ("changes its slope only where there is a GPS fix, and runs straight between",
+                   "slope's changes at a fix's sample or beside it, straight over", "runs straight from the last "
+                   "fix's value to the next's (or stays at the last)")
         if found is None:
             continue
         k, at, held = found
         what, remedy = _GPS_DERIVED[name]
-        warnings.warn(f"plausibility: while the car moves the {name} changes only where there is a GPS fix ({at:.0%} of "
-                      f"its {k} changes at a fix's sample or beside it, held over {held:.0%} of the intervals): "
-                      f"{what}. Dead reckoning then has no {name} of its own: over a real outage it stays where the "
-                      f"last fix left it, and outages cut into this drive (filterwnn study dr) are scored with the "
-                      f"withheld fixes' {name}, better than dead reckoning could do. Give {remedy}",
+        warnings.warn(f"plausibility: while the car moves the {name} {how[0]} ({at:.0%} of its {k} {how[1]} "
+                      f"{held:.0%} of the intervals): {what}. Dead reckoning then has no {name} of its own: over a "
+                      f"real outage it {how[2]}, and outages cut into this drive (filterwnn study dr) are scored "
+                      f"with the withheld fixes' {name}, better than dead reckoning could do. Give {remedy}",
                       RuntimeWarning, stacklevel=5)
 
 
@@ -847,6 +892,7 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
                  or _still_cause(heading, step, steps, z_gps, pairs))  # (nor turns: fixes 18 s late turn 18 s late)
         if still:
             raise ValueError(f"plausibility: {still}{_OVERRIDE}")
+        _warn_tilted(heading, step, steps, z_gps, pairs)
         if told is not None:
             warnings.warn(f"plausibility: over {len(pairs)} moving stretches between GPS fixes, "
                           f"{_offset_remedy(*fit[:3], filters=True)}", RuntimeWarning, stacklevel=4)

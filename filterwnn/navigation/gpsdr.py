@@ -263,8 +263,8 @@ from ..kalman.unscented import UnscentedKalmanFilter
 __all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS", "GATE", "REJECT_GATE", "REACQUIRE_AFTER",
            "NIS_WINDOW", "CALIBRATION_SIGMAS", "ZERO_RATE_GATE", "ZERO_RATE_MIN_SAMPLES",
            "ZERO_RATE_REACQUIRE_AFTER", "ZERO_RATE_REACQUIRE_OUTSIDE", "ZERO_RATE_WINDOW", "WALK_PAST_GRADE",
-           "WALK_MIN_SAMPLES", "WALK_BIAS", "STOP_REOPEN", "STOP_REOPEN_M", "REOPEN_PIECES", "MAX_STOP_RATE_DEG_S", "WHITENESS_WINDOW",
-           "FIX_GAPS", "MIN_FIX_INTERVAL",
+           "WALK_MIN_SAMPLES", "WALK_BIAS", "STOP_REOPEN", "STOP_REOPEN_M", "REOPEN_PIECES", "TILT_SCALE",
+           "MAX_STOP_RATE_DEG_S", "WHITENESS_WINDOW", "FIX_GAPS", "MIN_FIX_INTERVAL",
            "CORRELATED_FIXES", "SCALE_WINDOW", "SCALE_TEST", "SCALE_WARN", "HDOP_FACTOR", "HDOP_LOWEST", "HDOP_GRADE",
            "NIS_FAR_BELOW", "SCALE_ERROR_Z", "SCALE_ERROR_MIN", "DETECTED_SCALE_SD",
            "LATENCY_Z", "LATENCY_MIN", "DETECTED_LATENCY_SD", "ODOMETER_LATENCY_Z", "ODOMETER_LATENCY_MIN",
@@ -291,6 +291,9 @@ SCALE_ERROR_MIN = 0.005
 #: The specification of a scale factor error the monitor found (``scale_on_detection``): a MEMS gyro's
 #: sensitivity tolerance of +-3 % read as three sigmas; the calibration bound of the added state.
 DETECTED_SCALE_SD = 0.01
+#: A scale error found below minus this (a fraction) is named as a gyro axis tilted off the vertical: past a MEMS
+#: gyro's +-3 % sensitivity tolerance with a margin, and of the sign a tilt gives (cos(tilt) - 1; 0.05 is 18 degrees).
+TILT_SCALE = 0.05
 #: The latency monitor's gate: the generalized likelihood ratio's z-score of the fixes' latency against
 #: the DR samples (their clocks' offset, or a receiver's latency), as :data:`SCALE_ERROR_Z`.
 LATENCY_Z = 6.1
@@ -2176,6 +2179,12 @@ class GPSDRFilter:
             what = (f"the gyro turning {100 * theta:+.2g} % (+- {100 * sd:.2g} %) more than the car (a scale factor "
                     f"error; z-score {z:+.3g}), which this model does not estimate: each turn in an outage then leaves "
                     "that share of it in the heading")
+            if theta < -TILT_SCALE:  # past a MEMS gyro's tolerance, and less: a tilted axis
+                what += (f". That is past a MEMS gyro's +-3 %, and what an axis tilted "
+                         f"{np.degrees(np.arccos(max(1.0 + theta, 0.0))):.0f} degrees from the vertical reads (it "
+                         "turns with cos(tilt) of the car's turns): a phone in a reclined mount, its axis nearest the "
+                         "vertical given as the yaw rate. Rotate the gyro's rates onto the vertical (the "
+                         "accelerometer's gravity, averaged while the car stands, gives it) and give that rate")
         elif name == "odometer_latency":
             then = (f"read the drive with each speed placed at its own time (odometer_latency={theta:.2g}, "
                     f"--odometer-latency {theta:.2g})")
@@ -2234,7 +2243,12 @@ class GPSDRFilter:
         self.model, self.kf = model, self._inner_filter(model, x, 0.5 * (P + P.T))
         self.held_states = np.array([0, 3] + list(range(6, n)))
         c = index - 6  # the calibration prior's row
-        self._cal_mean, C = insert_state(self._cal_mean, self._cal_P, c, 0.0, sd ** 2)
+        # an error past its specification's bound (a gyro axis tilted off the vertical reads a scale error of
+        # cos(tilt) - 1: a phone's reclined mount, -13 % at 30 degrees) was measured: the prior no longer describes
+        # the sensor, and its bound is centred on the estimate, as a re-acquired rate bias's (else the state, started
+        # there, is held at once at 3 % by the bound of the prior it contradicts: stop 61)
+        centre = k if abs(k) > CALIBRATION_SIGMAS * sd else 0.0
+        self._cal_mean, C = insert_state(self._cal_mean, self._cal_P, c, centre, sd ** 2)
         if name == "gyro_scale":
             b = HEADING_BIAS - 6
             C[b, b] += self._turn_sum ** 2 * sd ** 2

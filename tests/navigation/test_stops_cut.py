@@ -7,7 +7,9 @@ held at its calibration bound until step 5630, and the EKF-8 ended the command's
 15.06 m with the wheel ticks), with nothing naming the speed. ``stop_reopen=2`` (``--stop-reopen 2``), which takes
 each standstill whole, existed (3.52 / 22.15 m) and nothing pointed to it. The filter now finds such standstills
 when the rate-bias state cannot follow a piece, warns with the step, and takes each standstill whole from there
-(``reopen_on_detection``; 4.97 / 21.85 m): ``docs/gps_dr.md``, "Stops whose speed does not read 0".
+(``reopen_on_detection``; 4.97 / 21.85 m): ``docs/gps_dr.md``, "Stops whose speed does not read 0". The reader
+names such a speed too: its slope changes only at the fixes (a column interpolated between them), as it named a speed
+or a heading held between them.
 """
 
 import warnings
@@ -23,7 +25,8 @@ from filterwnn.studies.dr._real import real_drive_outages, real_drive_table
 OUTAGE = 30.0  # the drive's last 30 s have no fixes: the error at its end is scored
 
 
-def _drive(seed=0, bias_deg_s=0.18, gnss_speed=True, dt=0.1, duration=420.0):
+def _drive(seed=0, bias_deg_s=0.18, gnss_speed=True, dt=0.1, duration=420.0, gnss_heading=False, caught=None,
+           gyro_scale=1.0):
     """Legs of 12 m/s with a 90 degree turn each, and stops of 25 s with a speed of exactly 0, the gyro heading
     drifting by ``bias_deg_s``; with ``gnss_speed`` the speed is a receiver's 1 Hz GNSS speed (noise of 0.05 m/s,
     clipped at 0) interpolated to the samples, as the u-blox user gave it. Fixes 1 Hz, 2 m, none in the last 30 s."""
@@ -39,18 +42,24 @@ def _drive(seed=0, bias_deg_s=0.18, gnss_speed=True, dt=0.1, duration=420.0):
         rate[(t >= t0) & (t < t0 + 6)] = np.radians(15.0) * (1 if j % 2 else -1)
     heading = np.radians(40.0) + np.cumsum(rate) * dt
     east, north = np.cumsum(v * np.sin(heading)) * dt, np.cumsum(v * np.cos(heading)) * dt
-    gyro = heading + np.radians(bias_deg_s) * t + rng.normal(0.0, np.radians(0.05), len(t))
+    gyro = (heading[0] + gyro_scale * (heading - heading[0]) + np.radians(bias_deg_s) * t
+            + rng.normal(0.0, np.radians(0.05), len(t)))
     every = np.arange(0, len(t), int(round(1.0 / dt)))
     speed = v
+    if gnss_heading:  # the receiver's course, interpolated to the samples
+        gyro = np.interp(t, t[every], heading[every] + rng.normal(0.0, np.radians(0.5), len(every)))
     if gnss_speed:
         speed = np.interp(t, t[every], np.maximum(v[every] + rng.normal(0.0, 0.05, len(every)), 0.0))
     fixes = every[t[every] < duration - OUTAGE]
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")  # the reader's word on the gyro's drift
-        return DRRun.from_arrays(t, gyro, speed=speed, gps_t=t[fixes],
+    with warnings.catch_warnings(record=True) as said:
+        warnings.simplefilter("always")  # the reader's words, kept in caught when asked
+        run = DRRun.from_arrays(t, gyro, speed=speed, gps_t=t[fixes],
                                  east=east[fixes] + rng.normal(0.0, 2.0, len(fixes)),
                                  north=north[fixes] + rng.normal(0.0, 2.0, len(fixes)),
                                  gps_sigma=np.full(len(fixes), 2.0), truth=np.c_[east, north])
+    if caught is not None:
+        caught.extend(str(w.message) for w in said)
+    return run
 
 
 @pytest.fixture(scope="module")
@@ -131,3 +140,46 @@ def test_stop_reopen_measures_the_distance_across_fixes():
             f.predict()
             f.update(np.array([rng.normal(0.0, 1e-3), ds]), np.array([0.0, north]) + rng.normal(0.0, 0.5, 2), 0.5)
     assert len(f.zero_rate_steps) == 2  # two stops, not one
+
+
+@pytest.mark.parametrize("case,column", [(dict(), "speed"), (dict(gnss_speed=False, gnss_heading=True), "heading")],
+                         ids=["GNSS speed", "GNSS course"])
+def test_the_reader_names_a_column_interpolated_between_the_fixes(case, column):
+    caught = []
+    _drive(caught=caught, **case)
+    said = [m for m in caught if "runs straight between" in m]
+    assert len(said) == 1 and f"the {column} changes its slope only where there is a GPS fix" in said[0]
+    assert ("a GPS speed" if column == "speed" else "a GPS course") in said[0]
+
+
+def test_the_reader_says_nothing_of_a_wheel_speed_and_a_gyro():
+    caught = []
+    _drive(gnss_speed=False, caught=caught)
+    assert not [m for m in caught if "GPS fix" in m]
+
+
+def test_a_tilted_gyro_axis_is_named_and_its_scale_followed_past_the_specification():
+    """A phone reclined in its mount, its axis nearest the vertical given: the gyro turns cos(30 deg) = 0.87 of the car
+    (an OBD-II user's log, stop 61). The scale monitor finds the error, names the tilt, and the state it adds is
+    bounded about its estimate: about the specification's 0 it was held at -3 % at once (the user's log: EKF-8 54.16 /
+    459.06 m at the outage ends, 42.10 / 146.52 m since)."""
+    run = _drive(gnss_speed=False, bias_deg_s=0.0, gyro_scale=np.cos(np.radians(30.0)))
+    model = GPSDRModel.from_grade("phone", run.scenario.dt)
+    f = GPSDRFilter(model, "ekf", x0=np.r_[run.x0, model.x0[6:]])
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        f.batch_filter(run.z_dr, run.gps_list(), run.gps_sigma_list(), run.gps_offset_list())
+    said = [str(w.message) for w in caught if "the gyro's scale" in str(w.message)]
+    assert f.gyro_scale_added is not None and len(said) == 1
+    assert "an axis tilted" in said[0] and "Rotate the gyro's rates onto the vertical" in said[0]
+    assert f.x[9] < -0.08  # followed towards -13 %, not held at the specification's -3 %
+
+
+@pytest.mark.parametrize("scale,warned", [(0.45, True), (0.87, False), (1.0, False)])
+def test_the_reader_names_an_axis_tilted_far_off_the_vertical(scale, warned):
+    """A gyro axis whose course turns 0.3-0.6 of the fixes' turns (a phone reclined 60 degrees, the axis out of its
+    screen given: the OBD-II user's 0.45, EKF-8 222.83 / 1782.85 m) is warned of; at 30 degrees the ratio, read low by
+    the fixes' noise, is a right conversion's, and the filters' scale monitor tells it."""
+    caught = []
+    _drive(gnss_speed=False, bias_deg_s=0.0, gyro_scale=scale, caught=caught)
+    assert bool([m for m in caught if "tilted far off the vertical" in m]) == warned
