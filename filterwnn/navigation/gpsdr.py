@@ -2243,12 +2243,11 @@ class GPSDRFilter:
         self.model, self.kf = model, self._inner_filter(model, x, 0.5 * (P + P.T))
         self.held_states = np.array([0, 3] + list(range(6, n)))
         c = index - 6  # the calibration prior's row
-        # an error past its specification's bound (a gyro axis tilted off the vertical reads a scale error of
-        # cos(tilt) - 1: a phone's reclined mount, -13 % at 30 degrees) was measured: the prior no longer describes
-        # the sensor, and its bound is centred on the estimate, as a re-acquired rate bias's (else the state, started
-        # there, is held at once at 3 % by the bound of the prior it contradicts: stop 61)
-        centre = k if abs(k) > CALIBRATION_SIGMAS * sd else 0.0
-        self._cal_mean, C = insert_state(self._cal_mean, self._cal_P, c, centre, sd ** 2)
+        # the bound stays the specification's, about 0, even for an estimate past it: centred on the estimate (stop
+        # 61), a phone's tilted gyro axis was followed (an OBD-II user's log, EKF-8 54.16 / 459.06 -> 42.10 / 146.52
+        # m), but drives whose rows had lost turns ran away with the "scale" that reads as (53.01 / 144.25 -> 123.25 /
+        # 1020.05 m): docs/study-outputs/dr/obd-log/RUN.md
+        self._cal_mean, C = insert_state(self._cal_mean, self._cal_P, c, 0.0, sd ** 2)
         if name == "gyro_scale":
             b = HEADING_BIAS - 6
             C[b, b] += self._turn_sum ** 2 * sd ** 2
