@@ -692,7 +692,11 @@ def _sample_grid(t, max_jitter):
                             f"long; this one needs {_ceil_to(dts[k - 1], dt):g})" if round(dts[k - 1] / dt) >= 2 else "")
                          + ("; dead reckoning interpolated over so long is a guess: for a log that paused, split the "
                             f"file before t[{k}] and run each part as a drive of its own (the command takes several "
-                            "--drive)" if dts[k - 1] > LONG_GAP_S else ""))
+                            "--drive)" if dts[k - 1] > LONG_GAP_S else "")
+                         + ("; where only one sensor paused and the others logged on (an OBD-II adapter's hang beside "
+                            "a phone's gyro), keep their rows and interpolate that sensor's column alone across the "
+                            "gap: rows filled whole lose the turns the gyro logged in it" if round(dts[k - 1] / dt) >= 2
+                            else ""))
     return dts, dt, stamps
 
 

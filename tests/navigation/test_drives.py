@@ -345,6 +345,9 @@ def test_a_loggers_faults_are_named_with_their_remedy(tmp_path):
     keep[500:520] = False  # 2 s of rows dropped: a 2.1 s interval
     c = {k: v[keep] for k, v in _drive().items()}
     refused(c, r"= 2.1 s: .* this one needs 2.1\)", fill_gaps=2.0)
+    # an OBD-II adapter that hung beside a gyro that logged on (stop 61: filled whole, the turns in the gap went)
+    refused(c, r"this one needs 2.1\);.* where only one sensor paused .* interpolate that sensor's column alone",
+            fill_gaps=2.0)
     with pytest.warns(RuntimeWarning, match="filled 1 gap"):
         read_drive_csv(_write(tmp_path / "d.csv", c), fill_gaps=2.1)  # as the message says (2.1000000000000014)
     keep[500:800] = False  # a logger that paused for 30 s: interpolating it is a guess, so split it
