@@ -1331,7 +1331,7 @@ class GPSDRFilter:
         self.floor_raised = None  # the step from which every fix's sigma is floored at the median (the monitor's)
         self.zero_rate_update = bool(zero_rate_update) and model.rate_bias
         self._stop = []  # (time, heading) of the standstill samples of the stop going on
-        self._last_stop = None  # (its samples, the step it ended, the distance driven then): stop_reopen
+        self._last_stop = None  # the samples of a stop that ended at _piece_end and may go on (stop_reopen)
         self.reopen_on_detection = bool(reopen_on_detection)
         self.stops_cut_step = None  # the step at which _stops_cut found standstills cut into pieces
         self._piece_end = None  # (the step, the distance driven) where the last piece of a standstill ended
@@ -2333,7 +2333,7 @@ class GPSDRFilter:
         """Collect a stop's headings; when it ends, update the rate bias with their slope."""
         if self.motion == "still":
             if self._last_stop is not None:  # back to a standstill within stop_reopen: the same stop
-                self._stop, self._last_stop = self._last_stop[0], None
+                self._stop, self._last_stop = self._last_stop, None
             elif not self._stop:
                 self._count_piece()
             self._stop.append((self.step * self.model.dt, float(heading)))
@@ -2341,13 +2341,12 @@ class GPSDRFilter:
         if self._stop:
             self._piece_end = (self.step, self._odometer)
         if self._stop and self.stop_reopen > 0:  # the stop may go on: its update waits
-            self._last_stop, self._stop = (self._stop, self.step, self._odometer), []
+            self._last_stop, self._stop = self._stop, []
             return
         if self._last_stop is not None:
-            stop, ended, driven = self._last_stop
-            if (self.step - ended) * self.model.dt <= self.stop_reopen and self._odometer - driven <= STOP_REOPEN_M:
+            if self._near_last_piece(self.stop_reopen):
                 return
-            self._last_stop = None
+            stop, self._last_stop = self._last_stop, None
         else:
             stop, self._stop = self._stop, []
         if len(stop) < ZERO_RATE_MIN_SAMPLES:
@@ -2390,10 +2389,14 @@ class GPSDRFilter:
     def _count_piece(self):
         """A standstill begins: the next piece of the last (:data:`REOPEN_PIECES`) when that ended within
         :data:`STOP_REOPEN` and :data:`STOP_REOPEN_M`, else its first."""
+        self._pieces = self._pieces + 1 if self._near_last_piece(STOP_REOPEN) else 1
+
+    def _near_last_piece(self, seconds):
+        """Whether the last piece of a standstill ended at most ``seconds`` ago, the car having moved at most
+        :data:`STOP_REOPEN_M` since (``stop_reopen``'s test, and :meth:`_count_piece`'s)."""
         end = self._piece_end
-        near = (end is not None and (self.step - end[0]) * self.model.dt <= STOP_REOPEN
+        return (end is not None and (self.step - end[0]) * self.model.dt <= seconds
                 and self._odometer - end[1] <= STOP_REOPEN_M)
-        self._pieces = self._pieces + 1 if near else 1
 
     def _stops_cut(self, slope, var):
         """A stop the rate-bias state could not follow (rejected, or held at its calibration bound) that is the
