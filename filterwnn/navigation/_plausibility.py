@@ -44,7 +44,9 @@ warnings, which misplaced chords cannot judge; a refusal names it first.
 
 Fixes whose reported accuracy (``gps_sigma``) has a median past :data:`SIGMA_UNIT_MIN` and
 :data:`SIGMA_PAST_SCATTER` times the fixes' own scatter about the dead-reckoned track are refused as a
-column not in metres (millimetres, centimetres, a variance): the filters would all but ignore them.
+column not in metres (millimetres, centimetres, a variance): the filters would all but ignore them. A ``gps_hdop``
+column whose median is past :data:`HDOP_AS_METRES_MIN` and whose sigma (times ``hdop_sigma``) is past
+:data:`HDOP_PAST_SCATTER` times that scatter is warned of as an accuracy in metres (:func:`hdop_as_metres`).
 """
 
 from __future__ import annotations
@@ -58,7 +60,7 @@ __all__ = ["check_drive", "heading_offset", "speed_scale", "clock_offset", "MAX_
            "CLOCK_OFFSET_WARN_S", "CLOCK_OFFSET_SCAN_S", "GPS_DERIVED_HELD", "GPS_DERIVED_AT_FIX",
            "GPS_DERIVED_AT_FIX_LINEAR", "GPS_DERIVED_SLOPE_TOL", "GPS_DERIVED_MIN_CHANGES", "TILTED_TURNS",
            "GPS_DERIVED_MIN_RATIO", "GPS_DERIVED_SPEED", "SIGMA_UNIT_MIN",
-           "SIGMA_PAST_SCATTER"]
+           "SIGMA_PAST_SCATTER", "HDOP_AS_METRES_MIN", "HDOP_PAST_SCATTER", "hdop_as_metres"]
 
 #: The longest DR sample interval (s) accepted without ``checks=False``.
 MAX_DT = 2.0
@@ -104,6 +106,17 @@ SIGMA_UNIT_MIN = 50.0
 #: 4000: the filters, all but ignoring them, ended its outages 81.62 / 143.69 m off, 1.63 / 6.28 with metres),
 #: a variance of honest 3-10 m fixes 2-7 times.
 SIGMA_PAST_SCATTER = 20.0
+#: A median ``gps_hdop`` from which its fixes' sigma (times ``hdop_sigma``) is measured against their scatter
+#: (:func:`hdop_as_metres`): an HDOP is about 1 under open sky, and only a city's canyons keep it past 3 over a
+#: drive (the city analog's 2-8), where the fixes scatter as much; a phone's accuracy in metres is 3-10.
+HDOP_AS_METRES_MIN = 3.0
+#: The factor by which the sigma of such a ``gps_hdop`` may exceed the fixes' scatter before the column is named
+#: as an accuracy in metres. On the 250 drives at hand (``docs/study-outputs/dr/log-faults/hdop_as_metres.txt``)
+#: each written with its HDOP gives at most 2.61 (the city analog's HDOPs of 3.4-4.4 among them, only those past
+#: :data:`HDOP_AS_METRES_MIN` tested), each with its 68 % radius in ``gps_hdop`` read at the phone grade's 5 m at
+#: least 5.27 (an OBD-II user's Android log 15): 4 lies between, nearer the honest side, since a miss costs (12.32
+#: / 37.00 m against 6.80 / 17.53 on that log) and a false alarm is a warning.
+HDOP_PAST_SCATTER = 4.0
 #: What the reader's refusal and the filter's warning of a ``gps_sigma`` not in metres say to do.
 SIGMA_UNITS_REMEDY = ("gps_sigma is a standard deviation per axis in metres; a column in millimetres (a u-blox "
                       "hAcc) is divided by 1000, one in centimetres by 100, and a variance (m^2) is given as its "
@@ -366,13 +379,11 @@ def _still_cause(heading, step, steps, z_gps, pairs):
             "vertical), or a column that holds another angle (a pitch or a roll)")
 
 
-def _sigma_unit(heading, step, steps, z_gps, sigma):
-    """The refusal's words where the fixes' median reported ``sigma`` (m) is past :data:`SIGMA_UNIT_MIN` and
-    :data:`SIGMA_PAST_SCATTER` times their scatter, else None. The scatter is the median misfit of each
-    stretch's fix-to-fix length to the dead-reckoned displacement's (scaled by their median ratio), which a
-    heading's zero or sign does not change; the stretches are those of fixes of 3 m."""
-    if sigma is None or not sigma > SIGMA_UNIT_MIN:
-        return None
+def _fix_scatter(heading, step, steps, z_gps):
+    """The fixes' scatter about the dead-reckoned track (m) and the stretches measured, or None with fewer than
+    :data:`_MIN_CHORDS`: the median misfit of each stretch's fix-to-fix length to the dead-reckoned
+    displacement's (scaled by their median ratio), which a heading's zero or sign does not change; the stretches
+    are those of fixes of 3 m."""
     pairs = _chord_pairs(steps, z_gps, None, step)
     if len(pairs) < _MIN_CHORDS:
         return None
@@ -382,12 +393,55 @@ def _sigma_unit(heading, step, steps, z_gps, sigma):
     if ok.sum() < _MIN_CHORDS:
         return None
     scale = float(np.median(g[ok] / d[ok]))
-    scatter = float(np.median(np.abs(g[ok] - scale * d[ok])))
+    return float(np.median(np.abs(g[ok] - scale * d[ok]))), len(pairs)
+
+
+def _sigma_unit(heading, step, steps, z_gps, sigma):
+    """The refusal's words where the fixes' median reported ``sigma`` (m) is past :data:`SIGMA_UNIT_MIN` and
+    :data:`SIGMA_PAST_SCATTER` times their scatter (:func:`_fix_scatter`), else None."""
+    if sigma is None or not sigma > SIGMA_UNIT_MIN:
+        return None
+    found = _fix_scatter(heading, step, steps, z_gps)
+    if found is None:
+        return None
+    scatter, n = found
     if sigma <= SIGMA_PAST_SCATTER * max(scatter, 1.0):
         return None
     return (f"the fixes' median gps_sigma is {sigma:.4g} m, {sigma / max(scatter, 1.0):.0f} times what they scatter "
-            f"about the dead-reckoned track (over {len(pairs)} moving stretches between fixes, their lengths agree "
+            f"about the dead-reckoned track (over {n} moving stretches between fixes, their lengths agree "
             f"with it to {scatter:.2g} m, median): {SIGMA_UNITS_REMEDY}")
+
+
+def hdop_as_metres(run, hdop_sigma):
+    """The warning's words where a drive's ``gps_hdop`` column looks like an accuracy in metres, else None.
+
+    ``run``: the :class:`~filterwnn.navigation.scenarios.DRRun` read with each fix's sigma its HDOP times
+    ``hdop_sigma`` (m). An HDOP is about 1 under open sky and 2-8 in a city's canyons, whose fixes scatter as
+    much; a phone's accuracy (a 68 % radius, 3-10 m) written there makes each fix claim ``hdop_sigma`` times
+    that, several times what the fixes scatter about the dead-reckoned track (:func:`_fix_scatter`): where the
+    median HDOP is at least :data:`HDOP_AS_METRES_MIN` and the sigma it gives is past :data:`HDOP_PAST_SCATTER`
+    times that scatter, the column is named (a new user's phone + OBD-II log, stop 62: EKF-8 12.32 / 37.00 m at
+    the outage ends against 6.80 / 17.53 with the accuracy as gps_sigma)."""
+    if run.gps_sigma is None or not len(run.gps_sigma):
+        return None
+    sigma = float(np.median(run.gps_sigma))
+    hdop = sigma / hdop_sigma
+    if hdop < HDOP_AS_METRES_MIN:
+        return None
+    heading = np.r_[run.z_dr[0, 0], run.z_dr[:, 0]]  # (the first sample's heading is not kept: its second's)
+    found = _fix_scatter(heading, run.z_dr[:, 1], run.gps_steps, run.z_gps)
+    if found is None:
+        return None
+    scatter, n = found
+    if sigma <= HDOP_PAST_SCATTER * max(scatter, 1.0):
+        return None
+    return (f"plausibility: the fixes' gps_hdop has a median of {hdop:.3g}, which times hdop_sigma ({hdop_sigma:g} m "
+            f"at HDOP 1) makes each fix claim a sigma of {sigma:.3g} m, {sigma / max(scatter, 1.0):.0f} times what "
+            f"they scatter about the dead-reckoned track (over {n} moving stretches between fixes, their lengths "
+            f"agree with it to {scatter:.2g} m, median): the filters then weigh them far too little. An HDOP is about 1 "
+            "under open sky; a column that holds an accuracy in metres (a phone's, Android's Location accuracy, a "
+            "68 % radius) reads so: give it as gps_sigma, divided by 1.51 (a 68 % radius; a 95 % one by 2.45). If "
+            "it is an HDOP, pass the receiver's sigma at HDOP 1 as hdop_sigma (--hdop-sigma)")
 
 
 def _offset_fit(ang, steps, pairs, dt):

@@ -658,6 +658,23 @@ def _rounded_stamps(t, dts):
             "write the time column with more digits")
 
 
+#: The spread (standard deviation over the median) of the sample intervals, gaps left out, past which a drive refused
+#: for a gap is told that its rows come at irregular intervals, where the intervals are also independent of each
+#: other (lag-1 autocorrelation at least :data:`GRID_CORRELATION`; stamps jittering about a grid have -0.5): a
+#: polled sensor's replies or a row per message (a phone + OBD-II log's poll rows, 0.25-0.50 s: 0.19).
+POLLED_SPREAD = 0.1
+
+
+def _polled(dts, dt):
+    """Whether the sample intervals ``dts`` (median ``dt``), those of 2 ``dt`` or more left out, spread past
+    :data:`POLLED_SPREAD` and independently of each other (:data:`GRID_CORRELATION`)."""
+    d = dts[np.round(dts / dt) < 2]
+    if len(d) < 3 or np.std(d) <= POLLED_SPREAD * dt:
+        return False
+    d = d - np.mean(d)
+    return float(d[1:] @ d[:-1] / (d @ d)) >= GRID_CORRELATION
+
+
 def _sample_grid(t, max_jitter):
     """The intervals of the sample times ``t``, their median ``dt``, and :func:`_stamp_grid`'s answer when
     an interval strays past ``max_jitter`` (else None); ValueError unless there are 3 or more, strictly
@@ -687,12 +704,21 @@ def _sample_grid(t, max_jitter):
         wrapped = _wrap_cause(dts[k - 1], t)
         if wrapped:
             raise ValueError(said + wrapped)
+        long_gap = ("; dead reckoning interpolated over so long is a guess: for a log that paused, split the file "
+                    f"before t[{k}] and run each part as a drive of its own (the command takes several --drive)"
+                    if dts[k - 1] > LONG_GAP_S else "")
+        if _polled(dts, dt):  # rows at a sensor's polls or messages: no grid to fill (stop 62)
+            q25, q75 = np.percentile(dts[np.round(dts / dt) < 2], [25, 75])
+            raise ValueError(said + f"; and the rows come at irregular intervals (half of them between {q25:.3g} and "
+                             f"{q75:.3g} s, each independent of the last), as rows at a polled sensor's replies or at "
+                             "each sensor's messages do: resample the drive onto a regular grid (a row every 0.1 s, "
+                             "say), each sensor's column from its own rows (the speed interpolated, across its pauses "
+                             "too; the gyro's rate averaged over each interval); fill_gaps (--fill-gaps) fills the gaps "
+                             "of a regular grid, which these rows are not on" + long_gap)
         raise ValueError(said + ": resample the drive first"
                          + (" (dropped samples: fill_gaps=SECONDS, or --fill-gaps, interpolates gaps up to that "
                             f"long; this one needs {_ceil_to(dts[k - 1], dt):g})" if round(dts[k - 1] / dt) >= 2 else "")
-                         + ("; dead reckoning interpolated over so long is a guess: for a log that paused, split the "
-                            f"file before t[{k}] and run each part as a drive of its own (the command takes several "
-                            "--drive)" if dts[k - 1] > LONG_GAP_S else "")
+                         + long_gap
                          + ("; where only one sensor paused and the others logged on (an OBD-II adapter's hang beside "
                             "a phone's gyro), keep their rows and interpolate that sensor's column alone across the "
                             "gap: rows filled whole lose the turns the gyro logged in it" if round(dts[k - 1] / dt) >= 2
