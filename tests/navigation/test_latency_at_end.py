@@ -1,0 +1,62 @@
+"""The fixes' latency told once, when a drive ends (stop 62).
+
+The monitor tests the fixes' latency at every fix, against a gate (``LATENCY_Z``, 6.1) that keeps its false alarms
+rarer than one fix's. A latency only a whole drive shows stays under it: an OBD-II user's phone app stamped each fix
+when it arrived (0.15-0.40 s late), the monitor ended at z 4.4 with an estimate of 0.18 s, and nothing was said
+(EKF-8 6.80 / 17.53 m; rerun with ``--gps-latency 0.18``, 5.80 / 13.11). ``GPSDRFilter.end_of_drive`` (which
+``batch_filter`` calls) tests it once more against ``LATENCY_END_Z``.
+"""
+
+import os
+import sys
+import warnings
+
+import numpy as np
+import pytest
+
+from filterwnn.navigation.dead_reckoning import GPSDRModel
+from filterwnn.navigation.drives import read_drive_csv
+from filterwnn.navigation.gpsdr import LATENCY_END_Z, LATENCY_Z, GPSDRFilter
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+import _held_out_drives as held_out  # noqa: E402
+
+
+def _run(tmp_path, latency, grade="phone"):
+    """The phone analog (seed 0) with its fixes ``latency`` s late, through the grade's EKF-8: the filter and the
+    warnings of the fixes' latency."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        run = read_drive_csv(held_out.write_csv(tmp_path / "d.csv", held_out.columns("phone", 0, gps_latency=latency)))
+    model = GPSDRModel.from_grade(grade, run.scenario.dt)
+    f = GPSDRFilter(model, "ekf", x0=np.r_[run.x0, model.x0[6:]])
+    with warnings.catch_warnings(record=True) as record:
+        warnings.simplefilter("always")
+        f.batch_filter(run.z_dr, run.gps_list(), run.gps_sigma_list(), run.gps_offset_list())
+    return f, [str(w.message) for w in record if "the fixes' latency" in str(w.message)]
+
+
+def test_a_latency_only_the_whole_drive_shows_is_told_when_it_ends(tmp_path):
+    """Fixes 0.3 s late on the phone analog: under the test at every fix, past the end's gate; one warning, with the
+    estimate and the setting to rerun with, and no state added."""
+    f, said = _run(tmp_path, 0.3)
+    assert f.latency_added is None and LATENCY_END_Z < f.latency_z < LATENCY_Z
+    assert f.latency_at_end == pytest.approx(f.latency_estimate) and 0.2 < f.latency_at_end < 0.5
+    assert len(said) == 1 and "over the whole drive" in said[0], said
+    assert f"--gps-latency {f.latency_at_end:.2f}" in said[0]
+    assert f.end_of_drive() == f.latency_at_end  # told once: called again, it returns the same and says no more
+
+
+def test_honest_fixes_are_not_told_late(tmp_path):
+    """The same drive with its fixes on time: no word of a latency, at any fix or at the end."""
+    f, said = _run(tmp_path, 0.0)
+    assert f.latency_at_end is None and not said, said
+
+
+def test_the_drive_table_says_what_was_told_at_the_end():
+    """``filterwnn study dr``'s line under its table for a filter that told the latency at the drive's end."""
+    from filterwnn.studies.dr._real import _states_added
+
+    said = _states_added({"latency_at_end": 0.367})
+    assert said == "the fixes +0.37 s late over the whole drive (told at its end; rerun with --gps-latency 0.37)"
+    assert _states_added({"latency_at_end": None}) == ""
