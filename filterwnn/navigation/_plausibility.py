@@ -108,14 +108,15 @@ SIGMA_UNIT_MIN = 50.0
 SIGMA_PAST_SCATTER = 20.0
 #: A median ``gps_hdop`` from which its fixes' sigma (times ``hdop_sigma``) is measured against their scatter
 #: (:func:`hdop_as_metres`): an HDOP is about 1 under open sky, and only a city's canyons keep it past 3 over a
-#: drive (the city analog's 2-8), where the fixes scatter as much; a phone's accuracy in metres is 3-10.
+#: drive (the city analog's HDOPs are 2-8, their medians 3.15-4.4), where the fixes scatter as much; a phone's
+#: accuracy in metres is 3-10.
 HDOP_AS_METRES_MIN = 3.0
 #: The factor by which the sigma of such a ``gps_hdop`` may exceed the fixes' scatter before the column is named
 #: as an accuracy in metres. On the 250 drives at hand (``docs/study-outputs/dr/log-faults/hdop_as_metres.txt``)
-#: each written with its HDOP gives at most 2.61 (the city analog's HDOPs of 3.4-4.4 among them, only those past
-#: :data:`HDOP_AS_METRES_MIN` tested), each with its 68 % radius in ``gps_hdop`` read at the phone grade's 5 m at
-#: least 5.27 (an OBD-II user's Android log 15): 4 lies between, nearer the honest side, since a miss costs (12.32
-#: / 37.00 m against 6.80 / 17.53 on that log) and a false alarm is a warning.
+#: each written with its HDOP gives at most 2.61 (the city analog's, of median HDOPs 3.15-4.4, among them; only
+#: those past :data:`HDOP_AS_METRES_MIN` are tested), each with its 68 % radius in ``gps_hdop`` read at the phone
+#: grade's 5 m at least 5.27 (an OBD-II user's Android log 15): 4 lies between, nearer the honest side, since a miss
+#: costs (12.32 / 37.00 m against 6.80 / 17.53 on that log) and a false alarm is a warning.
 HDOP_PAST_SCATTER = 4.0
 #: What the reader's refusal and the filter's warning of a ``gps_sigma`` not in metres say to do.
 SIGMA_UNITS_REMEDY = ("gps_sigma is a standard deviation per axis in metres; a column in millimetres (a u-blox "

@@ -21,3 +21,28 @@ def drives_at_hand():
         for p in (2, 3):
             drives[f"p{p} s{s}"] = lambda s=s, p=p: random_drives.drive(s, p)[1]
     return drives
+
+
+def drives_with_rest():
+    """The 271 drives the filter's probes scan (stops 61-62): the tests' drive from rest (``FROM_REST``) over seeds
+    0-19, then :func:`drives_at_hand`, then the shipped sample; each a function returning a ``DRRun``, the columns of
+    a drive CSV, or the sample's path (:func:`read_at_hand` reads any of them)."""
+    from test_gpsdr import FROM_REST
+    from filterwnn.navigation.drives import sample_drive_path
+    from filterwnn.navigation.scenarios import simulate_scenario
+
+    drives = {f"rest{s}": (lambda s=s: simulate_scenario(FROM_REST, rng=s)) for s in range(20)}
+    drives.update(drives_at_hand())
+    drives["sample"] = sample_drive_path
+    return drives
+
+
+def read_at_hand(obj, tmp):
+    """The ``DRRun`` of what a function of :func:`drives_with_rest` returned (a CSV written in the folder ``tmp``)."""
+    from filterwnn.navigation.drives import read_drive_csv
+
+    if isinstance(obj, str):
+        return read_drive_csv(obj)
+    if hasattr(obj, "z_dr"):
+        return obj
+    return read_drive_csv(held_out.write_csv(os.path.join(tmp, "d.csv"), obj))

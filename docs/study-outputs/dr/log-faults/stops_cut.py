@@ -11,28 +11,17 @@ import os, sys, tempfile, warnings
 import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from at_hand import drives_at_hand, held_out  # puts tests/ and tests/navigation on the path
-from test_gpsdr import FROM_REST
-from filterwnn.navigation.drives import read_drive_csv, sample_drive_path
-from filterwnn.navigation.scenarios import simulate_scenario
+from at_hand import drives_with_rest, read_at_hand  # puts tests/ and tests/navigation on the path
 from filterwnn.navigation.dead_reckoning import GPSDRModel
 from filterwnn.navigation.gpsdr import GPSDRFilter
 part = int(sys.argv[1])
-drives = {f"rest{s}": (lambda s=s: simulate_scenario(FROM_REST, rng=s)) for s in range(20)}
-drives.update(drives_at_hand())
-drives["sample"] = sample_drive_path
+drives = drives_with_rest()
 keys = list(drives)[part::2]
 fired = []
 with tempfile.TemporaryDirectory() as tmp, warnings.catch_warnings():
     warnings.simplefilter("ignore")
     for key in keys:
-        obj = drives[key]()
-        if isinstance(obj, str):
-            run = read_drive_csv(obj)
-        elif hasattr(obj, "z_dr"):
-            run = obj
-        else:
-            run = read_drive_csv(held_out.write_csv(os.path.join(tmp, "d.csv"), obj))
+        run = read_at_hand(drives[key](), tmp)
         model = GPSDRModel.from_grade("phone", run.scenario.dt)
         f = GPSDRFilter(model, "ekf", x0=np.r_[run.x0, model.x0[6:]])
         f.batch_filter(run.z_dr, run.gps_list(), run.gps_sigma_list(), run.gps_offset_list())
