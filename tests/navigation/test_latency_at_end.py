@@ -1,4 +1,4 @@
-"""The fixes' latency told once, when a drive ends (stop 62).
+"""The fixes' latency and the gyro's scale error told once, when a drive ends (stop 62).
 
 The monitor tests the fixes' latency at every fix, against a gate (``LATENCY_Z``, 6.1) that keeps its false alarms
 rarer than one fix's. A latency only a whole drive shows stays under it: an OBD-II user's phone app stamped each fix
@@ -16,24 +16,25 @@ import pytest
 
 from filterwnn.navigation.dead_reckoning import GPSDRModel
 from filterwnn.navigation.drives import read_drive_csv
-from filterwnn.navigation.gpsdr import LATENCY_END_Z, LATENCY_Z, GPSDRFilter
+from filterwnn.navigation.gpsdr import LATENCY_END_Z, LATENCY_Z, SCALE_END_Z, SCALE_ERROR_Z, GPSDRFilter
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 import _held_out_drives as held_out  # noqa: E402
 
 
-def _run(tmp_path, latency, grade="phone"):
-    """The phone analog (seed 0) with its fixes ``latency`` s late, through the grade's EKF-8: the filter and the
-    warnings of the fixes' latency."""
+def _run(tmp_path, latency, grade="phone", about="the fixes' latency", **kw):
+    """The phone analog (seed 0) with its fixes ``latency`` s late (and ``kw`` to its generator), through the grade's
+    EKF-8: the filter and its warnings ``about`` that."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        run = read_drive_csv(held_out.write_csv(tmp_path / "d.csv", held_out.columns("phone", 0, gps_latency=latency)))
+        run = read_drive_csv(held_out.write_csv(tmp_path / "d.csv",
+                                                held_out.columns("phone", 0, gps_latency=latency, **kw)))
     model = GPSDRModel.from_grade(grade, run.scenario.dt)
     f = GPSDRFilter(model, "ekf", x0=np.r_[run.x0, model.x0[6:]])
     with warnings.catch_warnings(record=True) as record:
         warnings.simplefilter("always")
         f.batch_filter(run.z_dr, run.gps_list(), run.gps_sigma_list(), run.gps_offset_list())
-    return f, [str(w.message) for w in record if "the fixes' latency" in str(w.message)]
+    return f, [str(w.message) for w in record if about in str(w.message)]
 
 
 def test_a_latency_only_the_whole_drive_shows_is_told_when_it_ends(tmp_path):
@@ -44,13 +45,27 @@ def test_a_latency_only_the_whole_drive_shows_is_told_when_it_ends(tmp_path):
     assert f.latency_at_end == pytest.approx(f.latency_estimate) and 0.2 < f.latency_at_end < 0.5
     assert len(said) == 1 and "over the whole drive" in said[0], said
     assert f"--gps-latency {f.latency_at_end:.2f}" in said[0]
-    assert f.end_of_drive() == f.latency_at_end  # told once: called again, it returns the same and says no more
+    with warnings.catch_warnings(record=True) as again:
+        warnings.simplefilter("always")
+        assert f.end_of_drive() == {"latency": f.latency_at_end, "gyro_scale": None}
+    assert not again  # told once: called again, it says no more
+
+
+def test_a_scale_error_only_the_whole_drive_shows_is_told_when_it_ends(tmp_path):
+    """The phone analog's gyro turning 0.7 % more than the car: under the scale monitor's test at every fix, past the
+    end's gate; one warning, with the estimate and the scale state from the start to rerun with."""
+    f, said = _run(tmp_path, 0.0, about="the gyro's scale", gyro_scale=0.007)
+    assert f.gyro_scale_added is None and SCALE_END_Z < f.gyro_scale_z < SCALE_ERROR_Z
+    assert f.gyro_scale_at_end == pytest.approx(f.gyro_scale_estimate) and 0.005 < f.gyro_scale_at_end < 0.02
+    assert len(said) == 1 and "over the whole drive" in said[0] and "--gyro-scale-sd 0.01" in said[0], said
+    assert f.latency_at_end is None
 
 
 def test_honest_fixes_are_not_told_late(tmp_path):
-    """The same drive with its fixes on time: no word of a latency, at any fix or at the end."""
-    f, said = _run(tmp_path, 0.0)
-    assert f.latency_at_end is None and not said, said
+    """The same drive with its fixes on time and its gyro's scale right: no word of a latency or a scale error, at
+    any fix or at the end."""
+    f, said = _run(tmp_path, 0.0, about="GPSDRFilter, the")
+    assert f.latency_at_end is None and f.gyro_scale_at_end is None and not said, said
 
 
 def test_the_drive_table_says_what_was_told_at_the_end():
@@ -60,3 +75,5 @@ def test_the_drive_table_says_what_was_told_at_the_end():
     said = _states_added({"latency_at_end": 0.367})
     assert said == "the fixes +0.37 s late over the whole drive (told at its end; rerun with --gps-latency 0.37)"
     assert _states_added({"latency_at_end": None}) == ""
+    assert _states_added({"gyro_scale_at_end": 0.0164}) == ("the gyro turning +1.64 % more than the car over the whole "
+                                                           "drive (told at its end; rerun with --gyro-scale-sd 0.01)")

@@ -150,9 +150,9 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         ``gyro_scale_estimate`` and ``gyro_scale_z``, the scale-error monitor's estimate and z-score (None
         without it), ``gyro_scale_added``, the step at which it made the filter add the scale state (None:
         not), and ``gyro_scale``, that state's last value (None without one); ``latency_estimate``,
-        ``latency_z``, ``latency_added`` and ``latency``, the same for the fixes' latency (s), and ``latency_at_end``,
-        the latency told when the drive ended (:meth:`~filterwnn.navigation.gpsdr.GPSDRFilter.end_of_drive`; None:
-        not);
+        ``latency_z``, ``latency_added`` and ``latency``, the same for the fixes' latency (s), and ``latency_at_end``
+        and ``gyro_scale_at_end``, the latency and the scale error told when the drive ended
+        (:meth:`~filterwnn.navigation.gpsdr.GPSDRFilter.end_of_drive`; None: not);
         ``odometer_latency_estimate`` and ``odometer_latency_z``, the speed's latency (s)), and
         per filter
         ``(n,)`` end-of-outage errors (m; a non-finite estimate raises).
@@ -323,7 +323,7 @@ def _integrity(f, run):
             "gyro_scale_added": f.gyro_scale_added,
             "gyro_scale": float(f.x[GYRO_SCALE]) if f.model.gyro_scale else None,
             "latency_estimate": f.latency_estimate, "latency_z": f.latency_z, "latency_added": f.latency_added,
-            "latency_at_end": f.latency_at_end,
+            "latency_at_end": f.latency_at_end, "gyro_scale_at_end": f.gyro_scale_at_end,
             "latency": float(f.x[f.model.latency_index]) if f.model.latency else None,
             "odometer_latency_estimate": f.odometer_latency_estimate, "odometer_latency_z": f.odometer_latency_z}
 
@@ -400,6 +400,9 @@ def _states_added(ig):
     if ig.get("latency_at_end") is not None:  # told once when the drive ended (GPSDRFilter.end_of_drive)
         told.append(f"the fixes {ig['latency_at_end']:+.2f} s late over the whole drive (told at its end; rerun with "
                     f"--gps-latency {ig['latency_at_end']:.2f})")
+    if ig.get("gyro_scale_at_end") is not None:
+        told.append(f"the gyro turning {100 * ig['gyro_scale_at_end']:+.2f} % more than the car over the whole drive "
+                    "(told at its end; rerun with --gyro-scale-sd 0.01)")
     return "; ".join(told)
 
 
