@@ -3213,8 +3213,8 @@ class GPSDRFilter:
             said = (f"the fixes' latency: over the whole drive (to step {self.step}) the fixes read {est:+.2f} s late "
                     f"against the DR samples ({test}). An app that stamps each fix when it arrives (0.15-0.45 s after "
                     "it) reads so, as do a receiver's latency and two clocks: rerun with each fix at its own time "
-                    f"(read_drive_csv's gps_latency={est:.2f}; command line --gps-latency {est:.2f}); on 230 drives "
-                    "without a latency this end test fired on 1")
+                    f"(read_drive_csv's gps_latency={est:.2f}; command line --gps-latency {est:.2f}; a drive read with a "
+                    "gps_latency already: add this to it); on 230 drives without a latency this end test fired on 1")
         else:
             said = (f"the gyro's scale: over the whole drive (to step {self.step}) the fixes show the gyro turning "
                     f"{100 * est:+.2g} % more than the car ({test}){self._tilt_words(est)}: rerun with the scale state "
