@@ -46,3 +46,17 @@ def read_at_hand(obj, tmp):
     if hasattr(obj, "z_dr"):
         return obj
     return read_drive_csv(held_out.write_csv(os.path.join(tmp, "d.csv"), obj))
+
+
+def ekf8_command(path, tmp, extra=()):
+    """``filterwnn study dr --drive path --grade phone --filters EKF-8`` (one BLAS thread, outputs in ``tmp``) with
+    the settings ``extra``: the EKF-8's "median / max" at the outage ends (or "rc N" where it exits without a table)
+    and the command's stderr."""
+    import subprocess
+
+    cmd = [sys.executable, "-m", "filterwnn.cli", "study", "dr", "--drive", path, "--grade", "phone", "--no-figures",
+           "--no-progress", "--jobs", "1", "--out", tmp, "--filters", "EKF-8", *extra]
+    p = subprocess.run(cmd, capture_output=True, text=True, env=dict(os.environ, OPENBLAS_NUM_THREADS="1"))
+    row = [line for line in p.stdout.splitlines() if line.startswith("| EKF-8 |")]
+    cells = [c.strip() for c in row[0].split("|")] if row else None
+    return (f"{cells[2]} / {cells[4]}" if cells else f"rc {p.returncode}"), p.stderr

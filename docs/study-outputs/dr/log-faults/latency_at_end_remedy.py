@@ -7,23 +7,20 @@ the ``--gps-latency`` the command's warning names. Per drive: the true latency, 
 
     python docs/study-outputs/dr/log-faults/latency_at_end_remedy.py > docs/study-outputs/dr/log-faults/latency_at_end_remedy.txt
 """
-import os, re, subprocess, sys, tempfile
+import os, re, sys, tempfile
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from at_hand import drives_at_hand, held_out  # puts tests/ and the random drives on the path
+from at_hand import drives_at_hand, ekf8_command, held_out  # puts tests/ and the random drives on the path
 import random_drives
 
 DRIVES = ["p2 s209", "p3 s7", "p3 s201", "p3 s202", "p3 s222", "p3 s226", "p3 s269", "p3 s271"]
 
 
 def command(path, tmp, extra=()):
-    cmd = [sys.executable, "-m", "filterwnn.cli", "study", "dr", "--drive", path, "--grade", "phone", "--no-figures",
-           "--no-progress", "--jobs", "1", "--out", tmp, "--filters", "EKF-8", *extra]
-    p = subprocess.run(cmd, capture_output=True, text=True, env=dict(os.environ, OPENBLAS_NUM_THREADS="1"))
-    row = [line for line in p.stdout.splitlines() if line.startswith("| EKF-8 |")]
-    cells = [c.strip() for c in row[0].split("|")] if row else None
-    named = re.search(r"over the whole drive .*?--gps-latency ([-\d.]+)", p.stderr)
-    return (f"{cells[2]} / {cells[4]}" if cells else f"rc {p.returncode}"), (named.group(1) if named else None)
+    """The EKF-8's outage ends and the ``--gps-latency`` the end-of-drive warning names (None: none)."""
+    ends, err = ekf8_command(path, tmp, extra)
+    named = re.search(r"over the whole drive .*?--gps-latency ([-\d.]+)", err)
+    return ends, (named.group(1) if named else None)
 
 
 def at_hand(key):

@@ -8,10 +8,10 @@ repository root::
 
     python docs/study-outputs/dr/log-faults/scale_at_end_remedy.py > docs/study-outputs/dr/log-faults/scale_at_end_remedy.txt
 """
-import os, subprocess, sys, tempfile
+import os, sys, tempfile
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from at_hand import drives_at_hand, held_out  # puts tests/ and the random drives on the path
+from at_hand import drives_at_hand, ekf8_command, held_out  # puts tests/ and the random drives on the path
 import random_drives
 
 #: (drive, the scale monitor's estimate at the end) from end_of_drive_*.txt
@@ -20,12 +20,7 @@ DRIVES = [("p3 s210", -0.0092), ("p3 s259", 0.0308), ("p3 s6", 0.009), ("p3 s219
 
 
 def command(path, tmp, extra=()):
-    cmd = [sys.executable, "-m", "filterwnn.cli", "study", "dr", "--drive", path, "--grade", "phone", "--no-figures",
-           "--no-progress", "--jobs", "1", "--out", tmp, "--filters", "EKF-8", *extra]
-    p = subprocess.run(cmd, capture_output=True, text=True, env=dict(os.environ, OPENBLAS_NUM_THREADS="1"))
-    row = [line for line in p.stdout.splitlines() if line.startswith("| EKF-8 |")]
-    cells = [c.strip() for c in row[0].split("|")] if row else None
-    return f"{cells[2]} / {cells[4]}" if cells else f"rc {p.returncode}"
+    return ekf8_command(path, tmp, extra)[0]
 
 
 with tempfile.TemporaryDirectory() as tmp:
