@@ -77,3 +77,28 @@ def test_the_drive_table_says_what_was_told_at_the_end():
     assert _states_added({"latency_at_end": None}) == ""
     assert _states_added({"gyro_scale_at_end": 0.0164}) == ("the gyro turning +1.64 % more than the car over the whole "
                                                            "drive (told at its end; rerun with --gyro-scale-sd 0.01)")
+
+
+def test_the_studys_pass_over_the_drive_makes_the_end_tests():
+    """``filterwnn study dr``'s pass with every fix (``_outage_ends``) calls ``end_of_drive`` once, after its last step
+    and before the outages, so that its warning and the table's line come from the whole drive."""
+    from filterwnn.navigation.scenarios import Scenario, simulate_scenario
+    from filterwnn.studies.dr._real import _outage_ends
+
+    run = simulate_scenario(Scenario(name="short", duration=20.0, speed=10.0, gps_rate=1.0), rng=0)
+    calls = []
+
+    class Recorder:
+        x = np.zeros(8)
+
+        def predict(self):
+            calls.append("predict")
+
+        def update(self, *args):
+            calls.append("update")
+
+        def end_of_drive(self):
+            calls.append("end")
+
+    _outage_ends(Recorder(), "EKF-8", run, [], [], [], run.gps_list(), [None] * len(run.t))
+    assert calls.count("end") == 1 and calls[-1] == "end" and calls.count("update") == len(run.t)
