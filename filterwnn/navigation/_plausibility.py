@@ -118,6 +118,12 @@ HDOP_AS_METRES_MIN = 3.0
 #: grade's 5 m at least 5.27 (an OBD-II user's Android log 15): 4 lies between, nearer the honest side, since a miss
 #: costs (12.32 / 37.00 m against 6.80 / 17.53 on that log) and a false alarm is a warning.
 HDOP_PAST_SCATTER = 4.0
+#: What the reader's warning of a ``gps_hdop`` that looks like an accuracy in metres (:func:`hdop_as_metres`), and its
+#: refusal of such a drive for another cause, say to do.
+HDOP_METRES_REMEDY = ("an HDOP is about 1 under open sky; a column that holds an accuracy in metres (a phone's, Android's "
+                      "Location accuracy, a 68 % radius) reads so: give it as gps_sigma, divided by 1.51 (a 68 % "
+                      "radius; a 95 % one by 2.45); if it is an HDOP, pass the receiver's sigma at HDOP 1 as hdop_sigma "
+                      "(--hdop-sigma)")
 #: What the reader's refusal and the filter's warning of a ``gps_sigma`` not in metres say to do.
 SIGMA_UNITS_REMEDY = ("gps_sigma is a standard deviation per axis in metres; a column in millimetres (a u-blox "
                       "hAcc) is divided by 1000, one in centimetres by 100, and a variance (m^2) is given as its "
@@ -439,10 +445,8 @@ def hdop_as_metres(run, hdop_sigma):
     return (f"plausibility: the fixes' gps_hdop has a median of {hdop:.3g}, which times hdop_sigma ({hdop_sigma:g} m "
             f"at HDOP 1) makes each fix claim a sigma of {sigma:.3g} m, {sigma / max(scatter, 1.0):.0f} times what "
             f"they scatter about the dead-reckoned track (over {n} moving stretches between fixes, their lengths "
-            f"agree with it to {scatter:.2g} m, median): the filters then weigh them far too little. An HDOP is about 1 "
-            "under open sky; a column that holds an accuracy in metres (a phone's, Android's Location accuracy, a "
-            "68 % radius) reads so: give it as gps_sigma, divided by 1.51 (a 68 % radius; a 95 % one by 2.45). If "
-            "it is an HDOP, pass the receiver's sigma at HDOP 1 as hdop_sigma (--hdop-sigma)")
+            f"agree with it to {scatter:.2g} m, median): the filters then weigh them far too little; "
+            f"{HDOP_METRES_REMEDY}")
 
 
 def _offset_fit(ang, steps, pairs, dt):

@@ -21,7 +21,7 @@ import warnings
 import numpy as np
 
 from .._validation import check_positive, check_rng
-from ._plausibility import HDOP_AS_METRES_MIN, hdop_as_metres
+from ._plausibility import HDOP_AS_METRES_MIN, HDOP_METRES_REMEDY, hdop_as_metres
 from .dead_reckoning import wrap_angle
 from .scenarios import HEADING_ROUNDING, MAX_YAW_RATE, DRRun, Scenario, earth_radii, latlon_to_en, _null_fixes
 
@@ -317,11 +317,9 @@ def _read_drive_csv(path, origin, name, max_jitter, checks, progress, fill_gaps,
         hdop = (float(np.median(kw["gps_sigma"])) / hdop_sigma
                 if "gps_hdop" in col and kw.get("gps_sigma") is not None and len(kw["gps_sigma"]) else 0.0)
         if str(exc).startswith("plausibility:") and hdop >= HDOP_AS_METRES_MIN:  # (the checks' stretches: 8 sigmas)
-            exc = ValueError(f"{exc}. The fixes' gps_hdop has a median of {hdop:.3g} (an HDOP is about 1 under open "
-                             "sky): if the column holds an accuracy in metres (a phone's 68 % radius), give it as "
-                             "gps_sigma, divided by 1.51; read as an HDOP it makes each fix claim "
-                             f"{hdop * hdop_sigma:.3g} m, and the checks measure stretches between fixes of eight "
-                             "times that")
+            exc = ValueError(f"{exc}. The fixes' gps_hdop has a median of {hdop:.3g}: read as an HDOP it makes each "
+                             f"fix claim {hdop * hdop_sigma:.3g} m, and the checks measure stretches between fixes of "
+                             f"eight times that; {HDOP_METRES_REMEDY}")
         raise _located(path, exc, lines) from None
     if checks and "gps_hdop" in col and kw.get("gps_sigma") is not None:
         words = hdop_as_metres(run, hdop_sigma)

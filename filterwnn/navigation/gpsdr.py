@@ -326,6 +326,9 @@ ODOMETER_LATENCY_MIN = 0.1
 #: The monitor's errors, each with its gate on the z-score and its least estimate.
 _TESTED = {"gyro_scale": (SCALE_ERROR_Z, SCALE_ERROR_MIN), "latency": (LATENCY_Z, LATENCY_MIN),
            "odometer_latency": (ODOMETER_LATENCY_Z, ODOMETER_LATENCY_MIN)}
+#: The errors tested once more when a drive ends (:meth:`GPSDRFilter.end_of_drive`), each with its gate there (their
+#: least estimates are :data:`_TESTED`'s).
+_TESTED_AT_END = {"latency": LATENCY_END_Z, "gyro_scale": SCALE_END_Z}
 #: Default low-speed threshold (m/s): below it the DR sample enters as a velocity vector.
 LOW_SPEED = 5.0
 #: Filter kinds: filterpy's EKF, the unscented filter with Merwe points, with spherical-simplex points.
@@ -3196,19 +3199,19 @@ class GPSDRFilter:
         dict
             ``{"latency": latency_at_end, "gyro_scale": gyro_scale_at_end}``.
         """
-        for name, gate, least in (("latency", LATENCY_END_Z, LATENCY_MIN), ("gyro_scale", SCALE_END_Z, SCALE_ERROR_MIN)):
+        for name, gate in _TESTED_AT_END.items():
             z, est = getattr(self, f"{name}_z"), getattr(self, f"{name}_estimate")
             if (getattr(self, f"{name}_at_end") is not None or z is None or est is None or name in self._warned_errors
-                    or getattr(self.model, name) or abs(z) <= gate or abs(est) < least):
+                    or getattr(self.model, name) or abs(z) <= gate or abs(est) < _TESTED[name][1]):
                 continue
             setattr(self, f"{name}_at_end", float(est))
-            self._warn_at_end(name, float(est), float(z), gate)
-        return {"latency": self.latency_at_end, "gyro_scale": self.gyro_scale_at_end}
+            self._warn_at_end(name, float(est), float(z))
+        return {name: getattr(self, f"{name}_at_end") for name in _TESTED_AT_END}
 
-    def _warn_at_end(self, name, est, z, gate):
-        """The warning of :meth:`end_of_drive` for the error ``name`` (its estimate, z-score and end gate)."""
-        test = (f"the monitor's estimate, z-score {z:+.3g}: past {gate:g} for this one test at the drive's end, under "
-                f"the {LATENCY_Z if name == 'latency' else SCALE_ERROR_Z:g} its test at every fix needs")
+    def _warn_at_end(self, name, est, z):
+        """The warning of :meth:`end_of_drive` for the error ``name`` (its estimate and z-score)."""
+        test = (f"the monitor's estimate, z-score {z:+.3g}: past {_TESTED_AT_END[name]:g} for this one test at the "
+                f"drive's end, under the {_TESTED[name][0]:g} its test at every fix needs")
         if name == "latency":
             said = (f"the fixes' latency: over the whole drive (to step {self.step}) the fixes read {est:+.2f} s late "
                     f"against the DR samples ({test}). An app that stamps each fix when it arrives (0.15-0.45 s after "

@@ -666,13 +666,13 @@ POLLED_SPREAD = 0.1
 
 
 def _polled(dts, dt):
-    """Whether the sample intervals ``dts`` (median ``dt``), those of 2 ``dt`` or more left out, spread past
-    :data:`POLLED_SPREAD` and independently of each other (:data:`GRID_CORRELATION`)."""
+    """The sample intervals ``dts`` (median ``dt``), those of 2 ``dt`` or more left out, where they spread past
+    :data:`POLLED_SPREAD` and independently of each other (:data:`GRID_CORRELATION`), else None."""
     d = dts[np.round(dts / dt) < 2]
     if len(d) < 3 or np.std(d) <= POLLED_SPREAD * dt:
-        return False
-    d = d - np.mean(d)
-    return float(d[1:] @ d[:-1] / (d @ d)) >= GRID_CORRELATION
+        return None
+    c = d - np.mean(d)
+    return d if float(c[1:] @ c[:-1] / (c @ c)) >= GRID_CORRELATION else None
 
 
 def _sample_grid(t, max_jitter):
@@ -707,8 +707,9 @@ def _sample_grid(t, max_jitter):
         long_gap = ("; dead reckoning interpolated over so long is a guess: for a log that paused, split the file "
                     f"before t[{k}] and run each part as a drive of its own (the command takes several --drive)"
                     if dts[k - 1] > LONG_GAP_S else "")
-        if _polled(dts, dt):  # rows at a sensor's polls or messages: no grid to fill (stop 62)
-            q25, q75 = np.percentile(dts[np.round(dts / dt) < 2], [25, 75])
+        polled = _polled(dts, dt)
+        if polled is not None:  # rows at a sensor's polls or messages: no grid to fill (stop 62)
+            q25, q75 = np.percentile(polled, [25, 75])
             raise ValueError(said + f"; and the rows come at irregular intervals (half of them between {q25:.3g} and "
                              f"{q75:.3g} s, each independent of the last), as rows at a polled sensor's replies or at "
                              "each sensor's messages do: resample the drive onto a regular grid (a row every 0.1 s, "

@@ -340,8 +340,7 @@ def _outage_ends(f, name, run, k0s, k1s, starts, gps, sig):
             snaps[k] = copy.deepcopy(f)
         f.predict()
         f.update(run.z_dr[k], gps[k], sig[k], offsets[k])
-    if hasattr(f, "end_of_drive"):  # the tests made once, when the drive ends (a GPSDRFilter's)
-        f.end_of_drive()
+    f.end_of_drive()  # the tests made once, when the drive ends
     for j, (k0, k1) in enumerate(zip(k0s, k1s)):
         g = copy.deepcopy(snaps[k0])
         begins[j] = g.x[[0, 3]]
