@@ -47,6 +47,10 @@ Fixes whose reported accuracy (``gps_sigma``) has a median past :data:`SIGMA_UNI
 column not in metres (millimetres, centimetres, a variance): the filters would all but ignore them. A ``gps_hdop``
 column whose median is past :data:`HDOP_AS_METRES_MIN` and whose sigma (times ``hdop_sigma``) is past
 :data:`HDOP_PAST_SCATTER` times that scatter is warned of as an accuracy in metres (:func:`hdop_as_metres`).
+
+Fixes that are not GNSS's but a receiver's own dead reckoning (an ADR module in a tunnel) move along the
+dead-reckoned track as the odometer does, each step's length fitting the odometer's to millimetres where GNSS fixes
+misfit it by decimetres: :func:`receiver_dead_reckoning` names runs of :data:`RECEIVER_DR_STEPS` such steps or more.
 """
 
 from __future__ import annotations
@@ -60,7 +64,9 @@ __all__ = ["check_drive", "heading_offset", "speed_scale", "clock_offset", "MAX_
            "CLOCK_OFFSET_WARN_S", "CLOCK_OFFSET_SCAN_S", "GPS_DERIVED_HELD", "GPS_DERIVED_AT_FIX",
            "GPS_DERIVED_AT_FIX_LINEAR", "GPS_DERIVED_SLOPE_TOL", "GPS_DERIVED_MIN_CHANGES", "TILTED_TURNS",
            "GPS_DERIVED_MIN_RATIO", "GPS_DERIVED_SPEED", "SIGMA_UNIT_MIN",
-           "SIGMA_PAST_SCATTER", "HDOP_AS_METRES_MIN", "HDOP_PAST_SCATTER", "hdop_as_metres"]
+           "SIGMA_PAST_SCATTER", "HDOP_AS_METRES_MIN", "HDOP_PAST_SCATTER", "hdop_as_metres",
+           "RECEIVER_DR_STEPS", "RECEIVER_DR_FRAC", "RECEIVER_DR_MOVING_M", "RECEIVER_DR_SIGMA_FALLS",
+           "receiver_dead_reckoning"]
 
 #: The longest DR sample interval (s) accepted without ``checks=False``.
 MAX_DT = 2.0
@@ -124,6 +130,26 @@ HDOP_METRES_REMEDY = ("an HDOP is about 1 under open sky; a column that holds an
                       "Location accuracy, a 68 % radius) reads so: give it as gps_sigma, divided by 1.51 (a 68 % "
                       "radius; a 95 % one by 2.45); if it is an HDOP, pass the receiver's sigma at HDOP 1 as hdop_sigma "
                       "(--hdop-sigma)")
+#: Fixes that move along the dead-reckoned track as its odometer does (:func:`receiver_dead_reckoning`): a run of at
+#: least this many moving steps between fixes in a row, each step's length within :data:`RECEIVER_DR_FRAC` of the
+#: drive's median misfit of what the step before's gives (its length over the odometer's, times this step's
+#: odometer). A receiver's own dead reckoning in a tunnel (a u-blox ADR module's ``fixType`` 1) follows the same
+#: wheels to millimetres a step (a u-blox user's log, stop 60: 0.005 m, where its GNSS fixes scatter 0.54 m); on 271
+#: drives at hand the longest such run of GNSS fixes is 5 steps (``docs/study-outputs/dr/log-faults/receiver_dr.txt``).
+RECEIVER_DR_STEPS = 10
+RECEIVER_DR_FRAC = 0.1
+#: A run whose fixes' reported sigma falls at this many of them or more is not named: a GNSS receiver's accuracy
+#: changes both ways (falling at about half its fixes), one's own dead reckoning's grows at every fix, or is held.
+RECEIVER_DR_SIGMA_FALLS = 3
+#: The odometer's path between two fixes (m) from which a step counts as moving: a fix repeated to the bit (a log or
+#: a receiver holding its last one) is not a step either (the filters leave such fixes, ``n_stale``).
+RECEIVER_DR_MOVING_M = 0.5
+#: What the reader's warning of fixes that follow the odometer says to do.
+RECEIVER_DR_REMEDY = ("a receiver's own dead reckoning (a u-blox ADR/UDR module's fixType 1, gnssFixOK 0; NMEA GGA "
+                      "quality 6, RMC mode E), not GNSS: the filters take them "
+                      "for fixes and follow them, and the receiver's error at their end becomes theirs. Drop those "
+                      "rows (keep fixType 3 and 4 with gnssFixOK 1; GGA quality 1, 2, 4 or 5): the filters "
+                      "dead-reckon across the gap themselves")
 #: What the reader's refusal and the filter's warning of a ``gps_sigma`` not in metres say to do.
 SIGMA_UNITS_REMEDY = ("gps_sigma is a standard deviation per axis in metres; a column in millimetres (a u-blox "
                       "hAcc) is divided by 1000, one in centimetres by 100, and a variance (m^2) is given as its "
@@ -447,6 +473,83 @@ def hdop_as_metres(run, hdop_sigma):
             f"they scatter about the dead-reckoned track (over {n} moving stretches between fixes, their lengths "
             f"agree with it to {scatter:.2g} m, median): the filters then weigh them far too little; "
             f"{HDOP_METRES_REMEDY}")
+
+
+def _runs(flags, least):
+    """``(first, last)`` index of each run of at least ``least`` True values of ``flags``, in order."""
+    edges = np.flatnonzero(np.diff(np.r_[0, flags.astype(np.int8), 0]))
+    return [(int(a), int(b) - 1) for a, b in zip(edges[::2], edges[1::2]) if b - a >= least]
+
+
+def _follow_misfits(step, steps, z_gps):
+    """Per step between fixes (fixes ``i``, ``i + 1``), the misfit of its length (m) to the odometer's path times
+    the step before's ratio (inf where either step is not moving, :data:`RECEIVER_DR_MOVING_M`), and the median
+    of those finite; None where fewer than ``3 *`` :data:`RECEIVER_DR_STEPS` are."""
+    steps = np.asarray(steps, dtype=int)
+    if len(steps) < 3 * RECEIVER_DR_STEPS:
+        return None
+    d = np.diff(np.r_[0.0, np.cumsum(step)][steps + 1])
+    g = np.hypot(*np.diff(np.asarray(z_gps, dtype=float), axis=0).T)
+    moving = (d >= RECEIVER_DR_MOVING_M) & (g > 0.0)
+    both = moving[1:] & moving[:-1]
+    misfit = np.full(len(d), np.inf)
+    misfit[1:][both] = np.abs(g[1:][both] - d[1:][both] * g[:-1][both] / d[:-1][both])
+    finite = np.isfinite(misfit)
+    if finite.sum() < 3 * RECEIVER_DR_STEPS:
+        return None
+    return misfit, float(np.median(misfit[finite]))
+
+
+def receiver_dead_reckoning(t, step, steps, z_gps, sigma=None):
+    """The warning's words where runs of fixes move along the dead-reckoned track as its odometer does, else None.
+
+    ``t``: the DR samples' times (s; the fix at step ``k`` is sample ``k + 1``); ``step``: the odometer's distance
+    between samples (m); ``steps``, ``z_gps``: the fixes' steps and east/north (m); ``sigma``: their reported sigmas
+    (m), or None. GNSS fixes scatter about the track: between fixes a second apart, the length of each step
+    between them misfits the odometer's path times the step before's ratio by tens of centimetres (their errors'
+    change; :func:`_follow_misfits`). A receiver that goes on giving positions without GNSS (its own dead
+    reckoning, from the same wheels) misfits it by millimetres. Where at least :data:`RECEIVER_DR_STEPS` moving
+    steps in a row misfit by under :data:`RECEIVER_DR_FRAC` of the drive's median, those fixes are named, with the
+    time of each such run (runs that share a fix, one) and the longest's sigma's course (a receiver's accuracy
+    grows at every fix without GNSS); a run whose sigma falls at :data:`RECEIVER_DR_SIGMA_FALLS` of its fixes or
+    more is GNSS's. Only the lengths are compared: the heading's zero, its drift and the speed's scale do not
+    enter."""
+    found = _follow_misfits(step, steps, z_gps)
+    if found is None or not found[1] > 0.0:
+        return None
+    misfit, spread = found
+    fixes = []
+    for a, b in _runs(misfit <= RECEIVER_DR_FRAC * spread, RECEIVER_DR_STEPS):  # misfit[a..b]: fixes a - 1 .. b + 1
+        if fixes and a - 1 <= fixes[-1][1]:
+            fixes[-1] = (fixes[-1][0], b + 1)
+        else:
+            fixes.append((a - 1, b + 1))
+    if sigma is not None and len(sigma) == len(steps):  # (GNSS's accuracy changes both ways, a receiver's own grows)
+        sigma = np.asarray(sigma, dtype=float)
+        fixes = [(i, j) for i, j in fixes if np.sum(np.diff(sigma[i:j + 1]) < 0.0) < RECEIVER_DR_SIGMA_FALLS]
+    else:
+        sigma = None
+    if not fixes:
+        return None
+    inside = float(np.median(np.concatenate([misfit[i + 1:j] for i, j in fixes])))
+    steps = np.asarray(steps, dtype=int)
+    when = [f"t = {t[steps[i] + 1]:g}-{t[steps[j] + 1]:g} s" for i, j in fixes]
+    if len(when) > 5:
+        when = when[:5] + [f"and {len(when) - 5} more"]
+    course = ""
+    i, j = max(fixes, key=lambda f: f[1] - f[0])
+    if sigma is not None:
+        s = sigma[i + 1:j]  # (a run's first and last fix may be GNSS fixes on its line)
+        if np.all(np.diff(s) > 0.0):
+            course = (f"; the gps_sigma of the longest grows at every fix ({s[0]:.3g} -> {s[-1]:.3g} m), as a "
+                      "receiver's accuracy does without GNSS")
+        elif np.all(np.diff(s) == 0.0):
+            course = f"; the gps_sigma of the longest is held at {s[0]:.3g} m"
+    return (f"plausibility: {sum(j - i + 1 for i, j in fixes)} fixes in {len(fixes)} run(s) of "
+            f"{RECEIVER_DR_STEPS} moving steps or more ({', '.join(when)}) move along the dead-reckoned track as "
+            f"the odometer does: each step's length misfits the odometer's path (times the step before's ratio) by "
+            f"{inside:.2g} m, median, where the drive's fixes misfit it by {spread:.2g} m{course}: "
+            f"{RECEIVER_DR_REMEDY}")
 
 
 def _offset_fit(ang, steps, pairs, dt):

@@ -531,12 +531,15 @@ def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps
     else:
         p0 = np.zeros(2)
     if checks:
-        from ._plausibility import check_drive
+        from ._plausibility import check_drive, receiver_dead_reckoning
 
         check_drive(dt, heading, step, steps, z_gps, None if sig is None or not len(sig) else float(np.median(sig)),
                     swapped, None if truth is None else np.asarray(truth, dtype=float), yaw_rate=integrated,
                     radians=lat is not None and bool(np.all(np.abs(np.asarray(lat, dtype=float)) <= np.pi / 2)
                                                      and np.all(np.abs(np.asarray(lon, dtype=float)) <= np.pi)))
+        followed = receiver_dead_reckoning(t, step, steps, z_gps, sig)
+        if followed:
+            warnings.warn(followed, RuntimeWarning, stacklevel=3)
     if started:  # (after the checks: a drive they refuse is not started, and its start's words would mislead)
         warnings.warn(started, RuntimeWarning, stacklevel=3)
     x0 = np.array([p0[0], v0 * np.sin(heading[0]), 0.0, p0[1], v0 * np.cos(heading[0]), 0.0])
