@@ -66,7 +66,7 @@ __all__ = ["check_drive", "heading_offset", "speed_scale", "clock_offset", "MAX_
            "GPS_DERIVED_MIN_RATIO", "GPS_DERIVED_SPEED", "SIGMA_UNIT_MIN",
            "SIGMA_PAST_SCATTER", "HDOP_AS_METRES_MIN", "HDOP_PAST_SCATTER", "hdop_as_metres",
            "RECEIVER_DR_STEPS", "RECEIVER_DR_FRAC", "RECEIVER_DR_MOVING_M", "RECEIVER_DR_SIGMA_FALLS",
-           "receiver_dead_reckoning"]
+           "RECEIVER_DR_GROWS", "receiver_dead_reckoning"]
 
 #: The longest DR sample interval (s) accepted without ``checks=False``.
 MAX_DT = 2.0
@@ -145,11 +145,22 @@ RECEIVER_DR_SIGMA_FALLS = 3
 #: a receiver holding its last one) is not a step either (the filters leave such fixes, ``n_stale``).
 RECEIVER_DR_MOVING_M = 0.5
 #: What the reader's warning of fixes that follow the odometer says to do.
+#: A run whose reported sigma rises at this share of its fixes at least is named as a receiver's own dead reckoning
+#: (whose accuracy grows at every fix without GNSS: :data:`RECEIVER_DR_REMEDY`); one without a sigma, or whose sigma
+#: is held, may also be GNSS fixes far cleaner than the drive's others (an RTK fix, open sky), and is named as either
+#: (:data:`RECEIVER_DR_UNSURE`): 30-120 s of fixes with 0.03-0.1 m of noise among the analogs' are so named.
+RECEIVER_DR_GROWS = 0.8
 RECEIVER_DR_REMEDY = ("a receiver's own dead reckoning (a u-blox ADR/UDR module's fixType 1, gnssFixOK 0; NMEA GGA "
-                      "quality 6, RMC mode E), not GNSS: the filters take them "
-                      "for fixes and follow them, and the receiver's error at their end becomes theirs. Drop those "
-                      "rows (keep fixType 3 and 4 with gnssFixOK 1; GGA quality 1, 2, 4 or 5): the filters "
+                      "quality 6, RMC mode E), not GNSS. The filters take "
+                      "them for fixes and follow them, and the receiver's error at their end becomes theirs. Drop "
+                      "those rows (keep fixType 3 and 4 with gnssFixOK 1; GGA quality 1, 2, 4 or 5): the filters "
                       "dead-reckon across the gap themselves")
+#: What the warning says where the run's sigma does not grow (:data:`RECEIVER_DR_GROWS`).
+RECEIVER_DR_UNSURE = ("either a receiver's own dead reckoning (a u-blox ADR/UDR module's fixType 1, gnssFixOK 0; NMEA GGA "
+                      "quality 6, RMC mode E), which the filters take for fixes and follow, or GNSS fixes far cleaner "
+                      "than the drive's others (an RTK fix, open sky). Check the log's fix type at those times: drop "
+                      "the dead-reckoned rows (the filters dead-reckon across the gap themselves); clean GNSS fixes "
+                      "need nothing")
 #: What the reader's refusal and the filter's warning of a ``gps_sigma`` not in metres say to do.
 SIGMA_UNITS_REMEDY = ("gps_sigma is a standard deviation per axis in metres; a column in millimetres (a u-blox "
                       "hAcc) is divided by 1000, one in centimetres by 100, and a variance (m^2) is given as its "
@@ -510,9 +521,10 @@ def receiver_dead_reckoning(t, step, steps, z_gps, sigma=None):
     change; :func:`_follow_misfits`). A receiver that goes on giving positions without GNSS (its own dead
     reckoning, from the same wheels) misfits it by millimetres. Where at least :data:`RECEIVER_DR_STEPS` moving
     steps in a row misfit by under :data:`RECEIVER_DR_FRAC` of the drive's median, those fixes are named, with the
-    time of each such run (runs that share a fix, one) and the longest's sigma's course (a receiver's accuracy
-    grows at every fix without GNSS); a run whose sigma falls at :data:`RECEIVER_DR_SIGMA_FALLS` of its fixes or
-    more is GNSS's. Only the lengths are compared: the heading's zero, its drift and the speed's scale do not
+    time of each such run (runs that share a fix, one) and the longest's sigma's course: a receiver's accuracy
+    grows at every fix without GNSS (:data:`RECEIVER_DR_GROWS`), and a run whose sigma does not grow may be GNSS
+    fixes far cleaner than the others, which the words say; a run whose sigma falls at
+    :data:`RECEIVER_DR_SIGMA_FALLS` of its fixes or more is GNSS's. Only the lengths are compared: the heading's zero, its drift and the speed's scale do not
     enter."""
     found = _follow_misfits(step, steps, z_gps)
     if found is None or not found[1] > 0.0:
@@ -536,20 +548,20 @@ def receiver_dead_reckoning(t, step, steps, z_gps, sigma=None):
     when = [f"t = {t[steps[i] + 1]:g}-{t[steps[j] + 1]:g} s" for i, j in fixes]
     if len(when) > 5:
         when = when[:5] + [f"and {len(when) - 5} more"]
-    course = ""
     i, j = max(fixes, key=lambda f: f[1] - f[0])
-    if sigma is not None:
-        s = sigma[i + 1:j]  # (a run's first and last fix may be GNSS fixes on its line)
-        if np.all(np.diff(s) > 0.0):
-            course = (f"; the gps_sigma of the longest grows at every fix ({s[0]:.3g} -> {s[-1]:.3g} m), as a "
-                      "receiver's accuracy does without GNSS")
-        elif np.all(np.diff(s) == 0.0):
-            course = f"; the gps_sigma of the longest is held at {s[0]:.3g} m"
+    if sigma is None:
+        course, grows = "; the drive gives no gps_sigma", False
+    else:
+        change = np.diff(sigma[i + 1:j])  # (a run's first and last fix may be GNSS fixes on its line)
+        grows = bool(np.mean(change > 0.0) >= RECEIVER_DR_GROWS)
+        course = (f"; the gps_sigma of the longest {'grows' if grows else 'does not grow'} ({int(np.sum(change > 0))} "
+                  f"of its {len(change)} changes up: {sigma[i + 1]:.3g} -> {sigma[j - 1]:.3g} m)")
     return (f"plausibility: {sum(j - i + 1 for i, j in fixes)} fixes in {len(fixes)} run(s) of "
             f"{RECEIVER_DR_STEPS} moving steps or more ({', '.join(when)}) move along the dead-reckoned track as "
             f"the odometer does: each step's length misfits the odometer's path (times the step before's ratio) by "
-            f"{inside:.2g} m, median, where the drive's fixes misfit it by {spread:.2g} m{course}: "
-            f"{RECEIVER_DR_REMEDY}")
+            f"{inside:.2g} m, median, where the drive's fixes misfit it by {spread:.2g} m{course}"
+            + (f", as a receiver's accuracy does without GNSS: {RECEIVER_DR_REMEDY}" if grows else
+               f": {RECEIVER_DR_UNSURE}"))
 
 
 def _offset_fit(ang, steps, pairs, dt):

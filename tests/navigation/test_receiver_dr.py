@@ -72,15 +72,35 @@ def test_a_receivers_dead_reckoning_given_as_fixes_is_named(tmp_path, name, whee
     assert START - 2.5 <= found[0] <= START + 1.0 and END - 1.0 <= found[1] <= END, words
     count = int(words.split("plausibility: ", 1)[1].split(" fixes", 1)[0])
     assert "1 run(s)" in words and n - 1 <= count <= n + 3, (n, words)
-    assert "grows at every fix" in words and "fixType 1" in words and "GGA quality 6" in words, words
-    assert "Drop those rows" in words
+    assert "of the longest grows (" in words and "fixType 1" in words and "GGA quality 6" in words, words
+    assert "Drop those rows" in words and "either" not in words
 
 
-def test_a_held_accuracy_is_said_so(tmp_path):
-    """The same stretch with the receiver's last accuracy held (NMEA's HDOP held in a tunnel): named, its sigma held."""
+def test_a_held_accuracy_names_either_cause(tmp_path):
+    """The same stretch with the receiver's last accuracy held (an HDOP held in a tunnel): named as either a receiver's
+    dead reckoning or GNSS fixes far cleaner than the others, with the check (the log's fix type at those times)."""
     cols, _ = _with_receiver_dr(held_out.columns("one_hz", 0), sigma="held")
     _, said = _read(held_out.write_csv(tmp_path / "d.csv", cols))
-    assert len(said) == 1 and "is held at" in said[0], said
+    assert len(said) == 1 and "does not grow (0 of its" in said[0], said
+    assert "either a receiver's own dead reckoning" in said[0] and "Check the log's fix type" in said[0], said
+
+
+@pytest.mark.parametrize("accuracy", [None, "gps_sigma"])
+def test_a_clean_gnss_stretch_is_not_called_dead_reckoning(tmp_path, accuracy):
+    """Two minutes of GNSS fixes far cleaner than the 1 Hz analog's others (3 cm of noise, an RTK fix's) follow the
+    odometer as closely: without a sigma, or with one held at 1 m, the warning names either cause and says clean
+    fixes need nothing; it does not say to drop them."""
+    rng = np.random.default_rng(1)
+    cols = {k: v.copy() for k, v in held_out.columns("one_hz", 0).items()}
+    t, fix = cols["time"], np.isfinite(cols["gps_east"])
+    clean = fix & (t >= 300.0) & (t <= 420.0)
+    for c, at in (("gps_east", "true_east"), ("gps_north", "true_north")):
+        cols[c][clean] = cols[at][clean] + 1.0 + rng.normal(0.0, 0.03, clean.sum())
+    cols["gps_sigma"][clean] = 1.0
+    _, said = _read(held_out.write_csv(tmp_path / "d.csv", cols, accuracy=accuracy))
+    assert len(said) == 1, said
+    assert "or GNSS fixes far cleaner" in said[0] and "clean GNSS fixes need nothing" in said[0], said
+    assert "Drop those rows" not in said[0]
 
 
 def test_a_standstill_inside_splits_the_runs(tmp_path):
@@ -134,7 +154,7 @@ def test_the_runs_are_measured_by_lengths_alone():
     words = pl.receiver_dead_reckoning(t, step, steps, z)
     assert words is not None and "1 run(s)" in words, words
     grows = np.r_[np.full(a, 2.0), 2.0 + 0.1 * np.arange(b - a + 1), np.full(n - b - 1, 2.0)]
-    assert "grows at every fix" in pl.receiver_dead_reckoning(t, step, steps, z, grows)
+    assert "of the longest grows (" in pl.receiver_dead_reckoning(t, step, steps, z, grows)
     changes = 2.0 + rng.uniform(-0.3, 0.3, n)  # (GNSS's accuracy changes both ways: the run is taken for GNSS)
     assert np.sum(np.diff(changes[a:b + 1]) < 0) >= pl.RECEIVER_DR_SIGMA_FALLS
     assert pl.receiver_dead_reckoning(t, step, steps, z, changes) is None
