@@ -134,33 +134,34 @@ HDOP_METRES_REMEDY = ("an HDOP is about 1 under open sky; a column that holds an
 #: least this many moving steps between fixes in a row, each step's length within :data:`RECEIVER_DR_FRAC` of the
 #: drive's median misfit of what the step before's gives (its length over the odometer's, times this step's
 #: odometer). A receiver's own dead reckoning in a tunnel (a u-blox ADR module's ``fixType`` 1) follows the same
-#: wheels to millimetres a step (a u-blox user's log, stop 60: 0.005 m, where its GNSS fixes scatter 0.54 m); on 271
-#: drives at hand the longest such run of GNSS fixes is 5 steps (``docs/study-outputs/dr/log-faults/receiver_dr.txt``).
+#: wheels to millimetres a step (a u-blox user's log, stop 60: 0.0064 m, where its GNSS fixes misfit 0.54 m); on 273
+#: drives at hand the longest such run of GNSS fixes is 5 steps (``docs/study-outputs/dr/log-faults/receiver_dr_0.txt``
+#: and ``_1.txt``).
 RECEIVER_DR_STEPS = 10
 RECEIVER_DR_FRAC = 0.1
-#: A run whose fixes' reported sigma falls at this many of them or more is not named: a GNSS receiver's accuracy
-#: changes both ways (falling at about half its fixes), one's own dead reckoning's grows at every fix, or is held.
-RECEIVER_DR_SIGMA_FALLS = 3
 #: The odometer's path between two fixes (m) from which a step counts as moving: a fix repeated to the bit (a log or
 #: a receiver holding its last one) is not a step either (the filters leave such fixes, ``n_stale``).
 RECEIVER_DR_MOVING_M = 0.5
-#: What the reader's warning of fixes that follow the odometer says to do.
+#: A run whose fixes' reported sigma falls at this many of them or more is not named: a GNSS receiver's accuracy
+#: changes both ways (falling at about half its fixes), one's own dead reckoning's grows at every fix, or is held.
+RECEIVER_DR_SIGMA_FALLS = 3
 #: A run whose reported sigma rises at this share of its fixes at least is named as a receiver's own dead reckoning
 #: (whose accuracy grows at every fix without GNSS: :data:`RECEIVER_DR_REMEDY`); one without a sigma, or whose sigma
 #: is held, may also be GNSS fixes far cleaner than the drive's others (an RTK fix, open sky), and is named as either
-#: (:data:`RECEIVER_DR_UNSURE`): 30-120 s of fixes with 0.03-0.1 m of noise among the analogs' are so named.
+#: (:data:`RECEIVER_DR_UNSURE`): 120 s of fixes with 0.03-0.1 m of noise among the analogs' are so named
+#: (``docs/study-outputs/dr/log-faults/clean_stretch.txt``).
 RECEIVER_DR_GROWS = 0.8
+#: What the reader's warning of fixes that follow the odometer says where their sigma grows.
 RECEIVER_DR_REMEDY = ("a receiver's own dead reckoning (a u-blox ADR/UDR module's fixType 1, gnssFixOK 0; NMEA GGA "
-                      "quality 6, RMC mode E), not GNSS. The filters take "
-                      "them for fixes and follow them, and the receiver's error at their end becomes theirs. Drop "
-                      "those rows (keep fixType 3 and 4 with gnssFixOK 1; GGA quality 1, 2, 4 or 5): the filters "
-                      "dead-reckon across the gap themselves")
-#: What the warning says where the run's sigma does not grow (:data:`RECEIVER_DR_GROWS`).
-RECEIVER_DR_UNSURE = ("either a receiver's own dead reckoning (a u-blox ADR/UDR module's fixType 1, gnssFixOK 0; NMEA GGA "
-                      "quality 6, RMC mode E), which the filters take for fixes and follow, or GNSS fixes far cleaner "
-                      "than the drive's others (an RTK fix, open sky). Check the log's fix type at those times: drop "
-                      "the dead-reckoned rows (the filters dead-reckon across the gap themselves); clean GNSS fixes "
-                      "need nothing")
+                      "quality 6, RMC mode E), not GNSS. The filters take them for fixes and follow them, and the "
+                      "receiver's error at their end becomes theirs. Drop those rows (keep fixType 3 and 4 with "
+                      "gnssFixOK 1; GGA quality 1, 2, 4 or 5): the filters dead-reckon across the gap themselves")
+#: What it says where their sigma does not grow (:data:`RECEIVER_DR_GROWS`), or the drive gives none.
+RECEIVER_DR_UNSURE = ("either a receiver's own dead reckoning (a u-blox ADR/UDR module's fixType 1, gnssFixOK 0; NMEA "
+                      "GGA quality 6, RMC mode E), which the filters take for fixes and follow, or GNSS fixes far "
+                      "cleaner than the drive's others (an RTK fix, open sky). Check the log's fix type at those "
+                      "times: drop the dead-reckoned rows (the filters dead-reckon across the gap themselves); clean "
+                      "GNSS fixes need nothing")
 #: What the reader's refusal and the filter's warning of a ``gps_sigma`` not in metres say to do.
 SIGMA_UNITS_REMEDY = ("gps_sigma is a standard deviation per axis in metres; a column in millimetres (a u-blox "
                       "hAcc) is divided by 1000, one in centimetres by 100, and a variance (m^2) is given as its "
@@ -524,8 +525,8 @@ def receiver_dead_reckoning(t, step, steps, z_gps, sigma=None):
     time of each such run (runs that share a fix, one) and the longest's sigma's course: a receiver's accuracy
     grows at every fix without GNSS (:data:`RECEIVER_DR_GROWS`), and a run whose sigma does not grow may be GNSS
     fixes far cleaner than the others, which the words say; a run whose sigma falls at
-    :data:`RECEIVER_DR_SIGMA_FALLS` of its fixes or more is GNSS's. Only the lengths are compared: the heading's zero, its drift and the speed's scale do not
-    enter."""
+    :data:`RECEIVER_DR_SIGMA_FALLS` of its fixes or more is GNSS's. Only the lengths are compared: the heading's
+    zero, its drift and the speed's scale do not enter."""
     found = _follow_misfits(step, steps, z_gps)
     if found is None or not found[1] > 0.0:
         return None
