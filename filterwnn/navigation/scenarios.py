@@ -340,7 +340,9 @@ class DRRun(NamedTuple):
             Plausibility checks against the GPS fixes (``filterwnn.navigation._plausibility``): refuse
             a sample interval over 2 s ("time looks like milliseconds") and a dead-reckoned track whose
             course or length contradicts the moving fixes ("heading looks like degrees", "speed looks
-            like km/h", "lat and lon look swapped"). ``False`` skips them, for a drive that really is so.
+            like km/h", "lat and lon look swapped"); warn of runs of fixes that move along the dead-reckoned
+            track as the odometer does (a receiver's own dead reckoning given as fixes:
+            ``_plausibility.receiver_dead_reckoning``). ``False`` skips them, for a drive that really is so.
         fill_gaps : float
             Dropped DR samples: an interval that is a whole number (2 or more) of sample intervals,
             and at most ``fill_gaps`` seconds long, is filled with interpolated samples (heading
