@@ -446,15 +446,21 @@ def _sigma_unit(heading, step, steps, z_gps, sigma):
     :data:`SIGMA_PAST_SCATTER` times their scatter (:func:`_fix_scatter`), else None."""
     if sigma is None or not sigma > SIGMA_UNIT_MIN:
         return None
+    past = _past_scatter(heading, step, steps, z_gps, sigma, SIGMA_PAST_SCATTER)
+    return past and f"the fixes' median gps_sigma is {sigma:.4g} m, {past}: {SIGMA_UNITS_REMEDY}"
+
+
+def _past_scatter(heading, step, steps, z_gps, sigma, factor):
+    """Where a claimed ``sigma`` (m) is past ``factor`` times the fixes' scatter (:func:`_fix_scatter`, at least
+    1 m), the words that say by how much and over what ("N times what they scatter about ..."); else None."""
     found = _fix_scatter(heading, step, steps, z_gps)
     if found is None:
         return None
     scatter, n = found
-    if sigma <= SIGMA_PAST_SCATTER * max(scatter, 1.0):
+    if sigma <= factor * max(scatter, 1.0):
         return None
-    return (f"the fixes' median gps_sigma is {sigma:.4g} m, {sigma / max(scatter, 1.0):.0f} times what they scatter "
-            f"about the dead-reckoned track (over {n} moving stretches between fixes, their lengths agree "
-            f"with it to {scatter:.2g} m, median): {SIGMA_UNITS_REMEDY}")
+    return (f"{sigma / max(scatter, 1.0):.0f} times what they scatter about the dead-reckoned track (over {n} moving "
+            f"stretches between fixes, their lengths agree with it to {scatter:.2g} m, median)")
 
 
 def hdop_as_metres(run, hdop_sigma):
@@ -474,23 +480,21 @@ def hdop_as_metres(run, hdop_sigma):
     if hdop < HDOP_AS_METRES_MIN:
         return None
     heading = np.r_[run.z_dr[0, 0], run.z_dr[:, 0]]  # (the first sample's heading is not kept: its second's)
-    found = _fix_scatter(heading, run.z_dr[:, 1], run.gps_steps, run.z_gps)
-    if found is None:
-        return None
-    scatter, n = found
-    if sigma <= HDOP_PAST_SCATTER * max(scatter, 1.0):
-        return None
-    return (f"plausibility: the fixes' gps_hdop has a median of {hdop:.3g}, which times hdop_sigma ({hdop_sigma:g} m "
-            f"at HDOP 1) makes each fix claim a sigma of {sigma:.3g} m, {sigma / max(scatter, 1.0):.0f} times what "
-            f"they scatter about the dead-reckoned track (over {n} moving stretches between fixes, their lengths "
-            f"agree with it to {scatter:.2g} m, median): the filters then weigh them far too little; "
-            f"{HDOP_METRES_REMEDY}")
+    past = _past_scatter(heading, run.z_dr[:, 1], run.gps_steps, run.z_gps, sigma, HDOP_PAST_SCATTER)
+    return past and (f"plausibility: the fixes' gps_hdop has a median of {hdop:.3g}, which times hdop_sigma "
+                     f"({hdop_sigma:g} m at HDOP 1) makes each fix claim a sigma of {sigma:.3g} m, {past}: the "
+                     f"filters then weigh them far too little; {HDOP_METRES_REMEDY}")
+
+
+def _run_bounds(flags):
+    """``(starts, ends)``: each run of True values of ``flags`` (boolean) is ``[start, end)``, in order."""
+    edges = np.diff(np.r_[0, flags.astype(np.int8), 0])
+    return np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
 
 
 def _runs(flags, least):
     """``(first, last)`` index of each run of at least ``least`` True values of ``flags``, in order."""
-    edges = np.flatnonzero(np.diff(np.r_[0, flags.astype(np.int8), 0]))
-    return [(int(a), int(b) - 1) for a, b in zip(edges[::2], edges[1::2]) if b - a >= least]
+    return [(int(a), int(b) - 1) for a, b in zip(*_run_bounds(flags)) if b - a >= least]
 
 
 def _follow_misfits(step, steps, z_gps):

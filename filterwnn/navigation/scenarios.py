@@ -42,6 +42,7 @@ from typing import NamedTuple, Optional
 import numpy as np
 
 from .._validation import check_finite, check_positive, check_rng
+from ._plausibility import _run_bounds
 from .dead_reckoning import SENSOR_GRADES, dr_fx, wrap_angle
 
 __all__ = [
@@ -972,8 +973,7 @@ MIN_DROPOUT_SPEED = 2.0
 
 def _inner_runs(mask):
     """The runs ``[i, j)`` of ``mask`` (boolean) with a sample on either side: ``(starts, ends)``."""
-    edges = np.diff(np.r_[0, mask.astype(np.int8), 0])
-    starts, ends = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
+    starts, ends = _run_bounds(mask)
     inner = (starts >= 1) & (ends <= len(mask) - 1)
     return starts[inner], ends[inner]
 
