@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import contextlib
 import re
+import sys
 import warnings
 
 import numpy as np
@@ -85,3 +86,41 @@ def folded_warnings(prefix=None, stacklevel=4, times=None):
     for (category, _), texts in groups.items():
         line = fold_messages(texts, times)
         warnings.warn(line if prefix is None else f"{prefix}: {line}", category, stacklevel=stacklevel)
+
+
+def _origin(filename):
+    """The module whose source is ``filename`` and its warning registry, so that a warning issued again from
+    there is filtered (by module) and shown once (``default``) as the first was; ``(None, None)`` if none."""
+    for name, module in list(sys.modules.items()):
+        if getattr(module, "__file__", None) == filename:
+            return name, module.__dict__.setdefault("__warningregistry__", {})
+    return None, None
+
+
+@contextlib.contextmanager
+def kept_warnings(kept):
+    """Append the text of every warning the block gives to the list ``kept`` (one line each, whatever the
+    warning filters say), and issue each again when the block ends, or raises, from where it was given: the
+    filters outside then show it, ignore it or raise it as they would have (only later, with the block's
+    others). A report keeps with its numbers what the run warned of (``filterwnn study dr`` writes them under
+    a drive's table).
+
+    >>> import warnings
+    >>> kept = []
+    >>> with warnings.catch_warnings():
+    ...     warnings.simplefilter("ignore")
+    ...     with kept_warnings(kept):
+    ...         warnings.warn("the fixes read 0.2 s late", RuntimeWarning)
+    >>> kept
+    ['the fixes read 0.2 s late']
+    """
+    caught = []
+    try:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            yield
+    finally:
+        kept.extend(" ".join(str(w.message).split()) for w in caught)
+        for w in caught:
+            module, registry = _origin(w.filename)
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno, module=module, registry=registry)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import os
 
+from ..._warnings import kept_warnings
 from ...navigation.dead_reckoning import SENSOR_GRADES, _grade
 from ...navigation.drives import CAR_DRIVES, load_car_drive, read_drive_csv
 from ...navigation.gpsdr import CALIBRATION_ERROR_Z, CORRELATED_FIXES, HEADING_JUMP_Z, SIGMA_FLOOR
@@ -292,17 +293,19 @@ def _run_drives(args, drives, filters):
     grade = _drive_grade(args)
     runs = []
     for path in drives:  # every drive read and its outages placed before any runs: a bad one stops nothing done
-        run = read_drive_csv(sample_drive_path() if path == "sample" else path,
-                             checks=not getattr(args, "no_plausibility", False),
-                             fill_gaps=getattr(args, "fill_gaps", 0.0),
-                             gps_latency=getattr(args, "gps_latency", 0.0),
-                             intervals=getattr(args, "intervals", "auto"),
-                             odometer_latency=getattr(args, "odometer_latency", 0.0),
-                             heading_latency=getattr(args, "heading_latency", 0.0),
-                             heading_offset=getattr(args, "heading_offset", 0.0),
-                             speed_scale=getattr(args, "speed_scale", 1.0),
-                             hdop_sigma=getattr(args, "hdop_sigma", None) or _grade(grade)["gps_sigma_m"],
-                             progress=None if not getattr(args, "no_progress", False) else False)
+        told = []  # the reader's warnings, shown as ever and kept for the drive's saved table
+        with kept_warnings(told):
+            run = read_drive_csv(sample_drive_path() if path == "sample" else path,
+                                 checks=not getattr(args, "no_plausibility", False),
+                                 fill_gaps=getattr(args, "fill_gaps", 0.0),
+                                 gps_latency=getattr(args, "gps_latency", 0.0),
+                                 intervals=getattr(args, "intervals", "auto"),
+                                 odometer_latency=getattr(args, "odometer_latency", 0.0),
+                                 heading_latency=getattr(args, "heading_latency", 0.0),
+                                 heading_offset=getattr(args, "heading_offset", 0.0),
+                                 speed_scale=getattr(args, "speed_scale", 1.0),
+                                 hdop_sigma=getattr(args, "hdop_sigma", None) or _grade(grade)["gps_sigma_m"],
+                                 progress=None if not getattr(args, "no_progress", False) else False)
         try:  # (not under the outage options' message: nothing to place them against)
             check_reference(run)
         except ValueError as exc:
@@ -312,15 +315,16 @@ def _run_drives(args, drives, filters):
         except ValueError as exc:  # name the drive (and the options behind the outages)
             raise ValueError(f"{path}: {exc} (outages from --outage-length, --outages, --outage-starts, "
                              "--min-speed)") from None
-        runs.append((path, run))
+        runs.append((path, run, told))
     results = []
-    for path, run in runs:
+    for path, run, told in runs:
         try:
             res = real_drive_outages(run, n_placements=args.outages, length=args.outage_length, filters=fl,
                                      starts=starts, min_speed=args.min_speed,
                                      use_gps_sigma=run.gps_sigma is not None, grade=grade, **_filter_options(args))
         except ValueError as exc:  # name the drive
             raise ValueError(f"{path}: {exc}") from None
+        res["read_warnings"] = told
         results.append(res)
         print(real_drive_table(res))
     paths = write_outputs(None, args.out, figures=not args.no_figures, real_drives=results)

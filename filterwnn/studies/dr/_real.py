@@ -12,7 +12,7 @@ import copy
 
 import numpy as np
 
-from ..._warnings import folded_warnings
+from ..._warnings import folded_warnings, kept_warnings
 from ...navigation.dead_reckoning import GPSDRModel
 from ...navigation.drives import CAR_DRIVE
 from ...navigation.gpsdr import CALIBRATION_ERROR_Z, GYRO_SCALE, HEADING_JUMP_Z, SIGMA_FLOOR, GPSDRFilter
@@ -154,7 +154,9 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         and ``gyro_scale_at_end``, the latency and the scale error told when the drive ended
         (:meth:`~filterwnn.navigation.gpsdr.GPSDRFilter.end_of_drive`; None: not);
         ``odometer_latency_estimate`` and ``odometer_latency_z``, the speed's latency (s)), and
-        per filter
+        ``warnings``, the text of each warning the filters gave (one line per kind and filter, its repeats folded:
+        what the terminal shows), and ``read_warnings``, empty here (``filterwnn study dr --drive`` puts the drive
+        reader's there), both written under the table (:func:`real_drive_table`); and per filter
         ``(n,)`` end-of-outage errors (m; a non-finite estimate raises).
     """
     bad = [f for f in filters if f not in REAL_FILTERS]
@@ -170,7 +172,8 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
                                    gps_sigma_floor=gps_sigma_floor, floor_on_detection=floor_on_detection,
                                    reopen_on_detection=reopen_on_detection))
     for name in filters:
-        _score_filter(out, name, run, windows, use_gps_sigma, settings)
+        with kept_warnings(out["warnings"]):  # (folded: the filter's name, the step and its time)
+            _score_filter(out, name, run, windows, use_gps_sigma, settings)
     return out
 
 
@@ -184,7 +187,8 @@ def _outage_plan(run, length, starts, n_placements, min_speed):
     k0s, k1s, refs, moved, track = _outage_windows(run, starts, length)
     out = {"starts": starts, "length": length, "moved": moved, "end_steps": np.array(k1s),
            "reference": "truth" if run.x_true is not None else "withheld GPS", "name": run.scenario.name,
-           "track": track, "t": run.t, "end_xy": {}, "start_err": {}, "integrity": {}}
+           "track": track, "t": run.t, "end_xy": {}, "start_err": {}, "integrity": {}, "read_warnings": [],
+           "warnings": []}
     return out, (k0s, k1s, refs)
 
 
@@ -279,7 +283,7 @@ def _real_drive_filter(name, run, grade, model_kwargs, kw, gps_window, slow_spee
 
 
 _REAL_META = ("starts", "moved", "length", "end_steps", "reference", "name", "track", "t", "end_xy", "start_err",
-              "integrity")
+              "integrity", "read_warnings", "warnings")
 
 
 def _start_refs(run, k0s, track=None):
@@ -362,7 +366,8 @@ def real_drive_table(res, min_moved=100.0):
     the stops whose heading drift updated the gyro rate bias, was rejected or was held by its source
     ("-": no rate-bias state). Below it, a line per filter that estimated the gyro's scale factor error or
     the fixes' latency: the state's last value, and the step at which the monitor added it (or "from the
-    start")."""
+    start"). Then the warnings given while the drive was read (``res["read_warnings"]``) and while the filters
+    ran (``res["warnings"]``), a line each, so that the saved table keeps what the numbers were warned of."""
     mv = res["moved"] >= min_moved
     names = [k for k in res if k not in _REAL_META]
     lines = [f"### real drive {res.get('name', CAR_DRIVE)}: {len(res['starts'])} GPS outages of {res['length']:g} s "
@@ -381,7 +386,12 @@ def real_drive_table(res, min_moved=100.0):
                      f"{np.median(em):.2f} | {em.max():.2f} | {np.median(s):.2f} | {np.median(e - s):.2f} | "
                      + _integrity_cells(res.get("integrity", {}).get(n)) + " |")
     states = [f"- {n}: {said}" for n in names if (said := _states_added(res.get("integrity", {}).get(n)))]
-    return "\n".join(lines + ([""] + states if states else [])) + "\n"
+    told = []
+    for key, when in (("read_warnings", "while the drive was read"),
+                      ("warnings", "while the filters ran (each filter's repeats folded into one line)")):
+        if res.get(key):
+            told += ["", f"Warnings given {when}:", ""] + [f"- {w}" for w in res[key]]
+    return "\n".join(lines + ([""] + states if states else []) + told) + "\n"
 
 
 def _states_added(ig):
