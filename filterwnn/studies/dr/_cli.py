@@ -256,7 +256,7 @@ def run(args):
                                     min_speed=args.min_speed, grade=grade, use_gps_sigma=True, **_filter_options(args))
             results.append(rd)
             texts.append(real_drive_table(rd))
-            print(texts[-1])
+            print(real_drive_table(rd, told=False))
         if results:
             p = os.path.join(args.out, "dr_real_drive.md")
             with open(p, "w") as fh:
@@ -326,7 +326,7 @@ def _run_drives(args, drives, filters):
             raise ValueError(f"{path}: {exc}") from None
         res["read_warnings"] = told
         results.append(res)
-        print(real_drive_table(res))
+        print(real_drive_table(res, told=False))  # (the warnings: shown as they came, and in the saved table)
     paths = write_outputs(None, args.out, figures=not args.no_figures, real_drives=results)
     print("wrote:", ", ".join(paths))
     return 0

@@ -357,7 +357,7 @@ def _outage_ends(f, name, run, k0s, k1s, starts, gps, sig):
     return ends, begins
 
 
-def real_drive_table(res, min_moved=100.0):
+def real_drive_table(res, min_moved=100.0, told=True):
     """Markdown: median/p90/max end-of-outage error over all placements and moving ones, the
     error at the outage starts and its growth over them (medians), what each filter did with
     the drive's fixes (rejected / down-weighted / re-acquired of those it saw), its mean NIS
@@ -366,8 +366,9 @@ def real_drive_table(res, min_moved=100.0):
     the stops whose heading drift updated the gyro rate bias, was rejected or was held by its source
     ("-": no rate-bias state). Below it, a line per filter that estimated the gyro's scale factor error or
     the fixes' latency: the state's last value, and the step at which the monitor added it (or "from the
-    start"). Then the warnings given while the drive was read (``res["read_warnings"]``) and while the filters
-    ran (``res["warnings"]``), a line each, so that the saved table keeps what the numbers were warned of."""
+    start"). Then, with ``told``, the warnings given while the drive was read (``res["read_warnings"]``) and
+    while the filters ran (``res["warnings"]``), a line each, so that the saved table keeps what the numbers were
+    warned of (the command prints its tables without them: the terminal has shown them as they came)."""
     mv = res["moved"] >= min_moved
     names = [k for k in res if k not in _REAL_META]
     lines = [f"### real drive {res.get('name', CAR_DRIVE)}: {len(res['starts'])} GPS outages of {res['length']:g} s "
@@ -386,12 +387,12 @@ def real_drive_table(res, min_moved=100.0):
                      f"{np.median(em):.2f} | {em.max():.2f} | {np.median(s):.2f} | {np.median(e - s):.2f} | "
                      + _integrity_cells(res.get("integrity", {}).get(n)) + " |")
     states = [f"- {n}: {said}" for n in names if (said := _states_added(res.get("integrity", {}).get(n)))]
-    told = []
+    given = []
     for key, when in (("read_warnings", "while the drive was read"),
                       ("warnings", "while the filters ran (each filter's repeats folded into one line)")):
-        if res.get(key):
-            told += ["", f"Warnings given {when}:", ""] + [f"- {w}" for w in res[key]]
-    return "\n".join(lines + ([""] + states if states else []) + told) + "\n"
+        if told and res.get(key):
+            given += ["", f"Warnings given {when}:", ""] + [f"- {w}" for w in res[key]]
+    return "\n".join(lines + ([""] + states if states else []) + given) + "\n"
 
 
 def _states_added(ig):
