@@ -63,7 +63,7 @@ __all__ = ["check_drive", "heading_offset", "speed_scale", "clock_offset", "MAX_
            "MAX_DRIFT_DEG_S", "RATIO_RANGE", "HEADING_OFFSET_WARN_DEG", "SPEED_SCALE_WARN", "WARN_MIN_CHORDS",
            "CLOCK_OFFSET_WARN_S", "CLOCK_OFFSET_SCAN_S", "GPS_DERIVED_HELD", "GPS_DERIVED_AT_FIX",
            "GPS_DERIVED_AT_FIX_LINEAR", "GPS_DERIVED_SLOPE_TOL", "GPS_DERIVED_MIN_CHANGES", "TILTED_TURNS",
-           "GPS_DERIVED_MIN_RATIO", "GPS_DERIVED_SPEED", "SIGMA_UNIT_MIN",
+           "GPS_DERIVED_MIN_RATIO", "GPS_DERIVED_SPEED", "GPS_DERIVED_ROUNDING", "SIGMA_UNIT_MIN",
            "SIGMA_PAST_SCATTER", "HDOP_AS_METRES_MIN", "HDOP_PAST_SCATTER", "hdop_as_metres",
            "RECEIVER_DR_STEPS", "RECEIVER_DR_FRAC", "RECEIVER_DR_MOVING_M", "RECEIVER_DR_SIGMA_FALLS",
            "RECEIVER_DR_GROWS", "receiver_dead_reckoning"]
@@ -192,6 +192,10 @@ GPS_DERIVED_FAST_RATIO = 1.5
 #: (relative; a CSV's 10 digits and the reader's arithmetic leave slopes that differ by 1e-9).
 GPS_DERIVED_AT_FIX_LINEAR = 0.8
 GPS_DERIVED_SLOPE_TOL = 1e-6
+#: ... and, in a column written to a few decimals, only past this many of its steps (:func:`_resolution`): each
+#: value rounded by up to half a step moves the slope between neighbours by up to two (stop 64: the OBD-II user's
+#: GNSS speed, written ``%.3f``, and the u-blox test's written so, changed slope at every sample by its rounding).
+GPS_DERIVED_ROUNDING = 2.0
 #: Length-ratio mistakes: (factor the ratio shows, the likely cause).
 _SCALES = ((3.6, "speed looks like km/h (divide by 3.6 for m/s)"),
            (1 / 0.44704, "speed looks like mph (multiply by 0.44704 for m/s)"),
@@ -944,11 +948,13 @@ def _check_truth(steps, z_gps, truth, sigma, clock=None, radians=False):
                          f"{cause}{_OVERRIDE}")
 
 
-def _held_at_fixes(values, moving, near, least_held=GPS_DERIVED_HELD, tol=1e-9, least_at=GPS_DERIVED_AT_FIX):
+def _held_at_fixes(values, moving, near, least_held=GPS_DERIVED_HELD, tol=1e-9, least_at=GPS_DERIVED_AT_FIX,
+                   least=0.0):
     """``(changes, share at a fix, share held)`` of ``values`` over the intervals ``moving``, or None when they do
     not look held between the fixes (held over ``least_held`` of them at least, ``least_at`` of the changes at a
-    fix); ``near``: the intervals beside a fix's sample; ``tol``: the relative change that is one."""
-    changed = np.abs(np.diff(values)) > tol * (1.0 + np.abs(values[1:]))  # (a speed times stamped intervals: bits)
+    fix); ``near``: the intervals beside a fix's sample; ``tol``: the relative change that is one, and ``least``
+    the absolute change at or under which none is (a column's rounding)."""
+    changed = np.abs(np.diff(values)) > np.maximum(tol * (1.0 + np.abs(values[1:])), least)
     n = int(np.sum(changed & moving))
     if moving.sum() < 2 * GPS_DERIVED_MIN_CHANGES or n < GPS_DERIVED_MIN_CHANGES:
         return None
@@ -957,10 +963,21 @@ def _held_at_fixes(values, moving, near, least_held=GPS_DERIVED_HELD, tol=1e-9, 
 
 
 def _interpolated_at_fixes(values, moving, near, least_held):
-    """:func:`_held_at_fixes` of ``values``' slope: a column interpolated between the fixes (its knots at them)."""
+    """:func:`_held_at_fixes` of ``values``' slope: a column interpolated between the fixes (its knots at them).
+    A column written to a few decimals (a CSV's ``%.3f``) rounds each value by up to half its step
+    (:func:`_resolution`), which moves a straight line's slope by up to two steps from sample to sample: no
+    change of slope is counted within that."""
     both = moving[1:] & moving[:-1]
     return _held_at_fixes(np.diff(values), both, near[:len(both)], least_held, tol=GPS_DERIVED_SLOPE_TOL,
-                          least_at=GPS_DERIVED_AT_FIX_LINEAR)
+                          least_at=GPS_DERIVED_AT_FIX_LINEAR, least=GPS_DERIVED_ROUNDING * _resolution(values))
+
+
+def _resolution(values):
+    """The step a column was written to (the least change between neighbouring values, past a double's last bits):
+    0.001 for a speed written ``%.3f``; about 0 for one written in full."""
+    d = np.abs(np.diff(values[np.isfinite(values)]))
+    d = d[d > 1e-12 * (1.0 + np.max(np.abs(values[np.isfinite(values)]), initial=0.0))]
+    return float(d.min()) if len(d) else 0.0
 
 
 #: What a column held between the fixes is, and what to give instead.
@@ -970,10 +987,12 @@ _GPS_DERIVED = {"heading": ("a GPS course (a receiver's bearing), not a gyro's h
                           "OBD or wheel ticks)")}
 
 
-def _gps_derived(dt, heading, step, steps):
+def _gps_derived(dt, heading, step, steps, speed=None):
     """Warn of a heading or a speed that changes only at the fixes (:data:`GPS_DERIVED_HELD`): the receiver's, not
     a dead-reckoning sensor's. Over a real outage it stays where the last fix left it, while outages cut into such a
-    drive still carry the withheld fixes' course or speed, and score better than dead reckoning could."""
+    drive still carry the withheld fixes' course or speed, and score better than dead reckoning could. ``speed``
+    (each sample's, as the drive gave it) is read where given, not ``step``: a step is a speed times its stamped
+    interval, and stamps in seconds since 1970 (1.8e9, to a double's 2.4e-7 s) change every step's last digits."""
     n = len(heading)
     if len(steps) < 2 or n < 3:
         return
@@ -983,18 +1002,22 @@ def _gps_derived(dt, heading, step, steps):
     fix = np.zeros(n + 1, dtype=bool)
     fix[np.clip(np.asarray(steps) + 1, 0, n - 1)] = True  # the fix at step k is sample k + 1
     moving = np.asarray(step, dtype=float) >= GPS_DERIVED_SPEED * dt
+    speed = np.asarray(step, dtype=float) if speed is None else np.asarray(speed, dtype=float)[1:]  # (step k's)
     for name, values, intervals, at in (("heading", np.asarray(heading, dtype=float), moving, 1),
-                                        ("speed", np.asarray(step, dtype=float), moving[1:] & moving[:-1], 2)):
+                                        ("speed", speed, moving[1:] & moving[:-1], 2)):
         if ratio >= GPS_DERIVED_MIN_RATIO:  # a change into sample i + 1: a fix at sample i, i + 1 or i + 2
             near, held = fix[:n - 1] | fix[1:n] | fix[2:n + 1], GPS_DERIVED_HELD
+            bent = near[at - 1:]  # a change of slope centred on a fix's sample or one beside it (a fix logged
+            # between two samples bends the line at both)
         else:  # fixes every 2-4 samples (5 Hz on a 10 Hz log): changes at the fix's own sample (a step's distance,
             # step k, is sample k + 1's speed), held over the rest
             near, held = fix[at:n - 1 + at], GPS_DERIVED_HELD * (1.0 - 1.0 / ratio)
+            bent = near
         found = _held_at_fixes(values, intervals, near[:len(intervals)], held)
         how = ("changes only where there is a GPS fix", "changes at a fix's sample or beside it, held over",
                "stays where the last fix left it")
         if found is None:
-            found = _interpolated_at_fixes(values, intervals, near, held)
+            found = _interpolated_at_fixes(values, intervals, bent, held)
             how = ("changes its slope only where there is a GPS fix, and runs straight between",
                    "slope's changes at a fix's sample or beside it, straight over", "runs straight from the last "
                    "fix's value to the next's (or stays at the last)")
@@ -1010,7 +1033,7 @@ def _gps_derived(dt, heading, step, steps):
 
 
 def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth=None, yaw_rate=False,
-                radians=False):
+                radians=False, speed=None):
     """Refuse a drive whose units or frame contradict its own GPS fixes (see the module docstring).
 
     Parameters
@@ -1039,6 +1062,9 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
     radians : bool
         The fixes came as latitude/longitude all within ``pi/2`` and ``pi``: fixes far from the truth, or a
         track many times their length, are named as lat/lon in radians.
+    speed : ndarray of shape (n_samples,), optional
+        The speed (m/s) as the drive gave it, where it gave one: a speed held or interpolated between the fixes (a
+        receiver's) is looked for in it rather than in ``step``.
 
     Raises
     ------
@@ -1048,7 +1074,7 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
     """
     if dt > MAX_DT:
         raise ValueError(interval_refusal(dt))
-    _gps_derived(dt, heading, step, steps)
+    _gps_derived(dt, heading, step, steps, speed)
     unit = _sigma_unit(heading, step, steps, z_gps, sigma)
     if unit:
         raise ValueError(f"plausibility: {unit}{_OVERRIDE}")

@@ -539,7 +539,8 @@ def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps
         check_drive(dt, heading, step, steps, z_gps, None if sig is None or not len(sig) else float(np.median(sig)),
                     swapped, None if truth is None else np.asarray(truth, dtype=float), yaw_rate=integrated,
                     radians=lat is not None and bool(np.all(np.abs(np.asarray(lat, dtype=float)) <= np.pi / 2)
-                                                     and np.all(np.abs(np.asarray(lon, dtype=float)) <= np.pi)))
+                                                     and np.all(np.abs(np.asarray(lon, dtype=float)) <= np.pi)),
+                    speed=speed)
         followed = receiver_dead_reckoning(t, step, steps, z_gps, sig)
         if followed:
             warnings.warn(followed, RuntimeWarning, stacklevel=3)

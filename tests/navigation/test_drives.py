@@ -409,8 +409,8 @@ def test_a_heading_or_speed_that_changes_only_at_the_fixes_is_named_a_receivers(
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         read_drive_csv(_write(tmp_path / "d.csv", c))
-    for column in ("heading", "speed"):
-        g = dict(c)
+    for column, epoch in (("heading", 0.0), ("speed", 0.0), ("speed", 1.7964e9)):
+        g = dict(c, time=np.round(c["time"] + epoch, 3))  # (stamps since 1970: each step's last digits change, stop 64)
         g[column] = c[column][held] * (1.0 if column == "heading" else 1.0 + 0.1 * np.sin(held / 50.0))
         with pytest.warns(RuntimeWarning, match=rf"while the car moves the {column} changes only where there is a GPS "
                                                 rf"fix \(100% of its \d+ changes .*: a GPS "):

@@ -26,10 +26,12 @@ OUTAGE = 30.0  # the drive's last 30 s have no fixes: the error at its end is sc
 
 
 def _drive(seed=0, bias_deg_s=0.18, gnss_speed=True, dt=0.1, duration=420.0, gnss_heading=False, caught=None,
-           gyro_scale=1.0):
+           gyro_scale=1.0, exported=False):
     """Legs of 12 m/s with a 90 degree turn each, and stops of 25 s with a speed of exactly 0, the gyro heading
     drifting by ``bias_deg_s``; with ``gnss_speed`` the speed is a receiver's 1 Hz GNSS speed (noise of 0.05 m/s,
-    clipped at 0) interpolated to the samples, as the u-blox user gave it. Fixes 1 Hz, 2 m, none in the last 30 s."""
+    clipped at 0) interpolated to the samples, as the u-blox user gave it. Fixes 1 Hz, 2 m, none in the last 30 s.
+    ``exported``: as a logger's CSV gives it, the time in seconds since 1970 and the speed (m/s) and heading (deg)
+    written to 3 and 2 decimals."""
     rng = np.random.default_rng(seed)
     t = np.arange(0.0, duration, dt)
     knots, tk = [(0.0, 0.0), (8.0, 0.0), (12.0, 12.0)], 12.0
@@ -51,9 +53,13 @@ def _drive(seed=0, bias_deg_s=0.18, gnss_speed=True, dt=0.1, duration=420.0, gns
     if gnss_speed:
         speed = np.interp(t, t[every], np.maximum(v[every] + rng.normal(0.0, 0.05, len(every)), 0.0))
     fixes = every[t[every] < duration - OUTAGE]
+    stamps = t
+    if exported:
+        stamps = np.round(t + 1.7964e9, 3)
+        speed, gyro = np.round(speed, 3), np.radians(np.round(np.degrees(gyro), 2))
     with warnings.catch_warnings(record=True) as said:
         warnings.simplefilter("always")  # the reader's words, kept in caught when asked
-        run = DRRun.from_arrays(t, gyro, speed=speed, gps_t=t[fixes],
+        run = DRRun.from_arrays(stamps, gyro, speed=speed, gps_t=stamps[fixes],
                                  east=east[fixes] + rng.normal(0.0, 2.0, len(fixes)),
                                  north=north[fixes] + rng.normal(0.0, 2.0, len(fixes)),
                                  gps_sigma=np.full(len(fixes), 2.0), truth=np.c_[east, north])
@@ -142,20 +148,50 @@ def test_stop_reopen_measures_the_distance_across_fixes():
     assert len(f.zero_rate_steps) == 2  # two stops, not one
 
 
+@pytest.mark.parametrize("exported", [False, True], ids=["as computed", "as a logger exports it"])
 @pytest.mark.parametrize("case,column", [(dict(), "speed"), (dict(gnss_speed=False, gnss_heading=True), "heading")],
                          ids=["GNSS speed", "GNSS course"])
-def test_the_reader_names_a_column_interpolated_between_the_fixes(case, column):
+def test_the_reader_names_a_column_interpolated_between_the_fixes(case, column, exported):
+    """Also as a logger's CSV export gives it (stop 64): the OBD-II user's GNSS speed, stamped in seconds since 1970
+    and written to 3 decimals, had been read without a word. Each step is a speed times its stamped interval, whose
+    last digits the stamps' size changes at every sample, and a straight line written to 3 decimals changes its slope
+    at every sample by its rounding: the speed is now read as given, and no change within the rounding counted."""
     caught = []
-    _drive(caught=caught, **case)
+    _drive(caught=caught, exported=exported, **case)
     said = [m for m in caught if "runs straight between" in m]
     assert len(said) == 1 and f"the {column} changes its slope only where there is a GPS fix" in said[0]
     assert ("a GPS speed" if column == "speed" else "a GPS course") in said[0]
 
 
-def test_the_reader_says_nothing_of_a_wheel_speed_and_a_gyro():
+@pytest.mark.parametrize("exported", [False, True], ids=["as computed", "as a logger exports it"])
+def test_the_reader_says_nothing_of_a_wheel_speed_and_a_gyro(exported):
     caught = []
-    _drive(gnss_speed=False, caught=caught)
+    _drive(gnss_speed=False, caught=caught, exported=exported)
     assert not [m for m in caught if "GPS fix" in m]
+
+
+def test_a_column_interpolated_between_fixes_logged_between_the_samples_is_named():
+    """Fixes on rows of their own, between the DR samples (the careful conversion of a phone log), with the GNSS speed
+    interpolated to the samples from the fixes' own times: its line bends at both samples beside each fix's time,
+    one of which the test had looked past (71 % of its changes at a fix, under the 80 % it needs)."""
+    rng = np.random.default_rng(3)
+    dt = 0.1
+    t = np.arange(0.0, 400.0, dt)
+    v = 10.0 + 4.0 * np.sin(t / 17.0) + 2.0 * np.sin(t / 5.3)
+    heading = np.radians(30.0) + 0.2 * np.sin(t / 40.0)
+    east, north = np.cumsum(v * np.sin(heading)) * dt, np.cumsum(v * np.cos(heading)) * dt
+    tf = np.arange(0.5, 399.0, 1.0) + rng.uniform(-0.045, 0.045, 399)  # each fix at its own time
+    speed = np.round(np.interp(t, tf, np.interp(tf, t, v) + rng.normal(0.0, 0.05, len(tf))), 3)
+    for given, told in ((speed, True), (np.round(v + rng.normal(0.0, 0.05, len(t)), 3), False)):
+        with warnings.catch_warnings(record=True) as said:
+            warnings.simplefilter("always")
+            DRRun.from_arrays(t + 1.7964e9, heading + rng.normal(0.0, 1e-3, len(t)), speed=given,
+                              gps_t=tf + 1.7964e9, east=np.interp(tf, t, east) + rng.normal(0.0, 2.0, len(tf)),
+                              north=np.interp(tf, t, north) + rng.normal(0.0, 2.0, len(tf)),
+                              gps_sigma=np.full(len(tf), 2.0))
+        named = [str(w.message) for w in said if "the speed changes its slope only where there is a GPS fix" in
+                 str(w.message)]
+        assert bool(named) == told
 
 
 def test_a_tilted_gyro_axis_is_named_by_the_scale_monitor():
