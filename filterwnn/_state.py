@@ -34,7 +34,23 @@ from __future__ import annotations
 
 import functools
 
-__all__ = ["rolls_back_on_error"]
+__all__ = ["rolls_back_on_error", "slot_names", "slot_values"]
+
+
+@functools.lru_cache(maxsize=None)
+def slot_names(cls):
+    """The attribute names ``cls`` and its bases keep in ``__slots__`` (a class that also has a ``__dict__``
+    keeps its growing histories there, out of filterpy's ``Saver``), as a frozenset."""
+    names = set()
+    for klass in cls.__mro__:
+        slots = klass.__dict__.get("__slots__", ())
+        names.update((slots,) if isinstance(slots, str) else slots)
+    return frozenset(names - {"__dict__", "__weakref__"})
+
+
+def slot_values(obj):
+    """``{name: value}`` of the slots ``obj`` has set (:func:`slot_names`)."""
+    return {name: getattr(obj, name) for name in slot_names(type(obj)) if hasattr(obj, name)}
 
 
 def _part_dicts(saved, names):
@@ -46,7 +62,8 @@ def _part_dicts(saved, names):
 def rolls_back_on_error(method):
     """Decorate a method so that, when it raises, the instance is restored (see the module docstring).
 
-    Restored: every attribute's binding (``self.__dict__``), the bindings of the parts the
+    Restored: every attribute's binding (``self.__dict__``, and the slots the class keeps:
+    :func:`slot_values`), the bindings of the parts the
     class names in ``_rollback_parts`` (owned objects it steps, e.g. a filter bank), the length
     of every list attribute (appended entries are removed; entries changed in place are not
     undone) and the state of ``self.rng``'s bit generator when there is one. A class that
@@ -57,10 +74,12 @@ def rolls_back_on_error(method):
     @functools.wraps(method)
     def wrapper(self, *args, **kwargs):
         saved = self.__dict__.copy()  # references: what the step rebinds needs no copy
+        slotted = slot_values(self)
         names = getattr(self, "_rollback_parts", None)
         parts = _part_dicts(saved, names) if names else None
         lists = getattr(self, "_rollback_lists", None)
-        values = saved.values() if lists is None else map(saved.get, lists)
+        every = {**saved, **slotted}
+        values = every.values() if lists is None else map(every.get, lists)
         lengths = [(v, len(v)) for v in values if isinstance(v, list)]
         rng = saved.get("rng")
         bits = None if rng is None else getattr(rng, "bit_generator", None)
@@ -70,6 +89,11 @@ def rolls_back_on_error(method):
         except BaseException:
             self.__dict__.clear()
             self.__dict__.update(saved)
+            for name in slot_names(type(self)):
+                if name in slotted:
+                    setattr(self, name, slotted[name])
+                elif hasattr(self, name):
+                    delattr(self, name)
             if parts:
                 for obj, attrs in parts:
                     obj.__dict__.clear()

@@ -13,6 +13,7 @@ import math
 
 import numpy as np
 
+from .._state import slot_names, slot_values
 from .resampling import get_scheme
 
 __all__ = ["logsumexp", "ModelAttribute", "WeightedMixtureFilter"]
@@ -60,17 +61,19 @@ class ModelAttribute:
         setattr(obj._model, self.name, value if self.check is None else self.check(value, self.name))
 
 
-class SettledAttribute:
+class SettledAttribute(property):
     """A moment a filter forms when it is read: ``obj.<name>`` is ``obj._<name>``.
 
     On read, ``obj._settle()`` first forms what ``predict`` left pending (every read, or with
     ``when_missing=True`` only while ``obj._<name>`` is None); ``obj.<name> = value`` stores
     ``value``, after ``obj._refuse_mid_run(name)`` with ``guarded=True`` (a starting state set
-    once the members exist would be ignored, so it raises instead).
+    once the members exist would be ignored, so it raises instead). A ``property``, so that
+    filterpy's ``Saver``, which reads a filter's properties at each ``save()``, records ``x`` and
+    ``P`` (the pending ones formed then), not the ``None`` that ``_x`` holds while they wait.
     """
 
     def __init__(self, doc, *, when_missing=False, guarded=False):
-        self.__doc__ = doc
+        super().__init__(doc=doc)
         self.when_missing = when_missing
         self.guarded = guarded
 
@@ -99,6 +102,11 @@ class WeightedMixtureFilter:
     and keeps ``dim_x``, ``step``, ``resampling``, ``_resample``, ``_x``, ``_P`` and the
     ``ess``/``n_distinct`` histories.
     """
+
+    #: The histories are slots, out of ``__dict__`` (read and set as any attribute): filterpy's ``Saver`` copies
+    #: ``__dict__`` at each ``save()`` and stacks each entry in ``to_array()``, and a list that grows at every
+    #: update cannot be stacked (it raised ``could not convert ess_history``).
+    __slots__ = ("ess_history", "n_distinct_history", "resampled_history", "__dict__", "__weakref__")
 
     _members_attr = "particles"
     _members_word = "particles"
@@ -159,11 +167,17 @@ class WeightedMixtureFilter:
 
     def __getstate__(self):
         state = self.__dict__.copy()
+        state.update(slot_values(self))
         del state["_resample"]  # a scheme's raw implementation (or a wrapped callable): looked up again
         return state
 
     def __setstate__(self, state):
-        self.__dict__.update(state)
+        slots = slot_names(type(self))
+        for name, value in state.items():
+            if name in slots:
+                setattr(self, name, value)
+            else:
+                self.__dict__[name] = value
         self._resample = get_scheme(self.resampling)
 
     def batch_filter(self, zs, fx_args=None, hx_args=None):

@@ -296,7 +296,7 @@ class ParticleFilter(WeightedMixtureFilter):
         self.dim_x = check_positive_int(dim_x, "dim_x")
         self.dim_z = check_positive_int(dim_z, "dim_z")
         self._model = ProposalModel(self.dim_x, self.dim_z)
-        self._pending_prior = None
+        self._pending_prior = self._pending_post = None
         self.dt = check_positive(dt, "dt")
         self.hx, self.fx = hx, fx
         self.n_particles = check_positive_int(n_particles, "n_particles")
@@ -407,7 +407,7 @@ class ParticleFilter(WeightedMixtureFilter):
         The posterior's first: after an ``update`` that a ``predict`` followed, the estimate
         ``x``/``P`` is the prediction's, and only ``x_post``/``P_post`` take the posterior's.
         """
-        post = self.__dict__.get("_pending_post")
+        post = self._pending_post
         if post is not None:
             self._pending_post = None
             X, w, current = post
@@ -588,7 +588,7 @@ class ParticleFilter(WeightedMixtureFilter):
         # the predicted moments are formed when first read (x, P, x_prior, P_prior): a filter
         # that only updates next never pays for them
         self._pending_prior = (pred.particles, self.log_weights, pred.spread)
-        post = self.__dict__.get("_pending_post")
+        post = self._pending_post
         if post is not None:  # the posterior stays pending for x_post/P_post only
             self._pending_post = (post[0], post[1], False)
         self._x = self._P = None

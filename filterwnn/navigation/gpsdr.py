@@ -1229,6 +1229,26 @@ class GPSDRFilter:
         it warns once, naming the drive reader's ``odometer_latency``; no state is added.
     """
 
+    #: Held as slots, out of the instance's ``__dict__`` (read and set as any attribute): the histories that grow
+    #: with the drive (public lists, and ``held_states``, whose shape follows the states), and every private buffer
+    #: and monitor. filterpy's ``Saver`` copies ``__dict__`` at each ``save()`` and stacks each entry in
+    #: ``to_array()``: entries that grow cannot be stacked (it raised on the first, ``_nis``), and copying them at
+    #: every step made its memory grow with the square of the drive's length. What it records is then the state
+    #: (``x``, ``P``, the filter ``kf``), the counts and the monitors' estimates, a row per step.
+    __slots__ = (
+        "crawl_steps", "floored_steps", "gps_scales", "heading_jumps", "held_states", "nis_accepted", "nis_warnings",
+        "rejected_steps", "reversing_steps", "zero_rate_steps",
+        "_I", "_Ioo", "_Ixo", "_J", "_Joo", "_Jxo", "_adopt", "_cal", "_cal_F", "_cal_P", "_cal_Q", "_cal_mean",
+        "_cal_warned", "_corr_n", "_corr_sum", "_crawl", "_driven", "_fast_warned", "_fix_gap", "_fix_interval",
+        "_gps_hph", "_gps_y", "_hyp", "_in_a_row", "_inconsistent", "_innovation", "_innovations", "_jB", "_jc",
+        "_jd", "_jo", "_js", "_jt", "_ju", "_last_fix_step", "_last_heading", "_last_new_fix", "_last_stop",
+        "_listening", "_nis", "_nis_bound", "_odometer", "_offer_gaps", "_offered", "_own_points", "_own_sigma",
+        "_piece_end", "_pieces", "_rate_clamped_since", "_rc_n", "_rc_sum", "_reported", "_residual_c", "_residuals",
+        "_restate", "_scale_fixes", "_scale_raw", "_scale_warned", "_seen_gaps", "_sens", "_since_measured", "_so",
+        "_stop", "_stretch", "_theta", "_turn_sum", "_u", "_uo", "_used", "_var", "_warned_errors", "_white",
+        "_zr_rejected",
+        "__dict__", "__weakref__")
+
     def __init__(self, model, kind="ekf", *, x0=None, P0=None, standstill_speed=STANDSTILL_SPEED,
                  low_speed=LOW_SPEED, hold_without_gps=True, gps_window=0, points=None, gate=GATE,
                  reject_gate=None, reacquire_after=REACQUIRE_AFTER, nis_window=NIS_WINDOW,
