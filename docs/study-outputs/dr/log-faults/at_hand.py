@@ -37,6 +37,21 @@ def drives_with_rest():
     return drives
 
 
+def scanned(args):
+    """``(drives, keys)`` a probe scans for its command line ``args``: ``files CSV...``, the CSVs given (each a
+    function returning its path); else ``[mode] PART``, half the drives of :func:`drives_with_rest` and onavdata's two
+    (part 0 or 1, every other one)."""
+    if args[0] == "files":
+        drives = {p: (lambda p=p: p) for p in args[1:]}
+        return drives, list(drives)
+    from filterwnn.navigation.drives import CAR_DRIVES, load_car_drive
+
+    drives = drives_with_rest()
+    for c in CAR_DRIVES:
+        drives[f"onav {c}"] = lambda c=c: load_car_drive(c)
+    return drives, list(drives)[int(args[-1])::2]
+
+
 def read_at_hand(obj, tmp):
     """The ``DRRun`` of what a function of :func:`drives_with_rest` returned (a CSV written in the folder ``tmp``)."""
     from filterwnn.navigation.drives import read_drive_csv

@@ -26,9 +26,9 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from at_hand import drives_with_rest, read_at_hand  # noqa: E402  (puts tests/ and tests/navigation on the path)
+from at_hand import read_at_hand, scanned  # noqa: E402  (puts tests/ and tests/navigation on the path)
 from filterwnn.navigation import _plausibility as pl  # noqa: E402
-from filterwnn.navigation.drives import CAR_DRIVES, load_car_drive, read_drive_csv  # noqa: E402
+from filterwnn.navigation.drives import read_drive_csv  # noqa: E402
 
 EPOCH = 1.7964e9
 
@@ -70,15 +70,7 @@ class Spy:
 
 def main():
     mode = sys.argv[1]
-    if mode == "files":
-        drives = {p: (lambda p=p: p) for p in sys.argv[2:]}
-        keys = list(drives)
-    else:
-        part = int(sys.argv[-1])
-        drives = drives_with_rest()
-        for c in CAR_DRIVES:
-            drives[f"onav {c}"] = lambda c=c: load_car_drive(c)
-        keys = list(drives)[part::2]
+    drives, keys = scanned(sys.argv[1:])
     fired = []
     with tempfile.TemporaryDirectory() as tmp:
         for key in keys:

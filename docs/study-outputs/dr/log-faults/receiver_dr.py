@@ -14,19 +14,10 @@ given. Half the drives for ``part`` 0, the other half for 1 (two processes). Run
 import os, sys, tempfile, warnings
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from at_hand import drives_with_rest, read_at_hand  # puts tests/ and tests/navigation on the path
+from at_hand import read_at_hand, scanned  # puts tests/ and tests/navigation on the path
 from filterwnn.navigation import _plausibility as pl
-from filterwnn.navigation.drives import CAR_DRIVES, load_car_drive
 
-if sys.argv[1] == "files":
-    drives = {p: (lambda p=p: p) for p in sys.argv[2:]}
-    keys = list(drives)
-else:
-    part = int(sys.argv[1])
-    drives = drives_with_rest()
-    for c in CAR_DRIVES:
-        drives[f"onav {c}"] = lambda c=c: load_car_drive(c)
-    keys = list(drives)[part::2]
+drives, keys = scanned(sys.argv[1:])
 fired = []
 with tempfile.TemporaryDirectory() as tmp:
     for key in keys:
