@@ -134,3 +134,58 @@ def test_a_failed_step_still_takes_its_history_entry_back():
         f.update(zs[3])
     assert (f.ess_history, f.resampled_history, f.ess) == before[:3] and len(f.ess_history) == 3
     np.testing.assert_array_equal(f.x, before[3])
+
+
+def test_saver_records_the_neural_filter():
+    """The paper's neural filter kept its last network input, a tuple of arrays of several shapes, where ``Saver``
+    stacks (``could not convert _last``)."""
+    from filterwnn.navigation.dead_reckoning import DRModel
+    from filterwnn.navigation.neural_filter import NeuralFilter, make_training_set, paper_training_states
+
+    model = DRModel(dt=0.1)
+    Xp, Z, X = make_training_set(paper_training_states(), model, rng=0, n_repeats=5)
+    nf = NeuralFilter(model, rng=1).fit(Xp, Z, X)
+    nf.x = model.x0.copy()
+    twin = pickle.loads(pickle.dumps(nf))
+    s = Saver(nf)
+    x, xs = model.x0.copy(), []
+    for _ in range(20):
+        x = model.fx(x)
+        nf.predict()
+        nf.update(model.hx(x))
+        s.save()
+        twin.predict()
+        twin.update(model.hx(x))
+        xs.append(twin.x.copy())
+    s.to_array()
+    np.testing.assert_array_equal(s.x, xs)  # (and the pickled twin, its _last with it, goes on alike)
+
+
+@pytest.mark.parametrize("bank", ["KalmanFilterBank", "UnscentedKalmanFilterBank"])
+def test_saver_records_a_bank_under_its_names(bank):
+    """A bank's ``x`` and ``P`` were recorded only as ``_x`` and ``_P`` (descriptors that ``Saver`` does not read);
+    each step's, not one array seen through every row."""
+    from filterwnn.kalman import KalmanFilterBank, UnscentedKalmanFilterBank
+    from filterwnn.kalman.presets import make_points
+
+    def make():
+        if bank == "KalmanFilterBank":
+            b = KalmanFilterBank(3, 2, 1, 1.0)
+            b.F, b.H = np.array([[1.0, 1.0], [0.0, 1.0]]), np.array([[1.0, 0.0]])
+        else:
+            b = UnscentedKalmanFilterBank(3, 2, 1, 1.0, lambda X: X[:, :1],
+                                          lambda X, dt: X @ np.array([[1.0, dt], [0.0, 1.0]]).T, make_points("merwe", 2))
+        b.R = np.array([[0.5]])
+        return b
+
+    zs = [np.array([[k], [2.0 * k], [np.nan]]) for k in range(10)]  # member 2 never observed
+    b, g = make(), make()
+    s = Saver(b)
+    for z in zs:
+        b.predict()
+        b.update(z)
+        s.save()
+    s.to_array()
+    means, covs = g.batch_filter(np.array(zs))
+    np.testing.assert_array_equal(s.x, means)
+    np.testing.assert_array_equal(s.P, covs)

@@ -110,13 +110,15 @@ def _of_member(M, i):
     return f" (member {int(i)})" if np.ndim(M) == 3 else ""
 
 
-class _Checked:
+class _Checked(property):
     """A bank attribute kept as ``_<name>`` and checked when assigned: ``bank.<name> = value``
-    stores ``check(bank, value)`` (which raises ``ValueError`` naming the attribute)."""
+    stores ``check(bank, value)`` (which raises ``ValueError`` naming the attribute). A ``property``
+    (as :class:`_Copy`), so that filterpy's ``Saver``, which reads a filter's properties at each
+    ``save()``, records ``x`` and ``P`` under their names."""
 
     def __init__(self, check, doc=None):
+        super().__init__(doc=doc)
         self.check = check
-        self.__doc__ = doc
 
     def __set_name__(self, owner, name):
         self.slot = "_" + name
@@ -156,7 +158,7 @@ def _measurement_matrix(bank, value):
     return H
 
 
-class _Copy:
+class _Copy(property):
     """``x_prior``/``P_prior``/``x_post``/``P_post``: the step keeps a reference (``bank._pending``),
     copied at the first read of any of them or of ``x``/``P`` (:meth:`_Bank._settle`), so a
     bank whose copies nobody reads never makes them; what a reader sees is the eager copy."""

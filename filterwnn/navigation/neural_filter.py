@@ -212,6 +212,10 @@ class NeuralFilter:
         Phase-1 loss per epoch.
     """
 
+    #: The last step's network input, a tuple of arrays of several shapes, is a slot, out of the ``__dict__`` that
+    #: filterpy's ``Saver`` copies at each ``save()`` and stacks in ``to_array()`` (it raised on it).
+    __slots__ = ("_last", "__dict__", "__weakref__")
+
     def __init__(self, model=None, *, n_hidden=12, form="passthrough", features="velocity",
                  learning_rate=0.1, n_epochs=300, batch_size=1, learning_rate_online=1e-3,
                  state_scale=(10.0, 15.0, 1.0, 10.0, 15.0, 1.0), rng=None):
