@@ -88,21 +88,28 @@ def _mixture(name, m):
     return f
 
 
-@pytest.mark.parametrize("name", ["BootstrapParticleFilter", "ExtendedKalmanParticleFilter", "UnscentedParticleFilter",
-                                  "SimplexUnscentedParticleFilter", "GaussianSumFilter"])
-def test_saver_records_the_mixture_filters(name):
-    m = LinearGaussianModel.random(dim_x=2, dim_z=1, rng=0)
-    _, zs = m.simulate(40, rng=1)
-    f, g = _mixture(name, m), _mixture(name, m)
+def _recorded_like_batch_filter(f, g, zs):
+    """``Saver(f)`` over ``predict``/``update(z)`` for each of ``zs``, stacked; its ``x`` and ``P`` are those
+    ``g.batch_filter(zs)`` returns for a twin ``g``. The ``Saver``."""
     s = Saver(f)
     for z in zs:
         f.predict()
         f.update(z)
         s.save()
     s.to_array()
-    means, covs = g.batch_filter(zs)
-    np.testing.assert_array_equal(s.x, means)  # the moments after each update, as batch_filter gives them
+    means, covs = g.batch_filter(np.asarray(zs))
+    np.testing.assert_array_equal(s.x, means)  # each step's, as batch_filter gives them (not one array seen twice)
     np.testing.assert_array_equal(s.P, covs)
+    return s
+
+
+@pytest.mark.parametrize("name", ["BootstrapParticleFilter", "ExtendedKalmanParticleFilter", "UnscentedParticleFilter",
+                                  "SimplexUnscentedParticleFilter", "GaussianSumFilter"])
+def test_saver_records_the_mixture_filters(name):
+    m = LinearGaussianModel.random(dim_x=2, dim_z=1, rng=0)
+    _, zs = m.simulate(40, rng=1)
+    f, g = _mixture(name, m), _mixture(name, m)
+    s = _recorded_like_batch_filter(f, g, zs)  # the moments after each update
     assert s.ess.shape == (40,) and len(f.ess_history) == 40 and f.ess_history == g.ess_history
     assert "ess_history" not in s.keys
     twin = pickle.loads(pickle.dumps(f))  # the histories travel with a pickle, and the filter goes on
@@ -179,13 +186,4 @@ def test_saver_records_a_bank_under_its_names(bank):
         return b
 
     zs = [np.array([[k], [2.0 * k], [np.nan]]) for k in range(10)]  # member 2 never observed
-    b, g = make(), make()
-    s = Saver(b)
-    for z in zs:
-        b.predict()
-        b.update(z)
-        s.save()
-    s.to_array()
-    means, covs = g.batch_filter(np.array(zs))
-    np.testing.assert_array_equal(s.x, means)
-    np.testing.assert_array_equal(s.P, covs)
+    _recorded_like_batch_filter(make(), make(), zs)

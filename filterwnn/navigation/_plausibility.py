@@ -975,8 +975,9 @@ def _interpolated_at_fixes(values, moving, near, least_held):
 def _resolution(values):
     """The step a column was written to (the least change between neighbouring values, past a double's last bits):
     0.001 for a speed written ``%.3f``; about 0 for one written in full."""
-    d = np.abs(np.diff(values[np.isfinite(values)]))
-    d = d[d > 1e-12 * (1.0 + np.max(np.abs(values[np.isfinite(values)]), initial=0.0))]
+    finite = values[np.isfinite(values)]
+    d = np.abs(np.diff(finite))
+    d = d[d > 1e-12 * (1.0 + np.max(np.abs(finite), initial=0.0))]
     return float(d.min()) if len(d) else 0.0
 
 

@@ -2089,9 +2089,8 @@ class GPSDRFilter:
         37.26 m at the outage ends to 1.52 / 6.45 and 6.80 / 17.74 with the speed's remedy, 7.44 / 11.71 and 9.62 /
         29.80 with the fixes', 1.53 / 6.56 and 9.59 / 29.97 with both (``log-faults/speed_late_fixes_early.txt``,
         stop 64)."""
-        other = "odometer_latency" if name == "latency" else "latency"
-        est = self._paired(other, -theta)
-        if est is None or other not in self._warned_errors:
+        est = self._told_opposite("odometer_latency" if name == "latency" else "latency", theta)
+        if est is None:
             return ""
         if name == "odometer_latency":
             return (f". The filter has found the fixes {est:+.2g} s late: a speed stamped late reads as fixes stamped "
@@ -2117,6 +2116,11 @@ class GPSDRFilter:
                 f"{-speed:+.2g} s late against them (a heading averaged over each sample's interval is half an "
                 f"interval late, 0.5 s at 1 Hz): if so, read the drive with the heading at its own time "
                 f"(heading_latency={-speed:.2g}, --heading-latency {-speed:.2g}) instead")
+
+    def _told_opposite(self, other, theta):
+        """The estimate of ``other`` (``"latency"`` or ``"odometer_latency"``) where the filter has warned of it and
+        it has the opposite sign of ``theta`` (:meth:`_paired`), else None: a speed late beside fixes early."""
+        return self._paired(other, -theta) if other in self._warned_errors else None
 
     def _paired(self, other, theta):
         """The monitor's estimate of ``other`` (``"latency"``, the fixes', or ``"odometer_latency"``, the speed's)
@@ -3248,8 +3252,7 @@ class GPSDRFilter:
             if (getattr(self, f"{name}_at_end") is not None or z is None or est is None or name in self._warned_errors
                     or getattr(self.model, name) or abs(z) <= gate or abs(est) < _TESTED[name][1]):
                 continue
-            if name == "latency" and "odometer_latency" in self._warned_errors and self._paired(
-                    "odometer_latency", -est) is not None:
+            if name == "latency" and self._told_opposite("odometer_latency", est) is not None:
                 continue  # fixes early as the speed told late makes them: its remedy first (_speed_or_fixes_note)
             setattr(self, f"{name}_at_end", float(est))
             self._warn_at_end(name, float(est), float(z))
