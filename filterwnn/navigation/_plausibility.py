@@ -198,6 +198,7 @@ GPS_DERIVED_SLOPE_TOL = 1e-6
 GPS_DERIVED_ROUNDING = 2.0
 #: Length-ratio mistakes: (factor the ratio shows, the likely cause).
 _SCALES = ((3.6, "speed looks like km/h (divide by 3.6 for m/s)"),
+           (1 / 0.3048, "speed looks like ft/s (multiply by 0.3048 for m/s)"),
            (1 / 0.44704, "speed looks like mph (multiply by 0.44704 for m/s)"),
            (1 / 0.514444, "speed looks like knots (multiply by 0.514444 for m/s)"),
            (1 / 1000.0, "the odometer looks like kilometres (multiply by 1000 for m)"),
@@ -212,6 +213,17 @@ _UNIT_TOLERANCE = 1.25
 #: the fixes' noise lengthens the chord, so a speed in mm/s shows 784 (the phone-log drive of
 #: ``tests/navigation/test_phone_log.py``), in cm/s 82.
 _DECADE_TOLERANCE = 2.0
+#: A second mistake of :data:`_SCALES` is named beside the nearest (:func:`_ratio_cause`) where it fits the length
+#: ratio within this factor of how well the nearest does: a car's speed may itself read several per cent off (a
+#: speedometer's signal up to 10 % high), and km/h (3.6) and ft/s (3.28) lie 9.7 % apart, mph (2.24) and knots
+#: (1.94) 15 %. On the 250 drives at hand (stop 65, ``docs/study-outputs/dr/log-faults/speed_units.txt``), their
+#: speeds in each unit, the ratio (:func:`_unit_ratio`) read 0.88-1.11 of the unit's factor, 95 % of them
+#: 0.93-1.03, the random drives' own odometer faults included.
+_UNIT_EITHER = 1.05
+#: :data:`_DECADE_TOLERANCE` where the ratio was measured again over at least :data:`WARN_MIN_CHORDS` stretches that
+#: long on the road (:func:`_unit_ratio`), no longer read low by the fixes' noise: a wheel-tick count of 50 a metre
+#: is not named centimetres (a speed in cm/s measured so read 0.68-1.03 of 100 on 95 % of the drives at hand).
+_DECADE_TOLERANCE_AGAIN = 1.5
 
 
 #: Time units a DR sample interval over :data:`MAX_DT` seconds may be written in: (the factor from seconds, the
@@ -662,18 +674,25 @@ def speed_scale(dt, heading, step, steps, z_gps, sigma=None):
 
 def _warn_scale(ratio, n):
     """Warn of a speed scale past :data:`SPEED_SCALE_WARN` and the 0.1 % point of its t-statistic (``n - 1``
-    degrees of freedom; at least :data:`WARN_MIN_CHORDS` chords), with the remedy."""
+    degrees of freedom; at least :data:`WARN_MIN_CHORDS` chords), with the remedy; one past 1.5 that a unit of
+    :data:`_SCALES` fits (:func:`_ratio_cause`: knots, whose 1.94 a speed reading 8 % low brings inside the
+    reader's range, stop 65) names the unit first."""
     r, se = _scale_fit(ratio)
     if abs(np.log(r)) <= max(np.log1p(SPEED_SCALE_WARN), _past(n, n - 1) * se):
         return
-    warnings.warn(
-        f"plausibility: over {n} moving stretches between GPS fixes, the dead-reckoned distance is {r:.3g} times "
-        f"the fixes' (median, +- {100 * se:.1g} %): a speed (or odometer) that reads {100 * (r - 1):+.0f} % (a "
-        "speedometer's signal reads high by up to 10 %, a wheel-speed signal with the wrong tyre circumference "
-        "a few per cent). The GPS/DR filters learn an odometer scale from the fixes, but not before the first "
-        "ones, and not past their grade (the phone grade's: 3 %, one sigma, held within three); if the scale is "
-        f"the sensor's, pass speed_scale={r:.3g} (command line: --speed-scale {r:.3g}), which divides it out",
-        RuntimeWarning, stacklevel=5)
+    found = (f"plausibility: over {n} moving stretches between GPS fixes, the dead-reckoned distance is {r:.3g} "
+             f"times the fixes' (median, +- {100 * se:.1g} %)")
+    remedy = (f"if the scale is the sensor's, pass speed_scale={r:.3g} (command line: --speed-scale {r:.3g}), which "
+              "divides it out")
+    unit = _ratio_cause(r) if abs(np.log(r)) > np.log(1.5) else None
+    if unit:
+        words = f"{found}, more than a speed's scale is off: {unit}; else, {remedy}"
+    else:
+        words = (f"{found}: a speed (or odometer) that reads {100 * (r - 1):+.0f} % (a speedometer's signal reads "
+                 "high by up to 10 %, a wheel-speed signal with the wrong tyre circumference a few per cent). The "
+                 "GPS/DR filters learn an odometer scale from the fixes, but not before the first ones, and not past "
+                 f"their grade (the phone grade's: 3 %, one sigma, held within three); {remedy}")
+    warnings.warn(words, RuntimeWarning, stacklevel=5)
 
 
 def heading_offset(dt, heading, step, steps, z_gps, sigma=None, pairs=None):
@@ -917,15 +936,44 @@ def _per_sample_cause(ratio, dt):
             "the odometer column")
 
 
-def _ratio_cause(ratio):
+def _ratio_cause(ratio, decade_tolerance=_DECADE_TOLERANCE, where=""):
     """The unit mistake of :data:`_SCALES` nearest the track's length ratio (within a factor 1.25, or
-    :data:`_DECADE_TOLERANCE` for those a decade or more from 1), or None: mph (2.24) and knots (1.94) lie within
-    that of each other, so the nearer names it."""
+    ``decade_tolerance`` for those a decade or more from 1), or None. km/h (3.6) and ft/s (3.28), mph (2.24)
+    and knots (1.94) lie within that of each other: the nearer names it, and the other is named after it, as the
+    other possibility, where it fits within :data:`_UNIT_EITHER` of as well, with the ratio (measured ``where``)."""
     if not ratio > 0:
         return None
-    off, factor, cause = min((abs(np.log(ratio / factor)), factor, cause) for factor, cause in _SCALES)
-    tolerance = _DECADE_TOLERANCE if _decade_off(factor) else _UNIT_TOLERANCE
-    return cause if off < np.log(tolerance) else None
+    fits = sorted((abs(np.log(ratio / factor)), factor, cause) for factor, cause in _SCALES)
+    off, factor, cause = fits[0]
+    tolerance = decade_tolerance if _decade_off(factor) else _UNIT_TOLERANCE
+    if not off < np.log(tolerance):
+        return None
+    other = fits[1]
+    if other[0] < np.log(tolerance) and other[0] <= off + np.log(_UNIT_EITHER):
+        cause += (f", or else {other[2].replace('speed looks like ', '')}: the track is {ratio:.3g} times the fixes' "
+                  f"distance{where}, near both (a speed that reads a few per cent off; the logger's documentation "
+                  "says which)")
+    return cause
+
+
+def _unit_ratio(step, steps, z_gps, sigma, ratio, heading):
+    """``(ratio, tolerance)``: the track's median length ratio to the fixes' (:func:`_medians`), ``ratio``,
+    measured again over chords that long in the fixes' distance, as the ratio of the dead-reckoned displacement's
+    length to theirs (the path, longer on a bend, read a city's ft/s as km/h over such chords), and the factor
+    within which
+    :func:`_ratio_cause` names a unit a decade or more from 1 by it. A speed in another unit makes the chords of
+    :func:`_chord_pairs` (chosen by the odometer's path) that many times shorter, and the fixes' noise then
+    lengthens them (a speed in km/h read 2.6-3.7 times, one in ft/s 2.6-3.4; stop 65). ``ratio`` and
+    :data:`_DECADE_TOLERANCE` where it is under 1 (chords already long) or where fewer than
+    :data:`WARN_MIN_CHORDS` chords are that long; else :data:`_DECADE_TOLERANCE_AGAIN`."""
+    if not ratio > 1.0:
+        return ratio, _DECADE_TOLERANCE
+    min_len = max(20.0, 8.0 * (3.0 if sigma is None else float(sigma))) * ratio
+    path = np.r_[0.0, np.cumsum(step)][np.asarray(steps, dtype=int) + 1]
+    pairs = _chords(len(steps), lambda i, j: path[j] - path[i] >= min_len)
+    if len(pairs) < WARN_MIN_CHORDS:
+        return ratio, _DECADE_TOLERANCE
+    return float(np.median(_chord_angles(heading, step, steps, z_gps, pairs)[2])), _DECADE_TOLERANCE_AGAIN
 
 
 #: The refusal's cause for fixes whose latitude and longitude look like radians (:func:`check_drive`'s ``radians``).
@@ -1106,6 +1154,8 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
         return
     found = (f"median over {len(pairs)} moving stretches between GPS fixes: the dead-reckoned track is "
              f"{angle:.0f} degrees off the fixes' course and {ratio:.3g} times their distance")
+    unit_ratio, decade = _unit_ratio(step, steps, z_gps, sigma, ratio, heading)  # (units: on chords that long)
+    length_unit = _ratio_cause(unit_ratio, decade, " over stretches as long on the road")
     if ratio < STILL_RATIO:  # (no angle means anything then)
         cause = (f"the speed moves the dead-reckoned track {ratio:.2g} times the fixes' distance: it reads 0, or "
                  "nearly, where the fixes move (a speed from a logger of its own whose times do not overlap the "
@@ -1115,23 +1165,25 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
     elif yaw_rate and angle > MAX_ANGLE_DEG and (_mirrored(heading, step, steps, z_gps, pairs) is not None
                                               or _mirrored_drifting(heading, step, steps, z_gps, pairs, dt)):
         cause = _YAW_SIGN  # (a track turned the wrong way also misplaces the chords, which a clock offset is sought in)
-    elif clock is not None:
+    elif clock is not None and not (_decade_off(ratio) or _per_sample_cause(ratio, dt) or length_unit):
+        # (a clock offset misplaces the chords but leaves their lengths: a track a unit's factor long is the unit's,
+        # whatever offset fits its misplaced chords best; a speed in mm/s was told a clock offset, stop 65)
         cause = _clock_remedy(*clock) + "; else check the units, the heading's zero and sign, and the fixes' frame"
     elif per_sample := _per_sample_cause(ratio, dt):
         cause = per_sample
     elif _decade_off(ratio) and not (radians and ratio > 10.0):  # (chords a fix or two long, or many: the
         # angle says nothing then; lat and lon in radians, read as degrees, lie that much closer together)
-        cause = _ratio_cause(ratio) or (
+        cause = length_unit or (
             f"the speed or the odometer is in another unit: the dead-reckoned track is {ratio:.3g} times the fixes' "
             "distance (a wheel-tick count needs the distance a tick, and a counter that wrapped its range added back)")
     elif (RATIO_RANGE[0] <= ratio <= RATIO_RANGE[1]  # (a track of another length turns elsewhere)
           and (still := _still_cause(heading, step, steps, z_gps, pairs))):
         cause = still
     elif angle <= MAX_ANGLE_DEG:
-        cause = ((_RADIANS if radians and ratio > 10.0 else None) or _ratio_cause(ratio)
+        cause = ((_RADIANS if radians and ratio > 10.0 else None) or length_unit
                  or "check the units of speed/odometer and time")
-    elif _ratio_cause(ratio) and _drifting_gyro(fit):  # a drifting gyro's angle, and a length in another unit
-        cause = (_ratio_cause(ratio) + f"; the angle is a gyro's drift ({fit[2]:+.2g} deg/s from a heading right at "
+    elif length_unit and _drifting_gyro(fit):  # a drifting gyro's angle, and a length in another unit
+        cause = (length_unit + f"; the angle is a gyro's drift ({fit[2]:+.2g} deg/s from a heading right at "
                  "the start)")
     else:
         cause = _track_cause(heading, step, steps, z_gps, pairs, swapped,

@@ -267,6 +267,7 @@ MISTAKES = {
         r"the heading turns the wrong way \(the GPS course matches 200 deg - heading: .* give heading_deg = 200 - "
         r"yaw_deg, or heading = 3.49\d - heading in radians"),
     "speed in km/h": (lambda c: {**c, "speed": c["speed"] * 3.6}, "speed looks like km/h"),
+    "speed in ft/s": (lambda c: {**c, "speed": c["speed"] / 0.3048}, r"speed looks like ft/s \(multiply by 0.3048"),
     "speed in mph": (lambda c: {**c, "speed": c["speed"] / 0.44704}, "speed looks like mph"),
     "speed in knots": (lambda c: {**c, "speed": c["speed"] / 0.514444}, r"speed looks like knots \(multiply by 0.514444"),
     "lat and lon in radians": (lambda c: {**c, **{k: np.deg2rad(c[k]) for k in ("gps_lat", "gps_lon", "true_lat",
