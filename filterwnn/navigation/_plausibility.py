@@ -960,10 +960,9 @@ def _unit_ratio(step, steps, z_gps, sigma, ratio, heading):
     """``(ratio, tolerance)``: the track's median length ratio to the fixes' (:func:`_medians`), ``ratio``,
     measured again over chords that long in the fixes' distance, as the ratio of the dead-reckoned displacement's
     length to theirs (the path, longer on a bend, read a city's ft/s as km/h over such chords), and the factor
-    within which
-    :func:`_ratio_cause` names a unit a decade or more from 1 by it. A speed in another unit makes the chords of
-    :func:`_chord_pairs` (chosen by the odometer's path) that many times shorter, and the fixes' noise then
-    lengthens them (a speed in km/h read 2.6-3.7 times, one in ft/s 2.6-3.4; stop 65). ``ratio`` and
+    within which :func:`_ratio_cause` names a unit a decade or more from 1 by it. A speed in another unit makes the
+    chords of :func:`_chord_pairs` (chosen by the odometer's path) that many times shorter, and the fixes' noise
+    then lengthens them (a speed in km/h read 2.6-3.7 times; stop 65). ``ratio`` and
     :data:`_DECADE_TOLERANCE` where it is under 1 (chords already long) or where fewer than
     :data:`WARN_MIN_CHORDS` chords are that long; else :data:`_DECADE_TOLERANCE_AGAIN`."""
     if not ratio > 1.0:
