@@ -264,12 +264,23 @@ def _chord_pairs(steps, z_gps, sigma, step):
     fixes' errors, longer than the car drove (5 Hz fixes read a speed 6-9 % low), and a fix jumped 20-80 m by
     multipath ends one at once (at 3-10 m/s, 6.6 % of such fixes made the median ratio 0.5, and the drive
     was refused)."""
-    min_len = max(20.0, 8.0 * (3.0 if sigma is None else float(sigma)))
-    path = np.r_[0.0, np.cumsum(step)][np.asarray(steps, dtype=int) + 1]  # the fix at step k is sample k + 1
-    pairs = _chords(len(steps), lambda i, j: path[j] - path[i] >= min_len)
+    pairs = _odometer_chords(steps, sigma, step)
     if len(pairs) >= _MIN_CHORDS:
         return pairs
+    min_len = _chord_length(sigma)
     return _chords(len(steps), lambda i, j: np.hypot(*(z_gps[j] - z_gps[i])) >= min_len)
+
+
+def _chord_length(sigma):
+    """``L = max(20 m, 8 sigma)`` (``sigma`` None: 3 m), the least length of a chord (:func:`_chord_pairs`)."""
+    return max(20.0, 8.0 * (3.0 if sigma is None else float(sigma)))
+
+
+def _odometer_chords(steps, sigma, step, longer=1.0):
+    """The chords of at least ``longer`` times :func:`_chord_length` of odometer path between their fixes."""
+    min_len = _chord_length(sigma) * longer
+    path = np.r_[0.0, np.cumsum(step)][np.asarray(steps, dtype=int) + 1]  # the fix at step k is sample k + 1
+    return _chords(len(steps), lambda i, j: path[j] - path[i] >= min_len)
 
 
 def _unwrap(ang, k=5):
@@ -967,9 +978,7 @@ def _unit_ratio(step, steps, z_gps, sigma, ratio, heading):
     :data:`WARN_MIN_CHORDS` chords are that long; else :data:`_DECADE_TOLERANCE_AGAIN`."""
     if not ratio > 1.0:
         return ratio, _DECADE_TOLERANCE
-    min_len = max(20.0, 8.0 * (3.0 if sigma is None else float(sigma))) * ratio
-    path = np.r_[0.0, np.cumsum(step)][np.asarray(steps, dtype=int) + 1]
-    pairs = _chords(len(steps), lambda i, j: path[j] - path[i] >= min_len)
+    pairs = _odometer_chords(steps, sigma, step, longer=ratio)
     if len(pairs) < WARN_MIN_CHORDS:
         return ratio, _DECADE_TOLERANCE
     return float(np.median(_chord_angles(heading, step, steps, z_gps, pairs)[2])), _DECADE_TOLERANCE_AGAIN
@@ -1155,6 +1164,7 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
              f"{angle:.0f} degrees off the fixes' course and {ratio:.3g} times their distance")
     unit_ratio, decade = _unit_ratio(step, steps, z_gps, sigma, ratio, heading)  # (units: on chords that long)
     length_unit = _ratio_cause(unit_ratio, decade, " over stretches as long on the road")
+    per_sample = _per_sample_cause(ratio, dt)
     if ratio < STILL_RATIO:  # (no angle means anything then)
         cause = (f"the speed moves the dead-reckoned track {ratio:.2g} times the fixes' distance: it reads 0, or "
                  "nearly, where the fixes move (a speed from a logger of its own whose times do not overlap the "
@@ -1164,11 +1174,11 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
     elif yaw_rate and angle > MAX_ANGLE_DEG and (_mirrored(heading, step, steps, z_gps, pairs) is not None
                                               or _mirrored_drifting(heading, step, steps, z_gps, pairs, dt)):
         cause = _YAW_SIGN  # (a track turned the wrong way also misplaces the chords, which a clock offset is sought in)
-    elif clock is not None and not (_decade_off(ratio) or _per_sample_cause(ratio, dt) or length_unit):
+    elif clock is not None and not (_decade_off(ratio) or per_sample or length_unit):
         # (a clock offset misplaces the chords but leaves their lengths: a track a unit's factor long is the unit's,
         # whatever offset fits its misplaced chords best; a speed in mm/s was told a clock offset, stop 65)
         cause = _clock_remedy(*clock) + "; else check the units, the heading's zero and sign, and the fixes' frame"
-    elif per_sample := _per_sample_cause(ratio, dt):
+    elif per_sample:
         cause = per_sample
     elif _decade_off(ratio) and not (radians and ratio > 10.0):  # (chords a fix or two long, or many: the
         # angle says nothing then; lat and lon in radians, read as degrees, lie that much closer together)
