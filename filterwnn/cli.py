@@ -144,25 +144,6 @@ def _on_sigterm(signum, frame):
     raise _Terminated()
 
 
-def _end_resource_tracker(timeout=5.0):
-    """End loky's resource tracker, when a study started one, before the command's last line.
-
-    A study interrupted while its workers held a queue's lock or a memory-mapped folder
-    leaves them to the tracker, which removes them when the command exits and says so in a
-    Python warning of its own. Printed after the command's last line, that warning read as
-    the cause of the exit; ended here, it comes before. Bounded by ``timeout`` seconds, and
-    nothing is done where the tracker was never started or this joblib has no such call."""
-    tracker_module = sys.modules.get("joblib.externals.loky.backend.resource_tracker")
-    tracker = getattr(tracker_module, "_resource_tracker", None)
-    stop = getattr(tracker, "_stop", None)
-    if stop is None or getattr(tracker, "_fd", None) is None:
-        return
-    try:
-        stop(wait_timeout=timeout)
-    except Exception:  # noqa: BLE001 -- a private call of joblib's: the exit goes on without it
-        pass
-
-
 def _run(args, debug):
     """``args.func(args)``; a refused input, an interrupt or an error becomes one stderr line
     and an exit status (2, 130/143, 1), unless ``debug``."""
@@ -171,14 +152,12 @@ def _run(args, debug):
     except KeyboardInterrupt:
         if debug:
             raise
-        _end_resource_tracker()
         print("filterwnn: interrupted (Ctrl-C); finished tasks are kept in --cache when one is given",
               file=sys.stderr)
         return EXIT_INTERRUPT
     except _Terminated:
         if debug:
             raise
-        _end_resource_tracker()
         print("filterwnn: terminated (SIGTERM)", file=sys.stderr)
         return EXIT_TERMINATED
     except BAD_INPUT as exc:
