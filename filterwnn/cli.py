@@ -17,7 +17,7 @@ from . import __version__
 from .studies import STUDIES
 from .studies import options
 
-__all__ = ["main"]
+__all__ = ["command", "main"]
 
 _DESCRIPTION = """\
 Reduced sigma points, particle filters, filter-trained wavelet networks and GPS/DR navigation.
@@ -144,21 +144,73 @@ def _on_sigterm(signum, frame):
     raise _Terminated()
 
 
-def _run(args, debug):
+def _say_now(line):
+    print(line, file=sys.stderr)
+
+
+def _loky_tracker():
+    """loky's resource tracker where this process started one (a study's worker pool), else ``None``."""
+    module = sys.modules.get("joblib.externals.loky.backend.resource_tracker")
+    tracker = getattr(module, "_resource_tracker", None)
+    return tracker if getattr(tracker, "_fd", None) is not None else None
+
+
+def _say_at_exit(line, wait=5.0):
+    """Say an interrupted command's ``line`` as the process exits, after the worker pool.
+
+    Workers stopped mid-task can leave a queue's lock or a memory-mapped folder to loky's
+    resource tracker, a process of its own that removes them once the command has exited
+    and says so in a warning: printed after the command's line, that warning read as the
+    cause of the exit, on some runs and not others. Here the line waits for the last of
+    multiprocessing's exit finalizers (the pool's queues and locks are released at
+    priority 0 and above), then the tracker is ended, waiting at most ``wait`` seconds, so
+    its warning, if any, comes first. Without a tracker (no pool was started), or with a
+    joblib whose tracker cannot be ended within a bound, the line is said now."""
+    import inspect
+
+    tracker = _loky_tracker()
+    stop = getattr(tracker, "_stop", None)
+    try:
+        bounded = stop is not None and "wait_timeout" in inspect.signature(stop).parameters
+    except (TypeError, ValueError):
+        bounded = False
+    if not bounded:
+        _say_now(line)
+        return
+    from multiprocessing import util
+
+    util.Finalize(None, _end_tracker_then_say, args=(stop, line, wait), exitpriority=-100)
+
+
+def _end_tracker_then_say(stop, line, wait):
+    """The exit finalizer of :func:`_say_at_exit` (a second Ctrl-C cannot cut its bounded wait)."""
+    import signal
+
+    try:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+        stop(wait_timeout=wait)
+    except Exception:  # noqa: BLE001 -- a private call of joblib's: the line is said without it
+        pass
+    try:
+        print(line, file=sys.stderr, flush=True)
+    except (OSError, ValueError):  # stderr closed by the caller
+        pass
+
+
+def _run(args, debug, say=_say_now):
     """``args.func(args)``; a refused input, an interrupt or an error becomes one stderr line
-    and an exit status (2, 130/143, 1), unless ``debug``."""
+    and an exit status (2, 130/143, 1), unless ``debug``. ``say`` says an interrupt's line."""
     try:
         return args.func(args) or 0
     except KeyboardInterrupt:
         if debug:
             raise
-        print("filterwnn: interrupted (Ctrl-C); finished tasks are kept in --cache when one is given",
-              file=sys.stderr)
+        say("filterwnn: interrupted (Ctrl-C); finished tasks are kept in --cache when one is given")
         return EXIT_INTERRUPT
     except _Terminated:
         if debug:
             raise
-        print("filterwnn: terminated (SIGTERM)", file=sys.stderr)
+        say("filterwnn: terminated (SIGTERM)")
         return EXIT_TERMINATED
     except BAD_INPUT as exc:
         if debug:
@@ -174,7 +226,7 @@ def _run(args, debug):
 
 
 def main(argv=None):
-    """Entry point of the ``filterwnn`` command.
+    """The ``filterwnn`` command, called from Python (the console script is :func:`command`).
 
     Parameters
     ----------
@@ -190,6 +242,11 @@ def main(argv=None):
         column, row and rule), 130 after Ctrl-C, 143 after SIGTERM, 1 for an internal
         error. Warnings (a cache entry not used) print one line each on stderr.
     """
+    return _main(argv, _say_now)
+
+
+def _main(argv, say):
+    """:func:`main`, with ``say`` saying an interrupted run's line."""
     import signal
     import threading
     import warnings
@@ -205,12 +262,22 @@ def main(argv=None):
     if not debug:
         warnings.showwarning = _warning_line
     try:
-        return _run(args, debug)
+        return _run(args, debug, say)
     finally:
         warnings.showwarning = show
         if old_term is not None:
             signal.signal(signal.SIGTERM, old_term)
 
 
+def command():
+    """Entry point of the ``filterwnn`` console script and of ``python -m filterwnn.cli``:
+    :func:`main` on ``sys.argv[1:]``, then exit with its status.
+
+    As the process ends, an interrupted run (Ctrl-C, SIGTERM) says its line after the worker
+    pool's own cleanup, so the line is the last thing printed (:func:`main` says it at once).
+    """
+    sys.exit(_main(None, _say_at_exit))
+
+
 if __name__ == "__main__":  # pragma: no cover
-    sys.exit(main())
+    command()

@@ -315,6 +315,57 @@ def test_a_study_killed_part_way_resumes_with_the_same_numbers(tmp_path, sig, fr
     assert _numbers(tmp_path / "resumed" / "dr_table.csv") == fresh_table
 
 
+@pytest.mark.parametrize("raised, code, line", [("KeyboardInterrupt", 130, "filterwnn: interrupted"),
+                                                 ("cli._Terminated", 143, "filterwnn: terminated")])
+@pytest.mark.parametrize("lock_to_exit", [False, True], ids=["folder", "folder+lock"])
+def test_the_last_line_of_an_interrupted_command_is_its_own(tmp_path, raised, code, line, lock_to_exit):
+    # workers stopped mid-task leave a lock or a memory-mapped folder to loky's resource tracker,
+    # a process of its own that removes it once the command has exited and says so: the study
+    # above printed that warning after its line on some CI runs. This leaves such a folder on
+    # every run; "folder+lock" also keeps a pool's lock alive to the exit, which is released only
+    # then (ending the tracker before that started a second one, with a KeyError traceback)
+    left = tmp_path / "left_by_a_worker"
+    left.mkdir()
+    script = textwrap.dedent(f"""
+        import sys
+        from joblib.externals.loky.backend import resource_tracker
+        from joblib.externals.loky.backend.synchronize import Lock
+        from filterwnn import cli
+        from filterwnn.studies import dr
+
+        KEPT = []
+
+        def interrupted(args):
+            resource_tracker.register({str(left)!r}, "folder")
+            if {lock_to_exit}:
+                KEPT.append(Lock())
+            raise {raised}()
+
+        dr.run = interrupted
+        sys.argv = ["filterwnn", "study", "dr"]
+        cli.command()
+    """)
+    run = subprocess.run([sys.executable, "-c", script], env=_env(), capture_output=True, text=True,
+                         timeout=60)
+    lines = run.stderr.strip().splitlines()
+    assert run.returncode == code and "Traceback" not in run.stderr, run.stderr
+    assert lines[-1].startswith(line), run.stderr
+    assert "leaked folder" in run.stderr and not left.exists()  # said, and removed, before the line
+
+
+def test_an_interrupt_in_python_is_said_at_once(monkeypatch, capsys):
+    # main() called from Python says the line when it returns, not when the interpreter exits
+    from filterwnn import cli
+    from filterwnn.studies import dr
+
+    def interrupted(args):
+        raise KeyboardInterrupt()
+
+    monkeypatch.setattr(dr, "run", interrupted)
+    assert cli.main(["study", "dr"]) == 130
+    assert capsys.readouterr().err.startswith("filterwnn: interrupted")
+
+
 # --- a rejected call leaves the filter as it was, its RNG included ------------------------
 
 from hypothesis import HealthCheck, given, settings  # noqa: E402
