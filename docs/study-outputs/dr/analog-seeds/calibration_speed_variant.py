@@ -1,6 +1,7 @@
 """python calibration_speed_variant.py MIN_SPEED -- run_gps_scale args: calibration learns from an accepted fix while the car moves
 at MIN_SPEED m/s or more (slow included), instead of only at low_speed (5 m/s) and above.
-An experiment outside the package (stop 66), run from the repository root, one BLAS thread::
+Stop 35's ``../zero-rate/calibration_speed_lead.py`` patch, run through ``run_gps_scale.py``. An experiment
+outside the package (stop 66), run from the repository root, one BLAS thread::
 
     python docs/study-outputs/dr/analog-seeds/calibration_speed_variant.py 2 -- analogs --seeds 0,1,2,3,4 --windows 0   # and 5-9
 """
