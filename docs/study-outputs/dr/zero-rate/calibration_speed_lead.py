@@ -2,7 +2,8 @@
 
 ``low_speed_lead.py`` moved ``GPSDRFilter(low_speed=...)``, which decides both the DR sample's form and
 the speed above which the calibration learns from fixes. This script moves only the calibration's gate
-(the filter's ``_held_rows`` and ``classify`` patched in memory; nothing here is used by the package).
+(the filter's ``_held_rows`` and ``classify`` patched in memory by ``calibration_gate.py``; nothing here is
+used by the package).
 Run from the repository root, one BLAS thread::
 
     python docs/study-outputs/dr/zero-rate/calibration_speed_lead.py recorded
@@ -17,22 +18,10 @@ sys.path[:0] = [ROOT, os.path.join(ROOT, "tests")]
 import _held_out_drives as held_out
 from filterwnn.navigation.drives import read_drive_csv
 from filterwnn.navigation import drives as d
-from filterwnn.navigation import gpsdr
 from filterwnn.studies.dr import real_drive_outages
-CAL = [5.0]
-orig_classify = gpsdr.GPSDRFilter.classify
-def classify(self, z_dr):
-    self._speed = float(z_dr[1]) / self.model.dt
-    return orig_classify(self, z_dr)
-def _held_rows(self, gps):
-    if not gps:
-        return self.held_states if self.hold_without_gps else np.zeros(0, dtype=int)
-    if not self._cal.size:
-        return self._cal
-    observable = self.motion != "still" and self._speed >= CAL[0] and self.fix_status == "accepted"
-    return np.zeros(0, dtype=int) if observable else self._cal
-gpsdr.GPSDRFilter.classify = classify
-gpsdr.GPSDRFilter._held_rows = _held_rows
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from calibration_gate import GATE as CAL, patch  # the calibration's gate, moved in memory
+patch()
 tmp = tempfile.mkdtemp()
 what = sys.argv[1]
 vals = [float(v) for v in sys.argv[3].split(",")] if len(sys.argv) > 3 else [5.0, 2.5]
