@@ -223,6 +223,51 @@ def test_drive_table_separates_the_causes():
     assert row.strip("|").split("|")[10].strip() == f"{ig['gps_scale_mean']:.2f}" and ig["gps_scale_mean"] >= 1.0
 
 
+def test_a_drive_shows_each_filters_progress_and_the_bar_changes_no_number(capsys, monkeypatch):
+    """An hour of a 100 Hz log takes each filter minutes: ``progress=True`` shows a bar per filter over its steps
+    (the pass with the fixes, then each outage again), named by the drive and the filter and cleared when it is
+    done; None shows it on a terminal only. The numbers and the warnings are the same with it and without."""
+    import sys
+    import warnings
+
+    from filterwnn.navigation.drives import read_drive_csv, sample_drive_path
+    from filterwnn.studies.dr import _real
+
+    run = read_drive_csv(sample_drive_path())
+    kw = dict(starts=[40.0, 100.0], filters=("DR-mech", "EKF-8"), use_gps_sigma=True, grade="phone")
+    counted, ends = [], _real._outage_ends
+
+    def outage_ends(*a):  # the bar's count when the filter is done, and its total
+        out = ends(*a)
+        counted.append((a[-1].n, a[-1].total))
+        return out
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        plain = dr.real_drive_outages(run, **kw)
+        capsys.readouterr()
+        monkeypatch.setattr(_real, "_outage_ends", outage_ends)
+        shown = dr.real_drive_outages(run, progress=True, **kw)
+        monkeypatch.undo()
+    err = capsys.readouterr().err
+    steps = len(run.t) + sum(int(k1) - int(k0) + 1 for k0, k1 in zip(*_real._outage_windows(
+        run, plain["starts"], plain["length"])[:2]))
+    assert counted == [(steps, steps)]  # one bar, for the filter (dead reckoning is instant), run to its end
+    assert f"{run.scenario.name}: EKF-8" in err and "step/s" in err and "DR-mech" not in err
+    assert err.rstrip(" ").endswith("\r")  # cleared (leave=False): the filter's warnings come on a clean line
+    for key in ("DR-mech", "EKF-8"):
+        np.testing.assert_array_equal(shown[key], plain[key])
+    assert shown["warnings"] == plain["warnings"]
+    for tty, shows in ((False, False), (True, True)):  # None: a bar on a terminal only, after a while
+        monkeypatch.setattr(sys.stderr, "isatty", lambda tty=tty: tty, raising=False)
+        with _real._steps_bar(None, run, "EKF-8", [], []) as bar:
+            assert (not isinstance(bar, _real._NoBar)) == shows
+            assert not shows or bar.delay == _real.PROGRESS_DELAY
+    assert "EKF-8" not in capsys.readouterr().err  # (not shown before its delay)
+    args = argparse.Namespace(no_progress=True)
+    assert dr._cli._drive_progress(args) is False and dr._cli._drive_progress(argparse.Namespace()) is None
+
+
 def test_a_new_scenario_is_one_entry_of_scenarios(monkeypatch):
     """A scenario is added in one place (an entry of ``SCENARIOS``) and the study runs it."""
     from filterwnn.navigation.scenarios import SCENARIOS, Scenario

@@ -215,6 +215,12 @@ def _z_or_off(text):
         raise argparse.ArgumentTypeError(f"must be a finite number > 0 or off, got {text!r}") from None
 
 
+def _drive_progress(args):
+    """``real_drive_outages``'s ``progress``: None (a bar on a terminal, once a filter has run a while), or
+    False with ``--no-progress``."""
+    return False if getattr(args, "no_progress", False) else None
+
+
 def _filter_options(args):
     """The GPS/DR filters' options of the command line (``real_drive_outages``'s), the same for ``--real``
     and ``--drive``."""
@@ -253,7 +259,8 @@ def run(args):
                 print(f"skipping the real drives: {exc}")
                 break
             rd = real_drive_outages(drive, n_placements=args.outages, length=args.outage_length,
-                                    min_speed=args.min_speed, grade=grade, use_gps_sigma=True, **_filter_options(args))
+                                    min_speed=args.min_speed, grade=grade, use_gps_sigma=True,
+                                    progress=_drive_progress(args), **_filter_options(args))
             results.append(rd)
             texts.append(real_drive_table(rd))
             print(real_drive_table(rd, told=False))
@@ -321,7 +328,8 @@ def _run_drives(args, drives, filters):
         try:
             res = real_drive_outages(run, n_placements=args.outages, length=args.outage_length, filters=fl,
                                      starts=starts, min_speed=args.min_speed,
-                                     use_gps_sigma=run.gps_sigma is not None, grade=grade, **_filter_options(args))
+                                     use_gps_sigma=run.gps_sigma is not None, grade=grade,
+                                     progress=_drive_progress(args), **_filter_options(args))
         except ValueError as exc:  # name the drive
             raise ValueError(f"{path}: {exc}") from None
         res["read_warnings"] = told

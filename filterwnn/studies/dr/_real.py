@@ -8,7 +8,9 @@ once with GPS, snapshots it at each outage start and runs each outage alone;
 
 from __future__ import annotations
 
+import contextlib
 import copy
+import sys
 
 import numpy as np
 
@@ -43,7 +45,7 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
                        correlated_fixes="calibration", min_fix_interval=0.0, stop_reopen=0.0,
                        calibration_error_z=CALIBRATION_ERROR_Z, heading_jump_z=HEADING_JUMP_Z, reversing_test=True,
                        crawl_test=True, gps_sigma_floor=SIGMA_FLOOR, floor_on_detection=True,
-                       reopen_on_detection=True):
+                       reopen_on_detection=True, progress=False):
     """Cut GPS outages of ``length`` s into a drive and score each filter at each outage end.
 
     Placements: ``starts`` as given, or ``n_placements`` spread evenly over the windows whose mean
@@ -110,6 +112,11 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`'s: once a standstill cut into pieces by a speed that does
         not read 0 leaves the rate-bias state unable to follow a piece, take each standstill whole from then on
         (``stop_reopen`` 2 s; default True).
+    progress : bool or None
+        A tqdm bar on stderr over each filter's steps (the pass over the drive, then each outage run again
+        without its fixes), named by the drive and the filter and cleared when the filter is done (before its
+        warnings). None: on a terminal, and only once a filter has run for 2 s (``PROGRESS_DELAY``; an hour
+        of 100 Hz log takes each filter minutes). Default False.
 
     Returns
     -------
@@ -173,7 +180,7 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
                                    reopen_on_detection=reopen_on_detection))
     for name in filters:
         with kept_warnings(out["warnings"]):  # (folded: the filter's name, the step and its time)
-            _score_filter(out, name, run, windows, use_gps_sigma, settings)
+            _score_filter(out, name, run, windows, use_gps_sigma, settings, progress)
     return out
 
 
@@ -192,7 +199,7 @@ def _outage_plan(run, length, starts, n_placements, min_speed):
     return out, (k0s, k1s, refs)
 
 
-def _score_filter(out, name, run, windows, use_gps_sigma, settings):
+def _score_filter(out, name, run, windows, use_gps_sigma, settings, progress=False):
     """Run filter ``name`` over the drive and write its outage-end positions, errors against the
     references, start errors and (for a GPS/DR filter) integrity counts into ``out``."""
     k0s, k1s, refs = windows
@@ -206,7 +213,8 @@ def _score_filter(out, name, run, windows, use_gps_sigma, settings):
                                settings["gps_window"], settings["slow_speed"], **settings["filter_kw"])
         sig = run.gps_sigma_list() if use_gps_sigma else [None] * len(run.t)
         with folded_warnings(name, times=run.t_start + run.t):  # each names its filter and time; repeats folded
-            ends, begins = _outage_ends(f, name, run, k0s, k1s, out["starts"], run.gps_list(), sig)
+            with _steps_bar(progress, run, name, k0s, k1s) as bar:  # (cleared before the warnings come)
+                ends, begins = _outage_ends(f, name, run, k0s, k1s, out["starts"], run.gps_list(), sig, bar)
         out["start_err"][name] = np.hypot(*(begins - _start_refs(run, k0s, track)).T)
         out["integrity"][name] = _integrity(f, run)
     out["end_xy"][name] = ends
@@ -332,18 +340,54 @@ def _integrity(f, run):
             "odometer_latency_estimate": f.odometer_latency_estimate, "odometer_latency_z": f.odometer_latency_z}
 
 
-def _outage_ends(f, name, run, k0s, k1s, starts, gps, sig):
+#: Seconds a filter runs over a drive before its progress bar shows (``progress=None``: on a terminal).
+PROGRESS_DELAY = 2.0
+#: Steps between the bar's updates.
+_BAR_EVERY = 512
+
+
+class _NoBar:
+    """A bar that shows nothing (``progress`` off)."""
+
+    def update(self, n):
+        pass
+
+
+@contextlib.contextmanager
+def _steps_bar(progress, run, name, k0s, k1s):
+    """A tqdm bar over filter ``name``'s steps on ``run`` (the pass with the fixes, then each outage again), or
+    one that shows nothing; ``progress`` None: on a terminal, after :data:`PROGRESS_DELAY` s."""
+    delay = 0.0
+    if progress is None:
+        progress, delay = sys.stderr.isatty(), PROGRESS_DELAY
+    if not progress:
+        yield _NoBar()
+        return
+    from tqdm.auto import tqdm
+
+    total = len(run.t) + sum(k1 - k0 + 1 for k0, k1 in zip(k0s, k1s))
+    with tqdm(total=total, desc=f"{run.scenario.name}: {name}", unit="step", unit_scale=True, leave=False,
+              delay=delay, mininterval=0.5) as bar:
+        yield bar
+
+
+def _outage_ends(f, name, run, k0s, k1s, starts, gps, sig, bar=None):
     """The east/north of filter ``f`` at the start (before step ``k0``) and the end of each
     outage: one pass with GPS over the whole drive, a snapshot at each outage start, then
-    each outage alone (DR only)."""
+    each outage alone (DR only); ``bar`` (a tqdm bar) is told the steps run, every :data:`_BAR_EVERY`."""
+    bar = _NoBar() if bar is None else bar
     ends, begins = np.empty((len(k0s), 2)), np.empty((len(k0s), 2))
     snaps = {}
     offsets = run.gps_offset_list()
+    starting = set(k0s)
     for k in range(len(run.t)):
-        if k in k0s:
+        if k in starting:
             snaps[k] = copy.deepcopy(f)
         f.predict()
         f.update(run.z_dr[k], gps[k], sig[k], offsets[k])
+        if k % _BAR_EVERY == _BAR_EVERY - 1:
+            bar.update(_BAR_EVERY)
+    bar.update(len(run.t) % _BAR_EVERY)
     f.end_of_drive()  # the tests made once, when the drive ends
     for j, (k0, k1) in enumerate(zip(k0s, k1s)):
         g = copy.deepcopy(snaps[k0])
@@ -351,6 +395,7 @@ def _outage_ends(f, name, run, k0s, k1s, starts, gps, sig):
         for k in range(k0, k1 + 1):
             g.predict()
             g.update(run.z_dr[k], None)
+        bar.update(k1 - k0 + 1)
         if not np.all(np.isfinite(g.x)):
             raise FloatingPointError(f"{name}: non-finite state at step {k1} (outage at {starts[j]:.1f} s)")
         ends[j] = g.x[[0, 3]]
