@@ -264,8 +264,48 @@ def test_a_drive_shows_each_filters_progress_and_the_bar_changes_no_number(capsy
             assert (not isinstance(bar, _real._NoBar)) == shows
             assert not shows or bar.delay == _real.PROGRESS_DELAY
     assert "EKF-8" not in capsys.readouterr().err  # (not shown before its delay)
-    args = argparse.Namespace(no_progress=True)
-    assert dr._cli._drive_progress(args) is False and dr._cli._drive_progress(argparse.Namespace()) is None
+    assert dr._cli._drive_running(argparse.Namespace(no_progress=True, jobs=2)) == dict(progress=False, n_jobs=2)
+    assert dr._cli._drive_running(argparse.Namespace(jobs=-1)) == dict(progress=None, n_jobs=-1)
+
+
+def test_a_long_drives_filters_run_side_by_side_with_the_same_numbers_and_warnings(monkeypatch):
+    """``n_jobs``: the GPS/DR filters of a drive of at least ``PARALLEL_STEPS`` steps times filters run in worker
+    processes, one each; the scores, the integrity counts and the warnings (the same lines, in the filters'
+    order) are those of the run in this process. A shorter drive runs here."""
+    import warnings
+
+    from filterwnn.navigation.drives import read_drive_csv, sample_drive_path
+    from filterwnn.studies.dr import _real
+
+    run = read_drive_csv(sample_drive_path())
+    kw = dict(starts=[40.0, 100.0], filters=("DR-mech", "EKF", "EKF-8"), use_gps_sigma=True, grade="phone",
+              gps_sigma_floor=0.0)
+    res = {}
+    for jobs in (1, 2):
+        with warnings.catch_warnings(record=True) as seen:
+            warnings.simplefilter("always")
+            res[jobs] = dr.real_drive_outages(run, n_jobs=jobs, **kw)
+        res[jobs]["seen"] = [(w.category, str(w.message)) for w in seen]
+    assert len(run.t) * 2 < _real.PARALLEL_STEPS  # the sample stays in this process ...
+    monkeypatch.setattr(_real, "PARALLEL_STEPS", 0)  # ... unless told otherwise
+    ran = []
+    monkeypatch.setattr(_real, "_merge_scored", lambda out, name, *a, merge=_real._merge_scored: (
+        ran.append(name), merge(out, name, *a)))
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        side = dr.real_drive_outages(run, n_jobs=2, **kw)
+    assert ran == ["EKF", "EKF-8"]  # both from the workers
+    assert [(w.category, str(w.message)) for w in seen] == res[1]["seen"] and res[1]["seen"]
+    assert side["warnings"] == res[1]["warnings"] == res[2]["warnings"]
+    for name in kw["filters"]:
+        np.testing.assert_array_equal(side[name], res[1][name])
+        np.testing.assert_array_equal(side["start_err"][name], res[1]["start_err"][name])
+        np.testing.assert_array_equal(side["end_xy"][name], res[1]["end_xy"][name])
+    for name in ("EKF", "EKF-8"):
+        a, b = side["integrity"][name], res[1]["integrity"][name]
+        assert a.keys() == b.keys()
+        for key in a:
+            np.testing.assert_array_equal(np.asarray(a[key], dtype=object), np.asarray(b[key], dtype=object))
 
 
 def test_a_new_scenario_is_one_entry_of_scenarios(monkeypatch):

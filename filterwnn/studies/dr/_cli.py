@@ -22,7 +22,8 @@ def add_arguments(parser):
     parser.add_argument("--seed", type=options.seed, default=0,
                         help="root seed, an integer >= 0 (run i uses SeedSequence(seed).spawn(runs)[i])")
     parser.add_argument("--jobs", type=options.joblib_jobs, default=2,
-                        help="joblib workers, -1 for all cores (the numbers do not depend on it)")
+                        help="joblib workers, -1 for all cores (the numbers do not depend on it); on drives "
+                             "(--drive, --real), the filters of a long one side by side")
     parser.add_argument("--backend", type=options.joblib_backend, default=None,
                         help="joblib backend (loky, threading, dask, ...); default joblib's (loky)")
     parser.add_argument("--scheduler", default=None,
@@ -215,10 +216,10 @@ def _z_or_off(text):
         raise argparse.ArgumentTypeError(f"must be a finite number > 0 or off, got {text!r}") from None
 
 
-def _drive_progress(args):
-    """``real_drive_outages``'s ``progress``: None (a bar on a terminal, once a filter has run a while), or
-    False with ``--no-progress``."""
-    return False if getattr(args, "no_progress", False) else None
+def _drive_running(args):
+    """``real_drive_outages``'s ``progress`` and ``n_jobs``: None (a bar on a terminal, once a filter has run a
+    while), or False with ``--no-progress``; ``--jobs`` (a long drive's filters side by side)."""
+    return dict(progress=False if getattr(args, "no_progress", False) else None, n_jobs=getattr(args, "jobs", 1))
 
 
 def _filter_options(args):
@@ -260,7 +261,7 @@ def run(args):
                 break
             rd = real_drive_outages(drive, n_placements=args.outages, length=args.outage_length,
                                     min_speed=args.min_speed, grade=grade, use_gps_sigma=True,
-                                    progress=_drive_progress(args), **_filter_options(args))
+                                    **_drive_running(args), **_filter_options(args))
             results.append(rd)
             texts.append(real_drive_table(rd))
             print(real_drive_table(rd, told=False))
@@ -329,7 +330,7 @@ def _run_drives(args, drives, filters):
             res = real_drive_outages(run, n_placements=args.outages, length=args.outage_length, filters=fl,
                                      starts=starts, min_speed=args.min_speed,
                                      use_gps_sigma=run.gps_sigma is not None, grade=grade,
-                                     progress=_drive_progress(args), **_filter_options(args))
+                                     **_drive_running(args), **_filter_options(args))
         except ValueError as exc:  # name the drive
             raise ValueError(f"{path}: {exc}") from None
         res["read_warnings"] = told

@@ -11,6 +11,7 @@ from __future__ import annotations
 import contextlib
 import copy
 import sys
+import warnings
 
 import numpy as np
 
@@ -45,7 +46,7 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
                        correlated_fixes="calibration", min_fix_interval=0.0, stop_reopen=0.0,
                        calibration_error_z=CALIBRATION_ERROR_Z, heading_jump_z=HEADING_JUMP_Z, reversing_test=True,
                        crawl_test=True, gps_sigma_floor=SIGMA_FLOOR, floor_on_detection=True,
-                       reopen_on_detection=True, progress=False):
+                       reopen_on_detection=True, progress=False, n_jobs=1):
     """Cut GPS outages of ``length`` s into a drive and score each filter at each outage end.
 
     Placements: ``starts`` as given, or ``n_placements`` spread evenly over the windows whose mean
@@ -116,7 +117,14 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
         A tqdm bar on stderr over each filter's steps (the pass over the drive, then each outage run again
         without its fixes), named by the drive and the filter and cleared when the filter is done (before its
         warnings). None: on a terminal, and only once a filter has run for 2 s (``PROGRESS_DELAY``; an hour
-        of 100 Hz log takes each filter minutes). Default False.
+        of 100 Hz log takes each filter minutes). Default False. With the filters in worker processes
+        (``n_jobs``), a bar over the filters done instead (on a terminal, for None).
+    n_jobs : int
+        Processes (joblib's loky; -1: one per core) that run the GPS/DR filters side by side, each filter
+        in one, where there are two or more and the drive's steps times their number reach
+        40,000 (``PARALLEL_STEPS``; a shorter drive runs here: starting the workers would take longer). The
+        numbers and the warnings (the same lines, in the filters' order, once all have run) do not depend
+        on it. Default 1.
 
     Returns
     -------
@@ -178,10 +186,58 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
                                    crawl_test=crawl_test,
                                    gps_sigma_floor=gps_sigma_floor, floor_on_detection=floor_on_detection,
                                    reopen_on_detection=reopen_on_detection))
+    done = _score_side_by_side(out, filters, run, windows, use_gps_sigma, settings, progress, n_jobs)
     for name in filters:
         with kept_warnings(out["warnings"]):  # (folded: the filter's name, the step and its time)
-            _score_filter(out, name, run, windows, use_gps_sigma, settings, progress)
+            if name in done:
+                _merge_scored(out, name, *done[name])
+            else:
+                _score_filter(out, name, run, windows, use_gps_sigma, settings, progress)
     return out
+
+
+#: The drive's DR steps times the GPS/DR filters run on it from which ``real_drive_outages(n_jobs=...)`` runs
+#: them in worker processes: about 20 s of filtering here (a worker's start, its imports and the drive sent to
+#: it take 1-2 s); the shipped sample's 2400 steps with four filters stay in this process.
+PARALLEL_STEPS = 40_000
+#: What :func:`_score_filter` writes into the result per filter (and ``out[name]``).
+_SCORED = ("end_xy", "start_err", "integrity")
+
+
+def _score_side_by_side(out, filters, run, windows, use_gps_sigma, settings, progress, n_jobs):
+    """``{filter: (its scores, its warnings)}`` of the GPS/DR filters run in ``n_jobs`` worker processes, one
+    filter each (:func:`_scored`); empty where they run here (see :func:`real_drive_outages`)."""
+    names = [n for n in filters if n != "DR-mech"]
+    if n_jobs == 1 or len(names) < 2 or len(run.t) * len(names) < PARALLEL_STEPS:
+        return {}
+    from ..runner import run_tasks
+
+    tasks = [(name, run, windows, use_gps_sigma, settings, out["starts"], out["track"]) for name in names]
+    shown = sys.stderr.isatty() if progress is None else bool(progress)
+    scored = run_tasks(tasks, _scored, n_jobs=n_jobs, progress=shown, desc=f"{run.scenario.name}: filters",
+                       unit="filter")
+    return dict(zip(names, scored))
+
+
+def _scored(task):
+    """One GPS/DR filter scored on a drive (in a worker): its entries of :func:`real_drive_outages`'s result
+    and its warnings, ``[(category, text)]`` as :func:`_score_filter` gave them (folded and named)."""
+    name, run, windows, use_gps_sigma, settings, starts, track = task
+    part = {"starts": starts, "track": track, **{key: {} for key in _SCORED}}
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        _score_filter(part, name, run, windows, use_gps_sigma, settings)
+    scores = {key: part[key][name] for key in _SCORED} | {name: part[name]}
+    return scores, [(w.category, str(w.message)) for w in caught]
+
+
+def _merge_scored(out, name, part, told):
+    """Write filter ``name``'s scores from a worker into ``out`` and give its warnings again, here."""
+    for key in _SCORED:
+        out[key][name] = part[key]
+    out[name] = part[name]
+    for category, text in told:
+        warnings.warn(text, category, stacklevel=5)
 
 
 def _outage_plan(run, length, starts, n_placements, min_speed):
