@@ -799,7 +799,7 @@ def test_the_study_tests_the_fixes_for_reversing_only_where_the_speed_could_not_
     gps = dict(gps_t=t[fix], east=e[fix] + noise[fix, 0], north=noise[fix, 1], gps_sigma=3.0,
                truth=np.stack([e, np.zeros_like(e)], axis=1))
     seen = []
-    monkeypatch.setattr(real, "_score_filter", lambda out, name, run, windows, use, settings: seen.append(
+    monkeypatch.setattr(real, "_score_filter", lambda out, name, run, windows, use, settings, *progress: seen.append(
         settings["filter_kw"]["reversing_test"]))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")

@@ -26,7 +26,7 @@ warnings.simplefilter("ignore")
 SNAPS, TRACE = {}, []
 
 
-def _outage_ends(f, name, run, k0s, k1s, starts, gps, sig):
+def _outage_ends(f, name, run, k0s, k1s, starts, gps, sig, bar=None):
     """``filterwnn.studies.dr._real._outage_ends``, keeping each outage's starting state and the scale's track."""
     ends, begins = np.empty((len(k0s), 2)), np.empty((len(k0s), 2))
     snaps, offsets = {}, run.gps_offset_list()
