@@ -197,6 +197,15 @@ def _end_tracker_then_say(stop, line, wait):
         pass
 
 
+def _interrupted_line(args):
+    """The line of a command interrupted by Ctrl-C, with the study's note of where its finished tasks are kept
+    (``args.interrupted_note(args)``, set by the study's parser; None: nothing is kept, e.g. ``study dr
+    --drive``, whose drives are not cached)."""
+    note = getattr(args, "interrupted_note", None)
+    note = note(args) if note is not None else None
+    return "filterwnn: interrupted (Ctrl-C)" + (f"; {note}" if note else "")
+
+
 def _run(args, debug, say=_say_now):
     """``args.func(args)``; a refused input, an interrupt or an error becomes one stderr line
     and an exit status (2, 130/143, 1), unless ``debug``. ``say`` says an interrupt's line."""
@@ -205,7 +214,7 @@ def _run(args, debug, say=_say_now):
     except KeyboardInterrupt:
         if debug:
             raise
-        say("filterwnn: interrupted (Ctrl-C); finished tasks are kept in --cache when one is given")
+        say(_interrupted_line(args))
         return EXIT_INTERRUPT
     except _Terminated:
         if debug:

@@ -208,6 +208,31 @@ def test_run_time_errors_are_one_line_with_their_exit_status(monkeypatch, capsys
     assert "Traceback" not in captured.err
 
 
+@pytest.mark.parametrize("argv, line", [
+    (["study", "dr"], "filterwnn: interrupted (Ctrl-C); --cache DIR keeps the finished runs for the next one"),
+    (["study", "dr", "--cache", "CACHE"], "filterwnn: interrupted (Ctrl-C); the finished runs are kept in CACHE: the "
+                                          "same command resumes"),
+    (["study", "dr", "--real"], "filterwnn: interrupted (Ctrl-C); --cache DIR keeps the finished runs for the next "
+                                "one"),  # (--real runs the simulated study too)
+    (["study", "dr", "--drive", "sample"], "filterwnn: interrupted (Ctrl-C)"),  # drives are not cached
+    (["study", "wnn", "--out", "OUT"], "filterwnn: interrupted (Ctrl-C); the finished fits are kept in OUT/cache: the "
+                                       "same command resumes"),  # (the WNN study's cache is on by default)
+    (["study", "wnn", "--cache", "none"], "filterwnn: interrupted (Ctrl-C)"),
+])
+def test_an_interrupt_says_where_the_finished_tasks_are_kept_only_where_they_are(monkeypatch, capsys, tmp_path, argv,
+                                                                                line):
+    """A long drive interrupted by Ctrl-C was told "finished tasks are kept in --cache when one is given", which
+    --drive refuses, and the WNN study, whose cache is on by default, was told to give one."""
+    from filterwnn.studies import wnn
+
+    _dr_with(monkeypatch, KeyboardInterrupt())
+    monkeypatch.setattr(wnn, "run", lambda args: (_ for _ in ()).throw(KeyboardInterrupt()))
+    where = {"CACHE": str(tmp_path / "cache"), "OUT": str(tmp_path / "out")}
+    assert main([where.get(a, a) for a in argv]) == 130
+    assert capsys.readouterr().err.strip() == line.replace("CACHE", where["CACHE"]).replace(
+        "OUT/cache", os.path.join(where["OUT"], "cache"))
+
+
 def test_debug_shows_the_traceback(monkeypatch):
     _dr_with(monkeypatch, ValueError("bad drive"))
     with pytest.raises(ValueError, match="bad drive"):

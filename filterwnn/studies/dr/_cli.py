@@ -49,6 +49,7 @@ def add_arguments(parser):
     parser.add_argument("--out", type=options.output_folder, default="results/dr", help="output folder")
     parser.add_argument("--no-figures", action="store_true", help="write the tables only (no PNG figures)")
     options.add_progress_flag(parser, "--quiet")
+    parser.set_defaults(interrupted_note=interrupted_note)
     parser.add_argument("--real", action="store_true",
                         help=f"also run the GPS/DR filters on onavdata's car drives {', '.join(CAR_DRIVES)} "
                              "(needs the data extra), set from --grade (default survey)")
@@ -214,6 +215,16 @@ def _z_or_off(text):
         return options.positive_float(text)
     except argparse.ArgumentTypeError:
         raise argparse.ArgumentTypeError(f"must be a finite number > 0 or off, got {text!r}") from None
+
+
+def interrupted_note(args):
+    """What ``filterwnn`` adds to the line of a study interrupted by Ctrl-C: where its finished runs are kept, or
+    the option that would keep them; None with ``--drive`` (the drives are not cached)."""
+    if getattr(args, "drive", None):
+        return None
+    if getattr(args, "cache", None):
+        return f"the finished runs are kept in {args.cache}: the same command resumes"
+    return "--cache DIR keeps the finished runs for the next one"
 
 
 def _drive_running(args):

@@ -60,6 +60,7 @@ def add_arguments(parser):
                         help="only summarize the fits already in the cache (run nothing)")
     parser.add_argument("--no-figures", action="store_true", help="write the tables only (no PNG figures)")
     options.add_progress_flag(parser)
+    parser.set_defaults(interrupted_note=interrupted_note)
     options.remember_defaults(parser)  # to tell the options given (_check_applies)
 
 
@@ -79,6 +80,17 @@ def _check_applies(args):
             raise ValueError(f"{flag} does not apply {why}, and would be ignored")
 
 
+def cache_folder(args):
+    """The study's checkpoint folder: ``--cache``, by default ``OUT/cache``; None for ``--cache none``."""
+    return os.path.join(args.out, "cache") if args.cache is None else (None if args.cache == "none" else args.cache)
+
+
+def interrupted_note(args):
+    """What ``filterwnn`` adds to the line of a study interrupted by Ctrl-C: where its finished fits are kept."""
+    cache = cache_folder(args)
+    return cache and f"the finished fits are kept in {cache}: the same command resumes"
+
+
 def run(args):
     """Run the study from parsed arguments; prints the table and the files written."""
     import sys
@@ -86,7 +98,7 @@ def run(args):
     _check_applies(args)
     trainers, sweep = list(args.trainers), list(args.sweep_particles)
     progress = (not args.no_progress) and sys.stderr.isatty()
-    cache = os.path.join(args.out, "cache") if args.cache is None else (None if args.cache == "none" else args.cache)
+    cache = cache_folder(args)
     t0 = time.perf_counter()
     with runner.dask_client(args.backend, args.scheduler, args.jobs):
         res = run_study(
