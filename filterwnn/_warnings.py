@@ -75,10 +75,19 @@ def folded_warnings(prefix=None, stacklevel=4, times=None):
     """Collect the block's warnings and re-issue them folded, one per kind, each prefixed with
     ``prefix + ": "`` when given. ``stacklevel`` 4 points them at the caller of the function whose
     ``with`` statement this is. ``times``, the time of each step (a drive's ``t``), follows each
-    step the lines name with its time, so that a warning can be found in the user's own log."""
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        yield
+    step the lines name with its time, so that a warning can be found in the user's own log. A block that
+    raises gives its warnings too, before the exception goes on (what a filter warned of before it failed)."""
+    caught = []
+    try:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            yield
+    finally:
+        _fold_and_warn(caught, prefix, stacklevel + 1, times)
+
+
+def _fold_and_warn(caught, prefix, stacklevel, times):
+    """Issue the recorded warnings ``caught`` folded, one per kind (see :func:`folded_warnings`)."""
     groups = {}
     for w in caught:
         text = str(w.message)

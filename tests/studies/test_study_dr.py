@@ -308,6 +308,38 @@ def test_a_long_drives_filters_run_side_by_side_with_the_same_numbers_and_warnin
             np.testing.assert_array_equal(np.asarray(a[key], dtype=object), np.asarray(b[key], dtype=object))
 
 
+def test_a_filter_that_fails_gives_its_warnings_first_here_and_in_a_worker(monkeypatch):
+    """What a filter warned of before it failed comes before its error, whether it ran here (the folded
+    warnings are given as the block raises) or in a worker (its warnings are given here, then its exception)."""
+    import warnings
+
+    from filterwnn._validation import NumericalError
+    from filterwnn._warnings import folded_warnings
+    from filterwnn.studies.dr import _real
+
+    with pytest.warns(RuntimeWarning) as record, pytest.raises(NumericalError, match="step 9"):
+        with folded_warnings("UKF-8"):
+            for step in (3, 5):
+                warnings.warn(f"GPSDRFilter is inconsistent at step {step}", RuntimeWarning)
+            raise NumericalError("P is not positive definite at step 9")
+    assert [str(w.message) for w in record] == ["UKF-8: GPSDRFilter is inconsistent at step 3 (and 1 more like it, "
+                                                "at step 5)"]
+
+    def failing(out, name, *args, **kw):
+        with folded_warnings(name):
+            warnings.warn("GPSDRFilter is inconsistent at step 3", RuntimeWarning)
+            raise NumericalError("P is not positive definite at step 9")
+
+    monkeypatch.setattr(_real, "_score_filter", failing)
+    scores, told, failed = _real._scored(("UKF-8", None, None, True, {}, None, None))  # what a worker returns
+    assert scores is None and isinstance(failed, NumericalError)
+    out = {key: {} for key in _real._SCORED}
+    with pytest.warns(RuntimeWarning, match="UKF-8: GPSDRFilter is inconsistent at step 3"), \
+            pytest.raises(NumericalError, match="step 9"):
+        _real._merge_scored(out, "UKF-8", scores, told, failed)
+    assert out == {key: {} for key in _real._SCORED}
+
+
 def test_a_new_scenario_is_one_entry_of_scenarios(monkeypatch):
     """A scenario is added in one place (an entry of ``SCENARIOS``) and the study runs it."""
     from filterwnn.navigation.scenarios import SCENARIOS, Scenario

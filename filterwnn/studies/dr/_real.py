@@ -224,20 +224,27 @@ def _scored(task):
     and its warnings, ``[(category, text)]`` as :func:`_score_filter` gave them (folded and named)."""
     name, run, windows, use_gps_sigma, settings, starts, track = task
     part = {"starts": starts, "track": track, **{key: {} for key in _SCORED}}
+    failed = None
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        _score_filter(part, name, run, windows, use_gps_sigma, settings)
-    scores = {key: part[key][name] for key in _SCORED} | {name: part[name]}
-    return scores, [(w.category, str(w.message)) for w in caught]
+        try:
+            _score_filter(part, name, run, windows, use_gps_sigma, settings)
+        except Exception as exc:  # noqa: BLE001 -- raised here, after the warnings it followed (_merge_scored)
+            failed = exc
+    scores = None if failed else {key: part[key][name] for key in _SCORED} | {name: part[name]}
+    return scores, [(w.category, str(w.message)) for w in caught], failed
 
 
-def _merge_scored(out, name, part, told):
-    """Write filter ``name``'s scores from a worker into ``out`` and give its warnings again, here."""
+def _merge_scored(out, name, part, told, failed=None):
+    """Write filter ``name``'s scores from a worker into ``out`` and give its warnings again, here; then raise
+    what the filter raised, if it did (as the filter run here would, after its warnings)."""
+    for category, text in told:
+        warnings.warn(text, category, stacklevel=5)
+    if failed is not None:
+        raise failed
     for key in _SCORED:
         out[key][name] = part[key]
     out[name] = part[name]
-    for category, text in told:
-        warnings.warn(text, category, stacklevel=5)
 
 
 def _outage_plan(run, length, starts, n_placements, min_speed):
