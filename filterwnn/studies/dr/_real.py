@@ -177,6 +177,8 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
     bad = [f for f in filters if f not in REAL_FILTERS]
     if bad:
         raise ValueError(f"unknown real-drive filters {bad}; valid: {', '.join(REAL_FILTERS)}")
+    if isinstance(n_jobs, bool) or not isinstance(n_jobs, (int, np.integer)) or n_jobs == 0:
+        raise ValueError(f"n_jobs must be an integer >= 1, or negative (-1: one process per core), got {n_jobs!r}")
     out, windows = _outage_plan(run, length, starts, n_placements, min_speed)
     settings = dict(grade=grade, model_kwargs=model_kwargs, gps_window=gps_window, slow_speed=slow_speed,
                     filter_kw=dict(scale_window=scale_window, correlated_fixes=correlated_fixes,
