@@ -311,6 +311,37 @@ def test_a_long_drives_filters_run_side_by_side_with_the_same_numbers_and_warnin
             np.testing.assert_array_equal(np.asarray(a[key], dtype=object), np.asarray(b[key], dtype=object))
 
 
+def test_several_drives_run_side_by_side_with_the_same_output(monkeypatch, capsys, tmp_path):
+    """``filterwnn study dr --drive A --drive B --jobs 2``: drives whose steps times filters reach
+    ``PARALLEL_STEPS`` in all run a drive to a worker; what the command prints (the tables, the warnings in
+    their order) and saves is what it prints and saves in one process."""
+    import shutil
+
+    from filterwnn.cli import main
+    from filterwnn.navigation.drives import sample_drive_path
+    from filterwnn.studies.dr import _real
+
+    other = tmp_path / "other.csv"
+    shutil.copy(sample_drive_path(), other)
+    monkeypatch.setattr(_real, "PARALLEL_STEPS", 0)
+    from filterwnn.studies import runner
+
+    ran = []
+    monkeypatch.setattr(runner, "run_tasks", lambda tasks, fn, run=runner.run_tasks, **kw: (
+        ran.append((fn.__name__, len(tasks), kw["n_jobs"])), run(tasks, fn, **kw))[1])
+    shown = {}
+    for jobs in ("1", "2"):
+        out = tmp_path / f"out{jobs}"
+        argv = ["study", "dr", "--drive", "sample", "--drive", str(other), "--filters", "DR-mech,EKF,EKF-8",
+                "--outages", "4", "--out", str(out), "--no-figures", "--jobs", jobs]
+        assert main(argv) == 0
+        cap = capsys.readouterr()
+        shown[jobs] = (cap.out.replace(str(out), "OUT"), cap.err,
+                       sorted((p.name, p.read_text()) for p in out.glob("*.md")))
+    assert ran == [("_drive_scored", 2, 2)]  # --jobs 2: the two drives, each in a worker; --jobs 1: here
+    assert shown["2"] == shown["1"] and "warning" in shown["1"][1] and len(shown["1"][2]) == 2
+
+
 def test_a_filter_that_fails_gives_its_warnings_first_here_and_in_a_worker(monkeypatch):
     """What a filter warned of before it failed comes before its error, whether it ran here (the folded
     warnings are given as the block raises) or in a worker (its warnings are given here, then its exception)."""

@@ -89,7 +89,7 @@ from ._filters import (
     run_filter,
     train_general_nn,
 )
-from ._real import REAL_FILTERS, REAL_MODEL, real_drive_outages, real_drive_table
+from ._real import REAL_FILTERS, REAL_MODEL, real_drive_outages, real_drive_table, score_drives
 from ._run import DEFAULT_SCENARIOS, DIV_FACTOR, DIV_FLOOR, StudyResult, run_one, run_study, summarize
 from ._tables import markdown_table, scenario_figure, write_outputs, write_real_drive
 
@@ -111,6 +111,7 @@ __all__ = [
     "load_car_drive",
     "with_outage",
     "real_drive_outages",
+    "score_drives",
     "real_drive_table",
     "write_real_drive",
     "REAL_FILTERS",

@@ -12,7 +12,7 @@ from ...navigation.gpsdr import CALIBRATION_ERROR_Z, CORRELATED_FIXES, HEADING_J
 from ...navigation.scenarios import INTERVALS, SCENARIOS
 from .. import options, runner
 from ._filters import FILTER_TABLE, OPT_IN
-from ._real import REAL_FILTERS, _outage_plan, check_reference, real_drive_outages, real_drive_table
+from ._real import REAL_FILTERS, _outage_plan, check_reference, real_drive_outages, real_drive_table, score_drives
 from ._run import DEFAULT_SCENARIOS, run_study
 from ._tables import markdown_table, write_outputs
 
@@ -336,12 +336,13 @@ def _run_drives(args, drives, filters):
                              "--min-speed)") from None
         runs.append((path, run, told))
     results = []
+    scored = score_drives([(run, dict(n_placements=args.outages, length=args.outage_length, filters=fl,
+                                      starts=starts, min_speed=args.min_speed,
+                                      use_gps_sigma=run.gps_sigma is not None, grade=grade, **_filter_options(args)))
+                           for _, run, _ in runs], score=real_drive_outages, **_drive_running(args))
     for path, run, told in runs:
         try:
-            res = real_drive_outages(run, n_placements=args.outages, length=args.outage_length, filters=fl,
-                                     starts=starts, min_speed=args.min_speed,
-                                     use_gps_sigma=run.gps_sigma is not None, grade=grade,
-                                     **_drive_running(args), **_filter_options(args))
+            res = next(scored)
         except ValueError as exc:  # name the drive
             raise ValueError(f"{path}: {exc}") from None
         res["read_warnings"] = told

@@ -40,7 +40,11 @@ def check_reference(run):
                          "true_lat/true_lon: filterwnn.navigation.drives.DRIVE_CSV_COLUMNS)")
 
 
-def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "EKF", "EKF-8"),
+#: :func:`real_drive_outages`'s filters by default.
+_DEFAULT_FILTERS = ("DR-mech", "EKF", "EKF-8")
+
+
+def real_drive_outages(run, n_placements=20, length=30.0, filters=_DEFAULT_FILTERS,
                        model_kwargs=None, slow_speed=None, starts=None, min_speed=0.0,
                        use_gps_sigma=False, grade=None, gps_window=0, scale_window=0,
                        correlated_fixes="calibration", min_fix_interval=0.0, stop_reopen=0.0,
@@ -196,6 +200,53 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=("DR-mech", "E
             else:
                 _score_filter(out, name, run, windows, use_gps_sigma, settings, progress)
     return out
+
+
+def score_drives(drives, n_jobs=1, progress=False, score=None):
+    """:func:`real_drive_outages` on several drives, their results in the drives' order (a generator).
+
+    ``drives``: ``(run, keywords)`` pairs, each drive's keywords of :func:`real_drive_outages`. With ``n_jobs``
+    (joblib's loky; -1: one process per core), two or more drives whose steps times GPS/DR filters reach
+    ``PARALLEL_STEPS`` in all run side by side, a drive to a worker (its filters one after the other there);
+    each drive's warnings are given here, as one process gives them (the same lines, in the same order), before
+    its result is yielded, and what a drive raised is raised then. Otherwise each drive runs as
+    :func:`real_drive_outages` runs it with ``n_jobs`` and ``progress`` (a long one's filters side by side). A bar
+    counts the drives done (``progress``; None: on a terminal). ``score``: the function that scores a drive
+    (default :func:`real_drive_outages`; a module's function where the drives run side by side).
+    """
+    score = real_drive_outages if score is None else score
+    drives = list(drives)
+    steps = sum(len(run.t) * sum(f != "DR-mech" for f in kw.get("filters", _DEFAULT_FILTERS)) for run, kw in drives)
+    if n_jobs == 1 or len(drives) < 2 or steps < PARALLEL_STEPS:
+        for run, kw in drives:
+            yield score(run, progress=progress, n_jobs=n_jobs, **kw)
+        return
+    from ..runner import run_tasks
+
+    shown = sys.stderr.isatty() if progress is None else bool(progress)
+    tasks = [(score, run, kw) for run, kw in drives]
+    for res, told, failed in run_tasks(tasks, _drive_scored, n_jobs=n_jobs, progress=shown, desc="drives",
+                                       unit="drive"):
+        with warnings.catch_warnings():  # (the filters kept; as a drive run here, the lines shown start afresh:
+            for category, text in told:  # a second drive's line like the first's is shown again)
+                warnings.warn(text, category, stacklevel=3)
+        if failed is not None:
+            raise failed
+        yield res
+
+
+def _drive_scored(task):
+    """One drive scored in a worker (:func:`score_drives`): its result, its warnings ``[(category, text)]`` and
+    what it raised (None)."""
+    score, run, kw = task
+    res = failed = None
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            res = score(run, **kw)
+        except Exception as exc:  # noqa: BLE001 -- raised by score_drives, after the warnings it followed
+            failed = exc
+    return res, [(w.category, str(w.message)) for w in caught], failed
 
 
 #: The drive's DR steps times the GPS/DR filters run on it from which ``real_drive_outages(n_jobs=...)`` runs
