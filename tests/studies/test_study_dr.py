@@ -289,6 +289,8 @@ def test_a_long_drives_filters_run_side_by_side_with_the_same_numbers_and_warnin
     for bad in (0, 1.5, True, "2"):
         with pytest.raises(ValueError, match="n_jobs must be an integer"):
             dr.real_drive_outages(run, n_jobs=bad, **kw)
+        with pytest.raises(ValueError, match="n_jobs must be an integer"):
+            next(dr.score_drives([(run, kw), (run, kw)], n_jobs=bad))
     assert len(run.t) * 2 < _real.PARALLEL_STEPS  # the sample stays in this process ...
     monkeypatch.setattr(_real, "PARALLEL_STEPS", 0)  # ... unless told otherwise
     ran = []

@@ -181,8 +181,7 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=_DEFAULT_FILTE
     bad = [f for f in filters if f not in REAL_FILTERS]
     if bad:
         raise ValueError(f"unknown real-drive filters {bad}; valid: {', '.join(REAL_FILTERS)}")
-    if isinstance(n_jobs, bool) or not isinstance(n_jobs, (int, np.integer)) or n_jobs == 0:
-        raise ValueError(f"n_jobs must be an integer >= 1, or negative (-1: one process per core), got {n_jobs!r}")
+    _check_jobs(n_jobs)
     out, windows = _outage_plan(run, length, starts, n_placements, min_speed)
     settings = dict(grade=grade, model_kwargs=model_kwargs, gps_window=gps_window, slow_speed=slow_speed,
                     filter_kw=dict(scale_window=scale_window, correlated_fixes=correlated_fixes,
@@ -214,6 +213,7 @@ def score_drives(drives, n_jobs=1, progress=False, score=None):
     counts the drives done (``progress``; None: on a terminal). ``score``: the function that scores a drive
     (default :func:`real_drive_outages`; a module's function where the drives run side by side).
     """
+    _check_jobs(n_jobs)
     score = real_drive_outages if score is None else score
     drives = list(drives)
     steps = sum(len(run.t) * sum(f != "DR-mech" for f in kw.get("filters", _DEFAULT_FILTERS)) for run, kw in drives)
@@ -233,6 +233,12 @@ def score_drives(drives, n_jobs=1, progress=False, score=None):
         if failed is not None:
             raise failed
         yield res
+
+
+def _check_jobs(n_jobs):
+    """ValueError unless ``n_jobs`` is a joblib worker count (an integer >= 1, or negative)."""
+    if isinstance(n_jobs, bool) or not isinstance(n_jobs, (int, np.integer)) or n_jobs == 0:
+        raise ValueError(f"n_jobs must be an integer >= 1, or negative (-1: one process per core), got {n_jobs!r}")
 
 
 def _drive_scored(task):
