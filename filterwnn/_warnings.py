@@ -77,13 +77,46 @@ def folded_warnings(prefix=None, stacklevel=4, times=None):
     ``with`` statement this is. ``times``, the time of each step (a drive's ``t``), follows each
     step the lines name with its time, so that a warning can be found in the user's own log. A block that
     raises gives its warnings too, before the exception goes on (what a filter warned of before it failed)."""
+    # (+4: the frames of _fold_and_warn, this lambda, _recorded and its __exit__ under this generator's)
+    with _recorded(lambda caught: _fold_and_warn(caught, prefix, stacklevel + 4, times)):
+        yield
+
+
+@contextlib.contextmanager
+def _recorded(then):
+    """Record every warning the block gives, whatever the warning filters outside say, and call
+    ``then(caught)`` with them (``warnings.WarningMessage`` s) once the recording has stopped: when the block
+    ends, or as it raises."""
     caught = []
     try:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
             yield
     finally:
-        _fold_and_warn(caught, prefix, stacklevel + 1, times)
+        then(caught)
+
+
+def recorded_call(fn, *args, **kwargs):
+    """``fn(*args, **kwargs)`` with its warnings recorded, for a worker process to send back:
+    ``(its result, its warnings [(category, text)], None)``, or ``(None, its warnings, the exception)`` where it
+    raised. :func:`give_again` gives them in the parent."""
+    result = failed = None
+    told = []
+    with _recorded(lambda caught: told.extend((w.category, str(w.message)) for w in caught)):
+        try:
+            result = fn(*args, **kwargs)
+        except Exception as exc:  # noqa: BLE001 -- raised by give_again, after the warnings it followed
+            failed = exc
+    return result, told, failed
+
+
+def give_again(told, failed=None, stacklevel=2):
+    """Issue the warnings ``told`` (``[(category, text)]``, from :func:`recorded_call`) here, in order, then raise
+    ``failed`` if it is an exception. ``stacklevel`` is ``warnings.warn``'s as seen from the caller."""
+    for category, text in told:
+        warnings.warn(text, category, stacklevel=stacklevel + 1)
+    if failed is not None:
+        raise failed
 
 
 def _fold_and_warn(caught, prefix, stacklevel, times):
@@ -123,13 +156,11 @@ def kept_warnings(kept):
     >>> kept
     ['the fixes read 0.2 s late']
     """
-    caught = []
-    try:
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always")
-            yield
-    finally:
+    def keep_and_give_again(caught):
         kept.extend(" ".join(str(w.message).split()) for w in caught)
         for w in caught:
             module, registry = _origin(w.filename)
             warnings.warn_explicit(w.message, w.category, w.filename, w.lineno, module=module, registry=registry)
+
+    with _recorded(keep_and_give_again):
+        yield

@@ -15,7 +15,7 @@ import warnings
 
 import numpy as np
 
-from ..._warnings import folded_warnings, kept_warnings
+from ..._warnings import folded_warnings, give_again, kept_warnings, recorded_call
 from ...navigation.dead_reckoning import GPSDRModel
 from ...navigation.drives import CAR_DRIVE
 from ...navigation.gpsdr import CALIBRATION_ERROR_Z, GYRO_SCALE, HEADING_JUMP_Z, SIGMA_FLOOR, GPSDRFilter
@@ -223,15 +223,11 @@ def score_drives(drives, n_jobs=1, progress=False, score=None):
         return
     from ..runner import run_tasks
 
-    shown = sys.stderr.isatty() if progress is None else bool(progress)
     tasks = [(score, run, kw) for run, kw in drives]
-    for res, told, failed in run_tasks(tasks, _drive_scored, n_jobs=n_jobs, progress=shown, desc="drives",
-                                       unit="drive"):
+    for res, told, failed in run_tasks(tasks, _drive_scored, n_jobs=n_jobs, progress=_bar_wanted(progress),
+                                       desc="drives", unit="drive"):
         with warnings.catch_warnings():  # (the filters kept; as a drive run here, the lines shown start afresh:
-            for category, text in told:  # a second drive's line like the first's is shown again)
-                warnings.warn(text, category, stacklevel=3)
-        if failed is not None:
-            raise failed
+            give_again(told, failed, stacklevel=3)  # a second drive's line like the first's is shown again)
         yield res
 
 
@@ -245,14 +241,7 @@ def _drive_scored(task):
     """One drive scored in a worker (:func:`score_drives`): its result, its warnings ``[(category, text)]`` and
     what it raised (None)."""
     score, run, kw = task
-    res = failed = None
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        try:
-            res = score(run, **kw)
-        except Exception as exc:  # noqa: BLE001 -- raised by score_drives, after the warnings it followed
-            failed = exc
-    return res, [(w.category, str(w.message)) for w in caught], failed
+    return recorded_call(score, run, **kw)
 
 
 #: The drive's DR steps times the GPS/DR filters run on it from which ``real_drive_outages(n_jobs=...)`` runs
@@ -272,9 +261,8 @@ def _score_side_by_side(out, filters, run, windows, use_gps_sigma, settings, pro
     from ..runner import run_tasks
 
     tasks = [(name, run, windows, use_gps_sigma, settings, out["starts"], out["track"]) for name in names]
-    shown = sys.stderr.isatty() if progress is None else bool(progress)
-    scored = run_tasks(tasks, _scored, n_jobs=n_jobs, progress=shown, desc=f"{run.scenario.name}: filters",
-                       unit="filter")
+    scored = run_tasks(tasks, _scored, n_jobs=n_jobs, progress=_bar_wanted(progress),
+                       desc=f"{run.scenario.name}: filters", unit="filter")
     return dict(zip(names, scored))
 
 
@@ -283,24 +271,18 @@ def _scored(task):
     and its warnings, ``[(category, text)]`` as :func:`_score_filter` gave them (folded and named)."""
     name, run, windows, use_gps_sigma, settings, starts, track = task
     part = {"starts": starts, "track": track, **{key: {} for key in _SCORED}}
-    failed = None
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        try:
-            _score_filter(part, name, run, windows, use_gps_sigma, settings)
-        except Exception as exc:  # noqa: BLE001 -- raised here, after the warnings it followed (_merge_scored)
-            failed = exc
-    scores = None if failed else {key: part[key][name] for key in _SCORED} | {name: part[name]}
-    return scores, [(w.category, str(w.message)) for w in caught], failed
+
+    def scores():
+        _score_filter(part, name, run, windows, use_gps_sigma, settings)
+        return {key: part[key][name] for key in _SCORED} | {name: part[name]}
+
+    return recorded_call(scores)
 
 
 def _merge_scored(out, name, part, told, failed=None):
     """Write filter ``name``'s scores from a worker into ``out`` and give its warnings again, here; then raise
     what the filter raised, if it did (as the filter run here would, after its warnings)."""
-    for category, text in told:
-        warnings.warn(text, category, stacklevel=5)
-    if failed is not None:
-        raise failed
+    give_again(told, failed, stacklevel=5)
     for key in _SCORED:
         out[key][name] = part[key]
     out[name] = part[name]
@@ -468,6 +450,11 @@ PROGRESS_DELAY = 2.0
 _BAR_EVERY = 512
 
 
+def _bar_wanted(progress):
+    """Whether a bar shows: ``progress``, or for None whether stderr is a terminal."""
+    return sys.stderr.isatty() if progress is None else bool(progress)
+
+
 class _NoBar:
     """A bar that shows nothing (``progress`` off)."""
 
@@ -479,17 +466,14 @@ class _NoBar:
 def _steps_bar(progress, run, name, k0s, k1s):
     """A tqdm bar over filter ``name``'s steps on ``run`` (the pass with the fixes, then each outage again), or
     one that shows nothing; ``progress`` None: on a terminal, after :data:`PROGRESS_DELAY` s."""
-    delay = 0.0
-    if progress is None:
-        progress, delay = sys.stderr.isatty(), PROGRESS_DELAY
-    if not progress:
+    if not _bar_wanted(progress):
         yield _NoBar()
         return
     from tqdm.auto import tqdm
 
     total = len(run.t) + sum(k1 - k0 + 1 for k0, k1 in zip(k0s, k1s))
     with tqdm(total=total, desc=f"{run.scenario.name}: {name}", unit="step", unit_scale=True, leave=False,
-              delay=delay, mininterval=0.5) as bar:
+              delay=PROGRESS_DELAY if progress is None else 0.0, mininterval=0.5) as bar:
         yield bar
 
 
