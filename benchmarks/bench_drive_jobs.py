@@ -34,14 +34,9 @@ import _held_out_drives as held_out  # noqa: E402
 
 
 def write_drive(path, rate):
-    """The phone analog's route and sensors at ``rate`` Hz (seed 0's generator), 1 Hz fixes, as a drive CSV."""
-    dt = 1.0 / rate
-    rng = np.random.default_rng(np.random.SeedSequence([23, 100, 0]))
-    t, x, heading, speed = held_out._drive(rng, dt, 900.0, 0.15, (8.0, 25.0), 70.0, dict(
-        scale=1.02, odo=0.01 * dt / 0.1, offset=1.0, rate_bias=0.005, arw=0.3, white=0.3), accel=1.5)
-    rows = held_out._fix_rows(t)
-    err, reported = held_out.phone_fixes(rng, int(rows.sum()))
-    return held_out.write_csv(path, held_out._columns(t, x, heading, speed, rows, err, reported)), len(t)
+    """The phone analog (seed 0's generator) at ``rate`` Hz, 1 Hz fixes, as a drive CSV; and its steps."""
+    cols = held_out.columns("phone", 0, dt=1.0 / rate)
+    return held_out.write_csv(path, cols), len(cols["time"])
 
 
 def run_command(drive, out, jobs):

@@ -159,11 +159,14 @@ def _columns(t, x, heading, speed, rows, err, sigma, gps_latency=0.0, odometer_l
             "true_east": x[:, 0], "true_north": x[:, 3]}
 
 
-def phone_drive(rng, rate_bias=0.005, gyro_scale=0.0, gps_latency=0.0, odometer_latency=0.0, exact_stops=False):
+def phone_drive(rng, rate_bias=0.005, gyro_scale=0.0, gps_latency=0.0, odometer_latency=0.0, exact_stops=False,
+                dt=0.1):
     """The car with a phone (see the module docstring): the CSV columns. ``rate_bias``: the gyro's (deg/s);
-    ``gyro_scale``: its scale factor error."""
-    t, x, heading, speed = _drive(rng, 0.1, 900.0, 0.15, (8.0, 25.0), 70.0, dict(
-        scale=1.02, odo=0.01, offset=1.0, rate_bias=rate_bias, arw=0.3, white=0.3, gyro_scale=gyro_scale),
+    ``gyro_scale``: its scale factor error; ``dt``: the CAN speed's and the gyro's sample interval (s; the
+    speed's noise per sample scaled with it, 0.01 m a sample at 10 Hz: ``benchmarks/bench_drive_jobs.py`` writes
+    the drive at 50 Hz)."""
+    t, x, heading, speed = _drive(rng, dt, 900.0, 0.15, (8.0, 25.0), 70.0, dict(
+        scale=1.02, odo=0.01 * dt / 0.1, offset=1.0, rate_bias=rate_bias, arw=0.3, white=0.3, gyro_scale=gyro_scale),
         accel=1.5, exact_stops=exact_stops)
     rows = _fix_rows(t)
     err, reported = phone_fixes(rng, int(rows.sum()))
