@@ -76,8 +76,9 @@ def _demo(args):
           f"{100 * inside:.0f} % of test targets inside the 90 % interval")
 
     run = with_outage(read_drive_csv(sample_drive_path()), start=100.0, length=30.0)
-    print("\n3. GPS/DR on the shipped sample drive (phone-grade sensors; the filter estimates the odometer\n"
-          "   scale and the gyro biases; no GPS from 100 s to 130 s):")
+    print("\n3. GPS/DR on the shipped sample drive (the phone grade's settings; the filter estimates the\n"
+          "   odometer scale, the gyro biases and the sensors' noise where it is above the grade's, and\n"
+          "   warns of that; no GPS from 100 s to 130 s):")
     gps_model = GPSDRModel.from_grade("phone", run.scenario.dt)
     kf = GPSDRFilter(gps_model, "ekf", x0=np.r_[run.x0, gps_model.x0[6:]])
     est = kf.batch_filter(run.z_dr, run.gps_list(), run.gps_sigma_list(), run.gps_offset_list())

@@ -827,23 +827,27 @@ class GPSDRModel(StateSpaceModel):
         H[..., 0, 7], H[..., 1, 7] = zeta * (vn * c - ve * s), -zeta * (ve * c + vn * s)
         return H
 
-    def velocity_measurement(self, z_dr):
+    def velocity_measurement(self, z_dr, noise_scale=None):
         """Polar to Cartesian: ``(w, R_w)`` from ``[theta, s]``, independent of the state.
 
         ``w = s / T [sin theta, cos theta]`` (the measured velocity vector; the model
         is ``w = zeta R(b) v``, see :meth:`hx` with ``velocity=True``) and its
         first-order covariance ``J diag(sigma_s^2 / T^2, sigma_heading^2) J^T``. Linear
-        in the velocity, so it has no singularity at zero speed.
+        in the velocity, so it has no singularity at zero speed. ``noise_scale``: factors
+        ``(heading, odometer)`` on the two variances (default none).
         """
         z_dr = np.asarray(z_dr, dtype=float)
         th = z_dr[0]
         w = z_dr[1] / self.dt
         J = np.array([[np.sin(th), w * np.cos(th)], [np.cos(th), -w * np.sin(th)]])
-        Rw = J @ np.diag([(self.sigma_odometer / self.dt) ** 2, self.sigma_heading**2]) @ J.T
+        var_h, var_s = self.sigma_heading**2, (self.sigma_odometer / self.dt) ** 2
+        if noise_scale is not None:
+            var_h, var_s = var_h * noise_scale[0], var_s * noise_scale[1]
+        Rw = J @ np.diag([var_s, var_h]) @ J.T
         return w * np.array([np.sin(th), np.cos(th)]), Rw + 1e-12 * np.eye(2)
 
     def measurement_for(self, z_dr, z_gps=None, *, stationary=False, zupt=False, low_speed=False,
-                        gps_sigma=None, R=None, velocity=False):
+                        gps_sigma=None, R=None, velocity=False, dr_noise_scale=None):
         """The measurement a filter update uses, for a DR sample and an optional GPS fix.
 
         Parameters
@@ -873,6 +877,11 @@ class GPSDRModel(StateSpaceModel):
             horizontal accuracy; replaces ``sigma_gps`` in ``R`` for this fix.
         R : ndarray, optional
             Override of the whole measurement noise (shape to match).
+        dr_noise_scale : array-like of shape (2,), optional
+            Factors ``(heading, odometer)`` on the DR measurement's noise variances ``sigma_heading^2`` and
+            ``sigma_odometer^2``, in whichever form it enters (not the zero-velocity update's): the DR noise
+            estimated online (:class:`~filterwnn.navigation.gpsdr.GPSDRFilter`'s ``dr_noise_window``). Default
+            none: the model's.
 
         Returns
         -------
@@ -889,9 +898,13 @@ class GPSDRModel(StateSpaceModel):
             z[:2] = 0.0
         elif as_velocity:
             z = z.copy()
-            z[:2], Rv = self.velocity_measurement(z[:2])
+            z[:2], Rv = self.velocity_measurement(z[:2], dr_noise_scale)
         if R is None:
             R = self.R_for(gps, stationary, zupt)
+            if dr_noise_scale is not None and not (zupt or as_velocity):
+                R = R.copy()
+                R[0, 0] *= dr_noise_scale[0]
+                R[1, 1] *= dr_noise_scale[1]
             if as_velocity:
                 R = R.copy()
                 R[:2, :2] = Rv + (self.sigma_low_speed**2 * np.eye(2) if low_speed else 0.0)

@@ -91,8 +91,10 @@ def test_the_drive_table_saves_the_readers_and_the_filters_warnings(tmp_path, ca
 
 
 def test_a_drive_that_warns_of_nothing_saves_its_table_alone(tmp_path):
+    # the sample's sensors as they were made (make_sample_drive.py: a heading of 1 degree of white noise, an
+    # odometer of 0.02 m a sample; the phone grade's 0.5 degree and 0.01 m are warned of)
     argv = ["study", "dr", "--drive", "sample", "--filters", "DR-mech,EKF-8", "--outages", "3", "--out",
-            str(tmp_path), "--no-figures", "--no-progress"]
+            str(tmp_path), "--no-figures", "--no-progress", "--heading-noise", "1", "--odometer-noise", "0.02"]
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # the sample warns of nothing
         assert main(argv) == 0

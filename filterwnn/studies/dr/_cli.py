@@ -8,7 +8,7 @@ import os
 from ..._warnings import kept_warnings
 from ...navigation.dead_reckoning import SENSOR_GRADES, _grade
 from ...navigation.drives import CAR_DRIVES, load_car_drive, read_drive_csv
-from ...navigation.gpsdr import CALIBRATION_ERROR_Z, CORRELATED_FIXES, HEADING_JUMP_Z, SIGMA_FLOOR
+from ...navigation.gpsdr import CALIBRATION_ERROR_Z, CORRELATED_FIXES, DR_NOISE_WINDOW, HEADING_JUMP_Z, SIGMA_FLOOR
 from ...navigation.scenarios import INTERVALS, SCENARIOS
 from .. import options, runner
 from ._filters import FILTER_TABLE, OPT_IN
@@ -168,6 +168,19 @@ def add_arguments(parser):
                              "start, its prior sd this many seconds (fixes and speed stamped by two clocks, or a "
                              "receiver's unknown latency; default 0: the filters add the state when the fixes show a "
                              "latency, with a warning)")
+    parser.add_argument("--heading-noise", type=options.positive_float, default=None, metavar="DEG",
+                        help="with --drive: the heading's white noise (deg, one sigma) in place of the grade's (phone: "
+                             "0.5, survey: 0.2); for a heading noisier than its grade (a compass's, a phone's "
+                             "orientation), which the filters estimate online and warn of with the value to give "
+                             "(default: the grade's)")
+    parser.add_argument("--odometer-noise", type=options.positive_float, default=None, metavar="M",
+                        help="with --drive: the odometer's noise per DR sample (m, one sigma) in place of the "
+                             "grade's (phone: 0.01, survey: 0.02); estimated online and warned of likewise "
+                             "(default: the grade's)")
+    parser.add_argument("--dr-noise-window", type=_dr_window, default=DR_NOISE_WINDOW, metavar="N",
+                        help="moving samples over which the GPS/DR filters estimate the heading's and the "
+                             "odometer's noise from their innovations, raised past the grade's where larger "
+                             "(GPSDRFilter's dr_noise_window; default %(default)s; 0: the grade's as given)")
     options.remember_defaults(parser)  # to tell the options given (_check_applies)
 
 
@@ -177,11 +190,11 @@ def add_arguments(parser):
 DRIVE_ONLY = ("--no-plausibility", "--fill-gaps", "--gps-latency", "--odometer-latency", "--heading-latency",
               "--heading-offset",
               "--speed-scale", "--hdop-sigma", "--intervals", "--outage-starts", "--gyro-scale-sd", "--gyro-bias",
-              "--gyro-bias-instability", "--gps-latency-sd")
+              "--gyro-bias-instability", "--gps-latency-sd", "--heading-noise", "--odometer-noise")
 ON_DRIVES = ("--outage-length", "--outages", "--min-speed", "--gps-scale-window", "--correlated-fixes",
              "--min-fix-interval", "--stop-reopen", "--calibration-error-z", "--heading-jump-z", "--no-reversing-test",
              "--no-crawl-test", "--gps-sigma-floor", "--no-floor-on-detection", "--no-reopen-on-detection",
-             "--grade")
+             "--grade", "--dr-noise-window")
 #: ... and those of the simulated scenarios' Monte Carlo, which ``--drive`` does not run. Not ``--jobs``: a
 #: worker count changes no number, and scripts pass ``--jobs 1`` whatever they run (``log_faults.py`` does).
 SIMULATED_ONLY = ("--runs", "--seed", "--backend", "--scheduler", "--cache", "--scenarios", "--factor")
@@ -217,6 +230,14 @@ def _z_or_off(text):
         raise argparse.ArgumentTypeError(f"must be a finite number > 0 or off, got {text!r}") from None
 
 
+def _dr_window(text):
+    """0, or a window of at least 10 moving samples."""
+    value = options.nonnegative_int(text)
+    if 0 < value < 10:
+        raise argparse.ArgumentTypeError(f"must be 0 (the grade's noise) or at least 10, got {text!r}")
+    return value
+
+
 def interrupted_note(args):
     """What ``filterwnn`` adds to the line of a study interrupted by Ctrl-C: where its finished runs are kept, or
     the option that would keep them; None with ``--drive`` (the drives are not cached)."""
@@ -246,7 +267,8 @@ def _filter_options(args):
                 crawl_test=not getattr(args, "no_crawl_test", False),
                 gps_sigma_floor=getattr(args, "gps_sigma_floor", SIGMA_FLOOR),
                 floor_on_detection=not getattr(args, "no_floor_on_detection", False),
-                reopen_on_detection=not getattr(args, "no_reopen_on_detection", False))
+                reopen_on_detection=not getattr(args, "no_reopen_on_detection", False),
+                dr_noise_window=getattr(args, "dr_noise_window", DR_NOISE_WINDOW))
 
 
 def run(args):
@@ -289,7 +311,7 @@ def run(args):
 
 def _drive_grade(args):
     """``--grade`` for ``--drive`` (default phone), with ``--gyro-scale-sd``, ``--gyro-bias``,
-    ``--gyro-bias-instability`` and ``--gps-latency-sd`` when given."""
+    ``--gyro-bias-instability``, ``--gps-latency-sd``, ``--heading-noise`` and ``--odometer-noise`` when given."""
     grade = getattr(args, "grade", None) or "phone"
     k = getattr(args, "gyro_scale_sd", 0.0)
     bias = getattr(args, "gyro_bias", None)
@@ -299,7 +321,9 @@ def _drive_grade(args):
             raise ValueError(f"{flag} needs a grade with a gyro rate-bias state (phone), got --grade {grade}")
     extra = {key: v for key, v in (("gyro_scale_sd", k), ("gyro_bias_deg_s", bias),
                                    ("gyro_bias_instability_deg_h", moves),
-                                   ("gps_latency_sd", getattr(args, "gps_latency_sd", 0.0))) if v}
+                                   ("gps_latency_sd", getattr(args, "gps_latency_sd", 0.0)),
+                                   ("heading_noise_deg", getattr(args, "heading_noise", None)),
+                                   ("odometer_noise_m", getattr(args, "odometer_noise", None))) if v}
     return dict(SENSOR_GRADES[grade], **extra) if extra else grade
 
 

@@ -18,7 +18,7 @@ import numpy as np
 from ..._warnings import folded_warnings, give_again, kept_warnings, recorded_call
 from ...navigation.dead_reckoning import GPSDRModel
 from ...navigation.drives import CAR_DRIVE
-from ...navigation.gpsdr import CALIBRATION_ERROR_Z, GYRO_SCALE, HEADING_JUMP_Z, SIGMA_FLOOR, GPSDRFilter
+from ...navigation.gpsdr import CALIBRATION_ERROR_Z, DR_NOISE_WINDOW, GYRO_SCALE, HEADING_JUMP_Z, SIGMA_FLOOR, GPSDRFilter
 from ...navigation.scenarios import outage_starts
 from ._filters import FILTER_KIND
 
@@ -50,7 +50,7 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=_DEFAULT_FILTE
                        correlated_fixes="calibration", min_fix_interval=0.0, stop_reopen=0.0,
                        calibration_error_z=CALIBRATION_ERROR_Z, heading_jump_z=HEADING_JUMP_Z, reversing_test=True,
                        crawl_test=True, gps_sigma_floor=SIGMA_FLOOR, floor_on_detection=True,
-                       reopen_on_detection=True, progress=False, n_jobs=1):
+                       reopen_on_detection=True, dr_noise_window=DR_NOISE_WINDOW, progress=False, n_jobs=1):
     """Cut GPS outages of ``length`` s into a drive and score each filter at each outage end.
 
     Placements: ``starts`` as given, or ``n_placements`` spread evenly over the windows whose mean
@@ -117,6 +117,10 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=_DEFAULT_FILTE
         :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`'s: once a standstill cut into pieces by a speed that does
         not read 0 leaves the rate-bias state unable to follow a piece, take each standstill whole from then on
         (``stop_reopen`` 2 s; default True).
+    dr_noise_window : int
+        :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`'s: moving samples over which the heading's and the
+        odometer's white noise are estimated online from their innovations, raised past the grade's where they
+        are larger (default :data:`~filterwnn.navigation.gpsdr.DR_NOISE_WINDOW`; 0: the grade's as given).
     progress : bool or None
         A tqdm bar on stderr over each filter's steps (the pass over the drive, then each outage run again
         without its fixes), named by the drive and the filter and cleared when the filter is done (before its
@@ -172,7 +176,10 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=_DEFAULT_FILTE
         ``latency_z``, ``latency_added`` and ``latency``, the same for the fixes' latency (s), and ``latency_at_end``
         and ``gyro_scale_at_end``, the latency and the scale error told when the drive ended
         (:meth:`~filterwnn.navigation.gpsdr.GPSDRFilter.end_of_drive`; None: not);
-        ``odometer_latency_estimate`` and ``odometer_latency_z``, the speed's latency (s)), and
+        ``odometer_latency_estimate`` and ``odometer_latency_z``, the speed's latency (s);
+        ``heading_noise_raised`` and ``odometer_noise_raised``, the steps at which the filter found the heading or
+        the odometer noisier than its grade (``dr_noise_window``; None: never), and ``heading_noise_deg`` and
+        ``odometer_noise_m``, its estimate at the drive's end (None: the grade's throughout)), and
         ``warnings``, the text of each warning the filters gave (one line per kind and filter, its repeats folded:
         what the terminal shows), and ``read_warnings``, empty here (``filterwnn study dr --drive`` puts the drive
         reader's there), both written under the table (:func:`real_drive_table`); and per filter
@@ -190,7 +197,7 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=_DEFAULT_FILTE
                                    reversing_test=reversing_test and not run.reversed_by_speed,
                                    crawl_test=crawl_test,
                                    gps_sigma_floor=gps_sigma_floor, floor_on_detection=floor_on_detection,
-                                   reopen_on_detection=reopen_on_detection))
+                                   reopen_on_detection=reopen_on_detection, dr_noise_window=dr_noise_window))
     done = _score_side_by_side(out, filters, run, windows, use_gps_sigma, settings, progress, n_jobs)
     for name in filters:
         with kept_warnings(out["warnings"]):  # (folded: the filter's name, the step and its time)
@@ -441,7 +448,10 @@ def _integrity(f, run):
             "latency_estimate": f.latency_estimate, "latency_z": f.latency_z, "latency_added": f.latency_added,
             "latency_at_end": f.latency_at_end, "gyro_scale_at_end": f.gyro_scale_at_end,
             "latency": float(f.x[f.model.latency_index]) if f.model.latency else None,
-            "odometer_latency_estimate": f.odometer_latency_estimate, "odometer_latency_z": f.odometer_latency_z}
+            "odometer_latency_estimate": f.odometer_latency_estimate, "odometer_latency_z": f.odometer_latency_z,
+            "heading_noise_raised": f.heading_noise_raised, "odometer_noise_raised": f.odometer_noise_raised,
+            "heading_noise_deg": (None if f.heading_noise_raised is None else float(np.degrees(f.heading_noise))),
+            "odometer_noise_m": None if f.odometer_noise_raised is None else f.odometer_noise}
 
 
 #: Seconds a filter runs over a drive before its progress bar shows (``progress=None``: on a terminal).
@@ -547,8 +557,8 @@ def real_drive_table(res, min_moved=100.0, told=True):
 
 
 def _states_added(ig):
-    """What the filter ended with in the states a drive can add: the gyro's scale factor error and the
-    fixes' latency ("" without them)."""
+    """What the filter ended with in the states a drive can add (the gyro's scale factor error and the
+    fixes' latency) and in the DR noise it estimated ("" without them)."""
     if ig is None:
         return ""
     told = []
@@ -561,6 +571,12 @@ def _states_added(ig):
     if ig.get("latency_at_end") is not None:  # told once when the drive ended (GPSDRFilter.end_of_drive)
         told.append(f"the fixes {ig['latency_at_end']:+.2f} s late over the whole drive (told at its end; rerun with "
                     f"--gps-latency {ig['latency_at_end']:.2f})")
+    for key, what, unit, flag in (("heading_noise", "the heading's white noise", "deg", "--heading-noise"),
+                                  ("odometer_noise", "the odometer's noise", "m a sample", "--odometer-noise")):
+        value = ig.get(f"{key}_{unit.split()[0]}")
+        if value is not None:
+            told.append(f"{what} {value:.2g} {unit} at the end (estimated from step {ig[f'{key}_raised']}; rerun with "
+                        f"{flag} {value:.2g} to have it from the start)")
     if ig.get("gyro_scale_at_end") is not None:
         told.append(f"the gyro turning {100 * ig['gyro_scale_at_end']:+.2f} % more than the car over the whole drive "
                     "(told at its end; rerun with --gyro-scale-sd 0.01)")
