@@ -2136,7 +2136,7 @@ class GPSDRFilter:
         z = np.where(ok, theta / np.sqrt(var), 0.0)
         j = int(np.argmax(np.abs(z)))
         most = CALIBRATION_SIGMAS * np.sqrt(self.model.P0[HEADING_BIAS, HEADING_BIAS])
-        if abs(z[j]) > self.heading_jump_z and self.model.sigma_heading <= abs(theta[j]) <= most:
+        if abs(z[j]) > self.heading_jump_z and self.heading_noise <= abs(theta[j]) <= most:
             self._take_jump(j, float(theta[j]), float(var[j]), float(z[j]))
 
     def _take_jump(self, j, theta, var, z):
@@ -2539,7 +2539,7 @@ class GPSDRFilter:
         if np.all(h == h[0]):  # held by its source (a fused or GPS-course heading), not measured by a gyro
             self.n_zero_rate_held += 1
             return
-        sigma = self.model.sigma_heading
+        sigma = self.heading_noise  # the grade's, or its estimate where the heading showed more (dr_noise_window)
         q = stop_heading_walk(t, h, self.model.q_bias)  # the grade's walk, or the stop's own when past it
         k, size, sd, p = stop_heading_step(t, h, sigma, q)
         if k is not None:

@@ -155,3 +155,4 @@ def test_the_command_takes_the_sensors_noise(tmp_path, command_passes):
         main(base + ["--drive", "sample", "--dr-noise-window", "5"])
     assert stop.value.code == 2
     assert main(base + ["--real", "--heading-noise", "1"]) == 2  # a --drive option
+
