@@ -575,6 +575,15 @@ DR_NOISE_WINDOW = 100
 DR_NOISE_RAISE = 2.0
 #: The median of chi-square with one degree of freedom.
 _CHI2_1_MEDIAN = 0.454936423119572
+#: Per DR sensor (heading, odometer): its name, the model's noise attribute, the unit the warning gives it in, the
+#: grade's key and the command's option, and what makes such a sensor noisier than its grade.
+_DR_SENSORS = (
+    ("heading", "sigma_heading", "deg", "heading_noise_deg", "--heading-noise",
+     "A heading from a compass or from a phone's orientation is noisier than a gyro's; a gyro whose bias moves "
+     "faster than its grade allows reads so too"),
+    ("odometer", "sigma_odometer", "m a sample", "odometer_noise_m", "--odometer-noise",
+     "A speed in coarse steps (OBD's 1 km/h) or a slow log's sample is noisier than a wheel count"),
+)
 
 
 def _median(values):
@@ -1661,31 +1670,18 @@ class GPSDRFilter:
             if not np.isfinite(ratio[i]) or not (self.dr_noise_scale[i] > 1.0 or ratio[i] > DR_NOISE_RAISE):
                 continue
             self.dr_noise_scale[i] = max(1.0, self.dr_noise_scale[i] * ratio[i])
-            if i == 0 and self.heading_noise_raised is None:
-                self.heading_noise_raised = self.step
-                self._warn_dr_noise("heading", f"{np.degrees(self.heading_noise):.2g} deg",
-                                    f"{np.degrees(self.model.sigma_heading):.2g} deg", "sigma_heading",
-                                    f"heading_noise_deg={np.degrees(self.heading_noise):.2g}",
-                                    f"--heading-noise {np.degrees(self.heading_noise):.2g}",
-                                    "a heading from a compass or from a phone's orientation is noisier than a "
-                                    "gyro's; a gyro whose bias moves faster than its grade allows reads so too")
-            elif i == 1 and self.odometer_noise_raised is None:
-                self.odometer_noise_raised = self.step
-                self._warn_dr_noise("odometer", f"{self.odometer_noise:.2g} m a sample",
-                                    f"{self.model.sigma_odometer:.2g} m", "sigma_odometer",
-                                    f"odometer_noise_m={self.odometer_noise:.2g}",
-                                    f"--odometer-noise {self.odometer_noise:.2g}",
-                                    "a speed in coarse steps (OBD's 1 km/h) or a slow log's sample is noisier than "
-                                    "a wheel count")
+            sensor, attr, unit, key, flag, why = _DR_SENSORS[i]
+            if getattr(self, f"{sensor}_noise_raised") is None:
+                setattr(self, f"{sensor}_noise_raised", self.step)
+                to = np.degrees if unit == "deg" else float
+                value, grade = (f"{to(v):.2g}" for v in (getattr(self, f"{sensor}_noise"), getattr(self.model, attr)))
+                warnings.warn(
+                    f"GPSDRFilter: the {sensor} is noisier than the grade says at step {self.step}: its innovations "
+                    f"over the last {self.dr_noise_window} moving samples give a white noise of at least about "
+                    f"{value} {unit} against the grade's {grade} {unit} ({attr}); the filter takes its estimate from "
+                    f"here on (dr_noise_scale). {why}. To have it from the start: the grade's {key}={value} ({flag} "
+                    f"{value}); dr_noise_window=0 keeps the grade's", RuntimeWarning, stacklevel=3)
         self._dr_scaled = bool((self.dr_noise_scale > 1.0).any())
-
-    def _warn_dr_noise(self, sensor, estimate, grade, name, key, flag, why):
-        warnings.warn(
-            f"GPSDRFilter: the {sensor} is noisier than the grade says at step {self.step}: its innovations over the "
-            f"last {self.dr_noise_window} moving samples give a white noise of at least about {estimate} against the "
-            f"grade's {grade} ({name}); the filter takes its estimate from here on (dr_noise_scale). {why[0].upper()}"
-            f"{why[1:]}. To have it from the start: the grade's {key} ({flag}); dr_noise_window=0 keeps the "
-            "grade's", RuntimeWarning, stacklevel=4)
 
     def _heading_far(self, z_dr):
         """Whether the measured heading, less the heading bias, is farther than ``heading_linear_limit`` from
