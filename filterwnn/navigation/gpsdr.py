@@ -1679,8 +1679,10 @@ class GPSDRFilter:
                     f"GPSDRFilter: the {sensor} is noisier than the grade says at step {self.step}: its innovations "
                     f"over the last {self.dr_noise_window} moving samples give a white noise of at least about "
                     f"{value} {unit} against the grade's {grade} {unit} ({attr}); the filter takes its estimate from "
-                    f"here on (dr_noise_scale). {why}. To have it from the start: the grade's {key}={value} ({flag} "
-                    f"{value}); dr_noise_window=0 keeps the grade's", RuntimeWarning, stacklevel=3)
+                    f"here on and refines it every {self.dr_noise_window} (where it ends is the value to give: the "
+                    f"drive table's line, or the filter's {sensor}_noise{' in rad' if unit == 'deg' else ''}). {why}. "
+                    f"To have it from the start: the grade's {key} ({flag}); dr_noise_window=0 keeps the grade's",
+                    RuntimeWarning, stacklevel=3)
         self._dr_scaled = bool((self.dr_noise_scale > 1.0).any())
 
     def _heading_far(self, z_dr):
