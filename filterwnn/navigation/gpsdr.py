@@ -284,7 +284,7 @@ __all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS", "GATE", "REJ
            "HEADING_JUMP_Z", "HEADING_JUMP_SPACING", "HEADING_JUMP_WINDOW", "HEADING_LINEAR_LIMIT",
            "REVERSING_ALPHA", "REVERSING_FIXES", "REVERSING_OFFSET_ALPHA", "CRAWL_ALPHA", "CRAWL_JUMP_ALPHA",
            "CRAWL_MIN_FIXES", "FAR_BETTER", "SIGMA_FLOOR", "FLOOR_FIXES", "FLOOR_WINDOW",
-           "DR_NOISE_WINDOW", "DR_NOISE_RAISE"]
+           "DR_NOISE_WINDOW", "DR_NOISE_RAISE", "DR_NOISE_MIN_WINDOW"]
 
 #: Default standstill threshold (m/s) on the odometer speed: 0.05 m/s = 0.11 mph, four
 #: times the creep of a standing car's CAN speed (0.001-0.03 mph).
@@ -575,13 +575,16 @@ DR_NOISE_WINDOW = 100
 DR_NOISE_RAISE = 2.0
 #: The median of chi-square with one degree of freedom.
 _CHI2_1_MEDIAN = 0.454936423119572
-#: Per DR sensor (heading, odometer): its name, the model's noise attribute, the unit the warning gives it in, the
-#: grade's key and the command's option, and what makes such a sensor noisier than its grade.
+#: The fewest moving samples a ``dr_noise_window`` other than 0 may have (a median of fewer says little).
+DR_NOISE_MIN_WINDOW = 10
+#: Per DR sensor (heading, odometer): its name, the model's noise attribute, the unit a grade gives it in and the
+#: conversion to it from the filter's (rad, m), the grade's key and the command's option, and what makes such a
+#: sensor noisier than its grade. The filter's warning and the drive table's line (``studies.dr``) read it.
 _DR_SENSORS = (
-    ("heading", "sigma_heading", "deg", "heading_noise_deg", "--heading-noise",
+    ("heading", "sigma_heading", "deg", np.degrees, "heading_noise_deg", "--heading-noise",
      "A heading from a compass or from a phone's orientation is noisier than a gyro's; a gyro whose bias moves "
      "faster than its grade allows reads so too"),
-    ("odometer", "sigma_odometer", "m a sample", "odometer_noise_m", "--odometer-noise",
+    ("odometer", "sigma_odometer", "m a sample", float, "odometer_noise_m", "--odometer-noise",
      "A speed in coarse steps (OBD's 1 km/h) or a slow log's sample is noisier than a wheel count"),
 )
 
@@ -1436,9 +1439,9 @@ class GPSDRFilter:
         self._zr_rejected = deque(maxlen=max(self.zero_rate_reacquire_after, ZERO_RATE_WINDOW))
         self._rate_clamped_since = None  # the step from which the bound holds the rate bias (_track_rate_hold)
         self.dr_noise_window = check_positive_int(dr_noise_window, "dr_noise_window", minimum=0)
-        if 0 < self.dr_noise_window < 10:
-            raise ValueError(f"dr_noise_window must be 0 (the grade's DR noise as given) or at least 10 moving samples "
-                             f"(a median of fewer says little), got {dr_noise_window}")
+        if 0 < self.dr_noise_window < DR_NOISE_MIN_WINDOW:
+            raise ValueError(f"dr_noise_window must be 0 (the grade's DR noise as given) or at least "
+                             f"{DR_NOISE_MIN_WINDOW} moving samples (a median of fewer says little), got {dr_noise_window}")
         #: factors ``(heading, odometer)`` on the grade's DR noise variances, estimated online (1: the grade's)
         self.dr_noise_scale = np.ones(2)
         #: the steps at which the heading's and the odometer's noise were first raised past the grade's (None: not)
@@ -1670,10 +1673,9 @@ class GPSDRFilter:
             if not np.isfinite(ratio[i]) or not (self.dr_noise_scale[i] > 1.0 or ratio[i] > DR_NOISE_RAISE):
                 continue
             self.dr_noise_scale[i] = max(1.0, self.dr_noise_scale[i] * ratio[i])
-            sensor, attr, unit, key, flag, why = _DR_SENSORS[i]
+            sensor, attr, unit, to, key, flag, why = _DR_SENSORS[i]
             if getattr(self, f"{sensor}_noise_raised") is None:
                 setattr(self, f"{sensor}_noise_raised", self.step)
-                to = np.degrees if unit == "deg" else float
                 value, grade = (f"{to(v):.2g}" for v in (getattr(self, f"{sensor}_noise"), getattr(self.model, attr)))
                 warnings.warn(
                     f"GPSDRFilter: the {sensor} is noisier than the grade says at step {self.step}: its innovations "

@@ -8,7 +8,8 @@ import os
 from ..._warnings import kept_warnings
 from ...navigation.dead_reckoning import SENSOR_GRADES, _grade
 from ...navigation.drives import CAR_DRIVES, load_car_drive, read_drive_csv
-from ...navigation.gpsdr import CALIBRATION_ERROR_Z, CORRELATED_FIXES, DR_NOISE_WINDOW, HEADING_JUMP_Z, SIGMA_FLOOR
+from ...navigation.gpsdr import (CALIBRATION_ERROR_Z, CORRELATED_FIXES, DR_NOISE_MIN_WINDOW, DR_NOISE_WINDOW,
+                                  HEADING_JUMP_Z, SIGMA_FLOOR)
 from ...navigation.scenarios import INTERVALS, SCENARIOS
 from .. import options, runner
 from ._filters import FILTER_TABLE, OPT_IN
@@ -231,10 +232,10 @@ def _z_or_off(text):
 
 
 def _dr_window(text):
-    """0, or a window of at least 10 moving samples."""
+    """0, or a window of at least ``DR_NOISE_MIN_WINDOW`` moving samples."""
     value = options.nonnegative_int(text)
-    if 0 < value < 10:
-        raise argparse.ArgumentTypeError(f"must be 0 (the grade's noise) or at least 10, got {text!r}")
+    if 0 < value < DR_NOISE_MIN_WINDOW:
+        raise argparse.ArgumentTypeError(f"must be 0 (the grade's noise) or at least {DR_NOISE_MIN_WINDOW}, got {text!r}")
     return value
 
 

@@ -18,7 +18,8 @@ import numpy as np
 from ..._warnings import folded_warnings, give_again, kept_warnings, recorded_call
 from ...navigation.dead_reckoning import GPSDRModel
 from ...navigation.drives import CAR_DRIVE
-from ...navigation.gpsdr import CALIBRATION_ERROR_Z, DR_NOISE_WINDOW, GYRO_SCALE, HEADING_JUMP_Z, SIGMA_FLOOR, GPSDRFilter
+from ...navigation.gpsdr import (_DR_SENSORS, CALIBRATION_ERROR_Z, DR_NOISE_WINDOW, GYRO_SCALE, HEADING_JUMP_Z,
+                                  SIGMA_FLOOR, GPSDRFilter)
 from ...navigation.scenarios import outage_starts
 from ._filters import FILTER_KIND
 
@@ -449,9 +450,18 @@ def _integrity(f, run):
             "latency_at_end": f.latency_at_end, "gyro_scale_at_end": f.gyro_scale_at_end,
             "latency": float(f.x[f.model.latency_index]) if f.model.latency else None,
             "odometer_latency_estimate": f.odometer_latency_estimate, "odometer_latency_z": f.odometer_latency_z,
-            "heading_noise_raised": f.heading_noise_raised, "odometer_noise_raised": f.odometer_noise_raised,
-            "heading_noise_deg": (None if f.heading_noise_raised is None else float(np.degrees(f.heading_noise))),
-            "odometer_noise_m": None if f.odometer_noise_raised is None else f.odometer_noise}
+            **_dr_noise_entries(f)}
+
+
+def _dr_noise_entries(f):
+    """Per DR sensor, the step at which ``f`` found it noisier than its grade (``heading_noise_raised``; None: not)
+    and its noise at the end in the grade's unit, under the grade's key (``heading_noise_deg``; None: the grade's
+    throughout)."""
+    out = {}
+    for sensor, _, _, to, key, _, _ in _DR_SENSORS:
+        raised = out[f"{sensor}_noise_raised"] = getattr(f, f"{sensor}_noise_raised")
+        out[key] = None if raised is None else float(to(getattr(f, f"{sensor}_noise")))
+    return out
 
 
 #: Seconds a filter runs over a drive before its progress bar shows (``progress=None``: on a terminal).
@@ -571,12 +581,10 @@ def _states_added(ig):
     if ig.get("latency_at_end") is not None:  # told once when the drive ended (GPSDRFilter.end_of_drive)
         told.append(f"the fixes {ig['latency_at_end']:+.2f} s late over the whole drive (told at its end; rerun with "
                     f"--gps-latency {ig['latency_at_end']:.2f})")
-    for key, what, unit, flag in (("heading_noise", "the heading's white noise", "deg", "--heading-noise"),
-                                  ("odometer_noise", "the odometer's noise", "m a sample", "--odometer-noise")):
-        value = ig.get(f"{key}_{unit.split()[0]}")
-        if value is not None:
-            told.append(f"{what} {value:.2g} {unit} at the end (estimated from step {ig[f'{key}_raised']}; rerun with "
-                        f"{flag} {value:.2g} to have it from the start)")
+    for sensor, _, unit, _, key, flag, _ in _DR_SENSORS:
+        if ig.get(key) is not None:
+            told.append(f"the {sensor}'s white noise {ig[key]:.2g} {unit} at the end (estimated from step "
+                        f"{ig[f'{sensor}_noise_raised']}; rerun with {flag} {ig[key]:.2g} to have it from the start)")
     if ig.get("gyro_scale_at_end") is not None:
         told.append(f"the gyro turning {100 * ig['gyro_scale_at_end']:+.2f} % more than the car over the whole drive "
                     "(told at its end; rerun with --gyro-scale-sd 0.01)")
