@@ -19,7 +19,8 @@ clockwise), distance driven since the previous sample (m)]``, and GPS fix ``j`` 
 step ``run.gps_steps[j]``. A missing fix is absent, never NaN.
 
 Outages are cut in with :func:`with_outage` (one) or placed by :func:`outage_starts`
-(given start times, or spread evenly over the parts of the drive where the car moves).
+(given start times, or spread evenly over the parts of the drive where the car moves and has its fixes: none
+starts in the drive's own gaps of fixes, :func:`fix_gaps`).
 
 >>> run = simulate_scenario(SCENARIOS["straight"](), rng=0)
 >>> run.x_true.shape, run.z_dr.shape
@@ -55,6 +56,8 @@ __all__ = [
     "en_to_latlon",
     "with_outage",
     "outage_starts",
+    "fix_gaps",
+    "OUTAGE_GAP_SLACK",
     "HEADING_ROUNDING",
     "STOPPED",
 ]
@@ -614,7 +617,8 @@ def _yaw_start(dt, heading, step, steps, z_gps, sigma, checks=True):
     spec = SENSOR_GRADES["phone"]["gyro_bias_deg_s"]
     bias = (f"; at {abs(rate):.2g} deg/s it is past {YAW_BIAS_SIGMAS:g} times the phone grade's {spec:g} deg/s (one "
             "sigma), which its rate-bias state learns only after several stops or minutes of fixes: give it from "
-            f"the start, gyro_bias_deg_s in the grade (--gyro-bias {abs(rate):.2g})"
+            f"the start, gyro_bias_deg_s in the phone grade (--grade phone --gyro-bias {abs(rate):.2g}; the survey "
+            "grade has no state to take it)"
             if abs(rate) > YAW_BIAS_SIGMAS * spec else "")
     words = (f"the heading is the yaw rate integrated from {start % 360.0:.1f} +- {se:.1g} deg at the start, the "
              f"fixes' course over {n} moving stretches (a line through their angles, drifting {rate:+.2g} deg/s from "
@@ -1535,6 +1539,57 @@ def with_outage(run, start, length):
                         gps_offset=offset)
 
 
+#: An outage of ``length`` s placed in a drive starts at most ``OUTAGE_GAP_SLACK * length`` after the drive's last
+#: fix before it (or twice the fixes' median interval, where that is longer): later, it would start in the drive's
+#: own gap of fixes (a tunnel, a receiver off), and the filters would go longer than ``length`` without a fix where
+#: dead reckoning from the true start (``DR-mech``) goes ``length`` (:func:`fix_gaps`, :func:`outage_starts`).
+OUTAGE_GAP_SLACK = 0.1
+
+
+def fix_gaps(run, length=30.0):
+    """The drive's own gaps of fixes, where an outage of ``length`` s is not placed.
+
+    A gap runs from a fix (or the drive's start, ``t = 0``, whose state ``run.x0`` the filters are given) to the
+    next fix (or the drive's end); it is the drive's own where it is longer than the allowance,
+    ``max(OUTAGE_GAP_SLACK * length, 2 * the fixes' median interval)``. An outage starting in one more than the
+    allowance after its beginning is longer, for the filters, than ``length`` (they have had no fix since the gap
+    began), while dead reckoning from the true start goes ``length``: its score would not be an outage of
+    ``length`` s. A drive with fewer than two fixes has none (there is nothing to place against).
+
+    Returns
+    -------
+    gaps : ndarray of shape (n_gaps, 2)
+        Each gap's beginning and end (s, on ``run.t``); an outage may start in ``[begin, begin + allowance]``.
+    allowance : float
+        The allowance (s).
+
+    >>> t = np.arange(0.0, 600.05, 0.1)
+    >>> gps_t = np.concatenate([np.arange(1.0, 200.0), np.arange(300.0, 601.0)])   # a 100 s tunnel
+    >>> run = DRRun.from_arrays(t, np.zeros(t.size), speed=np.full(t.size, 10.0), gps_t=gps_t,
+    ...                         east=np.zeros(gps_t.size), north=10 * gps_t)
+    >>> gaps, allowance = fix_gaps(run)
+    >>> gaps.round(1).tolist(), allowance
+    ([[199.0, 300.0]], 3.0)
+    """
+    length = check_positive(length, "length")
+    tf = np.asarray(run.t, dtype=float)[np.asarray(run.gps_steps, dtype=int)]
+    if len(tf) < 2:
+        return np.zeros((0, 2)), float(OUTAGE_GAP_SLACK * length)
+    allowance = float(max(OUTAGE_GAP_SLACK * length, 2.0 * np.median(np.diff(tf))))
+    points = np.concatenate([[0.0], tf, [float(run.t[-1])]])
+    long = np.flatnonzero(np.diff(points) > allowance)
+    return np.stack([points[long], points[long + 1]], axis=1), allowance
+
+
+def _in_gaps(starts, gaps, allowance):
+    """Per start, the index of the drive's own gap of fixes it starts in (-1: none)."""
+    starts = np.atleast_1d(np.asarray(starts, dtype=float))
+    if not len(gaps):
+        return np.full(len(starts), -1)
+    inside = (starts[:, None] > gaps[:, 0] + allowance) & (starts[:, None] < gaps[:, 1])
+    return np.where(inside.any(axis=1), inside.argmax(axis=1), -1)
+
+
 def outage_starts(run, length=30.0, starts=None, n=20, min_speed=0.0):
     """Start times (s, on ``run.t``) of GPS outages of ``length`` s.
 
@@ -1547,7 +1602,8 @@ def outage_starts(run, length=30.0, starts=None, n=20, min_speed=0.0):
         The start times, as given: checked to lie in ``[0, t_end - length]``.
     n : int
         Without ``starts``: ``n`` outages spread evenly over the drive, among the
-        windows that qualify under ``min_speed``.
+        windows that qualify under ``min_speed`` and start where the drive has its fixes (not in its own gaps
+        of fixes, :func:`fix_gaps`: there an outage would be longer than ``length``).
     min_speed : float
         Without ``starts``: only windows whose mean odometer speed is at least this
         (m/s) qualify (0: every window; e.g. 2 m/s keeps outages where the car drives
@@ -1579,9 +1635,15 @@ def outage_starts(run, length=30.0, starts=None, n=20, min_speed=0.0):
     k0 = np.searchsorted(run.t, grid)
     k1 = np.searchsorted(run.t, grid + length)
     mean_speed = (cum[k1] - cum[k0]) / length
-    ok = grid[mean_speed >= min_speed]
+    gaps, allowance = fix_gaps(run, length)
+    fixed = _in_gaps(grid, gaps, allowance) < 0
+    ok = grid[(mean_speed >= min_speed) & fixed]
     if len(ok) == 0:
-        raise ValueError(f"no {length:g} s window has a mean odometer speed >= min_speed = {min_speed:g} m/s")
+        fast = grid[mean_speed >= min_speed]
+        if len(fast) == 0:
+            raise ValueError(f"no {length:g} s window has a mean odometer speed >= min_speed = {min_speed:g} m/s")
+        raise ValueError(f"no {length:g} s window with a mean odometer speed >= min_speed = {min_speed:g} m/s starts "
+                         f"within {allowance:g} s of a GPS fix: the drive's own gaps of fixes cover them")
     pick = np.unique(np.round(np.linspace(0, len(ok) - 1, n)).astype(int))
     return ok[pick]
 

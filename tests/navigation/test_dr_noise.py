@@ -156,3 +156,26 @@ def test_the_command_takes_the_sensors_noise(tmp_path, command_passes):
     assert stop.value.code == 2
     assert main(base + ["--real", "--heading-noise", "1"]) == 2  # a --drive option
 
+
+
+def test_an_estimate_back_at_the_grades_offers_nothing_to_rerun_with():
+    """A user's heading in whole degrees read noisier than the survey grade while the car turned, and was back at
+    the grade's 0.2 degrees by the end: the table's line offered "rerun with --heading-noise 0.2", the grade's own
+    value, after the warning had said "at least about 0.34 deg" (stop 69)."""
+    from types import SimpleNamespace
+
+    from filterwnn.studies.dr._real import _dr_noise_entries, _states_added
+
+    model = GPSDRModel.from_grade("survey")
+    f = SimpleNamespace(heading_noise_raised=517, odometer_noise_raised=None, dr_noise_scale=np.ones(2),
+                        heading_noise=model.sigma_heading, odometer_noise=model.sigma_odometer)
+    ig = _dr_noise_entries(f)
+    assert ig["heading_noise_back"] and not ig["odometer_noise_back"]
+    assert _states_added(ig) == ("the heading read noisier than the grade from step 517, and was back at the grade's "
+                                 "0.2 deg by the end (nothing to rerun with)")
+    f.dr_noise_scale = np.array([2.5, 1.0])
+    f.heading_noise = model.sigma_heading * np.sqrt(2.5)
+    ig = _dr_noise_entries(f)
+    assert not ig["heading_noise_back"]
+    assert _states_added(ig).startswith("the heading's white noise 0.32 deg at the end (estimated from step 517; "
+                                        "rerun with --heading-noise 0.32")

@@ -120,13 +120,14 @@ def test_a_loggers_minus_one_for_an_unknown_speed_is_refused_not_read_as_reversi
 
 def test_a_raw_gyros_bias_past_the_phone_grade_is_named_with_its_setting(tmp_path, drive):
     """A yaw rate 0.3 deg/s off: the reader names the drift, and, past three times the phone grade's 0.05 deg/s,
-    the ``--gyro-bias`` to give."""
+    the ``--gyro-bias`` to give, with the phone grade (the survey grade refuses it: it has no rate-bias state)."""
     h = np.unwrap(np.deg2rad(drive["heading_deg"]))
     rate = np.gradient(h, drive["time"]) + np.deg2rad(0.3)
     cols = {**drive, "yaw_rate_deg": np.rad2deg(rate)}
     columns = ["time", "yaw_rate_deg"] + COLUMNS[2:]
     with pytest.warns(RuntimeWarning, match=r"drifting \+0.3 deg/s .* past 3 times the phone grade's 0.05 deg/s .* "
-                                            r"\(--gyro-bias 0.3\)") as seen:
+                                            r"\(--grade phone --gyro-bias 0.3; the survey grade has no state to "
+                                            r"take it\)") as seen:
         read_drive_csv(_write(tmp_path / "gyro.csv", cols, columns))
     assert all(w.filename == __file__ for w in seen), [w.filename for w in seen]  # the caller's line, not ours
 

@@ -97,9 +97,13 @@ def add_arguments(parser):
                              "stamps' regular grid's ('grid': regular samples whose time stamps jitter, a logger's), "
                              "or 'auto' (default): the grid when the stamps jitter about one, with a warning")
     parser.add_argument("--outage-length", type=options.positive_float, default=30.0, help="GPS outage length on drives (s)")
-    parser.add_argument("--outages", type=options.positive_int, default=20, help="number of outages spread over each drive")
+    parser.add_argument("--outages", type=options.positive_int, default=20,
+                        help="number of outages spread over each drive, where it has its GPS fixes (none starts "
+                             "in the drive's own gaps of fixes, a tunnel's: there it would be longer for the filters)")
     parser.add_argument("--outage-starts", type=options.float_list, default=None,
-                        help="comma-separated outage start times (s) on --drive drives, instead of spreading them")
+                        help="comma-separated outage start times (s) on --drive drives, instead of spreading them; "
+                             "seconds from the drive's first row, not the log's own time stamps (a start in the "
+                             "drive's own gap of fixes is warned of)")
     parser.add_argument("--min-speed", type=options.nonnegative_float, default=0.0,
                         help="spread outages only over windows with at least this mean speed (m/s)")
     parser.add_argument("--gps-scale-window", type=options.nonnegative_int, default=0, metavar="N",
@@ -355,7 +359,7 @@ def _run_drives(args, drives, filters):
         except ValueError as exc:
             raise ValueError(f"{path}: {exc}") from None
         try:
-            _outage_plan(run, args.outage_length, starts, args.outages, args.min_speed)
+            _outage_plan(run, args.outage_length, starts, args.outages, args.min_speed, warn=False)
         except ValueError as exc:  # name the drive (and the options behind the outages)
             raise ValueError(f"{path}: {exc} (outages from --outage-length, --outages, --outage-starts, "
                              "--min-speed)") from None

@@ -20,7 +20,7 @@ from ...navigation.dead_reckoning import GPSDRModel
 from ...navigation.drives import CAR_DRIVE
 from ...navigation.gpsdr import (_DR_SENSORS, CALIBRATION_ERROR_Z, DR_NOISE_WINDOW, GYRO_SCALE, HEADING_JUMP_Z,
                                   SIGMA_FLOOR, GPSDRFilter)
-from ...navigation.scenarios import outage_starts
+from ...navigation.scenarios import _in_gaps, fix_gaps, outage_starts
 from ._filters import FILTER_KIND
 
 #: GPS/DR model settings for the real drive (a car's manoeuvres need a larger jerk PSD,
@@ -54,7 +54,9 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=_DEFAULT_FILTE
                        reopen_on_detection=True, dr_noise_window=DR_NOISE_WINDOW, progress=False, n_jobs=1):
     """Cut GPS outages of ``length`` s into a drive and score each filter at each outage end.
 
-    Placements: ``starts`` as given, or ``n_placements`` spread evenly over the windows whose mean
+    Placements: ``starts`` as given (one in the drive's own gap of fixes is warned of), or ``n_placements`` spread
+    evenly over the windows that start where the drive has its fixes
+    (:func:`~filterwnn.navigation.scenarios.fix_gaps`) and whose mean
     odometer speed is at least ``min_speed`` (:func:`~filterwnn.navigation.scenarios.outage_starts`; with the
     default 0 the first one starts before the car moves). ``EKF``/``EKF-8``/``UKF-8``/``SUKF-8`` are
     :class:`~filterwnn.navigation.gpsdr.GPSDRFilter` s (6 or 8 states; the filter decides standstill and low
@@ -140,7 +142,9 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=_DEFAULT_FILTE
     dict
         ``starts (n,)``, ``length``, ``moved (n,)`` (distance driven during each outage, m), ``end_steps
         (n,)`` (the scored step of each outage), ``reference`` ("truth" or "withheld GPS"), ``name``,
-        ``track (n_steps, 2)`` (truth, else the fixes interpolated), ``end_xy {filter: (n, 2)}``,
+        ``track (n_steps, 2)`` (truth, else the fixes interpolated), ``fix_gaps (n_gaps, 2)`` (the drive's own
+        gaps of fixes, :func:`~filterwnn.navigation.scenarios.fix_gaps`), ``in_fix_gap (n,)`` (the gap each given
+        start lies in, -1: none), ``end_xy {filter: (n, 2)}``,
         ``start_err {filter: (n,)}`` (the horizontal error when each outage starts, against the same
         reference as the ends; 0 for ``DR-mech``, which starts there), ``integrity {filter: dict}`` (over
         the whole drive with GPS: ``n_fixes`` (tested), ``n_thinned`` (not used: ``min_fix_interval``),
@@ -180,7 +184,9 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=_DEFAULT_FILTE
         ``odometer_latency_estimate`` and ``odometer_latency_z``, the speed's latency (s);
         ``heading_noise_raised`` and ``odometer_noise_raised``, the steps at which the filter found the heading or
         the odometer noisier than its grade (``dr_noise_window``; None: never), and ``heading_noise_deg`` and
-        ``odometer_noise_m``, its estimate at the drive's end (None: the grade's throughout)), and
+        ``odometer_noise_m``, its estimate at the drive's end (None: the grade's throughout), and
+        ``heading_noise_back`` and ``odometer_noise_back``, whether a raised estimate was back at the grade's by the
+        end), and
         ``warnings``, the text of each warning the filters gave (one line per kind and filter, its repeats folded:
         what the terminal shows), and ``read_warnings``, empty here (``filterwnn study dr --drive`` puts the drive
         reader's there), both written under the table (:func:`real_drive_table`); and per filter
@@ -190,7 +196,10 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=_DEFAULT_FILTE
     if bad:
         raise ValueError(f"unknown real-drive filters {bad}; valid: {', '.join(REAL_FILTERS)}")
     _check_jobs(n_jobs)
-    out, windows = _outage_plan(run, length, starts, n_placements, min_speed)
+    placed = []  # (kept for the saved table, as the filters' are)
+    with kept_warnings(placed):
+        out, windows = _outage_plan(run, length, starts, n_placements, min_speed)
+    out["warnings"] += placed
     settings = dict(grade=grade, model_kwargs=model_kwargs, gps_window=gps_window, slow_speed=slow_speed,
                     filter_kw=dict(scale_window=scale_window, correlated_fixes=correlated_fixes,
                                    min_fix_interval=min_fix_interval, stop_reopen=stop_reopen,
@@ -296,18 +305,33 @@ def _merge_scored(out, name, part, told, failed=None):
     out[name] = part[name]
 
 
-def _outage_plan(run, length, starts, n_placements, min_speed):
+def _outage_plan(run, length, starts, n_placements, min_speed, warn=True):
     """The outages' placements and windows: the result dict without scores (see
     :func:`real_drive_outages`) and ``(k0s, k1s, refs)``, each outage's first and scored step
-    and its reference east/north."""
+    and its reference east/north. Spread evenly, none starts in the drive's own gaps of fixes
+    (:func:`~filterwnn.navigation.scenarios.fix_gaps`); given ones that do are kept, and said (``warn``)."""
+    gaps, allowance = fix_gaps(run, length)
+    given = starts is not None
     if starts is None and min_speed == 0.0:
-        starts = np.linspace(0.0, float(run.t[-1]) - length - 1.0, n_placements)
+        even = np.linspace(0.0, float(run.t[-1]) - length - 1.0, n_placements)
+        starts = even if (_in_gaps(even, gaps, allowance) < 0).all() else None  # else spread over the fixed part
     starts = outage_starts(run, length, starts=starts, n=n_placements, min_speed=min_speed)
+    in_gap = _in_gaps(starts, gaps, allowance) if given else np.full(len(starts), -1)
+    if warn:
+        for a, g in zip(starts, in_gap):
+            if g >= 0:
+                b, e = gaps[g]
+                warnings.warn(f"the outage at {a:.1f} s starts {a - b:.1f} s after the drive's last GPS fix, in its own "
+                              f"gap of fixes ({b:.1f}-{e:.1f} s): the filters go {a - b + length:.0f} s without a fix "
+                              f"to its end, dead reckoning from the true start (DR-mech) {length:g} s, so its score is "
+                              f"not that of a {length:g} s outage. Start it where the drive has fixes, or give no "
+                              f"starts (--outage-starts): they are then spread where it has them", RuntimeWarning,
+                              stacklevel=3)
     k0s, k1s, refs, moved, track = _outage_windows(run, starts, length)
     out = {"starts": starts, "length": length, "moved": moved, "end_steps": np.array(k1s),
            "reference": "truth" if run.x_true is not None else "withheld GPS", "name": run.scenario.name,
            "track": track, "t": run.t, "end_xy": {}, "start_err": {}, "integrity": {}, "read_warnings": [],
-           "warnings": []}
+           "warnings": [], "fix_gaps": gaps, "in_fix_gap": in_gap}
     return out, (k0s, k1s, refs)
 
 
@@ -403,7 +427,7 @@ def _real_drive_filter(name, run, grade, model_kwargs, kw, gps_window, slow_spee
 
 
 _REAL_META = ("starts", "moved", "length", "end_steps", "reference", "name", "track", "t", "end_xy", "start_err",
-              "integrity", "read_warnings", "warnings")
+              "integrity", "read_warnings", "warnings", "fix_gaps", "in_fix_gap")
 
 
 def _start_refs(run, k0s, track=None):
@@ -458,9 +482,10 @@ def _dr_noise_entries(f):
     and its noise at the end in the grade's unit, under the grade's key (``heading_noise_deg``; None: the grade's
     throughout)."""
     out = {}
-    for sensor, _, _, to, key, _, _ in _DR_SENSORS:
+    for i, (sensor, _, _, to, key, _, _) in enumerate(_DR_SENSORS):
         raised = out[f"{sensor}_noise_raised"] = getattr(f, f"{sensor}_noise_raised")
         out[key] = None if raised is None else float(to(getattr(f, f"{sensor}_noise")))
+        out[f"{sensor}_noise_back"] = raised is not None and bool(f.dr_noise_scale[i] == 1.0)
     return out
 
 
@@ -543,7 +568,7 @@ def real_drive_table(res, min_moved=100.0, told=True):
     mv = res["moved"] >= min_moved
     names = [k for k in res if k not in _REAL_META]
     lines = [f"### real drive {res.get('name', CAR_DRIVE)}: {len(res['starts'])} GPS outages of {res['length']:g} s "
-             f"({int(mv.sum())} with >= {min_moved:g} m driven), error at the outage ends against the "
+             f"({int(mv.sum())} with >= {min_moved:g} m driven{_gaps_clause(res)}), error at the outage ends against the "
              f"{res.get('reference', 'truth')} (m)", "",
              "| filter | median all | p90 all | max all | median moving | max moving | median at start | "
              "median growth | fixes rejected / down-weighted / re-acquired | mean NIS (2: consistent) | "
@@ -566,6 +591,16 @@ def real_drive_table(res, min_moved=100.0, told=True):
     return "\n".join(lines + ([""] + states if states else []) + given) + "\n"
 
 
+def _gaps_clause(res):
+    """The header's words on the drive's own gaps of fixes ("" where it has none)."""
+    gaps = res.get("fix_gaps")
+    if gaps is None or not len(gaps):
+        return ""
+    spans = ", ".join(f"{b:.0f}-{e:.0f} s" for b, e in gaps[:4]) + (f" and {len(gaps) - 4} more" if len(gaps) > 4 else "")
+    inside = int((res["in_fix_gap"] >= 0).sum())
+    return f"; {inside or 'none'} starting in the drive's own gaps of fixes, {spans}"
+
+
 def _states_added(ig):
     """What the filter ended with in the states a drive can add (the gyro's scale factor error and the
     fixes' latency) and in the DR noise it estimated ("" without them)."""
@@ -582,7 +617,12 @@ def _states_added(ig):
         told.append(f"the fixes {ig['latency_at_end']:+.2f} s late over the whole drive (told at its end; rerun with "
                     f"--gps-latency {ig['latency_at_end']:.2f})")
     for sensor, _, unit, _, key, flag, _ in _DR_SENSORS:
-        if ig.get(key) is not None:
+        if ig.get(key) is None:
+            continue
+        if ig.get(f"{sensor}_noise_back"):  # later windows took it down to the grade's again: nothing to give
+            told.append(f"the {sensor} read noisier than the grade from step {ig[f'{sensor}_noise_raised']}, and was "
+                        f"back at the grade's {ig[key]:.2g} {unit} by the end (nothing to rerun with)")
+        else:
             told.append(f"the {sensor}'s white noise {ig[key]:.2g} {unit} at the end (estimated from step "
                         f"{ig[f'{sensor}_noise_raised']}; rerun with {flag} {ig[key]:.2g} to have it from the start)")
     if ig.get("gyro_scale_at_end") is not None:
