@@ -197,10 +197,13 @@ GPS_DERIVED_SLOPE_TOL = 1e-6
 #: GNSS speed, written ``%.3f``, and the u-blox test's written so, changed slope at every sample by its rounding).
 GPS_DERIVED_ROUNDING = 2.0
 #: Length-ratio mistakes: (factor the ratio shows, the likely cause).
-_SCALES = ((3.6, "speed looks like km/h (divide by 3.6 for m/s)"),
-           (1 / 0.3048, "speed looks like ft/s (multiply by 0.3048 for m/s)"),
-           (1 / 0.44704, "speed looks like mph (multiply by 0.44704 for m/s)"),
-           (1 / 0.514444, "speed looks like knots (multiply by 0.514444 for m/s)"),
+_SCALES = ((3.6, "speed looks like km/h (divide by 3.6 for m/s, or pass speed_scale=3.6: --speed-scale 3.6)"),
+           (1 / 0.3048, "speed looks like ft/s (multiply by 0.3048 for m/s, or pass speed_scale=3.281: "
+                        "--speed-scale 3.281)"),
+           (1 / 0.44704, "speed looks like mph (multiply by 0.44704 for m/s, or pass speed_scale=2.237: "
+                         "--speed-scale 2.237)"),
+           (1 / 0.514444, "speed looks like knots (multiply by 0.514444 for m/s, or pass speed_scale=1.944: "
+                          "--speed-scale 1.944)"),
            (1 / 1000.0, "the odometer looks like kilometres (multiply by 1000 for m)"),
            (100.0, "speed looks like cm/s (divide by 100 for m/s), or the odometer like centimetres"),
            (1000.0, "speed looks like mm/s (divide by 1000 for m/s; u-blox's gSpeed), or the odometer like "

@@ -276,7 +276,8 @@ __all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS", "GATE", "REJ
            "WALK_MIN_SAMPLES", "WALK_BIAS", "STOP_REOPEN", "STOP_REOPEN_M", "REOPEN_PIECES", "TILT_SCALE",
            "MAX_STOP_RATE_DEG_S", "WHITENESS_WINDOW", "FIX_GAPS", "MIN_FIX_INTERVAL",
            "CORRELATED_FIXES", "SCALE_WINDOW", "SCALE_TEST", "SCALE_WARN", "HDOP_FACTOR", "HDOP_LOWEST", "HDOP_GRADE",
-           "NIS_FAR_BELOW", "SCALE_ERROR_Z", "SCALE_ERROR_MIN", "SCALE_END_Z", "DETECTED_SCALE_SD",
+           "NIS_FAR_BELOW", "FEW_FIXES_MEDIAN", "FEW_FIXES", "SCALE_ERROR_Z", "SCALE_ERROR_MIN", "SCALE_END_Z",
+           "DETECTED_SCALE_SD",
            "LATENCY_Z", "LATENCY_MIN", "LATENCY_END_Z", "DETECTED_LATENCY_SD", "ODOMETER_LATENCY_Z", "ODOMETER_LATENCY_MIN",
            "HEADING_BIAS", "RATE", "GYRO_SCALE", "gps_scale_mle", "gps_scale_loglik", "stop_heading_slope",
            "stop_heading_step", "stop_heading_walk", "STOP_STEP_ALPHA", "STOP_STEP_MIN_SIDE", "STOP_STEP_WITHIN",
@@ -533,6 +534,16 @@ HDOP_FACTOR = 2.0
 #: 26.30). A phone's 95 % radius given as a sigma (2.45 times: about 0.33) and the variances of the 1 Hz analog's
 #: 3-5 m fixes (windows down to 0.072, and no worse outages) are not warned of.
 NIS_FAR_BELOW = 0.02
+#: Where the consistency monitor's window is past its bound but its median NIS is at most this (1.5 times a
+#: consistent filter's, chi-square(2)'s median 1.39; the median of 30 consistent fixes passes it in about one window
+#: in twenty) and its :data:`FEW_FIXES` largest carry at least half of its sum, the warning says that a few
+#: fixes carry the excess (a fault at their steps: fixes that jumped, a reversal or a slide not yet found), not an
+#: accuracy optimistic throughout, which would raise the median too. A user's drive reversing out of a parking
+#: space warned at step 309 with a mean NIS of 3.65 and a median of 1.31, 71 % of it in the five fixes before the
+#: reversal was found (stop 69).
+FEW_FIXES_MEDIAN = 1.5 * 2.0 * np.log(2.0)
+#: See :data:`FEW_FIXES_MEDIAN`.
+FEW_FIXES = 5
 #: See :data:`HDOP_FACTOR`: the least median sigma (m) taken for an HDOP...
 HDOP_LOWEST = 0.4
 #: ... and the most, over the grade's GPS sigma.
@@ -1291,7 +1302,8 @@ class GPSDRFilter:
         "_cal_warned", "_corr_n", "_corr_sum", "_crawl", "_driven", "_fast_warned", "_fix_gap", "_fix_interval",
         "_gps_hph", "_gps_y", "_hyp", "_in_a_row", "_inconsistent", "_innovation", "_innovations", "_jB", "_jc",
         "_jd", "_jo", "_js", "_jt", "_ju", "_last_fix_step", "_last_heading", "_last_new_fix", "_last_stop",
-        "_listening", "_nis", "_nis_bound", "_odometer", "_offer_gaps", "_offered", "_own_points", "_own_sigma",
+        "_listening", "_nis", "_nis_bound", "_nis_steps", "_odometer", "_offer_gaps", "_offered", "_own_points",
+        "_own_sigma",
         "_piece_end", "_pieces", "_rate_clamped_since", "_rc_n", "_rc_sum", "_reported", "_residual_c", "_residuals",
         "_restate", "_scale_fixes", "_scale_raw", "_scale_warned", "_seen_gaps", "_sens", "_since_measured", "_so",
         "_stop", "_stretch", "_theta", "_turn_sum", "_u", "_uo", "_used", "_var", "_warned_errors", "_white",
@@ -1467,6 +1479,7 @@ class GPSDRFilter:
         self._nis = deque(maxlen=self.nis_window)
         self._own_sigma = deque(maxlen=self.nis_window)
         self._innovations = deque(maxlen=self.nis_window)
+        self._nis_steps = deque(maxlen=self.nis_window)
         self.step, self.fix_status, self.nis = 0, "none", None
         self.n_fixes = self.n_rejected = self.n_downweighted = self.n_reacquired = self.n_repairs = 0
         self.rejected_steps, self.nis_accepted, self.nis_warnings = [], [], []
@@ -2935,6 +2948,7 @@ class GPSDRFilter:
         accuracy far better than its others carry the excess, the warning says so (:meth:`_floored_words`;
         ``docs/study-outputs/dr/sensor-faults/RUN.md``, stop 54)."""
         self._nis.append(nis)
+        self._nis_steps.append(self.step)
         self._own_sigma.append(own)
         self._innovations.append(innovation)
         if len(self._nis) < self.nis_window:
@@ -2950,14 +2964,29 @@ class GPSDRFilter:
             warnings.warn(
                 f"GPSDRFilter is inconsistent at step {self.step}: the mean NIS of the last {self.nis_window} "
                 f"fixes is {np.mean(self._nis):.1f}, above its 99.9 % bound {self._nis_bound:.2f} (2 expected); "
-                "the fixes' reported accuracy is optimistic or the sensor grade too good: pass the receiver's "
-                "accuracy as gps_sigma, use a lower grade, or estimate the fixes' covariance scale "
+                f"{self._few_fixes_words()}the fixes' reported accuracy is optimistic or the sensor grade too good: "
+                "pass the receiver's accuracy as gps_sigma, use a lower grade, or estimate the fixes' covariance scale "
                 f"(scale_window={SCALE_WINDOW}){gyro}{self._hdop_words(mean) or self._raise_floor()}"
                 f"{self._correlated_words()}", RuntimeWarning, stacklevel=4)
         self._inconsistent = high
         if mean < NIS_FAR_BELOW and self.nis_low_step is None:
             self.nis_low_step = self.step
             warnings.warn(self._far_below_words(mean), RuntimeWarning, stacklevel=4)
+
+    def _few_fixes_words(self):
+        """The inconsistency warning's words where a few fixes of the window carry its excess ("" otherwise; see
+        :data:`FEW_FIXES_MEDIAN`)."""
+        w = np.asarray(self._nis, dtype=float)
+        top = np.argsort(w)[::-1][:FEW_FIXES]
+        share, median = float(w[top].sum() / w.sum()), float(np.median(w))
+        if share < 0.5 or median > FEW_FIXES_MEDIAN:
+            return ""
+        steps = ", ".join(str(k) for k in sorted(np.asarray(self._nis_steps)[top]))
+        return (f"most of it is in {len(top)} of the {len(w)} fixes ({100 * share:.0f} % of the sum; the fixes at "
+                f"steps {steps}), and the window's median NIS is {median:.2f}, a consistent filter's "
+                f"{2.0 * np.log(2.0):.2f}: a fault at those steps (fixes that jumped, a reversal or a slide not yet "
+                "found) rather than an accuracy optimistic throughout, which would raise the median too: check the "
+                "drive there; else ")
 
     def _far_below_words(self, mean):
         """The warning of a window whose mean NIS is under :data:`NIS_FAR_BELOW`: the fixes' own sigma (every fix of

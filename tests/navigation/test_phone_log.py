@@ -237,7 +237,8 @@ def test_a_speed_in_km_h_with_a_drifting_gyro_is_named_as_km_h(tmp_path, drive):
     h = np.unwrap(np.deg2rad(drive["heading_deg"]))
     cols = {**drive, "yaw_rate_deg": np.rad2deg(np.gradient(h, drive["time"]) + np.deg2rad(0.3)),
             "speed": 3.6 * drive["speed"]}
-    with pytest.raises(ValueError, match=r"speed looks like km/h \(divide by 3.6 for m/s\); the angle is a gyro's drift"):
+    with pytest.raises(ValueError, match=r"speed looks like km/h \(divide by 3.6 for m/s, or pass speed_scale=3.6: "
+                                         r"--speed-scale 3.6\); the angle is a gyro's drift"):
         read_drive_csv(_write(tmp_path / "kmh.csv", cols, ["time", "yaw_rate_deg"] + COLUMNS[2:]))
 
 

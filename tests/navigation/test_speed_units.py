@@ -37,7 +37,8 @@ def _refusal(tmp_path, name, seed, factor):
 @pytest.mark.parametrize("name", ["phone", "one_hz"])
 def test_a_speed_in_feet_per_second_is_named_so(tmp_path, name):
     cause = _refusal(tmp_path, name, 0, FT)
-    assert "speed looks like ft/s (multiply by 0.3048 for m/s)" in cause and "km/h" not in cause, cause
+    said = "speed looks like ft/s (multiply by 0.3048 for m/s, or pass speed_scale=3.281: --speed-scale 3.281)"
+    assert said in cause and "km/h" not in cause, cause
 
 
 @pytest.mark.parametrize("name, factor, unit", [("phone", 3.6, "km/h"), ("one_hz", 3.6, "km/h"),
@@ -69,5 +70,6 @@ def test_a_speed_in_knots_that_reads_low_is_read_and_the_warning_names_knots(tmp
     cols = dict(held_out.columns("phone", 0))
     cols["speed"] = np.asarray(cols["speed"], dtype=float) / 0.514444 * 0.9
     with pytest.warns(RuntimeWarning, match=r"more than a speed's scale is off: speed looks like knots "
-                                            r"\(multiply by 0.514444 for m/s\); else, if the scale is the sensor's"):
+                                            r"\(multiply by 0.514444 for m/s, or pass speed_scale=1.944: "
+                                            r"--speed-scale 1.944\); else, if the scale is the sensor's"):
         read_drive_csv(held_out.write_csv(str(tmp_path / "d.csv"), cols))

@@ -82,10 +82,11 @@ def _drive_lines(path):
 def test_protocol_3s_random_drives_give_their_stored_lines(tmp_path):
     """Three drives of ``random_drives.py --protocol 3`` (stop 56: the faults together; seed 232 has a speed spike
     beside a dropout) rerun as stored: every command exits 0, the flags are the same, every number within 0.5 + 5 %
-    of the stored one. Stored as stop 68 left them (the DR noise estimated online moved seed 212's phone EKF-8 from
-    10.03 / 83.23 to 11.76 / 50.61 m; the earlier outputs, ``random_drives_protocol3_200_239.txt`` and seed 232's
-    ``..._232_84eaabb.txt``, stay beside it)."""
-    stored = _drive_lines(RANDOM / "random_drives_protocol3_200_239_stop68.txt")
+    of the stored one. Stored as stop 69 left them (the DR noise estimated online, stop 68, moved seed 212's phone
+    EKF-8 from 10.03 / 83.23 to 11.76 / 50.61 m; the outages placed where the drive has its fixes, stop 69, none in
+    its 67 s tunnel, to 9.67 / 43.00 m; the earlier outputs, ``random_drives_protocol3_200_239{,_stop68}.txt`` and
+    seed 232's ``..._232_84eaabb.txt``, stay beside it)."""
+    stored = _drive_lines(RANDOM / "random_drives_protocol3_200_239_stop69.txt")
     run = subprocess.run([sys.executable, str(RANDOM / "random_drives.py"), "--protocol", "3", "--seeds", "201,212,232",
                           "--jobs", "1"], capture_output=True, text=True, timeout=3600, cwd=RANDOM.parents[3])
     assert run.returncode == 0, run.stderr[-3000:]
