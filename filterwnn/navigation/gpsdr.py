@@ -2961,10 +2961,12 @@ class GPSDRFilter:
             # innovations grow as the heading drifts (docs/study-outputs/dr/log-faults/RUN.md, stop 47)
             gyro = ("; or the gyro's bias moved faster than the grade allows (its temperature): "
                     + _instability_remedy(self.model)) if self.model.rate_bias else ""
+            few = self._few_fixes_words()  # (its own kind of warning: folded apart from the others)
             warnings.warn(
-                f"GPSDRFilter is inconsistent at step {self.step}: the mean NIS of the last {self.nis_window} "
-                f"fixes is {np.mean(self._nis):.1f}, above its 99.9 % bound {self._nis_bound:.2f} (2 expected); "
-                f"{self._few_fixes_words()}the fixes' reported accuracy is optimistic or the sensor grade too good: "
+                f"GPSDRFilter is inconsistent{' in a few fixes' if few else ''} at step {self.step}: the mean NIS of "
+                f"the last {self.nis_window} fixes is {np.mean(self._nis):.1f}, above its 99.9 % bound "
+                f"{self._nis_bound:.2f} (2 expected); "
+                f"{few}the fixes' reported accuracy is optimistic or the sensor grade too good: "
                 "pass the receiver's accuracy as gps_sigma, use a lower grade, or estimate the fixes' covariance scale "
                 f"(scale_window={SCALE_WINDOW}){gyro}{self._hdop_words(mean) or self._raise_floor()}"
                 f"{self._correlated_words()}", RuntimeWarning, stacklevel=4)
