@@ -244,7 +244,7 @@ for _vec in (False, True):
 UKF_ROWS += [
     row(lambda: predicted_ukf(False).update(np.zeros(1)), ValueError, r"z must have 2 entries, got shape \(1,\)", "ukf-loop-z-len1"),
     row(lambda: predicted_ukf(True).update(np.zeros(1)), ValueError, r"z must have 2 entries, got shape \(1,\)", "ukf-vec-z-len1"),
-    row(lambda: predicted_ukf(True).update(np.zeros(2), R=-100.0), NumericalError, r"S is not positive definite at step 2; .*make R positive definite, e.g. R = np.diag\(variances\)", "ukf-vec-R-negative"),
+    row(lambda: predicted_ukf(True).update(np.zeros(2), R=-100.0), ValueError, r"R must be positive definite .*smallest eigenvalue -100 at step 2", "ukf-vec-R-negative"),
     row(lambda: predicted_ukf(False).update(np.zeros(2), R=-100.0), ValueError, "(R must be positive definite|S is not positive definite)", "ukf-loop-R-negative"),
     row(lambda: _with(True, Q=np.full((3, 3), np.nan)).predict(), ValueError, "Q must be finite", "ukf-vec-Q-nan"),
     row(lambda: _with(False, Q=np.full((3, 3), np.nan)).predict(), ValueError, "must be finite", "ukf-loop-Q-nan"),
@@ -522,6 +522,11 @@ def test_failed_ukf_update_leaves_state_unchanged(vectorized, how):
     assert np.array_equal(f.x, g.x) and np.array_equal(f.P, g.P)
 
 
+def _NOT_PD_UT(sigmas, Wm, Wc, *args, **kwargs):
+    """An unscented transform whose ``S`` is not positive definite (an ``R`` that is not is refused before it)."""
+    return Wm @ sigmas, -1e3 * I2
+
+
 @pytest.mark.parametrize("vectorized", [
     False,
     True,
@@ -530,7 +535,7 @@ def test_failed_ukf_update_with_negative_S_leaves_state_unchanged(vectorized):
     f = predicted_ukf(vectorized)
     before = _state(f)
     with pytest.raises(NumericalError):
-        f.update(np.zeros(2), R=-1e3 * I2)
+        f.update(np.zeros(2), UT=_NOT_PD_UT)  # (an R not positive definite is refused before)
     _assert_same(f, before)
 
 
@@ -550,7 +555,7 @@ def test_failed_ukf_update_does_not_advance_the_step_counter(vectorized):
     f = predicted_ukf(vectorized)
     before = _state(f, with_step=True)
     with pytest.raises(NumericalError):
-        f.update(np.zeros(2), R=-1e3 * I2)
+        f.update(np.zeros(2), UT=_NOT_PD_UT)  # (an R not positive definite is refused before)
     _assert_same(f, before)
 
 

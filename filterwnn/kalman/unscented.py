@@ -893,6 +893,11 @@ class UnscentedKalmanFilter(_FilterpyUKF):
         given = R is not None
         R = self.R if R is None else R
         if type(R) is not np.ndarray and isinstance(R, numbers.Real):  # (an ABC check: skipped for arrays)
+            if not given and self._dim_z > 1:  # filterpy's update takes a scalar argument as R * I, but adds a
+                raise ValueError(  # scalar attribute to every entry of S: a noise fully correlated between them
+                    f"R must have shape ({self._dim_z}, {self._dim_z}), got the scalar {R!r}: a scalar is not a "
+                    "covariance here (filterpy would add it to every entry of S, a noise shared by all the "
+                    f"measurement's entries): use R = {R!r} * np.eye({self._dim_z}), or np.diag(variances)")
             R = np.eye(self._dim_z if not given else np.size(z)) * R
         R = np.asarray(R, dtype=float)
         z = z.reshape(1) if z.ndim == 0 else z  # np.atleast_1d of the array update made
@@ -910,6 +915,12 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             if not np.isfinite(R).all():
                 raise ValueError("R must be finite, got non-finite entries; use R = np.diag(variances)")
             _with_fix(check_symmetric, R, "R")
+            low = float(np.linalg.eigvalsh(R).min())
+            if not low > 0.0:  # a sign slip, or a perfect measurement: P would lose definiteness a step later
+                raise ValueError(
+                    f"R must be positive definite (a measurement noise covariance), got smallest eigenvalue "
+                    f"{low:.3g} at step {self.step}: R = np.diag(variances) with every variance > 0 (R = 0, a "
+                    "perfect measurement, leaves P singular: give it a small variance)")
             self._mark("R", R)
         return z, R
 

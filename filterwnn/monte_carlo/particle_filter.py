@@ -102,12 +102,19 @@ PROPOSALS = ("prior", "extended", "unscented")
 #: ESS below this for ``_DEGENERATE_RUN`` consecutive updates triggers the warning.
 _DEGENERATE_ESS = 2.0
 _DEGENERATE_RUN = 3
+#: A measurement that leaves the ESS under ``_DEGENERATE_ESS`` and lies, from the best particle, past this tail
+#: probability of chi-square (bootstrap proposal, Gaussian ``R``: ``d^2`` past 37.3 in one dimension, 6.1 sigma)
+#: warns at once, the first time: one gross outlier (a unit slip in ``z``) collapsed the weights onto a particle or
+#: two and moved the estimate, which the three-update rule above does not see (stop 69: ``z = 1e6`` in the
+#: growth model took the estimate to -23.3 with no word).
+_OUTLIER_TAIL = 1e-9
 
 
 class DegeneracyWarning(RuntimeWarning):
     """The particle weights collapsed: the effective sample size stayed below 2 for 3
-    consecutive updates. Raised once per filter; the message names the step, the ESS and
-    what to try."""
+    consecutive updates, or fell below 2 at once on a measurement that no particle explains by
+    far (the bootstrap proposal with a Gaussian ``R``: a gross outlier, or particles that lost the
+    state). Raised once per filter; the message names the step, the ESS and what to try."""
 
 
 #: The package's schemes (their implementations): they read the weights and write nothing
@@ -327,6 +334,7 @@ class ParticleFilter(WeightedMixtureFilter):
         self.resampled_history = []
         self._low_ess_run = 0
         self._warned_degenerate = False
+        self.unexplained_steps = []  # updates whose z no particle explained (see _OUTLIER_TAIL)
 
     # ------------------------------------------------------------------ set-up
     def _set_resampling(self, resampling, ess_threshold):
@@ -522,6 +530,17 @@ class ParticleFilter(WeightedMixtureFilter):
 
     def _watch_degeneracy(self, ess, log_lik=None):
         d2 = self._unexplained(log_lik) if ess < _DEGENERATE_ESS else None
+        if d2 is not None and d2 != np.inf and d2 > chdtri(self.dim_z, _OUTLIER_TAIL):
+            self.unexplained_steps.append(self.step)
+            if len(self.unexplained_steps) == 1 and not self._warned_degenerate:
+                self._warned_degenerate = True  # (one DegeneracyWarning a filter: a collapse that lasts is this one)
+                warnings.warn(
+                    f"{type(self).__name__}: no particle explains the measurement at step {self.step}: the best one "
+                    f"is d^2 = {d2:.3g} from it (chi-square's 1e-9 tail starts at "
+                    f"{chdtri(self.dim_z, _OUTLIER_TAIL):.3g}), and the weights collapsed onto it (ESS {ess:.3g} of "
+                    f"{self.n_particles}), moving the estimate there. A gross outlier (check z's units and R), or "
+                    f"particles that have lost the state (try {self._degeneracy_remedy()}); later such steps are "
+                    "listed in unexplained_steps", DegeneracyWarning, stacklevel=4)
         self._low_ess_run = self._low_ess_run + 1 if d2 is not None else 0
         if self._low_ess_run >= _DEGENERATE_RUN and not self._warned_degenerate:
             self._warned_degenerate = True
@@ -714,7 +733,9 @@ class ParticleFilter(WeightedMixtureFilter):
                 f"largest log-likelihood {lmax:.6g}, but the transition density is 0 "
                 f"at every sample (largest log-weight increment {np.max(log_alpha):.6g})"
             )
-        raise NumericalError(f"all particle weights underflowed at step {step}: {detail}", matrix="weights", step=step)
+        raise NumericalError(f"all particle weights underflowed at step {step}: {detail}; a gross outlier (check z's "
+                             "units and R) or particles that have lost the state: recover=True skips such a "
+                             "measurement as an outlier", matrix="weights", step=step)
 
     def _apply_move(self, X, step):
         Y = np.asarray(self.move(X, self.rng), dtype=float)

@@ -1352,6 +1352,7 @@ class GPSDRFilter:
         self.heading_linear_limit = (None if heading_linear_limit is None
                                      else check_positive(heading_linear_limit, "heading_linear_limit"))
         self.n_heading_far = 0
+        self.n_from_rest = 0  # moving samples taken as a velocity vector where the filter stood (_from_rest)
         self.reversing_test = bool(reversing_test)
         # the fixes' decisions that the car reverses, that it drives forward again, and the steps of both
         self.n_reversing, self.n_forward_again, self.reversing_steps = 0, 0, []
@@ -1627,7 +1628,8 @@ class GPSDRFilter:
                 gps_sigma = self._fix_sigma(gps_sigma) * np.sqrt(c)
         z, R, kw = self.model.measurement_for(z_dr, z_gps, zupt=self.motion == "still",
                                               low_speed=self.motion == "slow", gps_sigma=gps_sigma,
-                                              velocity=self.motion == "moving" and self._heading_far(z_dr),
+                                              velocity=self.motion == "moving" and (self._from_rest(z_dr)
+                                                                                   or self._heading_far(z_dr)),
                                               dr_noise_scale=self.dr_noise_scale if self._dr_scaled else None)
         weights = self._gain_weights(kw["gps"])
         x_prior = self.kf.x.copy() if weights is not None or self._sens is not None else None
@@ -1699,6 +1701,25 @@ class GPSDRFilter:
                     f"To have it from the start: the grade's {key} ({flag}); dr_noise_window=0 keeps the grade's",
                     RuntimeWarning, stacklevel=3)
         self._dr_scaled = bool((self.dr_noise_scale > 1.0).any())
+
+    def _from_rest(self, z_dr):
+        """Whether the filter stands (its speed under ``standstill_speed``) where the sample moves past
+        ``low_speed``: a speed that jumps from 0 in one sample (a log that starts moving, a coarse speed). The
+        ``[heading, distance]`` update's Jacobian in the velocity vanishes at rest, so the filter would never start
+        to move (a user's drive from a parked start, its speed 0 then 7.8 m/s: the EKF-8 stood for the whole first
+        outage, 239 m off; stop 69); such a sample enters as the measured velocity vector, which is linear in it
+        (counted; the first warns)."""
+        if float(np.hypot(self.kf.x[1], self.kf.x[4])) >= self.standstill_speed:
+            return False
+        self.n_from_rest += 1
+        if self.n_from_rest == 1:
+            warnings.warn(
+                f"GPSDRFilter at step {self.step}: the odometer reads {float(z_dr[1]) / self.model.dt:.1f} m/s where "
+                f"the filter stands: a speed that jumps from 0 past low_speed ({self.low_speed:g} m/s) in one sample "
+                "(a log that starts moving, or a coarse speed), where the [heading, distance] update cannot start the "
+                "filter's velocity (its Jacobian vanishes at rest); the sample enters as the measured velocity "
+                "vector (n_from_rest)", RuntimeWarning, stacklevel=3)
+        return True
 
     def _heading_far(self, z_dr):
         """Whether the measured heading, less the heading bias, is farther than ``heading_linear_limit`` from

@@ -757,6 +757,10 @@ def _wrap_cause(interval, t):
                       f"the rows run across the wrap out of order (sorted by the wrapped time?): unwrap the clock, adding "
                       f"{period:.10g} s to the times after it wrapped, before sorting")
             return f": a step of {interval:+.7g} s, about {period:.10g} s, is {what} that wrapped; {remedy}"
+    if interval < 0:  # (stop 69: a user's logger restarted, its clock from 0 again, or wrote a block twice)
+        return (f": the time goes back {-interval:.7g} s there, a logger that restarted (its clock from 0 again) or "
+                "wrote a block twice: split the file there and give each part (the command takes several --drive), "
+                "dropping a repeated block")
     return ""
 
 

@@ -155,11 +155,43 @@ def test_not_positive_definite_P_raises_numerical_error_with_step(vectorized):
     assert np.array_equal(ukf.x, x) and np.array_equal(ukf.P, -np.eye(3))
 
 
+def _NOT_PD_UT(sigmas, Wm, Wc, *args, **kwargs):
+    """An unscented transform whose ``S`` is not positive definite: a failed update (an ``R`` that is not positive
+    definite is refused before it, stop 69)."""
+    return Wm @ sigmas, -10 * np.eye(sigmas.shape[1])
+
+
+@pytest.mark.parametrize("R, said", [(-np.eye(2), "smallest eigenvalue -1 at step 1"),
+                                     (np.zeros((2, 2)), "smallest eigenvalue 0 at step 1")])
+def test_an_R_that_is_not_positive_definite_is_refused_at_its_update(R, said):
+    """A sign slip in R (-1: S stayed positive definite) went through, and the next predict blamed P, a step later;
+    R = 0 (a perfect measurement) left P singular the same way (stop 69)."""
+    ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), True)
+    ukf.predict()
+    x, P = ukf.x.copy(), ukf.P.copy()
+    with pytest.raises(ValueError, match="R must be positive definite .* " + said):
+        ukf.update(np.array([1.0, 0.0]), R=R)
+    assert np.array_equal(ukf.x, x) and np.array_equal(ukf.P, P)
+    ukf.R = R
+    with pytest.raises(ValueError, match="R must be positive definite"):
+        ukf.update(np.array([1.0, 0.0]))
+
+
+def test_a_scalar_R_attribute_is_refused_where_filterpy_would_add_it_to_every_entry():
+    ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), False)
+    ukf.R = 0.25
+    ukf.predict()
+    with pytest.raises(ValueError, match=r"R must have shape \(2, 2\), got the scalar 0.25: .* use R = 0.25 \* "
+                                         r"np.eye\(2\)"):
+        ukf.update(np.array([1.0, 0.0]))
+    ukf.update(np.array([1.0, 0.0]), R=0.25)  # an argument: filterpy's update takes it as 0.25 * I too
+
+
 def test_not_positive_definite_S_raises():
     ukf = make(UnscentedKalmanFilter, POINTS["simplex"](), True)
     ukf.predict()
     with pytest.raises(NumericalError, match="S is not positive definite at step 1") as info:
-        ukf.update(np.array([1.0, 0.0]), R=-10 * np.eye(2))
+        ukf.update(np.array([1.0, 0.0]), UT=_NOT_PD_UT)
     assert info.value.matrix == "S"
 
 
@@ -320,7 +352,7 @@ def test_step_is_the_time_step(vectorized):
     ukf.predict(); ukf.update(None)
     assert ukf.step == 2
     with pytest.raises(NumericalError, match="S is not positive definite at step 2") as info:
-        ukf.update(np.array([1.2, 0.1]), R=-10 * np.eye(2))
+        ukf.update(np.array([1.2, 0.1]), UT=_NOT_PD_UT)
     assert info.value.step == 2 and ukf.step == 2
 
 
@@ -447,7 +479,7 @@ def test_kept_sigma_buffers_leave_a_restored_sigmas_f_intact():
     ukf.predict()
     prior_x, prior_P = ukf.x.copy(), ukf.P.copy()
     with pytest.raises(NumericalError, match="S is not positive definite"):
-        ukf.update(np.array([0.3]), R=-10 * np.eye(1))
+        ukf.update(np.array([0.3]), UT=_NOT_PD_UT)
     assert ukf.sigmas_f is kept and np.array_equal(ukf.sigmas_f, before)
     ukf.update(np.array([0.2]))
     want = prior_x + sigma_deviations(pts, np.linalg.cholesky(prior_P).T)
@@ -479,7 +511,7 @@ def test_an_edit_through_a_reference_kept_across_a_failed_update_is_seen(vectori
     ukf.predict()
     P = ukf.P
     with pytest.raises(NumericalError, match="S is not positive definite"):
-        ukf.update(np.array([1.2, 0.1]), R=-10 * np.eye(2))
+        ukf.update(np.array([1.2, 0.1]), UT=_NOT_PD_UT)
     P[0, 2] += 0.5
     with pytest.raises(ValueError, match=r"P must be symmetric; max \|P - P.T\| = 0.5"):
         ukf.update(np.array([1.2, 0.1]))

@@ -106,7 +106,9 @@ def test_a_collapse_whose_best_particle_cannot_explain_z_warns_and_says_so():
     """Seed 7: the cloud settles on a wrong mode, which no particle explains; it warns (once)."""
     errors, warned = bootstrap_run(seed=7)
     assert errors[-1] > 1.0 and len(warned) == 1
-    assert "the best particle d^2 = " in str(warned[0].message) and "cannot explain z" in str(warned[0].message)
+    said = str(warned[0].message)  # (at the first step no particle explains by far, stop 69; else after three)
+    assert ("the best particle d^2 = " in said and "cannot explain z" in said) or (
+        "no particle explains the measurement at step" in said and "particles that have lost the state" in said)
 
 
 def simple_pf(n=5):

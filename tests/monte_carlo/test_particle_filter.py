@@ -506,7 +506,8 @@ def test_degeneracy_warns_once_with_step_ess_and_remedy(lin_data):
     zs = lin_data[0]
     pf = make(BootstrapParticleFilter, 3, rng=1)
     pf.R = LIN.R * 1e-6  # a needle likelihood: the weights collapse
-    with pytest.warns(DegeneracyWarning, match=r"step 3: ESS .* of 3 particles.*more particles.*GaussianSumFilter") as rec:
+    # (the needle's first collapse is explained by no particle, by far: it warns there, at once, stop 69)
+    with pytest.warns(DegeneracyWarning, match=r"step \d: .*ESS .* of 3\b.*more particles.*GaussianSumFilter") as rec:
         pf.batch_filter(zs[:8])
     assert len([w for w in rec if issubclass(w.category, DegeneracyWarning)]) == 1
 
@@ -787,3 +788,23 @@ def test_a_filter_pickled_with_eager_posterior_attributes_loads():
     old = BootstrapParticleFilter.__new__(BootstrapParticleFilter)
     old.__setstate__(state)
     assert np.array_equal(old.x_post, x_post) and np.array_equal(old.P_post, P_post)
+
+
+def test_one_gross_outlier_that_collapses_the_weights_warns_at_its_step():
+    """A measurement of 1e6 in a unit-scale problem collapsed 1000 particles onto one and moved the estimate with
+    no word: the three-update rule never saw it (stop 69). It warns at once, names the step, and counts it."""
+    pf = BootstrapParticleFilter(1, 1, 1.0, lambda X: X[:, :1], lambda X, dt: X, 1000, vectorized=True, rng=0)
+    pf.Q, pf.R = np.eye(1) * 0.1, np.eye(1)
+    for z in (0.1, -0.2):
+        pf.predict()
+        pf.update(np.array([z]))
+    pf.predict()
+    with pytest.warns(DegeneracyWarning, match=r"no particle explains the measurement at step 3: the best one is "
+                                               r"d\^2 = .* \(ESS 1 of 1000\).*\(check z's units and R"):
+        pf.update(np.array([1e6]))
+    assert pf.unexplained_steps == [3]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # once a filter
+        pf.predict()
+        pf.update(np.array([-1e6]))
+    assert pf.unexplained_steps == [3, 4]

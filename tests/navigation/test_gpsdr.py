@@ -1105,3 +1105,29 @@ def test_the_inconsistency_warning_says_when_a_few_fixes_carry_it():
     assert "else the fixes' reported accuracy is optimistic" in said[0]
     said = _monitor_warnings(run.z_gps, 1.0, run)  # optimistic throughout: the median says so
     assert said and said[0].startswith("GPSDRFilter is inconsistent at step ") and "most of it is in" not in said[0]
+
+
+@pytest.mark.parametrize("kind", ["EKF", "EKF-8", "UKF-8", "SUKF-8"])
+def test_a_speed_that_jumps_from_rest_past_low_speed_starts_the_filter(kind):
+    """A user's drive from a parked start, its speed 0 for 5 s and then 7.8 m/s at once: the [heading, distance]
+    update's Jacobian vanishes at rest, so the EKF and EKF-8 stood for the whole first outage (239 m off, dead
+    reckoning 6 m), and the UKF-8, started badly, held its heading bias at its bound (stop 69). Such a sample now
+    enters as the measured velocity vector, with a warning at its step."""
+    from filterwnn.navigation.scenarios import DRRun
+    from filterwnn.studies.dr import real_drive_outages
+
+    t = np.arange(0.0, 300.05, 0.1)
+    north = 10.0 * np.maximum(t - 5.0, 0.0)
+    gps_t = np.arange(1.0, 300.5, 1.0)
+    rng = np.random.default_rng(1)
+    run = DRRun.from_arrays(t, np.full(t.size, 0.3), speed=np.where(t < 5.0, 0.0, 10.0), gps_t=gps_t,
+                            east=rng.normal(0.0, 2.0, gps_t.size),
+                            north=np.interp(gps_t, t, north) + rng.normal(0.0, 2.0, gps_t.size), gps_sigma=2.0,
+                            truth=np.stack([np.zeros(t.size), north], axis=1), checks=False)
+    with warnings.catch_warnings(record=True) as rec:
+        warnings.simplefilter("always")
+        res = real_drive_outages(run, starts=[0.0, 100.0], filters=("DR-mech", kind), grade="phone",
+                                 use_gps_sigma=True)
+    said = [str(w.message) for w in rec if "where the filter stands" in str(w.message)]
+    assert said and "at step 49" in said[0] and "past low_speed (5 m/s) in one sample" in said[0]
+    assert res[kind][0] < 3 * res["DR-mech"][0] + 5.0, (res[kind], res["DR-mech"])  # it moved: 250 m of driving

@@ -46,6 +46,8 @@ def test_from_arrays_follows_the_conventions():
 @pytest.mark.parametrize("kwargs, match", [
     (dict(heading=np.degrees(np.full(101, 0.5)) + 40), r"heading must be in radians.*looks like degrees"),
     (dict(t=np.r_[0.0, 0.1, 0.1, 0.3 + 0.1 * np.arange(98)]), r"t must be strictly increasing; t\[2\]"),
+    (dict(t=np.r_[0.1 * np.arange(50), 0.1 * np.arange(51)]), r"t must be strictly increasing; t\[50\] = 0.0 <= "
+     r"t\[49\] = 4.9.*: the time goes back 4.9 s there, a logger that restarted .* split the file there"),  # stop 69
     (dict(t=np.r_[0.1 * np.arange(50), 5.5 + 0.1 * np.arange(51)]), r"t must be evenly sampled"),
     (dict(speed=np.r_[np.nan, np.full(100, 10.0)]), r"speed must be finite; speed\[0\] = nan"),
     (dict(speed=np.full(100, 10.0)), r"speed must have the same length as t \(101\), got 100"),

@@ -1,6 +1,7 @@
-"""Stop 69's user trial rerun: the five drives of ``gen_drives.py`` through the command, both grades.
+"""Stop 69's user trials rerun: the drives of ``gen_drives.py`` (trial 1) or ``gen_drives_2.py`` (``--trial 2``)
+through the command, both grades.
 
-    OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/user-trial/run_trial.py > docs/study-outputs/dr/user-trial/trial_<commit>.txt
+    OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/user-trial/run_trial.py [--trial 2] > docs/study-outputs/dr/user-trial/trial_<...>.txt
 
 Each line: the drive and grade, the exit code, the median / max at the outage ends (m) of DR-mech, EKF-8, UKF-8 and
 SUKF-8, the number of warning lines on stderr, and the table's header (how many outages, and the drive's own gaps of
@@ -18,10 +19,16 @@ RUNS = [("D1", "D1_parking_reverse_quantised.csv", []), ("D2", "D2_highway_1Hz_t
         ("D3", "D3_gyro_bias_multipath.csv", []), ("D4", "D4_roundabout_kmh.csv", []),
         ("D4 --speed-scale 3.6", "D4_roundabout_kmh.csv", ["--speed-scale", "3.6"]),
         ("D5", "D5_midstart_gyro_bias.csv", [])]
+RUNS_2 = [("A", "A_compass_oslo.csv", []), ("B --heading-offset 91", "B_rot90_south54.csv", ["--heading-offset", "91"]),
+          ("C", "C_dateline_5hz.csv", []), ("D", "D_hills_idle_en.csv", []), ("E", "E_r95_madrid.csv", []),
+          ("E --outage-starts 0", "E_r95_madrid.csv", ["--outage-starts", "0"]),
+          ("E2", "E2_r95_dupblock.csv", [])]
+TRIAL = 2 if "--trial" in sys.argv and sys.argv[sys.argv.index("--trial") + 1] == "2" else 1
 
 with tempfile.TemporaryDirectory() as folder:
-    subprocess.run([sys.executable, os.path.join(HERE, "gen_drives.py"), folder], check=True, capture_output=True)
-    for label, csv, extra in RUNS:
+    subprocess.run([sys.executable, os.path.join(HERE, "gen_drives.py" if TRIAL == 1 else "gen_drives_2.py"), folder],
+                   check=True, capture_output=True)
+    for label, csv, extra in (RUNS if TRIAL == 1 else RUNS_2):
         for grade in ("phone", "survey"):
             cmd = [sys.executable, "-m", "filterwnn.cli", "study", "dr", "--drive", os.path.join(folder, csv),
                    "--grade", grade, "--jobs", "1", "--no-progress", "--no-figures", "--out", os.path.join(folder, "out")]
