@@ -30,10 +30,14 @@ CALL_ERRORS = (IndexError, ValueError, TypeError)  # what a one-point function r
 
 
 def one_point_error(role, detail):
+    # an `if` on the points' values raises "truth value of an array ... is ambiguous" however the code indexes
+    # (a user's hx on x[..., 0] with `if r < 1:` was told to index the last axis, which it did: stop 69)
+    branch = ("an `if` (or `and`, `or`, `max`) on the points' values: compute both branches and pick with "
+              "np.where(condition, a, b); " if "truth value of an array" in detail else "")
     return ValueError(
         f"vectorized {role} looks written for one point: {detail}. With vectorized=True it receives "
         "all sigma points as one (n_sigmas, dim) array, so an index such as x[1] selects a sigma "
-        f"point, not a column. Fix: {ONE_POINT_FIX[role]}; or use vectorized=False"
+        f"point, not a column. Fix: {branch}{ONE_POINT_FIX[role]}; or use vectorized=False"
     )
 
 

@@ -136,6 +136,8 @@ def _apply_vectorized(f, X, out_dim, name, args, kwargs, checked):
             raise one_point_error(name, f"on all {m} points it raised {type(exc).__name__}: {exc}") from exc
         raise
     if Y.size != m * out_dim:
+        if first and on_single_rows(f, X, [0], out_dim, args, kwargs) is not None:  # (stop 69: as the UKF says)
+            raise one_point_error(name, f"on all {m} points it returned shape {Y.shape}, not ({m}, {out_dim})")
         raise ValueError(
             f"{name} with vectorized=True must return one row per point, shape "
             f"({m}, {out_dim}), got shape {Y.shape}"

@@ -808,3 +808,25 @@ def test_one_gross_outlier_that_collapses_the_weights_warns_at_its_step():
         pf.predict()
         pf.update(np.array([-1e6]))
     assert pf.unexplained_steps == [3, 4]
+
+
+def test_a_one_point_fx_or_an_if_given_as_vectorized_is_named_so():
+    """The particle filters said only "must return one row per point, shape (500, 2), got (2, 2)" for a one-point fx,
+    and the `if` of an hx on the last axis was told to index the last axis, which it did (stop 69)."""
+    F = np.array([[1.0, 1.0], [0.0, 1.0]])
+    one_point = lambda x, dt: np.array([x[0] + dt * x[1], x[1]])  # noqa: E731 (rows 0 and 1, not columns)
+    pf = BootstrapParticleFilter(2, 1, 1.0, lambda X: X[..., :1], one_point, 50, vectorized=True, rng=0)
+    with pytest.raises(ValueError, match=r"vectorized fx looks written for one point: on all 50 points it returned "
+                                         r"shape \(2, 2\), not \(50, 2\).*Fix: index the last axis"):
+        pf.predict()
+
+    def hx(X):
+        r = X[..., 0]
+        if r < 1.0:
+            return X[..., :1]
+        return 2.0 * X[..., :1]
+
+    pf = BootstrapParticleFilter(2, 1, 1.0, hx, lambda X, dt: X @ F.T, 50, vectorized=True, rng=0)
+    pf.predict()
+    with pytest.raises(ValueError, match=r"Fix: an `if` .* np.where\(condition, a, b\)"):
+        pf.update(np.array([0.5]))
