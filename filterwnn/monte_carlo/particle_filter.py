@@ -278,6 +278,9 @@ class ParticleFilter(WeightedMixtureFilter):
         errors and warnings name) the current step. 0 before the first ``predict``.
     """
 
+    #: Out of ``__dict__``, as the histories are (filterpy's ``Saver`` cannot stack a list that grows).
+    __slots__ = ("unexplained_steps",)
+
     _members_attr = "particles"
     _members_word = "particles"
     _restart_hint = "call initialize(particles) to restart the cloud, or set x and P before the first predict"

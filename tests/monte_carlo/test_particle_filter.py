@@ -808,6 +808,17 @@ def test_one_gross_outlier_that_collapses_the_weights_warns_at_its_step():
         pf.predict()
         pf.update(np.array([-1e6]))
     assert pf.unexplained_steps == [3, 4]
+    from filterpy.common import Saver  # (a list that grows is kept out of __dict__: Saver stacks the rest)
+
+    saver = Saver(pf)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for z in (0.1, 1e6, 0.2):
+            pf.predict()
+            pf.update(np.array([z]))
+            saver.save()
+    saver.to_array()
+    assert pf.unexplained_steps == [3, 4, 6] and "unexplained_steps" not in pf.__dict__
 
 
 def test_a_one_point_fx_or_an_if_given_as_vectorized_is_named_so():
