@@ -1131,3 +1131,4 @@ def test_a_speed_that_jumps_from_rest_past_low_speed_starts_the_filter(kind):
     said = [str(w.message) for w in rec if "where the filter stands" in str(w.message)]
     assert said and "at step 49" in said[0] and "past low_speed (5 m/s) in one sample" in said[0]
     assert res[kind][0] < 3 * res["DR-mech"][0] + 5.0, (res[kind], res["DR-mech"])  # it moved: 250 m of driving
+    assert res["integrity"][kind]["n_from_rest"] >= 1

@@ -165,7 +165,9 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=_DEFAULT_FILTE
         ``n_heading_jumps``, the steps of the heading the heading-jump detector found while the car moved,
         "(N jumped)" after the fixes' counts, and ``heading_jumps``, per step (step found, onset step,
         estimate (rad), z-score); ``n_heading_far``, the DR samples whose heading was so far from the filter's
-        that they entered as a velocity vector (``heading_linear_limit``), "(N headings far)"; ``n_reversing``,
+        that they entered as a velocity vector (``heading_linear_limit``), "(N headings far)"; ``n_from_rest``, the
+        moving DR samples that entered so where the filter stood (a speed that jumped from 0), "(N from rest)";
+        ``n_reversing``,
         the times the fixes showed the car reversing on an unsigned speed (``reversing_test``), "(N reversing)",
         and ``n_forward_again``, driving forward again with no stop between, "(N forward again)"; ``n_crawl``, the
         times the fixes showed the car creeping while its speed read 0 (``crawl_test``), "(N crawling)", and
@@ -463,7 +465,7 @@ def _integrity(f, run):
             "n_zero_rate_stepped": f.n_zero_rate_stepped if f.zero_rate_update else None,
             "stops_cut": f.stops_cut_step if f.zero_rate_update else None,
             "n_calibration_error": f.n_calibration_error, "n_heading_jumps": f.n_heading_jumps,
-            "n_heading_far": f.n_heading_far, "n_reversing": f.n_reversing,
+            "n_heading_far": f.n_heading_far, "n_from_rest": f.n_from_rest, "n_reversing": f.n_reversing,
             "n_forward_again": f.n_forward_again, "n_crawl": f.n_crawl, "crawl_moved": f.crawl_moved,
             "n_floored": f.n_floored, "floor_raised": f.floor_raised,
             "heading_jumps": list(f.heading_jumps),
@@ -650,6 +652,8 @@ def _integrity_cells(ig):
         unused += f" ({ig['n_heading_jumps']} jumped)"
     if ig.get("n_heading_far"):
         unused += f" ({ig['n_heading_far']} headings far)"
+    if ig.get("n_from_rest"):
+        unused += f" ({ig['n_from_rest']} from rest)"
     if ig.get("n_reversing"):
         unused += f" ({ig['n_reversing']} reversing)"
     if ig.get("n_forward_again"):
