@@ -78,7 +78,7 @@ from scipy.linalg import cho_factor, cho_solve, cholesky
 from scipy.linalg.lapack import dpotrf, dpotrs
 
 from .._linalg import cholesky as checked_cholesky
-from .._linalg import cholesky_lower, cholesky_lower_raw, not_pd_error
+from .._linalg import cholesky_lower, cholesky_lower_raw, not_pd_error, smallest_eigenvalue
 from .._validation import (
     NumericalError,
     check_covariance,
@@ -915,12 +915,11 @@ class UnscentedKalmanFilter(_FilterpyUKF):
             if not np.isfinite(R).all():
                 raise ValueError("R must be finite, got non-finite entries; use R = np.diag(variances)")
             _with_fix(check_symmetric, R, "R")
-            low = float(np.linalg.eigvalsh(R).min())
-            if not low > 0.0:  # a sign slip, or a perfect measurement: P would lose definiteness a step later
-                raise ValueError(
+            if cholesky_lower(R) is None:  # a sign slip, or a perfect measurement: P would lose definiteness
+                raise ValueError(  # a step later (check_covariance's test, with the step and the remedy)
                     f"R must be positive definite (a measurement noise covariance), got smallest eigenvalue "
-                    f"{low:.3g} at step {self.step}: R = np.diag(variances) with every variance > 0 (R = 0, a "
-                    "perfect measurement, leaves P singular: give it a small variance)")
+                    f"{smallest_eigenvalue(R):.3g} at step {self.step}: R = np.diag(variances) with every variance "
+                    "> 0 (R = 0, a perfect measurement, leaves P singular: give it a small variance)")
             self._mark("R", R)
         return z, R
 

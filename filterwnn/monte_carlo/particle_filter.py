@@ -533,14 +533,15 @@ class ParticleFilter(WeightedMixtureFilter):
 
     def _watch_degeneracy(self, ess, log_lik=None):
         d2 = self._unexplained(log_lik) if ess < _DEGENERATE_ESS else None
-        if d2 is not None and d2 != np.inf and d2 > chdtri(self.dim_z, _OUTLIER_TAIL):
+        tail = chdtri(self.dim_z, _OUTLIER_TAIL) if d2 is not None and d2 != np.inf else np.inf
+        if d2 is not None and d2 > tail:
             self.unexplained_steps.append(self.step)
             if len(self.unexplained_steps) == 1 and not self._warned_degenerate:
                 self._warned_degenerate = True  # (one DegeneracyWarning a filter: a collapse that lasts is this one)
                 warnings.warn(
                     f"{type(self).__name__}: no particle explains the measurement at step {self.step}: the best one "
-                    f"is d^2 = {d2:.3g} from it (chi-square's 1e-9 tail starts at "
-                    f"{chdtri(self.dim_z, _OUTLIER_TAIL):.3g}), and the weights collapsed onto it (ESS {ess:.3g} of "
+                    f"is d^2 = {d2:.3g} from it (chi-square's 1e-9 tail starts at {tail:.3g}), and the weights "
+                    f"collapsed onto it (ESS {ess:.3g} of "
                     f"{self.n_particles}), moving the estimate there. A gross outlier (check z's units and R), or "
                     f"particles that have lost the state (try {self._degeneracy_remedy()}); later such steps are "
                     "listed in unexplained_steps", DegeneracyWarning, stacklevel=4)

@@ -218,12 +218,13 @@ What the filter does when GPS lies (each part a public setting, on by default):
   compass or a phone's orientation, or a speed in coarse steps, is noisier than the grade's white noise, and a
   filter that trusts it follows the noise (the plainest drive, 1 degree of heading noise under the survey grade's
   0.2 with its 3 m fixes, ended its three outages 2.36 / 2.90 / 1.51 m off, medians of ten seeds, against 0.52 /
-  2.11 / 1.17 m for a grade that fits; estimated, 1.42 / 2.81 / 1.26 m; nothing else tells). Over each window of :data:`DR_NOISE_WINDOW` moving samples the heading's and the odometer's normalised
-  innovations squared are compared with chi-square(1): past :data:`DR_NOISE_RAISE` times its median, that noise
-  is raised to what they show (a covariance matching, never below the grade's), with a warning naming the step and
-  the value to give (``heading_noise_raised``, ``odometer_noise_raised``; :attr:`GPSDRFilter.heading_noise`,
-  :attr:`GPSDRFilter.odometer_noise`). On the analogs and onavdata's drives nothing is raised: the filter is the one without
-  it, bit for bit (``docs/gps_dr.md``, "A heading noisier than its grade").
+  2.11 / 1.17 m for a grade that fits; estimated, 1.42 / 2.81 / 1.26 m; nothing else tells). Over each window of
+  :data:`DR_NOISE_WINDOW` moving samples the heading's and the odometer's normalised innovations squared are
+  compared with chi-square(1): past :data:`DR_NOISE_RAISE` times its median, that noise is raised to what they
+  show (a covariance matching, never below the grade's), with a warning naming the step and the value to give
+  (``heading_noise_raised``, ``odometer_noise_raised``; :attr:`GPSDRFilter.heading_noise`,
+  :attr:`GPSDRFilter.odometer_noise`). On the analogs and onavdata's drives nothing is raised: the filter is the one
+  without it, bit for bit (``docs/gps_dr.md``, "A heading noisier than its grade").
 * **Numerical safety.** After every update ``P`` is symmetrised and checked by Cholesky; one
   that is not positive definite is repaired (symmetrised, eigenvalues floored at 1e-12 of the
   largest), counted in ``n_repairs``, with a warning naming the step.
@@ -534,6 +535,9 @@ HDOP_FACTOR = 2.0
 #: 26.30). A phone's 95 % radius given as a sigma (2.45 times: about 0.33) and the variances of the 1 Hz analog's
 #: 3-5 m fixes (windows down to 0.072, and no worse outages) are not warned of.
 NIS_FAR_BELOW = 0.02
+#: The medians of chi-square with one and two degrees of freedom (``2 ln 2``).
+_CHI2_1_MEDIAN = 0.454936423119572
+_CHI2_2_MEDIAN = 2.0 * np.log(2.0)
 #: Where the consistency monitor's window is past its bound but its median NIS is at most this (1.5 times a
 #: consistent filter's, chi-square(2)'s median 1.39; the median of 30 consistent fixes passes it in about one window
 #: in twenty) and its :data:`FEW_FIXES` largest carry at least half of its sum, the warning says that a few
@@ -541,7 +545,7 @@ NIS_FAR_BELOW = 0.02
 #: accuracy optimistic throughout, which would raise the median too. A user's drive reversing out of a parking
 #: space warned at step 309 with a mean NIS of 3.65 and a median of 1.31, 71 % of it in the five fixes before the
 #: reversal was found (stop 69).
-FEW_FIXES_MEDIAN = 1.5 * 2.0 * np.log(2.0)
+FEW_FIXES_MEDIAN = 1.5 * _CHI2_2_MEDIAN
 #: See :data:`FEW_FIXES_MEDIAN`.
 FEW_FIXES = 5
 #: See :data:`HDOP_FACTOR`: the least median sigma (m) taken for an HDOP...
@@ -584,8 +588,6 @@ DR_NOISE_WINDOW = 100
 #: 0.4; on the shipped sample, whose heading has 1 degree of white noise, the survey grade's 0.2 degrees read 15
 #: (``docs/gps_dr.md``, "A heading noisier than its grade").
 DR_NOISE_RAISE = 2.0
-#: The median of chi-square with one degree of freedom.
-_CHI2_1_MEDIAN = 0.454936423119572
 #: The fewest moving samples a ``dr_noise_window`` other than 0 may have (a median of fewer says little).
 DR_NOISE_MIN_WINDOW = 10
 #: Per DR sensor (heading, odometer): its name, the model's noise attribute, the unit a grade gives it in and the
@@ -1454,7 +1456,8 @@ class GPSDRFilter:
         self.dr_noise_window = check_positive_int(dr_noise_window, "dr_noise_window", minimum=0)
         if 0 < self.dr_noise_window < DR_NOISE_MIN_WINDOW:
             raise ValueError(f"dr_noise_window must be 0 (the grade's DR noise as given) or at least "
-                             f"{DR_NOISE_MIN_WINDOW} moving samples (a median of fewer says little), got {dr_noise_window}")
+                             f"{DR_NOISE_MIN_WINDOW} moving samples (a median of fewer says little), got "
+                             f"{dr_noise_window}")
         #: factors ``(heading, odometer)`` on the grade's DR noise variances, estimated online (1: the grade's)
         self.dr_noise_scale = np.ones(2)
         #: the steps at which the heading's and the odometer's noise were first raised past the grade's (None: not)
@@ -3007,7 +3010,7 @@ class GPSDRFilter:
         steps = ", ".join(str(k) for k in sorted(np.asarray(self._nis_steps)[top]))
         return (f"most of it is in {len(top)} of the {len(w)} fixes ({100 * share:.0f} % of the sum; the fixes at "
                 f"steps {steps}), and the window's median NIS is {median:.2f}, a consistent filter's "
-                f"{2.0 * np.log(2.0):.2f}: a fault at those steps (fixes that jumped, a reversal or a slide not yet "
+                f"{_CHI2_2_MEDIAN:.2f}: a fault at those steps (fixes that jumped, a reversal or a slide not yet "
                 "found) rather than an accuracy optimistic throughout, which would raise the median too: check the "
                 "drive there; else ")
 

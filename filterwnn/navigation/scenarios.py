@@ -698,7 +698,7 @@ def _sample_grid(t, max_jitter):
         k = int(np.argmax(dts <= 0)) + 1
         raise ValueError(f"t must be strictly increasing; t[{k}] = {float(t[k])!r} <= t[{k - 1}] = {float(t[k - 1])!r}"
                          + ((_rounded_stamps(t, dts) or ": a sample logged twice? drop the repeated rows")
-                            if dts[k - 1] == 0 else _wrap_cause(dts[k - 1], t)))
+                            if dts[k - 1] == 0 else _wrap_cause(dts[k - 1], t) or _back_cause(dts[k - 1])))
     dt = float(f"{np.median(dts):.9g}")  # 0.1, not 0.09999999999999787
     # times far from 0 (Unix epoch seconds, 1.7e9) are stored to 2.4e-7 s: round dt to what they resolve
     # (0.1, not 0.0999999046, which made 1 Hz fixes look faster than one a second)
@@ -757,11 +757,15 @@ def _wrap_cause(interval, t):
                       f"the rows run across the wrap out of order (sorted by the wrapped time?): unwrap the clock, adding "
                       f"{period:.10g} s to the times after it wrapped, before sorting")
             return f": a step of {interval:+.7g} s, about {period:.10g} s, is {what} that wrapped; {remedy}"
-    if interval < 0:  # (stop 69: a user's logger restarted, its clock from 0 again, or wrote a block twice)
-        return (f": the time goes back {-interval:.7g} s there, a logger that restarted (its clock from 0 again) or "
-                "wrote a block twice: split the file there and give each part (the command takes several --drive), "
-                "dropping a repeated block")
     return ""
+
+
+def _back_cause(interval):
+    """The refusal's words for sample times that go back by ``interval`` (< 0) other than a clock's wrap (stop 69:
+    a user's logger restarted, its clock from 0 again, or wrote a block twice)."""
+    return (f": the time goes back {-float(interval):.7g} s there, a logger that restarted (its clock from 0 again) or "
+            "wrote a block twice: split the file there and give each part (the command takes several --drive), "
+            "dropping a repeated block")
 
 
 def _dropped(dts, dt):

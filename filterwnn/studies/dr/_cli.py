@@ -239,7 +239,8 @@ def _dr_window(text):
     """0, or a window of at least ``DR_NOISE_MIN_WINDOW`` moving samples."""
     value = options.nonnegative_int(text)
     if 0 < value < DR_NOISE_MIN_WINDOW:
-        raise argparse.ArgumentTypeError(f"must be 0 (the grade's noise) or at least {DR_NOISE_MIN_WINDOW}, got {text!r}")
+        raise argparse.ArgumentTypeError(f"must be 0 (the grade's noise) or at least {DR_NOISE_MIN_WINDOW}, "
+                                         f"got {text!r}")
     return value
 
 

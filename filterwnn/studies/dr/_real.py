@@ -313,21 +313,21 @@ def _outage_plan(run, length, starts, n_placements, min_speed, warn=True):
     and its reference east/north. Spread evenly, none starts in the drive's own gaps of fixes
     (:func:`~filterwnn.navigation.scenarios.fix_gaps`); given ones that do are kept, and said (``warn``)."""
     gaps, allowance = fix_gaps(run, length)
-    given = starts is not None
     if starts is None and min_speed == 0.0:
         even = np.linspace(0.0, float(run.t[-1]) - length - 1.0, n_placements)
         starts = even if (_in_gaps(even, gaps, allowance) < 0).all() else None  # else spread over the fixed part
     starts = outage_starts(run, length, starts=starts, n=n_placements, min_speed=min_speed)
-    in_gap = _in_gaps(starts, gaps, allowance) if given else np.full(len(starts), -1)
+    in_gap = _in_gaps(starts, gaps, allowance)  # (spread ones never are: only given ones can be)
     if warn:
         for a, g in zip(starts, in_gap):
             if g >= 0:
                 b, e = gaps[g]
-                warnings.warn(f"the outage at {a:.1f} s starts {a - b:.1f} s after the drive's last GPS fix, in its own "
-                              f"gap of fixes ({b:.1f}-{e:.1f} s): the filters go {a - b + length:.0f} s without a fix "
-                              f"to its end, dead reckoning from the true start (DR-mech) {length:g} s, so its score is "
-                              f"not that of a {length:g} s outage. Start it where the drive has fixes, or give no "
-                              f"starts (--outage-starts): they are then spread where it has them", RuntimeWarning,
+                warnings.warn(f"the outage at {a:.1f} s starts {a - b:.1f} s after the drive's last GPS fix, in its "
+                              f"own gap of fixes ({b:.1f}-{e:.1f} s): the filters go {a - b + length:.0f} s without a "
+                              f"fix to its end, dead reckoning from the true start (DR-mech) {length:g} s, so its "
+                              f"score is not that of a {length:g} s outage. Start it where the drive has fixes, or "
+                              f"give no starts (--outage-starts): they are then spread where it has them",
+                              RuntimeWarning,
                               stacklevel=3)
     k0s, k1s, refs, moved, track = _outage_windows(run, starts, length)
     out = {"starts": starts, "length": length, "moved": moved, "end_steps": np.array(k1s),
@@ -570,8 +570,8 @@ def real_drive_table(res, min_moved=100.0, told=True):
     mv = res["moved"] >= min_moved
     names = [k for k in res if k not in _REAL_META]
     lines = [f"### real drive {res.get('name', CAR_DRIVE)}: {len(res['starts'])} GPS outages of {res['length']:g} s "
-             f"({int(mv.sum())} with >= {min_moved:g} m driven{_gaps_clause(res)}), error at the outage ends against the "
-             f"{res.get('reference', 'truth')} (m)", "",
+             f"({int(mv.sum())} with >= {min_moved:g} m driven{_gaps_clause(res)}), error at the outage ends against "
+             f"the {res.get('reference', 'truth')} (m)", "",
              "| filter | median all | p90 all | max all | median moving | max moving | median at start | "
              "median growth | fixes rejected / down-weighted / re-acquired | mean NIS (2: consistent) | "
              "mean GPS covariance scale (1: as reported) | mean fix correlation (1: white) | "
@@ -598,7 +598,8 @@ def _gaps_clause(res):
     gaps = res.get("fix_gaps")
     if gaps is None or not len(gaps):
         return ""
-    spans = ", ".join(f"{b:.0f}-{e:.0f} s" for b, e in gaps[:4]) + (f" and {len(gaps) - 4} more" if len(gaps) > 4 else "")
+    more = f" and {len(gaps) - 4} more" if len(gaps) > 4 else ""
+    spans = ", ".join(f"{b:.0f}-{e:.0f} s" for b, e in gaps[:4]) + more
     inside = int((res["in_fix_gap"] >= 0).sum())
     return f"; {inside or 'none'} starting in the drive's own gaps of fixes, {spans}"
 
