@@ -284,7 +284,8 @@ class DRRun(NamedTuple):
     def from_arrays(cls, t, heading=None, *, distance=None, speed=None, gps_t=None, east=None, north=None,
                     lat=None, lon=None, gps_sigma=None, truth=None, origin=None, name="drive",
                     max_jitter=0.2, checks=True, fill_gaps=0.0, gps_latency=0.0, intervals="auto",
-                    odometer_latency=0.0, heading_offset=0.0, speed_scale=1.0, yaw_rate=None, heading_latency=0.0):
+                    odometer_latency=0.0, heading_offset=0.0, speed_scale=1.0, yaw_rate=None, heading_latency=0.0,
+                    heading_deviation=None):
         """One's own drive from arrays: validated, on the DR sample grid, in local metres.
 
         Parameters
@@ -383,6 +384,14 @@ class DRRun(NamedTuple):
             Default 0. The plausibility check estimates it against the fixes and warns past
             ``HEADING_OFFSET_WARN_DEG`` (10 degrees) with this setting's value; the filters learn a heading
             bias from the fixes, but an outage before the first ones ends off by the whole offset.
+        heading_deviation : sequence of 4 floats, optional
+            A compass's deviation card ``(B, C, D, E)`` in degrees: the heading (after ``heading_offset``) reads
+            ``B sin h + C cos h + D sin 2h + E cos 2h`` more than the car's course at the heading ``h`` it reads
+            (a magnetic heading near the car's steel), which is subtracted
+            (``filterwnn.navigation._plausibility.deviation_of``). Default None: none. The plausibility check
+            estimates the card against the fixes (``filterwnn.navigation._plausibility.heading_deviation``)
+            and warns, with this setting's value, of a deviation past ``HEADING_DEVIATION_WARN_DEG`` (5 degrees):
+            no filter state models it. Not with ``yaw_rate``.
         speed_scale : float
             The factor by which ``speed`` (or ``distance``) reads more than the car drove (a speedometer's
             signal reads high by up to 10 %; a wheel-speed signal with the wrong tyre circumference a few per
@@ -428,6 +437,9 @@ class DRRun(NamedTuple):
                 raise ValueError(interval_refusal(median))
         integrated = yaw_rate is not None
         if integrated:
+            if heading_deviation is not None:
+                raise ValueError("heading_deviation has no meaning with a yaw rate: a gyro's heading does not deviate "
+                                 "with the direction of travel as a compass's does")
             if heading_offset:
                 raise ValueError("heading_offset has no meaning with a yaw rate: the heading it integrates to starts "
                                  "where the fixes' course says")
@@ -450,13 +462,26 @@ class DRRun(NamedTuple):
         if gps_t is not None and latency:
             gps_t = np.asarray(gps_t, dtype=float) - latency
         off = check_finite(heading_offset, "heading_offset", "degrees")
+        card = _deviation_card(heading_deviation)
         scale = check_positive(speed_scale, "speed_scale")
         if scale != 1.0:
             speed = None if speed is None else _finite_1d(speed, "speed") / scale
             distance = None if distance is None else _finite_1d(distance, "distance") / scale
         return cls(*_drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps_sigma,
-                                  truth, origin, name, max_jitter, checks, intervals, np.deg2rad(off), integrated),
+                                  truth, origin, name, max_jitter, checks, intervals, np.deg2rad(off), integrated,
+                                  card),
                    t_start=float(np.asarray(t, dtype=float).ravel()[0]))
+
+
+def _deviation_card(card):
+    """``heading_deviation`` checked: None, or four finite numbers (deg) as an array."""
+    if card is None:
+        return None
+    values = np.asarray(card, dtype=float).ravel()
+    if values.size != 4 or not np.isfinite(values).all():
+        raise ValueError(f"heading_deviation must be a compass's deviation card, four finite numbers (B, C, D, E) in "
+                         f"degrees, got {card!r}")
+    return values
 
 
 def _fill_gaps(t, heading, distance, speed, truth, longest, max_jitter):
@@ -493,16 +518,21 @@ def _heading_at(new_t, t, heading):
 
 
 def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps_sigma, truth, origin, name,
-                  max_jitter, checks, intervals="auto", heading_offset=0.0, integrated=False):
+                  max_jitter, checks, intervals="auto", heading_offset=0.0, integrated=False, deviation=None):
     """The :class:`DRRun` fields of one's own drive (the work of :meth:`DRRun.from_arrays`, whose
     arguments these are): checked arrays, the GPS fixes on the sample grid, ``x0`` and the scenario.
-    ``integrated``: the heading is a yaw rate's integral from 0, started here at the fixes' course."""
+    ``integrated``: the heading is a yaw rate's integral from 0, started here at the fixes' course; ``deviation``: a
+    compass's deviation card (deg), subtracted after the offset."""
     t = _finite_1d(t, "t")
     n = len(t)
     dts, dt, stamps = _sample_grid(t, max_jitter)
     heading = _heading_radians(heading, n)
     if heading_offset:
         heading = wrap_angle(heading - heading_offset)
+    if deviation is not None:
+        from ._plausibility import deviation_of
+
+        heading = wrap_angle(heading - deviation_of(heading, deviation))
     signed = None
     if speed is not None:
         raw = _finite_1d(speed, "speed", n)

@@ -110,6 +110,18 @@ def finite_float(text):
     return _number(text, float, math.isfinite, "a finite number")
 
 
+def deviation_card(text):
+    """Four comma-separated finite numbers, of either sign: a compass's deviation card ``B,C,D,E`` (deg).
+
+    >>> deviation_card("3.9,2.3,-2.7,3.9")
+    [3.9, 2.3, -2.7, 3.9]
+    """
+    values = [s.strip() for s in str(text).split(",")]
+    if len(values) != 4:
+        raise argparse.ArgumentTypeError(f"expected four comma-separated numbers B,C,D,E (degrees), got {text!r}")
+    return [finite_float(v) for v in values]
+
+
 def float_list(text):
     """Comma-separated finite numbers ``>= 0`` (``''``: an empty list).
 

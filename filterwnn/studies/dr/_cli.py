@@ -83,6 +83,11 @@ def add_arguments(parser):
                         help="with --drive: degrees by which the heading reads clockwise of the car's course (its "
                              "zero off: a phone mounted askew; a magnetic heading, by the declination), subtracted "
                              "from every heading (default 0; the drive reader warns past 10 degrees, with the value)")
+    parser.add_argument("--heading-deviation", type=options.deviation_card, default=None, metavar="B,C,D,E",
+                        help="with --drive: a compass's deviation card (degrees): the heading reads B sin h + C cos h "
+                             "+ D sin 2h + E cos 2h more than the car's course at the heading h it reads (a magnetic "
+                             "heading near the car's steel), subtracted after --heading-offset (default none; the "
+                             "drive reader warns of a deviation past 5 degrees, with the card)")
     parser.add_argument("--hdop-sigma", type=options.positive_float, default=None, metavar="M",
                         help="with --drive: for a drive whose fixes carry a gps_hdop column (a dilution of "
                              "precision, without a unit), the sigma per axis (m) of a fix at HDOP 1, the receiver's "
@@ -193,7 +198,7 @@ def add_arguments(parser):
 #: drives, one's own or ``--real``'s (the outages' placement, the GPS/DR filters' settings): given where they
 #: do not apply, the command refuses them rather than ignore them.
 DRIVE_ONLY = ("--no-plausibility", "--fill-gaps", "--gps-latency", "--odometer-latency", "--heading-latency",
-              "--heading-offset",
+              "--heading-offset", "--heading-deviation",
               "--speed-scale", "--hdop-sigma", "--intervals", "--outage-starts", "--gyro-scale-sd", "--gyro-bias",
               "--gyro-bias-instability", "--gps-latency-sd", "--heading-noise", "--odometer-noise")
 ON_DRIVES = ("--outage-length", "--outages", "--min-speed", "--gps-scale-window", "--correlated-fixes",
@@ -352,6 +357,7 @@ def _run_drives(args, drives, filters):
                                  odometer_latency=getattr(args, "odometer_latency", 0.0),
                                  heading_latency=getattr(args, "heading_latency", 0.0),
                                  heading_offset=getattr(args, "heading_offset", 0.0),
+                                 heading_deviation=getattr(args, "heading_deviation", None),
                                  speed_scale=getattr(args, "speed_scale", 1.0),
                                  hdop_sigma=getattr(args, "hdop_sigma", None) or _grade(grade)["gps_sigma_m"],
                                  progress=None if not getattr(args, "no_progress", False) else False)
