@@ -68,7 +68,7 @@ __all__ = ["check_drive", "heading_offset", "speed_scale", "clock_offset", "MAX_
            "RECEIVER_DR_STEPS", "RECEIVER_DR_FRAC", "RECEIVER_DR_MOVING_M", "RECEIVER_DR_SIGMA_FALLS",
            "RECEIVER_DR_GROWS", "receiver_dead_reckoning", "heading_deviation", "HEADING_DEVIATION_WARN_DEG",
            "HEADING_DEVIATION_LEVEL", "DEVIATION_STRAIGHT_DEG", "DEVIATION_KNOT_S", "DEVIATION_CHORDS_PER_PARAMETER",
-           "deviation_of"]
+           "deviation_of", "carried", "CARRIED_MIN_S", "CARRIED_SPEED", "CARRIED_MIN_M"]
 
 #: The longest DR sample interval (s) accepted without ``checks=False``.
 MAX_DT = 2.0
@@ -174,6 +174,18 @@ RECEIVER_DR_SIGMA_FALLS = 3
 #: (:data:`RECEIVER_DR_UNSURE`): 120 s of fixes with 0.03-0.1 m of noise among the analogs' are so named
 #: (``docs/study-outputs/dr/log-faults/clean_stretch.txt``).
 RECEIVER_DR_GROWS = 0.8
+#: The least time (s) the speed reads 0 while the fixes move at :data:`CARRIED_SPEED` or more before the reader says
+#: the car was carried (:func:`carried`): a standstill's fixes wander (multipath) and jump, but do not travel. A ferry
+#: or a car train carries a car for minutes.
+CARRIED_MIN_S = 60.0
+#: The median speed (m/s) of the fixes, fix to fix, over such a stretch past which it is no crawl that a speed's
+#: cutoff hides: such cutoffs read 0 under 0.3-1 m/s (a queue), and a car carried by a ferry or a car train moves at
+#: several metres a second (a second new user's ferry crossing, stop 70: 5 m/s for 334 s, which the filters'
+#: crawl test told as a crawl at 1 m/s in a queue, and followed with 16 re-acquisitions).
+CARRIED_SPEED = 2.0
+#: The least distance (m) the fixes move over such a stretch: past a standing car's multipath, whose street bias can
+#: change while it stands (the city analog's seed 109 moved its fixes 103 m over a 42 s stop: p95 55 m each way).
+CARRIED_MIN_M = 200.0
 #: What the reader's warning of fixes that follow the odometer says where their sigma grows.
 RECEIVER_DR_REMEDY = ("a receiver's own dead reckoning (a u-blox ADR/UDR module's fixType 1, gnssFixOK 0; NMEA GGA "
                       "quality 6, RMC mode E), not GNSS. The filters take them for fixes and follow them, and the "
@@ -1142,6 +1154,47 @@ _RADIANS = ("the fixes' lat and lon look like radians (every one within pi/2 and
             "times closer together than the car drove): give them in degrees (np.degrees)")
 
 
+def carried(dt, step, steps, z_gps):
+    """The stretches where the speed reads 0 for :data:`CARRIED_MIN_S` or more while the fixes move
+    :data:`CARRIED_MIN_M` or more at :data:`CARRIED_SPEED` or more: from the median of the stretch's first quarter of
+    fixes to the median of its last (medians: a standing car's fixes scatter and jump, and fix to fix their noise
+    alone reads metres a second). A car carried (a ferry, a car train, a tow truck), or a speed whose signal was
+    lost while the car drove. ``[(first sample, last sample, metres moved (at least: from the first quarter's median to
+    the last's), m/s), ...]``; the arguments are :func:`check_drive`'s."""
+    at = np.asarray(steps, dtype=int) + 1  # each fix's sample
+    found = []
+    for a, b in zip(*_run_bounds(np.asarray(step, dtype=float) == 0.0)):  # steps a..b-1: samples a..b stand
+        if (b - a) * dt < CARRIED_MIN_S:
+            continue
+        inside = (at >= a) & (at <= b)
+        if inside.sum() < 3:
+            continue
+        z, k = z_gps[inside], at[inside]
+        quarter = max(len(k) // 4, 1)  # the run's first and last quarter of fixes, each by its median
+        moved = float(np.hypot(*(np.median(z[-quarter:], axis=0) - np.median(z[:quarter], axis=0))))
+        took = dt * float(np.median(k[-quarter:]) - np.median(k[:quarter]))
+        if took > 0 and moved >= CARRIED_MIN_M and moved / took >= CARRIED_SPEED:
+            found.append((int(a), int(b), moved, moved / took))
+    return found
+
+
+def _warn_carried(dt, step, steps, z_gps):
+    """Warn of the stretches :func:`carried` finds, the first named and the others counted."""
+    found = carried(dt, step, steps, z_gps)
+    if not found:
+        return
+    a, b, path, speed = found[0]
+    more = f" (and {len(found) - 1} more such stretch(es))" if len(found) > 1 else ""
+    warnings.warn(f"plausibility: from t = {a * dt:.0f} s to {b * dt:.0f} s ({(b - a) * dt:.0f} s) the speed reads 0 "
+                  f"while the fixes move {path:.0f} m or more, at {speed:.2g} m/s{more}: no speed reads 0 at that "
+                  "speed (a cutoff hides a crawl under 0.3-1 m/s): the car was carried (a ferry, a car train, a tow "
+                  "truck), or the speed's signal was lost while it drove. The GPS/DR filters take the car to stand, "
+                  "and the fixes for a crawl or a jump (they re-acquire); estimating the fixes' covariance scale "
+                  "(scale_window) then takes the stretch for their accuracy and distrusts them after it. Split the "
+                  "drive there (the rows before and after as two drives: the command takes several --drive), or give "
+                  "the speed the car had there", RuntimeWarning, stacklevel=4)
+
+
 def _check_truth(steps, z_gps, truth, sigma, clock=None, radians=False):
     """Refuse fixes that lie far from the truth at their samples (another frame, lat/lon swapped, in radians; a
     clock offset, when ``clock`` has found one)."""
@@ -1291,6 +1344,7 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
     pairs = _chord_pairs(steps, z_gps, sigma, step)
     clock = _clock_told(dt, heading, step, steps, z_gps, pairs)
     _check_truth(steps, z_gps, truth, 3.0 if sigma is None else float(sigma), clock, radians)
+    _warn_carried(dt, step, steps, z_gps)
     if len(pairs) < _MIN_CHORDS:
         return
     ang, ratios, lengths = _chord_angles(heading, step, steps, z_gps, pairs)  # once, for every test below

@@ -2992,7 +2992,9 @@ class GPSDRFilter:
                 f"{self._nis_bound:.2f} (2 expected); "
                 f"{few}the fixes' reported accuracy is optimistic or the sensor grade too good: "
                 "pass the receiver's accuracy as gps_sigma, use a lower grade, or estimate the fixes' covariance scale "
-                f"(scale_window={SCALE_WINDOW}){gyro}{self._hdop_words(mean) or self._raise_floor()}"
+                f"(scale_window={SCALE_WINDOW}) if they are optimistic all through the drive: a single stretch at "
+                "fault (a car carried, fixes dragged, a heading that deviates) the scale takes for their accuracy, and "
+                f"distrusts good fixes after it{gyro}{self._hdop_words(mean) or self._raise_floor()}"
                 f"{self._correlated_words()}", RuntimeWarning, stacklevel=4)
         self._inconsistent = high
         if mean < NIS_FAR_BELOW and self.nis_low_step is None:

@@ -1,12 +1,13 @@
-"""The drive reader's compass-deviation check on 530 simulated drives without a deviation (stop 70): the analogs of
+"""The drive reader's compass-deviation check, and its check of a car carried, on 530 simulated drives with neither
+(stop 70): the analogs of
 ``tests/_held_out_drives.py`` (seeds 0-109 of each; seeds 0-4 with a 3 % gyro scale error either way; the phone and
 1 Hz analogs' seeds 0-4 with a 0.3 deg/s rate bias) and the random drives 200-279 of protocols 2 and 3.
 
     python docs/study-outputs/dr/user-trial/compass_null.py > docs/study-outputs/dr/user-trial/compass_null.txt
 
 Each line: the drive, the test's p-value, the deviation fitted over the courses driven (deg), the card (B, C, D, E,
-deg), the chords fitted, and whether the reader (checks on) warned; "not judged": too few straight stretches for
-the fit. The last line counts them.
+deg), the chords fitted, and whether the reader (checks on) warned of a deviation; "not judged": too few straight
+stretches for the fit; "carried" where the reader said the car was carried. The last line counts them.
 """
 import os
 import sys
@@ -40,9 +41,10 @@ def one(kind, seed, kw):
             try:
                 run = read_drive_csv(path)
             except ValueError as exc:
-                return None, f"refused: {str(exc)[:100]}"
+                return None, f"refused: {str(exc)[:100]}", False
         said = any("turns with the direction of travel" in str(w.message) for w in caught)
-    return fit(run), said
+        carried = any("the car was carried" in str(w.message) for w in caught)
+    return fit(run), said, carried
 
 
 if __name__ == "__main__":
@@ -52,14 +54,15 @@ if __name__ == "__main__":
     jobs += [(k, s, {"rate_bias": 0.3}) for k in ("phone", "one_hz") for s in range(5)]
     out = Parallel(n_jobs=2)(delayed(one)(*j) for j in jobs)
     judged, warned, ps = 0, 0, []
-    for (kind, seed, kw), (r, said) in zip(jobs, out):
+    carried = sum(c for _, _, c in out)
+    for (kind, seed, kw), (r, said, c) in zip(jobs, out):
         name = f"{kind} {seed}" + "".join(f", {k} {v:g}" for k, v in kw.items())
         if r is None:
-            print(f"{name} | {said if isinstance(said, str) else 'not judged'}")
+            print(f"{name} | {said if isinstance(said, str) else 'not judged'}" + (" | carried" if c else ""))
             continue
         judged, warned = judged + 1, warned + bool(said)
         ps.append(r[3])
         print(f"{name} | p {r[3]:.2g} | deviation {r[1]:+.1f} to {r[2]:+.1f} deg | card "
               f"{', '.join(f'{c:+.1f}' for c in r[0])} | {r[4]} chords | {'WARNED' if said else 'no warning'}")
     print(f"{len(jobs)} drives: {judged} judged, {warned} warned; the smallest p {min(ps):.2g}, the next "
-          f"{sorted(ps)[1]:.2g}")
+          f"{sorted(ps)[1]:.2g}; {carried} told carried")

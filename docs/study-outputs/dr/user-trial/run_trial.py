@@ -1,11 +1,14 @@
-"""Stop 69's user trials rerun: the drives of ``gen_drives.py`` (trial 1) or ``gen_drives_2.py`` (``--trial 2``)
-through the command, both grades.
+"""The user trials rerun: the drives of ``gen_drives.py`` (trial 1, stop 69), ``gen_drives_2.py`` (``--trial 2``,
+stop 69) or ``gen_drives_3.py`` (``--trial 3``, stop 70) through the command, both grades.
 
-    OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/user-trial/run_trial.py [--trial 2] > docs/study-outputs/dr/user-trial/trial_<...>.txt
+    OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/user-trial/run_trial.py [--trial 2|3] > docs/study-outputs/dr/user-trial/trial_<...>.txt
 
 Each line: the drive and grade, the exit code, the median / max at the outage ends (m) of DR-mech, EKF-8, UKF-8 and
 SUKF-8, the number of warning lines on stderr, and the table's header (how many outages, and the drive's own gaps of
 fixes where it has any). D4's speed is in km/h: it is refused as it is (exit 2) and run with ``--speed-scale 3.6``.
+Trial 3 runs each drive beside its ``_clean`` twin (the same drive and noise without the fault), the ferry drive
+split where the reader finds the car carried (229-593 s) as two drives (one line each), and two remedies that user
+tried: the ferry with the covariance scale estimated, the car park with the gyro's scale state.
 """
 import os
 import re
@@ -23,22 +26,55 @@ RUNS_2 = [("A", "A_compass_oslo.csv", []), ("B --heading-offset 91", "B_rot90_so
           ("C", "C_dateline_5hz.csv", []), ("D", "D_hills_idle_en.csv", []), ("E", "E_r95_madrid.csv", []),
           ("E --outage-starts 0", "E_r95_madrid.csv", ["--outage-starts", "0"]),
           ("E2", "E2_r95_dupblock.csv", [])]
-TRIAL = 2 if "--trial" in sys.argv and sys.argv[sys.argv.index("--trial") + 1] == "2" else 1
+RUNS_3 = [(f"{name}{twin}", f"{name}{twin}.csv", []) for name in ("ferry", "snow", "utm", "carpark", "spoof", "wrap")
+          for twin in ("", "_clean")] + [("ferry split at 229-593 s", "ferry.csv", ["--split", "229,593"]),
+                                         ("ferry --gps-scale-window 30", "ferry.csv", ["--gps-scale-window", "30"]),
+                                         ("carpark --gyro-scale-sd 0.01", "carpark.csv", ["--gyro-scale-sd", "0.01"])]
+TRIAL = int(sys.argv[sys.argv.index("--trial") + 1]) if "--trial" in sys.argv else 1
+GENERATOR = {1: "gen_drives.py", 2: "gen_drives_2.py", 3: "gen_drives_3.py"}[TRIAL]
+
+
+def split(path, within):
+    """The drive ``path`` as two CSVs: its rows before and after the times ``within`` (s, "a,b")."""
+    a, b = (float(v) for v in within.split(","))
+    with open(path) as fh:
+        header, *rows = fh.read().splitlines()
+    parts = []
+    for name, keep in (("before", lambda t: t < a), ("after", lambda t: t > b)):
+        part = path[:-4] + f"_{name}.csv"
+        with open(part, "w") as fh:
+            fh.write("\n".join([header] + [r for r in rows if keep(float(r.split(",")[0]))]) + "\n")
+        parts.append(part)
+    return parts
+
+
+def cells(text):
+    """Per drive table in the command's output: its name and the kinds' median / max."""
+    out = []
+    for block in re.split(r"^### real drive ", text, flags=re.M)[1:]:
+        row = []
+        for k in KINDS:
+            m = re.search(rf"^\| {re.escape(k)} \| ([\d.]+) \| [\d.]+ \| ([\d.]+) \|", block, re.M)
+            row.append(f"{k} {m.group(1)} / {m.group(2)}" if m else f"{k} -")
+        head = re.match(r"(\S+): (.*?), error at", block)
+        out.append((head.group(1), row, head.group(2)) if head else ("?", row, ""))
+    return out
 
 with tempfile.TemporaryDirectory() as folder:
-    subprocess.run([sys.executable, os.path.join(HERE, "gen_drives.py" if TRIAL == 1 else "gen_drives_2.py"), folder],
-                   check=True, capture_output=True)
-    for label, csv, extra in (RUNS if TRIAL == 1 else RUNS_2):
+    subprocess.run([sys.executable, os.path.join(HERE, GENERATOR), folder], check=True, capture_output=True)
+    for label, csv, extra in {1: RUNS, 2: RUNS_2, 3: RUNS_3}[TRIAL]:
+        drives = [os.path.join(folder, csv)]
+        if "--split" in extra:
+            drives = split(drives[0], extra[extra.index("--split") + 1])
+            extra = []
         for grade in ("phone", "survey"):
-            cmd = [sys.executable, "-m", "filterwnn.cli", "study", "dr", "--drive", os.path.join(folder, csv),
+            cmd = [sys.executable, "-m", "filterwnn.cli", "study", "dr", *sum((["--drive", d] for d in drives), []),
                    "--grade", grade, "--jobs", "1", "--no-progress", "--no-figures", "--out", os.path.join(folder, "out")]
             p = subprocess.run(cmd + extra, capture_output=True, text=True)
-            cells = []
-            for k in KINDS:
-                m = re.search(rf"^\| {re.escape(k)} \| ([\d.]+) \| [\d.]+ \| ([\d.]+) \|", p.stdout, re.M)
-                cells.append(f"{k} {m.group(1)} / {m.group(2)}" if m else f"{k} -")
-            header = re.search(r"^### real drive \S+: (.*?), error at", p.stdout, re.M)
             n_warn = sum(1 for line in p.stderr.splitlines() if "warning:" in line)
             refused = "" if p.returncode == 0 else " | " + p.stderr.strip().splitlines()[-1][:160]
-            print(f"{label} {grade} | rc {p.returncode} | " + " | ".join(cells) + f" | {n_warn} warnings"
-                  + (f" | {header.group(1)}" if header else "") + refused, flush=True)
+            tables = cells(p.stdout) or [("", [f"{k} -" for k in KINDS], "")]
+            for name, row, header in tables:
+                part = f" ({name})" if len(tables) > 1 else ""
+                print(f"{label}{part} {grade} | rc {p.returncode} | " + " | ".join(row) + f" | {n_warn} warnings"
+                      + (f" | {header}" if header else "") + refused, flush=True)
