@@ -69,7 +69,8 @@ with tempfile.TemporaryDirectory() as folder:
             extra = []
         for grade in ("phone", "survey"):
             cmd = [sys.executable, "-m", "filterwnn.cli", "study", "dr", *sum((["--drive", d] for d in drives), []),
-                   "--grade", grade, "--jobs", "1", "--no-progress", "--no-figures", "--out", os.path.join(folder, "out")]
+                   "--grade", grade, "--jobs", "1", "--no-progress", "--no-figures",
+                   "--out", os.path.join(folder, "out")]
             p = subprocess.run(cmd + extra, capture_output=True, text=True)
             n_warn = sum(1 for line in p.stderr.splitlines() if "warning:" in line)
             refused = "" if p.returncode == 0 else " | " + p.stderr.strip().splitlines()[-1][:160]
