@@ -840,7 +840,7 @@ def heading_deviation(dt, heading, step, steps, z_gps, sigma=None, pairs=None):
     r0 = residuals(gyro[near], y[near])[1]
     n, p, q = int(near.sum()), full.shape[1], harm.shape[1]
     rss1, rss0 = float(r1 @ r1), float(r0 @ r0)
-    if rss1 <= 0.0:
+    if rss1 <= 0.0 or n <= p:
         return None
     tau = integrated_autocorrelation([np.array([v]) for v in r1 / np.sqrt(rss1 / (n - p))])
     stat = (rss0 - rss1) / q / (rss1 / (n - p)) / tau

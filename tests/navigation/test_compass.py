@@ -132,3 +132,20 @@ def test_the_command_takes_the_card(command_passes, capsys):
     assert command_passes("read_drive_csv", [])["heading_deviation"] is None
     command_passes("read_drive_csv", ["--heading-deviation", "6,3,-1"])
     assert "expected four comma-separated numbers B,C,D,E (degrees), got '6,3,-1'" in capsys.readouterr().err
+
+
+def test_a_straight_road_is_not_judged_a_deviation():
+    """A drive that holds one course (a highway) gives the card nothing to tell from an offset: no warning, and the
+    fit, where it is made at all, is not past the level."""
+    t = np.arange(0.0, 600.0, 0.1)
+    rng = np.random.default_rng(3)
+    north = 20.0 * t
+    fix = np.arange(len(t)) % 10 == 0
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        run = DRRun.from_arrays(t, np.full(len(t), 0.02), speed=np.full(len(t), 20.0), gps_t=t[fix],
+                                east=3.0 * rng.standard_normal(int(fix.sum())),
+                                north=north[fix] + 3.0 * rng.standard_normal(int(fix.sum())),
+                                gps_sigma=np.full(int(fix.sum()), 3.0))
+    fit = _fit(run)
+    assert fit is None or fit[3] > P.HEADING_DEVIATION_LEVEL
