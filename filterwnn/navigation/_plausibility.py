@@ -634,6 +634,13 @@ def receiver_dead_reckoning(t, step, steps, z_gps, sigma=None):
                f": {RECEIVER_DR_UNSURE}"))
 
 
+def _inliers(residuals):
+    """The chords within three robust sigmas (1.4826 times the median absolute residual, rad) of a fit, and at least
+    within a degree of it: a chord from a fix jumped by multipath points anywhere."""
+    r = np.abs(residuals)
+    return r <= max(3.0 * 1.4826 * np.median(r), np.deg2rad(1.0))
+
+
 def _offset_fit(ang, steps, pairs, dt):
     """The line through the chords' signed angles ``ang`` (:func:`_chord_angles`') over time: ``(offset
     (deg) at the first chord, its standard error (deg), rate (deg/s), median absolute residual (deg), chords
@@ -647,7 +654,7 @@ def _offset_fit(ang, steps, pairs, dt):
     (rate, offset), cov = np.polyfit(t, a, 1, cov=True)
     r = np.abs(a - offset - rate * t)
     resid = np.median(r)
-    keep = r <= max(3.0 * 1.4826 * resid, np.deg2rad(1.0))  # a chord from a jumped fix leaves the fit
+    keep = _inliers(r)  # a chord from a jumped fix leaves the fit
     n = len(keep)
     if 4 <= keep.sum() < n:
         (rate, offset), cov = np.polyfit(t[keep], a[keep], 1, cov=True)
@@ -834,31 +841,30 @@ def heading_deviation(dt, heading, step, steps, z_gps, sigma=None, pairs=None):
         coef = np.linalg.lstsq(X, v, rcond=None)[0]
         return coef, v - X @ coef
 
-    r = residuals(full, y)[1]
-    near = np.abs(r) <= max(3.0 * 1.4826 * np.median(np.abs(r)), np.deg2rad(1.0))  # a chord from a jumped fix leaves
-    r1 = residuals(full[near], y[near])[1]
-    r0 = residuals(gyro[near], y[near])[1]
+    near = _inliers(residuals(full, y)[1])  # a chord from a jumped fix leaves
+    coef1, r1 = residuals(full[near], y[near])
     n, p, q = int(near.sum()), full.shape[1], harm.shape[1]
-    rss1, rss0 = float(r1 @ r1), float(r0 @ r0)
+    rss1 = float(r1 @ r1)
     if rss1 <= 0.0 or n <= p:
         return None
     tau = integrated_autocorrelation([np.array([v]) for v in r1 / np.sqrt(rss1 / (n - p))])
-    stat = (rss0 - rss1) / q / (rss1 / (n - p)) / tau
-    pval = float(f_dist.sf(stat, q, max((n - p) / tau, 1.0)))
+
+    def f_test(reduced, k):
+        """The p-value of the ``k`` parameters the full fit has beyond the ``reduced`` one's residuals."""
+        stat = (float(reduced @ reduced) - rss1) / k / (rss1 / (n - p)) / tau
+        return float(f_dist.sf(stat, k, max((n - p) / tau, 1.0)))
+
+    pval = f_test(residuals(gyro[near], y[near])[1], q)
     # the card itself beside an offset alone where the heading does not drift (a compass's): beside the drift's knots
     # the coefficients trade against it (the trial's compass drives 101-103, user-trial/compass.py: fitted beside
     # the drift, as this stop's first version did, the first harmonic's B read 2.0-5.6 degrees and its C 2.3-4.7,
     # against 5.8 and 4.0 drawn; beside an offset 5.8-6.3 and 3.2-4.4); where the drift is significant (a gyro's
     # heading, or a fused one: at the deviation's level), beside the drift
-    offset = np.hstack([np.ones((n, 1)), harm[near]])
-    coef, r2 = residuals(offset, y[near])
-    k = gyro.shape[1] - 1  # the drift's parameters beyond the offset
-    drift = (float(r2 @ r2) - rss1) / k / (rss1 / (n - p)) / tau
-    if f_dist.sf(drift, k, max((n - p) / tau, 1.0)) < HEADING_DEVIATION_LEVEL:
-        coef = np.r_[0.0, residuals(full[near], y[near])[0][-q:]]
-    card = np.rad2deg(coef[1:])
-    dev = np.rad2deg(deviation_of(course[near], card))
-    return tuple(float(c) for c in card), float(dev.min()), float(dev.max()), pval, n
+    coef, r2 = residuals(np.hstack([np.ones((n, 1)), harm[near]]), y[near])
+    if f_test(r2, gyro.shape[1] - 1) < HEADING_DEVIATION_LEVEL:  # (the drift's parameters beyond the offset)
+        coef = coef1
+    dev = np.rad2deg(harm[near] @ coef[-q:])
+    return tuple(float(c) for c in np.rad2deg(coef[-q:])), float(dev.min()), float(dev.max()), pval, n
 
 
 def _deviation_told(fit):

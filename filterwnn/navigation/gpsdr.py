@@ -2988,7 +2988,7 @@ class GPSDRFilter:
             few = self._few_fixes_words()  # (its own kind of warning: folded apart from the others)
             warnings.warn(
                 f"GPSDRFilter is inconsistent{' in a few fixes' if few else ''} at step {self.step}: the mean NIS of "
-                f"the last {self.nis_window} fixes is {np.mean(self._nis):.1f}, above its 99.9 % bound "
+                f"the last {self.nis_window} fixes is {mean:.1f}, above its 99.9 % bound "
                 f"{self._nis_bound:.2f} (2 expected); "
                 f"{few}the fixes' reported accuracy is optimistic or the sensor grade too good: "
                 "pass the receiver's accuracy as gps_sigma, use a lower grade, or estimate the fixes' covariance scale "
