@@ -768,6 +768,104 @@ def heading_offset(dt, heading, step, steps, z_gps, sigma=None, pairs=None):
     return _offset_fit(_chord_angles(heading, step, steps, z_gps, pairs)[0], steps, pairs, dt)[:4]
 
 
+#: The knots of a yaw rate's start fit (s) where its drift is not steady (:func:`yaw_start`): a gyro warming up.
+YAW_START_KNOT_S = 120.0
+#: The level of :func:`yaw_start`'s F-test past which the drift's knots are taken over a steady drift.
+YAW_START_LEVEL = 1e-3
+#: The moving stretches between fixes that must lie between two runs of a saturated yaw rate, at least, for
+#: :func:`yaw_start` to fit the turn each lost apart (fewer: the runs are one step).
+SATURATED_CHORDS = 3
+
+
+def yaw_start(dt, heading, step, steps, z_gps, pairs, saturated=()):
+    """Where a yaw rate's integral starts, and the turns a saturated gyro lost: the chords' signed angles
+    (:func:`_chord_angles`, the dead-reckoned course less the fixes') over time, a line (a gyro's steady rate bias),
+    or, where that misfits at :data:`YAW_START_LEVEL` (an F-test, its statistic and degrees of freedom divided by
+    the residuals' integrated autocorrelation time), a piecewise line with knots every :data:`YAW_START_KNOT_S` (a
+    bias that changes: a gyro warming up, whose straight line had started a trial's drive 36 degrees off with a
+    standard error of 1); beside a step at each group of ``saturated`` runs (sample index ranges ``(first, last)``
+    where the rate read its range's rail: each leaves the turn past the rail out of the heading), the runs with
+    fewer than :data:`SATURATED_CHORDS` chords between them one group, the chords that span a group left out.
+    Least squares, then again without the chords past three robust sigmas (:func:`_inliers`).
+
+    Returns
+    -------
+    dict or None
+        ``offset`` (deg, at the first chord), ``se`` (deg), ``rate`` (deg/s, the first piece's), ``last_rate``
+        (the last piece's), ``rates`` (each piece's), ``piece_s`` (a piece's length, s), ``piecewise`` (bool), ``resid`` (deg, the median absolute residual), ``n`` (chords
+        fitted), ``steps``: per group ``(first, last, turn, se)`` (samples; deg: the turn the heading lost there,
+        positive clockwise), ``groups`` the runs each took; None with fewer than :data:`_MIN_CHORDS` chords.
+    """
+    from scipy.stats import f as f_dist
+
+    from ..metrics import integrated_autocorrelation
+
+    if len(pairs) < _MIN_CHORDS:
+        return None
+    ang = _unwrap(_chord_angles(heading, step, steps, z_gps, pairs)[0])
+    a, b = _chord_samples(steps, pairs)
+    groups = []  # [first, last, runs]: runs without SATURATED_CHORDS chords between them are one
+    for first, last in sorted(saturated):
+        between = int(np.sum((a >= groups[-1][1]) & (b <= first))) if groups else SATURATED_CHORDS
+        if groups and between < SATURATED_CHORDS:
+            groups[-1][1], groups[-1][2] = last, groups[-1][2] + 1
+        else:
+            groups.append([first, last, 1])
+    span = np.zeros(len(a), dtype=bool)
+    for first, last, _ in groups:
+        span |= (a < last + 1) & (b > first)  # (the run's last sample turned into the next)
+    ok = ~span
+    if ok.sum() < _MIN_CHORDS:
+        return None
+    t = dt * 0.5 * (a + b)[ok]
+    t = t - t[0]
+    y = ang[ok] - np.round(np.median(ang[ok][:5]) / (2 * np.pi)) * 2 * np.pi  # (the line starts within +-pi)
+    jumps = np.stack([(a[ok] >= last + 1).astype(float) for _, last, _ in groups], axis=1) if groups else \
+        np.zeros((len(t), 0))
+    # a group with no chord after it (the drive's end, an outage) or none before has nothing to fit
+    told = (jumps.sum(axis=0) > 0) & (jumps.sum(axis=0) < len(t))  # (and one with none before it: the start's)
+    jumps = jumps[:, told]
+    line = np.hstack([np.stack([np.ones_like(t), t], axis=1), jumps])
+    knots = np.hstack([_hats(t, YAW_START_KNOT_S), jumps])
+
+    def fit(X, keep):
+        coef = np.linalg.lstsq(X[keep], y[keep], rcond=None)[0]
+        return coef, y - X @ coef
+
+    every = np.ones(len(y), dtype=bool)
+    keep = _inliers(fit(knots, every)[1]) if len(y) > knots.shape[1] else every
+    if keep.sum() <= line.shape[1]:
+        keep = every
+    piecewise = False
+    n = int(keep.sum())
+    coef, r = fit(line, keep)
+    if knots.shape[1] > line.shape[1] and n > knots.shape[1] + 2:
+        coef_k, r_k = fit(knots, keep)
+        rss_k, rss_l, p = float(r_k[keep] @ r_k[keep]), float(r[keep] @ r[keep]), knots.shape[1]
+        if rss_k > 0.0:
+            tau = integrated_autocorrelation([np.array([v]) for v in r_k[keep] / np.sqrt(rss_k / (n - p))])
+            stat = (rss_l - rss_k) / (p - line.shape[1]) / (rss_k / (n - p)) / tau
+            if f_dist.sf(stat, p - line.shape[1], max((n - p) / tau, 1.0)) < YAW_START_LEVEL:
+                piecewise, coef, r = True, coef_k, r_k
+    X = (knots if piecewise else line)[keep]
+    dof = max(n - X.shape[1], 1)
+    cov = np.linalg.pinv(X.T @ X) * float(r[keep] @ r[keep]) / dof
+    m = jumps.shape[1]
+    base = X.shape[1] - m
+    if piecewise:
+        rates = np.diff(coef[:base]) / (max(float(t[-1]), 1.0) / (base - 1))
+    else:
+        rates = coef[1:2]
+    fitted = [g for g, on in zip(groups, told) if on]
+    turns = [(int(first), int(last), float(np.degrees(-c)), float(np.degrees(np.sqrt(cov[base + i, base + i]))), runs)
+             for i, ((first, last, runs), c) in enumerate(zip(fitted, coef[base:]))]
+    return {"offset": float(np.degrees(coef[0])), "se": float(np.degrees(np.sqrt(cov[0, 0]))),
+            "rate": float(np.degrees(rates[0])), "last_rate": float(np.degrees(rates[-1])),
+            "rates": np.degrees(rates), "piece_s": max(float(t[-1]), 1.0) / max(base - 1, 1), "piecewise": piecewise,
+            "resid": float(np.degrees(np.median(np.abs(r[keep])))), "n": n, "steps": turns,
+            "unfitted": sum(g[2] for g, on in zip(groups, told) if not on)}
+
+
 def deviation_of(heading, coefficients):
     """A compass's deviation (rad) at each ``heading`` (rad, from north, clockwise), from the ``coefficients``
     ``(B, C, D, E)`` (deg) of its card (Smith's and Airy's): ``B sin h + C cos h + D sin 2h + E cos 2h``, what the

@@ -330,6 +330,11 @@ def _read_drive_csv(path, origin, name, max_jitter, checks, progress, fill_gaps,
     return run
 
 
+#: The share of the rows with a heading or a speed that have both, at least, for a log whose other rows hold one of
+#: them to be warned of as cells left empty rather than a row per sensor message (:func:`_dr_rows`).
+EMPTY_CELLS_BOTH = 0.9
+
+
 def _dr_rows(path, cols, lines, hname, dname):
     """The rows that are DR samples when a drive CSV has one row per sensor message, and the column to read at
     their times, else ``(None, None)`` (every row has a heading and a speed, or no row is a fix alone and no
@@ -362,9 +367,19 @@ def _dr_rows(path, cols, lines, hname, dname):
             raise ValueError(f"{path}: data row {r + 1} (line {lines[r]}) has no {hname!r}, no {dname!r} and no fix: "
                              f"in a log with a row per sensor message (the {hname!r} and the {dname!r} each on rows of "
                              "their own), every row is one of them, a fix or a truth")
-        if have_h.sum() <= have_d.sum():
-            return have_h, dname
-        return have_d, hname
+        rows, other = (have_h, dname) if have_h.sum() <= have_d.sum() else (have_d, hname)
+        only_h, only_d = have_h & ~have_d, have_d & ~have_h
+        if dr.sum() >= EMPTY_CELLS_BOTH * (have_h | have_d).sum():  # nearly every row has both: cells left empty
+            first = int(np.argmax(only_h | only_d))
+            kept = hname if other == dname else dname
+            warnings.warn(f"{path}: {int(only_h.sum())} row(s) have a {hname!r} but no {dname!r} and "
+                          f"{int(only_d.sum())} a {dname!r} but no {hname!r}, among {int(dr.sum())} with both (the first "
+                          f"at data row {first + 1}, line {lines[first]}): read as a log with a row per sensor message, "
+                          f"the DR samples are the rows with a {kept!r}, the {other!r} read at their times (interpolated "
+                          f"from the rows beside them), and the rows without a {kept!r} are not samples (a gap the "
+                          "reader refuses or --fill-gaps fills). Empty cells of a logger that missed a value are read so "
+                          "too: fill them in the file, or give each row both", RuntimeWarning, stacklevel=4)
+        return rows, other
     bad = ~dr & ~alone & ~ref
     if bad.any():
         r = int(np.argmax(bad))

@@ -436,6 +436,7 @@ class DRRun(NamedTuple):
             if median > MAX_DT:
                 raise ValueError(interval_refusal(median))
         integrated = yaw_rate is not None
+        saturated = ([], [])
         if integrated:
             if heading_deviation is not None:
                 raise ValueError("heading_deviation has no meaning with a yaw rate: a gyro's heading does not deviate "
@@ -443,7 +444,7 @@ class DRRun(NamedTuple):
             if heading_offset:
                 raise ValueError("heading_offset has no meaning with a yaw rate: the heading it integrates to starts "
                                  "where the fixes' course says")
-            heading = _integrate_yaw(_finite_1d(t, "t"), yaw_rate, distance, speed)
+            heading, saturated = _integrate_yaw(_finite_1d(t, "t"), yaw_rate, distance, speed)
         if fill_gaps:
             t, heading, distance, speed, truth = _fill_gaps(t, heading, distance, speed, truth,
                                                             check_positive(fill_gaps, "fill_gaps"), max_jitter)
@@ -469,7 +470,7 @@ class DRRun(NamedTuple):
             distance = None if distance is None else _finite_1d(distance, "distance") / scale
         return cls(*_drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps_sigma,
                                   truth, origin, name, max_jitter, checks, intervals, np.deg2rad(off), integrated,
-                                  card),
+                                  card, saturated),
                    t_start=float(np.asarray(t, dtype=float).ravel()[0]))
 
 
@@ -518,11 +519,13 @@ def _heading_at(new_t, t, heading):
 
 
 def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps_sigma, truth, origin, name,
-                  max_jitter, checks, intervals="auto", heading_offset=0.0, integrated=False, deviation=None):
+                  max_jitter, checks, intervals="auto", heading_offset=0.0, integrated=False, deviation=None,
+                  saturated=((), ())):
     """The :class:`DRRun` fields of one's own drive (the work of :meth:`DRRun.from_arrays`, whose
     arguments these are): checked arrays, the GPS fixes on the sample grid, ``x0`` and the scenario.
     ``integrated``: the heading is a yaw rate's integral from 0, started here at the fixes' course; ``deviation``: a
-    compass's deviation card (deg), subtracted after the offset."""
+    compass's deviation card (deg), subtracted after the offset; ``saturated``: the runs (s) and rails (deg/s) where
+    the yaw rate read its range's rail (:func:`_saturated`)."""
     t = _finite_1d(t, "t")
     n = len(t)
     dts, dt, stamps = _sample_grid(t, max_jitter)
@@ -556,8 +559,10 @@ def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps
         steps, z_gps, sig, swapped, offset = _gps_fixes(gps_t, east, north, lat, lon, gps_sigma, origin, t, dt)
     started = None
     if integrated:
+        runs = [(int(np.searchsorted(t, first - 0.5 * dt)), int(np.searchsorted(t, last + 0.5 * dt)) - 1)
+                for first, last in saturated[0]]
         heading, started = _yaw_start(dt, heading, step, steps, z_gps, None if sig is None or not len(sig) else
-                                      float(np.median(sig)), checks)
+                                      float(np.median(sig)), checks, runs, saturated[1])
     z_dr = np.stack([wrap_angle(heading[1:]), step], axis=1)
     x_true = None
     if truth is not None:
@@ -577,8 +582,8 @@ def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps
         followed = receiver_dead_reckoning(t, step, steps, z_gps, sig)
         if followed:
             warnings.warn(followed, RuntimeWarning, stacklevel=3)
-    if started:  # (after the checks: a drive they refuse is not started, and its start's words would mislead)
-        warnings.warn(started, RuntimeWarning, stacklevel=3)
+    for words in started or ():  # (after the checks: a drive they refuse is not started, and its words would mislead)
+        warnings.warn(words, RuntimeWarning, stacklevel=3)
     x0 = np.array([p0[0], v0 * np.sin(heading[0]), 0.0, p0[1], v0 * np.cos(heading[0]), 0.0])
     sc = _own_drive_scenario(name, n, dt, v0, heading[0], steps, sig)
     R_true = np.tile([np.deg2rad(1.0) ** 2, 0.02**2], (n - 1, 1))
@@ -601,15 +606,47 @@ YAW_START_CHORDS = 5
 YAW_BIAS_SIGMAS = 3.0
 
 
+#: The samples a yaw rate must read its largest value on (exactly: the rail of a gyro's range), at least, to be
+#: told saturated (:func:`_saturated`) ...
+SATURATED_MIN_SAMPLES = 5
+#: ... and how many times the samples within 10 % under it: a rail piles the samples up, a rate that turns about
+#: as fast only passes (a yaw rate rounded to a coarse step has as many at its top step as at the one below).
+SATURATED_PILE = 2.0
+#: The least rail (deg/s) told: a car's turn (a constant written at rest is no rail).
+SATURATED_MIN_DEG_S = 5.0
+
+
+def _saturated(t, rate):
+    """The runs ``(first time, last time)`` (s) where a yaw rate (rad/s) reads the rail of its range, each sign
+    apart (:data:`SATURATED_MIN_SAMPLES`, :data:`SATURATED_PILE`, :data:`SATURATED_MIN_DEG_S`), and the rails
+    (deg/s, signed); a gyro past its range reads its largest value while the car turns faster, and the turn past it
+    is lost from the heading."""
+    flags, rails = np.zeros(len(rate), dtype=bool), []
+    for sign in (1.0, -1.0):
+        r = sign * rate
+        top = float(np.max(r)) if len(r) else 0.0
+        if top < np.deg2rad(SATURATED_MIN_DEG_S):
+            continue
+        at = r == top
+        under = (r >= 0.9 * top) & ~at
+        if at.sum() >= SATURATED_MIN_SAMPLES and at.sum() >= SATURATED_PILE * under.sum():
+            flags |= at
+            rails.append(sign * float(np.degrees(top)))
+    edges = np.flatnonzero(np.diff(np.r_[0, flags.astype(int), 0]))
+    return [(float(t[i]), float(t[j - 1])) for i, j in zip(edges[::2], edges[1::2])], rails
+
+
 def _integrate_yaw(t, yaw_rate, distance=None, speed=None):
     """The heading (rad, wrapped) a yaw rate (rad/s, clockwise positive) integrates to from 0, by the trapezoid
     rule over the samples' own intervals, its spikes first interpolated (:func:`_rate_spikes`, at the speed the
-    odometer gives); refused when it looks like degrees per second."""
+    odometer gives); refused when it looks like degrees per second. Returns the heading, and the runs and rails
+    :func:`_saturated` finds."""
     rate = _finite_1d(yaw_rate, "yaw_rate", len(t))
     big = float(np.max(np.abs(rate)))
     if big > MAX_YAW_RATE:
         raise ValueError(f"yaw_rate must be in rad/s; max |yaw_rate| = {big:g} is past {MAX_YAW_RATE:g} rad/s, faster "
                          "than a car turns, and looks like degrees per second: pass np.deg2rad(yaw_rate)")
+    saturated = _saturated(t, rate)
     v = None
     if speed is not None:
         v = np.abs(np.asarray(speed, dtype=float))
@@ -617,44 +654,96 @@ def _integrate_yaw(t, yaw_rate, distance=None, speed=None):
         v = np.abs(np.gradient(np.asarray(distance, dtype=float), t))
     if v is not None and len(v) == len(t) and np.all(np.isfinite(v)):
         rate = _rate_spikes(t, rate, v)
-    return wrap_angle(np.concatenate([[0.0], np.cumsum(0.5 * (rate[1:] + rate[:-1]) * np.diff(t))]))
+    return wrap_angle(np.concatenate([[0.0], np.cumsum(0.5 * (rate[1:] + rate[:-1]) * np.diff(t))])), saturated
 
 
-def _yaw_start(dt, heading, step, steps, z_gps, sigma, checks=True):
+def _yaw_start(dt, heading, step, steps, z_gps, sigma, checks=True, saturated=(), rails=()):
     """The integrated heading started at the fixes' course: less the offset the moving stretches between fixes
-    give at the first of them (:func:`~filterwnn.navigation._plausibility.heading_offset`'s line), and the words of
-    the warning that names it (given once the drive has passed its checks); ValueError with fewer than
-    ``YAW_START_CHORDS`` stretches, or (with ``checks``) a ``sigma`` not in metres, whose stretches are too long to
-    count (:func:`~filterwnn.navigation._plausibility._sigma_unit`)."""
-    from ._plausibility import _OVERRIDE, _chord_pairs, _sigma_unit, heading_offset
+    give at the first of them (:func:`~filterwnn.navigation._plausibility.yaw_start`: a line through their angles, or
+    a piecewise one where the drift is not steady), the turns lost where the rate read its range's rail (``saturated``:
+    sample index runs; ``rails``: deg/s) added back, spread over the runs' samples; and the words of the warnings
+    (a list) that name them (given once the drive has passed its checks); ValueError with fewer than ``YAW_START_CHORDS``
+    stretches, or (with ``checks``) a ``sigma`` not in metres, whose stretches are too long to count
+    (:func:`~filterwnn.navigation._plausibility._sigma_unit`)."""
+    from ._plausibility import _OVERRIDE, YAW_START_KNOT_S, _chord_pairs, _sigma_unit, yaw_start
 
     pairs = _chord_pairs(steps, z_gps, sigma, step) if len(steps) else []
     n = len(pairs)
-    fit = heading_offset(dt, heading, step, steps, z_gps, sigma, pairs) if n >= YAW_START_CHORDS else None
+    fit = yaw_start(dt, heading, step, steps, z_gps, pairs, saturated) if n >= YAW_START_CHORDS else None
     unit = fit is None and _sigma_unit(heading, step, steps, z_gps, sigma)  # (a sigma in mm: stretches of km)
     if unit and checks:
         raise ValueError(f"plausibility: {unit}{_OVERRIDE}")
     if unit:  # past the checks: the stretches of fixes of 3 m (the filter warns of the sigma)
         pairs = _chord_pairs(steps, z_gps, None, step)
         n = len(pairs)
-        fit = heading_offset(dt, heading, step, steps, z_gps, None, pairs) if n >= YAW_START_CHORDS else None
+        fit = yaw_start(dt, heading, step, steps, z_gps, pairs, saturated) if n >= YAW_START_CHORDS else None
     if fit is None:
         raise ValueError(f"a yaw rate gives the heading but for its start, which the fixes' course gives: the drive has "
                          f"{n} moving stretch(es) between fixes, fewer than {YAW_START_CHORDS}; give the heading "
                          "instead")
-    offset, se, rate, resid = fit
+    offset, se, rate = fit["offset"], fit["se"], fit["rate"]
     start = (-offset + 180.0) % 360.0 - 180.0
     spec = SENSOR_GRADES["phone"]["gyro_bias_deg_s"]
-    bias = (f"; at {abs(rate):.2g} deg/s it is past {YAW_BIAS_SIGMAS:g} times the phone grade's {spec:g} deg/s (one "
-            "sigma), which its rate-bias state learns only after several stops or minutes of fixes: give it from "
-            f"the start, gyro_bias_deg_s in the phone grade (--grade phone --gyro-bias {abs(rate):.2g}; the survey "
-            "grade has no state to take it)"
-            if abs(rate) > YAW_BIAS_SIGMAS * spec else "")
+    none = "the survey grade and the 6-state EKF have no rate-bias state"
+    if fit["piecewise"]:
+        change = float(np.max(np.abs(np.diff(fit["rates"]))))
+        walk = float(f"{3600.0 * change / np.sqrt(fit['piece_s'] / 100.0):.2g}")  # (the grade's mapping, inverted)
+        how = (f"a piecewise line through their angles, knots every {YAW_START_KNOT_S:g} s, since a straight one "
+               f"misfits: its drift goes from {rate:+.2g} deg/s at the start to {fit['last_rate']:+.2g} at the end, a "
+               f"gyro's rate bias that changes (a gyro warming up, or one whose bias wanders); {none}, and the phone "
+               "grade's 8-state filters estimate a rate bias that moves as fast as the grade's instability lets it "
+               f"({SENSOR_GRADES['phone']['gyro_bias_instability_deg_h']:g} deg/h), while a larger prior (--gyro-bias) "
+               "only learns the first minutes' rate and keeps it: give the instability the drift shows, "
+               f"gyro_bias_instability_deg_h={walk:g} in the phone grade (--grade phone --gyro-bias-instability "
+               f"{walk:g}: its largest change between two pieces, {change:.2g} deg/s in {fit['piece_s']:.0f} s, as the "
+               "grade's random walk of the rate bias reads it; measured on all of this drive's fixes, those the "
+               "study's outages hide among them, so a drive of the same gyro, or its data sheet, is the blind value)")
+    else:
+        bias = (f"; at {abs(rate):.2g} deg/s it is past {YAW_BIAS_SIGMAS:g} times the phone grade's {spec:g} deg/s (one "
+                "sigma), which its rate-bias state learns only after several stops or minutes of fixes: give it from "
+                f"the start, gyro_bias_deg_s in the phone grade (--grade phone --gyro-bias {abs(rate):.2g}; the survey "
+                "grade has no state to take it)"
+                if abs(rate) > YAW_BIAS_SIGMAS * spec else "")
+        how = (f"a line through their angles, drifting {rate:+.2g} deg/s from there: a gyro's rate bias, which the "
+               f"phone grade's 8-state filters estimate; {none}{bias}")
     words = (f"the heading is the yaw rate integrated from {start % 360.0:.1f} +- {se:.1g} deg at the start, the "
-             f"fixes' course over {n} moving stretches (a line through their angles, drifting {rate:+.2g} deg/s from "
-             f"there: a gyro's rate bias, which the phone grade's 8-state filters estimate; the survey grade and the "
-             f"6-state EKF have no rate-bias state{bias})")
-    return wrap_angle(heading - np.deg2rad(offset)), words
+             f"fixes' course over {n} moving stretches ({how})")
+    mend, said = np.zeros(len(heading)), [words]
+    if saturated:
+        mend, lost = _saturation_mend(len(heading), saturated, fit)
+        said.append(_saturation_words(dt, saturated, rails, fit, lost))
+    return wrap_angle(heading - np.deg2rad(offset) + mend), said
+
+
+def _saturation_mend(n, saturated, fit):
+    """The heading's mend ``(n,)`` (rad) for the turns :func:`~filterwnn.navigation._plausibility.yaw_start` fitted
+    at the saturated runs, each spread evenly over its group's saturated samples, and the turns (deg) in order."""
+    inc = np.zeros(n)
+    lost = []
+    for first, last, turn, _, _ in fit["steps"]:
+        at = np.concatenate([np.arange(a, b + 1) for a, b in saturated if a >= first and b <= last])
+        at = at[(at >= 0) & (at < n)]
+        if len(at):
+            inc[at] += np.deg2rad(turn) / len(at)
+            lost.append(turn)
+    return np.cumsum(inc), lost
+
+
+def _saturation_words(dt, saturated, rails, fit, lost):
+    """The warning's words for a yaw rate that read its range's rail (:func:`_saturated`)."""
+    count = sum(b - a + 1 for a, b in saturated)
+    rail = " and ".join(f"{r:+.4g}" for r in rails)
+    each = ", ".join(f"{turn:+.0f} +- {se:.1g}" for _, _, turn, se, _ in fit["steps"])
+    left = fit["unfitted"]
+    return (f"the yaw rate reads its largest value, {rail} deg/s, on {count} samples in {len(saturated)} run(s), the "
+            f"first at {saturated[0][0] * dt:.1f} s: a gyro's range saturated in the tightest turns, and each such "
+            "turn's part past it is lost from the heading (the filters would take the heading's steps for a gyro "
+            "scale error, or a tilted axis, or a drifting bias). "
+            + (f"The turns lost, fitted to the fixes' course before and after each group of runs: {each} deg "
+               f"(clockwise positive; {sum(lost):+.0f} in all); the heading is mended by them, spread over the "
+               "saturated samples. " if fit["steps"] else "")
+            + (f"{left} run(s) without fixes on both sides are not mended. " if left else "")
+            + "A wider range (the gyro's full-scale setting, 250 deg/s or more) avoids it")
 
 
 def _heading_radians(heading, n):

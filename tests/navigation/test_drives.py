@@ -1462,3 +1462,30 @@ def test_dr_takes_a_worker_count_with_drive(command_passes):
     """--jobs changes no number, and scripts pass it whatever they run: --drive takes it (and runs its drives in
     turn), where --runs or --scenarios are refused."""
     assert command_passes("real_drive_outages", ["--jobs", "1"])["grade"] == "phone"
+
+
+def test_cells_left_empty_in_a_few_rows_are_told_not_read_silently_as_a_row_per_message(tmp_path):
+    """A logger that missed a value leaves a cell empty: a few rows with a heading but no speed, a few with a speed but
+    no heading (the fourth user trial's drive d4, stop 71), among rows with both. The reader reads such a file as a
+    log with a row per sensor message (the speed interpolated at the heading's rows, the rows without a heading not
+    samples): it now says so, naming the first such row, where before the empty speeds were filled silently."""
+    c = _drive()
+    c["speed"], c["heading"] = c["speed"].copy(), c["heading"].copy()
+    c["speed"][[101, 402, 703]] = np.nan
+    c["heading"][[205, 606]] = np.nan
+    with pytest.warns(RuntimeWarning, match=r"3 row\(s\) have a 'heading' but no 'speed' and 2 a 'speed' but no "
+                                            r"'heading', among 1196 with both \(the first at data row 102, line 103\): "
+                                            r"read as a log with a row per sensor message"):
+        run = read_drive_csv(_write(tmp_path / "d.csv", c), fill_gaps=0.2)
+    np.testing.assert_allclose(run.z_dr[:, 1], 1.0, atol=1e-9)  # (the speeds interpolated, the gaps filled)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # a log with a row per sensor message is not warned of
+        log = {k: np.r_[v, v] for k, v in _drive().items()}
+        order = np.argsort(np.r_[log["time"][:1201], log["time"][1201:] + 0.05], kind="stable")
+        log["time"] = np.r_[log["time"][:1201], log["time"][1201:] + 0.05][order]
+        for k in ("heading", "speed", "gps_lat", "gps_lon", "gps_sigma", "true_lat", "true_lon"):
+            log[k] = log[k][order]
+        log["speed"][::2], log["heading"][1::2] = np.nan, np.nan
+        for k in ("gps_lat", "gps_lon", "gps_sigma"):
+            log[k][1::2] = np.nan
+        read_drive_csv(_write(tmp_path / "log.csv", log), checks=False)

@@ -1,14 +1,17 @@
 """The user trials rerun: the drives of ``gen_drives.py`` (trial 1, stop 69), ``gen_drives_2.py`` (``--trial 2``,
-stop 69) or ``gen_drives_3.py`` (``--trial 3``, stop 70) through the command, both grades.
+stop 69), ``gen_drives_3.py`` (``--trial 3``, stop 70) or ``gen_drives_4.py`` (``--trial 4``, stop 71) through the
+command, both grades.
 
-    OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/user-trial/run_trial.py [--trial 2|3] > docs/study-outputs/dr/user-trial/trial_<...>.txt
+    OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/user-trial/run_trial.py [--trial 2|3|4] > docs/study-outputs/dr/user-trial/trial_<...>.txt
 
 Each line: the drive and grade, the exit code, the median / max at the outage ends (m) of DR-mech, EKF-8, UKF-8 and
 SUKF-8, the number of warning lines on stderr, and the table's header (how many outages, and the drive's own gaps of
 fixes where it has any). D4's speed is in km/h: it is refused as it is (exit 2) and run with ``--speed-scale 3.6``.
 Trial 3 runs each drive beside its ``_clean`` twin (the same drive and noise without the fault), the ferry drive
 split where the reader finds the car carried (229-593 s) as two drives (one line each), and two remedies that user
-tried: the ferry with the covariance scale estimated, the car park with the gyro's scale state.
+tried: the ferry with the covariance scale estimated, the car park with the gyro's scale state. Trial 4 likewise (its
+d3 and d4 are refused as written, d3 run with the ``--fill-gaps`` its refusal names; d5 also with its two faults
+apart), and d1 with the ``--gyro-bias-instability`` value the reader's warning names on it (read from that warning).
 """
 import os
 import re
@@ -30,8 +33,16 @@ RUNS_3 = [(f"{name}{twin}", f"{name}{twin}.csv", []) for name in ("ferry", "snow
           for twin in ("", "_clean")] + [("ferry split at 229-593 s", "ferry.csv", ["--split", "229,593"]),
                                          ("ferry --gps-scale-window 30", "ferry.csv", ["--gps-scale-window", "30"]),
                                          ("carpark --gyro-scale-sd 0.01", "carpark.csv", ["--gyro-scale-sd", "0.01"])]
+RUNS_4 = [(f"{name}_{twin}", f"{name}_{twin}.csv", []) for name in (
+    "d1_gyro_warmup", "d2_speed_quant_cutoff", "d3_jitter_drops", "d4_nan_dups", "d5_gyro_sat_odo_drift", "d6_garage_reacq")
+    for twin in ("fault", "clean")] + [
+    ("d3 --fill-gaps 0.42", "d3_jitter_drops_fault.csv", ["--fill-gaps", "0.42"]),
+    ("d5 saturation alone", "d5_gyro_sat_odo_drift_satonly.csv", []),
+    ("d5 scale drift alone", "d5_gyro_sat_odo_drift_driftonly.csv", []),
+    ("d1 --gyro-bias-instability (the warning's)", "d1_gyro_warmup_fault.csv",
+     ["--from-warning", r"--gyro-bias-instability (\d+)"])]
 TRIAL = int(sys.argv[sys.argv.index("--trial") + 1]) if "--trial" in sys.argv else 1
-GENERATOR = {1: "gen_drives.py", 2: "gen_drives_2.py", 3: "gen_drives_3.py"}[TRIAL]
+GENERATOR = {1: "gen_drives.py", 2: "gen_drives_2.py", 3: "gen_drives_3.py", 4: "gen_drives_4.py"}[TRIAL]
 
 
 def split(path, within):
@@ -62,7 +73,7 @@ def cells(text):
 
 with tempfile.TemporaryDirectory() as folder:
     subprocess.run([sys.executable, os.path.join(HERE, GENERATOR), folder], check=True, capture_output=True)
-    for label, csv, extra in {1: RUNS, 2: RUNS_2, 3: RUNS_3}[TRIAL]:
+    for label, csv, extra in {1: RUNS, 2: RUNS_2, 3: RUNS_3, 4: RUNS_4}[TRIAL]:
         drives = [os.path.join(folder, csv)]
         if "--split" in extra:
             drives = split(drives[0], extra[extra.index("--split") + 1])
@@ -71,6 +82,11 @@ with tempfile.TemporaryDirectory() as folder:
             cmd = [sys.executable, "-m", "filterwnn.cli", "study", "dr", *sum((["--drive", d] for d in drives), []),
                    "--grade", grade, "--jobs", "1", "--no-progress", "--no-figures",
                    "--out", os.path.join(folder, "out")]
+            if "--from-warning" in extra:  # the remedy's value as the warning names it on the drive as it is
+                said = subprocess.run(cmd, capture_output=True, text=True).stderr
+                found = re.search(extra[extra.index("--from-warning") + 1], said)
+                extra = found.group(0).split() if found else []
+                label += f" = {' '.join(extra)}" if found else " (not named)"
             p = subprocess.run(cmd + extra, capture_output=True, text=True)
             n_warn = sum(1 for line in p.stderr.splitlines() if "warning:" in line)
             refused = "" if p.returncode == 0 else " | " + p.stderr.strip().splitlines()[-1][:160]
