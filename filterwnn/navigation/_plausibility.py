@@ -786,7 +786,8 @@ def yaw_start(dt, heading, step, steps, z_gps, pairs, saturated=()):
     standard error of 1); beside a step at each group of ``saturated`` runs (sample index ranges ``(first, last)``
     where the rate read its range's rail: each leaves the turn past the rail out of the heading), the runs with
     fewer than :data:`SATURATED_CHORDS` chords between them one group, the chords that span a group left out.
-    Least squares, then again without the chords past three robust sigmas (:func:`_inliers`).
+    Least squares, then again without the chords past three robust sigmas (:func:`_inliers`). A steady drift with no
+    turn to mend is :func:`_offset_fit`'s line, as :func:`heading_offset` gives it (the reader's start before stop 71).
 
     Returns
     -------
@@ -847,6 +848,12 @@ def yaw_start(dt, heading, step, steps, z_gps, pairs, saturated=()):
             stat = (rss_l - rss_k) / (p - line.shape[1]) / (rss_k / (n - p)) / tau
             if f_dist.sf(stat, p - line.shape[1], max((n - p) / tau, 1.0)) < YAW_START_LEVEL:
                 piecewise, coef, r = True, coef_k, r_k
+    unfitted = sum(g[2] for g, on in zip(groups, told) if not on)
+    if not piecewise and not jumps.shape[1]:  # a steady drift and no turn to mend: the heading line's fit, as before
+        offset, se, rate, resid, n = _offset_fit(ang, steps, pairs, dt)
+        return {"offset": offset, "se": se, "rate": rate, "last_rate": rate, "rates": np.array([rate]),
+                "piece_s": max(float(t[-1]), 1.0), "piecewise": False, "resid": resid, "n": n, "steps": [],
+                "unfitted": unfitted}
     X = (knots if piecewise else line)[keep]
     dof = max(n - X.shape[1], 1)
     cov = np.linalg.pinv(X.T @ X) * float(r[keep] @ r[keep]) / dof
@@ -862,8 +869,7 @@ def yaw_start(dt, heading, step, steps, z_gps, pairs, saturated=()):
     return {"offset": float(np.degrees(coef[0])), "se": float(np.degrees(np.sqrt(cov[0, 0]))),
             "rate": float(np.degrees(rates[0])), "last_rate": float(np.degrees(rates[-1])),
             "rates": np.degrees(rates), "piece_s": max(float(t[-1]), 1.0) / max(base - 1, 1), "piecewise": piecewise,
-            "resid": float(np.degrees(np.median(np.abs(r[keep])))), "n": n, "steps": turns,
-            "unfitted": sum(g[2] for g, on in zip(groups, told) if not on)}
+            "resid": float(np.degrees(np.median(np.abs(r[keep])))), "n": n, "steps": turns, "unfitted": unfitted}
 
 
 def deviation_of(heading, coefficients):
