@@ -781,7 +781,8 @@ def yaw_start(dt, heading, step, steps, z_gps, pairs, saturated=()):
     """Where a yaw rate's integral starts, and the turns a saturated gyro lost: the chords' signed angles
     (:func:`_chord_angles`, the dead-reckoned course less the fixes') over time, a line (a gyro's steady rate bias),
     or, where that misfits at :data:`YAW_START_LEVEL` (an F-test, its statistic and degrees of freedom divided by
-    the residuals' integrated autocorrelation time), a piecewise line with knots every :data:`YAW_START_KNOT_S` (a
+    the residuals' integrated autocorrelation time; with :data:`DEVIATION_CHORDS_PER_PARAMETER` chords per
+    parameter at least: a city analog's 22 swung the pieces' rates by +-0.4 deg/s), a piecewise line with knots every :data:`YAW_START_KNOT_S` (a
     bias that changes: a gyro warming up, whose straight line had started a trial's drive 36 degrees off with a
     standard error of 1); beside a step at each group of ``saturated`` runs (sample index ranges ``(first, last)``
     where the rate read its range's rail: each leaves the turn past the rail out of the heading), the runs with
@@ -840,7 +841,7 @@ def yaw_start(dt, heading, step, steps, z_gps, pairs, saturated=()):
     piecewise = False
     n = int(keep.sum())
     coef, r = fit(line, keep)
-    if knots.shape[1] > line.shape[1] and n > knots.shape[1] + 2:
+    if knots.shape[1] > line.shape[1] and n >= DEVIATION_CHORDS_PER_PARAMETER * knots.shape[1]:  # (fewer: it overfits)
         coef_k, r_k = fit(knots, keep)
         rss_k, rss_l, p = float(r_k[keep] @ r_k[keep]), float(r[keep] @ r[keep]), knots.shape[1]
         if rss_k > 0.0:
