@@ -8,6 +8,7 @@ import warnings
 import numpy as np
 import pytest
 
+from filterwnn.navigation import _plausibility as P
 from filterwnn.navigation.scenarios import DRRun
 from filterwnn.studies.dr._cli import add_arguments
 
@@ -43,6 +44,38 @@ def _read(cols, **kw):
         warnings.simplefilter("always")
         run = DRRun.from_arrays(cols.pop("t"), cols.pop("heading"), **cols, **kw)
     return run, [str(w.message) for w in caught]
+
+
+def _args(run):
+    return 0.1, np.r_[run.z_dr[0, 0], run.z_dr[:, 0]], run.z_dr[:, 1], run.gps_steps, run.z_gps
+
+
+def test_fixes_dragged_away_are_named_with_the_stretch_the_velocity_and_the_remedy():
+    run, said = _read(_drive())
+    told = [s for s in said if "walk away from the dead-reckoned track" in s]
+    assert len(told) == 1, said
+    assert "spoofer" in told[0] and "drop_fixes=[(" in told[0] and "--drop-fixes " in told[0], told[0]
+    (t1, t2, we, wn, speed, p), = P.fix_drag(*_args(run))
+    assert abs(t1 - 200.0) <= 30.0 and abs(t2 - 440.0) <= 30.0, (t1, t2)
+    assert speed == pytest.approx(0.4, abs=0.08)
+    assert np.rad2deg(np.arctan2(we, wn)) == pytest.approx(60.0, abs=12.0)
+    assert p < P.DRAG_LEVEL
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_the_same_drive_without_a_drag_is_not_named(seed):
+    run, said = _read(_drive(drag=0.0, seed=seed))
+    assert not [s for s in said if "walk away" in s], said
+    assert P.fix_drag(*_args(run)) == []
+
+
+def test_the_fixes_dropped_as_the_warning_says_leave_nothing_to_name():
+    run, said = _read(_drive(), drop_fixes=[(190.0, 450.0)])
+    dropped = [s for s in said if s.startswith("dropped ")]
+    assert dropped == ["dropped 261 of 601 GPS fix(es) in drop_fixes' span(s) 190-450 s (s from the drive's first "
+                       "sample)"], said
+    assert len(run.z_gps) == len(_read(_drive())[0].z_gps) - 261
+    assert not [s for s in said if "walk away" in s], said
 
 
 def test_drop_fixes_drops_each_per_fix_array_and_counts_from_the_first_sample():
