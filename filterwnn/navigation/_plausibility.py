@@ -1433,17 +1433,29 @@ DRAG_WINDOW_S = 180.0
 #: The spacing (s) of the windows' starts.
 DRAG_EVERY_S = 30.0
 #: The level of a window's test of a drag (an F-test of the drag's two velocity components beyond the nuisance
-#: model, its statistic and degrees of freedom divided by the residuals' integrated autocorrelation time).
+#: model, its statistic and degrees of freedom divided by the residuals' integrated autocorrelation time). Far under
+#: the reader's other levels: the fixes' errors are not the test's (a street's multipath drifts for minutes, and a
+#: city analog's fixes moved 0.27 m/s over one). Of 530 simulated drives without a drag, the least p of a window that
+#: could count (:data:`DRAG_MIN_SPEED`, :data:`DRAG_MIN_TURN_DEG`) is 1.7e-9 (the phone analog's seed 101, whose
+#: next window reads 4e-4), the least of two such windows together (:data:`DRAG_MIN_WINDOWS`) 3.7e-7 (the city
+#: analog's seed 70); the user trials' drives without a drag 1.3e-8 and 4.8e-7 (a ferry, which ``carried`` names);
+#: the third trial's spoofer (0.33 m/s for 240 s) 4.2e-37 and 1.9e-30
+#: (``docs/study-outputs/dr/user-trial/drag_null.txt``).
 DRAG_LEVEL = 1e-9
-#: The least drag speed (m/s) a window must fit to count.
+#: The least drag speed (m/s) a window must fit to count: a street's multipath moves the fixes' offset by metres
+#: over minutes; the spoofer's windows fit 0.17-0.37 m/s.
 DRAG_MIN_SPEED = 0.15
 #: The least the car turns (deg) within a window that counts: on a straight road a drag along it is a speed
 #: scale's, and across it a heading offset's.
 DRAG_MIN_TURN_DEG = 60.0
-#: The fewest windows in a row that must count before a stretch is named.
+#: The fewest windows that must count, each at most two spacings after the one before (a window between them may
+#: miss: the one over a walk's end, whose fixes snap back), before a stretch is named: a drag lasts, a multipath's
+#: wander seldom twice over (the null drives' single windows reach 1.7e-9, their pairs 3.7e-7).
 DRAG_MIN_WINDOWS = 2
 #: The 2-D steps of the fixes (a multipath offset that changes, a wheel's spin on snow that puts the dead-reckoned
-#: track ahead) fitted as nuisance in each window, chosen greedily on a 10 s grid.
+#: track ahead by metres in seconds) fitted as nuisance in each window, chosen greedily on a 10 s grid. The third
+#: trial's snow drive (wheel spin ten times) reads, at its least, p = 4.4e-8 with none, 2.9e-15 (0.57 m/s) with one,
+#: 1.3e-6 with two and 8.5e-7 with three; the spoofer 1.4e-37, 2.4e-38, 4.2e-37 and 9.6e-33.
 DRAG_STEPS = 2
 #: The margin (s) by which the span the warning says to drop is wider, each side, than the walk fitted
 #: (:func:`_drag_ramp`, on a 10 s grid): the spoof drive's walk of 240-480 s was fitted as 260-480 s; its fixes' offset
@@ -1643,8 +1655,10 @@ def fix_drag(dt, heading, step, steps, z_gps, sigma=None):
     them: an F-test of its two components, its statistic and degrees of freedom divided by the residuals' integrated
     autocorrelation time. A window counts where p < :data:`DRAG_LEVEL`, the drag is :data:`DRAG_MIN_SPEED` or faster
     and the car turned :data:`DRAG_MIN_TURN_DEG` or more (on a straight road a drag is a speed scale's or a heading
-    offset's); :data:`DRAG_MIN_WINDOWS` such windows in a row make a stretch, whose start, end and velocity are then
-    fitted over them together (:func:`_drag_ramp`: a walk from one time to another, on a 10 s grid).
+    offset's); :data:`DRAG_MIN_WINDOWS` such windows, each at most two spacings after the one before, make a stretch,
+    whose start, end and velocity are then fitted over them and a third of a window each side (:func:`_drag_ramp`: a
+    walk from one time to another, on a 10 s grid). The warning's span to drop is that walk widened by
+    :data:`DRAG_MARGIN_S` each side.
 
     Returns
     -------
@@ -1713,8 +1727,9 @@ def _warn_drag(dt, heading, step, steps, z_gps):
                   f"m/s; {walked:.0f} m by its end){more}: the car turned {turn:.0f} degrees while the "
                   "fixes' offset grew one way, which no heading offset, drift or gyro scale, speed scale or step of "
                   f"the fixes fitted beside it explains (p = {p:.1g}). A spoofer walking the fixes off (their reported "
-                  "accuracy unchanged), or a receiver's fault. The GPS/DR filters follow the fixes there, and the "
-                  "dead reckoning's own states learn the drag. Drop those fixes: drop_fixes=["
+                  "accuracy unchanged), or a receiver's fault. The GPS/DR filters follow the fixes there (their "
+                  "heading and odometer states take the drag for the dead reckoning's errors), and an outage after it "
+                  "starts where the fixes led them. Drop those fixes: drop_fixes=["
                   + ", ".join(f"({a:.0f}, {b:.0f})" for a, b in spans) + f"] (command line: --drop-fixes {given}), "
                   "and check the receiver (a spoofer's fixes agree with one another, not with the car's own sensors)",
                   RuntimeWarning, stacklevel=4)

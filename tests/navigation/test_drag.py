@@ -1,6 +1,6 @@
 """Fixes dragged away from the dead-reckoned track (a spoofer walking them off, a receiver's fault): the drive reader
 names the stretch (:func:`filterwnn.navigation._plausibility.fix_drag`) with its speed, bearing and the remedy,
-``drop_fixes`` (``--drop-fixes``), which drops the fixes in spans of time. Before stop 71 a third new user's spoofed
+``drop_fixes`` (``--drop-fixes``), which drops the fixes in spans of time. Before, a third new user's spoofed
 drive (0.33 m/s for 240 s) was followed by the filters without a word."""
 
 import warnings
