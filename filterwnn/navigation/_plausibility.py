@@ -51,6 +51,13 @@ column whose median is past :data:`HDOP_AS_METRES_MIN` and whose sigma (times ``
 Fixes that are not GNSS's but a receiver's own dead reckoning (an ADR module in a tunnel) move along the
 dead-reckoned track as the odometer does, each step's length fitting the odometer's to millimetres where GNSS fixes
 misfit it by decimetres: :func:`receiver_dead_reckoning` names runs of :data:`RECEIVER_DR_STEPS` such steps or more.
+
+Fixes dragged away from the dead-reckoned track (a spoofer walking them off at a fraction of a metre a second, their
+reported accuracy unchanged; a receiver's fault), which the filters follow: :func:`fix_drag` tests, in windows of
+:data:`DRAG_WINDOW_S`, a world-fixed velocity of the fixes' offset beyond what the dead reckoning errs by (an offset, a
+speed scale and latency, a heading offset, drift, gyro scale and latency, steps of the fixes), and the check warns of
+a stretch where :data:`DRAG_MIN_WINDOWS` windows pass :data:`DRAG_LEVEL`, with the reader's remedy (``drop_fixes=``,
+``--drop-fixes``).
 """
 
 from __future__ import annotations
@@ -68,7 +75,9 @@ __all__ = ["check_drive", "heading_offset", "speed_scale", "clock_offset", "MAX_
            "RECEIVER_DR_STEPS", "RECEIVER_DR_FRAC", "RECEIVER_DR_MOVING_M", "RECEIVER_DR_SIGMA_FALLS",
            "RECEIVER_DR_GROWS", "receiver_dead_reckoning", "heading_deviation", "HEADING_DEVIATION_WARN_DEG",
            "HEADING_DEVIATION_LEVEL", "DEVIATION_STRAIGHT_DEG", "DEVIATION_KNOT_S", "DEVIATION_CHORDS_PER_PARAMETER",
-           "deviation_of", "carried", "CARRIED_MIN_S", "CARRIED_SPEED", "CARRIED_MIN_M"]
+           "deviation_of", "carried", "CARRIED_MIN_S", "CARRIED_SPEED", "CARRIED_MIN_M", "fix_drag", "drag_windows",
+           "DRAG_WINDOW_S", "DRAG_EVERY_S", "DRAG_LEVEL", "DRAG_MIN_SPEED", "DRAG_MIN_TURN_DEG", "DRAG_MIN_WINDOWS",
+           "DRAG_STEPS", "DRAG_MARGIN_S", "DRAG_MIN_FIXES"]
 
 #: The longest DR sample interval (s) accepted without ``checks=False``.
 MAX_DT = 2.0
@@ -1479,6 +1488,7 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
             warnings.warn(f"plausibility: over {len(pairs)} moving stretches between GPS fixes, "
                           f"{_offset_remedy(*fit[:3], filters=True)}", RuntimeWarning, stacklevel=4)
         _warn_scale(lengths, len(pairs))
+        _warn_drag(dt, heading, step, steps, z_gps)
         return
     found = (f"median over {len(pairs)} moving stretches between GPS fixes: the dead-reckoned track is "
              f"{angle:.0f} degrees off the fixes' course and {ratio:.3g} times their distance")
@@ -1521,3 +1531,310 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
         cause = (_offset_remedy(*fit[:3]) + "; else " + check) if cause == "offset" else (cause or check)
     raise ValueError(f"plausibility: {found} (expected at most {MAX_ANGLE_DEG:g} degrees and "
                      f"{RATIO_RANGE[0]}-{RATIO_RANGE[1]}): {cause}{_OVERRIDE}")
+#: The window (s) over which the fixes less the dead-reckoned track are fitted for a drag (:func:`fix_drag`): long
+#: enough for the car to turn while a drag of a few decimetres a second walks the fixes tens of metres, short enough
+#: for a gyro's heading error to stay a quadratic in time.
+DRAG_WINDOW_S = 180.0
+#: The spacing (s) of the windows' starts.
+DRAG_EVERY_S = 30.0
+#: The level of a window's test of a drag (an F-test of the drag's two velocity components beyond the nuisance
+#: model, its statistic and degrees of freedom divided by the residuals' integrated autocorrelation time). Far under
+#: the reader's other levels: the fixes' errors are not the test's (a street's multipath drifts for minutes, and a
+#: city analog's fixes moved 0.27 m/s over one). Of 530 simulated drives without a drag, the least p of a window that
+#: could count (:data:`DRAG_MIN_SPEED`, :data:`DRAG_MIN_TURN_DEG`) is 1.7e-9 (the phone analog's seed 101, whose
+#: next window reads 4e-4), the least of two such windows together (:data:`DRAG_MIN_WINDOWS`) 3.7e-7 (the city
+#: analog's seed 70); the user trials' drives without a drag 1.3e-8 and 4.8e-7 (a ferry, which ``carried`` names);
+#: the third trial's spoofer (0.33 m/s for 240 s) 4.2e-37 and 1.9e-30
+#: (``docs/study-outputs/dr/user-trial/drag_null.txt``).
+DRAG_LEVEL = 1e-9
+#: The least drag speed (m/s) a window must fit to count: a street's multipath moves the fixes' offset by metres
+#: over minutes; the spoofer's windows fit 0.17-0.37 m/s.
+DRAG_MIN_SPEED = 0.15
+#: The least the car turns (deg) within a window that counts: on a straight road a drag along it is a speed
+#: scale's, and across it a heading offset's.
+DRAG_MIN_TURN_DEG = 60.0
+#: The fewest windows that must count, each at most two spacings after the one before (a window between them may
+#: miss: the one over a walk's end, whose fixes snap back), before a stretch is named: a drag lasts, a multipath's
+#: wander seldom twice over (the null drives' single windows reach 1.7e-9, their pairs 3.7e-7).
+DRAG_MIN_WINDOWS = 2
+#: The 2-D steps of the fixes (a multipath offset that changes, a wheel's spin on snow that puts the dead-reckoned
+#: track ahead by metres in seconds) fitted as nuisance in each window, chosen greedily on a 10 s grid. The third
+#: trial's snow drive (wheel spin ten times) reads, at its least, p = 4.4e-8 with none, 2.9e-15 (0.57 m/s) with one,
+#: 1.3e-6 with two and 8.5e-7 with three; the spoofer 1.4e-37, 2.4e-38, 4.2e-37 and 9.6e-33.
+DRAG_STEPS = 2
+#: The margin (s) by which the span the warning says to drop is wider, each side, than the walk fitted
+#: (:func:`_drag_ramp`, on a 10 s grid): the spoof drive's walk of 240-480 s was fitted as 260-480 s; its fixes' offset
+#: is small near its start, and the heading's drift and the steps fitted beside it take some of it.
+DRAG_MARGIN_S = 20.0
+#: The fewest fixes a window needs.
+DRAG_MIN_FIXES = 20
+_DRAG_ITERATIONS = 3
+_DRAG_GRID_S = 10.0
+
+
+def _drag_columns(dt, h, step, at, idx, corr):
+    """The nuisance columns ``(2 n, 9)`` of the window of fixes ``idx`` (their samples ``at[idx]``) and the
+    dead-reckoned track's displacement at each ``(2 n,)``, its steps' headings ``h`` (unwrapped) turned by ``corr``
+    (rad, one per step of the window), and the functions of each step a heading error is fitted as (offset, drift,
+    quadratic drift, gyro scale, latency)."""
+    si = at[idx]
+    a, b = int(si[0]), int(si[-1])
+    hs = h[a + 1:b + 1] + corr
+    length = step[a:b]
+    ue, un = np.sin(hs), np.cos(hs)
+    ee, nn = length * ue, length * un
+    pos = si - a
+
+    def cum(v):
+        return np.r_[0.0, np.cumsum(v)][pos]
+
+    tt = dt * np.arange(1, b - a + 1)
+    turned = h[a + 1:b + 1] - h[a]
+    rate = (h[a + 1:b + 1] - h[a:b]) / dt
+    funcs = (np.ones_like(tt), tt, tt ** 2 / 60.0, turned, rate)
+    dstep = np.diff(step[a - 1:b]) if a >= 1 else np.r_[0.0, np.diff(step[:b])]  # (the speed's change: its latency)
+    n = len(idx)
+    cols = [np.r_[np.ones(n), np.zeros(n)], np.r_[np.zeros(n), np.ones(n)], np.r_[cum(ee), cum(nn)],
+            np.r_[cum(dstep * ue), cum(dstep * un)]]
+    cols += [np.r_[cum(f * nn), -cum(f * ee)] for f in funcs]
+    return np.stack(cols, axis=1), np.r_[cum(ee), cum(nn)], funcs
+
+
+def _drag_fit(X, y, keep):
+    kk = np.r_[keep, keep]
+    coef = np.linalg.lstsq(X[kk], y[kk], rcond=None)[0]
+    return coef, y - X @ coef
+
+
+def _drag_prepared(dt, h, step, at, z, idx, W):
+    """The window's nuisance columns, the fixes less the dead-reckoned track and the fixes kept ``(base, y, keep)``:
+    the track's steps turned by the heading error fitted (beside ``W``), :data:`_DRAG_ITERATIONS` times (a gyro's
+    drift of 0.3 deg/s turns it 54 degrees over a window, past what one linearisation holds), each fit then cut to
+    the fixes within three robust sigmas (at least 1 m) of it (a fix jumped by multipath)."""
+    n = len(idx)
+    corr = np.zeros(int(at[idx[-1]] - at[idx[0]]))
+    keep = np.ones(n, dtype=bool)
+    for i in range(_DRAG_ITERATIONS + 3):
+        base, track, funcs = _drag_columns(dt, h, step, at, idx, corr)
+        y = np.r_[z[idx, 0], z[idx, 1]] - track
+        if i < 2:  # first the track turned as a whole, by the angle of the similarity that fits it (a gyro's drift
+            # since the drive's start can have turned it by more than a right angle, past any linearisation)
+            coef = _drag_fit(base[:, [0, 1, 2, 4]], y, keep)[0]
+            corr = corr + np.arctan2(coef[3], 1.0 + coef[2])
+            continue
+        coef, res = _drag_fit(np.hstack([base, W]), y, keep)
+        r = np.hypot(res[:n], res[n:])
+        keep = r <= max(3.0 * 1.4826 * float(np.median(r[keep])), 1.0)
+        corr = corr + np.arctan2(coef[4], 1.0 + coef[2]) + sum(c * f for c, f in zip(coef[5:9], funcs[1:]))
+    return base, y, keep
+
+
+def _drag_steps(B, yk, tk, span, count=None):
+    """The columns of the ``count`` (default :data:`DRAG_STEPS`) 2-D steps of the fixes, at times ``tk`` (s from the
+    window's first fix), that take the most from the residual sum of squares beside the nuisance columns ``B``, chosen
+    one after the other on a :data:`_DRAG_GRID_S` grid within ``span`` (s)."""
+    chosen = []
+    for _ in range(DRAG_STEPS if count is None else count):
+        best = None
+        for ts in np.arange(_DRAG_GRID_S, span - _DRAG_GRID_S + 1e-9, _DRAG_GRID_S):
+            if ts in chosen:
+                continue
+            X = np.hstack([B, _drag_step_columns(tk, chosen + [ts])])
+            res = yk - X @ np.linalg.lstsq(X, yk, rcond=None)[0]
+            if best is None or float(res @ res) < best[0]:
+                best = (float(res @ res), ts)
+        if best is None:
+            break
+        chosen.append(best[1])
+    return _drag_step_columns(tk, chosen)
+
+
+def _drag_window(dt, h, step, at, z, idx, window):
+    """One window's test of a drag (:func:`drag_windows`): ``(p, w_east, w_north, turn (deg))``, or None where
+    fewer than :data:`DRAG_MIN_FIXES` fixes are kept."""
+    from scipy.stats import f as f_dist
+
+    from ..metrics import integrated_autocorrelation
+
+    n = len(idx)
+    tau = dt * (at[idx] - at[idx[0]])
+    W = np.zeros((2 * n, 2))
+    W[:n, 0] = W[n:, 1] = tau
+    base, y, keep = _drag_prepared(dt, h, step, at, z, idx, W)
+    m = int(keep.sum())
+    if m < DRAG_MIN_FIXES:
+        return None
+    kk = np.r_[keep, keep]
+    B, Wk, yk = base[kk], W[kk], y[kk]
+    S = _drag_steps(B, yk, tau[keep], window)
+    Xr, Xf = np.hstack([B, S]), np.hstack([B, S, Wk])
+    rr = yk - Xr @ np.linalg.lstsq(Xr, yk, rcond=None)[0]
+    cf = np.linalg.lstsq(Xf, yk, rcond=None)[0]
+    rf = yk - Xf @ cf
+    rss_f = float(rf @ rf)
+    dof = 2 * m - Xf.shape[1]
+    if dof <= 0 or rss_f <= 0.0:
+        return None
+    c = max(integrated_autocorrelation(list(np.stack([rf[:m], rf[m:]], axis=1))), 1.0)
+    stat = (float(rr @ rr) - rss_f) / 2.0 / (rss_f / dof) / c
+    p = float(f_dist.sf(stat, 2, max(dof / c, 1.0)))
+    seen = h[at[idx]]
+    return p, float(cf[-2]), float(cf[-1]), float(np.rad2deg(seen.max() - seen.min()))
+
+
+def _drag_step_columns(tk, times):
+    m = len(tk)
+    S = np.zeros((2 * m, 2 * len(times)))
+    for i, ts in enumerate(times):
+        st = (tk >= ts).astype(float)
+        S[:m, 2 * i] = st
+        S[m:, 2 * i + 1] = st
+    return S
+
+
+def drag_windows(dt, heading, step, steps, z_gps, window=DRAG_WINDOW_S, every=DRAG_EVERY_S):
+    """Every window's test: ``[(start s, end s, p, w_east, w_north, turn deg), ...]`` (times from the first
+    sample)."""
+    h = np.unwrap(np.asarray(heading, dtype=float))
+    step = np.asarray(step, dtype=float)
+    at = np.asarray(steps, dtype=int) + 1
+    z = np.asarray(z_gps, dtype=float)
+    out = []
+    if len(at) < DRAG_MIN_FIXES:
+        return out
+    tf = at * dt
+    t0 = float(tf[0])
+    while t0 + window <= tf[-1] + 1e-9:
+        idx = np.flatnonzero((tf >= t0) & (tf < t0 + window))
+        if len(idx) >= DRAG_MIN_FIXES and at[idx[-1]] > at[idx[0]]:
+            got = _drag_window(dt, h, step, at, z, idx, window)
+            if got is not None:
+                out.append((t0, t0 + window) + got)
+        t0 += every
+    return out
+
+
+def _drag_ramp(dt, h, step, at, z, idx):
+    """The drag's own stretch within the fixes ``idx`` (the windows that counted, together): the fix offset
+    ``w clip(t - T1, 0, T2 - T1)`` (a walk from ``T1`` to ``T2``, held after) beside the nuisance model and a 2-D step
+    at ``T2`` (fixes that snap back when the walk ends), ``T1 < T2`` on a :data:`_DRAG_GRID_S` grid, the pair that
+    fits best: ``(T1, T2, w_east, w_north)``, times in s from the first sample."""
+    n = len(idx)
+    tau = dt * (at[idx] - at[idx[0]])
+    grid = np.arange(0.0, float(tau[-1]) + 1e-9, _DRAG_GRID_S)
+
+    def walk(t, t1, t2):
+        R = np.zeros((2 * len(t), 4))  # the walk, and a step where it ends
+        R[:len(t), 0] = R[len(t):, 1] = np.clip(t - t1, 0.0, t2 - t1)
+        R[:len(t), 2] = R[len(t):, 3] = (t >= t2)
+        return R
+
+    best = (None, 0.0, float(tau[-1]) + 1.0)  # first a walk over all the fixes; then from the best walk's fit
+    for _ in range(2):
+        base, y, keep = _drag_prepared(dt, h, step, at, z, idx, walk(tau, best[1], best[2]))
+        kk = np.r_[keep, keep]
+        B, yk, tk = base[kk], y[kk], tau[keep]
+        best = None
+        for i, t1 in enumerate(grid):
+            for t2 in grid[i + 2:]:
+                X = np.hstack([B, walk(tk, t1, t2)])
+                coef = np.linalg.lstsq(X, yk, rcond=None)[0]
+                res = yk - X @ coef
+                if best is None or float(res @ res) < best[0]:
+                    best = (float(res @ res), t1, t2, float(coef[-4]), float(coef[-3]))
+    start = dt * float(at[idx[0]])
+    return start + best[1], start + best[2], best[3], best[4]
+
+
+def fix_drag(dt, heading, step, steps, z_gps, sigma=None):
+    """The stretches where the fixes are dragged away from the dead-reckoned track: a world-fixed velocity of the
+    fixes' offset (a spoofer walking them off, a receiver's fault) that nothing the dead reckoning errs by explains.
+
+    In windows of :data:`DRAG_WINDOW_S` every :data:`DRAG_EVERY_S` (:func:`drag_windows`), the fixes less the
+    dead-reckoned track are fitted with the track's own errors: a position offset, a speed scale, a speed latency, a
+    heading error that is an offset, a drift linear and quadratic in time, a gyro scale (proportional to the angle
+    turned) and a latency (proportional to the turn rate), the track's steps turned by the heading error fitted
+    (iterated: a gyro's drift turns it tens of degrees over a window), and :data:`DRAG_STEPS` 2-D steps of the fixes
+    (a multipath offset that changes; a wheel's spin that puts the track ahead), chosen greedily; fixes past three
+    robust sigmas (at least 1 m) are left out. A drag, the fixes' offset growing linearly in time, is tested beyond
+    them: an F-test of its two components, its statistic and degrees of freedom divided by the residuals' integrated
+    autocorrelation time. A window counts where p < :data:`DRAG_LEVEL`, the drag is :data:`DRAG_MIN_SPEED` or faster
+    and the car turned :data:`DRAG_MIN_TURN_DEG` or more (on a straight road a drag is a speed scale's or a heading
+    offset's); :data:`DRAG_MIN_WINDOWS` such windows, each at most two spacings after the one before, make a stretch,
+    whose start, end and velocity are then fitted over them and a third of a window each side (:func:`_drag_ramp`: a
+    walk from one time to another, on a 10 s grid). The warning's span to drop is that walk widened by
+    :data:`DRAG_MARGIN_S` each side.
+
+    Returns
+    -------
+    list of tuple
+        ``[(start, end, w_east, w_north, speed, p), ...]``: the walk's start and end (s from the first sample, as the
+        study's ``--outage-starts`` counts), its velocity (m/s east and north) and speed, and the least p of its
+        windows. The arguments are :func:`check_drive`'s (``sigma`` unused: the fit measures the fixes' scatter).
+    """
+    h = np.unwrap(np.asarray(heading, dtype=float))
+    at = np.asarray(steps, dtype=int) + 1
+    tf = at * dt
+    found = []
+    for run in _drag_runs(drag_windows(dt, heading, step, steps, z_gps)):
+        # the walk fitted over the windows and a third of a window each side (a walk's ends fall inside its first
+        # and last windows, or past them: fixes that snap back are in the next window)
+        idx = np.flatnonzero((tf >= run[0][0] - DRAG_WINDOW_S / 3) & (tf < run[-1][1] + DRAG_WINDOW_S / 3))
+        t1, t2, we, wn = _drag_ramp(dt, h, np.asarray(step, dtype=float), at, np.asarray(z_gps, dtype=float), idx)
+        found.append((t1, t2, we, wn, float(np.hypot(we, wn)), min(w[2] for w in run)))
+    return found
+
+
+def _drag_counts(w):
+    """Whether a window of :func:`drag_windows` counts toward a stretch (:func:`fix_drag`)."""
+    return w[2] < DRAG_LEVEL and float(np.hypot(w[3], w[4])) >= DRAG_MIN_SPEED and w[5] >= DRAG_MIN_TURN_DEG
+
+
+def _drag_runs(wins):
+    """The windows that count (:func:`_drag_counts`), in groups whose starts are at most two spacings apart (one
+    window between them may miss the level: a drag's end snaps back within it), of :data:`DRAG_MIN_WINDOWS` or more."""
+    runs, run = [], []
+    for w in wins:
+        if not _drag_counts(w):
+            continue
+        if run and w[0] - run[-1][0] > 2 * DRAG_EVERY_S + 1e-6:
+            runs.append(run)
+            run = []
+        run.append(w)
+    runs.append(run)
+    return [r for r in runs if len(r) >= DRAG_MIN_WINDOWS]
+
+
+def _drag_span(t1, t2):
+    """The span of fixes the warning of a walk fitted from ``t1`` to ``t2`` (s) says to drop: widened by
+    :data:`DRAG_MARGIN_S` each side, to whole tens of seconds, from 0."""
+    return max(np.floor((t1 - DRAG_MARGIN_S) / 10.0) * 10.0, 0.0), np.ceil((t2 + DRAG_MARGIN_S) / 10.0) * 10.0
+
+
+def _warn_drag(dt, heading, step, steps, z_gps):
+    """Warn of the stretches :func:`fix_drag` finds, the first named (with the window's turn) and the others counted."""
+    found = fix_drag(dt, heading, step, steps, z_gps)
+    if not found:
+        return
+    t1, t2, we, wn, speed, p = found[0]
+    walked = speed * (t2 - t1)
+    spans = [_drag_span(f[0], f[1]) for f in found]
+    t1, t2 = spans[0]
+    bearing = float(np.rad2deg(np.arctan2(we, wn))) % 360.0
+    h = np.unwrap(np.asarray(heading, dtype=float))
+    at = np.asarray(steps, dtype=int) + 1
+    inside = h[at[(at * dt >= t1) & (at * dt <= t2)]]
+    turn = float(np.rad2deg(inside.max() - inside.min())) if len(inside) else 0.0
+    given = ",".join(f"{a:.0f},{b:.0f}" for a, b in spans)
+    more = f" (and {len(found) - 1} more such stretch(es))" if len(found) > 1 else ""
+    warnings.warn(f"plausibility: from t = {t1:.0f} s to {t2:.0f} s the GPS fixes walk away from the dead-reckoned "
+                  f"track at {speed:.2f} m/s toward bearing {bearing:.0f} degrees (east {we:+.2f}, north {wn:+.2f} "
+                  f"m/s; {walked:.0f} m by its end){more}: the car turned {turn:.0f} degrees while the "
+                  "fixes' offset grew one way, which no heading offset, drift or gyro scale, speed scale or step of "
+                  f"the fixes fitted beside it explains (p = {p:.1g}). A spoofer walking the fixes off (their reported "
+                  "accuracy unchanged), or a receiver's fault. The GPS/DR filters follow the fixes there (their "
+                  "heading and odometer states take the drag for the dead reckoning's errors), and an outage after it "
+                  "starts where the fixes led them. Drop those fixes: drop_fixes=["
+                  + ", ".join(f"({a:.0f}, {b:.0f})" for a, b in spans) + f"] (command line: --drop-fixes {given}), "
+                  "and check the receiver (a spoofer's fixes agree with one another, not with the car's own sensors)",
+                  RuntimeWarning, stacklevel=4)

@@ -206,7 +206,7 @@ def _located(path, exc, lines):
 
 def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2, checks=True, progress=None, fill_gaps=0.0,
                    gps_latency=0.0, intervals="auto", odometer_latency=0.0, heading_offset=0.0, speed_scale=1.0,
-                   hdop_sigma=None, heading_latency=0.0, heading_deviation=None):
+                   hdop_sigma=None, heading_latency=0.0, heading_deviation=None, drop_fixes=None):
     """Read one's own drive from a CSV file with the columns of :data:`DRIVE_CSV_COLUMNS`.
 
     One row per DR sample, a header row with the column names; a GPS fix is the row's
@@ -230,7 +230,7 @@ def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2, checks=True,
     ----------
     path : str or path-like
     origin, name, max_jitter, checks, fill_gaps, gps_latency, intervals, odometer_latency, heading_offset,
-    speed_scale, heading_latency, heading_deviation
+    speed_scale, heading_latency, heading_deviation, drop_fixes
         As :meth:`DRRun.from_arrays` (``checks``: the plausibility checks against the fixes;
         ``fill_gaps``: the longest gap of dropped DR samples, in s, to fill by interpolation;
         ``gps_latency``: the receiver's latency, s, by which each fix is older than its time;
@@ -239,6 +239,8 @@ def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2, checks=True,
         ``heading_offset``: degrees by which the heading reads clockwise of the car's course, subtracted;
         ``heading_deviation``: a compass's deviation card ``(B, C, D, E)``, degrees, subtracted after the offset;
         ``speed_scale``: the factor by which the speed or odometer reads more than the car drove, divided out;
+        ``drop_fixes``: spans ``[(start, end), ...]``, s from the first row, whose fixes are dropped (fixes the
+        plausibility check found dragged away from the dead-reckoned track: a spoofer's walk);
         ``intervals``: the interval each speed sample covers, its stamped one or the stamps'
         regular grid's, ``"auto"`` choosing).
     progress : bool, optional
@@ -270,14 +272,15 @@ def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2, checks=True,
             warnings.simplefilter("always")
             return _read_drive_csv(path, origin, name, max_jitter, checks, progress, fill_gaps, gps_latency, intervals,
                                    odometer_latency, heading_offset, speed_scale, hdop_sigma, heading_latency,
-                                   heading_deviation)
+                                   heading_deviation, drop_fixes)
     finally:
         for w in caught:
             warnings.warn(w.message, w.category, stacklevel=2)
 
 
 def _read_drive_csv(path, origin, name, max_jitter, checks, progress, fill_gaps, gps_latency, intervals,
-                    odometer_latency, heading_offset, speed_scale, hdop_sigma, heading_latency, heading_deviation):
+                    odometer_latency, heading_offset, speed_scale, hdop_sigma, heading_latency, heading_deviation,
+                    drop_fixes=None):
     """:func:`read_drive_csv`'s body."""
     path = str(path)
     header, cols, lines = _read_columns(path, progress)
@@ -314,7 +317,8 @@ def _read_drive_csv(path, origin, name, max_jitter, checks, progress, fill_gaps,
                                 max_jitter=max_jitter, checks=checks, fill_gaps=fill_gaps, gps_latency=gps_latency,
                                 intervals=intervals, odometer_latency=odometer_latency,
                                 heading_offset=heading_offset, speed_scale=speed_scale,
-                                heading_latency=heading_latency, heading_deviation=heading_deviation, **kw)
+                                heading_latency=heading_latency, heading_deviation=heading_deviation,
+                                drop_fixes=drop_fixes, **kw)
     except ValueError as exc:
         hdop = (float(np.median(kw["gps_sigma"])) / hdop_sigma
                 if "gps_hdop" in col and kw.get("gps_sigma") is not None and len(kw["gps_sigma"]) else 0.0)

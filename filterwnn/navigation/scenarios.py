@@ -285,7 +285,7 @@ class DRRun(NamedTuple):
                     lat=None, lon=None, gps_sigma=None, truth=None, origin=None, name="drive",
                     max_jitter=0.2, checks=True, fill_gaps=0.0, gps_latency=0.0, intervals="auto",
                     odometer_latency=0.0, heading_offset=0.0, speed_scale=1.0, yaw_rate=None, heading_latency=0.0,
-                    heading_deviation=None):
+                    heading_deviation=None, drop_fixes=None):
         """One's own drive from arrays: validated, on the DR sample grid, in local metres.
 
         Parameters
@@ -392,6 +392,14 @@ class DRRun(NamedTuple):
             estimates the card against the fixes (``filterwnn.navigation._plausibility.heading_deviation``)
             and warns, with this setting's value, of a deviation past ``HEADING_DEVIATION_WARN_DEG`` (5 degrees):
             no filter state models it. Not with ``yaw_rate``.
+        drop_fixes : sequence of (start, end), optional
+            Spans of time ``[(start, end), ...]`` (s from the first sample, ``t[0]``, as the study's
+            ``--outage-starts`` counts; by the fixes' stamped times, before ``gps_latency``) whose GPS fixes are
+            dropped, with every per-fix array (``gps_t``, ``east``/``north`` or ``lat``/``lon``, ``gps_sigma``), before
+            anything else reads them, with a warning that counts them: fixes the plausibility check found dragged
+            away from the dead-reckoned track (a spoofer's walk: ``filterwnn.navigation._plausibility.fix_drag``),
+            which the filters would follow. Default None: none. A span that is not two finite numbers with
+            ``0 <= start < end``, or spans that hold no fix, are refused.
         speed_scale : float
             The factor by which ``speed`` (or ``distance``) reads more than the car drove (a speedometer's
             signal reads high by up to 10 %; a wheel-speed signal with the wrong tyre circumference a few per
@@ -428,6 +436,9 @@ class DRRun(NamedTuple):
         if (heading is None) == (yaw_rate is None):
             raise ValueError("give exactly one of heading (rad) and yaw_rate (rad/s), got "
                              + ("both" if heading is not None else "neither"))
+        if drop_fixes is not None:  # (before anything reads the fixes)
+            gps_t, east, north, lat, lon, gps_sigma = _drop_fixes(drop_fixes, t, gps_t, east, north, lat, lon,
+                                                                   gps_sigma)
         if checks:  # a time in another unit, before any warning read in it (spikes, jitter, reversing)
             from ._plausibility import MAX_DT, interval_refusal
 
@@ -472,6 +483,54 @@ class DRRun(NamedTuple):
                                   truth, origin, name, max_jitter, checks, intervals, np.deg2rad(off), integrated,
                                   card, saturated),
                    t_start=float(np.asarray(t, dtype=float).ravel()[0]))
+
+
+def _fix_spans(spans):
+    """``drop_fixes`` checked: a list of ``(start, end)`` floats, ``0 <= start < end``, each finite."""
+    try:
+        pairs = [tuple(float(v) for v in span) for span in spans]
+    except (TypeError, ValueError):
+        pairs = None
+    if not pairs or any(len(p) != 2 for p in pairs):
+        raise ValueError(f"drop_fixes must be spans [(start, end), ...] in seconds from the drive's first sample, got "
+                         f"{spans!r}")
+    for start, end in pairs:
+        if not (np.isfinite(start) and np.isfinite(end) and 0.0 <= start < end):
+            raise ValueError(f"drop_fixes: each span must be finite with 0 <= start < end (s from the drive's first "
+                             f"sample), got ({start:g}, {end:g})")
+    return pairs
+
+
+def _drop_fixes(spans, t, gps_t, east, north, lat, lon, gps_sigma):
+    """The per-fix arrays ``(gps_t, east, north, lat, lon, gps_sigma)`` without the fixes whose time lies in one of
+    ``drop_fixes``' ``spans`` (s from ``t[0]``), with a warning that counts them; refused where no fix lies in them."""
+    pairs = _fix_spans(spans)
+    if gps_t is None:
+        raise ValueError("drop_fixes needs GPS fixes (gps_t) to drop; the drive has none")
+    t0 = float(_finite_1d(t, "t")[0])
+    gps_t = _finite_1d(gps_t, "gps_t")
+    m = len(gps_t)
+    since = gps_t - t0
+    drop = np.zeros(m, dtype=bool)
+    for start, end in pairs:
+        drop |= (since >= start) & (since <= end)
+    said = ", ".join(f"{a:g}-{b:g} s" for a, b in pairs)
+    if not drop.any():
+        raise ValueError(f"drop_fixes: no GPS fix lies in the span(s) {said} (s from the drive's first sample; its "
+                         f"fixes lie at {since.min():g}-{since.max():g} s)")
+    if drop.all():
+        raise ValueError(f"drop_fixes: the span(s) {said} hold every one of the drive's {m} GPS fixes")
+    keep = ~drop
+
+    def kept(a, name):
+        return None if a is None else _finite_1d(a, name, m)[keep]
+
+    sig = gps_sigma
+    if sig is not None and np.ndim(sig):
+        sig = _finite_1d(sig, "gps_sigma", m)[keep]
+    warnings.warn(f"dropped {int(drop.sum())} of {m} GPS fix(es) in drop_fixes' span(s) {said} (s from the drive's "
+                  "first sample)", RuntimeWarning, stacklevel=3)
+    return (gps_t[keep], kept(east, "east"), kept(north, "north"), kept(lat, "lat"), kept(lon, "lon"), sig)
 
 
 def _deviation_card(card):

@@ -110,6 +110,22 @@ def finite_float(text):
     return _number(text, float, math.isfinite, "a finite number")
 
 
+def spans(text):
+    """Comma-separated pairs of numbers ``>= 0``, each start before its end: spans of time ``start,end,...`` (s).
+
+    >>> spans("240,480,900,960")
+    [(240.0, 480.0), (900.0, 960.0)]
+    """
+    values = [nonnegative_float(s.strip()) for s in str(text).split(",") if s.strip()]
+    if not values or len(values) % 2:
+        raise argparse.ArgumentTypeError(f"expected comma-separated pairs of times start,end,... (s), got {text!r}")
+    pairs = list(zip(values[::2], values[1::2]))
+    for start, end in pairs:
+        if start >= end:
+            raise argparse.ArgumentTypeError(f"each span's start must come before its end, got {start:g},{end:g}")
+    return pairs
+
+
 def deviation_card(text):
     """Four comma-separated finite numbers, of either sign: a compass's deviation card ``B,C,D,E`` (deg).
 

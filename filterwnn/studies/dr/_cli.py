@@ -88,6 +88,11 @@ def add_arguments(parser):
                              "+ D sin 2h + E cos 2h more than the car's course at the heading h it reads (a magnetic "
                              "heading near the car's steel), subtracted after --heading-offset (default none; the "
                              "drive reader warns of a deviation past 5 degrees, with the card)")
+    parser.add_argument("--drop-fixes", type=options.spans, default=None, metavar="START,END,...",
+                        help="with --drive: drop the GPS fixes in these spans (s from the drive's first row, as "
+                             "--outage-starts counts; several spans as START,END,START,END): fixes dragged away from "
+                             "the dead-reckoned track (a spoofer's walk), which the drive reader warns of with the "
+                             "span, and which the filters would follow (default none)")
     parser.add_argument("--hdop-sigma", type=options.positive_float, default=None, metavar="M",
                         help="with --drive: for a drive whose fixes carry a gps_hdop column (a dilution of "
                              "precision, without a unit), the sigma per axis (m) of a fix at HDOP 1, the receiver's "
@@ -198,7 +203,7 @@ def add_arguments(parser):
 #: drives, one's own or ``--real``'s (the outages' placement, the GPS/DR filters' settings): given where they
 #: do not apply, the command refuses them rather than ignore them.
 DRIVE_ONLY = ("--no-plausibility", "--fill-gaps", "--gps-latency", "--odometer-latency", "--heading-latency",
-              "--heading-offset", "--heading-deviation",
+              "--heading-offset", "--heading-deviation", "--drop-fixes",
               "--speed-scale", "--hdop-sigma", "--intervals", "--outage-starts", "--gyro-scale-sd", "--gyro-bias",
               "--gyro-bias-instability", "--gps-latency-sd", "--heading-noise", "--odometer-noise")
 ON_DRIVES = ("--outage-length", "--outages", "--min-speed", "--gps-scale-window", "--correlated-fixes",
@@ -358,6 +363,7 @@ def _run_drives(args, drives, filters):
                                  heading_latency=getattr(args, "heading_latency", 0.0),
                                  heading_offset=getattr(args, "heading_offset", 0.0),
                                  heading_deviation=getattr(args, "heading_deviation", None),
+                                 drop_fixes=getattr(args, "drop_fixes", None),
                                  speed_scale=getattr(args, "speed_scale", 1.0),
                                  hdop_sigma=getattr(args, "hdop_sigma", None) or _grade(grade)["gps_sigma_m"],
                                  progress=None if not getattr(args, "no_progress", False) else False)
