@@ -128,3 +128,17 @@ def test_saturated_runs_close_together_are_one_step(gap):
     fit = yaw_start(0.1, heading, step, steps, z, pairs, [(a, a + 5), (a + int(gap / 0.1), a + int(gap / 0.1) + 5)])
     assert len(fit["steps"]) == (1 if gap < 10 else 2)
     assert all(abs(turn) < 6.0 for _, _, turn, _, _ in fit["steps"])  # (nothing was lost: the steps read ~0)
+
+
+def test_saturated_runs_without_fixes_on_both_sides_are_named_and_not_mended():
+    """Runs before the first fix (or after the last, or in a gap of fixes) have no course on one side to fit the turn
+    they lost: the warning counts them as not mended."""
+    t, kw, _ = _drive(rail=20.0)
+    late = kw["gps_t"] >= 150.0
+    kw = {**kw, "gps_t": kw["gps_t"][late], "lat": kw["lat"][late], "lon": kw["lon"][late],
+          "gps_sigma": kw["gps_sigma"][late]}
+    runs, _ = S._saturated(t, kw["yaw_rate"])
+    assert any(b < 150.0 for _, b in runs)  # (a run before the first fix)
+    _, said = _read(t, kw)
+    told = [w for w in said if "largest value" in w]
+    assert len(told) == 1 and re.search(r"\d+ run\(s\) without fixes on both sides are not mended", told[0]), told
