@@ -302,7 +302,10 @@ class DRRun(NamedTuple):
             The gyro's yaw rate (rad/s, clockwise positive: a right turn), in place of ``heading``: integrated
             by the trapezoid rule from the first sample, and started at the heading the fixes' course gives
             (the line through the moving stretches' angles that ``heading_offset``'s check fits, at least
-            ``YAW_START_CHORDS`` of them), with a warning that names it and its standard error. Values over
+            ``YAW_START_CHORDS`` of them, or a piecewise line where the drift is not steady: a gyro warming up),
+            with a warning that names it and its standard error. A rate that reads its range's rail (a gyro past
+            its range in tight turns: ``SATURATED_MIN_SAMPLES``, ``SATURATED_PILE``) is warned of, and the turns it
+            lost, fitted to the fixes' course on either side, are added back. Values over
             ``MAX_YAW_RATE`` are refused as degrees per second; a run of up to ``MAX_SPIKE_RUN`` samples past
             what a car turns at the odometer's speed (``YAW_SPIKE_MIN``) is interpolated first, with a warning.
         distance : array-like of shape (n_samples,), optional
