@@ -609,6 +609,11 @@ def _median(values):
     return s[h] if len(s) % 2 else 0.5 * (s[h - 1] + s[h])
 
 
+#: A speed (m/s) past what a car drives, over which a DR sample's distance is told as a speed given in its place
+#: (:meth:`GPSDRFilter._check_input`).
+MAX_DR_SPEED = 100.0
+
+
 def _no_fix(z_gps):
     """Whether ``z_gps`` says there is no fix: ``None``, or two NaN (a row of an array of fixes)."""
     if z_gps is None:
@@ -948,10 +953,25 @@ class GPSDRFilter:
     filterpy-style: ``predict()``, ``update(z_dr, z_gps=None, gps_sigma=None)``,
     ``batch_filter``, and the state ``x``/``P`` (those of the filter it wraps, ``kf``).
 
+    A filterpy user's loop is ``predict()`` then ``update()`` at each DR sample, and :meth:`end_of_drive` when
+    the drive ends (``batch_filter`` does all three and returns the posterior means, no covariances; there is no
+    smoother). ``z_dr`` is ``[heading (rad), distance since the last sample (m)]``: a speed is times ``dt``. ``R``
+    and ``Q`` are read, not set: the filter builds ``R`` at each update from each fix's ``gps_sigma`` (or the
+    model's ``sigma_gps``) and the model's DR noise, and ``Q`` comes from the model, so a different noise is a
+    different :class:`~filterwnn.navigation.dead_reckoning.GPSDRModel` (or grade); setting ``kf.R`` on the
+    wrapped filter is overwritten at the next update. The wrapped filterpy filter ``kf`` has ``x_prior``,
+    ``x_post``, ``y``, ``S``, ``K`` and ``log_likelihood`` of its last update, a DR sample's alone (2 rows) or with
+    its fix (4 rows), so a sum of ``log_likelihood`` mixes the two. ``copy.copy`` is a deep copy;
+    ``copy.deepcopy`` and ``pickle`` work.
+
     Parameters
     ----------
     model : GPSDRModel
-        The model (6 states, or 8 with ``augmented=True``).
+        The model: 6 states, 8 with ``augmented=True`` (an odometer scale and a heading bias), 9 with a gyro
+        rate-bias state (:meth:`~filterwnn.navigation.dead_reckoning.GPSDRModel.from_grade`'s ``"phone"``), and a
+        gyro scale or a fixes' latency state where the grade or the monitor adds one. The 6-state model has no
+        heading bias: a heading whose zero is a few degrees off, which the 8-state models learn from the fixes,
+        stays in its dead reckoning.
     kind : {"ekf", "ukf", "sukf"}
         filterpy's ``ExtendedKalmanFilter`` with the analytic Jacobian, or the unscented
         filter with Merwe points (``alpha=0.5, beta=2, kappa=0``) or spherical-simplex
@@ -1464,6 +1484,8 @@ class GPSDRFilter:
         self.heading_noise_raised = self.odometer_noise_raised = None
         self._dr_nis = []  # the window's (heading, odometer) normalised innovations squared
         self._dr_scaled = False  # any factor above 1
+        self._predicted = True  # predict() since the last update() (a caller's loop that forgets it is told once)
+        self._told_input = set()  # the input mistakes told once (_check_input)
 
     def _init_integrity(self, gate, reject_gate, reacquire_after, nis_window, x0):
         """The gate, the counters, the consistency monitor and the calibration bounds."""
@@ -1546,6 +1568,7 @@ class GPSDRFilter:
 
     def predict(self):
         """Propagate ``x`` and ``P`` one DR sample interval."""
+        self._predicted = True
         self.kf.predict()
         if self._sens is not None:
             self._sens = self.model.F @ self._sens
@@ -1581,8 +1604,16 @@ class GPSDRFilter:
             (a fix logged between the samples of a 1 Hz log is up to 0.5 s, 10 m at 20 m/s, off). Default 0.
         """
         z_dr = check_scale(as_state(z_dr, "z_dr", 2), "z_dr")  # a distance of 1e308 would give x = inf
+        if z_gps is not None:
+            try:
+                column = np.asarray(z_gps, dtype=float)
+            except (TypeError, ValueError):
+                column = None
+            if column is not None and column.ndim == 2 and column.size == 2:  # filterpy's column vector (2, 1)
+                z_gps = column.reshape(2)
         if _no_fix(z_gps):
             z_gps = gps_sigma = None
+        self._check_input(z_dr)
         if gps_sigma is not None:
             gps_sigma = self._floor_sigma(gps_sigma)
         if self.model.gyro_scale:
@@ -1656,6 +1687,62 @@ class GPSDRFilter:
             self._add_state()
         self.step += 1
         return self
+
+    def _check_input(self, z_dr):
+        """Tell, once each, what a caller's own loop gets wrong that the filter would otherwise take for the
+        sensors' faults (a trial by a filterpy user, stop 71: a heading in degrees read as reversals and a creeping
+        car, a speed given as the distance read as 143 m/s, an update without its predict read as noisy sensors)."""
+        said = []
+        if not self._predicted and "predict" not in self._told_input:
+            self._told_input.add("predict")
+            said.append(f"update() at step {self.step} without predict() since the last update(): each DR sample is "
+                        "predict() then update(), as in filterpy (batch_filter does both); without it the state "
+                        "does not move between samples")
+        self._predicted = False
+        if abs(float(z_dr[0])) > 2 * np.pi + 0.02 and "degrees" not in self._told_input:  # (rounding: 6.3)
+            self._told_input.add("degrees")
+            said.append(f"the heading z_dr[0] = {float(z_dr[0]):g} at step {self.step} is past 2 pi: the heading is in "
+                        "radians (np.deg2rad of one in degrees; an unwrapped heading in radians is fine)")
+        speed = float(z_dr[1]) / self.model.dt
+        if speed > MAX_DR_SPEED and "speed" not in self._told_input:
+            self._told_input.add("speed")
+            said.append(f"the distance since the last sample z_dr[1] = {float(z_dr[1]):g} m at step {self.step} is "
+                        f"{speed:.4g} m/s over the sample interval ({self.model.dt:g} s), past what a car drives: "
+                        "z_dr[1] is a distance (m), the speed times the interval; a speed given there reads "
+                        f"{1.0 / self.model.dt:g} times too fast")
+        for words in said:
+            warnings.warn(f"GPSDRFilter: {words}", RuntimeWarning, stacklevel=3)
+
+    @property
+    def R(self):
+        """The last update's measurement noise (the wrapped filter's): the filter builds it at each update from the
+        model's DR noise and each fix's ``gps_sigma`` (or the model's ``sigma_gps``), so setting it is refused."""
+        return self.kf.R
+
+    @R.setter
+    def R(self, value):
+        raise AttributeError("GPSDRFilter builds R at each update: the fixes' noise from each fix's gps_sigma (update, "
+                             "batch_filter) or the model's sigma_gps, the DR sample's from the model's sigma_heading "
+                             "and sigma_odometer (GPSDRModel, or GPSDRModel.from_grade); set those instead")
+
+    @property
+    def Q(self):
+        """The process noise (the wrapped filter's), from the model's ``q`` (the vehicle's jerk) and its sensors'
+        drifts; setting it is refused (set the model's)."""
+        return self.kf.Q
+
+    @Q.setter
+    def Q(self, value):
+        raise AttributeError("GPSDRFilter's Q comes from its model (GPSDRModel: q, the vehicle's white jerk, and the "
+                             "sensors' drifts; GPSDRModel.from_grade maps a grade's specification to them): build the "
+                             "filter with the model you want")
+
+    def __copy__(self):
+        """A deep copy: the filter's counters, windows and the filter it wraps are all mutable, and a shallow copy
+        stepped on would leave the original with the copy's state and its own counters."""
+        import copy
+
+        return copy.deepcopy(self)
 
     @property
     def heading_noise(self):
@@ -3356,8 +3443,8 @@ class GPSDRFilter:
         z_gps : sequence of length n_steps, optional
             Per step the fix ``(2,)`` or ``None`` (:meth:`filterwnn.navigation.scenarios.DRRun.gps_list`), or an
             array ``(n_steps, 2)`` whose rows without a fix are NaN.
-        gps_sigma : sequence of length n_steps, optional
-            Per step the fix's sigma (m) or ``None`` (any value where there is no fix).
+        gps_sigma : float or sequence of length n_steps, optional
+            Per step the fix's sigma (m) or ``None`` (any value where there is no fix); one number for every fix.
         gps_offset : sequence of length n_steps, optional
             Per step the fix's time less the sample's (s) or ``None`` (:meth:`update`;
             :meth:`~filterwnn.navigation.scenarios.DRRun.gps_offset_list`).
@@ -3380,7 +3467,7 @@ class GPSDRFilter:
             raise ValueError(f"z_dr must have shape (n_steps, 2), got {z_dr.shape}")
         n = len(z_dr)
         gps = [None] * n if z_gps is None else list(z_gps)
-        sig = [None] * n if gps_sigma is None else list(gps_sigma)
+        sig = [None] * n if gps_sigma is None else [gps_sigma] * n if np.ndim(gps_sigma) == 0 else list(gps_sigma)
         off = [None] * n if gps_offset is None else list(gps_offset)
         for name, seq in (("z_gps", gps), ("gps_sigma", sig), ("gps_offset", off)):
             if len(seq) != n:

@@ -1718,9 +1718,19 @@ def simulate_scenario(scenario, rng=None):
 
 
 def with_outage(run, start, length):
-    """A copy of ``run`` without GPS fixes in ``[start, start + length)`` (times of ``run.t``)."""
+    """A copy of ``run`` without GPS fixes in ``[start, start + length)`` (times of ``run.t``: seconds from the
+    drive's first sample, not the log's own clock, which started at ``run.t_start``). A ``length`` that is not
+    positive is refused; an outage that drops no fix is warned of, naming the times the fixes span."""
+    start, length = check_finite(start, "start", "seconds"), check_positive(length, "length")
     tf = run.t[run.gps_steps]
     keep = ~((tf >= start) & (tf < start + length))
+    if keep.all():
+        span = f"{tf[0]:g} to {tf[-1]:g} s" if len(tf) else "none: the drive has no fix"
+        clock = (f"; the log's own clock started at {run.t_start:g} s (run.t_start): subtract it from a time on "
+                 "that clock" if getattr(run, "t_start", 0.0) else "")
+        warnings.warn(f"with_outage drops no fix: [{start:g}, {start + length:g}) s holds none of the drive's fixes, "
+                      f"whose times (run.t, seconds from the drive's first sample) run {span}{clock}", RuntimeWarning,
+                      stacklevel=2)
     sc = run.scenario.with_(outages=((float(start), float(start + length)),))
     sig = None if run.gps_sigma is None else run.gps_sigma[keep]
     offset = None if run.gps_offset is None else run.gps_offset[keep]
