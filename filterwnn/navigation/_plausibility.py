@@ -786,24 +786,49 @@ YAW_START_LEVEL = 1e-3
 SATURATED_CHORDS = 3
 
 
+#: The chords a piece of :func:`yaw_start`'s piecewise line holds, at least (a piece over a long gap of fixes, a car
+#: park's 361 s, would swing its rate freely: a trial's clean drive read a change of 0.27 deg/s there).
+YAW_START_PIECE_CHORDS = 10
+
+
+def _chord_knots(t):
+    """The knots (s) of :func:`yaw_start`'s piecewise line over the chords' times ``t`` (from 0): a piece at least
+    :data:`YAW_START_KNOT_S` long and holding :data:`YAW_START_PIECE_CHORDS` chords, the last piece merged into the
+    one before it when it holds fewer."""
+    knots, since = [0.0], 0
+    for v in t[1:]:
+        since += 1
+        if v - knots[-1] >= YAW_START_KNOT_S and since >= YAW_START_PIECE_CHORDS:
+            knots.append(float(v))
+            since = 0
+    end = max(float(t[-1]), knots[-1] + 1.0)
+    if len(knots) > 1 and since < YAW_START_PIECE_CHORDS:
+        knots[-1] = end
+    else:
+        knots.append(end)
+    return np.array(knots)
+
+
 def yaw_start(dt, heading, step, steps, z_gps, pairs, saturated=()):
     """Where a yaw rate's integral starts, and the turns a saturated gyro lost: the chords' signed angles
     (:func:`_chord_angles`, the dead-reckoned course less the fixes') over time, a line (a gyro's steady rate bias),
     or, where that misfits at :data:`YAW_START_LEVEL` (an F-test, its statistic and degrees of freedom divided by
     the residuals' integrated autocorrelation time; with :data:`DEVIATION_CHORDS_PER_PARAMETER` chords per
-    parameter at least: a city analog's 22 swung the pieces' rates by +-0.4 deg/s), a piecewise line with knots every :data:`YAW_START_KNOT_S` (a
+    parameter at least: a city analog's 22 swung the pieces' rates by +-0.4 deg/s), a piecewise line with pieces of
+    :data:`YAW_START_KNOT_S` or more, each holding :data:`YAW_START_PIECE_CHORDS` chords (:func:`_chord_knots`; a
     bias that changes: a gyro warming up, whose straight line had started a trial's drive 36 degrees off with a
     standard error of 1); beside a step at each group of ``saturated`` runs (sample index ranges ``(first, last)``
     where the rate read its range's rail: each leaves the turn past the rail out of the heading), the runs with
     fewer than :data:`SATURATED_CHORDS` chords between them one group, the chords that span a group left out.
-    Least squares, then again without the chords past three robust sigmas (:func:`_inliers`). A steady drift with no
-    turn to mend is :func:`_offset_fit`'s line, as :func:`heading_offset` gives it (the reader's start before stop 71).
+    Both beside a gyro's scale factor error (the turn since the start). Least squares, then again without the chords
+    past three robust sigmas (:func:`_inliers`). A steady drift with no turn to mend is :func:`_offset_fit`'s line, as
+    :func:`heading_offset` gives it (the reader's start before stop 71).
 
     Returns
     -------
     dict or None
         ``offset`` (deg, at the first chord), ``se`` (deg), ``rate`` (deg/s, the first piece's), ``last_rate``
-        (the last piece's), ``rates`` (each piece's), ``piece_s`` (a piece's length, s), ``piecewise`` (bool), ``resid`` (deg, the median absolute residual), ``n`` (chords
+        (the last piece's), ``rates`` (each piece's), ``pieces`` (their lengths, s), ``piecewise`` (bool), ``resid`` (deg, the median absolute residual), ``n`` (chords
         fitted), ``steps``: per group ``(first, last, turn, se)`` (samples; deg: the turn the heading lost there,
         positive clockwise), ``groups`` the runs each took; None with fewer than :data:`_MIN_CHORDS` chords.
     """
@@ -836,8 +861,13 @@ def yaw_start(dt, heading, step, steps, z_gps, pairs, saturated=()):
     # a group with no chord after it (the drive's end, an outage) or none before has nothing to fit
     told = (jumps.sum(axis=0) > 0) & (jumps.sum(axis=0) < len(t))  # (and one with none before it: the start's)
     jumps = jumps[:, told]
-    line = np.hstack([np.stack([np.ones_like(t), t], axis=1), jumps])
-    knots = np.hstack([_hats(t, YAW_START_KNOT_S), jumps])
+    # a gyro's scale factor error beside either (the heading's error grows with the turn since the start: a car
+    # park's helix up and down, read as a drift that changed, had asked a trial's clean drive for 800 deg/h)
+    turned = np.unwrap(np.asarray(heading, dtype=float))
+    scale = (0.5 * (turned[a] + turned[b]) - turned[0])[ok][:, None]
+    line = np.hstack([np.stack([np.ones_like(t), t], axis=1), scale, jumps])
+    at = _chord_knots(t)
+    knots = np.hstack([np.stack([np.interp(t, at, row) for row in np.eye(len(at))], axis=1), scale, jumps])
 
     def fit(X, keep):
         coef = np.linalg.lstsq(X[keep], y[keep], rcond=None)[0]
@@ -862,23 +892,26 @@ def yaw_start(dt, heading, step, steps, z_gps, pairs, saturated=()):
     if not piecewise and not jumps.shape[1]:  # a steady drift and no turn to mend: the heading line's fit, as before
         offset, se, rate, resid, n = _offset_fit(ang, steps, pairs, dt)
         return {"offset": offset, "se": se, "rate": rate, "last_rate": rate, "rates": np.array([rate]),
-                "piece_s": max(float(t[-1]), 1.0), "piecewise": False, "resid": resid, "n": n, "steps": [],
+                "pieces": np.array([max(float(t[-1]), 1.0)]), "piecewise": False, "resid": resid, "n": n, "steps": [],
                 "unfitted": unfitted}
     X = (knots if piecewise else line)[keep]
     dof = max(n - X.shape[1], 1)
     cov = np.linalg.pinv(X.T @ X) * float(r[keep] @ r[keep]) / dof
     m = jumps.shape[1]
-    base = X.shape[1] - m
+    base = X.shape[1] - m - 1  # the line's or the pieces' columns (then the scale's, then the steps')
     if piecewise:
-        rates = np.diff(coef[:base]) / (max(float(t[-1]), 1.0) / (base - 1))
+        rates = np.diff(coef[:base]) / np.diff(at)
     else:
         rates = coef[1:2]
     fitted = [g for g, on in zip(groups, told) if on]
-    turns = [(int(first), int(last), float(np.degrees(-c)), float(np.degrees(np.sqrt(cov[base + i, base + i]))), runs)
-             for i, ((first, last, runs), c) in enumerate(zip(fitted, coef[base:]))]
+    first_step = base + 1
+    turns = [(int(first), int(last), float(np.degrees(-c)),
+              float(np.degrees(np.sqrt(cov[first_step + i, first_step + i]))), runs)
+             for i, ((first, last, runs), c) in enumerate(zip(fitted, coef[first_step:]))]
     return {"offset": float(np.degrees(coef[0])), "se": float(np.degrees(np.sqrt(cov[0, 0]))),
             "rate": float(np.degrees(rates[0])), "last_rate": float(np.degrees(rates[-1])),
-            "rates": np.degrees(rates), "piece_s": max(float(t[-1]), 1.0) / max(base - 1, 1), "piecewise": piecewise,
+            "rates": np.degrees(rates), "pieces": np.diff(at) if piecewise else np.array([max(float(t[-1]), 1.0)]),
+            "piecewise": piecewise,
             "resid": float(np.degrees(np.median(np.abs(r[keep])))), "n": n, "steps": turns, "unfitted": unfitted}
 
 

@@ -748,16 +748,21 @@ def _yaw_start(dt, heading, step, steps, z_gps, sigma, checks=True, saturated=()
     spec = SENSOR_GRADES["phone"]["gyro_bias_deg_s"]
     none = "the survey grade and the 6-state EKF have no rate-bias state"
     if fit["piecewise"]:
-        change = float(np.max(np.abs(np.diff(fit["rates"]))))
-        walk = float(f"{3600.0 * change / np.sqrt(fit['piece_s'] / 100.0):.2g}")  # (the grade's mapping, inverted)
-        how = (f"a piecewise line through their angles, knots every {YAW_START_KNOT_S:g} s, since a straight one "
+        # each change between two pieces, over the time between their middles, as the grade's random walk reads it
+        # (q_rate = (instability / 3600)^2 / 100 s: a change c over T s is instability 3600 c / sqrt(T / 100))
+        changes = np.abs(np.diff(fit["rates"]))
+        apart = 0.5 * (fit["pieces"][1:] + fit["pieces"][:-1])
+        k = int(np.argmax(changes / np.sqrt(apart)))
+        change, over = float(changes[k]), float(apart[k])
+        walk = float(f"{3600.0 * change / np.sqrt(over / 100.0):.2g}")
+        how = (f"a piecewise line through their angles, pieces of {YAW_START_KNOT_S:g} s or more, since a straight one "
                f"misfits: its drift goes from {rate:+.2g} deg/s at the start to {fit['last_rate']:+.2g} at the end, a "
                f"gyro's rate bias that changes (a gyro warming up, or one whose bias wanders); {none}, and the phone "
                "grade's 8-state filters estimate a rate bias that moves as fast as the grade's instability lets it "
                f"({SENSOR_GRADES['phone']['gyro_bias_instability_deg_h']:g} deg/h), while a larger prior (--gyro-bias) "
                "only learns the first minutes' rate and keeps it: give the instability the drift shows, "
                f"gyro_bias_instability_deg_h={walk:g} in the phone grade (--grade phone --gyro-bias-instability "
-               f"{walk:g}: its largest change between two pieces, {change:.2g} deg/s in {fit['piece_s']:.0f} s, as the "
+               f"{walk:g}: its largest change between two pieces, {change:.2g} deg/s in {over:.0f} s, as the "
                "grade's random walk of the rate bias reads it; measured on all of this drive's fixes, those the "
                "study's outages hide among them, so a drive of the same gyro, or its data sheet, is the blind value)")
     else:
