@@ -820,7 +820,7 @@ def yaw_start(dt, heading, step, steps, z_gps, pairs, saturated=()):
     standard error of 1); beside a step at each group of ``saturated`` runs (sample index ranges ``(first, last)``
     where the rate read its range's rail: each leaves the turn past the rail out of the heading), the runs with
     fewer than :data:`SATURATED_CHORDS` chords between them one group, the chords that span a group left out.
-    Both beside a gyro's scale factor error (the turn since the start). Least squares, then again without the chords
+    Both beside a gyro's scale factor error (the turn since the start) where no run is saturated. Least squares, then again without the chords
     past three robust sigmas (:func:`_inliers`). A steady drift with no turn to mend is :func:`_offset_fit`'s line, as
     :func:`heading_offset` gives it (the reader's start before stop 71).
 
@@ -863,8 +863,10 @@ def yaw_start(dt, heading, step, steps, z_gps, pairs, saturated=()):
     jumps = jumps[:, told]
     # a gyro's scale factor error beside either (the heading's error grows with the turn since the start: a car
     # park's helix up and down, read as a drift that changed, had asked a trial's clean drive for 800 deg/h)
+    # (not beside the saturated runs' steps, which take the turns' errors there: with every turn saturated, the scale
+    # is their sum)
     turned = np.unwrap(np.asarray(heading, dtype=float))
-    scale = (0.5 * (turned[a] + turned[b]) - turned[0])[ok][:, None]
+    scale = (0.5 * (turned[a] + turned[b]) - turned[0])[ok][:, None] if not jumps.shape[1] else np.zeros((len(t), 0))
     line = np.hstack([np.stack([np.ones_like(t), t], axis=1), scale, jumps])
     at = _chord_knots(t)
     knots = np.hstack([np.stack([np.interp(t, at, row) for row in np.eye(len(at))], axis=1), scale, jumps])
@@ -898,13 +900,13 @@ def yaw_start(dt, heading, step, steps, z_gps, pairs, saturated=()):
     dof = max(n - X.shape[1], 1)
     cov = np.linalg.pinv(X.T @ X) * float(r[keep] @ r[keep]) / dof
     m = jumps.shape[1]
-    base = X.shape[1] - m - 1  # the line's or the pieces' columns (then the scale's, then the steps')
+    base = X.shape[1] - m - scale.shape[1]  # the line's or the pieces' columns (then the scale's, then the steps')
     if piecewise:
         rates = np.diff(coef[:base]) / np.diff(at)
     else:
         rates = coef[1:2]
     fitted = [g for g, on in zip(groups, told) if on]
-    first_step = base + 1
+    first_step = base + scale.shape[1]
     turns = [(int(first), int(last), float(np.degrees(-c)),
               float(np.degrees(np.sqrt(cov[first_step + i, first_step + i]))), runs)
              for i, ((first, last, runs), c) in enumerate(zip(fitted, coef[first_step:]))]
