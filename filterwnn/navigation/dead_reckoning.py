@@ -105,6 +105,10 @@ _ACCEL_TERMS = ("kinematic", "paper")
 #: :func:`filterwnn.angles.wrap` (angles in rad to ``[-pi, pi)``, any shape) under its DR name.
 wrap_angle = wrap
 
+#: How far past ``2 pi`` a heading in radians may read: a heading just under ``2 pi`` written
+#: with a few decimals rounds up past it (6.2832 to four decimals, 6.3 to one: 0.017 over).
+HEADING_ROUNDING = 0.02
+
 
 def transition_matrix(dt, accel_term="kinematic", dim_x=6, rate_bias=None):
     r"""The transition matrix :math:`\Phi` of shape ``(dim_x, dim_x)``.

@@ -266,7 +266,8 @@ from .._warnings import folded_warnings
 from ..metrics import integrated_autocorrelation
 from .._validation import as_state, check_choice, check_covariance, check_finite, check_positive, check_positive_int, check_scale
 from ._plausibility import MAX_DRIFT_DEG_S, SIGMA_UNITS_REMEDY
-from .dead_reckoning import GPSDRModel, _rate_walk_instability, dr_residual, gps_H, gps_hx, wrap_angle
+from .dead_reckoning import (HEADING_ROUNDING, GPSDRModel, _rate_walk_instability, dr_residual, gps_H, gps_hx,
+                             wrap_angle)
 from ..kalman.presets import make_points
 from ..models import from_model
 from ..kalman.unscented import UnscentedKalmanFilter
@@ -1699,7 +1700,7 @@ class GPSDRFilter:
                         "predict() then update(), as in filterpy (batch_filter does both); without it the state "
                         "does not move between samples")
         self._predicted = False
-        if abs(float(z_dr[0])) > 2 * np.pi + 0.02 and "degrees" not in self._told_input:  # (rounding: 6.3)
+        if abs(float(z_dr[0])) > 2 * np.pi + HEADING_ROUNDING and "degrees" not in self._told_input:
             self._told_input.add("degrees")
             said.append(f"the heading z_dr[0] = {float(z_dr[0]):g} at step {self.step} is past 2 pi: the heading is in "
                         "radians (np.deg2rad of one in degrees; an unwrapped heading in radians is fine)")

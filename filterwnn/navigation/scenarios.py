@@ -44,7 +44,7 @@ import numpy as np
 
 from .._validation import check_finite, check_positive, check_rng
 from ._plausibility import _run_bounds
-from .dead_reckoning import SENSOR_GRADES, dr_fx, wrap_angle
+from .dead_reckoning import HEADING_ROUNDING, SENSOR_GRADES, dr_fx, wrap_angle
 
 __all__ = [
     "Scenario",
@@ -653,10 +653,6 @@ def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps
     return (dt * np.arange(1, n), x0, x_true, z_dr, steps, z_gps, R_true, sc, sig, offset, backed)
 
 
-#: How far past ``2 pi`` a heading in radians may read: a heading just under ``2 pi`` written
-#: with a few decimals rounds up past it (6.2832 to four decimals, 6.3 to one: 0.017 over).
-HEADING_ROUNDING = 0.02
-
 
 #: A yaw rate (rad/s) past which the column is taken for degrees per second (a car turns at most about 1 rad/s).
 MAX_YAW_RATE = 3.0
@@ -745,7 +741,6 @@ def _yaw_start(dt, heading, step, steps, z_gps, sigma, checks=True, saturated=()
                          "instead")
     offset, se, rate = fit["offset"], fit["se"], fit["rate"]
     start = (-offset + 180.0) % 360.0 - 180.0
-    spec = SENSOR_GRADES["phone"]["gyro_bias_deg_s"]
     none = "the survey grade and the 6-state EKF have no rate-bias state"
     if fit["piecewise"]:
         # each change between two pieces, over the time between their middles, as the grade's random walk reads it
@@ -766,6 +761,7 @@ def _yaw_start(dt, heading, step, steps, z_gps, sigma, checks=True, saturated=()
                "grade's random walk of the rate bias reads it; measured on all of this drive's fixes, those the "
                "study's outages hide among them, so a drive of the same gyro, or its data sheet, is the blind value)")
     else:
+        spec = SENSOR_GRADES["phone"]["gyro_bias_deg_s"]
         bias = (f"; at {abs(rate):.2g} deg/s it is past {YAW_BIAS_SIGMAS:g} times the phone grade's {spec:g} deg/s (one "
                 "sigma), which its rate-bias state learns only after several stops or minutes of fixes: give it from "
                 f"the start, gyro_bias_deg_s in the phone grade (--grade phone --gyro-bias {abs(rate):.2g}; the survey "
