@@ -231,7 +231,9 @@ What the filter does when GPS lies (each part a public setting, on by default):
 * **Consistency monitor.** The mean NIS over the last :data:`NIS_WINDOW` fixes it used is compared
   with the 99.9 % point of its chi-square distribution; above it, a warning names the step
   and the remedy (the fixes' reported accuracy is optimistic, or the grade too good; with a rate-bias
-  state, or a gyro bias that moved faster than the grade's bias instability allows). Where the fixes carried
+  state, or a gyro bias that moved faster than the grade's bias instability allows; with a 6-state model, first
+  the odometer scale and heading bias it lacks, which a speed or heading off by a little makes inconsistent:
+  ``GPSDRModel(augmented=True)``). Where the fixes carried
   their own sigma, between :data:`HDOP_LOWEST` m and :data:`HDOP_GRADE` of the grade's, and their innovations
   are at least :data:`HDOP_FACTOR` times it, it names an HDOP read as metres (a ``gps_sigma`` column holding
   NMEA's dilution of precision) and the ``gps_hdop`` column that reads it. Below :data:`NIS_FAR_BELOW` it
@@ -3074,11 +3076,18 @@ class GPSDRFilter:
             gyro = ("; or the gyro's bias moved faster than the grade allows (its temperature): "
                     + _instability_remedy(self.model)) if self.model.rate_bias else ""
             few = self._few_fixes_words()  # (its own kind of warning: folded apart from the others)
+            # a model without calibration states takes an odometer's scale or a heading's bias for the fixes' fault
+            # (stop 72: a 5 % scale read NIS 12 where the 8-state model read 1.8 on the same drive)
+            six = ("" if self.model.augmented else
+                   f"this model has no odometer scale or heading bias ({self.model.dim_x} states): a speed a few per "
+                   "cent off, or a heading a degree or two off, keeps the innovations growing between fixes; "
+                   "GPSDRModel(augmented=True) or a grade (GPSDRModel.from_grade: the study's EKF-8, UKF-8, SUKF-8) "
+                   "estimates them. Else ")
             warnings.warn(
                 f"GPSDRFilter is inconsistent{' in a few fixes' if few else ''} at step {self.step}: the mean NIS of "
                 f"the last {self.nis_window} fixes is {mean:.1f}, above its 99.9 % bound "
                 f"{self._nis_bound:.2f} (2 expected); "
-                f"{few}the fixes' reported accuracy is optimistic or the sensor grade too good: "
+                f"{few}{six}the fixes' reported accuracy is optimistic or the sensor grade too good: "
                 "pass the receiver's accuracy as gps_sigma, use a lower grade, or estimate the fixes' covariance scale "
                 f"(scale_window={SCALE_WINDOW}) if they are optimistic all through the drive: a single stretch at "
                 "fault (a car carried, fixes dragged, a heading that deviates) the scale takes for their accuracy, and "

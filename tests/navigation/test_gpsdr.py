@@ -517,6 +517,29 @@ def test_the_consistency_monitor_warns_with_the_step_and_a_remedy():
         g.batch_filter(run.z_dr, fixes)
 
 
+@pytest.mark.parametrize("scale, bias", [(1.05, 0.0), (1.03, 2.0)])
+def test_a_six_state_filters_inconsistency_names_the_calibration_it_lacks(scale, bias):
+    """A 6-state model has no odometer scale or heading bias: a speed 5 % off (or 3 % and a 2 degree heading bias)
+    makes it inconsistent, and the warning names the 8-state model before the fixes' accuracy (stop 72: it named
+    only the fixes' accuracy and the grade, where the 8-state model on the same drive is consistent)."""
+    sc = Scenario(name="scaled", duration=600.0, speed=15.0, heading=30.0,
+                  turns=((100, 110, 90), (300, 310, -90), (450, 460, 45)), gps_rate=1.0, odometer_scale=scale,
+                  heading_bias=bias, sigma_heading=0.2, sigma_odometer=0.02)
+    run = simulate_scenario(sc, rng=1)
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        six = GPSDRFilter(GPSDRModel(sigma_heading=0.2), kind="ekf", x0=run.x0)
+        six.batch_filter(run.z_dr, run.gps_list())
+    said = [str(w.message) for w in seen if "inconsistent" in str(w.message)]
+    assert said and re.search(r"no odometer scale or heading bias \(6 states\).*GPSDRModel\(augmented=True\).*"
+                              r"Else the fixes' reported accuracy is optimistic", said[0])
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        eight = GPSDRFilter(GPSDRModel(augmented=True, sigma_heading=0.2), kind="ekf", x0=np.r_[run.x0, 1.0, 0.0])
+        eight.batch_filter(run.z_dr, run.gps_list())
+    assert not [w for w in seen if "inconsistent" in str(w.message)] and eight.nis_mean < 2.5 < six.nis_mean
+
+
 def test_batch_filter_folds_a_warning_that_repeats_into_one_line_with_its_steps():
     """The monitor warns each time the window re-enters inconsistency: step by step, each time; over a
     batch, one line with the first step and the steps of the others (there were 37 anonymous lines on a
