@@ -424,8 +424,9 @@ class DRRun(NamedTuple):
         Returns
         -------
         DRRun
-            ``t`` from ``dt`` (the first sample is ``t = 0`` and gives ``x0``: position the truth's or
-            the first fix's, velocity from the first speed and heading), ``x_true`` ``None`` without
+            ``t`` from ``dt`` (the first sample is ``t = 0`` and gives ``x0``: position the truth's or,
+            without truth, the first fix's taken back to the first sample along the dead-reckoned track, velocity
+            from the first speed and heading), ``x_true`` ``None`` without
             truth, ``R_true`` the nominal DR variances (1 degree, 2 cm), ``scenario`` the drive's.
 
         Raises
@@ -629,8 +630,11 @@ def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps
     x_true = None
     if truth is not None:
         x_true, p0 = _truth_states(truth, t)
-    elif len(z_gps):
-        p0 = z_gps[0]
+    elif len(z_gps):  # the first fix, taken back to the first sample along the dead-reckoned track (stop 72: taken
+        # as it is, a drive starting at 20 m/s with its first fix 1 s in started 24.5 m off)
+        at = int(steps[0]) + 1
+        p0 = z_gps[0] - np.array([np.sum(step[:at] * np.sin(heading[1:at + 1])),
+                                  np.sum(step[:at] * np.cos(heading[1:at + 1]))])
     else:
         p0 = np.zeros(2)
     if checks:

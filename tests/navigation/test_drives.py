@@ -152,6 +152,18 @@ def _quiet(**kw):
         return DRRun.from_arrays(**kw)
 
 
+def test_a_drive_without_truth_starts_where_its_first_fix_puts_its_first_sample():
+    """Without truth the start is the first fix taken back along the dead-reckoned track to the first sample (stop
+    72): taken as it is, a drive at 20 m/s whose first fix comes 1 s in started 20 m off, with the truth 0."""
+    kw = {**_arrays(minutes=3.0, v=20.0, sigma=0.0), "gps_sigma": 3.0}  # (fixes without error: the start is exact)
+    run = _quiet(**kw)
+    truth = _quiet(**kw, truth=np.stack([np.r_[0.0, np.cumsum(20.0 * 0.1 * np.sin(kw["heading"][1:]))],
+                                         np.r_[0.0, np.cumsum(20.0 * 0.1 * np.cos(kw["heading"][1:]))]], axis=1))
+    assert run.x_true is None and run.gps_steps[0] == truth.gps_steps[0] == 9  # (the first fix at t = 1 s)
+    assert np.hypot(*(run.x0[[0, 3]] - truth.x0[[0, 3]])) < 1e-6
+    assert np.hypot(*(run.z_gps[0] - truth.x0[[0, 3]])) == pytest.approx(20.0, abs=0.01)
+
+
 def test_a_drifting_gyro_with_multipath_jumps_is_read():
     """20 minutes of a 0.09 deg/s rate bias (108 degrees at the end; the phone grade's gyro, within 2 sigma)
     with 5 % of the fixes jumped 40-80 m: numpy's unwrap of the chords' angles took a jumped chord's for a
