@@ -53,6 +53,21 @@ def test_saver_records_a_gpsdr_filter_over_a_drive(sample, kind):
     assert len(f.nis_accepted) > 0 and f.nis_accepted == g.nis_accepted
 
 
+def test_batch_filter_takes_a_saver_as_filterpys_does(sample):
+    """``batch_filter(..., saver=s)`` calls ``s.save()`` after every step, as filterpy's ``batch_filter`` does (stop
+    72): the covariances of the means it returns, which it did not record."""
+    run = sample
+    model = GPSDRModel.from_grade("phone", run.scenario.dt)
+    f = GPSDRFilter(model, "ekf", x0=np.r_[run.x0, model.x0[6:]])
+    s = Saver(f)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        est = f.batch_filter(run.z_dr[:300], run.gps_list()[:300], run.gps_sigma_list()[:300], saver=s)
+    s.to_array()
+    assert s.P.shape == (300, 9, 9) and np.all(np.linalg.eigvalsh(s.P) > 0)
+    np.testing.assert_array_equal(s.x, est)
+
+
 def test_a_gpsdr_filter_copies_and_pickles_whole(sample):
     """The slots travel with the filter: a copy or a pickle goes on as the original (the study snapshots a filter
     at each outage's start)."""
@@ -90,16 +105,19 @@ def _mixture(name, m):
 
 def _recorded_like_batch_filter(f, g, zs):
     """``Saver(f)`` over ``predict``/``update(z)`` for each of ``zs``, stacked; its ``x`` and ``P`` are those
-    ``g.batch_filter(zs)`` returns for a twin ``g``. The ``Saver``."""
+    ``g.batch_filter(zs, saver=Saver(g))`` returns for a twin ``g``, and that saver's ``x`` too. The ``Saver``."""
     s = Saver(f)
     for z in zs:
         f.predict()
         f.update(z)
         s.save()
     s.to_array()
-    means, covs = g.batch_filter(np.asarray(zs))
+    sg = Saver(g)  # and batch_filter's own saver, as filterpy's batch_filter takes one (stop 72)
+    means, covs = g.batch_filter(np.asarray(zs), saver=sg)
     np.testing.assert_array_equal(s.x, means)  # each step's, as batch_filter gives them (not one array seen twice)
     np.testing.assert_array_equal(s.P, covs)
+    sg.to_array()
+    np.testing.assert_array_equal(sg.x, means)
     return s
 
 

@@ -363,7 +363,7 @@ class _Bank:
     def _posterior(self):
         self._keep("post")
 
-    def batch_filter(self, zs, fx_args=None, hx_args=None):
+    def batch_filter(self, zs, fx_args=None, hx_args=None, saver=None):
         """Run ``predict``/``update`` over a sequence of measurements.
 
         Parameters
@@ -372,6 +372,8 @@ class _Bank:
             One measurement per member and step (NaN rows: missing), or one shared per step.
         fx_args, hx_args : dict, optional
             Keywords for every ``predict``/``update``.
+        saver : filterpy.common.Saver, optional
+            ``saver.save()`` after every step, as filterpy's ``batch_filter`` calls it.
 
         Returns
         -------
@@ -388,6 +390,8 @@ class _Bank:
             self.predict(**fx_args)
             self.update(zs[k], **hx_args)
             means[k], covs[k] = self._x, self._P
+            if saver is not None:
+                saver.save()
         return means, covs
 
     def __repr__(self):

@@ -180,7 +180,7 @@ class WeightedMixtureFilter:
                 self.__dict__[name] = value
         self._resample = get_scheme(self.resampling)
 
-    def batch_filter(self, zs, fx_args=None, hx_args=None):
+    def batch_filter(self, zs, fx_args=None, hx_args=None, saver=None):
         """Run ``predict``/``update`` over a sequence of measurements.
 
         Parameters
@@ -189,6 +189,8 @@ class WeightedMixtureFilter:
             ``None`` entries skip the update.
         fx_args, hx_args : dict, optional
             Keywords for every ``predict``/``update`` call.
+        saver : filterpy.common.Saver, optional
+            ``saver.save()`` after every step, as filterpy's ``batch_filter`` calls it.
 
         Returns
         -------
@@ -205,4 +207,6 @@ class WeightedMixtureFilter:
             self.predict(**fx_args)
             self.update(z, **hx_args)
             means[k], covs[k] = self.x, self.P  # (formed here if the update left them pending)
+            if saver is not None:
+                saver.save()
         return means, covs

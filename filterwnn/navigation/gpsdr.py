@@ -3444,7 +3444,7 @@ class GPSDRFilter:
         else:
             self.kf.update(z, R=R, gps=kw["gps"])
 
-    def batch_filter(self, z_dr, z_gps=None, gps_sigma=None, gps_offset=None):
+    def batch_filter(self, z_dr, z_gps=None, gps_sigma=None, gps_offset=None, saver=None):
         """Run over a drive: ``predict`` then ``update`` at every DR sample.
 
         Parameters
@@ -3458,11 +3458,15 @@ class GPSDRFilter:
         gps_offset : sequence of length n_steps, optional
             Per step the fix's time less the sample's (s) or ``None`` (:meth:`update`;
             :meth:`~filterwnn.navigation.scenarios.DRRun.gps_offset_list`).
+        saver : filterpy.common.Saver, optional
+            As filterpy's ``batch_filter`` takes it: ``saver.save()`` after every step, so that ``P`` (or anything
+            else the filter holds) is recorded with the means (``Saver(f)`` on this filter; ``saver.to_array()``
+            afterwards).
 
         Returns
         -------
         ndarray of shape (n_steps, dim_x)
-            The posterior means.
+            The posterior means (their covariances: ``saver``).
 
         Warns
         -----
@@ -3489,6 +3493,8 @@ class GPSDRFilter:
                 self.predict()
                 self.update(z_dr[k], gps[k], sig[k], off[k])
                 out[k] = self.kf.x[:width]  # the states of the model it started with (a scale state added is not)
+                if saver is not None:
+                    saver.save()
             self.end_of_drive()
         return out
 
