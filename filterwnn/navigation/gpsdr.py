@@ -3077,7 +3077,7 @@ class GPSDRFilter:
                     + _instability_remedy(self.model)) if self.model.rate_bias else ""
             few = self._few_fixes_words()  # (its own kind of warning: folded apart from the others)
             # a model without calibration states takes an odometer's scale or a heading's bias for the fixes' fault
-            # (stop 72: a 5 % scale read NIS 12 where the 8-state model read 1.8 on the same drive)
+            # (stop 72: with a 5 % scale, mean NIS 5.7 over the drive where the 8-state model read 1.8)
             six = ("" if self.model.augmented else
                    f"this model has no odometer scale or heading bias ({self.model.dim_x} states): a speed a few per "
                    "cent off, or a heading a degree or two off, keeps the innovations growing between fixes; "
