@@ -47,7 +47,9 @@ DRIVE_CSV_COLUMNS = {
     "gps_lat": ("deg", "GPS fix latitude, WGS84 (with gps_lon; instead of gps_east/gps_north)"),
     "gps_lon": ("deg", "GPS fix longitude"),
     "gps_sigma": ("m", "optional: the fix's horizontal accuracy (standard deviation per axis: a phone's 68 % "
-                       "radius over 1.51); a column empty on every fix is taken as absent, with a warning"),
+                       "radius over 1.51); a column empty on every fix is taken as absent, with a warning; empty, 0 or a "
+                       "placeholder (a 99.9 repeated) on some fixes, those take their neighbours' accuracy, with a "
+                       "warning"),
     "gps_hdop": ("dimensionless", "optional, instead of gps_sigma: the fix's horizontal dilution of precision (NMEA GGA's HDOP, "
                      "no unit); its sigma is the HDOP times read_drive_csv's hdop_sigma (m at HDOP 1)"),
     "true_east": ("m", "optional: reference east (with true_north), same frame as the fixes; a pair of truth "
@@ -573,6 +575,7 @@ def _csv_fixes(path, header, col, column, t, origin, lines, hdop_sigma=None):
         unit = "m" if acc == "gps_sigma" else "no unit"
         if a == "gps_lat":  # a receiver's null fixes (dropped, with a warning) need no accuracy: a tunnel's rows
             gs = np.where(_null_fixes(ga[fix], gb[fix]) & ~(gs > 0), 1.0, gs)  # written 0,0 with it empty (stop 59)
+        gs = _unknown_accuracy(path, acc, gs, t[fix])
         if np.any(~np.isfinite(gs)):
             r = int(np.flatnonzero(fix)[np.argmax(~np.isfinite(gs))])
             raise ValueError(f"{path}: column {acc!r} is empty on data row {r + 1}, which has a fix (give "
@@ -592,6 +595,65 @@ def _csv_fixes(path, header, col, column, t, origin, lines, hdop_sigma=None):
             gs = gs * hdop_sigma
         kw["gps_sigma"] = gs
     return kw
+
+
+#: The least share of the fixes (and number) whose accuracy cell reads a value for the others, empty, 0 or a
+#: placeholder, to take their neighbours' (:func:`_unknown_accuracy`); fewer, and an empty or 0 cell is refused.
+ACCURACY_KNOWN_SHARE = 0.5
+ACCURACY_KNOWN_MIN = 10
+#: A value the accuracy column repeats exactly on runs of at least this many fixes in a row ...
+PLACEHOLDER_RUN = 10
+#: ... at least this many times the median of its other values, and at least three times their largest, is a
+#: placeholder (a logger's 99.9 where the NMEA or Android record had no accuracy), not a measurement: a receiver's
+#: accuracy changes from fix to fix. The sixth user trial's drive with 99.9 on 37 % of its fixes, as good as the
+#: others (1.8 m): EKF-8 4.90 / 30.46 m at the outage ends, the twin with the real sigmas 3.64 / 19.42, and the
+#: same drive with those cells filled by hand 3.54 / 19.45 (stop 72).
+PLACEHOLDER_FACTOR = 10.0
+
+
+def _unknown_accuracy(path, acc, gs, tf):
+    """The fixes' accuracy ``gs`` (at the fix times ``tf``) with the cells that say nothing (empty, 0 or less, or a
+    placeholder: :data:`PLACEHOLDER_RUN`, :data:`PLACEHOLDER_FACTOR`) given their neighbours' (interpolated in time,
+    in logarithms: the nearest known before and after), with one warning, where at least
+    :data:`ACCURACY_KNOWN_SHARE` (and :data:`ACCURACY_KNOWN_MIN`) of the fixes read a value; otherwise ``gs`` as it
+    is, which the caller refuses (stop 72: refused, a user dropped the column and every fix took the grade's 5 m)."""
+    known = np.isfinite(gs) & (gs > 0)
+    placeholder = np.zeros(len(gs), dtype=bool)
+    vals, counts = np.unique(gs[known], return_counts=True)
+    for v in vals[counts >= PLACEHOLDER_RUN]:
+        others = known & (gs != v)
+        if others.sum() < ACCURACY_KNOWN_MIN or not (v >= PLACEHOLDER_FACTOR * np.median(gs[others])
+                                                     and v >= 3.0 * np.max(gs[others])):
+            continue
+        same = np.r_[False, gs == v, False]
+        starts, ends = np.flatnonzero(~same[:-1] & same[1:]), np.flatnonzero(same[:-1] & ~same[1:])
+        if np.max(ends - starts) >= PLACEHOLDER_RUN:
+            placeholder |= gs == v
+    good = known & ~placeholder
+    bad = ~good
+    if not bad.any() or good.sum() < max(ACCURACY_KNOWN_MIN, ACCURACY_KNOWN_SHARE * len(gs)):
+        return gs
+    filled = gs.copy()
+    filled[bad] = np.exp(np.interp(tf[bad], tf[good], np.log(gs[good])))
+    said = []
+    if placeholder.any():
+        v = float(gs[placeholder][0])
+        same = np.r_[False, placeholder, False]
+        starts, ends = np.flatnonzero(~same[:-1] & same[1:]), np.flatnonzero(same[:-1] & ~same[1:])
+        said.append(f"reads {v:g} on {int(placeholder.sum())} fixes ({len(starts)} stretch(es), the first from t = "
+                    f"{tf[starts[0]]:.10g} s to {tf[ends[0] - 1]:.10g} s), {v / np.median(gs[good]):.0f} times the "
+                    f"median of its other values ({np.median(gs[good]):.3g}) and never near it: a placeholder a logger "
+                    "writes where the receiver's record had no accuracy, not a measurement")
+    empty = ~known
+    if empty.any():
+        said.append(f"is empty or 0 on {int(empty.sum())} fixes (the first at t = {tf[np.argmax(empty)]:.10g} s): "
+                    "the receiver gave none")
+    warnings.warn(f"{path}: column {acc!r} " + "; it ".join(said) + f". Those {int(bad.sum())} fixes take the "
+                  "accuracy of the fixes beside them (interpolated in time), as good as their neighbours' (taken as "
+                  "written, a placeholder's far larger sigma makes the filters all but ignore good fixes; dropping "
+                  "the column gives every fix the grade's sigma). Fixes that really were that poor: give their "
+                  "accuracy", RuntimeWarning, stacklevel=4)
+    return filled
 
 
 def _csv_truth(path, header, col, column, origin, kw):

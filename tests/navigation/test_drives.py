@@ -346,8 +346,8 @@ def test_a_loggers_faults_are_named_with_their_remedy(tmp_path):
             read_drive_csv(_write(tmp_path / "d.csv", cols), **kw)
 
     c = _drive()
-    c["gps_sigma"][np.flatnonzero(~np.isnan(c["gps_sigma"]))[37]] = 0.0  # the fix's index was all it said
-    refused(c, r"'gps_sigma' must be > 0 \(m\) where there is a fix; data row 371 \(line 372\) has 0 \(0 is how")
+    c["gps_sigma"][np.flatnonzero(~np.isnan(c["gps_sigma"]))[:100]] = 0.0  # the fix's index was all it said
+    refused(c, r"'gps_sigma' must be > 0 \(m\) where there is a fix; data row 1 \(line 2\) has 0 \(0 is how")
     c = _drive()
     c["heading"] = np.degrees(c["heading"])
     refused(c, "looks like degrees: name the column heading_deg, or write it in radians")
@@ -377,10 +377,36 @@ def test_a_gps_sigma_column_the_receiver_never_filled_is_taken_as_absent(tmp_pat
         run = read_drive_csv(_write(tmp_path / "d.csv", c))
     assert run.gps_sigma is None and len(run.gps_steps) == 120
     c = _drive()
-    c["gps_sigma"][np.flatnonzero(~np.isnan(c["gps_sigma"]))[5]] = np.nan
-    with pytest.raises(ValueError, match=r"'gps_sigma' is empty on data row 51, which has a fix \(give every fix "
+    fixes = np.flatnonzero(~np.isnan(c["gps_sigma"]))
+    c["gps_sigma"][fixes[5]] = np.nan  # one empty among the others: their neighbours' (stop 72; refused before)
+    with pytest.warns(RuntimeWarning, match=r"'gps_sigma' is empty or 0 on 1 fixes \(the first at t = 5 s\): the "
+                                            r"receiver gave none. Those 1 fixes take the accuracy of the fixes beside"):
+        run = read_drive_csv(_write(tmp_path / "d.csv", c))
+    assert np.all(np.isfinite(run.gps_sigma))
+    c["gps_sigma"][fixes[:100]] = np.nan  # most empty: refused with the remedy, as before
+    with pytest.raises(ValueError, match=r"'gps_sigma' is empty on data row 1, which has a fix \(give every fix "
                                          r"its accuracy, or drop the column"):
         read_drive_csv(_write(tmp_path / "d.csv", c))
+
+
+def test_a_placeholder_accuracy_takes_its_neighbours(tmp_path):
+    """A logger's 99.9 where the receiver's record had no accuracy (runs of it, far above every other value) is no
+    measurement: those fixes take their neighbours' accuracy, with a warning (stop 72: the sixth trial's drive, 37 %
+    of its fixes at 99.9, ended its outages 4.90 / 30.46 m off, 3.73 / 19.33 so read, the twin 3.64 / 19.42). A
+    receiver whose accuracy is one value throughout, or a large value on a few fixes, is read as written."""
+    c = _drive()
+    fixes = np.flatnonzero(~np.isnan(c["gps_sigma"]))
+    c["gps_sigma"][fixes] = np.linspace(2.0, 3.0, len(fixes))
+    c["gps_sigma"][fixes[40:60]] = 99.9
+    with pytest.warns(RuntimeWarning, match=r"'gps_sigma' reads 99.9 on 20 fixes \(1 stretch\(es\), the first from "
+                                            r"t = 40 s to 59 s\), 39 times the median .* a placeholder"):
+        run = read_drive_csv(_write(tmp_path / "d.csv", c))
+    assert np.all(run.gps_sigma < 3.1)
+    c["gps_sigma"][fixes[40:60]] = np.tile([99.9, 80.0], 10)  # alternating: no run, read as written
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        run = read_drive_csv(_write(tmp_path / "d.csv", c))
+    assert run.gps_sigma.max() == pytest.approx(99.9)
 
 
 def test_an_hdop_column_is_read_as_a_sigma_through_the_sigma_at_hdop_1(tmp_path):
@@ -407,7 +433,7 @@ def test_an_hdop_column_is_read_as_a_sigma_through_the_sigma_at_hdop_1(tmp_path)
         plain = read_drive_csv(_write(tmp_path / "named.csv", c, columns=cols, header=COLUMNS[:5] + ["hdop"]
                                       + COLUMNS[6:]))
     assert plain.gps_sigma is None  # not read: every fix gets the grade's sigma
-    c["gps_hdop"][np.flatnonzero(np.isfinite(c["gps_lat"]))[4]] = 0.0
+    c["gps_hdop"][np.flatnonzero(np.isfinite(c["gps_lat"]))[4:100]] = 0.0
     with pytest.raises(ValueError, match=r"'gps_hdop' must be > 0 \(no unit\) where there is a fix; data row 41"):
         read_drive_csv(_write(tmp_path / "d.csv", c, columns=cols), hdop_sigma=3.0)
 
