@@ -2,6 +2,7 @@
 against the GPS fixes, delimiters, a byte-order mark, NaN cells, short files, a large file."""
 
 import os
+import re
 import subprocess
 import sys
 import warnings
@@ -162,6 +163,23 @@ def test_a_drive_without_truth_starts_where_its_first_fix_puts_its_first_sample(
     assert run.x_true is None and run.gps_steps[0] == truth.gps_steps[0] == 9  # (the first fix at t = 1 s)
     assert np.hypot(*(run.x0[[0, 3]] - truth.x0[[0, 3]])) < 1e-6
     assert np.hypot(*(run.z_gps[0] - truth.x0[[0, 3]])) == pytest.approx(20.0, abs=0.01)
+
+
+def test_fixes_from_two_sources_taking_turns_are_named():
+    """Two receivers merged into one column, every other fix 5 m off the ones between: named with the offset, and
+    left as written (stop 72: moved onto either source, or their midpoint, the sixth trial's drive ended farther
+    off); one source at the same rate is not."""
+    kw = _arrays(minutes=6.0, fix_every=5, sigma=1.5)
+    _quiet(**kw)
+    moved = dict(kw, east=kw["east"].copy(), north=kw["north"].copy())
+    moved["east"][1::2] += 4.0
+    moved["north"][1::2] -= 3.0
+    with pytest.warns(RuntimeWarning, match=r"the GPS fixes take turns between two sources (\d.\d\d) m apart \(every "
+                                            r"other fix, .*: two receivers, or two antennas, merged into one column") as w:
+        run = DRRun.from_arrays(**moved)
+    said = [re.search(r"sources (\d.\d\d) m apart", str(x.message)) for x in w]
+    assert abs(float(next(m for m in said if m).group(1)) - 5.0) < 0.5
+    np.testing.assert_array_equal(run.z_gps[:, 0], moved["east"])  # (as written)
 
 
 def test_a_drifting_gyro_with_multipath_jumps_is_read():

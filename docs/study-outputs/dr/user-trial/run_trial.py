@@ -2,7 +2,7 @@
 stop 69), ``gen_drives_3.py`` (``--trial 3``, stop 70) or ``gen_drives_4.py`` (``--trial 4``, stop 71) through the
 command, both grades.
 
-    OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/user-trial/run_trial.py [--trial 2|3|4] > docs/study-outputs/dr/user-trial/trial_<...>.txt
+    OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/user-trial/run_trial.py [--trial 2|3|4|6] > docs/study-outputs/dr/user-trial/trial_<...>.txt
 
 Each line: the drive and grade, the exit code, the median / max at the outage ends (m) of DR-mech, EKF-8, UKF-8 and
 SUKF-8, the number of warning lines on stderr, and the table's header (how many outages, and the drive's own gaps of
@@ -12,6 +12,10 @@ split where the reader finds the car carried (229-593 s) as two drives (one line
 tried: the ferry with the covariance scale estimated, the car park with the gyro's scale state. Trial 4 likewise (its
 d3 and d4 are refused as written, d3 run with the ``--fill-gaps`` its refusal names; d5 also with its two faults
 apart), and d1 with the ``--gyro-bias-instability`` value the reader's warning names on it (read from that warning).
+Trial 6 (``--trial 6``, ``gen_drives_6.py``, stop 72; the fifth trial was of the API, from Python) runs its five drives
+beside their twins, the smoothed fixes with the latency the reader names, the compass disturbed by the car's
+electrics with the heading noise the filters name, and the clean twin of the restarted logger's drive (a fused
+heading without a rate bias) with a residual gyro bias of 0.005 deg/s in place of the phone grade's 0.05.
 """
 import os
 import re
@@ -41,8 +45,14 @@ RUNS_4 = [(f"{name}_{twin}", f"{name}_{twin}.csv", []) for name in (
     ("d5 scale drift alone", "d5_gyro_sat_odo_drift_driftonly.csv", []),
     ("d1 --gyro-bias-instability (the warning's)", "d1_gyro_warmup_fault.csv",
      ["--from-warning", r"--gyro-bias-instability (\d+)"])]
+RUNS_6 = [(f"{name}{twin}", f"{name}{twin}.csv", []) for name in ("dualrx", "smoothed", "magsteps", "sigma99",
+                                                                   "enu_restart") for twin in ("", "_clean")] + [
+    ("smoothed --gps-latency 1.5 (the reader's remedy)", "smoothed.csv", ["--gps-latency", "1.5"]),
+    ("magsteps --heading-noise 1.5 (the filters' remedy)", "magsteps.csv", ["--heading-noise", "1.5"]),
+    ("enu_restart_clean --gyro-bias 0.005", "enu_restart_clean.csv", ["--gyro-bias", "0.005"])]
 TRIAL = int(sys.argv[sys.argv.index("--trial") + 1]) if "--trial" in sys.argv else 1
-GENERATOR = {1: "gen_drives.py", 2: "gen_drives_2.py", 3: "gen_drives_3.py", 4: "gen_drives_4.py"}[TRIAL]
+GENERATOR = {1: "gen_drives.py", 2: "gen_drives_2.py", 3: "gen_drives_3.py", 4: "gen_drives_4.py",
+             6: "gen_drives_6.py"}[TRIAL]
 
 
 def split(path, within):
@@ -73,7 +83,7 @@ def cells(text):
 
 with tempfile.TemporaryDirectory() as folder:
     subprocess.run([sys.executable, os.path.join(HERE, GENERATOR), folder], check=True, capture_output=True)
-    for label, csv, extra in {1: RUNS, 2: RUNS_2, 3: RUNS_3, 4: RUNS_4}[TRIAL]:
+    for label, csv, extra in {1: RUNS, 2: RUNS_2, 3: RUNS_3, 4: RUNS_4, 6: RUNS_6}[TRIAL]:
         drives = [os.path.join(folder, csv)]
         if "--split" in extra:
             drives = split(drives[0], extra[extra.index("--split") + 1])
