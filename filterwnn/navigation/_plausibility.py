@@ -1153,7 +1153,7 @@ def _share(ang):
     return float(np.mean(np.abs(ang) <= np.deg2rad(MAX_ANGLE_DEG)))
 
 
-def _track_cause(heading, step, steps, z_gps, pairs, swapped, offset=None):
+def _track_cause(heading, step, steps, z_gps, pairs, swapped, offset=None, dt=None):
     """The usual heading or frame mistake that fits the fixes best, or None.
 
     Heading counter-clockwise from east and swapped lat/lon both mirror the track about
@@ -1191,12 +1191,70 @@ def _track_cause(heading, step, steps, z_gps, pairs, swapped, offset=None):
                 out.append((bad, _share(ang), cause))
         return out
 
+    headings = {cause: h for h, z, cause in named if z is z_gps}
     named, others = fitting(named), fitting(others)
     best_other = max((share for _, share, _ in others), default=-1.0)
     named = [t for t in named if t[1] > best_other - SHARE_MARGIN]
     if named:
-        return min(named, key=lambda t: t[0])[2]
+        cause = min(named, key=lambda t: t[0])[2]
+        split = _from_where(heading, headings[cause], step, steps, z_gps, pairs, dt) if (
+            cause in headings and dt is not None) else None
+        return cause + ("; but " + _split_words(*split) if split else "")
     return max(others, key=lambda t: t[1])[2] if others else None
+
+
+def _warn_stretch_convention(heading, step, steps, z_gps, pairs, dt, yaw_rate):
+    """Warn where the heading fits the fixes as written on one stretch only and, on the rest, as a named mistake
+    (degrees, counter-clockwise from east) would (:func:`_from_where`): a drive the refusal's remedy converted whole
+    (stop 72's sixth trial, its heading counter-clockwise from 250 s on, converted whole: 13.42 / 523.46 m)."""
+    if yaw_rate:
+        return
+    for named, what in ((np.deg2rad(heading), "degrees"), (np.pi / 2 - heading, "counter-clockwise from east")):
+        split = _from_where(heading, named, step, steps, z_gps, pairs, dt)
+        if split:
+            warnings.warn(f"plausibility: the heading reads as {what} on a stretch of the drive, and the filters take "
+                          f"all of it as written: {_split_words(*split)}", RuntimeWarning, stacklevel=5)
+            return
+
+
+#: The share of the chords the better split of a drive (as written before a time, as a named mistake after it, or the
+#: other way round) must fit, and by how much more than the mistake named for the whole drive, before a refusal says
+#: that the mistake holds only from (or until) then (:func:`_from_where`).
+SPLIT_SHARE = 0.85
+SPLIT_MARGIN = 0.15
+
+
+def _from_where(heading, named, step, steps, z_gps, pairs, dt):
+    """Words for a refusal whose heading mistake (``named``, the heading so corrected) holds on one stretch of the
+    drive only, as written on the rest (a logger restarted with another convention: stop 72's sixth trial, whose
+    heading turned counter-clockwise from east at 250 s, was refused as if all of it were, and converted whole it
+    ended its outages 13.42 / 523.46 m off): the split of the chords into a first stretch and the rest, one as written
+    and the other corrected, that fits most of them, where it fits :data:`SPLIT_SHARE` of them and
+    :data:`SPLIT_MARGIN` more than the correction throughout; "" otherwise."""
+    n = len(pairs)
+    if n < 4 * _MIN_CHORDS:
+        return None
+    limit = np.deg2rad(MAX_ANGLE_DEG)
+    as_is = np.abs(_chord_angles(heading, step, steps, z_gps, pairs)[0]) <= limit
+    fixed = np.abs(_chord_angles(named, step, steps, z_gps, pairs)[0]) <= limit
+    best = None
+    for first, rest, later in ((as_is, fixed, True), (fixed, as_is, False)):
+        score = (np.r_[0, np.cumsum(first)] + np.r_[np.cumsum(rest[::-1])[::-1], 0]) / n
+        k = int(np.argmax(score[1:n])) + 1
+        if best is None or score[k] > best[0]:
+            best = (float(score[k]), k, later)
+    share, k, later = best
+    if share < SPLIT_SHARE or share < max(float(np.mean(fixed)), float(np.mean(as_is))) + SPLIT_MARGIN:
+        return None
+    return float(dt * (int(steps[pairs[k][0]]) + 1)), later, share
+
+
+def _split_words(at, later, share):
+    """The words of :func:`_from_where`'s split: the mistake holds from (``later``) or until ``at`` (s)."""
+    return (f"only {'from' if later else 'until'} about t = {at:.0f} s (s from the first row); "
+            f"{'before' if later else 'after'} it the heading fits the fixes as written ({share:.0%} of the chords "
+            "fit so split): a log whose convention changed there (a logger restarted with another setting), whose "
+            f"rows {'from' if later else 'until'} then alone need converting")
 
 
 def _mirrored(heading, step, steps, z_gps, pairs):
@@ -1522,6 +1580,7 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
         if still:
             raise ValueError(f"plausibility: {still}{_OVERRIDE}")
         _warn_tilted(heading, step, steps, z_gps, pairs)
+        _warn_stretch_convention(heading, step, steps, z_gps, pairs, dt, yaw_rate)
         if not yaw_rate:  # (a yaw rate's integral turns with the car's turns, not with its direction)
             _warn_deviation(dt, heading, step, steps, z_gps, sigma, pairs)
         if told is not None:
@@ -1566,7 +1625,7 @@ def check_drive(dt, heading, step, steps, z_gps, sigma=None, swapped=None, truth
                  "the start)")
     else:
         cause = _track_cause(heading, step, steps, z_gps, pairs, swapped,
-                             told if told is not None and _fits(0.0, ratio) else None)
+                             told if told is not None and _fits(0.0, ratio) else None, dt)
         check = "check the heading's zero (north) and sign (clockwise), and the fixes' frame"
         cause = (_offset_remedy(*fit[:3]) + "; else " + check) if cause == "offset" else (cause or check)
     raise ValueError(f"plausibility: {found} (expected at most {MAX_ANGLE_DEG:g} degrees and "

@@ -182,6 +182,36 @@ def test_fixes_from_two_sources_taking_turns_are_named():
     np.testing.assert_array_equal(run.z_gps[:, 0], moved["east"])  # (as written)
 
 
+def test_a_heading_convention_that_changes_mid_drive_is_placed(tmp_path):
+    """A logger restarted with another convention: the sixth user trial's drive (``gen_drives_6.py``), its heading
+    counter-clockwise from east after 250 s. The refusal says from when (stop 72: it named the whole column, and
+    converted whole the drive ended its outages 13.42 / 523.46 m off); the drive converted whole is warned of, with
+    the time until which the conversion holds."""
+    here = os.path.dirname(os.path.abspath(__file__))
+    gen = os.path.join(here, "..", "..", "docs", "study-outputs", "dr", "user-trial", "gen_drives_6.py")
+    subprocess.run([sys.executable, gen, str(tmp_path)], check=True, capture_output=True)
+    with pytest.raises(ValueError, match=r"heading looks counter-clockwise from east .*; but only from about t = "
+                                         r"24\d s \(s from the first row\); before it the heading fits the fixes as "
+                                         r"written \(\d+% of the chords fit so split\): a log whose convention "
+                                         r"changed there"):
+        read_drive_csv(tmp_path / "enu_restart.csv", progress=False)
+    with open(tmp_path / "enu_restart.csv") as fh:
+        header, *rows = fh.read().splitlines()
+    cols = header.split(",")
+    t, h = cols.index("time"), cols.index("heading_deg")
+    whole = []
+    for row in rows:  # the refusal's remedy applied to every row
+        cells = row.split(",")
+        cells[h] = f"{(90.0 - float(cells[h])) % 360.0:.3f}"
+        whole.append(",".join(cells))
+    (tmp_path / "whole.csv").write_text("\n".join([header] + whole) + "\n")
+    with pytest.warns(RuntimeWarning, match=r"the heading reads as counter-clockwise from east on a stretch of the "
+                                            r"drive, and the filters take all of it as written: only until about t = "
+                                            r"24\d s"):
+        read_drive_csv(tmp_path / "whole.csv", progress=False)
+    assert float(rows[0].split(",")[t]) == 0.0
+
+
 def test_a_drifting_gyro_with_multipath_jumps_is_read():
     """20 minutes of a 0.09 deg/s rate bias (108 degrees at the end; the phone grade's gyro, within 2 sigma)
     with 5 % of the fixes jumped 40-80 m: numpy's unwrap of the chords' angles took a jumped chord's for a
