@@ -21,7 +21,7 @@ import warnings
 import numpy as np
 
 from .._validation import check_positive, check_rng
-from ._plausibility import HDOP_AS_METRES_MIN, HDOP_METRES_REMEDY, hdop_as_metres
+from ._plausibility import HDOP_AS_METRES_MIN, HDOP_METRES_REMEDY, _run_bounds, hdop_as_metres
 from .dead_reckoning import wrap_angle
 from .scenarios import HEADING_ROUNDING, MAX_YAW_RATE, DRRun, Scenario, earth_radii, latlon_to_en, _null_fixes
 
@@ -625,8 +625,7 @@ def _unknown_accuracy(path, acc, gs, tf):
         if others.sum() < ACCURACY_KNOWN_MIN or not (v >= PLACEHOLDER_FACTOR * np.median(gs[others])
                                                      and v >= 3.0 * np.max(gs[others])):
             continue
-        same = np.r_[False, gs == v, False]
-        starts, ends = np.flatnonzero(~same[:-1] & same[1:]), np.flatnonzero(same[:-1] & ~same[1:])
+        starts, ends = _run_bounds(gs == v)
         if np.max(ends - starts) >= PLACEHOLDER_RUN:
             placeholder |= gs == v
     good = known & ~placeholder
@@ -638,8 +637,7 @@ def _unknown_accuracy(path, acc, gs, tf):
     said = []
     if placeholder.any():
         v = float(gs[placeholder][0])
-        same = np.r_[False, placeholder, False]
-        starts, ends = np.flatnonzero(~same[:-1] & same[1:]), np.flatnonzero(same[:-1] & ~same[1:])
+        starts, ends = _run_bounds(placeholder)
         said.append(f"reads {v:g} on {int(placeholder.sum())} fixes ({len(starts)} stretch(es), the first from t = "
                     f"{tf[starts[0]]:.10g} s to {tf[ends[0] - 1]:.10g} s), {v / np.median(gs[good]):.0f} times the "
                     f"median of its other values ({np.median(gs[good]):.3g}) and never near it: a placeholder a logger "

@@ -957,8 +957,8 @@ class GPSDRFilter:
     ``batch_filter``, and the state ``x``/``P`` (those of the filter it wraps, ``kf``).
 
     A filterpy user's loop is ``predict()`` then ``update()`` at each DR sample, and :meth:`end_of_drive` when
-    the drive ends (``batch_filter`` does all three and returns the posterior means, no covariances; there is no
-    smoother). ``z_dr`` is ``[heading (rad), distance since the last sample (m)]``: a speed is times ``dt``. ``R``
+    the drive ends (``batch_filter`` does all three and returns the posterior means, their covariances through a
+    filterpy ``Saver`` passed as ``saver``; there is no smoother). ``z_dr`` is ``[heading (rad), distance since the last sample (m)]``: a speed is times ``dt``. ``R``
     and ``Q`` are read, not set: the filter builds ``R`` at each update from each fix's ``gps_sigma`` (or the
     model's ``sigma_gps``) and the model's DR noise, and ``Q`` comes from the model, so a different noise is a
     different :class:`~filterwnn.navigation.dead_reckoning.GPSDRModel` (or grade); setting ``kf.R`` on the
@@ -1696,23 +1696,25 @@ class GPSDRFilter:
         sensors' faults (a trial by a filterpy user, stop 71: a heading in degrees read as reversals and a creeping
         car, a speed given as the distance read as 143 m/s, an update without its predict read as noisy sensors)."""
         said = []
-        if not self._predicted and "predict" not in self._told_input:
-            self._told_input.add("predict")
-            said.append(f"update() at step {self.step} without predict() since the last update(): each DR sample is "
-                        "predict() then update(), as in filterpy (batch_filter does both); without it the state "
-                        "does not move between samples")
+
+        def tell(key, happened, words):
+            if happened and key not in self._told_input:
+                self._told_input.add(key)
+                said.append(words())
+
+        tell("predict", not self._predicted, lambda: (
+            f"update() at step {self.step} without predict() since the last update(): each DR sample is predict() "
+            "then update(), as in filterpy (batch_filter does both); without it the state does not move between "
+            "samples"))
         self._predicted = False
-        if abs(float(z_dr[0])) > 2 * np.pi + HEADING_ROUNDING and "degrees" not in self._told_input:
-            self._told_input.add("degrees")
-            said.append(f"the heading z_dr[0] = {float(z_dr[0]):g} at step {self.step} is past 2 pi: the heading is in "
-                        "radians (np.deg2rad of one in degrees; an unwrapped heading in radians is fine)")
+        tell("degrees", abs(float(z_dr[0])) > 2 * np.pi + HEADING_ROUNDING, lambda: (
+            f"the heading z_dr[0] = {float(z_dr[0]):g} at step {self.step} is past 2 pi: the heading is in radians "
+            "(np.deg2rad of one in degrees; an unwrapped heading in radians is fine)"))
         speed = float(z_dr[1]) / self.model.dt
-        if speed > MAX_DR_SPEED and "speed" not in self._told_input:
-            self._told_input.add("speed")
-            said.append(f"the distance since the last sample z_dr[1] = {float(z_dr[1]):g} m at step {self.step} is "
-                        f"{speed:.4g} m/s over the sample interval ({self.model.dt:g} s), past what a car drives: "
-                        "z_dr[1] is a distance (m), the speed times the interval; a speed given there reads "
-                        f"{1.0 / self.model.dt:g} times too fast")
+        tell("speed", speed > MAX_DR_SPEED, lambda: (
+            f"the distance since the last sample z_dr[1] = {float(z_dr[1]):g} m at step {self.step} is {speed:.4g} "
+            f"m/s over the sample interval ({self.model.dt:g} s), past what a car drives: z_dr[1] is a distance (m), "
+            f"the speed times the interval; a speed given there reads {1.0 / self.model.dt:g} times too fast"))
         for words in said:
             warnings.warn(f"GPSDRFilter: {words}", RuntimeWarning, stacklevel=3)
 

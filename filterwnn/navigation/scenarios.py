@@ -43,7 +43,7 @@ from typing import NamedTuple, Optional
 import numpy as np
 
 from .._validation import check_finite, check_positive, check_rng
-from ._plausibility import _run_bounds
+from ._plausibility import _run_bounds, _track
 from .dead_reckoning import HEADING_ROUNDING, SENSOR_GRADES, dr_fx, wrap_angle
 
 __all__ = [
@@ -626,17 +626,13 @@ def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps
                 for first, last in saturated[0]]
         heading, started = _yaw_start(dt, heading, step, steps, z_gps, None if sig is None or not len(sig) else
                                       float(np.median(sig)), checks, runs, saturated[1])
-    if checks and len(z_gps):
-        _warn_two_sources(dt, heading, step, steps, t, z_gps)
     z_dr = np.stack([wrap_angle(heading[1:]), step], axis=1)
     x_true = None
     if truth is not None:
         x_true, p0 = _truth_states(truth, t)
     elif len(z_gps):  # the first fix, taken back to the first sample along the dead-reckoned track (stop 72: taken
         # as it is, a drive starting at 20 m/s with its first fix 1 s in started 24.5 m off)
-        at = int(steps[0]) + 1
-        p0 = z_gps[0] - np.array([np.sum(step[:at] * np.sin(heading[1:at + 1])),
-                                  np.sum(step[:at] * np.cos(heading[1:at + 1]))])
+        p0 = z_gps[0] - _track(heading, step)[:, int(steps[0]) + 1]
     else:
         p0 = np.zeros(2)
     if checks:
@@ -657,28 +653,6 @@ def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps
     R_true = np.tile([np.deg2rad(1.0) ** 2, 0.02**2], (n - 1, 1))
     backed = signed is not None and bool(np.any(signed[1:] < -REVERSING_SPEED))
     return (dt * np.arange(1, n), x0, x_true, z_dr, steps, z_gps, R_true, sc, sig, offset, backed)
-
-
-
-def _warn_two_sources(dt, heading, step, steps, t, z_gps):
-    """Warn of the fixes of a second source taking turns with the first in one column
-    (:func:`~filterwnn.navigation._plausibility.alternating_sources`). Not mended: which of the two is right the fixes
-    cannot say, and moved onto either, or to their midpoint, the sixth trial's drive ended its outages farther off
-    than as written (EKF-8 6.21 and 3.86 m, median, against 3.33; the twin of one source 1.59; stop 72)."""
-    from ._plausibility import alternating_sources
-
-    found = alternating_sources(dt, heading, step, steps, z_gps)
-    if found is None:
-        return
-    D, odd, zs, pairs = found
-    first = float(t[int(steps[np.argmax(odd)]) + 1] - t[0])
-    warnings.warn(f"the GPS fixes take turns between two sources {np.hypot(*D):.2f} m apart (every other fix, from "
-                  f"t = {first:.10g} s on, {D[0]:+.2f} m east and {D[1]:+.2f} m north of the ones between; z = {zs:.0f} "
-                  f"over {pairs} pairs): two receivers, or two antennas, merged into one column. The filters follow "
-                  "neither, but a position between them, off by up to half that from either, and the outages start "
-                  "there; which one is right the fixes cannot say. Give one source's fixes alone (its receiver's, "
-                  "or those of the antenna the truth, or the car's reference point, is at)", RuntimeWarning,
-                  stacklevel=4)
 
 
 #: A yaw rate (rad/s) past which the column is taken for degrees per second (a car turns at most about 1 rad/s).
