@@ -144,6 +144,13 @@ What the filter does when GPS lies (each part a public setting, on by default):
   names the remedy, the gyro's own specification (``gyro_bias_deg_s`` in a grade of one's own,
   ``filterwnn study dr --gyro-bias``) with the value measured: until the stops have told it, the
   outages end far off (docs/study-outputs/dr/zero-rate/RUN.md).
+  A stop the gate rejects while the fixes taught the state (:attr:`GPSDRFilter.rate_bias_fix_share`, the share of
+  its information the fixes gave, at least :data:`FIX_TAUGHT_SHARE`), measuring a drift inside the
+  grade's bias, is told once (``fix_taught_step``): fixes whose errors are correlated teach the rate
+  bias a drift of their own before their correlation is measured, and a fused heading (an
+  orientation's yaw) or a calibrated gyro drifts less than the grade lets them teach; the warning
+  names the residual bias to give (the stop's drift and two of its sigmas, rounded up). It only tells:
+  the gate's verdict and the state are as without it.
   Counted in ``n_zero_rate`` and ``n_zero_rate_rejected``; only a model with a rate-bias state
   (``GPSDRModel(rate_bias=True)``, the phone grade) has it, and ``zero_rate_update=False``
   switches it off. It needs no GPS: the rate bias is learnt at every stop, from the sensor that
@@ -276,7 +283,8 @@ from ..kalman.unscented import UnscentedKalmanFilter
 
 __all__ = ["GPSDRFilter", "STANDSTILL_SPEED", "LOW_SPEED", "KINDS", "GATE", "REJECT_GATE", "REACQUIRE_AFTER",
            "NIS_WINDOW", "CALIBRATION_SIGMAS", "ZERO_RATE_GATE", "ZERO_RATE_MIN_SAMPLES",
-           "ZERO_RATE_REACQUIRE_AFTER", "ZERO_RATE_REACQUIRE_OUTSIDE", "ZERO_RATE_WINDOW", "WALK_PAST_GRADE",
+           "ZERO_RATE_REACQUIRE_AFTER", "ZERO_RATE_REACQUIRE_OUTSIDE", "ZERO_RATE_WINDOW", "FIX_TAUGHT_SHARE",
+           "WALK_PAST_GRADE",
            "WALK_MIN_SAMPLES", "WALK_BIAS", "STOP_REOPEN", "STOP_REOPEN_M", "REOPEN_PIECES", "TILT_SCALE",
            "MAX_STOP_RATE_DEG_S", "WHITENESS_WINDOW", "FIX_GAPS", "MIN_FIX_INTERVAL",
            "CORRELATED_FIXES", "SCALE_WINDOW", "SCALE_TEST", "SCALE_WARN", "HDOP_FACTOR", "HDOP_LOWEST", "HDOP_GRADE",
@@ -408,6 +416,11 @@ ZERO_RATE_REACQUIRE_OUTSIDE = 2
 #: them only where it contradicts them (its slope fails the gate against their weighted mean): a crawl's second
 #: at 0 m/s, whose slope says nothing, no longer does.
 ZERO_RATE_WINDOW = 6
+#: The share of the gyro rate bias's information (the inverse of its variance) that the GPS fixes gave
+#: (:attr:`GPSDRFilter.rate_bias_fix_share`) from which a stop that the state's gate rejects, measuring a drift
+#: inside the grade's, is told as contradicting a rate bias the fixes taught: 0.9, the grade's prior and the
+#: stops together giving under a tenth of what the state knows.
+FIX_TAUGHT_SHARE = 0.9
 #: A stop's headings walk more than the grade says (a gyro noisier than its grade, :func:`stop_heading_walk`) when
 #: their variogram shows a walk past this many times the grade's angle random walk density (an angle random walk
 #: twice the grade's): an estimate from lags of a quarter of the stop has a few degrees of freedom, and passes
@@ -1266,6 +1279,10 @@ class GPSDRFilter:
         (:func:`stop_heading_step`: the heading bias took the step, and the slope was fitted on either side).
     zero_rate_steps : list of tuple
         Per stop tested: ``(step, slope (rad/s), its standard deviation (rad/s), accepted)``.
+    fix_taught_step : int or None
+        The step of the first stop whose drift the rate-bias state's gate rejected while the state was taught
+        by the fixes (:attr:`rate_bias_fix_share` at least :data:`FIX_TAUGHT_SHARE`) and the stop's drift lay
+        inside the grade's bias (warned, with the residual bias to give), None if none.
     stops_cut_step : int or None
         The step at which a standstill cut into pieces left the rate-bias state unable to follow one
         (``reopen_on_detection``; warned once), None if never.
@@ -1464,6 +1481,10 @@ class GPSDRFilter:
         self._last_stop = None  # the samples of a stop that ended at _piece_end and may go on (stop_reopen)
         self.reopen_on_detection = bool(reopen_on_detection)
         self.stops_cut_step = None  # the step at which _stops_cut found standstills cut into pieces
+        self.fix_taught_step = None  # the step of the stop that contradicted a rate bias the fixes taught
+        # the rate bias's information (1 / its variance) by where it came from: the grade's prior and the stops,
+        # and the fixes (rate_bias_fix_share; _rate_info_before, _rate_info_after)
+        self._rate_info = np.array([1.0 / self.kf.P[RATE, RATE], 0.0]) if model.rate_bias else None
         self._piece_end = None  # (the step, the distance driven) where the last piece of a standstill ended
         self._pieces = 0  # the pieces of the standstill going on (REOPEN_PIECES)
         self._odometer = 0.0  # m driven since the start (the stop_reopen test's; _driven restarts at each fix)
@@ -1669,6 +1690,7 @@ class GPSDRFilter:
                                                                                    or self._heading_far(z_dr)),
                                               dr_noise_scale=self.dr_noise_scale if self._dr_scaled else None)
         weights = self._gain_weights(kw["gps"])
+        taught = self._rate_info_before() if kw["gps"] else None
         x_prior = self.kf.x.copy() if weights is not None or self._sens is not None else None
         if weights is not None:
             x_pre, P_pre = x_prior, self.kf.P.copy()
@@ -1681,6 +1703,8 @@ class GPSDRFilter:
             self._monitor_errors(x_prior, kw, weights)
         if self._bound_calibration() | self._repair() and hasattr(self.kf, "x_post"):
             self.kf.x_post, self.kf.P_post = self.kf.x.copy(), self.kf.P.copy()
+        if taught is not None:
+            self._rate_info_after(taught, fix=True)
         if adapt:
             self._gps_y.append(float(np.mean(y * y)))
             self._gps_hph.append(hph)
@@ -2692,6 +2716,7 @@ class GPSDRFilter:
             # used, but the calibration bound held the state: it could not follow this stop either
         else:
             self.n_zero_rate_rejected += 1
+            self._warn_fix_taught(slope, var)
         self._stops_cut(slope, var)
         if not self.zero_rate_reacquire_after:
             return
@@ -2873,6 +2898,7 @@ class GPSDRFilter:
         """The Kalman update of the rate-bias state (the last) with a measured rate ``slope`` of variance
         ``var``; True when the calibration bound then held the rate bias (the state could not follow it)."""
         r = RATE
+        before = self._rate_info_before()
         kf = self.kf
         x, P = kf.x, kf.P
         S = P[r, r] + var
@@ -2889,7 +2915,70 @@ class GPSDRFilter:
         held = self._bound_calibration() and kf.x[r] != x_new[r]
         self._repair()
         self._redraw_sigmas()
+        self._rate_info_after(before, fix=False)
         return held
+
+    def _rate_info_before(self):
+        """The rate bias's information ``1 / P[RATE, RATE]`` before an update, its parts first scaled to it
+        (predictions, bounds, repairs and re-acquisitions change what it knows in proportion to where it came
+        from); None for a model without the state."""
+        if self._rate_info is None:
+            return None
+        info = 1.0 / self.kf.P[RATE, RATE]
+        self._rate_info *= info / self._rate_info.sum()
+        return info
+
+    def _rate_info_after(self, before, fix):
+        """Book the information an update gave the rate bias (its gain since ``before``): to the fixes' part
+        for a GPS update (``fix``), else (a stop's) to the prior's and the stops'."""
+        gained = 1.0 / self.kf.P[RATE, RATE] - before
+        if gained > 0.0:
+            self._rate_info[1 if fix else 0] += gained
+
+    @property
+    def rate_bias_fix_share(self):
+        """The share of the gyro rate-bias state's information (the inverse of its variance) that the GPS
+        fixes gave, against the grade's prior and the stops (the zero angular rate updates); each
+        prediction, bound or repair scales both parts alike. None for a model without the state. A state
+        the fixes taught (near 1) learnt from them whatever drift their errors share over a minute, where
+        they are correlated (``gps_correlation``)."""
+        if self._rate_info is None:
+            return None
+        self._rate_info_before()
+        return float(self._rate_info[1] / self._rate_info.sum())
+
+    def _warn_fix_taught(self, slope, var):
+        """Warn, once, when the state's gate rejected a stop (``slope`` with variance ``var``, rad/s) while the
+        fixes taught the rate bias (:attr:`rate_bias_fix_share` at least :data:`FIX_TAUGHT_SHARE`) and the stop's
+        drift lies inside the grade's bias (two of its sigmas): the residual bias to give (``fix_taught_step``).
+        Stop 73's fused heading (an AHRS yaw whose bias wanders 0.5 degrees over 300 s, phone grade): the fixes,
+        correlated over 20 s, taught -0.024 +- 0.008 deg/s in the first two minutes, the first stop measured
+        +0.016 +- 0.002 and was rejected, and the outages ended 5.40 / 21.89 m off against dead reckoning's 3.06 /
+        7.44; silent until then."""
+        if self.fix_taught_step is not None:
+            return
+        share = self.rate_bias_fix_share
+        grade = float(np.sqrt(self.model.P0[RATE, RATE]))
+        bound = abs(slope) + 2.0 * np.sqrt(var)
+        if share < FIX_TAUGHT_SHARE or bound >= grade:
+            return
+        self.fix_taught_step = self.step
+        deg = 180.0 / np.pi
+        e = np.floor(np.log10(bound * deg)) - 1
+        v = float(np.ceil(bound * deg / 10**e) * 10**e)
+        state, sd = float(self.kf.x[RATE]) * deg, float(np.sqrt(self.kf.P[RATE, RATE])) * deg
+        warnings.warn(
+            f"GPSDRFilter: the stop that ended at step {self.step} measured the heading's drift at "
+            f"{slope * deg:+.2g} +- {np.sqrt(var) * deg:.2g} deg/s, and the gyro rate-bias state ({state:+.2g} "
+            f"+- {sd:.2g} deg/s), {share:.0%} of whose information the GPS fixes gave (their innovations' "
+            f"correlation {self.gps_correlation:.3g}), rejected it: fixes whose errors are correlated teach the "
+            "rate bias a drift of their own, and the outages integrate it. A fused heading (an orientation's yaw, "
+            "whose fusion has taken out its gyro's bias) or a calibrated gyro drifts less than the grade's "
+            f"{grade * deg:.2g} deg/s lets the fixes teach, and this stop's drift is inside {v:.2g}: where the "
+            f"heading is such, give its residual bias, a grade of your own with gyro_bias_deg_s={v:.2g} "
+            f"(filterwnn study dr --gyro-bias {v:.2g}); else the stops re-acquire the state once "
+            f"{self.zero_rate_reacquire_after} of them agree (n_zero_rate_reacquired)",
+            RuntimeWarning, stacklevel=4)
 
     def _floor_sigma(self, gps_sigma):
         """A fix's reported sigma, taken no smaller than ``gps_sigma_floor`` times the lower of the medians of the
