@@ -15,7 +15,8 @@ apart), and d1 with the ``--gyro-bias-instability`` value the reader's warning n
 Trial 6 (``--trial 6``, ``gen_drives_6.py``, stop 72; the fifth trial was of the API, from Python) runs its five drives
 beside their twins, the smoothed fixes with the latency the reader names, the compass disturbed by the car's
 electrics with the heading noise the filters name, and the clean twin of the restarted logger's drive (a fused
-heading without a rate bias) with a residual gyro bias of 0.005 deg/s in place of the phone grade's 0.05.
+heading without a rate bias) with a residual gyro bias of 0.005 deg/s in place of the phone grade's 0.05, and (stop
+73) with the one the filters' warning of a rate bias the fixes taught names on it.
 """
 import os
 import re
@@ -49,7 +50,9 @@ RUNS_6 = [(f"{name}{twin}", f"{name}{twin}.csv", []) for name in ("dualrx", "smo
                                                                    "enu_restart") for twin in ("", "_clean")] + [
     ("smoothed --gps-latency 1.5 (the reader's remedy)", "smoothed.csv", ["--gps-latency", "1.5"]),
     ("magsteps --heading-noise 1.5 (the filters' remedy)", "magsteps.csv", ["--heading-noise", "1.5"]),
-    ("enu_restart_clean --gyro-bias 0.005", "enu_restart_clean.csv", ["--gyro-bias", "0.005"])]
+    ("enu_restart_clean --gyro-bias 0.005", "enu_restart_clean.csv", ["--gyro-bias", "0.005"]),
+    ("enu_restart_clean --gyro-bias (the warning's)", "enu_restart_clean.csv",
+     ["--from-warning", r"--gyro-bias [\d.]+\d"])]
 TRIAL = int(sys.argv[sys.argv.index("--trial") + 1]) if "--trial" in sys.argv else 1
 GENERATOR = {1: "gen_drives.py", 2: "gen_drives_2.py", 3: "gen_drives_3.py", 4: "gen_drives_4.py",
              6: "gen_drives_6.py"}[TRIAL]
