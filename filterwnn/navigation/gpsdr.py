@@ -657,12 +657,16 @@ def _shear(M, b, k, d):
     return 0.5 * (M + M.T)
 
 
+def _two_digits_up(value):
+    """``value`` (> 0) rounded up to two significant digits (0.0206 -> 0.021): a setting a warning names."""
+    e = np.floor(np.log10(value)) - 1 if value > 0 else 0
+    return float(np.ceil(value / 10**e) * 10**e)
+
+
 def _gyro_bias_remedy(rate, least=""):
     """The remedy a warning names for a gyro rate bias of ``rate`` (rad/s) outside the grade: the gyro's
     own specification, ``gyro_bias_deg_s`` of that size (rounded up to two digits), from the start."""
-    deg = float(np.degrees(rate))
-    e = np.floor(np.log10(deg)) - 1 if deg > 0 else 0
-    v = float(np.ceil(deg / 10**e) * 10**e)
+    v = _two_digits_up(float(np.degrees(rate)))
     return (f"For a gyro whose turn-on bias is {least + ' ' if least else ''}{v:.2g} deg/s, more than the grade's, "
             f"give the gyro's own specification and the filter starts from it: a grade of your own with "
             f"gyro_bias_deg_s={v:.2g} (filterwnn study dr --gyro-bias {v:.2g}); else the outages before the stops "
@@ -2964,8 +2968,7 @@ class GPSDRFilter:
             return
         self.fix_taught_step = self.step
         deg = 180.0 / np.pi
-        e = np.floor(np.log10(bound * deg)) - 1
-        v = float(np.ceil(bound * deg / 10**e) * 10**e)
+        v = _two_digits_up(bound * deg)
         state, sd = float(self.kf.x[RATE]) * deg, float(np.sqrt(self.kf.P[RATE, RATE])) * deg
         warnings.warn(
             f"GPSDRFilter: the stop that ended at step {self.step} measured the heading's drift at "
