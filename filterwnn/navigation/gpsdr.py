@@ -2943,12 +2943,11 @@ class GPSDRFilter:
     def rate_bias_fix_share(self):
         """The share of the gyro rate-bias state's information (the inverse of its variance) that the GPS
         fixes gave, against the grade's prior and the stops (the zero angular rate updates); each
-        prediction, bound or repair scales both parts alike. None for a model without the state. A state
-        the fixes taught (near 1) learnt from them whatever drift their errors share over a minute, where
-        they are correlated (``gps_correlation``)."""
+        prediction, bound or repair scales both parts alike, so it leaves the share as it is (read without
+        rescaling them). None for a model without the state. A state the fixes taught (near 1) learnt from
+        them whatever drift their errors share over a minute, where they are correlated (``gps_correlation``)."""
         if self._rate_info is None:
             return None
-        self._rate_info_before()
         return float(self._rate_info[1] / self._rate_info.sum())
 
     def _warn_fix_taught(self, slope, var):
