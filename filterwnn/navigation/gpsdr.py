@@ -3385,7 +3385,7 @@ class GPSDRFilter:
         if self.calibration_error_z is None or self._residual_c is None or self._theta is None:
             return False
         worst = None
-        for r in (HEADING_BIAS, RATE):
+        for r in (HEADING_BIAS, RATE) if self.model.rate_bias else (HEADING_BIAS,):  # (row 8: another state)
             name = f"calibration {r}"
             if name in self._hyp:
                 i = self._hyp.index(name)

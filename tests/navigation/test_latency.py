@@ -222,6 +222,30 @@ def test_a_grade_with_gps_latency_sd_has_the_state_from_the_start():
         GPSDRModel.from_grade({"gps_latency_sd": -1.0})
 
 
+def test_the_survey_grades_latency_state_is_not_named_a_rate_bias():
+    """The calibration check names the heading bias (row 7) and the rate bias (row 8) where the model has one;
+    the survey grade's row 8 is the latency. A seventh user's drive (fixes stamped on arrival, the survey grade
+    with ``--gps-latency-sd 0.5``, stop 74) was told "the gyro rate bias off by +66 deg/s": its latency's error,
+    1.15 s, read as radians a second."""
+    survey = GPSDRModel.from_grade(dict(SENSOR_GRADES["survey"], gps_latency_sd=0.5))
+    phone = GPSDRModel.from_grade("phone")
+    for model, row in ((survey, 8), (phone, 8), (survey, 7)):
+        f = GPSDRFilter(model)
+        f._hyp = [f"calibration {i}" for i in range(6, model.dim_x)]
+        f._theta = np.zeros(len(f._hyp))
+        f._theta[row - 6] = 1.15
+        f._var, f._residual_c = np.full(len(f._hyp), 0.01), 2.0
+        with warnings.catch_warnings(record=True) as seen:
+            warnings.simplefilter("always")
+            off = f._calibration_off()
+        said = " ".join(str(w.message) for w in seen)
+        if model is survey and row == 8:
+            assert not off and f.n_calibration_error == 0 and not said
+        else:
+            assert off and f.n_calibration_error == 1
+            assert ("the gyro rate bias off by +65.9 deg/s" if row == 8 else "the heading bias off by +65.9 deg") in said
+
+
 def test_the_command_takes_the_gps_latency_sd(command_passes):
     for argv, want in ((["--gps-latency-sd", "0.5"], ("phone", 0.5)),
                        (["--gps-latency-sd", "0.5", "--grade", "survey"], ("survey", 0.5)),
