@@ -570,8 +570,15 @@ def _fill_gaps(t, heading, distance, speed, truth, longest, max_jitter):
 
     tr = None if truth is None else np.stack([np.interp(new_t, t, c) for c in np.asarray(truth, dtype=float).T], 1)
     i = int(np.flatnonzero(gap)[np.argmax(dts[gap])])
+    long = ""
+    if dts[i] > LONG_GAP_S:
+        long = (_clock_step_cause(dts[i], float(np.median(dts)), i + 1, f"t = {t[i + 1]:g} s").replace(": ", "; it is ", 1)
+                .replace("Filled (--fill-gaps), the filters would follow", "Filled, the filters follow")
+                or f"; dead reckoning interpolated over {dts[i]:g} s is a guess (the turns and stops in it are lost, and "
+                   "the filters have no fix in it): a log that paused is better split there and given as two drives "
+                   "(the command takes several --drive)")
     warnings.warn(f"filled {int(gap.sum())} gap(s) of dropped DR samples with {len(new_t) - len(t)} interpolated "
-                  f"sample(s); the longest {dts[i]:g} s after t = {t[i]:g} s", RuntimeWarning, stacklevel=3)
+                  f"sample(s); the longest {dts[i]:g} s after t = {t[i]:g} s" + long, RuntimeWarning, stacklevel=3)
     return new_t, h, interp(distance, "distance"), interp(speed, "speed"), tr
 
 
@@ -881,7 +888,8 @@ def _sample_grid(t, max_jitter):
         k = int(np.argmax(dts <= 0)) + 1
         raise ValueError(f"t must be strictly increasing; t[{k}] = {float(t[k])!r} <= t[{k - 1}] = {float(t[k - 1])!r}"
                          + ((_rounded_stamps(t, dts) or ": a sample logged twice? drop the repeated rows")
-                            if dts[k - 1] == 0 else _wrap_cause(dts[k - 1], t) or _back_cause(dts[k - 1])))
+                            if dts[k - 1] == 0 else _wrap_cause(dts[k - 1], t) or _clock_step_cause(dts[k - 1], _dt_of(dts), k)
+                            or _back_cause(dts[k - 1])))
     dt = float(f"{np.median(dts):.9g}")  # 0.1, not 0.09999999999999787
     # times far from 0 (Unix epoch seconds, 1.7e9) are stored to 2.4e-7 s: round dt to what they resolve
     # (0.1, not 0.0999999046, which made 1 Hz fixes look faster than one a second)
@@ -898,6 +906,7 @@ def _sample_grid(t, max_jitter):
         wrapped = _wrap_cause(dts[k - 1], t)
         if wrapped:
             raise ValueError(said + wrapped)
+        stepped = _clock_step_cause(dts[k - 1], dt, k)
         long_gap = ("; dead reckoning interpolated over so long is a guess: for a log that paused, split the file "
                     f"before t[{k}] and run each part as a drive of its own (the command takes several --drive)"
                     if dts[k - 1] > LONG_GAP_S else "")
@@ -910,9 +919,12 @@ def _sample_grid(t, max_jitter):
                              "say), each sensor's column from its own rows (the speed interpolated, across its pauses "
                              "too; the gyro's rate averaged over each interval); fill_gaps (--fill-gaps) fills the gaps "
                              "of a regular grid, which these rows are not on" + long_gap)
+        if stepped:
+            raise ValueError(said + stepped)
         raise ValueError(said + ": resample the drive first"
                          + (" (dropped samples: fill_gaps=SECONDS, or --fill-gaps, interpolates gaps up to that "
-                            f"long; this one needs {_ceil_to(dts[k - 1], dt):g})" if round(dts[k - 1] / dt) >= 2 else "")
+                            f"long; this one needs {_ceil_to(dts[k - 1], dt):g})"
+                            if 2 <= round(dts[k - 1] / dt) and dts[k - 1] <= FILL_OFFER_S else "")
                          + long_gap
                          + ("; where only one sensor paused and the others logged on (an OBD-II adapter's hang beside "
                             "a phone's gyro), keep their rows and interpolate that sensor's column alone across the "
@@ -943,6 +955,39 @@ def _wrap_cause(interval, t):
     return ""
 
 
+#: The steps (s) a clock makes while a log runs on, and the words that name them: an hour set forward or back (summer
+#: time, a time zone; stop 74: a seventh user's log stepped +3600 s mid-drive), GPS time's lead on UTC (18 s since 2017).
+_CLOCK_STEPS = ((3600.0, "an hour: a clock set forward or back (summer time, a time zone) while the log ran"),
+                (18.0, "GPS time's lead on UTC (18 s since 2017): stamps that switched between the two"))
+
+
+def _dt_of(dts):
+    """The sample interval of the intervals ``dts``: their median over the positive ones (a step back is one of them)."""
+    pos = dts[dts > 0]
+    return float(np.median(pos)) if pos.size else 0.0
+
+
+def _clock_step_cause(interval, dt, k, at=None):
+    """The refusal's words for an interval between samples ``k - 1`` and ``k`` (``at``: the words for that sample,
+    ``t[k]`` by default) that is a clock's step (:data:`_CLOCK_STEPS`, either way) and one sample interval ``dt``
+    (within half of one), else ``""``."""
+    at = f"t[{k}]" if at is None else at
+    step = float(interval) - float(dt)
+    for size, what in _CLOCK_STEPS:
+        if dt > 0 and abs(abs(step) - size) <= 0.5 * dt:
+            fix = (f"subtract {size:g} s from every time from {at} on" if step > 0 else
+                   f"add {size:g} s to every time from {at} on")
+            if step < 0:
+                return (f": {-step:g} s back, less one sample interval, {what}. Where the speed and the fixes run on "
+                        f"across it (the car a sample's travel further), the log went on: {fix}")
+            return (f": {step:g} s and one sample interval, {what}. Where the speed and the fixes run on across it "
+                    f"(the car a sample's travel further, not {step:g} s of it), the log did not pause: {fix}; a log "
+                    "that did pause is split there (each part a drive of its own: the command takes several --drive). "
+                    f"Filled (--fill-gaps), the filters would follow {step:g} s of interpolated dead reckoning without "
+                    "a fix")
+    return ""
+
+
 def _back_cause(interval):
     """The refusal's words for sample times that go back by ``interval`` (< 0) other than a clock's wrap (stop 69:
     a user's logger restarted, its clock from 0 again, or wrote a block twice)."""
@@ -965,6 +1010,12 @@ def _dropped(dts, dt):
 #: A gap in the DR samples (s) past which the refusal of an unevenly sampled drive also says to split it: as
 #: long as the longest sample interval the plausibility checks accept (dead-reckoning sensors sample at 1-100 Hz).
 LONG_GAP_S = 2.0
+
+
+#: The longest gap (s) for which the refusal of an unevenly sampled drive offers ``fill_gaps``: a minute, twice the
+#: study's outages. Past it only the split is named (stop 74: a gap of an hour filled as offered took the filters
+#: 49.5 km off, the DR interpolated over it with no fix).
+FILL_OFFER_S = 60.0
 
 
 #: A fall of a cumulative odometer (m) past which its refusal names a counter that wrapped or was reset.

@@ -416,6 +416,37 @@ def test_a_loggers_faults_are_named_with_their_remedy(tmp_path):
             r"interpolated over so long is a guess: for a log that paused, split the file before t\[500\] \(line 502\)")
 
 
+def test_a_clock_that_stepped_an_hour_is_named_and_not_offered_to_fill(tmp_path):
+    """A seventh user's log (stop 74) stepped +3600 s mid-drive, summer time set while it ran: the refusal offered
+    ``--fill-gaps 3600.1``, and filled as offered the filters ended outages 49.5 km off. Such a step (an hour, or GPS
+    time's 18 s on UTC, and one sample interval) is named with its remedy; a long gap that is no clock's is told to
+    be split, not filled; a gap of an hour filled all the same is warned of."""
+    def refused(cols, match):
+        with pytest.raises(ValueError, match=match) as info:
+            read_drive_csv(_write(tmp_path / "d.csv", cols))
+        return str(info.value)
+
+    c = _drive()
+    c["time"][500:] += 3600.0
+    said = refused(c, r"= 3600.1 s: 3600 s and one sample interval, an hour: a clock set forward or back .* subtract "
+                      r"3600 s from every time from t\[500\] \(line 502\) on; a log that did pause is split there")
+    assert "this one needs" not in said
+    with pytest.warns(RuntimeWarning, match=r"the longest 3600.1 s after t = 49.9 s; it is 3600 s and one sample "
+                                            r"interval, an hour.*from t = 3650 s on.*Filled, the filters follow"):
+        read_drive_csv(_write(tmp_path / "d.csv", c), fill_gaps=3600.1)
+    c = _drive()
+    c["time"][500:] += 18.0
+    refused(c, r"18 s and one sample interval, GPS time's lead on UTC .* subtract 18 s from every time from t\[500\]")
+    c = _drive()
+    c["time"][500:] -= 3600.0
+    refused(c, r"t must be strictly increasing.*: 3600 s back, less one sample interval, an hour.* add 3600 s to every "
+               r"time from t\[500\] \(line 502\) on")
+    c = _drive()
+    c["time"][500:] += 100.0  # a pause of 100 s, no clock's step: split, not filled
+    said = refused(c, r"= 100.1 s: resample the drive first; dead reckoning interpolated over so long is a guess")
+    assert "this one needs" not in said and "an hour" not in said
+
+
 def test_a_gps_sigma_column_the_receiver_never_filled_is_taken_as_absent(tmp_path):
     """A logger's ``gps_sigma`` column empty on every fix (a receiver that reports no accuracy) is no column: every
     fix gets the grade's sigma, with a warning; one empty on some fixes only is refused with the remedy."""
