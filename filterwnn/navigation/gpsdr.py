@@ -3353,7 +3353,8 @@ class GPSDRFilter:
             f"GPSDRFilter's fixes come every {interval:.3g} s and are correlated at step {self.step}: each carries "
             f"1/{self.gps_correlation:.0f} of an independent fix (gps_correlation), less than one independent fix "
             "a second, and a filter that uses every one follows their errors; pass "
-            f"min_fix_interval={MIN_FIX_INTERVAL:g} to use one a second", RuntimeWarning, stacklevel=4)
+            f"min_fix_interval={MIN_FIX_INTERVAL:g} (--min-fix-interval {MIN_FIX_INTERVAL:g}) to use one a second",
+            RuntimeWarning, stacklevel=4)
 
     def _gain_weights(self, gps):
         """Per state, the share of its Kalman gain this update keeps ``(dim_x,)``, or None for all of it.

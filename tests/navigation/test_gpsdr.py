@@ -757,7 +757,7 @@ def test_fast_correlated_fixes_warn_with_the_remedy():
     correlated, white = _at_rate(5.0, 0), _at_rate(5.0, 0, phi_per_second=0.0)
     f = _phone_filter(correlated)
     with pytest.warns(RuntimeWarning, match=r"fixes come every 0.2 s and are correlated at step \d+: each carries "
-                                            r"1/\d+ of an independent fix .* pass min_fix_interval=1 to use one") as rec:
+                                            r"1/\d+ of an independent fix .* pass min_fix_interval=1 \(--min-fix-interval 1\) to use one") as rec:
         f.batch_filter(correlated.z_dr, correlated.gps_list(), correlated.gps_sigma_list())
     # measured over a full window (60 s: 300 fixes at 0.2 s, steps counted from 0), not the first seconds
     step = int(re.search(r"correlated at step (\d+)", next(str(w.message) for w in rec
