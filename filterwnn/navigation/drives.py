@@ -562,6 +562,7 @@ def _csv_fixes(path, header, col, column, t, origin, lines, hdop_sigma=None):
     else:
         kw["lat"], kw["lon"] = ga[fix], gb[fix]
         kw["origin"] = origin
+        _warn_coarse_coordinates(path, ga[fix], gb[fix])
     acc = [h for h in ("gps_sigma", "gps_hdop") if h in col]
     if len(acc) > 1:
         raise ValueError(f"{path}: give each fix's accuracy as 'gps_sigma' (m) or as 'gps_hdop' (no unit), not both")
@@ -595,6 +596,44 @@ def _csv_fixes(path, header, col, column, t, origin, lines, hdop_sigma=None):
             gs = gs * hdop_sigma
         kw["gps_sigma"] = gs
     return kw
+
+
+#: The most decimals of a degree the drive reader looks for in the fixes' coordinates; written with this many or
+#: fewer (10^-4 degree: 11.1 m of latitude), their rounding is warned of (stop 74: a seventh user's export wrote
+#: '%.4f', and a fix repeated the last whenever the car drove less than a step, read as a receiver re-sending).
+COARSE_DECIMALS = 4
+
+
+def _decimals(values):
+    """The fewest decimals (0-7) with which every one of ``values`` is written, or None past 7."""
+    v = np.asarray(values, dtype=float)
+    for d in range(8):
+        scaled = v * 10.0**d
+        if np.all(np.abs(scaled - np.round(scaled)) <= 1e-6 * np.maximum(1.0, np.abs(scaled) * 1e-9)):
+            return d
+    return None
+
+
+def _warn_coarse_coordinates(path, lat, lon):
+    """Warn where the fixes' latitudes and longitudes are written with :data:`COARSE_DECIMALS` decimals or fewer
+    (20 fixes or more): a grid whose steps, in metres, the fixes' errors then carry as a uniform rounding."""
+    lat, lon = np.asarray(lat, dtype=float), np.asarray(lon, dtype=float)
+    ok = (lat != 0.0) | (lon != 0.0)  # (a receiver's null fixes, dropped with their own warning)
+    if ok.sum() < 20:
+        return
+    d = max((_decimals(a[ok]) for a in (lat, lon)), key=lambda x: 8 if x is None else x)
+    if d is None or d > COARSE_DECIMALS:
+        return
+    rn, rm = earth_radii(np.radians(float(np.median(lat[ok]))))
+    step = 10.0**-d
+    north = np.radians(step) * rm
+    east = np.radians(step) * rn * np.cos(np.radians(float(np.median(lat[ok]))))
+    warnings.warn(f"{path}: the fixes' gps_lat and gps_lon are written with {d} decimals (steps of {north:.3g} m north "
+                  f"and {east:.3g} m east here): their rounding adds {north / np.sqrt(12):.2g} m north and "
+                  f"{east / np.sqrt(12):.2g} m east (standard deviations) to each fix's error, which no reported "
+                  "accuracy includes, and a fix repeats the last one to the bit while the car moves less than a "
+                  "step (the filters then drop it as a receiver's re-sent fix). Export the coordinates with 7 "
+                  "decimals (1 cm) or more", RuntimeWarning, stacklevel=5)
 
 
 #: The least share of the fixes (and number) whose accuracy cell reads a value for the others, empty, 0 or a

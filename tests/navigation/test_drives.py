@@ -1606,3 +1606,24 @@ def test_cells_left_empty_in_a_few_rows_are_told_not_read_silently_as_a_row_per_
         for k in ("gps_lat", "gps_lon", "gps_sigma"):
             log[k][1::2] = np.nan
         read_drive_csv(_write(tmp_path / "log.csv", log), checks=False)
+
+
+@pytest.mark.parametrize("decimals, told", [(4, True), (3, True), (5, False), (7, False)])
+def test_fixes_written_with_few_decimals_are_told_their_rounding(tmp_path, decimals, told):
+    """A seventh user's export wrote the fixes' latitude and longitude with '%.4f' (stop 74): a grid of 11.1 m north
+    by 7.4 m east at their latitude, whose repeats the filters then dropped as a receiver's re-sent fixes. Written
+    with 4 decimals or fewer, the reader names the steps and the rounding's spread; with 5 or more, nothing."""
+    c = _drive()
+    for k in ("gps_lat", "gps_lon"):
+        c[k] = np.round(c[k], decimals)
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        read_drive_csv(_write(tmp_path / "d.csv", c), checks=False)
+    said = [str(w.message) for w in seen if "decimals" in str(w.message)]
+    assert bool(said) == told, said
+    if told:
+        north = 10.0**-decimals * np.pi / 180.0 * 6.36e6
+        m = re.search(rf"written with {decimals} decimals \(steps of ([\d.]+) m north and ([\d.]+) m east here\): "
+                      r"their rounding adds ([\d.]+) m north", said[0])
+        assert m and float(m.group(1)) == pytest.approx(north, rel=0.01) and float(m.group(2)) < float(m.group(1))
+        assert float(m.group(3)) == pytest.approx(float(m.group(1)) / np.sqrt(12), rel=0.05)

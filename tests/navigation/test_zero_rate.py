@@ -663,3 +663,41 @@ def test_a_stop_that_contradicts_a_rate_bias_the_fixes_taught_is_told(tmp_path):
     g, said = _full_run(path)
     assert g.fix_taught_step is None and g.n_zero_rate > 0
     assert not [w for w in said if "of whose information the GPS fixes gave" in w]
+
+
+@pytest.mark.parametrize("hold", [True, False])
+def test_with_hold_heading_at_stops_a_rejected_stops_drift_goes_to_the_heading_bias(phone, command_passes, hold):
+    """``hold_heading_at_stops``: the car does not turn while it stands, so a stop whose drift the gate rejects
+    (0.3 deg/s, past the phone grade's 0.05 against a state still at its prior; a gyro whose bias differs at idle,
+    the engine's vibration, stop 74's seventh user) leaves the rate bias as it was, and the heading bias takes the
+    drift beyond the state over the stop, once warned. Off (the default), the heading keeps the drift. A stop the gate
+    takes moves the heading bias only as the rate bias drives it. The command's flag reaches the filters."""
+    assert command_passes("real_drive_outages", ["--hold-heading-at-stops"])["hold_heading_at_stops"] is True
+    assert command_passes("real_drive_outages", [])["hold_heading_at_stops"] is False
+    rng = np.random.default_rng(7)
+    z = np.vstack([MOVING, _stop(rng, phone, 0.3, 60.0)])
+    f = GPSDRFilter(phone, "ekf", x0=np.r_[np.zeros(6), phone.x0[6:]], hold_heading_at_stops=hold)
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        for zk in z[:-1]:
+            f.predict()
+            f.update(zk)
+        rate, bias = f.kf.x[RATE], f.kf.x[HEADING_BIAS]
+        f.predict()
+        f.update(z[-1])
+    step, slope, sd, ok = f.zero_rate_steps[-1]
+    assert not ok and f.n_zero_rate_rejected == 1
+    assert f.kf.x[RATE] == pytest.approx(rate, abs=1e-4 * DEG)  # the rate bias learns nothing from it
+    if not hold:
+        assert f.n_zero_rate_drift_taken == 0 and not [w for w in seen if "drifted" in str(w.message)]
+        assert abs(f.kf.x[HEADING_BIAS] - bias) < 0.01 * DEG
+        return
+    assert f.n_zero_rate_drift_taken == 1
+    T = 60.0 - DT
+    assert f.kf.x[HEADING_BIAS] - bias == pytest.approx((slope - rate) * T, abs=0.02 * DEG + abs(rate) * DT)
+    assert abs(np.degrees(f.kf.x[HEADING_BIAS] - bias) - 0.3 * T) < 1.0
+    said = [str(w.message) for w in seen if "drifted" in str(w.message)]
+    assert len(said) == 1 and re.search(r"the heading bias takes the \+1\d.?\d* deg the heading drifted beyond", said[0]), said
+    # the same stop inside the grade (0.02 deg/s) is taken by the gate: nothing for the heading bias to take
+    f = _run(phone, np.vstack([MOVING, _stop(np.random.default_rng(7), phone, 0.02, 60.0)]), hold_heading_at_stops=True)
+    assert f.zero_rate_steps[-1][3] and f.n_zero_rate_drift_taken == 0

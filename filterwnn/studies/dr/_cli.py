@@ -136,6 +136,12 @@ def add_arguments(parser):
                         help="when a standstill is cut into pieces by a speed that does not read 0 and the gyro rate "
                              "bias cannot follow them, only warn (GPSDRFilter's reopen_on_detection=False); by default "
                              "each standstill is then taken whole, as --stop-reopen 2 does")
+    parser.add_argument("--hold-heading-at-stops", action="store_true",
+                        help="a stop whose heading drift the gyro rate bias's gate rejects gives the drift beyond the "
+                             "state to the heading bias and teaches the rate bias nothing (GPSDRFilter's "
+                             "hold_heading_at_stops): for a gyro whose bias differs while the car stands, a phone "
+                             "shaken in its holder by the idling engine; off by default, since a stop right against a "
+                             "state taught wrong then hides the state's error from the fixes")
     parser.add_argument("--calibration-error-z", type=_z_or_off, default=CALIBRATION_ERROR_Z, metavar="Z",
                         help="the consistency monitor's z-score past which the heading bias or the gyro rate bias "
                              "is taken to be off, and their gain is cut by the fixes' own correlation instead of "
@@ -209,7 +215,7 @@ DRIVE_ONLY = ("--no-plausibility", "--fill-gaps", "--gps-latency", "--odometer-l
 ON_DRIVES = ("--outage-length", "--outages", "--min-speed", "--gps-scale-window", "--correlated-fixes",
              "--min-fix-interval", "--stop-reopen", "--calibration-error-z", "--heading-jump-z", "--no-reversing-test",
              "--no-crawl-test", "--gps-sigma-floor", "--no-floor-on-detection", "--no-reopen-on-detection",
-             "--grade", "--dr-noise-window")
+             "--hold-heading-at-stops", "--grade", "--dr-noise-window")
 #: ... and those of the simulated scenarios' Monte Carlo, which ``--drive`` does not run. Not ``--jobs``: a
 #: worker count changes no number, and scripts pass ``--jobs 1`` whatever they run (``log_faults.py`` does).
 SIMULATED_ONLY = ("--runs", "--seed", "--backend", "--scheduler", "--cache", "--scenarios", "--factor")
@@ -284,6 +290,7 @@ def _filter_options(args):
                 gps_sigma_floor=getattr(args, "gps_sigma_floor", SIGMA_FLOOR),
                 floor_on_detection=not getattr(args, "no_floor_on_detection", False),
                 reopen_on_detection=not getattr(args, "no_reopen_on_detection", False),
+                hold_heading_at_stops=getattr(args, "hold_heading_at_stops", False),
                 dr_noise_window=getattr(args, "dr_noise_window", DR_NOISE_WINDOW))
 
 

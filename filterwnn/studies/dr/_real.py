@@ -51,7 +51,8 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=_DEFAULT_FILTE
                        correlated_fixes="calibration", min_fix_interval=0.0, stop_reopen=0.0,
                        calibration_error_z=CALIBRATION_ERROR_Z, heading_jump_z=HEADING_JUMP_Z, reversing_test=True,
                        crawl_test=True, gps_sigma_floor=SIGMA_FLOOR, floor_on_detection=True,
-                       reopen_on_detection=True, dr_noise_window=DR_NOISE_WINDOW, progress=False, n_jobs=1):
+                       reopen_on_detection=True, dr_noise_window=DR_NOISE_WINDOW, hold_heading_at_stops=False,
+                       progress=False, n_jobs=1):
     """Cut GPS outages of ``length`` s into a drive and score each filter at each outage end.
 
     Placements: ``starts`` as given (one in the drive's own gap of fixes is warned of), or ``n_placements`` spread
@@ -120,6 +121,10 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=_DEFAULT_FILTE
         :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`'s: once a standstill cut into pieces by a speed that does
         not read 0 leaves the rate-bias state unable to follow a piece, take each standstill whole from then on
         (``stop_reopen`` 2 s; default True).
+    hold_heading_at_stops : bool
+        :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`'s: a stop the zero angular rate gate rejects gives its drift
+        beyond the rate-bias state to the heading bias, for a gyro whose bias differs while the car stands (default
+        False).
     dr_noise_window : int
         :class:`~filterwnn.navigation.gpsdr.GPSDRFilter`'s: moving samples over which the heading's and the
         odometer's white noise are estimated online from their innovations, raised past the grade's where they
@@ -159,7 +164,9 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=_DEFAULT_FILTE
         held by its source), ``n_zero_rate_reacquired``, the rate-bias state's re-acquisitions from
         stops it could not follow that agreed, ``n_zero_rate_turned``, the rejected stops whose heading
         turned faster than any gyro's bias, "(N turned)" in the table, and ``n_zero_rate_stepped``, the stops
-        whose heading stepped (a fused heading re-aligning), "(N stepped)"; None without a rate-bias state;
+        whose heading stepped (a fused heading re-aligning), "(N stepped)", and ``n_zero_rate_drift_taken``, the
+        rejected stops whose drift beyond the state the heading bias took, "(N drift taken)"; None without a
+        rate-bias state;
         ``n_calibration_error``, the fixes at which the consistency monitor found the heading bias or the rate
         bias off and their gain took the fixes' own correlation, "(off at N fixes)" after the correlation;
         ``n_heading_jumps``, the steps of the heading the heading-jump detector found while the car moved,
@@ -209,7 +216,8 @@ def real_drive_outages(run, n_placements=20, length=30.0, filters=_DEFAULT_FILTE
                                    reversing_test=reversing_test and not run.reversed_by_speed,
                                    crawl_test=crawl_test,
                                    gps_sigma_floor=gps_sigma_floor, floor_on_detection=floor_on_detection,
-                                   reopen_on_detection=reopen_on_detection, dr_noise_window=dr_noise_window))
+                                   reopen_on_detection=reopen_on_detection, dr_noise_window=dr_noise_window,
+                                   hold_heading_at_stops=hold_heading_at_stops))
     done = _score_side_by_side(out, filters, run, windows, use_gps_sigma, settings, progress, n_jobs)
     for name in filters:
         with kept_warnings(out["warnings"]):  # (folded: the filter's name, the step and its time)
@@ -463,6 +471,7 @@ def _integrity(f, run):
             "n_zero_rate_reacquired": f.n_zero_rate_reacquired if f.zero_rate_update else None,
             "n_zero_rate_turned": f.n_zero_rate_turned if f.zero_rate_update else None,
             "n_zero_rate_stepped": f.n_zero_rate_stepped if f.zero_rate_update else None,
+            "n_zero_rate_drift_taken": f.n_zero_rate_drift_taken if f.zero_rate_update else None,
             "stops_cut": f.stops_cut_step if f.zero_rate_update else None,
             "n_calibration_error": f.n_calibration_error, "n_heading_jumps": f.n_heading_jumps,
             "n_heading_far": f.n_heading_far, "n_from_rest": f.n_from_rest, "n_reversing": f.n_reversing,
@@ -643,6 +652,8 @@ def _integrity_cells(ig):
         corr += f" (off at {ig['n_calibration_error']} fixes)"
     scale = "-" if ig.get("gps_scale_mean") is None else f"{ig['gps_scale_mean']:.2f}"
     turned = f" ({ig['n_zero_rate_turned']} turned)" if ig.get("n_zero_rate_turned") else ""
+    if ig.get("n_zero_rate_drift_taken"):  # the heading bias took their drift (the car does not turn standing)
+        turned += f" ({ig['n_zero_rate_drift_taken']} drift taken)"
     stepped = f" ({ig['n_zero_rate_stepped']} stepped)" if ig.get("n_zero_rate_stepped") else ""
     cut = f" (whole from step {ig['stops_cut']})" if ig.get("stops_cut") is not None else ""
     stops = ("-" if ig.get("n_zero_rate") is None

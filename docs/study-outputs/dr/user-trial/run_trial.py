@@ -2,7 +2,7 @@
 stop 69), ``gen_drives_3.py`` (``--trial 3``, stop 70) or ``gen_drives_4.py`` (``--trial 4``, stop 71) through the
 command, both grades.
 
-    OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/user-trial/run_trial.py [--trial 2|3|4|6] > docs/study-outputs/dr/user-trial/trial_<...>.txt
+    OPENBLAS_NUM_THREADS=1 python docs/study-outputs/dr/user-trial/run_trial.py [--trial 2|3|4|6|7] > docs/study-outputs/dr/user-trial/trial_<...>.txt
 
 Each line: the drive and grade, the exit code, the median / max at the outage ends (m) of DR-mech, EKF-8, UKF-8 and
 SUKF-8, the number of warning lines on stderr, and the table's header (how many outages, and the drive's own gaps of
@@ -16,7 +16,10 @@ Trial 6 (``--trial 6``, ``gen_drives_6.py``, stop 72; the fifth trial was of the
 beside their twins, the smoothed fixes with the latency the reader names, the compass disturbed by the car's
 electrics with the heading noise the filters name, and the clean twin of the restarted logger's drive (a fused
 heading without a rate bias) with a residual gyro bias of 0.005 deg/s in place of the phone grade's 0.05, and (stop
-73) with the one the filters' warning of a rate bias the fixes taught names on it.
+73) with the one the filters' warning of a rate bias the fixes taught names on it. Trial 7 (``--trial 7``,
+``gen_drives_7.py``, stop 74) runs its five drives beside their twins (the first, whose clock steps an hour, is
+refused naming the step), the first split at that step as two drives, the arrival-stamped fixes with a latency state
+from the start, and the RTK drive with the bias instability the reader names on it.
 """
 import os
 import re
@@ -53,9 +56,16 @@ RUNS_6 = [(f"{name}{twin}", f"{name}{twin}.csv", []) for name in ("dualrx", "smo
     ("enu_restart_clean --gyro-bias 0.005", "enu_restart_clean.csv", ["--gyro-bias", "0.005"]),
     ("enu_restart_clean --gyro-bias (the warning's)", "enu_restart_clean.csv",
      ["--from-warning", r"--gyro-bias [\d.]+\d"])]
+RUNS_7 = [(f"{name}{twin}", f"{name}{twin}.csv", []) for name in ("d1_dst_jump", "d2_latlon_4dp", "d3_fix_latency",
+                                                                   "d4_idle_vibration", "d5_rtk_float")
+          for twin in ("", "_clean")] + [
+    ("d1 split at its clock's step (the refusal's remedy)", "d1_dst_jump.csv", ["--split", "298.7,3898.6"]),
+    ("d3 --gps-latency-sd 0.5", "d3_fix_latency.csv", ["--gps-latency-sd", "0.5"]),
+    ("d5 --gyro-bias-instability (the reader's)", "d5_rtk_float.csv",
+     ["--from-warning", r"--gyro-bias-instability (\d+)"])]
 TRIAL = int(sys.argv[sys.argv.index("--trial") + 1]) if "--trial" in sys.argv else 1
 GENERATOR = {1: "gen_drives.py", 2: "gen_drives_2.py", 3: "gen_drives_3.py", 4: "gen_drives_4.py",
-             6: "gen_drives_6.py"}[TRIAL]
+             6: "gen_drives_6.py", 7: "gen_drives_7.py"}[TRIAL]
 
 
 def split(path, within):
@@ -86,7 +96,7 @@ def cells(text):
 
 with tempfile.TemporaryDirectory() as folder:
     subprocess.run([sys.executable, os.path.join(HERE, GENERATOR), folder], check=True, capture_output=True)
-    for label, csv, extra in {1: RUNS, 2: RUNS_2, 3: RUNS_3, 4: RUNS_4, 6: RUNS_6}[TRIAL]:
+    for label, csv, extra in {1: RUNS, 2: RUNS_2, 3: RUNS_3, 4: RUNS_4, 6: RUNS_6, 7: RUNS_7}[TRIAL]:
         drives = [os.path.join(folder, csv)]
         if "--split" in extra:
             drives = split(drives[0], extra[extra.index("--split") + 1])
