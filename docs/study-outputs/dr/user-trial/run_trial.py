@@ -19,7 +19,8 @@ heading without a rate bias) with a residual gyro bias of 0.005 deg/s in place o
 73) with the one the filters' warning of a rate bias the fixes taught names on it. Trial 7 (``--trial 7``,
 ``gen_drives_7.py``, stop 74) runs its five drives beside their twins (the first, whose clock steps an hour, is
 refused naming the step), the first split at that step as two drives, the arrival-stamped fixes with a latency state
-from the start, and the RTK drive with the bias instability the reader names on it.
+from the start, the gyro shaken at idle with ``--hold-heading-at-stops``, and the RTK drive with the bias instability
+the reader names on it.
 """
 import os
 import re
@@ -61,6 +62,7 @@ RUNS_7 = [(f"{name}{twin}", f"{name}{twin}.csv", []) for name in ("d1_dst_jump",
           for twin in ("", "_clean")] + [
     ("d1 split at its clock's step (the refusal's remedy)", "d1_dst_jump.csv", ["--split", "298.7,3898.6"]),
     ("d3 --gps-latency-sd 0.5", "d3_fix_latency.csv", ["--gps-latency-sd", "0.5"]),
+    ("d4 --hold-heading-at-stops", "d4_idle_vibration.csv", ["--hold-heading-at-stops"]),
     ("d5 --gyro-bias-instability (the reader's)", "d5_rtk_float.csv",
      ["--from-warning", r"--gyro-bias-instability (\d+)"])]
 TRIAL = int(sys.argv[sys.argv.index("--trial") + 1]) if "--trial" in sys.argv else 1
