@@ -1515,7 +1515,7 @@ class GPSDRFilter:
         if self.zero_rate_reacquire_after < 0:
             raise ValueError(f"zero_rate_reacquire_after must be >= 0 (0: never), got {zero_rate_reacquire_after}")
         self.n_zero_rate = self.n_zero_rate_rejected = self.n_zero_rate_held = self.n_zero_rate_reacquired = 0
-        self.n_zero_rate_turned = self.n_zero_rate_stepped = self.n_zero_rate_drift_taken = 0
+        self.n_zero_rate_turned = self.n_zero_rate_stepped = self.n_zero_rate_drift_taken = self._stop_crawls = 0
         self.zero_rate_steps = []
         # (slope, var) of the kept stops that the state could not follow (_zero_rate_reacquire)
         self._zr_rejected = deque(maxlen=max(self.zero_rate_reacquire_after, ZERO_RATE_WINDOW))
@@ -2820,18 +2820,10 @@ class GPSDRFilter:
         n = self.zero_rate_reacquire_after
         return min(n, ZERO_RATE_REACQUIRE_OUTSIDE) if outside else n
 
-    def _take_stop_drift(self, t, slope, var):
-        """A stop the gate rejected, not turned (under :data:`MAX_STOP_RATE_DEG_S`) and not found creeping by the
-        crawl test: the car did not turn while it stood, so the heading's drift over it beyond the rate-bias state's
-        is the gyro's (a bias that differs while the engine idles, or a state taught wrong), and the heading bias
-        takes it, its variance the slope's over the stop's length; the rate bias learns nothing from it. Counted
-        (``n_zero_rate_drift_taken``), the first warned."""
-        if self.n_crawl > getattr(self, "_stop_crawls", self.n_crawl):
-            return
+    def _heading_bias_takes(self, size, sd):
+        """The heading bias moved by ``size`` (rad) and its variance widened by ``sd ** 2``, the centre of its
+        calibration bound with it: a change of the measured heading's offset from the car's that a stop showed."""
         kf, b = self.kf, HEADING_BIAS
-        T = float(t[-1] - t[0])
-        state = float(kf.x[RATE])
-        size, sd = (slope - state) * T, np.sqrt(var) * T
         x = kf.x.copy()
         x[b] += size
         kf.x = x
@@ -2842,6 +2834,19 @@ class GPSDRFilter:
             self._cal_mean[b - 6] += size
         self._repair()
         self._redraw_sigmas()
+
+    def _take_stop_drift(self, t, slope, var):
+        """A stop the gate rejected, not turned (under :data:`MAX_STOP_RATE_DEG_S`) and not found creeping by the
+        crawl test: the car did not turn while it stood, so the heading's drift over it beyond the rate-bias state's
+        is the gyro's (a bias that differs while the engine idles, or a state taught wrong), and the heading bias
+        takes it, its variance the slope's over the stop's length; the rate bias learns nothing from it. Counted
+        (``n_zero_rate_drift_taken``), the first warned."""
+        if self.n_crawl > self._stop_crawls:  # (the crawls found when the stop began)
+            return
+        T = float(t[-1] - t[0])
+        state = float(self.kf.x[RATE])
+        size = (slope - state) * T
+        self._heading_bias_takes(size, np.sqrt(var) * T)
         self.n_zero_rate_drift_taken += 1
         if self.n_zero_rate_drift_taken > 1:
             return
@@ -2859,17 +2864,7 @@ class GPSDRFilter:
         """A stop whose headings stepped (:func:`stop_heading_step`): the measured heading's offset from the
         car's changed by the step, so the heading bias takes it (its variance the step's), with the centre of
         its calibration bound; counted, and warned at the first."""
-        kf, b = self.kf, HEADING_BIAS
-        x = kf.x.copy()
-        x[b] += size
-        kf.x = x
-        P = kf.P.copy()
-        P[b, b] += sd * sd
-        kf.P = P
-        if self._cal.size:
-            self._cal_mean[b - 6] += size
-        self._repair()
-        self._redraw_sigmas()
+        self._heading_bias_takes(size, sd)
         self.n_zero_rate_stepped += 1
         if self.n_zero_rate_stepped > 1:
             return
