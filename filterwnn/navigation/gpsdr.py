@@ -3064,7 +3064,8 @@ class GPSDRFilter:
                    if n > FLOOR_FIXES else f"the median of the {n} reported so far")
                 + ", this one's among them), and a receiver's accuracy moves little between fixes (a placeholder "
                 "accuracy, or a jump in the receiver's estimate). Later fixes so are counted in n_floored; "
-                "gps_sigma_floor=0 takes every fix's sigma as reported",
+                "gps_sigma_floor=0 (--gps-sigma-floor 0) takes every fix's sigma as reported, as an RTK receiver's "
+                "should be whose fixes go from a float solution back to a fixed one (centimetres from decimetres)",
                 RuntimeWarning, stacklevel=3)
         return floor
 
