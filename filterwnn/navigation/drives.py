@@ -624,10 +624,9 @@ def _warn_coarse_coordinates(path, lat, lon):
     d = max((_decimals(a[ok]) for a in (lat, lon)), key=lambda x: 8 if x is None else x)
     if d is None or d > COARSE_DECIMALS:
         return
-    rn, rm = earth_radii(np.radians(float(np.median(lat[ok]))))
-    step = 10.0**-d
-    north = np.radians(step) * rm
-    east = np.radians(step) * rn * np.cos(np.radians(float(np.median(lat[ok]))))
+    lat0 = np.radians(float(np.median(lat[ok])))
+    rn, rm = earth_radii(lat0)
+    north, east = np.radians(10.0**-d) * np.array([rm, rn * np.cos(lat0)])
     warnings.warn(f"{path}: the fixes' gps_lat and gps_lon are written with {d} decimals (steps of {north:.3g} m north "
                   f"and {east:.3g} m east here): their rounding adds {north / np.sqrt(12):.2g} m north and "
                   f"{east / np.sqrt(12):.2g} m east (standard deviations) to each fix's error, which no reported "

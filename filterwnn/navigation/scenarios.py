@@ -572,11 +572,11 @@ def _fill_gaps(t, heading, distance, speed, truth, longest, max_jitter):
     i = int(np.flatnonzero(gap)[np.argmax(dts[gap])])
     long = ""
     if dts[i] > LONG_GAP_S:
-        long = (_clock_step_cause(dts[i], float(np.median(dts)), i + 1, f"t = {t[i + 1]:g} s").replace(": ", "; it is ", 1)
-                .replace("Filled (--fill-gaps), the filters would follow", "Filled, the filters follow")
-                or f"; dead reckoning interpolated over {dts[i]:g} s is a guess (the turns and stops in it are lost, and "
-                   "the filters have no fix in it): a log that paused is better split there and given as two drives "
-                   "(the command takes several --drive)")
+        stepped = _clock_step_cause(dts[i], float(np.median(dts)), i + 1, f"t = {t[i + 1]:g} s", filled=True)
+        long = ("; it is " + stepped if stepped else
+                f"; dead reckoning interpolated over {dts[i]:g} s is a guess (the turns and stops in it are lost, and "
+                "the filters have no fix in it): a log that paused is better split there and given as two drives "
+                "(the command takes several --drive)")
     warnings.warn(f"filled {int(gap.sum())} gap(s) of dropped DR samples with {len(new_t) - len(t)} interpolated "
                   f"sample(s); the longest {dts[i]:g} s after t = {t[i]:g} s" + long, RuntimeWarning, stacklevel=3)
     return new_t, h, interp(distance, "distance"), interp(speed, "speed"), tr
@@ -888,7 +888,7 @@ def _sample_grid(t, max_jitter):
         k = int(np.argmax(dts <= 0)) + 1
         raise ValueError(f"t must be strictly increasing; t[{k}] = {float(t[k])!r} <= t[{k - 1}] = {float(t[k - 1])!r}"
                          + ((_rounded_stamps(t, dts) or ": a sample logged twice? drop the repeated rows")
-                            if dts[k - 1] == 0 else _wrap_cause(dts[k - 1], t) or _clock_step_cause(dts[k - 1], _dt_of(dts), k)
+                            if dts[k - 1] == 0 else _wrap_cause(dts[k - 1], t) or _step_words(dts[k - 1], _dt_of(dts), k)
                             or _back_cause(dts[k - 1])))
     dt = float(f"{np.median(dts):.9g}")  # 0.1, not 0.09999999999999787
     # times far from 0 (Unix epoch seconds, 1.7e9) are stored to 2.4e-7 s: round dt to what they resolve
@@ -906,7 +906,7 @@ def _sample_grid(t, max_jitter):
         wrapped = _wrap_cause(dts[k - 1], t)
         if wrapped:
             raise ValueError(said + wrapped)
-        stepped = _clock_step_cause(dts[k - 1], dt, k)
+        stepped = _step_words(dts[k - 1], dt, k)
         long_gap = ("; dead reckoning interpolated over so long is a guess: for a log that paused, split the file "
                     f"before t[{k}] and run each part as a drive of its own (the command takes several --drive)"
                     if dts[k - 1] > LONG_GAP_S else "")
@@ -967,10 +967,10 @@ def _dt_of(dts):
     return float(np.median(pos)) if pos.size else 0.0
 
 
-def _clock_step_cause(interval, dt, k, at=None):
-    """The refusal's words for an interval between samples ``k - 1`` and ``k`` (``at``: the words for that sample,
-    ``t[k]`` by default) that is a clock's step (:data:`_CLOCK_STEPS`, either way) and one sample interval ``dt``
-    (within half of one), else ``""``."""
+def _clock_step_cause(interval, dt, k, at=None, filled=False):
+    """The words for an interval between samples ``k - 1`` and ``k`` (``at``: the words for that sample, ``t[k]`` by
+    default) that is a clock's step (:data:`_CLOCK_STEPS`, either way) and one sample interval ``dt`` (within half of
+    one), else ``""``; ``filled``: said of a gap that ``fill_gaps`` filled, not of one refused."""
     at = f"t[{k}]" if at is None else at
     step = float(interval) - float(dt)
     for size, what in _CLOCK_STEPS:
@@ -978,14 +978,20 @@ def _clock_step_cause(interval, dt, k, at=None):
             fix = (f"subtract {size:g} s from every time from {at} on" if step > 0 else
                    f"add {size:g} s to every time from {at} on")
             if step < 0:
-                return (f": {-step:g} s back, less one sample interval, {what}. Where the speed and the fixes run on "
+                return (f"{-step:g} s back, less one sample interval, {what}. Where the speed and the fixes run on "
                         f"across it (the car a sample's travel further), the log went on: {fix}")
-            return (f": {step:g} s and one sample interval, {what}. Where the speed and the fixes run on across it "
+            return (f"{step:g} s and one sample interval, {what}. Where the speed and the fixes run on across it "
                     f"(the car a sample's travel further, not {step:g} s of it), the log did not pause: {fix}; a log "
                     "that did pause is split there (each part a drive of its own: the command takes several --drive). "
-                    f"Filled (--fill-gaps), the filters would follow {step:g} s of interpolated dead reckoning without "
-                    "a fix")
+                    + ("Filled, the filters follow" if filled else "Filled (--fill-gaps), the filters would follow")
+                    + f" {step:g} s of interpolated dead reckoning without a fix")
     return ""
+
+
+def _step_words(interval, dt, k):
+    """A refusal's ``": ..."`` for a clock's step (:func:`_clock_step_cause`), else ``""``."""
+    words = _clock_step_cause(interval, dt, k)
+    return ": " + words if words else ""
 
 
 def _back_cause(interval):
