@@ -18,7 +18,8 @@ electrics with the heading noise the filters name, and the clean twin of the res
 heading without a rate bias) with a residual gyro bias of 0.005 deg/s in place of the phone grade's 0.05, and (stop
 73) with the one the filters' warning of a rate bias the fixes taught names on it. Trial 7 (``--trial 7``,
 ``gen_drives_7.py``, stop 74) runs its five drives beside their twins (the first, whose clock steps an hour, is
-refused naming the step), the first split at that step as two drives, the arrival-stamped fixes with a latency state
+refused naming the step), the first split at that step as two drives and filled as stop 73's refusal offered (an
+hour of interpolated dead reckoning), the arrival-stamped fixes with a latency state
 from the start, the gyro shaken at idle with ``--hold-heading-at-stops``, and the RTK drive with the bias instability
 the reader names on it.
 """
@@ -61,6 +62,7 @@ RUNS_7 = [(f"{name}{twin}", f"{name}{twin}.csv", []) for name in ("d1_dst_jump",
                                                                    "d4_idle_vibration", "d5_rtk_float")
           for twin in ("", "_clean")] + [
     ("d1 split at its clock's step (the refusal's remedy)", "d1_dst_jump.csv", ["--split", "298.7,3898.6"]),
+    ("d1 --fill-gaps 3600.1 (stop 73's refusal's first remedy)", "d1_dst_jump.csv", ["--fill-gaps", "3600.1"]),
     ("d3 --gps-latency-sd 0.5", "d3_fix_latency.csv", ["--gps-latency-sd", "0.5"]),
     ("d4 --hold-heading-at-stops", "d4_idle_vibration.csv", ["--hold-heading-at-stops"]),
     ("d5 --gyro-bias-instability (the reader's)", "d5_rtk_float.csv",
