@@ -1020,7 +1020,7 @@ LONG_GAP_S = 2.0
 
 #: The longest gap (s) for which the refusal of an unevenly sampled drive offers ``fill_gaps``: a minute, twice the
 #: study's outages. Past it only the split is named (stop 74: a gap of an hour filled as offered took the filters
-#: 49.5 km off, the DR interpolated over it with no fix).
+#: 49.6 km off, the DR interpolated over it with no fix).
 FILL_OFFER_S = 60.0
 
 

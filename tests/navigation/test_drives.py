@@ -418,7 +418,7 @@ def test_a_loggers_faults_are_named_with_their_remedy(tmp_path):
 
 def test_a_clock_that_stepped_an_hour_is_named_and_not_offered_to_fill(tmp_path):
     """A seventh user's log (stop 74) stepped +3600 s mid-drive, summer time set while it ran: the refusal offered
-    ``--fill-gaps 3600.1``, and filled as offered the filters ended outages 49.5 km off. Such a step (an hour, or GPS
+    ``--fill-gaps 3600.1``, and filled as offered the filters ended outages 49.6 km off. Such a step (an hour, or GPS
     time's 18 s on UTC, and one sample interval) is named with its remedy; a long gap that is no clock's is told to
     be split, not filled; a gap of an hour filled all the same is warned of."""
     def refused(cols, match):
