@@ -208,7 +208,8 @@ def _located(path, exc, lines):
 
 def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2, checks=True, progress=None, fill_gaps=0.0,
                    gps_latency=0.0, intervals="auto", odometer_latency=0.0, heading_offset=0.0, speed_scale=1.0,
-                   hdop_sigma=None, heading_latency=0.0, heading_deviation=None, drop_fixes=None):
+                   hdop_sigma=None, heading_latency=0.0, heading_deviation=None, drop_fixes=None,
+                   restamp_fixes=False):
     """Read one's own drive from a CSV file with the columns of :data:`DRIVE_CSV_COLUMNS`.
 
     One row per DR sample, a header row with the column names; a GPS fix is the row's
@@ -232,7 +233,7 @@ def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2, checks=True,
     ----------
     path : str or path-like
     origin, name, max_jitter, checks, fill_gaps, gps_latency, intervals, odometer_latency, heading_offset,
-    speed_scale, heading_latency, heading_deviation, drop_fixes
+    speed_scale, heading_latency, heading_deviation, drop_fixes, restamp_fixes
         As :meth:`DRRun.from_arrays` (``checks``: the plausibility checks against the fixes;
         ``fill_gaps``: the longest gap of dropped DR samples, in s, to fill by interpolation;
         ``gps_latency``: the receiver's latency, s, by which each fix is older than its time;
@@ -243,6 +244,8 @@ def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2, checks=True,
         ``speed_scale``: the factor by which the speed or odometer reads more than the car drove, divided out;
         ``drop_fixes``: spans ``[(start, end), ...]``, s from the first row, whose fixes are dropped (fixes the
         plausibility check found dragged away from the dead-reckoned track: a spoofer's walk);
+        ``restamp_fixes``: fixes stamped when the logger received them (the reader warns of them) placed on the
+        receiver's regular grid of epochs, at the earliest arrivals;
         ``intervals``: the interval each speed sample covers, its stamped one or the stamps'
         regular grid's, ``"auto"`` choosing).
     progress : bool, optional
@@ -274,7 +277,7 @@ def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2, checks=True,
             warnings.simplefilter("always")
             return _read_drive_csv(path, origin, name, max_jitter, checks, progress, fill_gaps, gps_latency, intervals,
                                    odometer_latency, heading_offset, speed_scale, hdop_sigma, heading_latency,
-                                   heading_deviation, drop_fixes)
+                                   heading_deviation, drop_fixes, restamp_fixes)
     finally:
         for w in caught:
             warnings.warn(w.message, w.category, stacklevel=2)
@@ -282,7 +285,7 @@ def read_drive_csv(path, *, origin=None, name=None, max_jitter=0.2, checks=True,
 
 def _read_drive_csv(path, origin, name, max_jitter, checks, progress, fill_gaps, gps_latency, intervals,
                     odometer_latency, heading_offset, speed_scale, hdop_sigma, heading_latency, heading_deviation,
-                    drop_fixes=None):
+                    drop_fixes=None, restamp_fixes=False):
     """:func:`read_drive_csv`'s body."""
     path = str(path)
     header, cols, lines = _read_columns(path, progress)
@@ -320,7 +323,7 @@ def _read_drive_csv(path, origin, name, max_jitter, checks, progress, fill_gaps,
                                 intervals=intervals, odometer_latency=odometer_latency,
                                 heading_offset=heading_offset, speed_scale=speed_scale,
                                 heading_latency=heading_latency, heading_deviation=heading_deviation,
-                                drop_fixes=drop_fixes, **kw)
+                                drop_fixes=drop_fixes, restamp_fixes=restamp_fixes, **kw)
     except ValueError as exc:
         hdop = (float(np.median(kw["gps_sigma"])) / hdop_sigma
                 if "gps_hdop" in col and kw.get("gps_sigma") is not None and len(kw["gps_sigma"]) else 0.0)

@@ -285,7 +285,7 @@ class DRRun(NamedTuple):
                     lat=None, lon=None, gps_sigma=None, truth=None, origin=None, name="drive",
                     max_jitter=0.2, checks=True, fill_gaps=0.0, gps_latency=0.0, intervals="auto",
                     odometer_latency=0.0, heading_offset=0.0, speed_scale=1.0, yaw_rate=None, heading_latency=0.0,
-                    heading_deviation=None, drop_fixes=None):
+                    heading_deviation=None, drop_fixes=None, restamp_fixes=False):
         """One's own drive from arrays: validated, on the DR sample grid, in local metres.
 
         Parameters
@@ -403,6 +403,14 @@ class DRRun(NamedTuple):
             away from the dead-reckoned track (a spoofer's walk: ``filterwnn.navigation._plausibility.fix_drag``),
             which the filters would follow. Default None: none. A span that is not two finite numbers with
             ``0 <= start < end``, or spans that hold no fix, are refused.
+        restamp_fixes : bool
+            Fixes stamped when the logger received them rather than at the receiver's epoch (a phone app's
+            location callback, a serial port read) are each late by a time that varies; the reader finds them
+            from the stamps alone (``filterwnn.navigation.scenarios._arrival_stamps``) and warns. With True,
+            each such fix is placed on the receiver's regular grid of epochs, fitted to the stamps, at the
+            earliest arrivals (their 1st percentile), before ``gps_latency``: what is left is a constant latency. Default False: a warning that names this. A
+            drive whose stamps show no such grid is read as it is, with a warning. A receiver whose rate truly
+            varies must not be re-stamped.
         speed_scale : float
             The factor by which ``speed`` (or ``distance``) reads more than the car drove (a speedometer's
             signal reads high by up to 10 %; a wheel-speed signal with the wrong tyre circumference a few per
@@ -443,6 +451,8 @@ class DRRun(NamedTuple):
         if drop_fixes is not None:  # (before anything reads the fixes)
             gps_t, east, north, lat, lon, gps_sigma = _drop_fixes(drop_fixes, t, gps_t, east, north, lat, lon,
                                                                    gps_sigma)
+        if gps_t is not None:  # (the stamps as logged, before the latency is taken off)
+            gps_t = _arrival_restamped(t, gps_t, restamp_fixes)
         if checks:  # a time in another unit, before any warning read in it (spikes, jitter, reversing)
             from ._plausibility import MAX_DT, interval_refusal
 
@@ -487,6 +497,95 @@ class DRRun(NamedTuple):
                                   truth, origin, name, max_jitter, checks, intervals, np.deg2rad(off), integrated,
                                   card, saturated),
                    t_start=float(np.asarray(t, dtype=float).ravel()[0]))
+
+
+#: Fixes stamped on arrival (:func:`_arrival_stamps`): at least this many fixes, slower than the DR samples (a median
+#: interval of two samples or more: a fix per sample hides its stamps' jitter in the samples'), ...
+ARRIVAL_MIN_FIXES = 30
+#: ... at least this share of their intervals off the receiver's rate (an integer number of its median interval) by
+#: more than half a sample interval, ...
+ARRIVAL_OFF_SHARE = 0.25
+#: ... and a long interval followed by a short one more often than chance gives: the intervals' lag-one correlation
+#: at most minus this many of its standard errors under independence (``1 / sqrt(n)``). A stamp late by a time that
+#: varies lengthens one interval and shortens the next (a white lateness gives -0.5); a receiver whose own rate
+#: varies gives intervals about independent (stop 75: the seventh user trial's drive stamped on arrival, late
+#: 0.2-1.5 s, read -0.31 over 681 intervals, -8.1 of them; none of 74 other drive files was told:
+#: ``docs/study-outputs/dr/user-trial/restamp_null.txt``).
+ARRIVAL_LAG1_Z = 4.0
+
+
+def _arrival_stamps(t, gps_t):
+    """Whether the fixes' stamps are a receiver's regular epochs, each late by a time that varies (stamped when the
+    logger received them): a dict or None. None unless the fixes are at least :data:`ARRIVAL_MIN_FIXES`, come at
+    least two DR samples apart (median), have :data:`ARRIVAL_OFF_SHARE` of their intervals off an integer number of
+    the median interval by more than half a sample interval, and a lag-one correlation of those misfits of at most
+    ``-ARRIVAL_LAG1_Z / sqrt(n)``. Then ``period`` (s) and ``first`` (s) are the receiver's grid fitted to the stamps
+    (least squares; each interval counted as the nearest whole number of median intervals, at least one, ``count``
+    the epochs' numbers), ``median`` the median interval (s), ``late``
+    each stamp's lateness on that grid less the 1st percentile's (s, at least 0 but for the few below it), and
+    ``off``, ``n``, ``lag1`` the test's counts and correlation. ``t``: the DR samples' times."""
+    try:
+        t = np.asarray(t, dtype=float).ravel()
+        gps_t = np.asarray(gps_t, dtype=float).ravel()
+    except (TypeError, ValueError):
+        return None
+    if len(gps_t) < ARRIVAL_MIN_FIXES or len(t) < 3 or not (np.isfinite(t).all() and np.isfinite(gps_t).all()):
+        return None
+    dt, iv = float(np.median(np.diff(t))), np.diff(gps_t)
+    if not dt > 0 or np.any(iv <= 0):
+        return None  # (the reader's own refusals name what is wrong)
+    period = float(np.median(iv))
+    if period < 2.0 * dt:
+        return None
+    k = np.maximum(1.0, np.rint(iv / period))
+    misfit = iv - k * period
+    off = int(np.sum(np.abs(misfit) > 0.5 * dt * (1.0 + 1e-9)))
+    n = len(iv)
+    if off < ARRIVAL_OFF_SHARE * n or np.std(misfit) == 0.0:
+        return None
+    lag1 = float(np.corrcoef(misfit[:-1], misfit[1:])[0, 1])
+    if not lag1 * np.sqrt(n) <= -ARRIVAL_LAG1_Z:
+        return None
+    count = np.r_[0.0, np.cumsum(k)]
+    design = np.stack([np.ones_like(count), count], axis=1)
+    (first, step), *_ = np.linalg.lstsq(design, gps_t, rcond=None)
+    late = gps_t - design @ np.array([first, step])
+    early = float(np.percentile(late, 1.0))
+    return {"period": float(step), "first": float(first) + early, "late": late - early, "off": off, "n": n,
+            "lag1": lag1, "count": count, "median": period}
+
+
+def _arrival_restamped(t, gps_t, restamp):
+    """``gps_t`` as :meth:`DRRun.from_arrays` reads it: with a warning where :func:`_arrival_stamps` finds fixes
+    stamped on arrival, and with ``restamp`` those fixes on the receiver's grid (``restamp_fixes``)."""
+    found = _arrival_stamps(t, gps_t)
+    if found is None:
+        if restamp:
+            warnings.warn("restamp_fixes: the fixes' stamps show no receiver's regular grid late by a time that "
+                          "varies (too few fixes, fixes as fast as the samples, or intervals on the "
+                          "receiver's rate); read as stamped", RuntimeWarning, stacklevel=4)
+        return gps_t
+    lo, hi = np.percentile(found["late"], [5.0, 95.0])
+    said = (f"{found['off']} of {found['n']} intervals between GPS fixes ({found['off'] / found['n']:.0%}) are off "
+            f"their {found['median']:.4g} s rate by more than half a sample interval, a long one followed by a short "
+            f"one (lag-one correlation {found['lag1']:+.2f}): fixes stamped when the logger received them, not at "
+            f"the receiver's epoch, each late by a time that varies (on a regular {found['period']:.6g} s grid fitted "
+            f"to the stamps, {lo:.2g}-{hi:.2g} s later than the earliest, 5-95 %)")
+    if restamp:
+        warnings.warn(f"{said}: re-stamped on that grid at the earliest arrivals (restamp_fixes); what is left is a "
+                      "constant latency (the filters' latency state, or gps_latency where it is known)",
+                      RuntimeWarning, stacklevel=4)
+        on_grid = found["first"] + found["period"] * found["count"]
+        t0 = float(np.asarray(t, dtype=float).ravel()[0])  # (a first epoch just before the log's first sample)
+        return np.where((on_grid < t0) & (np.asarray(gps_t, dtype=float) >= t0), t0, on_grid)
+    warnings.warn(f"{said}. A latency that varies is no constant the filters' latency state can take (the seventh "
+                  "user trial's drive, late 0.2-1.5 s: EKF-8 9.67 / 25.93 m at the outage ends, phone grade; its "
+                  "twin stamped by the receiver 4.51 / 14.35). Stamp the fixes with the receiver's own time (GPS "
+                  "time: NMEA RMC or ZDA, Android's Location.getTime()) where the log has it; else pass "
+                  "restamp_fixes=True (command line: --restamp-fixes), which places each fix on that grid at the "
+                  "earliest arrivals (that drive 3.86 / 14.91 m). A receiver whose own rate varies must not be "
+                  "re-stamped", RuntimeWarning, stacklevel=4)
+    return gps_t
 
 
 def _fix_spans(spans):

@@ -93,6 +93,11 @@ def add_arguments(parser):
                              "--outage-starts counts; several spans as START,END,START,END): fixes dragged away from "
                              "the dead-reckoned track (a spoofer's walk), which the drive reader warns of with the "
                              "span, and which the filters would follow (default none)")
+    parser.add_argument("--restamp-fixes", action="store_true",
+                        help="with --drive: fixes stamped when the logger received them, each late by a time that "
+                             "varies (the drive reader warns of them, with how much), placed on the receiver's regular "
+                             "grid of epochs fitted to their stamps, at the earliest arrivals; what is left is a "
+                             "constant latency (default: as stamped; not for a receiver whose own rate varies)")
     parser.add_argument("--hdop-sigma", type=options.positive_float, default=None, metavar="M",
                         help="with --drive: for a drive whose fixes carry a gps_hdop column (a dilution of "
                              "precision, without a unit), the sigma per axis (m) of a fix at HDOP 1, the receiver's "
@@ -209,7 +214,7 @@ def add_arguments(parser):
 #: drives, one's own or ``--real``'s (the outages' placement, the GPS/DR filters' settings): given where they
 #: do not apply, the command refuses them rather than ignore them.
 DRIVE_ONLY = ("--no-plausibility", "--fill-gaps", "--gps-latency", "--odometer-latency", "--heading-latency",
-              "--heading-offset", "--heading-deviation", "--drop-fixes",
+              "--heading-offset", "--heading-deviation", "--drop-fixes", "--restamp-fixes",
               "--speed-scale", "--hdop-sigma", "--intervals", "--outage-starts", "--gyro-scale-sd", "--gyro-bias",
               "--gyro-bias-instability", "--gps-latency-sd", "--heading-noise", "--odometer-noise")
 ON_DRIVES = ("--outage-length", "--outages", "--min-speed", "--gps-scale-window", "--correlated-fixes",
@@ -371,6 +376,7 @@ def _run_drives(args, drives, filters):
                                  heading_offset=getattr(args, "heading_offset", 0.0),
                                  heading_deviation=getattr(args, "heading_deviation", None),
                                  drop_fixes=getattr(args, "drop_fixes", None),
+                                 restamp_fixes=getattr(args, "restamp_fixes", False),
                                  speed_scale=getattr(args, "speed_scale", 1.0),
                                  hdop_sigma=getattr(args, "hdop_sigma", None) or _grade(grade)["gps_sigma_m"],
                                  progress=None if not getattr(args, "no_progress", False) else False)

@@ -21,7 +21,9 @@ heading without a rate bias) with a residual gyro bias of 0.005 deg/s in place o
 refused naming the step), the first split at that step as two drives and filled as stop 73's refusal offered (an
 hour of interpolated dead reckoning), the arrival-stamped fixes with a latency state
 from the start, the gyro shaken at idle with ``--hold-heading-at-stops``, and the RTK drive with the bias instability
-the reader names on it.
+the reader names on it; since stop 75 also the arrival-stamped fixes re-stamped on the receiver's grid
+(``--restamp-fixes``, the remedy the reader's warning names). ``--only PREFIX`` runs only the lines whose label
+starts with it (stop 75 reran trial 7's d3 lines alone: ``--trial 7 --only d3 > trial_7_stop75_d3.txt``).
 """
 import os
 import re
@@ -64,10 +66,12 @@ RUNS_7 = [(f"{name}{twin}", f"{name}{twin}.csv", []) for name in ("d1_dst_jump",
     ("d1 split at its clock's step (the refusal's remedy)", "d1_dst_jump.csv", ["--split", "298.7,3898.6"]),
     ("d1 --fill-gaps 3600.1 (stop 73's refusal's first remedy)", "d1_dst_jump.csv", ["--fill-gaps", "3600.1"]),
     ("d3 --gps-latency-sd 0.5", "d3_fix_latency.csv", ["--gps-latency-sd", "0.5"]),
+    ("d3 --restamp-fixes (stop 75)", "d3_fix_latency.csv", ["--restamp-fixes"]),
     ("d4 --hold-heading-at-stops", "d4_idle_vibration.csv", ["--hold-heading-at-stops"]),
     ("d5 --gyro-bias-instability (the reader's)", "d5_rtk_float.csv",
      ["--from-warning", r"--gyro-bias-instability (\d+)"])]
 TRIAL = int(sys.argv[sys.argv.index("--trial") + 1]) if "--trial" in sys.argv else 1
+ONLY = sys.argv[sys.argv.index("--only") + 1] if "--only" in sys.argv else ""
 GENERATOR = {1: "gen_drives.py", 2: "gen_drives_2.py", 3: "gen_drives_3.py", 4: "gen_drives_4.py",
              6: "gen_drives_6.py", 7: "gen_drives_7.py"}[TRIAL]
 
@@ -101,6 +105,8 @@ def cells(text):
 with tempfile.TemporaryDirectory() as folder:
     subprocess.run([sys.executable, os.path.join(HERE, GENERATOR), folder], check=True, capture_output=True)
     for label, csv, extra in {1: RUNS, 2: RUNS_2, 3: RUNS_3, 4: RUNS_4, 6: RUNS_6, 7: RUNS_7}[TRIAL]:
+        if not label.startswith(ONLY):
+            continue
         drives = [os.path.join(folder, csv)]
         if "--split" in extra:
             drives = split(drives[0], extra[extra.index("--split") + 1])
