@@ -710,7 +710,7 @@ def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps
         raw = _finite_1d(speed, "speed", n)
         if checks:
             _speed_sentinel(t, raw)
-        signed = _speed_spikes(t, _speed_dropouts(t, raw))
+        signed = _speed_spikes(t, _speed_dropouts(t, raw, gps_t))
         speed = np.abs(signed)
         grid = _speed_interval(t, dts, dt, speed, intervals, stamps)
         if grid is not None:  # the stamps' grid: each speed covers its interval, and the filters run on it
@@ -730,8 +730,9 @@ def _drive_fields(t, heading, distance, speed, gps_t, east, north, lat, lon, gps
     if integrated:
         runs = [(int(np.searchsorted(t, first - 0.5 * dt)), int(np.searchsorted(t, last + 0.5 * dt)) - 1)
                 for first, last in saturated[0]]
-        heading, started = _yaw_start(dt, heading, step, steps, z_gps, None if sig is None or not len(sig) else
-                                      float(np.median(sig)), checks, runs, saturated[1])
+        good = _start_fixes(sig)  # (a receiver's cold start: fixes far off, saying so, give no course)
+        heading, started = _yaw_start(dt, heading, step, steps[good], z_gps[good], None if sig is None or not len(sig)
+                                      else float(np.median(sig)), checks, runs, saturated[1])
     z_dr = np.stack([wrap_angle(heading[1:]), step], axis=1)
     x_true = None
     if truth is not None:
@@ -820,6 +821,32 @@ def _integrate_yaw(t, yaw_rate, distance=None, speed=None):
     if v is not None and len(v) == len(t) and np.all(np.isfinite(v)):
         rate = _rate_spikes(t, rate, v)
     return wrap_angle(np.concatenate([[0.0], np.cumsum(0.5 * (rate[1:] + rate[:-1]) * np.diff(t))])), saturated
+
+
+#: A fix whose reported sigma is more than this many times the fixes' median is left out of the moving stretches that
+#: start a yaw rate's heading (:func:`_yaw_start`): a receiver's cold start, its first fixes hundreds of metres off
+#: and saying so (the eighth user trial's drive: 55 s of fixes up to 322 m off, reported up to 260 m; their course
+#: started the heading about 7 degrees off and read as a gyro warming up; stop 75). The filters weigh each fix by its
+#: own sigma; the start's line through the stretches' angles weighs them alike.
+START_SIGMA_FACTOR = 5.0
+
+
+#: ... and the drive's first fixes, until one reports at most this many times the median: a cold start's tail, still
+#: metres to tens of metres off as it converges.
+START_SETTLED_FACTOR = 2.0
+
+
+def _start_fixes(sig):
+    """Which fixes start a yaw rate's heading: all, but those reporting more than :data:`START_SIGMA_FACTOR` times
+    the median sigma and the first ones until one reports at most :data:`START_SETTLED_FACTOR` times it (a slice of
+    all when there is no sigma)."""
+    if sig is None or not len(sig):
+        return slice(None)
+    sig = np.asarray(sig, dtype=float)
+    med = float(np.median(sig))
+    good = sig <= START_SIGMA_FACTOR * med
+    good[:int(np.argmax(sig <= START_SETTLED_FACTOR * med))] = False
+    return good
 
 
 def _yaw_start(dt, heading, step, steps, z_gps, sigma, checks=True, saturated=(), rails=()):
@@ -1330,7 +1357,29 @@ def _inner_runs(mask):
     return starts[inner], ends[inner]
 
 
-def _speed_dropouts(t, speed):
+def _unfixed(t, starts, ends, gps_t):
+    """Per zero run ``[starts, ends)`` of the samples ``t``: whether it spans a gap of the GPS fixes, the receiver's
+    speed lost with them. No fix is stamped between the sample before it and the sample after it (a fix at either
+    is the receiver's last or first), a fix at least is missing there (the span at least 1.5 of the fixes' median
+    interval), and the run covers at least half of the time between the fixes around it (a CAN frame lost inside a
+    tunnel is a sample's dropout, not the receiver's)."""
+    out = np.zeros(len(starts), dtype=bool)
+    try:
+        g = np.sort(np.asarray(gps_t, dtype=float).ravel())
+    except (TypeError, ValueError):
+        return out
+    g = g[np.isfinite(g)]
+    if len(g) < 3 or not len(starts):
+        return out
+    rate = float(np.median(np.diff(g)))
+    a, b = t[starts - 1], t[ends]
+    before, after = np.searchsorted(g, a, side="right"), np.searchsorted(g, b, side="left")
+    ok = (before >= 1) & (after < len(g)) & (before == after) & (b - a >= 1.5 * rate)  # (a fix at either: not in)
+    gap = g[np.minimum(after, len(g) - 1)] - g[np.maximum(before - 1, 0)]
+    return ok & (b - a >= 0.5 * gap)
+
+
+def _speed_dropouts(t, speed, gps_t=None):
     """``speed`` with its dropouts interpolated from the samples beside them, with a warning.
 
     A dropout is a run of samples reading 0 (a CAN frame lost and logged as 0, a wheel-speed signal's glitch)
@@ -1338,18 +1387,40 @@ def _speed_dropouts(t, speed):
     :data:`MAX_DROPOUT_ACCEL`, both at least :data:`MIN_DROPOUT_SPEED`: a stop so short is no car's. Taken for
     a stop, each held the filters still for its samples while the car moved on (20 such samples over the phone
     analog's 15 minutes took EKF-8 from 6.68 / 28.16 to 63.51 / 397.75 m). A real stop, however abrupt, lasts
-    longer than that."""
+    longer than that.
+
+    A run that lies in a gap of the fixes (``gps_t``: none stamped from the sample before it to the one after it)
+    is a dropout already past :data:`MAX_STOP_ACCEL` each way, an ordinary stop's: a speed from the GPS receiver
+    itself (its Doppler speed), logged as 0 when the receiver loses its fixes under a bridge, lost with them (the
+    eighth user trial's drive, 7 bridges at 19-26 m/s for 3.4-7.9 s: four of them, longer than the rule above
+    allows, taken for stops, held the filters still while the car drove on, and the reader named the fixes after
+    them a spoofer's walk; stop 75). Warned of apart, naming that."""
     low = speed == 0.0
     if not low.any():
         return speed
     starts, ends = _inner_runs(low)
     a, b = np.abs(speed[starts - 1]), np.abs(speed[ends])
-    drop = ((a + b) / (t[ends] - t[starts - 1]) > MAX_DROPOUT_ACCEL) & (np.minimum(a, b) >= MIN_DROPOUT_SPEED)
-    if not drop.any():
-        return speed
+    fast = (a + b) / (t[ends] - t[starts - 1])
+    moving = np.minimum(a, b) >= MIN_DROPOUT_SPEED
+    unfixed = moving & (fast > MAX_STOP_ACCEL) & _unfixed(t, starts, ends, gps_t)
+    drop = (fast > MAX_DROPOUT_ACCEL) & moving & ~unfixed
+    if unfixed.any():
+        k = int(np.flatnonzero(unfixed)[0])
+        i, j = starts[k], ends[k]
+        warnings.warn(f"the speed reads 0 for {int((ends - starts)[unfixed].sum())} sample(s) in {int(unfixed.sum())} "
+                      f"run(s) where the GPS receiver has no fix either, between samples that do not (the first at "
+                      f"t = {t[i]:g} s, between {a[k]:.3g} and {b[k]:.3g} m/s {t[j] - t[i - 1]:.2g} s apart): a car "
+                      f"braking to a stop and pulling away at an ordinary {MAX_STOP_ACCEL:g} m/s^2 would take longer, "
+                      "so the speed is the receiver's own (its Doppler speed, lost with its fixes under a bridge or in "
+                      "a tunnel), and taken for stops these would hold the filters still while the car drives on; they "
+                      "are interpolated from the samples beside them. Give the car's own speed (a CAN or wheel speed, "
+                      "an odometer) if the log has one: a speed from the receiver is lost wherever its fixes are, "
+                      "which is where dead reckoning has to carry the car", RuntimeWarning, stacklevel=4)
     out = speed.copy()
-    for i, j in zip(starts[drop], ends[drop]):
+    for i, j in zip(starts[drop | unfixed], ends[drop | unfixed]):
         out[i:j] = np.interp(t[i:j], [t[i - 1], t[j]], [speed[i - 1], speed[j]])
+    if not drop.any():
+        return out
     k = int(np.flatnonzero(drop)[0])
     i, j = starts[k], ends[k]
     warnings.warn(f"the speed reads 0 for {int((ends - starts)[drop].sum())} sample(s) in {int(drop.sum())} run(s) "

@@ -585,6 +585,52 @@ def test_a_spike_beside_a_dropout_is_interpolated_as_one_glitch(tmp_path):
     np.testing.assert_allclose(run.z_dr, clean.z_dr, atol=1e-9)
 
 
+def test_a_receivers_speed_lost_with_its_fixes_under_a_bridge_is_interpolated_and_named(tmp_path):
+    """An eighth user's speed was the GPS receiver's Doppler speed, logged as 0 under 7 bridges where the receiver had
+    no fix either (stop 75): four runs of 5.4-7.9 s at 19-23 m/s passed no dropout rule (under 10 m/s^2 each way),
+    were taken for stops, and the fixes after them were named a spoofer's walk (EKF-8 8.81 / 185.24 m against the
+    twin's 5.31 / 27.04). A zero run that spans a gap of the fixes, between samples of a moving car, past an
+    ordinary stop's 3 m/s^2 each way, is the receiver's speed lost with its fixes: interpolated, and named so. Not so
+    for the same run where the fixes go on (a stop as far as the fixes can tell: the spoofer's check judges it), for
+    a real stop in a gap of the fixes (the speed comes down to 0 and up again), or CAN frames lost for 2 s in a
+    tunnel (a run far shorter than the gap: the dropout rule's, as before)."""
+    c = _drive(v=20.0, turn=0.0)
+    clean = read_drive_csv(_write(tmp_path / "clean.csv", c))
+    g = {k: v.copy() for k, v in c.items()}
+    g["speed"][400:470] = 0.0  # 7 s of 0 at 20 m/s ...
+    for k in ("gps_lat", "gps_lon", "gps_sigma"):
+        g[k][400:470] = np.nan  # ... where the receiver has no fix (its last at 39 s, its next at 47 s)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        run = read_drive_csv(_write(tmp_path / "d.csv", g))
+    said = [str(w.message) for w in caught if "where the GPS receiver has no fix either" in str(w.message)]
+    assert len(said) == 1 and "70 sample(s) in 1 run(s)" in said[0] and "Doppler" in said[0], said
+    assert not any("walk away" in str(w.message) for w in caught)
+    np.testing.assert_allclose(run.z_dr, clean.z_dr, atol=1e-9)
+    fixes_on = {k: v.copy() for k, v in g.items()}
+    for k in ("gps_lat", "gps_lon", "gps_sigma"):
+        fixes_on[k] = c[k].copy()
+    stop = {k: v.copy() for k, v in g.items()}  # a real stop in the gap: 20 -> 0 at 2 m/s^2, 3 s still, 0 -> 20
+    ramp = np.clip(20.0 - 2.0 * 0.1 * np.arange(1, 101), 0.0, None)
+    stop["speed"][300:400], stop["speed"][400:430], stop["speed"][430:530] = ramp, 0.0, ramp[::-1]
+    for k in ("gps_lat", "gps_lon", "gps_sigma"):
+        stop[k][300:530] = np.nan
+    frame = {k: v.copy() for k, v in c.items()}  # CAN frames lost for 2 s inside a 20 s gap of the fixes
+    frame["speed"][450:470] = 0.0
+    for k in ("gps_lat", "gps_lon", "gps_sigma"):
+        frame[k][300:500] = np.nan
+    for name, cols in (("fixes on", fixes_on), ("a real stop", stop), ("a lost frame", frame)):
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            try:
+                read_drive_csv(_write(tmp_path / "d.csv", cols))
+            except ValueError:
+                pass  # (a stop the plausibility checks refuse is still not the receiver's speed)
+        assert not any("where the GPS receiver has no fix" in str(w.message) for w in caught), name
+        if name == "a lost frame":
+            assert any("so these are dropouts" in str(w.message) for w in caught)
+
+
 def test_the_analogs_have_no_spikes_to_find(tmp_path):
     """What a car does is no spike: the analogs' stops, pull-aways and turns (seed 0 of each, as written) read
     without the warning."""
@@ -1249,6 +1295,34 @@ def test_a_yaw_rate_spike_is_interpolated_before_it_is_integrated(tmp_path):
                                             r"speed .* the first at t = 30 s, \+1.5 rad/s at 10 m/s"):
         run = read_drive_csv(_write(tmp_path / "spiked.csv", rate, columns=cols))
     np.testing.assert_allclose(run.z_dr, clean.z_dr, atol=1e-9)
+
+
+def test_a_receivers_cold_start_does_not_start_a_yaw_rates_heading(tmp_path):
+    """An eighth user's receiver started cold: 55 s of fixes up to 322 m off, reporting up to 260 m (stop 75). The
+    line through the moving stretches' angles that starts a yaw rate's heading weighed those stretches like the
+    others: the heading started 7 degrees off and the drift read as a gyro warming up (EKF-8 7.35 / 45.98 m against
+    4.44 / 19.84 with those fixes dropped by hand). Fixes reporting more than ``START_SIGMA_FACTOR`` times the median
+    sigma no longer start it: the heading reads back within 0.5 degree, as without the cold start."""
+    from filterwnn.navigation.scenarios import START_SIGMA_FACTOR
+
+    c = _drive()
+    cols = ["time", "yaw_rate_deg", "speed", "gps_lat", "gps_lon", "gps_sigma", "true_lat", "true_lon"]
+    rate = {**c, "yaw_rate_deg": np.full(len(c["time"]), np.degrees(0.02))}
+    cold = {k: v.copy() for k, v in rate.items()}
+    t = c["time"]
+    first = (t < 40.0) & np.isfinite(c["gps_lat"])
+    off = 300.0 * np.exp(-t[first] / 12.0)  # a cold start's error, shrinking, its direction swinging
+    lat0, lon0 = c["gps_lat"][first], c["gps_lon"][first]
+    cold["gps_lat"][first] = lat0 + np.degrees(off * np.cos(0.15 * t[first]) / 6.371e6)
+    cold["gps_lon"][first] = lon0 + np.degrees(off * np.sin(0.15 * t[first]) / 6.371e6 / np.cos(np.radians(lat0)))
+    cold["gps_sigma"][first] = np.maximum(3.0, 0.8 * off)
+    assert np.sum(cold["gps_sigma"][first] > START_SIGMA_FACTOR * 3.0) >= 15
+    want = read_drive_csv(_write(tmp_path / "heading.csv", c))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        run = read_drive_csv(_write(tmp_path / "cold.csv", cold, columns=cols))
+    d = np.degrees(np.abs((run.z_dr[:, 0] - want.z_dr[:, 0] + np.pi) % (2 * np.pi) - np.pi))
+    assert d.max() < 0.5, d.max()
 
 
 def test_a_yaw_rate_is_integrated_and_started_at_the_fixes_course(tmp_path):
