@@ -23,7 +23,10 @@ hour of interpolated dead reckoning), the arrival-stamped fixes with a latency s
 from the start, the gyro shaken at idle with ``--hold-heading-at-stops``, and the RTK drive with the bias instability
 the reader names on it; since stop 75 also the arrival-stamped fixes re-stamped on the receiver's grid
 (``--restamp-fixes``, the remedy the reader's warning names). ``--only PREFIX`` runs only the lines whose label
-starts with it (stop 75 reran trial 7's d3 lines alone: ``--trial 7 --only d3 > trial_7_stop75_d3.txt``).
+starts with it (stop 75 reran trial 7's d3 lines alone: ``--trial 7 --only d3 > trial_7_stop75_d3.txt``). Trial 8
+(``--trial 8``, ``gen_drives_8.py``, stop 75) runs its five drives beside their twins, the Doppler speed's drive with
+the spoofer's remedy stop 74's reader named on it, the track drive with the filters' gyro-scale remedy and with that
+user's own (its cold start's fixes dropped as well), and the lever arm's twin with the correlated fixes inflated.
 """
 import os
 import re
@@ -73,7 +76,16 @@ RUNS_7 = [(f"{name}{twin}", f"{name}{twin}.csv", []) for name in ("d1_dst_jump",
 TRIAL = int(sys.argv[sys.argv.index("--trial") + 1]) if "--trial" in sys.argv else 1
 ONLY = sys.argv[sys.argv.index("--only") + 1] if "--only" in sys.argv else ""
 GENERATOR = {1: "gen_drives.py", 2: "gen_drives_2.py", 3: "gen_drives_3.py", 4: "gen_drives_4.py",
-             6: "gen_drives_6.py", 7: "gen_drives_7.py"}[TRIAL]
+             6: "gen_drives_6.py", 7: "gen_drives_7.py", 8: "gen_drives_8.py"}[TRIAL]
+
+
+RUNS_8 = [(f"{name}{twin}", f"{name}{twin}.csv", []) for name in ("d1_leverarm", "d2_doppler", "d3_spare", "d4_track",
+                                                                   "d5_pessimistic") for twin in ("", "_clean")] + [
+    ("d2 --drop-fixes 100,230 (stop 74's reader's remedy)", "d2_doppler.csv", ["--drop-fixes", "100,230"]),
+    ("d4 --gyro-scale-sd 0.01 (the filters' remedy)", "d4_track.csv", ["--gyro-scale-sd", "0.01"]),
+    ("d4 --drop-fixes 0,55 --gyro-scale-sd 0.01 (that user's own)", "d4_track.csv",
+     ["--drop-fixes", "0,55", "--gyro-scale-sd", "0.01"]),
+    ("d1_clean --correlated-fixes inflate (that user's own)", "d1_leverarm_clean.csv", ["--correlated-fixes", "inflate"])]
 
 
 def split(path, within):
@@ -104,7 +116,7 @@ def cells(text):
 
 with tempfile.TemporaryDirectory() as folder:
     subprocess.run([sys.executable, os.path.join(HERE, GENERATOR), folder], check=True, capture_output=True)
-    for label, csv, extra in {1: RUNS, 2: RUNS_2, 3: RUNS_3, 4: RUNS_4, 6: RUNS_6, 7: RUNS_7}[TRIAL]:
+    for label, csv, extra in {1: RUNS, 2: RUNS_2, 3: RUNS_3, 4: RUNS_4, 6: RUNS_6, 7: RUNS_7, 8: RUNS_8}[TRIAL]:
         if not label.startswith(ONLY):
             continue
         drives = [os.path.join(folder, csv)]
