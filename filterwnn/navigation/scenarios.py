@@ -1404,12 +1404,16 @@ def _speed_dropouts(t, speed, gps_t=None):
     moving = np.minimum(a, b) >= MIN_DROPOUT_SPEED
     unfixed = moving & (fast > MAX_STOP_ACCEL) & _unfixed(t, starts, ends, gps_t)
     drop = (fast > MAX_DROPOUT_ACCEL) & moving & ~unfixed
-    if unfixed.any():
-        k = int(np.flatnonzero(unfixed)[0])
+
+    def said(runs, where=""):  # (the runs' count and the first's speeds beside it)
+        k = int(np.flatnonzero(runs)[0])
         i, j = starts[k], ends[k]
-        warnings.warn(f"the speed reads 0 for {int((ends - starts)[unfixed].sum())} sample(s) in {int(unfixed.sum())} "
-                      f"run(s) where the GPS receiver has no fix either, between samples that do not (the first at "
-                      f"t = {t[i]:g} s, between {a[k]:.3g} and {b[k]:.3g} m/s {t[j] - t[i - 1]:.2g} s apart): a car "
+        return (f"the speed reads 0 for {int((ends - starts)[runs].sum())} sample(s) in {int(runs.sum())} run(s)"
+                f"{where} between samples that do not (the first at t = {t[i]:g} s, between {a[k]:.3g} and "
+                f"{b[k]:.3g} m/s {t[j] - t[i - 1]:.2g} s apart)")
+
+    if unfixed.any():
+        warnings.warn(said(unfixed, " where the GPS receiver has no fix either,") + ": a car "
                       f"braking to a stop and pulling away at an ordinary {MAX_STOP_ACCEL:g} m/s^2 would take longer, "
                       "so the speed is the receiver's own (its Doppler speed, lost with its fixes under a bridge or in "
                       "a tunnel), and taken for stops these would hold the filters still while the car drives on; they "
@@ -1421,11 +1425,7 @@ def _speed_dropouts(t, speed, gps_t=None):
         out[i:j] = np.interp(t[i:j], [t[i - 1], t[j]], [speed[i - 1], speed[j]])
     if not drop.any():
         return out
-    k = int(np.flatnonzero(drop)[0])
-    i, j = starts[k], ends[k]
-    warnings.warn(f"the speed reads 0 for {int((ends - starts)[drop].sum())} sample(s) in {int(drop.sum())} run(s) "
-                  f"between samples that do not (the first at t = {t[i]:g} s, between {a[k]:.3g} and {b[k]:.3g} m/s "
-                  f"{t[j] - t[i - 1]:.2g} s apart): no car stops and pulls away again so fast (over "
+    warnings.warn(said(drop) + ": no car stops and pulls away again so fast (over "
                   f"{MAX_DROPOUT_ACCEL:g} m/s^2 each way), so these are dropouts (a CAN frame lost and logged as 0, a "
                   "wheel-speed signal's glitch), which taken for stops would hold the filters still while the car "
                   "moves on; they are interpolated from the samples beside them", RuntimeWarning, stacklevel=4)

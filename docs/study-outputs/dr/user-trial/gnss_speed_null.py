@@ -5,18 +5,7 @@ with the warning's first words.
 
     python docs/study-outputs/dr/user-trial/gnss_speed_null.py > docs/study-outputs/dr/user-trial/gnss_speed_null.txt
 """
-import os
-import tempfile
 
-from null_files import drive_files, reader_warnings
+from null_files import print_told
 
-with tempfile.TemporaryDirectory() as folder:
-    files = drive_files(folder, sample=True)
-    hits = []
-    for f in files:
-        said = [w.split(": a car braking")[0] for w in reader_warnings(f) if "where the GPS receiver has no fix" in w]
-        if said:
-            hits.append((os.path.relpath(f, folder) if f.startswith(folder) else os.path.basename(f), said[0]))
-print(f"{len(files)} drive files read; told: {len(hits)}")
-for name, said in hits:
-    print(f"  {name}: {said}")
+print_told('where the GPS receiver has no fix', ': a car braking')

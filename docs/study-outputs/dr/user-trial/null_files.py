@@ -41,3 +41,20 @@ def reader_warnings(path):
         except ValueError:
             pass
     return [str(w.message) for w in seen]
+
+
+def print_told(words, cut, sample=True):
+    """Read every drive file (:func:`drive_files`) and print which tell the warning holding ``words``, with its text
+    up to ``cut``."""
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as folder:
+        files = drive_files(folder, sample=sample)
+        hits = []
+        for f in files:
+            said = [w.split(cut)[0] for w in reader_warnings(f) if words in w]
+            if said:
+                hits.append((os.path.relpath(f, folder) if f.startswith(folder) else os.path.basename(f), said[0]))
+    print(f"{len(files)} drive files read; told: {len(hits)}")
+    for name, said in hits:
+        print(f"  {name}: {said}")
