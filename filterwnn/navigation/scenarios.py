@@ -408,9 +408,9 @@ class DRRun(NamedTuple):
             location callback, a serial port read) are each late by a time that varies; the reader finds them
             from the stamps alone (``filterwnn.navigation.scenarios._arrival_stamps``) and warns. With True,
             each such fix is placed on the receiver's regular grid of epochs, fitted to the stamps, at the
-            earliest arrivals (their 1st percentile), before ``gps_latency``: what is left is a constant latency. Default False: a warning that names this. A
-            drive whose stamps show no such grid is read as it is, with a warning. A receiver whose rate truly
-            varies must not be re-stamped.
+            earliest arrivals (their 1st percentile), before ``gps_latency``: what is left is a constant latency.
+            Default False: a warning that names this. A drive whose stamps show no such grid is read as it is, with
+            a warning. A receiver whose rate truly varies must not be re-stamped.
         speed_scale : float
             The factor by which ``speed`` (or ``distance``) reads more than the car drove (a speedometer's
             signal reads high by up to 10 %; a wheel-speed signal with the wrong tyre circumference a few per
@@ -518,11 +518,11 @@ def _arrival_stamps(t, gps_t):
     """Whether the fixes' stamps are a receiver's regular epochs, each late by a time that varies (stamped when the
     logger received them): a dict or None. None unless the fixes are at least :data:`ARRIVAL_MIN_FIXES`, come at
     least two DR samples apart (median), have :data:`ARRIVAL_OFF_SHARE` of their intervals off an integer number of
-    the median interval by more than half a sample interval, and a lag-one correlation of those misfits of at most
-    ``-ARRIVAL_LAG1_Z / sqrt(n)``. Then ``period`` (s) and ``first`` (s) are the receiver's grid fitted to the stamps
-    (least squares; each interval counted as the nearest whole number of median intervals, at least one, ``count``
-    the epochs' numbers), ``median`` the median interval (s), ``late``
-    each stamp's lateness on that grid less the 1st percentile's (s, at least 0 but for the few below it), and
+    the median interval by more than half a sample interval, and a lag-one correlation of those misfits
+    (:func:`_lag1`) of at most ``-ARRIVAL_LAG1_Z / sqrt(n)``. Then ``period`` (s) is the receiver's grid fitted to the
+    stamps (:func:`_grid_line`, each interval counted as the nearest whole number of median intervals, at least one),
+    ``late`` each stamp's lateness on that grid less the 1st percentile's (s, at least 0 but for the few below it),
+    ``grid`` the stamps placed on that grid at the earliest arrivals (s), ``median`` the median interval (s), and
     ``off``, ``n``, ``lag1`` the test's counts and correlation. ``t``: the DR samples' times."""
     try:
         t = np.asarray(t, dtype=float).ravel()
@@ -543,16 +543,13 @@ def _arrival_stamps(t, gps_t):
     n = len(iv)
     if off < ARRIVAL_OFF_SHARE * n or np.std(misfit) == 0.0:
         return None
-    lag1 = float(np.corrcoef(misfit[:-1], misfit[1:])[0, 1])
+    lag1 = _lag1(misfit)
     if not lag1 * np.sqrt(n) <= -ARRIVAL_LAG1_Z:
         return None
-    count = np.r_[0.0, np.cumsum(k)]
-    design = np.stack([np.ones_like(count), count], axis=1)
-    (first, step), *_ = np.linalg.lstsq(design, gps_t, rcond=None)
-    late = gps_t - design @ np.array([first, step])
+    step, late = _grid_line(gps_t, np.r_[0.0, np.cumsum(k)])
     early = float(np.percentile(late, 1.0))
-    return {"period": float(step), "first": float(first) + early, "late": late - early, "off": off, "n": n,
-            "lag1": lag1, "count": count, "median": period}
+    return {"period": step, "grid": gps_t - late + early, "late": late - early, "off": off, "n": n, "lag1": lag1,
+            "median": period}
 
 
 def _arrival_restamped(t, gps_t, restamp):
@@ -575,7 +572,7 @@ def _arrival_restamped(t, gps_t, restamp):
         warnings.warn(f"{said}: re-stamped on that grid at the earliest arrivals (restamp_fixes); what is left is a "
                       "constant latency (the filters' latency state, or gps_latency where it is known)",
                       RuntimeWarning, stacklevel=4)
-        on_grid = found["first"] + found["period"] * found["count"]
+        on_grid = found["grid"]
         t0 = float(np.asarray(t, dtype=float).ravel()[0])  # (a first epoch just before the log's first sample)
         return np.where((on_grid < t0) & (np.asarray(gps_t, dtype=float) >= t0), t0, on_grid)
     warnings.warn(f"{said}. A latency that varies is no constant the filters' latency state can take (the seventh "
@@ -829,8 +826,6 @@ def _integrate_yaw(t, yaw_rate, distance=None, speed=None):
 #: started the heading about 7 degrees off and read as a gyro warming up; stop 75). The filters weigh each fix by its
 #: own sigma; the start's line through the stretches' angles weighs them alike.
 START_SIGMA_FACTOR = 5.0
-
-
 #: ... and the drive's first fixes, until one reports at most this many times the median: a cold start's tail, still
 #: metres to tens of metres off as it converges.
 START_SETTLED_FACTOR = 2.0
@@ -998,8 +993,7 @@ def _polled(dts, dt):
     d = dts[np.round(dts / dt) < 2]
     if len(d) < 3 or np.std(d) <= POLLED_SPREAD * dt:
         return None
-    c = d - np.mean(d)
-    return d if float(c[1:] @ c[:-1] / (c @ c)) >= GRID_CORRELATION else None
+    return d if _lag1(d) >= GRID_CORRELATION else None
 
 
 def _sample_grid(t, max_jitter):
@@ -1262,19 +1256,33 @@ INTERVALS = ("auto", "stamps", "grid")
 GRID_TOLERANCE = 0.25
 
 
-def _stamp_grid(t, dts):
-    """The stamps' regular grid: ``(interval, on_grid, rho)``. ``interval`` is the slope of the
-    least-squares line through ``(k, t[k])`` (about ``t[0]``, so that epoch times keep their digits);
-    ``on_grid`` whether the stamps jitter about it: every stamp within :data:`GRID_TOLERANCE` of an
-    interval of the line, and the intervals' lag-1 autocorrelation ``rho`` below :data:`GRID_CORRELATION`."""
-    k = np.arange(len(t), dtype=float) - 0.5 * (len(t) - 1)
+def _lag1(x):
+    """The lag-1 autocorrelation of ``x`` about its mean (0 for a constant ``x``): a stamp written late makes its
+    interval long and the next one short (-0.5 for stamps jittered independently)."""
+    d = np.asarray(x, dtype=float) - np.mean(x)
+    dd = float(d @ d)
+    return float(d[1:] @ d[:-1] / dd) if dd > 0 else 0.0
+
+
+def _grid_line(t, k):
+    """The least-squares line through ``(k, t)``: ``(slope, misfit)``, each ``t``'s misfit from the line (fitted
+    about ``t[0]`` and the means, so that epoch times keep their digits)."""
+    k = np.asarray(k, dtype=float)
+    k = k - np.mean(k)
     tc = t - t[0]
     tc = tc - np.mean(tc)
-    interval = float(k @ tc / (k @ k))
-    d = dts - np.mean(dts)
-    dd = float(d @ d)
-    rho = float(d[1:] @ d[:-1] / dd) if dd > 0 else 0.0
-    on_grid = float(np.max(np.abs(tc - interval * k))) <= GRID_TOLERANCE * interval and rho < GRID_CORRELATION
+    slope = float(k @ tc / (k @ k))
+    return slope, tc - slope * k
+
+
+def _stamp_grid(t, dts):
+    """The stamps' regular grid: ``(interval, on_grid, rho)``. ``interval`` is the slope of the
+    least-squares line through ``(k, t[k])`` (:func:`_grid_line`); ``on_grid`` whether the stamps jitter about it:
+    every stamp within :data:`GRID_TOLERANCE` of an interval of the line, and the intervals' lag-1 autocorrelation
+    ``rho`` (:func:`_lag1`) below :data:`GRID_CORRELATION`."""
+    interval, misfit = _grid_line(t, np.arange(len(t)))
+    rho = _lag1(dts)
+    on_grid = float(np.max(np.abs(misfit))) <= GRID_TOLERANCE * interval and rho < GRID_CORRELATION
     return interval, on_grid, rho
 
 
@@ -1420,6 +1428,8 @@ def _speed_dropouts(t, speed, gps_t=None):
                       "are interpolated from the samples beside them. Give the car's own speed (a CAN or wheel speed, "
                       "an odometer) if the log has one: a speed from the receiver is lost wherever its fixes are, "
                       "which is where dead reckoning has to carry the car", RuntimeWarning, stacklevel=4)
+    if not (drop | unfixed).any():
+        return speed
     out = speed.copy()
     for i, j in zip(starts[drop | unfixed], ends[drop | unfixed]):
         out[i:j] = np.interp(t[i:j], [t[i - 1], t[j]], [speed[i - 1], speed[j]])
